@@ -1,0 +1,79 @@
+/// \file case_result.hpp
+/// \brief The per-case result record: peaks, times, counts and the final status.
+///
+/// Every quantity carries its unit in its name. A metric that does not exist for a case
+/// (no uplift, solver failure) is NaN; the JSON form writes it as null.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace pcrf {
+
+/// How a case ended. The integer values are stored in result cubes (CF flag_values):
+/// never renumber them.
+enum class CaseStatus : std::int8_t {
+  kAtRest = 0,          ///< record (and tail) over, frame at rest
+  kRockingAtEnd = 1,    ///< record (and tail) over, frame still rocking
+  kTendonFracture = 2,  ///< a tendon reached the fracture strain
+  kOverturned = 3,      ///< the mechanism reached its limit angle and cannot close
+  kSolverFailure = 4,   ///< the integrator failed or produced a non-finite state
+  kTimeLimit = 5,       ///< the case hit its wall-time limit
+  kNotRun = -1,         ///< placeholder in a cube for a case not computed yet
+};
+
+/// Stable text name of a status ("at_rest", "rocking_at_end", ...).
+std::string_view status_name(CaseStatus status);
+/// All statuses that a case can end with, in flag order (kNotRun excluded).
+const std::vector<CaseStatus>& all_final_statuses();
+
+/// Solver work counters, summed over every re-initialization of the integrator.
+struct SolverCounts {
+  long steps = 0;
+  long rhs_evals = 0;
+  long root_evals = 0;
+  long reinits = 0;
+};
+
+/// The result record of one case (one frame, one ground motion).
+struct CaseResult {
+  // Properties of the frame (independent of the record).
+  double lambda_g = 0.0;            ///< paper's uplift coefficient G(0)/S(0) [-] (×g)
+  double uplift_threshold_g = 0.0;  ///< physical uplift acceleration incl. prestress [g]
+  double restitution = 0.0;         ///< coefficient of restitution r [-]
+  // Response.
+  double t_trigger_paper_s = 0.0;   ///< first sample with |ü_g| ≥ λ_g·g (paper's t_RI) [s]; NaN if none
+  double t_uplift_s = 0.0;          ///< first lift-off [s]; NaN if none
+  double theta_max_rad = 0.0;       ///< max |θ₁| [rad]
+  double t_theta_max_s = 0.0;       ///< time of theta_max_rad [s]; NaN if no uplift
+  double omega_max_rad_s = 0.0;     ///< max |θ̇₁| [rad/s]
+  double t_omega_max_s = 0.0;       ///< time of omega_max_rad_s [s]; NaN if no uplift
+  double strain_column_max = 0.0;   ///< max column tendon strain, initial strain included [-]
+  double strain_beam_max = 0.0;     ///< max beam tendon strain, initial strain included [-]
+  long impacts = 0;                 ///< number of impacts (θ₁ crossing zero)
+  CaseStatus status = CaseStatus::kNotRun;
+  double t_end_s = 0.0;             ///< time at which the case ended [s]
+  SolverCounts counts;
+  double wall_time_s = 0.0;         ///< wall-clock time of the case [s]
+  std::string message;              ///< failure detail; empty when none
+};
+
+/// One metric of CaseResult, as studies and cubes name it.
+struct MetricInfo {
+  std::string_view name;   ///< e.g. "theta_max_rad"
+  std::string_view units;  ///< UDUNITS text, e.g. "rad", "s", "1"
+  std::string_view description;
+  double (*get)(const CaseResult&);
+};
+
+/// Every numeric metric of CaseResult (status excluded), in a stable order.
+const std::vector<MetricInfo>& all_metrics();
+/// Looks a metric up by name; nullptr when unknown.
+const MetricInfo* find_metric(std::string_view name);
+
+/// The record as one JSON object (keys as the field names above, NaN as null).
+std::string to_json(const CaseResult& result);
+
+}  // namespace pcrf

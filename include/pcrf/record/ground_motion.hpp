@@ -1,0 +1,51 @@
+/// \file ground_motion.hpp
+/// \brief A uniformly sampled horizontal ground acceleration record.
+///
+/// Sample i sits at t = i·dt (first sample at t = 0). Between samples the
+/// acceleration is interpolated linearly; before t = 0 and after the last
+/// sample it is zero (the free-vibration tail of a case sees no ground motion).
+/// Values are stored in m/s² whatever the units of the file they came from.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace pcrf {
+
+/// Standard gravity used by the model and by every unit conversion [m/s²].
+/// The paper's Π values (e.g. Π_Ec = 4294.6) are reproduced with 9.81.
+inline constexpr double kGravity_m_s2 = 9.81;
+
+class GroundMotion {
+ public:
+  /// \param name     label used in results and error messages
+  /// \param dt_s     sample interval [s], > 0
+  /// \param accel_m_s2 samples [m/s²], at least one; all finite
+  /// \throws std::invalid_argument when dt ≤ 0, no samples, or a non-finite sample
+  GroundMotion(std::string name, double dt_s, std::vector<double> accel_m_s2);
+
+  const std::string& name() const { return name_; }
+  double dt_s() const { return dt_s_; }
+  std::size_t size() const { return accel_m_s2_.size(); }
+  /// Time of the last sample, (n − 1)·dt [s].
+  double duration_s() const { return static_cast<double>(size() - 1) * dt_s_; }
+  const std::vector<double>& samples_m_s2() const { return accel_m_s2_; }
+
+  /// Ground acceleration at time t [m/s²]: linear interpolation, zero outside the record.
+  double accel_m_s2(double t_s) const;
+
+  /// Peak absolute acceleration [m/s²].
+  double pga_m_s2() const;
+
+  /// The same record multiplied by `factor` (a negative factor mirrors it).
+  GroundMotion scaled(double factor) const;
+
+ private:
+  std::string name_;
+  double dt_s_;
+  double inv_dt_;
+  std::vector<double> accel_m_s2_;
+};
+
+}  // namespace pcrf

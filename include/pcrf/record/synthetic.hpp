@@ -1,0 +1,50 @@
+/// \file synthetic.hpp
+/// \brief Ground motions the engine makes itself, so that the demo and tests need no file.
+///
+/// Both generators are deterministic: the same arguments give the same samples on every
+/// machine (the stochastic record uses std::mt19937_64 and its own normal transform, not
+/// std::normal_distribution, whose output is implementation-defined).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "pcrf/record/ground_motion.hpp"
+
+namespace pcrf {
+
+/// A train of full sine cycles a(t) = A sin(2π t / T_p) for 0 ≤ t < n·T_p, then zero
+/// until duration_s.
+struct SinePulseSpec {
+  double amplitude_g = 0.5;   ///< peak acceleration A [g]
+  double period_s = 0.5;      ///< T_p [s]
+  int cycles = 2;             ///< n ≥ 1
+  double duration_s = 5.0;    ///< total length [s] ≥ n·T_p
+  double dt_s = 0.005;        ///< sample interval [s]
+};
+GroundMotion make_sine_pulse_train(const SinePulseSpec& spec);
+
+/// Filtered white noise (Kanai–Tajimi filter, ground frequency f_g, damping ζ_g) under a
+/// Jennings-type envelope (quadratic rise to t_rise, plateau to t_rise + t_strong, then
+/// exponential decay), scaled so that the peak |a| equals pga_g.
+struct StochasticSpec {
+  std::uint64_t seed = 1;
+  double pga_g = 0.5;          ///< peak ground acceleration after scaling [g]
+  double duration_s = 20.0;    ///< [s]
+  double dt_s = 0.01;          ///< [s]
+  double ground_freq_hz = 2.5; ///< Kanai–Tajimi f_g [Hz]
+  double ground_damping = 0.6; ///< Kanai–Tajimi ζ_g [-]
+  double rise_s = 2.0;         ///< envelope rise time [s]
+  double strong_s = 6.0;       ///< envelope plateau length [s]
+  double decay_per_s = 0.35;   ///< envelope decay rate after the plateau [1/s]
+};
+GroundMotion make_stochastic(const StochasticSpec& spec);
+
+/// A record named in text form, as the CLI and study files accept it:
+/// "sine:amplitude_g=0.5,period_s=0.5,cycles=2,duration_s=5,dt_s=0.005" or
+/// "stochastic:seed=3,pga_g=0.4,duration_s=20,dt_s=0.01" (any subset of the fields above,
+/// the rest take their defaults). The record's name is the text itself.
+/// \throws std::invalid_argument naming the unknown kind, key or bad value.
+GroundMotion make_synthetic(const std::string& text);
+
+}  // namespace pcrf

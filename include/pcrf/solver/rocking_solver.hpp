@@ -1,0 +1,52 @@
+/// \file rocking_solver.hpp
+/// \brief Solves one case: a frame under a ground motion, from rest, through impacts.
+///
+/// State y = (θ₁, θ̇₁). Between impacts the equation of motion (31) is integrated on the
+/// branch of the current sway direction (θ₁ ≤ 0 or the mirrored θ₁ ≥ 0) with SUNDIALS
+/// CVODE or ARKODE. Root functions:
+///   g₀ = θ₁              impact (only in the closing direction),
+///   g₁ = θ̇₁              extremum of θ₁ (exact θ_max and its time),
+///   g₂ = θ̈₁              extremum of θ̇₁ (exact ω_max and its time; only if requested),
+///   g₃ = |θ₁| − θ_stop   tendon fracture or overturning, whichever angle is smaller.
+/// At an impact the velocity is multiplied by the coefficient of restitution r, the branch
+/// flips and the integrator is re-initialized; the root at the new initial point is inactive
+/// until θ₁ leaves zero. At rest the frame is not integrated at all: the solver scans the
+/// record for the first time the net force opens the joints (exact, within the linear
+/// interpolation of the record). See README "Physics" for the return-to-rest rule.
+#pragma once
+
+#include <functional>
+
+#include "pcrf/metrics/case_result.hpp"
+#include "pcrf/model/frame.hpp"
+#include "pcrf/record/ground_motion.hpp"
+#include "pcrf/solver/settings.hpp"
+
+namespace pcrf {
+
+/// One point of a time history.
+struct HistorySample {
+  double t_s;
+  double theta1_rad, omega1_rad_s;
+  double theta2_rad, theta3_rad;
+  double strain_column_left, strain_column_right, strain_beam;
+  double ground_accel_m_s2;
+};
+
+/// Receives the time history at every record sample time (and at each impact, twice:
+/// before and after). Empty function: no history.
+using HistorySink = std::function<void(const HistorySample&)>;
+
+/// What the caller wants computed; anything false is skipped (and left NaN).
+struct OutputRequest {
+  bool omega_peak = true;  ///< locate max |θ̇₁| exactly (adds the root g₂)
+};
+
+/// Solves one case. Never throws for a physical or numerical failure: the result's
+/// status says what happened (message gives detail). Throws std::invalid_argument only
+/// for invalid settings (non-positive tolerance, unknown integrator).
+CaseResult solve_case(const Frame& frame, const GroundMotion& record,
+                      const PhysicsOptions& physics, const SolverSettings& solver,
+                      const OutputRequest& request = {}, const HistorySink& history = {});
+
+}  // namespace pcrf

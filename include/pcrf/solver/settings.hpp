@@ -1,0 +1,50 @@
+/// \file settings.hpp
+/// \brief Physics options and integrator settings of one case.
+#pragma once
+
+#include <string>
+
+namespace pcrf {
+
+/// When a frame at rest starts to rock.
+enum class UpliftCriterion {
+  /// The net generalized force at θ₁ = 0 (ground inertia, gravity, tendon prestress)
+  /// opens the joints: |ü_g| > uplift_threshold_g·g. Default.
+  kPhysical,
+  /// The paper's Eq. (34): |ü_g| ≥ λ_g·g, prestress ignored. See README ("Uplift
+  /// criteria") for what happens while the prestress still holds the frame closed.
+  kPaper,
+};
+UpliftCriterion parse_uplift_criterion(const std::string& text);  ///< "physical" | "paper"
+std::string to_string(UpliftCriterion c);
+
+/// Which time integrator solves the equation of motion between impacts.
+enum class Integrator {
+  kCvodeBdf,    ///< SUNDIALS CVODE, BDF (orders 1–5), dense Newton
+  kCvodeAdams,  ///< SUNDIALS CVODE, Adams–Moulton (orders 1–12), fixed point
+  kArkodeErk5,  ///< SUNDIALS ARKODE ERKStep, Dormand–Prince 5(4)
+  kArkodeErk8,  ///< SUNDIALS ARKODE ERKStep, Fehlberg 8(7)
+};
+Integrator parse_integrator(const std::string& text);  ///< "cvode-bdf", "cvode-adams", "arkode-erk5", "arkode-erk8"
+std::string to_string(Integrator i);
+
+struct PhysicsOptions {
+  UpliftCriterion uplift = UpliftCriterion::kPhysical;
+  double fracture_strain = 0.01;   ///< total tendon strain at fracture [-]
+  double tail_s = 0.0;             ///< free vibration after the record [s]
+  /// Return to rest when the remaining Zeno sequence would end within this time [s]
+  /// (see README, "Return to rest").
+  double zeno_time_s = 1e-4;
+};
+
+struct SolverSettings {
+  Integrator integrator = Integrator::kCvodeAdams;
+  double rtol = 1e-8;
+  double atol_theta_rad = 1e-10;   ///< absolute tolerance on θ₁ [rad]
+  double atol_omega_rad_s = 1e-8;  ///< absolute tolerance on θ̇₁ [rad/s]
+  double max_step_s = 0.0;         ///< 0: no limit
+  long max_steps = 2000000;        ///< per case, all segments together
+  double wall_time_limit_s = 0.0;  ///< 0: no limit; else status kTimeLimit
+};
+
+}  // namespace pcrf

@@ -1,0 +1,30 @@
+/// \file commands.hpp
+/// \brief Sub-commands of the `pcrf` executable. Each adds itself to the CLI11 app and
+/// runs from its callback; a command reports bad input by throwing UsageError, which
+/// main() turns into a one-line message and exit code 2.
+#pragma once
+
+#include <stdexcept>
+
+namespace CLI {
+class App;
+}
+
+namespace pcrf::cli {
+
+/// Bad arguments or bad input files: one line on stderr, exit code 2.
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Exit code a sub-command asks main() to return (set by its callback; default 0).
+int& exit_code();
+
+void add_run_command(CLI::App& app);    ///< `pcrf run`: one case, JSON on stdout
+#ifdef PCRF_HAVE_STUDY
+void add_study_command(CLI::App& app);  ///< `pcrf study FILE`: a parametric study (MPI)
+void add_cube_command(CLI::App& app);   ///< `pcrf cube info|export|stats FILE`
+#endif
+
+}  // namespace pcrf::cli
