@@ -1,1 +1,435 @@
-// placeholder: implemented in progress
+/// \file record_readers.cpp
+/// \brief Readers for ground-motion files: PEER NGA `.AT2`, two-column and one-column text.
+///
+/// Every problem with a file becomes a RecordError "path:LINE: problem" (or "path: problem"
+/// when no single line is to blame). Nothing is guessed or silently repaired: a value that
+/// does not parse, a count that does not match NPTS or an uneven time step stops the read.
+
+#include "pcrf/record/record_readers.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <sstream>
+#include <string_view>
+#include <system_error>
+#include <utility>
+#include <vector>
+
+namespace pcrf {
+
+namespace {
+
+// ---- small text helpers -----------------------------------------------------------------
+
+[[noreturn]] void fail_at(const std::filesystem::path& file, std::size_t line_number,
+                          const std::string& problem) {
+  throw RecordError(file.string() + ":" + std::to_string(line_number) + ": " + problem);
+}
+
+[[noreturn]] void fail_file(const std::filesystem::path& file, const std::string& problem) {
+  throw RecordError(file.string() + ": " + problem);
+}
+
+bool is_space(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f';
+}
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && is_space(s.front())) s.remove_prefix(1);
+  while (!s.empty() && is_space(s.back())) s.remove_suffix(1);
+  return s;
+}
+
+std::string to_lower(std::string_view s) {
+  std::string out(s);
+  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return out;
+}
+
+std::string to_upper(std::string_view s) {
+  std::string out(s);
+  for (char& c : out) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return out;
+}
+
+/// A token as it appears in a message: quoted, and cut short so a binary file stays readable.
+std::string quote_token(std::string_view token) {
+  constexpr std::size_t kMaxShown = 40;
+  // Built by append: GCC 12 reports a false -Wrestrict for "'" + std::string(...).
+  std::string out(1, '\'');
+  out.append(token.substr(0, kMaxShown));
+  if (token.size() > kMaxShown) out.append("...");
+  out.push_back('\'');
+  return out;
+}
+
+/// Parses a whole token as a finite double. Accepts what Fortran writes: ".0050",
+/// "-.4722856E-02", "7.6753400E-05", a leading '+', and a 'D' exponent ("1.0D-03").
+bool parse_finite_double(std::string_view token, double& value) {
+  // from_chars takes no '+' sign; drop one, but only before a digit or '.', so "+-1" still fails.
+  if (token.size() >= 2 && token.front() == '+' &&
+      (std::isdigit(static_cast<unsigned char>(token[1])) || token[1] == '.')) {
+    token.remove_prefix(1);
+  }
+  char buffer[64];
+  if (token.empty() || token.size() >= sizeof buffer) return false;
+  std::size_t n = 0;
+  for (char c : token) buffer[n++] = (c == 'D' || c == 'd') ? 'E' : c;
+  const char* end = buffer + n;
+  // from_chars also takes "inf" and "nan"; a record holds finite numbers only.
+  const auto [ptr, ec] = std::from_chars(buffer, end, value, std::chars_format::general);
+  return ec == std::errc() && ptr == end && std::isfinite(value);
+}
+
+/// Parses a whole token as a signed integer.
+bool parse_integer(std::string_view token, long long& value) {
+  if (token.size() >= 2 && token.front() == '+' &&
+      std::isdigit(static_cast<unsigned char>(token[1]))) {
+    token.remove_prefix(1);
+  }
+  const char* end = token.data() + token.size();
+  const auto [ptr, ec] = std::from_chars(token.data(), end, value);
+  return !token.empty() && ec == std::errc() && ptr == end;
+}
+
+/// The whole file as text. A missing file, a directory or an unreadable file is a RecordError.
+std::string read_text(const std::filesystem::path& file) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) fail_file(file, "no such file");
+  std::ifstream in(file, std::ios::binary);
+  if (!in) fail_file(file, "cannot open file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) fail_file(file, "read error");
+  return std::move(text).str();
+}
+
+/// Lines without their '\n' or "\r\n"; a last line without a line end is kept.
+std::vector<std::string_view> split_lines(const std::string& text) {
+  std::vector<std::string_view> lines;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    std::size_t stop = text.find('\n', start);
+    if (stop == std::string::npos) stop = text.size();
+    std::string_view line(text.data() + start, stop - start);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    lines.push_back(line);
+    start = stop + 1;
+  }
+  return lines;
+}
+
+/// Whitespace-separated tokens of a line (AT2 data lines).
+void split_whitespace(std::string_view line, std::vector<std::string_view>& tokens) {
+  tokens.clear();
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && is_space(line[i])) ++i;
+    const std::size_t start = i;
+    while (i < line.size() && !is_space(line[i])) ++i;
+    if (i > start) tokens.push_back(line.substr(start, i - start));
+  }
+}
+
+/// Fields of a text-record line: '#' starts a comment; fields are separated by whitespace or
+/// by one comma (with optional whitespace around it). An empty field (",," or a comma at the
+/// start or end) is an error rather than something to skip, so columns never shift silently.
+void split_fields(const std::filesystem::path& file, std::size_t line_number,
+                  std::string_view line, std::vector<std::string_view>& fields) {
+  fields.clear();
+  if (const std::size_t hash = line.find('#'); hash != std::string_view::npos) {
+    line = line.substr(0, hash);
+  }
+  bool after_comma = false;
+  std::size_t i = 0;
+  while (true) {
+    while (i < line.size() && is_space(line[i])) ++i;
+    if (i == line.size()) break;
+    if (line[i] == ',') {
+      if (fields.empty() || after_comma) fail_at(file, line_number, "empty field (stray comma)");
+      after_comma = true;
+      ++i;
+      continue;
+    }
+    const std::size_t start = i;
+    while (i < line.size() && !is_space(line[i]) && line[i] != ',') ++i;
+    fields.push_back(line.substr(start, i - start));
+    after_comma = false;
+  }
+  if (after_comma) fail_at(file, line_number, "empty field (trailing comma)");
+}
+
+double parse_value(const std::filesystem::path& file, std::size_t line_number,
+                   std::string_view token) {
+  double value = 0.0;
+  if (!parse_finite_double(token, value)) {
+    fail_at(file, line_number, "non-numeric value " + quote_token(token));
+  }
+  return value;
+}
+
+std::string record_name(const std::filesystem::path& file) { return file.stem().string(); }
+
+// ---- AT2 header -------------------------------------------------------------------------
+
+constexpr std::size_t kAt2HeaderLines = 4;
+
+struct At2Header {
+  long long npts = 0;
+  double dt_s = 0.0;
+};
+
+bool is_seconds_word(std::string_view w) {
+  const std::string upper = to_upper(w);
+  return upper == "SEC" || upper == "SECS" || upper == "S";
+}
+
+bool is_keyword(std::string_view token, std::string_view upper_keyword) {
+  return to_upper(token) == upper_keyword;
+}
+
+/// Reads NPTS and DT from the fourth header line in either PEER layout,
+/// `NPTS=  7374, DT=   .0050 SEC,` or `11000  0.0050  NPTS, DT`: '=' and ',' count as blanks,
+/// keywords are matched in any case, and only a time unit ("SEC") may follow. Returns false
+/// when the line has neither layout; the caller reports it.
+bool parse_npts_dt_line(std::string_view line, std::string& npts_text, std::string& dt_text) {
+  std::string plain(line);
+  std::replace(plain.begin(), plain.end(), '=', ' ');
+  std::replace(plain.begin(), plain.end(), ',', ' ');
+  std::vector<std::string_view> t;
+  split_whitespace(plain, t);
+  const bool tail_ok = t.size() == 4 || (t.size() == 5 && is_seconds_word(t[4]));
+  if (!tail_ok) return false;
+  if (is_keyword(t[0], "NPTS") && is_keyword(t[2], "DT")) {  // NGA-West2
+    npts_text = t[1];
+    dt_text = t[3];
+    return true;
+  }
+  if (is_keyword(t[2], "NPTS") && is_keyword(t[3], "DT")) {  // older NGA
+    npts_text = t[0];
+    dt_text = t[1];
+    return true;
+  }
+  return false;
+}
+
+At2Header parse_at2_header(const std::filesystem::path& file,
+                           const std::vector<std::string_view>& lines) {
+  if (lines.empty()) fail_at(file, 1, "empty file (expected 4 header lines and data)");
+  if (lines.size() < kAt2HeaderLines) {
+    fail_at(file, lines.size() + 1,
+            "missing header line " + std::to_string(lines.size() + 1) +
+                " of 4 (file ends after " + std::to_string(lines.size()) + " lines)");
+  }
+  // Line 3 says what the series is; refuse velocity/displacement or units other than g,
+  // which would otherwise be read as accelerations in g without complaint.
+  const std::string kind = to_upper(lines[2]);
+  if (kind.find("VELOCITY") != std::string::npos || kind.find("DISPLACEMENT") != std::string::npos) {
+    fail_at(file, 3, "not an acceleration record: " + quote_token(trim(lines[2])));
+  }
+  if (const std::size_t at = kind.find("UNITS OF"); at != std::string::npos) {
+    std::vector<std::string_view> words;
+    split_whitespace(std::string_view(kind).substr(at + 8), words);
+    std::string_view unit = words.empty() ? std::string_view() : words.front();
+    while (!unit.empty() && (unit.back() == '.' || unit.back() == ',')) unit.remove_suffix(1);
+    if (unit != "G") fail_at(file, 3, "acceleration units " + quote_token(unit) + " are not g");
+  }
+
+  std::string npts_text;
+  std::string dt_text;
+  if (!parse_npts_dt_line(lines[3], npts_text, dt_text)) {
+    fail_at(file, 4, "cannot read NPTS/DT header " + quote_token(trim(lines[3])));
+  }
+  At2Header header;
+  if (!parse_integer(npts_text, header.npts)) {
+    fail_at(file, 4, "NPTS " + quote_token(npts_text) + " is not an integer");
+  }
+  if (header.npts <= 0) fail_at(file, 4, "NPTS must be positive, got " + npts_text);
+  if (!parse_finite_double(dt_text, header.dt_s)) {
+    fail_at(file, 4, "DT " + quote_token(dt_text) + " is not a number");
+  }
+  if (!(header.dt_s > 0.0)) fail_at(file, 4, "DT must be positive, got " + dt_text);
+  return header;
+}
+
+// ---- two-column bookkeeping -----------------------------------------------------------------
+
+/// Checks, row by row, that the time column advances by one uniform step.
+class TimeStepCheck {
+ public:
+  explicit TimeStepCheck(const std::filesystem::path& file) : file_(file) {}
+
+  void add(double t_s, std::size_t line_number) {
+    if (rows_ == 0) {
+      first_t_s_ = t_s;
+    } else {
+      const double step_s = t_s - last_t_s_;
+      if (!(step_s > 0.0)) {
+        fail_at(file_, line_number, "time " + format(t_s) + " does not increase (previous " +
+                                        format(last_t_s_) + ")");
+      }
+      if (rows_ == 1) {
+        first_step_s_ = step_s;
+      } else if (std::abs(step_s - first_step_s_) > kRelativeSpread * first_step_s_) {
+        fail_at(file_, line_number,
+                "non-uniform time step: " + format(step_s) + " s here, " + format(first_step_s_) +
+                    " s between the first two rows");
+      }
+    }
+    last_t_s_ = t_s;
+    ++rows_;
+  }
+
+  /// Mean step over the whole record: less rounding than any single difference.
+  double dt_s() const { return (last_t_s_ - first_t_s_) / static_cast<double>(rows_ - 1); }
+  std::size_t rows() const { return rows_; }
+
+ private:
+  static constexpr double kRelativeSpread = 1e-6;
+  static std::string format(double v) {
+    std::ostringstream s;
+    s.precision(10);
+    s << v;
+    return s.str();
+  }
+  const std::filesystem::path& file_;
+  std::size_t rows_ = 0;
+  double first_t_s_ = 0.0;
+  double last_t_s_ = 0.0;
+  double first_step_s_ = 0.0;
+};
+
+}  // namespace
+
+// ---- units and formats ------------------------------------------------------------------------
+
+AccelUnit parse_accel_unit(const std::string& text) {
+  const std::string key = to_lower(trim(text));
+  if (key == "g") return AccelUnit::kG;
+  if (key == "m/s2" || key == "m/s^2" || key == "mps2") return AccelUnit::kMeterPerSecond2;
+  if (key == "cm/s2" || key == "cm/s^2" || key == "gal") return AccelUnit::kCentimeterPerSecond2;
+  throw std::invalid_argument("unknown acceleration unit " + quote_token(text) +
+                              " (expected g, m/s2, m/s^2, mps2, cm/s2, cm/s^2 or gal)");
+}
+
+double to_m_s2(AccelUnit unit) {
+  switch (unit) {
+    case AccelUnit::kG: return kGravity_m_s2;
+    case AccelUnit::kMeterPerSecond2: return 1.0;
+    case AccelUnit::kCentimeterPerSecond2: return 0.01;
+  }
+  throw std::invalid_argument("invalid AccelUnit value");
+}
+
+RecordFormat parse_record_format(const std::string& text) {
+  const std::string key = to_lower(trim(text));
+  if (key == "at2") return RecordFormat::kAt2;
+  if (key == "two-column") return RecordFormat::kTwoColumn;
+  if (key == "one-column") return RecordFormat::kOneColumn;
+  throw std::invalid_argument("unknown record format " + quote_token(text) +
+                              " (expected at2, two-column or one-column)");
+}
+
+RecordFormat guess_record_format(const std::filesystem::path& file) {
+  return to_lower(file.extension().string()) == ".at2" ? RecordFormat::kAt2
+                                                        : RecordFormat::kTwoColumn;
+}
+
+// ---- readers ------------------------------------------------------------------------------------
+
+GroundMotion read_at2(const std::filesystem::path& file) {
+  const std::string text = read_text(file);
+  const std::vector<std::string_view> lines = split_lines(text);
+  const At2Header header = parse_at2_header(file, lines);
+  const auto npts = static_cast<std::size_t>(header.npts);
+
+  std::vector<double> accel_m_s2;
+  accel_m_s2.reserve(std::min(npts, text.size() / 2 + 1));  // a bogus NPTS must not allocate
+  std::vector<std::string_view> tokens;
+  std::size_t extra_line = 0;  // line of the first value beyond NPTS, 0 if none
+  std::size_t found = 0;
+  for (std::size_t i = kAt2HeaderLines; i < lines.size(); ++i) {
+    const std::size_t line_number = i + 1;
+    split_whitespace(lines[i], tokens);
+    for (std::string_view token : tokens) {
+      const double value_g = parse_value(file, line_number, token);
+      if (found < npts) accel_m_s2.push_back(value_g * kGravity_m_s2);
+      else if (extra_line == 0) extra_line = line_number;
+      ++found;
+    }
+  }
+  if (extra_line != 0) {
+    fail_at(file, extra_line, "more values than NPTS: found " + std::to_string(found) +
+                                  ", NPTS = " + std::to_string(npts) +
+                                  " (first extra value on this line)");
+  }
+  if (found < npts) {
+    fail_at(file, lines.size(), "fewer values than NPTS: found " + std::to_string(found) +
+                                    ", expected NPTS = " + std::to_string(npts));
+  }
+  return GroundMotion(record_name(file), header.dt_s, std::move(accel_m_s2));
+}
+
+GroundMotion read_two_column(const std::filesystem::path& file, AccelUnit unit) {
+  const std::string text = read_text(file);
+  const std::vector<std::string_view> lines = split_lines(text);
+  const double factor = to_m_s2(unit);
+
+  std::vector<double> accel_m_s2;
+  std::vector<std::string_view> fields;
+  TimeStepCheck steps(file);
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    const std::size_t line_number = i + 1;
+    split_fields(file, line_number, lines[i], fields);
+    if (fields.empty()) continue;  // blank or comment line
+    if (fields.size() != 2) {
+      fail_at(file, line_number, "expected 2 columns (time, acceleration), found " +
+                                     std::to_string(fields.size()));
+    }
+    steps.add(parse_value(file, line_number, fields[0]), line_number);
+    accel_m_s2.push_back(parse_value(file, line_number, fields[1]) * factor);
+  }
+  if (steps.rows() < 2) {
+    fail_at(file, std::max<std::size_t>(lines.size(), 1),
+            "need at least 2 data rows to find the time step, found " +
+                std::to_string(steps.rows()));
+  }
+  return GroundMotion(record_name(file), steps.dt_s(), std::move(accel_m_s2));
+}
+
+GroundMotion read_one_column(const std::filesystem::path& file, double dt_s, AccelUnit unit) {
+  if (!(dt_s > 0.0) || !std::isfinite(dt_s)) {
+    fail_file(file, "one-column record needs dt_s > 0, got " + std::to_string(dt_s));
+  }
+  const std::string text = read_text(file);
+  const std::vector<std::string_view> lines = split_lines(text);
+  const double factor = to_m_s2(unit);
+
+  std::vector<double> accel_m_s2;
+  std::vector<std::string_view> fields;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    split_fields(file, i + 1, lines[i], fields);
+    for (std::string_view field : fields) {
+      accel_m_s2.push_back(parse_value(file, i + 1, field) * factor);
+    }
+  }
+  if (accel_m_s2.empty()) {
+    fail_at(file, std::max<std::size_t>(lines.size(), 1), "no values in file");
+  }
+  return GroundMotion(record_name(file), dt_s, std::move(accel_m_s2));
+}
+
+GroundMotion read_record(const RecordFileSpec& spec) {
+  switch (spec.format) {
+    case RecordFormat::kAt2: return read_at2(spec.path);
+    case RecordFormat::kTwoColumn: return read_two_column(spec.path, spec.unit);
+    case RecordFormat::kOneColumn: return read_one_column(spec.path, spec.dt_s, spec.unit);
+  }
+  fail_file(spec.path, "invalid RecordFormat value");
+}
+
+}  // namespace pcrf

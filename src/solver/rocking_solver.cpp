@@ -1,1 +1,445 @@
-// placeholder: implemented in progress
+// One case: rest → uplift → rocking with impacts → rest or failure, to the end of the
+// record (plus tail). See include/pcrf/solver/rocking_solver.hpp for the method.
+#include "pcrf/solver/rocking_solver.hpp"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "integrators.hpp"
+#include "pcrf/model/equation_of_motion.hpp"
+#include "pcrf/model/impact.hpp"
+
+namespace pcrf {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+/// Root indices.
+enum Root { kImpact = 0, kThetaPeak = 1, kOmegaPeak = 2, kLimit = 3, kRootCount = 4 };
+
+/// The ODE of one flight (between two impacts) on a fixed side.
+class FlightProblem final : public detail::OdeProblem {
+ public:
+  FlightProblem(const EquationOfMotion& eom, const GroundMotion& record, double theta_stop_rad,
+                bool omega_peak)
+      : eom_(eom), record_(record), theta_stop_rad_(theta_stop_rad), omega_peak_(omega_peak) {}
+
+  int side = -1;
+
+  int rhs(double t, const double* y, double* ydot) override {
+    double acc = 0;
+    if (!eom_.acceleration(y[0], y[1], record_.accel_m_s2(t), side, acc)) return 1;
+    ydot[0] = y[1];
+    ydot[1] = acc;
+    return std::isfinite(acc) ? 0 : 1;
+  }
+
+  int roots(double t, const double* y, double* g) override {
+    g[kImpact] = y[0];
+    g[kThetaPeak] = y[1];
+    g[kOmegaPeak] = 1.0;  // inactive unless requested
+    if (omega_peak_) {
+      double acc = 0;
+      if (!eom_.acceleration(y[0], y[1], record_.accel_m_s2(t), side, acc)) return 1;
+      g[kOmegaPeak] = acc;
+    }
+    g[kLimit] = std::abs(y[0]) - theta_stop_rad_;
+    return 0;
+  }
+
+  int root_count() const override { return kRootCount; }
+
+  /// Root directions for the current side: the impact only while closing, θ peaks only
+  /// where |θ| is maximal, the limit only while opening.
+  std::array<int, kRootCount> directions() const {
+    return {-side, -side, 0, 1};
+  }
+
+ private:
+  const EquationOfMotion& eom_;
+  const GroundMotion& record_;
+  double theta_stop_rad_;
+  bool omega_peak_;
+};
+
+/// First time ≥ t_from at which |ü_g| exceeds `threshold_m_s2`, exact within the linear
+/// interpolation of the record; NaN when it never does before `t_end`.
+double first_exceedance(const GroundMotion& rec, double t_from, double t_end, double threshold_m_s2) {
+  if (std::abs(rec.accel_m_s2(t_from)) > threshold_m_s2) return t_from;
+  if (threshold_m_s2 < 0.0) return t_from;
+  const auto& a = rec.samples_m_s2();
+  const double dt = rec.dt_s();
+  std::size_t i = static_cast<std::size_t>(std::max(0.0, std::floor(t_from / dt)));
+  for (; i + 1 < a.size(); ++i) {
+    const double t0 = static_cast<double>(i) * dt;
+    if (t0 > t_end) break;
+    const double a0 = a[i], a1 = a[i + 1];
+    double best = kNaN;
+    for (const double level : {threshold_m_s2, -threshold_m_s2}) {
+      const bool up = level > 0 ? a1 > level : a1 < level;
+      if (!up) continue;
+      const double s = std::clamp((level - a0) / (a1 - a0), 0.0, 1.0);
+      const double tc = std::max(t0 + s * dt, t_from);
+      if (std::isnan(best) || tc < best) best = tc;
+    }
+    if (!std::isnan(best)) return best <= t_end ? best : kNaN;
+  }
+  return kNaN;
+}
+
+/// First sample i with |a_i| ≥ λ_g·g (the paper's t_RI) [s]; NaN when none.
+double paper_trigger_time(const GroundMotion& rec, double lambda_g) {
+  const auto& a = rec.samples_m_s2();
+  const double level = lambda_g * kGravity_m_s2;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (std::abs(a[i]) >= level) return static_cast<double>(i) * rec.dt_s();
+  }
+  return kNaN;
+}
+
+void validate(const SolverSettings& s, const PhysicsOptions& p) {
+  auto positive = [](double v, const char* name) {
+    if (!(v > 0.0) || !std::isfinite(v))
+      throw std::invalid_argument(std::string("solver setting ") + name + " must be positive");
+  };
+  positive(s.rtol, "rtol");
+  positive(s.atol_theta_rad, "atol_theta_rad");
+  positive(s.atol_omega_rad_s, "atol_omega_rad_s");
+  if (s.max_steps <= 0) throw std::invalid_argument("solver setting max_steps must be positive");
+  if (s.max_step_s < 0) throw std::invalid_argument("solver setting max_step_s must be ≥ 0");
+  positive(p.fracture_strain, "fracture_strain");
+  positive(p.zeno_time_s, "zeno_time_s");
+  if (!(p.tail_s >= 0.0)) throw std::invalid_argument("physics option tail_s must be ≥ 0");
+}
+
+/// The state machine of one case.
+class CaseRun {
+ public:
+  CaseRun(const Frame& frame, const GroundMotion& record, const PhysicsOptions& physics,
+          const SolverSettings& solver, const OutputRequest& request, const HistorySink& history)
+      : eom_(frame),
+        record_(record),
+        physics_(physics),
+        solver_(solver),
+        request_(request),
+        history_(history),
+        restitution_(restitution_momentum(eom_)),
+        fracture_angle_rad_(eom_.fracture_angle_rad(physics.fracture_strain)),
+        // Overturning: the linkage cannot close beyond its limit; stop just before it so
+        // the kinematics stay defined at the located root.
+        overturn_angle_rad_(0.999 * eom_.closing_limit_rad()),
+        problem_(eom_, record_, std::min(fracture_angle_rad_, overturn_angle_rad_), request.omega_peak),
+        integrator_(detail::make_integrator(solver, problem_)),
+        t_end_(record.duration_s() + physics.tail_s) {}
+
+  CaseResult run();
+
+ private:
+  void rest_until_uplift();
+  void start_displaced();
+  void fly();
+  bool handle_roots(double t, double* y);
+  void impact(double t, double* y);
+  bool returns_to_rest(double t, double omega_after) const;
+  bool holds_closed(double t) const;
+  void settle(double t);
+  void start_flight(double t, const double* y);
+  void note_theta(double t, double theta);
+  void note_omega(double t, double omega);
+  void emit(double t, double theta, double omega);
+  void emit_rest_until(double t);
+  void finish(CaseStatus status, std::string message = {});
+  bool over_time() const;
+
+  EquationOfMotion eom_;
+  const GroundMotion& record_;
+  PhysicsOptions physics_;
+  SolverSettings solver_;
+  OutputRequest request_;
+  const HistorySink& history_;
+  double restitution_;
+  double fracture_angle_rad_;
+  double overturn_angle_rad_;
+  FlightProblem problem_;
+  std::unique_ptr<detail::OdeIntegrator> integrator_;
+  double t_end_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+
+  // Progress.
+  bool at_rest_ = true;
+  bool done_ = false;
+  double t_ = 0.0;
+  std::size_t next_history_sample_ = 0;
+  CaseResult result_;
+};
+
+CaseResult CaseRun::run() {
+  result_.lambda_g = eom_.lambda_g();
+  result_.uplift_threshold_g = eom_.uplift_threshold_m_s2() / kGravity_m_s2;
+  result_.restitution = restitution_;
+  result_.t_trigger_paper_s = paper_trigger_time(record_, eom_.lambda_g());
+  result_.t_uplift_s = kNaN;
+  result_.t_theta_max_s = kNaN;
+  result_.t_omega_max_s = kNaN;
+  result_.theta_max_rad = 0.0;
+  result_.omega_max_rad_s = request_.omega_peak ? 0.0 : kNaN;
+  const TendonState rest = eom_.tendons(0.0, -1);
+  result_.strain_column_max = rest.strain_column_max();
+  result_.strain_beam_max = rest.strain_beam;
+  try {
+    if (physics_.theta0_rad != 0.0 || physics_.omega0_rad_s != 0.0) start_displaced();
+    while (!done_) {
+      if (at_rest_) {
+        rest_until_uplift();
+      } else {
+        fly();
+      }
+    }
+  } catch (const detail::IntegratorError& e) {
+    finish(CaseStatus::kSolverFailure, e.what());
+  }
+  result_.counts = integrator_->counts();
+  // The trajectory starts at θ₁ = 0 and is continuous, so it has visited every |θ₁| up
+  // to the peak: peak strains are the maxima over that range.
+  if (result_.theta_max_rad > 0.0) {
+    const TendonState peak = eom_.peak_tendon_strains(result_.theta_max_rad);
+    result_.strain_column_max = peak.strain_column_max();
+    result_.strain_beam_max = peak.strain_beam;
+  }
+  result_.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  return result_;
+}
+
+void CaseRun::rest_until_uplift() {
+  // Both criteria open the frame where the net force at θ₁ = 0 does (see README,
+  // "Uplift criteria"): a unilateral contact pushes, it never pulls, so after the paper's
+  // trigger a frame still held by its prestress stays closed.
+  const double t_open = first_exceedance(record_, t_, t_end_, eom_.uplift_threshold_m_s2());
+  if (std::isnan(t_open)) {
+    emit_rest_until(t_end_);
+    t_ = t_end_;
+    finish(CaseStatus::kAtRest);
+    return;
+  }
+  emit_rest_until(t_open);
+  t_ = t_open;
+  if (std::isnan(result_.t_uplift_s)) result_.t_uplift_s = t_open;
+  const double a = record_.accel_m_s2(t_open);
+  problem_.side = a > 0.0 ? -1 : +1;  // ü_g > 0 pushes the frame into θ₁ < 0
+  const double y0[2] = {0.0, 0.0};
+  at_rest_ = false;
+  start_flight(t_open, y0);
+}
+
+void CaseRun::start_displaced() {
+  const double th = physics_.theta0_rad, w = physics_.omega0_rad_s;
+  problem_.side = th < 0.0 || (th == 0.0 && w < 0.0) ? -1 : +1;
+  const double y0[2] = {th, w};
+  at_rest_ = false;
+  result_.t_uplift_s = 0.0;
+  note_theta(0.0, th);
+  if (request_.omega_peak) note_omega(0.0, w);
+  start_flight(0.0, y0);
+}
+
+void CaseRun::start_flight(double t, const double* y) {
+  const auto dirs = problem_.directions();
+  // A flight leaving θ₁ = 0 with speed v against a closing acceleration a lasts 2v/a.
+  // Short flights (late in a Zeno sequence) are shorter than the integrator's own first
+  // step guess, which then steps over the whole flight and can lose the return crossing
+  // in its interpolant: start with a step that resolves the flight.
+  double h0 = 0.0;
+  if (y[0] == 0.0 && y[1] != 0.0) {
+    const double a = std::abs(eom_.rest_acceleration(record_.accel_m_s2(t), problem_.side));
+    const double flight_s = 2.0 * std::abs(y[1]) / a;
+    if (std::isfinite(flight_s) && flight_s < 0.01) h0 = flight_s / 16.0;
+  }
+  integrator_->restart(t, y, dirs.data(), t_end_, h0);
+  emit(t, y[0], y[1]);
+}
+
+void CaseRun::fly() {
+  double y[2];
+  double t = t_;
+  // Advance to the next record sample (kinks of ü_g) when asked, else in chunks so that
+  // wall-time limits are honoured; never beyond the next history sample.
+  const double dt = record_.dt_s();
+  double tout = std::min(t_end_, t_ + 1.0);
+  if (solver_.stop_at_samples && t_ < record_.duration_s()) {
+    // The next sample strictly after t (a root may leave t a hair below a sample).
+    double next = (std::floor(t_ / dt) + 1.0) * dt;
+    if (next - t_ < 1e-9 * dt) next += dt;
+    tout = std::min(tout, next);
+    integrator_->set_stop_time(tout);
+  } else if (t_ >= record_.duration_s()) {
+    integrator_->set_stop_time(t_end_);
+  }
+  if (history_) {
+    const double t_hist = static_cast<double>(next_history_sample_) * dt;
+    if (t_hist > t_) tout = std::min(tout, t_hist);
+  }
+  const auto outcome = integrator_->advance(tout, t, y);
+  t_ = t;
+  if (outcome == detail::OdeIntegrator::Outcome::kFailure) {
+    finish(CaseStatus::kSolverFailure, integrator_->last_error());
+    return;
+  }
+  if (!std::isfinite(y[0]) || !std::isfinite(y[1])) {
+    finish(CaseStatus::kSolverFailure, "non-finite state at t = " + std::to_string(t) + " s");
+    return;
+  }
+  if (integrator_->counts().steps > solver_.max_steps) {
+    finish(CaseStatus::kSolverFailure, "more than max_steps steps");
+    return;
+  }
+  if (outcome == detail::OdeIntegrator::Outcome::kRoot) {
+    if (handle_roots(t, y)) return;
+  } else if (history_ && t >= static_cast<double>(next_history_sample_) * record_.dt_s()) {
+    emit(t, y[0], y[1]);
+  }
+  note_theta(t, y[0]);
+  if (request_.omega_peak) note_omega(t, y[1]);
+  if (t >= t_end_) {
+    finish(CaseStatus::kRockingAtEnd);
+  } else if (over_time()) {
+    finish(CaseStatus::kTimeLimit, "wall-time limit reached at t = " + std::to_string(t) + " s");
+  }
+}
+
+bool CaseRun::handle_roots(double t, double* y) {
+  int found[kRootCount] = {0, 0, 0, 0};
+  integrator_->root_info(found);
+  if (found[kThetaPeak]) note_theta(t, y[0]);
+  if (found[kOmegaPeak] && request_.omega_peak) note_omega(t, y[1]);
+  if (found[kLimit]) {
+    note_theta(t, y[0]);
+    const bool fracture = fracture_angle_rad_ <= overturn_angle_rad_;
+    emit(t, y[0], y[1]);
+    finish(fracture ? CaseStatus::kTendonFracture : CaseStatus::kOverturned,
+           fracture ? "tendon strain reached the fracture strain" : "rotation reached the mechanism's closing limit");
+    return true;
+  }
+  if (!found[kImpact]) return false;
+  if (problem_.side * y[1] < 0.0) {
+    impact(t, y);
+    return true;
+  }
+  // A crossing whose interpolated velocity points away from zero: the flight was below
+  // what the tolerances resolve (its θ and θ̇ are noise). The frame is at rest if the
+  // force holds it; otherwise the crossing is ignored.
+  if (holds_closed(t)) {
+    settle(t);
+    return true;
+  }
+  return false;
+}
+
+void CaseRun::impact(double t, double* y) {
+  const double omega_before = y[1];
+  if (request_.omega_peak) note_omega(t, omega_before);
+  emit(t, 0.0, omega_before);
+  ++result_.impacts;
+  const double omega_after = restitution_ * omega_before;
+  problem_.side = -problem_.side;
+  if (returns_to_rest(t, omega_after)) {
+    settle(t);
+    return;
+  }
+  const double y0[2] = {0.0, omega_after};
+  start_flight(t, y0);
+}
+
+// Return to rest (Zeno). With the ground force below the uplift threshold, the net force
+// at θ₁ = 0 pushes the frame back into contact on both sides, with acceleration at least
+// a_min. A flight that leaves with speed v lasts at most 2v/a_min, rises at most
+// v²/(2 a_min), and the next one leaves with r·v, so the whole remaining sequence ends
+// within T = 2v / (a_min (1 − r)). The frame is at rest now when either
+//  - T ≤ zeno_time_s: the sequence is over within a negligible time, or
+//  - the flight rises less than ten times the absolute tolerance on θ₁: no integrator
+//    run at that tolerance resolves it (its computed θ and θ̇ are noise).
+bool CaseRun::returns_to_rest(double t, double omega_after) const {
+  if (!holds_closed(t) || restitution_ >= 1.0) return false;
+  const double a = record_.accel_m_s2(t);
+  const double a_min = std::min(std::abs(eom_.rest_acceleration(a, -1)), std::abs(eom_.rest_acceleration(a, +1)));
+  const double v = std::abs(omega_after);
+  const double remaining_s = 2.0 * v / (a_min * (1.0 - restitution_));
+  const double rise_rad = v * v / (2.0 * a_min);
+  return remaining_s <= physics_.zeno_time_s || rise_rad <= 10.0 * solver_.atol_theta_rad;
+}
+
+bool CaseRun::holds_closed(double t) const {
+  return std::abs(record_.accel_m_s2(t)) < eom_.uplift_threshold_m_s2();
+}
+
+void CaseRun::settle(double t) {
+  at_rest_ = true;
+  t_ = t;
+  emit(t, 0.0, 0.0);
+}
+
+void CaseRun::note_theta(double t, double theta) {
+  if (std::abs(theta) > result_.theta_max_rad) {
+    result_.theta_max_rad = std::abs(theta);
+    result_.t_theta_max_s = t;
+  }
+}
+
+void CaseRun::note_omega(double t, double omega) {
+  if (std::abs(omega) > result_.omega_max_rad_s) {
+    result_.omega_max_rad_s = std::abs(omega);
+    result_.t_omega_max_s = t;
+  }
+}
+
+void CaseRun::emit(double t, double theta, double omega) {
+  if (!history_) return;
+  HistorySample s{};
+  s.t_s = t;
+  s.theta1_rad = theta;
+  s.omega1_rad_s = omega;
+  const int side = problem_.side;
+  eom_.configuration(theta, side, s.theta2_rad, s.theta3_rad);
+  const TendonState ts = eom_.tendons(theta, side);
+  s.strain_column_left = ts.strain_column_left;
+  s.strain_column_right = ts.strain_column_right;
+  s.strain_beam = ts.strain_beam;
+  s.ground_accel_m_s2 = record_.accel_m_s2(t);
+  history_(s);
+  while (static_cast<double>(next_history_sample_) * record_.dt_s() <= t) ++next_history_sample_;
+}
+
+void CaseRun::emit_rest_until(double t_until) {
+  if (!history_) return;
+  while (static_cast<double>(next_history_sample_) * record_.dt_s() < t_until) {
+    emit(static_cast<double>(next_history_sample_) * record_.dt_s(), 0.0, 0.0);
+  }
+}
+
+void CaseRun::finish(CaseStatus status, std::string message) {
+  if (status == CaseStatus::kRockingAtEnd && at_rest_) status = CaseStatus::kAtRest;
+  result_.status = status;
+  result_.message = std::move(message);
+  result_.t_end_s = t_;
+  done_ = true;
+}
+
+bool CaseRun::over_time() const {
+  if (solver_.wall_time_limit_s <= 0.0) return false;
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count() > solver_.wall_time_limit_s;
+}
+
+}  // namespace
+
+CaseResult solve_case(const Frame& frame, const GroundMotion& record, const PhysicsOptions& physics,
+                      const SolverSettings& solver, const OutputRequest& request, const HistorySink& history) {
+  validate(solver, physics);
+  CaseRun run(frame, record, physics, solver, request, history);
+  return run.run();
+}
+
+}  // namespace pcrf

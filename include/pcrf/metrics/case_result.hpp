@@ -66,6 +66,7 @@ struct MetricInfo {
   std::string_view units;  ///< UDUNITS text, e.g. "rad", "s", "1"
   std::string_view description;
   double (*get)(const CaseResult&);
+  bool is_count = false;  ///< an integer count (impacts, steps, ...)
 };
 
 /// Every numeric metric of CaseResult (status excluded), in a stable order.

@@ -33,12 +33,16 @@ class GroundMotion {
   const std::vector<double>& samples_m_s2() const { return accel_m_s2_; }
 
   /// Ground acceleration at time t [m/s²]: linear interpolation, zero outside the record.
+  /// At t == static_cast<double>(i) * dt_s() it returns sample i exactly (bit for bit), for
+  /// every i including the last; t < 0 or t > duration_s() gives 0; a NaN t gives NaN.
+  /// No allocation, no exceptions.
   double accel_m_s2(double t_s) const;
 
   /// Peak absolute acceleration [m/s²].
   double pga_m_s2() const;
 
-  /// The same record multiplied by `factor` (a negative factor mirrors it).
+  /// The same record multiplied by `factor` (a negative factor mirrors it); same name and dt.
+  /// \throws std::invalid_argument when factor is not finite or a scaled sample overflows.
   GroundMotion scaled(double factor) const;
 
  private:

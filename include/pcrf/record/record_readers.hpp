@@ -23,32 +23,42 @@ class RecordError : public std::runtime_error {
 /// Units of acceleration values in a text file.
 enum class AccelUnit { kG, kMeterPerSecond2, kCentimeterPerSecond2 };
 
-/// Parses "g", "m/s2" (also "m/s^2", "mps2"), "cm/s2" (also "cm/s^2", "gal").
+/// Parses "g", "m/s2" (also "m/s^2", "mps2"), "cm/s2" (also "cm/s^2", "gal"); case and
+/// surrounding blanks are ignored.
 /// \throws std::invalid_argument naming the bad text.
 AccelUnit parse_accel_unit(const std::string& text);
 
-/// Factor that converts a value in `unit` to m/s².
+/// Factor that converts a value in `unit` to m/s² (g → pcrf::kGravity_m_s2).
+/// \throws std::invalid_argument for a value outside the enumeration.
 double to_m_s2(AccelUnit unit);
 
 /// File layouts the engine reads.
 enum class RecordFormat { kAt2, kTwoColumn, kOneColumn };
 
-/// Parses "at2", "two-column", "one-column". \throws std::invalid_argument.
+/// Parses "at2", "two-column", "one-column" (case ignored). \throws std::invalid_argument.
 RecordFormat parse_record_format(const std::string& text);
 
 /// PEER NGA `.AT2`: four header lines, the fourth giving NPTS and DT in either form
 /// `NPTS=  7374, DT=   .0050 SEC` or `11000  0.0050  NPTS, DT`; then values in g,
 /// any number per line. CRLF or LF; a partial last line is fine. Extra values beyond
-/// NPTS are an error, as are fewer values than NPTS and non-numeric data.
+/// NPTS are an error, as are fewer values than NPTS and non-numeric data. Numbers may be
+/// written Fortran-style (".0050", "-.47E-02", "1.0D-03"). Line 3 is checked only where it
+/// speaks: "VELOCITY"/"DISPLACEMENT", or "UNITS OF" followed by anything but G, is an
+/// error. The record's name is the file stem.
 GroundMotion read_at2(const std::filesystem::path& file);
 
 /// Two columns: time [s] and acceleration in `unit`, whitespace or comma separated.
 /// Lines starting with '#' and blank lines are skipped. The time step must be uniform
 /// (relative spread below 1e-6). If the first time is not 0, samples are kept as they are
-/// and t = i·dt still applies (documented shift).
+/// and t = i·dt still applies (documented shift). '#' starts a comment anywhere on a line;
+/// every data row needs exactly two fields; an empty field (",,", a leading or trailing comma)
+/// is an error. At least two rows are needed; dt is the mean step (t_last − t_first)/(n − 1),
+/// and each step must lie within 1e-6 (relative) of the first one.
 GroundMotion read_two_column(const std::filesystem::path& file, AccelUnit unit);
 
 /// One value a line (or several per line), acceleration in `unit`, sampled every dt_s.
+/// Same comment and separator rules as read_two_column. A dt_s that is not positive and
+/// finite, or a file without values, is a RecordError.
 GroundMotion read_one_column(const std::filesystem::path& file, double dt_s, AccelUnit unit);
 
 /// Where a record comes from, as a study file or the command line names it.

@@ -22,6 +22,12 @@ struct SinePulseSpec {
   double duration_s = 5.0;    ///< total length [s] ≥ n·T_p
   double dt_s = 0.005;        ///< sample interval [s]
 };
+/// Samples at t = i·dt for i = 0 … duration/dt (a duration within 1e-9 relative of a whole
+/// number of steps ends on a sample). The record's name is the spec in make_synthetic's
+/// text form.
+/// \throws std::invalid_argument naming the field ("SinePulseSpec.period_s ...") when
+/// amplitude_g, period_s or dt_s is not positive and finite, cycles < 1,
+/// period_s < 4·dt_s, duration_s < cycles·period_s, or the record would exceed 1e8 samples.
 GroundMotion make_sine_pulse_train(const SinePulseSpec& spec);
 
 /// Filtered white noise (Kanai–Tajimi filter, ground frequency f_g, damping ζ_g) under a
@@ -38,12 +44,23 @@ struct StochasticSpec {
   double strong_s = 6.0;       ///< envelope plateau length [s]
   double decay_per_s = 0.35;   ///< envelope decay rate after the plateau [1/s]
 };
+/// The filter x'' + 2ζω x' + ω² x = −w(t) starts at rest and is advanced by its exact
+/// transition over dt for unit-variance noise held constant over each step; the record is
+/// envelope(t) · (−2ζω x' − ω² x), so its first sample is 0. After scaling the peak |a| is
+/// pga_g · kGravity_m_s2 bit for bit. Samples and name as for make_sine_pulse_train.
+/// \throws std::invalid_argument naming the field when pga_g, duration_s, dt_s,
+/// ground_freq_hz or ground_damping is not positive and finite, rise_s, strong_s or
+/// decay_per_s is negative or not finite, duration_s < dt_s, ground_freq_hz ≥ 0.5/dt_s
+/// (Nyquist), or the record would exceed 1e8 samples.
 GroundMotion make_stochastic(const StochasticSpec& spec);
 
 /// A record named in text form, as the CLI and study files accept it:
 /// "sine:amplitude_g=0.5,period_s=0.5,cycles=2,duration_s=5,dt_s=0.005" or
 /// "stochastic:seed=3,pga_g=0.4,duration_s=20,dt_s=0.01" (any subset of the fields above,
-/// the rest take their defaults). The record's name is the text itself.
+/// the rest take their defaults; "sine" alone is all defaults). Blanks around keys and values
+/// are ignored; a key given twice, an empty item or a value that is not a whole number
+/// (cycles, seed) or a finite number (the rest) is an error. The record's name is the text
+/// itself.
 /// \throws std::invalid_argument naming the unknown kind, key or bad value.
 GroundMotion make_synthetic(const std::string& text);
 

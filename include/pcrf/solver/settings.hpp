@@ -35,15 +35,23 @@ struct PhysicsOptions {
   /// Return to rest when the remaining Zeno sequence would end within this time [s]
   /// (see README, "Return to rest").
   double zeno_time_s = 1e-4;
+  /// Initial state (free-rocking studies and tests). Zero: the frame starts at rest.
+  /// A non-zero state starts in flight on the side of θ₁ (of −θ̇₁ when θ₁ = 0).
+  double theta0_rad = 0.0;
+  double omega0_rad_s = 0.0;
 };
 
 struct SolverSettings {
-  Integrator integrator = Integrator::kCvodeAdams;
+  Integrator integrator = Integrator::kArkodeErk5;
   double rtol = 1e-8;
-  double atol_theta_rad = 1e-10;   ///< absolute tolerance on θ₁ [rad]
-  double atol_omega_rad_s = 1e-8;  ///< absolute tolerance on θ̇₁ [rad/s]
+  double atol_theta_rad = 1e-11;   ///< absolute tolerance on θ₁ [rad]
+  double atol_omega_rad_s = 1e-10; ///< absolute tolerance on θ̇₁ [rad/s]
   double max_step_s = 0.0;         ///< 0: no limit
   long max_steps = 2000000;        ///< per case, all segments together
+  /// Never step across a record sample: ü_g is linear between samples and has a kink at
+  /// each, so the right-hand side is smooth only between them. Stopping at every sample
+  /// keeps the integrators at their design order (without restarting them).
+  bool stop_at_samples = true;
   double wall_time_limit_s = 0.0;  ///< 0: no limit; else status kTimeLimit
 };
 

@@ -1,0 +1,63 @@
+/// \file integrators.hpp
+/// \brief A small common face over SUNDIALS CVODE (Adams, BDF) and ARKODE ERKStep for
+/// the two-state rocking ODE with root finding. Private to the solver.
+///
+/// Every SUNDIALS call is checked through one helper (check_flag), which throws
+/// IntegratorError naming the call and the flag. Work counters are summed across
+/// re-initializations (SUNDIALS resets its own at each ReInit).
+#pragma once
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "pcrf/metrics/case_result.hpp"
+#include "pcrf/solver/settings.hpp"
+
+namespace pcrf::detail {
+
+/// Setup or run-time failure inside SUNDIALS; what() names the call.
+class IntegratorError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// The ODE y' = f(t, y), y ∈ ℝ², with root functions g(t, y) ∈ ℝⁿ.
+class OdeProblem {
+ public:
+  virtual ~OdeProblem() = default;
+  /// Returns 0 on success, > 0 for a recoverable failure (the integrator retries with a
+  /// smaller step), < 0 for an unrecoverable one.
+  virtual int rhs(double t, const double* y, double* ydot) = 0;
+  virtual int roots(double t, const double* y, double* g) = 0;
+  virtual int root_count() const = 0;
+};
+
+class OdeIntegrator {
+ public:
+  enum class Outcome { kReachedTime, kRoot, kFailure };
+
+  virtual ~OdeIntegrator() = default;
+  OdeIntegrator() = default;
+  OdeIntegrator(const OdeIntegrator&) = delete;
+  OdeIntegrator& operator=(const OdeIntegrator&) = delete;
+
+  /// Restarts at (t0, y0); `root_dirs` has root_count() entries (−1, 0, +1). A positive
+  /// `h0` fixes the first step (0: the integrator's own estimate).
+  virtual void restart(double t0, const double* y0, const int* root_dirs, double t_stop, double h0) = 0;
+  /// Moves the stop time (no restart): the integrator will not step beyond it.
+  virtual void set_stop_time(double t_stop) = 0;
+  /// Integrates towards tout (never beyond the stop time); on return t and y hold the
+  /// state reached. kRoot: root_info() says which roots were found.
+  virtual Outcome advance(double tout, double& t, double* y) = 0;
+  /// found[i] ≠ 0 when root i was found at the last kRoot return.
+  virtual void root_info(int* found) = 0;
+  /// Counters summed over every restart.
+  virtual SolverCounts counts() = 0;
+  /// Text of the last failure.
+  virtual const std::string& last_error() const = 0;
+};
+
+std::unique_ptr<OdeIntegrator> make_integrator(const SolverSettings& settings, OdeProblem& problem);
+
+}  // namespace pcrf::detail

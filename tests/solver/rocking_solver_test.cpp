@@ -1,0 +1,183 @@
+// The rocking solver: odd symmetry, rest below the threshold, return to rest, status,
+// convergence as tolerances tighten, agreement between integrators.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "pcrf/model/equation_of_motion.hpp"
+#include "pcrf/model/frame.hpp"
+#include "solver_test_support.hpp"
+
+namespace pcrf {
+namespace {
+
+TEST(RockingSolver, MirroredRecordGivesTheMirroredResponse) {
+  const Frame frame = basic_frame();
+  const GroundMotion rec = test::strong_record(3);
+  test::Trace a, b;
+  const CaseResult ra = solve_case(frame, rec, {}, {}, {}, a.sink());
+  const CaseResult rb = solve_case(frame, rec.scaled(-1.0), {}, {}, {}, b.sink());
+  ASSERT_GT(ra.impacts, 3);
+  EXPECT_EQ(ra.impacts, rb.impacts);
+  EXPECT_DOUBLE_EQ(ra.theta_max_rad, rb.theta_max_rad);
+  EXPECT_DOUBLE_EQ(ra.t_theta_max_s, rb.t_theta_max_s);
+  EXPECT_DOUBLE_EQ(ra.omega_max_rad_s, rb.omega_max_rad_s);
+  EXPECT_DOUBLE_EQ(ra.t_uplift_s, rb.t_uplift_s);
+  ASSERT_EQ(a.samples.size(), b.samples.size());
+  for (std::size_t i = 0; i < a.samples.size(); ++i) {
+    EXPECT_EQ(a.samples[i].t_s, b.samples[i].t_s);
+    EXPECT_EQ(a.samples[i].theta1_rad, -b.samples[i].theta1_rad);
+    EXPECT_EQ(a.samples[i].omega1_rad_s, -b.samples[i].omega1_rad_s);
+    EXPECT_EQ(a.samples[i].strain_column_left, b.samples[i].strain_column_right);
+  }
+}
+
+TEST(RockingSolver, SubThresholdMotionNeverLifts) {
+  const Frame frame = basic_frame();
+  const EquationOfMotion eom(frame);
+  const GroundMotion raw = test::strong_record(5);
+  const double scale = 0.98 * eom.uplift_threshold_m_s2() / raw.pga_m_s2();
+  const CaseResult r = solve_case(frame, raw.scaled(scale), {}, {});
+  EXPECT_EQ(r.status, CaseStatus::kAtRest);
+  EXPECT_EQ(r.impacts, 0);
+  EXPECT_EQ(r.theta_max_rad, 0.0);
+  EXPECT_TRUE(std::isnan(r.t_uplift_s));
+  EXPECT_EQ(r.counts.steps, 0);  // nothing to integrate while at rest
+  EXPECT_FALSE(std::isnan(r.t_trigger_paper_s));  // the paper's criterion was met
+  // Just above the threshold it lifts, at the first exceedance.
+  const double scale_up = 1.02 * eom.uplift_threshold_m_s2() / raw.pga_m_s2();
+  const CaseResult up = solve_case(frame, raw.scaled(scale_up), {}, {});
+  EXPECT_GT(up.theta_max_rad, 0.0);
+  EXPECT_FALSE(std::isnan(up.t_uplift_s));
+  EXPECT_NEAR(std::abs(raw.scaled(scale_up).accel_m_s2(up.t_uplift_s)), eom.uplift_threshold_m_s2(), 1e-9);
+}
+
+TEST(RockingSolver, FreeRockingReturnsToRestInFiniteTimeWithFiniteImpacts) {
+  const Frame frame = basic_frame();
+  PhysicsOptions physics;
+  physics.theta0_rad = -0.02;
+  test::Trace trace;
+  const CaseResult r = solve_case(frame, test::quiet_record(20.0), physics, {}, {}, trace.sink());
+  EXPECT_EQ(r.status, CaseStatus::kAtRest);
+  EXPECT_GT(r.impacts, 10);
+  EXPECT_LT(r.impacts, 1000);
+  // Once at rest the frame stays there: the last sample is exactly at rest and the last
+  // non-zero rotation is well before the end of the record.
+  ASSERT_FALSE(trace.samples.empty());
+  EXPECT_EQ(trace.samples.back().theta1_rad, 0.0);
+  double last_motion = 0.0;
+  for (const auto& s : trace.samples) {
+    if (s.theta1_rad != 0.0) last_motion = s.t_s;
+  }
+  EXPECT_LT(last_motion, 15.0);
+  // Amplitude decays: peak at the start.
+  EXPECT_DOUBLE_EQ(r.theta_max_rad, 0.02);
+}
+
+TEST(RockingSolver, RestingFrameUnderLongSubThresholdMotionStaysClosed) {
+  // A frame at rest under a long harmonic motion just below the threshold: no step, no
+  // impact, no spurious chatter.
+  const Frame frame = basic_frame();
+  const EquationOfMotion eom(frame);
+  SinePulseSpec weak;
+  weak.amplitude_g = 0.999 * eom.uplift_threshold_m_s2() / kGravity_m_s2;
+  weak.period_s = 0.3;
+  weak.cycles = 60;
+  weak.duration_s = 20.0;
+  weak.dt_s = 0.005;
+  const CaseResult r = solve_case(frame, make_sine_pulse_train(weak), {}, {});
+  EXPECT_EQ(r.status, CaseStatus::kAtRest);
+  EXPECT_EQ(r.impacts, 0);
+  EXPECT_EQ(r.counts.steps, 0);
+}
+
+TEST(RockingSolver, PaperAndPhysicalCriteriaGiveTheSameMotion) {
+  // README "Uplift criteria": after the paper's trigger the prestress still holds the
+  // frame closed and the contact cannot pull, so the motion is the same.
+  const Frame frame = basic_frame();
+  const GroundMotion rec = test::strong_record(11);
+  PhysicsOptions paper;
+  paper.uplift = UpliftCriterion::kPaper;
+  const CaseResult a = solve_case(frame, rec, {}, {});
+  const CaseResult b = solve_case(frame, rec, paper, {});
+  EXPECT_EQ(a.theta_max_rad, b.theta_max_rad);
+  EXPECT_EQ(a.t_uplift_s, b.t_uplift_s);
+  EXPECT_EQ(a.impacts, b.impacts);
+  EXPECT_EQ(a.t_trigger_paper_s, b.t_trigger_paper_s);
+  EXPECT_LT(a.t_trigger_paper_s, a.t_uplift_s);
+}
+
+TEST(RockingSolver, ThetaMaxConvergesAsToleranceTightens) {
+  // A two-cycle pulse: θ_max comes in the first excursions, before the response has had
+  // time to amplify perturbations (long random records are ill-conditioned: a 1e-8
+  // relative change of the record moves θ_max by ~1e-4; see README, "Accuracy").
+  const Frame frame = basic_frame();
+  SinePulseSpec pulse;
+  pulse.amplitude_g = 1.5;
+  const GroundMotion rec = make_sine_pulse_train(pulse);
+  for (Integrator integrator : {Integrator::kArkodeErk5, Integrator::kCvodeAdams}) {
+    std::vector<double> theta;
+    for (double rtol : {1e-5, 1e-7, 1e-9, 1e-12}) {
+      SolverSettings s;
+      s.integrator = integrator;
+      s.rtol = rtol;
+      s.atol_theta_rad = rtol * 1e-3;
+      s.atol_omega_rad_s = rtol * 1e-2;
+      theta.push_back(solve_case(frame, rec, {}, s).theta_max_rad);
+    }
+    const double ref = theta.back();
+    const double e5 = std::abs(theta[0] - ref) / ref, e7 = std::abs(theta[1] - ref) / ref,
+                 e9 = std::abs(theta[2] - ref) / ref;
+    EXPECT_LT(e5, 1e-2) << to_string(integrator);
+    EXPECT_LT(e7, 1e-4) << to_string(integrator);
+    EXPECT_LT(e9, 1e-6) << to_string(integrator);
+    EXPECT_LT(e9, e5) << to_string(integrator);
+  }
+}
+
+TEST(RockingSolver, IntegratorsAgreeAtTightTolerance) {
+  const Frame frame = basic_frame();
+  const GroundMotion rec = test::strong_record(4);
+  const CaseResult ref = solve_case(frame, rec, {}, test::tight(Integrator::kCvodeAdams));
+  ASSERT_GT(ref.theta_max_rad, 0.0);
+  for (Integrator i : {Integrator::kCvodeBdf, Integrator::kArkodeErk5, Integrator::kArkodeErk8}) {
+    const CaseResult r = solve_case(frame, rec, {}, test::tight(i));
+    EXPECT_NEAR(r.theta_max_rad, ref.theta_max_rad, 1e-7 * ref.theta_max_rad) << to_string(i);
+    EXPECT_NEAR(r.t_theta_max_s, ref.t_theta_max_s, 1e-6) << to_string(i);
+    EXPECT_NEAR(r.omega_max_rad_s, ref.omega_max_rad_s, 1e-6 * ref.omega_max_rad_s) << to_string(i);
+    EXPECT_EQ(r.status, ref.status) << to_string(i);
+  }
+}
+
+TEST(RockingSolver, TendonFractureIsAStatus) {
+  const Frame frame = basic_frame();
+  PhysicsOptions physics;
+  physics.fracture_strain = 0.003;  // low, so the strong record breaks a tendon
+  const CaseResult r = solve_case(frame, test::strong_record(3), physics, {});
+  EXPECT_EQ(r.status, CaseStatus::kTendonFracture);
+  EXPECT_NEAR(std::max(r.strain_column_max, r.strain_beam_max), 0.003, 1e-9);
+  EXPECT_LT(r.t_end_s, 12.0);
+}
+
+TEST(RockingSolver, FrameWithoutTendonsOverturnsUnderAStrongPulse) {
+  FrameParameters p;
+  p.pi_sigma_b = p.pi_sigma_c = p.pi_e_b = p.pi_e_c = 0.0;
+  SinePulseSpec pulse;
+  pulse.amplitude_g = 1.0;
+  pulse.period_s = 2.0;
+  pulse.cycles = 1;
+  pulse.duration_s = 6.0;
+  const CaseResult r = solve_case(make_frame(p), make_sine_pulse_train(pulse), {}, {});
+  EXPECT_EQ(r.status, CaseStatus::kOverturned);
+  EXPECT_TRUE(std::isfinite(r.theta_max_rad));
+  EXPECT_GT(r.theta_max_rad, 1.5);
+}
+
+TEST(RockingSolver, InvalidSettingsThrow) {
+  SolverSettings s;
+  s.rtol = -1;
+  EXPECT_THROW(solve_case(basic_frame(), test::quiet_record(1.0), {}, s), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace pcrf

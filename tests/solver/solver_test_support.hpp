@@ -1,0 +1,44 @@
+/// \file solver_test_support.hpp
+/// \brief Records and settings shared by the solver tests.
+#pragma once
+
+#include <vector>
+
+#include "pcrf/record/ground_motion.hpp"
+#include "pcrf/record/synthetic.hpp"
+#include "pcrf/solver/rocking_solver.hpp"
+
+namespace pcrf::test {
+
+/// No ground motion for `duration_s`.
+inline GroundMotion quiet_record(double duration_s, double dt_s = 0.01) {
+  return GroundMotion("quiet", dt_s, std::vector<double>(static_cast<std::size_t>(duration_s / dt_s) + 1, 0.0));
+}
+
+/// A seeded stochastic record strong enough to rock the basic frame (PGA 2 g).
+inline GroundMotion strong_record(std::uint64_t seed = 7, double duration_s = 12.0) {
+  StochasticSpec s;
+  s.seed = seed;
+  s.pga_g = 2.0;
+  s.duration_s = duration_s;
+  s.dt_s = 0.01;
+  return make_stochastic(s);
+}
+
+inline SolverSettings tight(Integrator i = Integrator::kCvodeAdams) {
+  SolverSettings s;
+  s.integrator = i;
+  s.rtol = 1e-12;
+  s.atol_theta_rad = 1e-15;
+  s.atol_omega_rad_s = 1e-13;
+  return s;
+}
+
+struct Trace {
+  std::vector<HistorySample> samples;
+  HistorySink sink() {
+    return [this](const HistorySample& s) { samples.push_back(s); };
+  }
+};
+
+}  // namespace pcrf::test
