@@ -126,11 +126,13 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--fracture-strain", o->physics.fracture_strain, "tendon fracture strain [-]")->capture_default_str();
   cmd->add_option("--tail", o->physics.tail_s, "free vibration after the record [s]")->capture_default_str();
   cmd->add_option("--zeno-time", o->physics.zeno_time_s, "return-to-rest time scale [s]")->capture_default_str();
-  cmd->add_option("--integrator", o->integrator, "cvode-adams, cvode-bdf, arkode-erk5, arkode-erk8")->capture_default_str();
+  cmd->add_option("--integrator", o->integrator, "arkode-erk5, arkode-erk8, cvode-adams, cvode-bdf, fixed-rk4")->capture_default_str();
   cmd->add_option("--rtol", o->solver.rtol, "relative tolerance [-]")->capture_default_str();
   cmd->add_option("--atol-theta", o->solver.atol_theta_rad, "absolute tolerance on θ₁ [rad]")->capture_default_str();
   cmd->add_option("--atol-omega", o->solver.atol_omega_rad_s, "absolute tolerance on θ̇₁ [rad/s]")->capture_default_str();
   cmd->add_option("--max-step", o->solver.max_step_s, "largest step [s], 0 = no limit")->capture_default_str();
+  cmd->add_option("--fixed-step", o->solver.fixed_step_s, "step of fixed-rk4 [s], 0 = the record's dt")
+      ->capture_default_str();
   cmd->add_option("--stop-at-samples", o->solver.stop_at_samples,
                   "stop the integrator at every record sample (kinks of the interpolated record)")
       ->capture_default_str();

@@ -1,6 +1,7 @@
 // Per-case result record: metric table, status names, JSON.
 #include "pcrf/metrics/case_result.hpp"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -72,9 +73,10 @@ void write_number(std::ostringstream& os, double v) {
     os << "null";
     return;
   }
+  // Shortest text that reads back to the same double (2.69, not 2.6899999999999999).
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  os << buf;
+  const auto end = std::to_chars(buf, buf + sizeof buf, v).ptr;
+  os << std::string_view(buf, static_cast<std::size_t>(end - buf));
 }
 
 void write_string(std::ostringstream& os, std::string_view s) {

@@ -67,7 +67,7 @@ class SundialsBase : public OdeIntegrator {
 
   SolverCounts counts() override {
     SolverCounts c = done_;
-    add(c, segment());
+    if (started_) add(c, segment());  // before the first start the counters are not set
     return c;
   }
   /// Banks the current segment's counters before a ReInit resets them.
@@ -228,6 +228,7 @@ std::unique_ptr<OdeIntegrator> make_integrator(const SolverSettings& s, OdeProbl
     case Integrator::kCvodeAdams: return std::make_unique<CvodeIntegrator>(s, p, false);
     case Integrator::kArkodeErk5: return std::make_unique<ErkIntegrator>(s, p, ARKODE_DORMAND_PRINCE_7_4_5);
     case Integrator::kArkodeErk8: return std::make_unique<ErkIntegrator>(s, p, ARKODE_FEHLBERG_13_7_8);
+    case Integrator::kFixedRk4SignChange: break;  // not a SUNDIALS method: see fixed_step_solver.cpp
   }
   throw IntegratorError("unknown integrator");
 }

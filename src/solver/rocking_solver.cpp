@@ -10,6 +10,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "case_common.hpp"
+#include "fixed_step_solver.hpp"
 #include "integrators.hpp"
 #include "pcrf/model/equation_of_motion.hpp"
 #include "pcrf/model/impact.hpp"
@@ -17,7 +19,8 @@
 namespace pcrf {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using detail::first_exceedance;
+
 
 /// Root indices.
 enum Root { kImpact = 0, kThetaPeak = 1, kOmegaPeak = 2, kLimit = 3, kRootCount = 4 };
@@ -66,56 +69,6 @@ class FlightProblem final : public detail::OdeProblem {
   double theta_stop_rad_;
   bool omega_peak_;
 };
-
-/// First time ≥ t_from at which |ü_g| exceeds `threshold_m_s2`, exact within the linear
-/// interpolation of the record; NaN when it never does before `t_end`.
-double first_exceedance(const GroundMotion& rec, double t_from, double t_end, double threshold_m_s2) {
-  if (std::abs(rec.accel_m_s2(t_from)) > threshold_m_s2) return t_from;
-  if (threshold_m_s2 < 0.0) return t_from;
-  const auto& a = rec.samples_m_s2();
-  const double dt = rec.dt_s();
-  std::size_t i = static_cast<std::size_t>(std::max(0.0, std::floor(t_from / dt)));
-  for (; i + 1 < a.size(); ++i) {
-    const double t0 = static_cast<double>(i) * dt;
-    if (t0 > t_end) break;
-    const double a0 = a[i], a1 = a[i + 1];
-    double best = kNaN;
-    for (const double level : {threshold_m_s2, -threshold_m_s2}) {
-      const bool up = level > 0 ? a1 > level : a1 < level;
-      if (!up) continue;
-      const double s = std::clamp((level - a0) / (a1 - a0), 0.0, 1.0);
-      const double tc = std::max(t0 + s * dt, t_from);
-      if (std::isnan(best) || tc < best) best = tc;
-    }
-    if (!std::isnan(best)) return best <= t_end ? best : kNaN;
-  }
-  return kNaN;
-}
-
-/// First sample i with |a_i| ≥ λ_g·g (the paper's t_RI) [s]; NaN when none.
-double paper_trigger_time(const GroundMotion& rec, double lambda_g) {
-  const auto& a = rec.samples_m_s2();
-  const double level = lambda_g * kGravity_m_s2;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    if (std::abs(a[i]) >= level) return static_cast<double>(i) * rec.dt_s();
-  }
-  return kNaN;
-}
-
-void validate(const SolverSettings& s, const PhysicsOptions& p) {
-  auto positive = [](double v, const char* name) {
-    if (!(v > 0.0) || !std::isfinite(v))
-      throw std::invalid_argument(std::string("solver setting ") + name + " must be positive");
-  };
-  positive(s.rtol, "rtol");
-  positive(s.atol_theta_rad, "atol_theta_rad");
-  positive(s.atol_omega_rad_s, "atol_omega_rad_s");
-  if (s.max_steps <= 0) throw std::invalid_argument("solver setting max_steps must be positive");
-  if (s.max_step_s < 0) throw std::invalid_argument("solver setting max_step_s must be ≥ 0");
-  positive(p.fracture_strain, "fracture_strain");
-  positive(p.zeno_time_s, "zeno_time_s");
-  if (!(p.tail_s >= 0.0)) throw std::invalid_argument("physics option tail_s must be ≥ 0");
-}
 
 /// The state machine of one case.
 class CaseRun {
@@ -179,18 +132,7 @@ class CaseRun {
 };
 
 CaseResult CaseRun::run() {
-  result_.lambda_g = eom_.lambda_g();
-  result_.uplift_threshold_g = eom_.uplift_threshold_m_s2() / kGravity_m_s2;
-  result_.restitution = restitution_;
-  result_.t_trigger_paper_s = paper_trigger_time(record_, eom_.lambda_g());
-  result_.t_uplift_s = kNaN;
-  result_.t_theta_max_s = kNaN;
-  result_.t_omega_max_s = kNaN;
-  result_.theta_max_rad = 0.0;
-  result_.omega_max_rad_s = request_.omega_peak ? 0.0 : kNaN;
-  const TendonState rest = eom_.tendons(0.0, -1);
-  result_.strain_column_max = rest.strain_column_max();
-  result_.strain_beam_max = rest.strain_beam;
+  result_ = detail::initial_result(eom_, record_, restitution_, request_.omega_peak);
   try {
     if (physics_.theta0_rad != 0.0 || physics_.omega0_rad_s != 0.0) start_displaced();
     while (!done_) {
@@ -204,13 +146,7 @@ CaseResult CaseRun::run() {
     finish(CaseStatus::kSolverFailure, e.what());
   }
   result_.counts = integrator_->counts();
-  // The trajectory starts at θ₁ = 0 and is continuous, so it has visited every |θ₁| up
-  // to the peak: peak strains are the maxima over that range.
-  if (result_.theta_max_rad > 0.0) {
-    const TendonState peak = eom_.peak_tendon_strains(result_.theta_max_rad);
-    result_.strain_column_max = peak.strain_column_max();
-    result_.strain_beam_max = peak.strain_beam;
-  }
+  detail::set_peak_strains(eom_, result_);
   result_.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   return result_;
 }
@@ -398,18 +334,7 @@ void CaseRun::note_omega(double t, double omega) {
 
 void CaseRun::emit(double t, double theta, double omega) {
   if (!history_) return;
-  HistorySample s{};
-  s.t_s = t;
-  s.theta1_rad = theta;
-  s.omega1_rad_s = omega;
-  const int side = problem_.side;
-  eom_.configuration(theta, side, s.theta2_rad, s.theta3_rad);
-  const TendonState ts = eom_.tendons(theta, side);
-  s.strain_column_left = ts.strain_column_left;
-  s.strain_column_right = ts.strain_column_right;
-  s.strain_beam = ts.strain_beam;
-  s.ground_accel_m_s2 = record_.accel_m_s2(t);
-  history_(s);
+  history_(detail::history_sample(eom_, record_, t, theta, omega, problem_.side));
   while (static_cast<double>(next_history_sample_) * record_.dt_s() <= t) ++next_history_sample_;
 }
 
@@ -437,7 +362,10 @@ bool CaseRun::over_time() const {
 
 CaseResult solve_case(const Frame& frame, const GroundMotion& record, const PhysicsOptions& physics,
                       const SolverSettings& solver, const OutputRequest& request, const HistorySink& history) {
-  validate(solver, physics);
+  detail::validate(solver, physics);
+  if (solver.integrator == Integrator::kFixedRk4SignChange) {
+    return detail::solve_case_fixed_step(EquationOfMotion(frame), record, physics, solver, history);
+  }
   CaseRun run(frame, record, physics, solver, request, history);
   return run.run();
 }

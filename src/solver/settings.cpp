@@ -18,8 +18,9 @@ Integrator parse_integrator(const std::string& text) {
   if (text == "cvode-adams") return Integrator::kCvodeAdams;
   if (text == "arkode-erk5") return Integrator::kArkodeErk5;
   if (text == "arkode-erk8") return Integrator::kArkodeErk8;
+  if (text == "fixed-rk4") return Integrator::kFixedRk4SignChange;
   throw std::invalid_argument("unknown integrator '" + text +
-                              "' (expected cvode-adams, cvode-bdf, arkode-erk5 or arkode-erk8)");
+                              "' (expected cvode-adams, cvode-bdf, arkode-erk5, arkode-erk8 or fixed-rk4)");
 }
 
 std::string to_string(Integrator i) {
@@ -28,6 +29,7 @@ std::string to_string(Integrator i) {
     case Integrator::kCvodeAdams: return "cvode-adams";
     case Integrator::kArkodeErk5: return "arkode-erk5";
     case Integrator::kArkodeErk8: return "arkode-erk8";
+    case Integrator::kFixedRk4SignChange: return "fixed-rk4";
   }
   return "unknown";
 }

@@ -24,8 +24,12 @@ enum class Integrator {
   kCvodeAdams,  ///< SUNDIALS CVODE, Adams–Moulton (orders 1–12), fixed point
   kArkodeErk5,  ///< SUNDIALS ARKODE ERKStep, Dormand–Prince 5(4)
   kArkodeErk8,  ///< SUNDIALS ARKODE ERKStep, Fehlberg 8(7)
+  /// Classical RK4 at a fixed step with impacts found only as sign changes of θ₁ between
+  /// steps and no return-to-rest rule: the scheme many hand-written codes use. Kept as a
+  /// contender for the work-precision study and the numerics audit, not for production.
+  kFixedRk4SignChange,
 };
-Integrator parse_integrator(const std::string& text);  ///< "cvode-bdf", "cvode-adams", "arkode-erk5", "arkode-erk8"
+Integrator parse_integrator(const std::string& text);  ///< "cvode-bdf", "cvode-adams", "arkode-erk5", "arkode-erk8", "fixed-rk4"
 std::string to_string(Integrator i);
 
 struct PhysicsOptions {
@@ -47,6 +51,7 @@ struct SolverSettings {
   double atol_theta_rad = 1e-11;   ///< absolute tolerance on θ₁ [rad]
   double atol_omega_rad_s = 1e-10; ///< absolute tolerance on θ̇₁ [rad/s]
   double max_step_s = 0.0;         ///< 0: no limit
+  double fixed_step_s = 0.0;       ///< step of kFixedRk4SignChange [s]; 0: the record's dt
   long max_steps = 2000000;        ///< per case, all segments together
   /// Never step across a record sample: ü_g is linear between samples and has a kink at
   /// each, so the right-hand side is smooth only between them. Stopping at every sample

@@ -1,0 +1,105 @@
+// Record scanning at rest and record-independent parts of the result record.
+#include "case_common.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace pcrf::detail {
+namespace {
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+}  // namespace
+
+double first_exceedance(const GroundMotion& rec, double t_from, double t_end, double threshold_m_s2) {
+  if (std::abs(rec.accel_m_s2(t_from)) > threshold_m_s2) return t_from;
+  if (threshold_m_s2 < 0.0) return t_from;
+  const auto& a = rec.samples_m_s2();
+  const double dt = rec.dt_s();
+  std::size_t i = static_cast<std::size_t>(std::max(0.0, std::floor(t_from / dt)));
+  for (; i + 1 < a.size(); ++i) {
+    const double t0 = static_cast<double>(i) * dt;
+    if (t0 > t_end) break;
+    const double a0 = a[i], a1 = a[i + 1];
+    double best = kNaN;
+    for (const double level : {threshold_m_s2, -threshold_m_s2}) {
+      const bool up = level > 0 ? a1 > level : a1 < level;
+      if (!up) continue;
+      const double s = std::clamp((level - a0) / (a1 - a0), 0.0, 1.0);
+      const double tc = std::max(t0 + s * dt, t_from);
+      if (std::isnan(best) || tc < best) best = tc;
+    }
+    if (!std::isnan(best)) return best <= t_end ? best : kNaN;
+  }
+  return kNaN;
+}
+
+double paper_trigger_time(const GroundMotion& rec, double lambda_g) {
+  const auto& a = rec.samples_m_s2();
+  const double level = lambda_g * kGravity_m_s2;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (std::abs(a[i]) >= level) return static_cast<double>(i) * rec.dt_s();
+  }
+  return kNaN;
+}
+
+void validate(const SolverSettings& s, const PhysicsOptions& p) {
+  auto positive = [](double v, const char* name) {
+    if (!(v > 0.0) || !std::isfinite(v))
+      throw std::invalid_argument(std::string("solver setting ") + name + " must be positive");
+  };
+  positive(s.rtol, "rtol");
+  positive(s.atol_theta_rad, "atol_theta_rad");
+  positive(s.atol_omega_rad_s, "atol_omega_rad_s");
+  if (s.max_steps <= 0) throw std::invalid_argument("solver setting max_steps must be positive");
+  if (s.max_step_s < 0) throw std::invalid_argument("solver setting max_step_s must be ≥ 0");
+  positive(p.fracture_strain, "fracture_strain");
+  positive(p.zeno_time_s, "zeno_time_s");
+  if (!(p.tail_s >= 0.0)) throw std::invalid_argument("physics option tail_s must be ≥ 0");
+  if (s.fixed_step_s < 0) throw std::invalid_argument("solver setting fixed_step_s must be ≥ 0");
+}
+
+CaseResult initial_result(const EquationOfMotion& eom, const GroundMotion& rec, double restitution,
+                          bool omega_peak) {
+  CaseResult r;
+  r.lambda_g = eom.lambda_g();
+  r.uplift_threshold_g = eom.uplift_threshold_m_s2() / kGravity_m_s2;
+  r.restitution = restitution;
+  r.t_trigger_paper_s = paper_trigger_time(rec, eom.lambda_g());
+  r.t_uplift_s = kNaN;
+  r.t_theta_max_s = kNaN;
+  r.t_omega_max_s = kNaN;
+  r.theta_max_rad = 0.0;
+  r.omega_max_rad_s = omega_peak ? 0.0 : kNaN;
+  const TendonState rest = eom.tendons(0.0, -1);
+  r.strain_column_max = rest.strain_column_max();
+  r.strain_beam_max = rest.strain_beam;
+  return r;
+}
+
+void set_peak_strains(const EquationOfMotion& eom, CaseResult& result) {
+  // The trajectory starts at θ₁ = 0 and is continuous, so it has visited every |θ₁| up
+  // to the peak: peak strains are the maxima over that range.
+  if (!(result.theta_max_rad > 0.0)) return;
+  const TendonState peak = eom.peak_tendon_strains(result.theta_max_rad);
+  result.strain_column_max = peak.strain_column_max();
+  result.strain_beam_max = peak.strain_beam;
+}
+
+HistorySample history_sample(const EquationOfMotion& eom, const GroundMotion& rec, double t, double theta,
+                             double omega, int side) {
+  HistorySample s{};
+  s.t_s = t;
+  s.theta1_rad = theta;
+  s.omega1_rad_s = omega;
+  eom.configuration(theta, side, s.theta2_rad, s.theta3_rad);
+  const TendonState ts = eom.tendons(theta, side);
+  s.strain_column_left = ts.strain_column_left;
+  s.strain_column_right = ts.strain_column_right;
+  s.strain_beam = ts.strain_beam;
+  s.ground_accel_m_s2 = rec.accel_m_s2(t);
+  return s;
+}
+
+}  // namespace pcrf::detail

@@ -1,0 +1,35 @@
+/// \file case_common.hpp
+/// \brief Pieces shared by the event-locating solver and the fixed-step contender:
+/// scanning the record while the frame rests, and the parts of the result record that
+/// do not depend on the integration. Private to the solver.
+#pragma once
+
+#include "pcrf/metrics/case_result.hpp"
+#include "pcrf/model/equation_of_motion.hpp"
+#include "pcrf/record/ground_motion.hpp"
+#include "pcrf/solver/rocking_solver.hpp"
+
+namespace pcrf::detail {
+
+/// First time ≥ t_from at which |ü_g| exceeds `threshold_m_s2`, exact within the linear
+/// interpolation of the record; NaN when it never does before `t_end`.
+double first_exceedance(const GroundMotion& rec, double t_from, double t_end, double threshold_m_s2);
+
+/// First sample i with |a_i| ≥ λ_g·g, as i·dt (the paper's t_RI) [s]; NaN when none.
+double paper_trigger_time(const GroundMotion& rec, double lambda_g);
+
+/// A result record with the frame's properties and the at-rest values filled in.
+CaseResult initial_result(const EquationOfMotion& eom, const GroundMotion& rec, double restitution,
+                          bool omega_peak);
+
+/// Peak strains from the peak rotation (every |θ₁| up to it has been visited).
+void set_peak_strains(const EquationOfMotion& eom, CaseResult& result);
+
+/// Fills a history sample at θ₁, θ̇₁ on `side`.
+HistorySample history_sample(const EquationOfMotion& eom, const GroundMotion& rec, double t, double theta,
+                             double omega, int side);
+
+/// Checks settings shared by every integrator. \throws std::invalid_argument
+void validate(const SolverSettings& s, const PhysicsOptions& p);
+
+}  // namespace pcrf::detail

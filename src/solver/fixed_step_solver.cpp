@@ -1,0 +1,139 @@
+// The fixed-step RK4 contender with sign-change impacts (see fixed_step_solver.hpp).
+#include "fixed_step_solver.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "case_common.hpp"
+#include "pcrf/model/impact.hpp"
+
+namespace pcrf::detail {
+namespace {
+
+struct State {
+  double theta, omega;
+};
+
+class FixedStepRun {
+ public:
+  FixedStepRun(const EquationOfMotion& eom, const GroundMotion& rec, const PhysicsOptions& physics,
+               const SolverSettings& solver, const HistorySink& history)
+      : eom_(eom),
+        rec_(rec),
+        physics_(physics),
+        solver_(solver),
+        history_(history),
+        r_(restitution_momentum(eom)),
+        h_(solver.fixed_step_s > 0 ? solver.fixed_step_s : rec.dt_s()),
+        t_end_(rec.duration_s() + physics.tail_s),
+        theta_stop_(std::min(eom.fracture_angle_rad(physics.fracture_strain), 0.999 * eom.closing_limit_rad())) {}
+
+  CaseResult run() {
+    const auto start = std::chrono::steady_clock::now();
+    result_ = initial_result(eom_, rec_, r_, true);
+    State y{physics_.theta0_rad, physics_.omega0_rad_s};
+    double t = 0.0;
+    if (y.theta == 0.0 && y.omega == 0.0) {
+      t = first_exceedance(rec_, 0.0, t_end_, eom_.uplift_threshold_m_s2());
+      if (std::isnan(t)) return finish(CaseStatus::kAtRest, t_end_, start);
+      side_ = rec_.accel_m_s2(t) > 0.0 ? -1 : +1;
+    } else {
+      side_ = y.theta < 0.0 || (y.theta == 0.0 && y.omega < 0.0) ? -1 : +1;
+    }
+    result_.t_uplift_s = t;
+    emit(t, y);
+    while (t < t_end_) {
+      const double h = std::min(h_, t_end_ - t);
+      State next{};
+      if (!step(t, h, y, next)) return finish(CaseStatus::kSolverFailure, t, start, "linkage cannot close");
+      t += h;
+      ++result_.counts.steps;
+      if (side_ * next.theta < 0.0) {  // θ₁ left the branch's side over the step
+        // Sign change over the step: impact at the step end, not located.
+        next.omega *= r_;
+        side_ = -side_;
+        ++result_.impacts;
+      }
+      y = next;
+      note(t, y);
+      emit(t, y);
+      if (!std::isfinite(y.theta) || !std::isfinite(y.omega))
+        return finish(CaseStatus::kSolverFailure, t, start, "non-finite state");
+      if (std::abs(y.theta) >= theta_stop_) {
+        const bool fracture = eom_.fracture_angle_rad(physics_.fracture_strain) <= 0.999 * eom_.closing_limit_rad();
+        return finish(fracture ? CaseStatus::kTendonFracture : CaseStatus::kOverturned, t, start);
+      }
+    }
+    return finish(CaseStatus::kRockingAtEnd, t, start);
+  }
+
+ private:
+  bool rhs(double t, State y, State& dy) const {
+    dy.theta = y.omega;
+    ++evals_;
+    return eom_.acceleration(y.theta, y.omega, rec_.accel_m_s2(t), side_, dy.omega);
+  }
+
+  bool step(double t, double h, State y, State& out) const {
+    State k1{}, k2{}, k3{}, k4{};
+    auto at = [](State a, State k, double c) { return State{a.theta + c * k.theta, a.omega + c * k.omega}; };
+    if (!rhs(t, y, k1) || !rhs(t + 0.5 * h, at(y, k1, 0.5 * h), k2) || !rhs(t + 0.5 * h, at(y, k2, 0.5 * h), k3) ||
+        !rhs(t + h, at(y, k3, h), k4))
+      return false;
+    out.theta = y.theta + h / 6.0 * (k1.theta + 2 * k2.theta + 2 * k3.theta + k4.theta);
+    out.omega = y.omega + h / 6.0 * (k1.omega + 2 * k2.omega + 2 * k3.omega + k4.omega);
+    return true;
+  }
+
+  void note(double t, State y) {
+    if (std::abs(y.theta) > result_.theta_max_rad) {
+      result_.theta_max_rad = std::abs(y.theta);
+      result_.t_theta_max_s = t;
+    }
+    if (std::abs(y.omega) > result_.omega_max_rad_s) {
+      result_.omega_max_rad_s = std::abs(y.omega);
+      result_.t_omega_max_s = t;
+    }
+  }
+
+  void emit(double t, State y) const {
+    if (history_) history_(history_sample(eom_, rec_, t, y.theta, y.omega, side_));
+  }
+
+  CaseResult finish(CaseStatus status, double t, std::chrono::steady_clock::time_point start,
+                    std::string message = {}) {
+    result_.status = status;
+    result_.t_end_s = t;
+    result_.message = std::move(message);
+    result_.counts.rhs_evals = evals_;
+    set_peak_strains(eom_, result_);
+    result_.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result_;
+  }
+
+  const EquationOfMotion& eom_;
+  const GroundMotion& rec_;
+  PhysicsOptions physics_;
+  SolverSettings solver_;
+  const HistorySink& history_;
+  double r_;
+  double h_;
+  double t_end_;
+  double theta_stop_;
+  int side_ = -1;
+  mutable long evals_ = 0;
+  CaseResult result_;
+};
+
+}  // namespace
+
+CaseResult solve_case_fixed_step(const EquationOfMotion& eom, const GroundMotion& record,
+                                 const PhysicsOptions& physics, const SolverSettings& solver,
+                                 const HistorySink& history) {
+  FixedStepRun run(eom, record, physics, solver, history);
+  return run.run();
+}
+
+}  // namespace pcrf::detail

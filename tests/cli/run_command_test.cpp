@@ -1,0 +1,95 @@
+// `pcrf run` end to end: JSON on stdout, the history CSV, one-line errors with exit 2.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <string>
+
+#include "support/test_support.hpp"
+
+namespace pcrf {
+namespace {
+
+std::string pcrf() { return test::pcrf_executable().string(); }
+
+TEST(RunCommand, PrintsOneJsonObjectWithTheResultKeys) {
+  const auto r = test::run_command(pcrf() + " run --synthetic 'sine:amplitude_g=1.5,period_s=0.5,cycles=2'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.front(), '{');
+  EXPECT_EQ(r.out.find('\n'), r.out.size() - 1);  // one line
+  for (const char* key : {"lambda_g", "uplift_threshold_g", "restitution", "t_trigger_paper_s", "t_uplift_s",
+                          "theta_max_rad", "t_theta_max_s", "omega_max_rad_s", "t_omega_max_s",
+                          "strain_column_max", "strain_beam_max", "impacts", "status", "steps", "rhs_evals",
+                          "root_evals", "wall_time_s"}) {
+    EXPECT_NE(r.out.find("\"" + std::string(key) + "\":"), std::string::npos) << key;
+  }
+  EXPECT_NE(r.out.find("\"status\": \"at_rest\""), std::string::npos) << r.out;
+}
+
+TEST(RunCommand, FrameParametersChangeTheResult) {
+  const std::string base = pcrf() + " run --synthetic 'sine:amplitude_g=1.5,period_s=0.5,cycles=2'";
+  const auto a = test::run_command(base);
+  const auto b = test::run_command(base + " --kappa 3 --tan-alpha 0.25");
+  ASSERT_EQ(a.exit_code, 0);
+  ASSERT_EQ(b.exit_code, 0);
+  EXPECT_NE(a.out, b.out);
+}
+
+TEST(RunCommand, WritesTheHistoryCsv) {
+  const auto dir = test::scratch_dir("run_history");
+  const auto csv = dir / "h.csv";
+  const auto r = test::run_command(pcrf() + " run --synthetic 'sine:amplitude_g=1.5,period_s=0.5,cycles=2,duration_s=3' --history " +
+                                   csv.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(csv);
+  std::string header;
+  std::getline(in, header);
+  EXPECT_EQ(header,
+            "t_s,theta1_rad,omega1_rad_s,theta2_rad,theta3_rad,strain_column_left,strain_column_right,strain_beam,"
+            "ground_accel_m_s2");
+  int rows = 0;
+  for (std::string line; std::getline(in, line);) ++rows;
+  EXPECT_GE(rows, 601);  // every record sample (3 s at 5 ms) plus impacts
+}
+
+TEST(RunCommand, ReadsAPeerRecord) {
+  PCRF_REQUIRE_RECORDS(records);
+  const std::string record = (records / "paper" / "ER7_CAP000.AT2").string();
+  const auto r = test::run_command(pcrf() + " run --record " + record);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("\"t_trigger_paper_s\": 2.69"), std::string::npos) << r.out;  // Table 3
+  EXPECT_NE(r.out.find("\"t_uplift_s\": null"), std::string::npos) << r.out;  // PGA 0.53 g < 1.02 g
+  const auto scaled = test::run_command(pcrf() + " run --record " + record + " --scale 2.5");
+  ASSERT_EQ(scaled.exit_code, 0) << scaled.err;
+  EXPECT_EQ(scaled.out.find("\"t_uplift_s\": null"), std::string::npos) << scaled.out;
+}
+
+struct BadArgs {
+  std::string args;
+  std::string says;  // a fragment of the one-line error
+};
+
+class RunCommandErrors : public ::testing::TestWithParam<BadArgs> {};
+
+TEST_P(RunCommandErrors, OneLineAndExitCode2) {
+  const auto r = test::run_command(pcrf() + " run " + GetParam().args);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << r.err;
+  EXPECT_NE(r.err.find(GetParam().says), std::string::npos) << r.err;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Corpus, RunCommandErrors,
+    ::testing::Values(BadArgs{"", "--record FILE or --synthetic"},
+                      BadArgs{"--record /no/such/file.AT2", "/no/such/file.AT2"},
+                      BadArgs{"--synthetic 'sine:amplitude_g=1' --kappa -1", "kappa"},
+                      BadArgs{"--synthetic 'sine:amplitude_g=1' --lambda-h 1.5", "lambda_h"},
+                      BadArgs{"--synthetic 'sine:amplitude_g=1' --integrator euler", "euler"},
+                      BadArgs{"--synthetic 'sine:amplitude_g=1' --criterion maybe", "maybe"},
+                      BadArgs{"--synthetic 'sine:amplitude_g=1' --rtol 0", "rtol"},
+                      BadArgs{"--synthetic 'quake:x=1'", "quake"},
+                      BadArgs{"--synthetic 'sine:amplitude_g=1' --kappa abc", "kappa"},
+                      BadArgs{"--synthetic 'sine:amplitude_g=1' --no-such-option", "no-such-option"}));
+
+}  // namespace
+}  // namespace pcrf
