@@ -6,6 +6,7 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "cli/commands.hpp"
 #include "pcrf/model/frame.hpp"
@@ -25,10 +26,12 @@ struct RunOptions {
   double scale = 1.0;
   FrameParameters frame;
   std::string criterion = "physical";
-  std::string integrator = to_string(SolverSettings{}.integrator);
-  SolverSettings solver;
+  std::string integrator;  // empty: the preset's
+  SolverSettings solver;  // explicit values, applied over the preset where given
+  std::vector<const CLI::Option*> solver_flags;  // which of them the user gave
   PhysicsOptions physics;
   std::string history_file;
+  std::string preset = "balanced";
 };
 
 GroundMotion load_motion(const RunOptions& o) {
@@ -71,15 +74,34 @@ class CsvHistory {
   std::ofstream out_;
 };
 
+/// The preset, then every solver option the user gave explicitly.
+SolverSettings settings_from(const RunOptions& o) {
+  SolverSettings s = preset_settings(o.preset);
+  auto given = [&](const char* name) {
+    for (const CLI::Option* opt : o.solver_flags)
+      if (opt->check_name(name) && opt->count() > 0) return true;
+    return false;
+  };
+  if (!o.integrator.empty()) s.integrator = parse_integrator(o.integrator);
+  if (given("--rtol")) s.rtol = o.solver.rtol;
+  if (given("--atol-theta")) s.atol_theta_rad = o.solver.atol_theta_rad;
+  if (given("--atol-omega")) s.atol_omega_rad_s = o.solver.atol_omega_rad_s;
+  if (given("--max-step")) s.max_step_s = o.solver.max_step_s;
+  if (given("--fixed-step")) s.fixed_step_s = o.solver.fixed_step_s;
+  if (given("--stop-at-samples")) s.stop_at_samples = o.solver.stop_at_samples;
+  if (given("--time-limit")) s.wall_time_limit_s = o.solver.wall_time_limit_s;
+  return s;
+}
+
 void run(const RunOptions& o) {
   const GroundMotion motion = load_motion(o);
   Frame frame{};
   PhysicsOptions physics = o.physics;
-  SolverSettings solver = o.solver;
+  SolverSettings solver;
   try {
     frame = make_frame(o.frame);
     physics.uplift = parse_uplift_criterion(o.criterion);
-    solver.integrator = parse_integrator(o.integrator);
+    solver = settings_from(o);
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
@@ -126,17 +148,18 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--fracture-strain", o->physics.fracture_strain, "tendon fracture strain [-]")->capture_default_str();
   cmd->add_option("--tail", o->physics.tail_s, "free vibration after the record [s]")->capture_default_str();
   cmd->add_option("--zeno-time", o->physics.zeno_time_s, "return-to-rest time scale [s]")->capture_default_str();
-  cmd->add_option("--integrator", o->integrator, "arkode-erk5, arkode-erk8, cvode-adams, cvode-bdf, fixed-rk4")->capture_default_str();
-  cmd->add_option("--rtol", o->solver.rtol, "relative tolerance [-]")->capture_default_str();
-  cmd->add_option("--atol-theta", o->solver.atol_theta_rad, "absolute tolerance on θ₁ [rad]")->capture_default_str();
-  cmd->add_option("--atol-omega", o->solver.atol_omega_rad_s, "absolute tolerance on θ̇₁ [rad/s]")->capture_default_str();
-  cmd->add_option("--max-step", o->solver.max_step_s, "largest step [s], 0 = no limit")->capture_default_str();
-  cmd->add_option("--fixed-step", o->solver.fixed_step_s, "step of fixed-rk4 [s], 0 = the record's dt")
+  cmd->add_option("--preset", o->preset, "accuracy preset: fast, balanced, reference (explicit solver options override it)")
       ->capture_default_str();
-  cmd->add_option("--stop-at-samples", o->solver.stop_at_samples,
-                  "stop the integrator at every record sample (kinks of the interpolated record)")
-      ->capture_default_str();
-  cmd->add_option("--time-limit", o->solver.wall_time_limit_s, "wall-time limit of the case [s], 0 = none")->capture_default_str();
+  cmd->add_option("--integrator", o->integrator, "arkode-erk5, arkode-erk8, cvode-adams, cvode-bdf, fixed-rk4");
+  auto& flags = o->solver_flags;
+  flags.push_back(cmd->add_option("--rtol", o->solver.rtol, "relative tolerance [-]"));
+  flags.push_back(cmd->add_option("--atol-theta", o->solver.atol_theta_rad, "absolute tolerance on θ₁ [rad]"));
+  flags.push_back(cmd->add_option("--atol-omega", o->solver.atol_omega_rad_s, "absolute tolerance on θ̇₁ [rad/s]"));
+  flags.push_back(cmd->add_option("--max-step", o->solver.max_step_s, "largest step [s], 0 = no limit"));
+  flags.push_back(cmd->add_option("--fixed-step", o->solver.fixed_step_s, "step of fixed-rk4 [s], 0 = the record's dt"));
+  flags.push_back(cmd->add_option("--stop-at-samples", o->solver.stop_at_samples,
+                                  "stop the integrator at every record sample (kinks of the interpolated record)"));
+  flags.push_back(cmd->add_option("--time-limit", o->solver.wall_time_limit_s, "wall-time limit of the case [s], 0 = none"));
   cmd->add_option("--history", o->history_file, "write the time history to this CSV file");
   cmd->callback([o]() { run(*o); });
 }

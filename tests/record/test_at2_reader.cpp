@@ -14,17 +14,10 @@
 
 namespace {
 
+using pcrf::test::write_file;
+
 using pcrf::kGravity_m_s2;
 using pcrf::RecordError;
-
-/// Writes bytes exactly as given (binary, so "\r\n" stays "\r\n").
-std::filesystem::path write_file(const std::filesystem::path& dir, const std::string& name,
-                                 const std::string& bytes) {
-  const auto path = dir / name;
-  std::ofstream out(path, std::ios::binary);
-  out << bytes;
-  return path;
-}
 
 std::string with_crlf(const std::string& lf_text) {
   std::string out;

@@ -16,17 +16,11 @@
 
 namespace {
 
+using pcrf::test::write_file;
+
 using pcrf::AccelUnit;
 using pcrf::kGravity_m_s2;
 using pcrf::RecordError;
-
-std::filesystem::path write_file(const std::filesystem::path& dir, const std::string& name,
-                                 const std::string& bytes) {
-  const auto path = dir / name;
-  std::ofstream out(path, std::ios::binary);
-  out << bytes;
-  return path;
-}
 
 template <typename Read>
 std::string record_error(Read&& read) {

@@ -11,16 +11,22 @@
 namespace pcrf {
 namespace {
 
-class FreeRocking : public ::testing::TestWithParam<Integrator> {};
+/// Free rocking of the basic frame released from rest at θ₁ = −0.02 with no ground motion.
+class FreeRocking : public ::testing::TestWithParam<Integrator> {
+ protected:
+  CaseResult release(double duration_s) {
+    PhysicsOptions physics;
+    physics.theta0_rad = -0.02;
+    return solve_case(frame, test::quiet_record(duration_s, 0.001), physics, test::tight(GetParam()), {},
+                      trace.sink());
+  }
+  const Frame frame = basic_frame();
+  const EquationOfMotion eom{frame};
+  test::Trace trace;
+};
 
 TEST_P(FreeRocking, EnergyIsConservedUntilTheFirstImpact) {
-  const Frame frame = basic_frame();
-  const EquationOfMotion eom(frame);
-  PhysicsOptions physics;
-  physics.theta0_rad = -0.02;
-  test::Trace trace;
-  const CaseResult r =
-      solve_case(frame, test::quiet_record(3.0, 0.001), physics, test::tight(GetParam()), {}, trace.sink());
+  const CaseResult r = release(3.0);
   ASSERT_GT(r.impacts, 0);
   const double e_rest = eom.energy(0.0, 0.0, -1);
   const double e0 = eom.energy(-0.02, 0.0, -1) - e_rest;  // energy above rest
@@ -36,13 +42,7 @@ TEST_P(FreeRocking, EnergyIsConservedUntilTheFirstImpact) {
 }
 
 TEST_P(FreeRocking, KineticEnergyRatioAcrossImpactIsRSquared) {
-  const Frame frame = basic_frame();
-  const EquationOfMotion eom(frame);
-  PhysicsOptions physics;
-  physics.theta0_rad = -0.02;
-  test::Trace trace;
-  const CaseResult r =
-      solve_case(frame, test::quiet_record(1.5, 0.001), physics, test::tight(GetParam()), {}, trace.sink());
+  const CaseResult r = release(1.5);
   ASSERT_GT(r.impacts, 1);
   // Impacts are emitted twice at the same time: before (θ̇⁻) and after (θ̇⁺).
   int impacts_checked = 0;

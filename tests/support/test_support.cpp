@@ -30,6 +30,14 @@ std::filesystem::path scratch_dir(const std::string& name) {
   return dir;
 }
 
+std::filesystem::path write_file(const std::filesystem::path& dir, const std::string& name,
+                                 const std::string& bytes) {
+  const auto path = dir / name;
+  std::ofstream out(path, std::ios::binary);
+  out << bytes;
+  return path;
+}
+
 static std::string slurp(const std::filesystem::path& file) {
   std::ifstream in(file);
   std::stringstream ss;

@@ -21,6 +21,10 @@ std::filesystem::path source_dir();
 /// A fresh empty directory under the build tree's test scratch area.
 std::filesystem::path scratch_dir(const std::string& name);
 
+/// Writes `bytes` to dir/name exactly as given (binary: "\r\n" stays "\r\n").
+std::filesystem::path write_file(const std::filesystem::path& dir, const std::string& name,
+                                 const std::string& bytes);
+
 struct CommandResult {
   int exit_code = -1;
   std::string out;  ///< stdout

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace pcrf {
 
@@ -59,5 +60,12 @@ struct SolverSettings {
   bool stop_at_samples = true;
   double wall_time_limit_s = 0.0;  ///< 0: no limit; else status kTimeLimit
 };
+
+/// Named accuracy presets: "fast", "balanced" (the default) and "reference". Each is a
+/// complete SolverSettings; the README lists the error and cost measured for each.
+/// \throws std::invalid_argument naming the unknown preset.
+SolverSettings preset_settings(const std::string& name);
+/// Names of all presets, in order of increasing accuracy.
+const std::vector<std::string>& preset_names();
 
 }  // namespace pcrf
