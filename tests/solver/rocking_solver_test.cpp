@@ -173,6 +173,36 @@ TEST(RockingSolver, FrameWithoutTendonsOverturnsUnderAStrongPulse) {
   EXPECT_GT(r.theta_max_rad, 1.5);
 }
 
+TEST(RockingSolver, FreeVibrationTailExtendsTheCaseUntilRest) {
+  const Frame frame = basic_frame();
+  SinePulseSpec pulse;
+  pulse.amplitude_g = 1.5;
+  pulse.duration_s = 1.0;  // the record ends while the frame still rocks
+  const GroundMotion rec = make_sine_pulse_train(pulse);
+  const CaseResult no_tail = solve_case(frame, rec, {}, {});
+  EXPECT_EQ(no_tail.status, CaseStatus::kRockingAtEnd);
+  EXPECT_DOUBLE_EQ(no_tail.t_end_s, 1.0);
+  PhysicsOptions physics;
+  physics.tail_s = 20.0;
+  const CaseResult tail = solve_case(frame, rec, physics, {});
+  EXPECT_EQ(tail.status, CaseStatus::kAtRest);
+  EXPECT_DOUBLE_EQ(tail.t_end_s, 21.0);
+  EXPECT_GT(tail.impacts, no_tail.impacts);
+  EXPECT_EQ(tail.theta_max_rad, no_tail.theta_max_rad);  // the peak came during the pulse
+}
+
+TEST(RockingSolver, SkippingTheOmegaPeakLeavesItUnset) {
+  OutputRequest request;
+  request.omega_peak = false;
+  const CaseResult r = solve_case(basic_frame(), test::strong_record(3), {}, {}, request);
+  EXPECT_TRUE(std::isnan(r.omega_max_rad_s));
+  EXPECT_TRUE(std::isnan(r.t_omega_max_s));
+  EXPECT_GT(r.theta_max_rad, 0.0);
+  const CaseResult full = solve_case(basic_frame(), test::strong_record(3), {}, {});
+  EXPECT_LT(r.counts.root_evals, full.counts.root_evals + 1);  // never more work
+  EXPECT_NEAR(r.theta_max_rad, full.theta_max_rad, 1e-6 * full.theta_max_rad);
+}
+
 TEST(RockingSolver, InvalidSettingsThrow) {
   SolverSettings s;
   s.rtol = -1;
