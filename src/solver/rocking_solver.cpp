@@ -13,6 +13,7 @@
 #include "case_common.hpp"
 #include "fixed_step_solver.hpp"
 #include "integrators.hpp"
+#include "pcrf/model/eom_table.hpp"
 #include "pcrf/model/equation_of_motion.hpp"
 #include "pcrf/model/impact.hpp"
 
@@ -30,27 +31,23 @@ class FlightProblem final : public detail::OdeProblem {
  public:
   FlightProblem(const EquationOfMotion& eom, const GroundMotion& record, double theta_stop_rad,
                 bool omega_peak)
-      : eom_(eom), record_(record), theta_stop_rad_(theta_stop_rad), omega_peak_(omega_peak) {}
+      : table_(eom), record_(record), theta_stop_rad_(theta_stop_rad), omega_peak_(omega_peak) {}
 
   int side = -1;
 
   int rhs(double t, const double* y, double* ydot) override {
     double acc = 0;
-    if (!eom_.acceleration(y[0], y[1], record_.accel_m_s2(t), side, acc)) return 1;
+    if (!acceleration(t, y, acc)) return 1;
     ydot[0] = y[1];
     ydot[1] = acc;
-    return std::isfinite(acc) ? 0 : 1;
+    return 0;
   }
 
   int roots(double t, const double* y, double* g) override {
     g[kImpact] = y[0];
     g[kThetaPeak] = y[1];
     g[kOmegaPeak] = 1.0;  // inactive unless requested
-    if (omega_peak_) {
-      double acc = 0;
-      if (!eom_.acceleration(y[0], y[1], record_.accel_m_s2(t), side, acc)) return 1;
-      g[kOmegaPeak] = acc;
-    }
+    if (omega_peak_ && !acceleration(t, y, g[kOmegaPeak])) return 1;
     g[kLimit] = std::abs(y[0]) - theta_stop_rad_;
     return 0;
   }
@@ -64,10 +61,31 @@ class FlightProblem final : public detail::OdeProblem {
   }
 
  private:
-  const EquationOfMotion& eom_;
+  /// θ̈₁ at (t, y), remembering the last evaluation: the root functions are evaluated at
+  /// step ends, where the right-hand side has just been evaluated (FSAL methods, CVODE's
+  /// corrector), so the θ̈₁ root costs almost nothing.
+  bool acceleration(double t, const double* y, double& acc) {
+    if (t == last_t_ && y[0] == last_y_[0] && y[1] == last_y_[1] && side == last_side_) {
+      acc = last_acc_;
+      return true;
+    }
+    if (!table_.acceleration(y[0], y[1], record_.accel_m_s2(t), side, acc) || !std::isfinite(acc)) return false;
+    last_t_ = t;
+    last_y_[0] = y[0];
+    last_y_[1] = y[1];
+    last_side_ = side;
+    last_acc_ = acc;
+    return true;
+  }
+
+  EomTable table_;
   const GroundMotion& record_;
   double theta_stop_rad_;
   bool omega_peak_;
+  double last_t_ = std::numeric_limits<double>::quiet_NaN();
+  double last_y_[2] = {0.0, 0.0};
+  int last_side_ = 0;
+  double last_acc_ = 0.0;
 };
 
 /// The state machine of one case.

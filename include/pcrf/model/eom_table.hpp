@@ -1,0 +1,52 @@
+/// \file eom_table.hpp
+/// \brief Lazily tabulated coefficients of Eq. (31) for the integrator's inner loop.
+///
+/// The right-hand side needs I, J, Q = G·g + K and S at θ₁. Evaluating them exactly costs a
+/// loop closure and ~16 transcendental functions; they are smooth in θ₁, so this class
+/// samples them once per cell of width `cell_rad` at 10 Chebyshev nodes and evaluates the
+/// degree-9 interpolant (Clenshaw) afterwards. Cells are built on first use, so a case pays
+/// only for the range it visits. Each cell checks itself against the exact terms at two
+/// interior points when it is built; a cell that misses 1e-11 relative (near the linkage's
+/// closing limit, where derivatives blow up) falls back to exact evaluation.
+///
+/// Not thread-safe (cells are filled lazily): one table per case.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "pcrf/model/equation_of_motion.hpp"
+
+namespace pcrf {
+
+class EomTable {
+ public:
+  explicit EomTable(const EquationOfMotion& eom, double cell_rad = 0.02);
+
+  /// θ̈₁ [rad/s²] as EquationOfMotion::acceleration, from the tabulated terms.
+  bool acceleration(double theta1, double omega1, double ground_accel_m_s2, int side, double& theta1_ddot) const;
+
+  /// Number of cells built so far (for tests and benchmarks).
+  int cells_built() const { return built_; }
+
+ private:
+  static constexpr int kNodes = 10;
+  struct Coefficients {
+    std::array<double, kNodes> I, J, Q, S;
+  };
+  struct Cell {
+    enum class State : char { kEmpty, kTabulated, kExact } state = State::kEmpty;
+    Coefficients c;
+  };
+
+  bool negative_branch(double phi, double& I, double& J, double& Q, double& S) const;
+  void build(Cell& cell, int index) const;
+
+  const EquationOfMotion& eom_;
+  double cell_rad_;
+  double inv_cell_;
+  mutable std::vector<Cell> cells_;
+  mutable int built_ = 0;
+};
+
+}  // namespace pcrf
