@@ -66,8 +66,9 @@ bool EquationOfMotion::negative_branch_terms(double phi, EomTerms& out, Configur
   out.J = 0.5 * dI;
   out.G = G;
   out.S = S;
-  out.K = f.k_b * (e.b + f.e_b0) * e.db +
-          f.k_c * ((e.cL + f.e_c0) * e.dcL + (e.cR + f.e_c0) * e.dcR);
+  // k (e + e₀) written as k e + P₀ (k e₀ = P₀): also right for a tendon of no stiffness
+  // that carries a force (the constant-force limit), where e₀ is undefined.
+  out.K = (f.k_b * e.b + f.P_b0) * e.db + (f.k_c * e.cL + f.P_c0) * e.dcL + (f.k_c * e.cR + f.P_c0) * e.dcR;
   return true;
 }
 
@@ -109,8 +110,10 @@ double EquationOfMotion::energy(double theta1, double omega1, int side) const {
   inertia(c.right, f.m_c, f.I_c_G);
   const double V_F = kGravity_m_s2 * (f.m_c * c.left.p.y + f.m_b * c.beam.p.y + f.m_c * c.right.p.y);
   const Elongations e = elongations(f, c);
-  const double V_T = 0.5 * f.k_b * (e.b + f.e_b0) * (e.b + f.e_b0) +
-                     0.5 * f.k_c * ((e.cL + f.e_c0) * (e.cL + f.e_c0) + (e.cR + f.e_c0) * (e.cR + f.e_c0));
+  // ½ k (e + e₀)² = ½ k e² + P₀ e + ½ P₀ e₀: the same form as K.
+  auto tendon = [](double k, double P0, double e0, double ext) { return 0.5 * k * ext * ext + P0 * ext + 0.5 * P0 * e0; };
+  const double V_T = tendon(f.k_b, f.P_b0, f.e_b0, e.b) + tendon(f.k_c, f.P_c0, f.e_c0, e.cL) +
+                     tendon(f.k_c, f.P_c0, f.e_c0, e.cR);
   return 0.5 * I * omega1 * omega1 + V_F + V_T;
 }
 

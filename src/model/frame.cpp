@@ -32,7 +32,8 @@ Frame complete(Frame f) {
   f.len_b = 2.0 * f.L + 2.0 * f.b;
   f.k_c = f.EA_c / f.len_c;
   f.k_b = f.EA_b / f.len_b;
-  // A tendon with no stiffness carries no force: its elongation is irrelevant.
+  // A tendon of no stiffness (Π_E = 0) with a force (Π_σ > 0) is the constant-force limit:
+  // the equations use k e + P₀, and its strain counts from zero (no material, no fracture).
   f.e_c0 = f.k_c > 0.0 ? f.P_c0 / f.k_c : 0.0;
   f.e_b0 = f.k_b > 0.0 ? f.P_b0 / f.k_b : 0.0;
   return f;
@@ -50,8 +51,6 @@ void check(const Frame& f) {
   require_finite_non_negative(f.P_b0, "beam prestress (pi_sigma_b)");
   require(f.h_b < f.h, "beam depth 2h_b must be below the column height 2h (lambda_h < 1)");
   require(f.L > f.b, "columns overlap: L must exceed b (lambda > tan_alpha)");
-  require(!(f.P_c0 > 0.0 && f.EA_c == 0.0), "column prestress without tendon stiffness (pi_sigma_c > 0, pi_e_c = 0)");
-  require(!(f.P_b0 > 0.0 && f.EA_b == 0.0), "beam prestress without tendon stiffness (pi_sigma_b > 0, pi_e_b = 0)");
 }
 
 }  // namespace

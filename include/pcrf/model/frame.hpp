@@ -53,7 +53,7 @@ struct Frame {
   double h_prime;               ///< h − h_b [m]
   double I_c_G, I_b_G;          ///< centroidal moments of inertia [kg m²]
   double k_c, k_b;              ///< tendon stiffnesses E A / length [N/m]
-  double e_c0, e_b0;            ///< initial tendon elongations [m]
+  double e_c0, e_b0;            ///< initial tendon elongations P₀/k [m]; 0 when k = 0
   double len_c, len_b;          ///< tendon lengths 2h and 2L + 2b [m]
 
   /// Dimensionless parameters of this frame.
@@ -63,6 +63,7 @@ struct Frame {
 /// Builds a frame from dimensionless parameters.
 /// \throws std::invalid_argument naming the parameter when the geometry is impossible
 ///         (non-positive size, λ_h ≥ 1, λ ≤ tan α (columns overlap), negative Π).
+///         Π_E = 0 with Π_σ > 0 is allowed: a constant-force tendon.
 Frame make_frame(const FrameParameters& p);
 
 /// Builds a frame from dimensional values (same checks).
