@@ -1,0 +1,92 @@
+/// \file cube_layout.hpp
+/// \brief What a result cube holds: its dimensions, coordinate variables, metric variables,
+/// the status flags and the global attributes. Independent of physics and of HDF5.
+///
+/// Storage order is row-major: the last dimension varies fastest, and a case's linear index
+/// is its position in that order.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace pcrf::cube {
+
+/// A cube file cannot be made, read or continued; what() names the file and the problem.
+class CubeError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// A cube axis.
+struct Dimension {
+  std::string name;
+  std::size_t size = 0;
+};
+
+/// A 1-D coordinate variable. A dimension coordinate has the name of its dimension; an
+/// auxiliary coordinate (e.g. `varied_parameter` over `case`) has another name.
+struct Coordinate {
+  std::string name;
+  std::string dimension;
+  std::string units;      ///< UDUNITS text; empty for text and index coordinates
+  std::string long_name;
+  std::vector<double> numbers;       ///< numeric values, or
+  std::vector<std::string> strings;  ///< text values
+  bool is_text = false;
+  bool is_index = false;  ///< numbers are 0, 1, 2, … stored as int32
+
+  std::size_t size() const { return is_text ? strings.size() : numbers.size(); }
+  /// Value i as text ("%.17g" shortest round-trip for numbers).
+  std::string label(std::size_t i) const;
+};
+
+/// A float64 variable over every dimension, NaN where not computed.
+struct MetricVariable {
+  std::string name;
+  std::string units;
+  std::string long_name;
+};
+
+/// One value of the int8 `status` variable (CF flag_values / flag_meanings).
+struct StatusFlag {
+  std::int8_t value = 0;
+  std::string meaning;  ///< one word, e.g. "at_rest"
+};
+
+/// A global attribute.
+struct Attribute {
+  std::string name;
+  std::variant<std::string, double, std::int64_t> value;
+};
+
+/// Fill of `status`: the case has not been computed.
+inline constexpr std::int8_t kStatusNotRun = -1;
+inline constexpr const char* kStatusName = "status";
+/// Global attribute that identifies the study a cube belongs to (compared by --resume).
+inline constexpr const char* kFingerprintName = "study_fingerprint";
+
+/// Everything that defines a cube file before any case is computed.
+struct CubeLayout {
+  std::vector<Dimension> dimensions;
+  std::vector<Coordinate> coordinates;
+  std::vector<MetricVariable> metrics;
+  std::vector<StatusFlag> status_flags;
+  std::vector<Attribute> attributes;
+
+  std::int64_t case_count() const;
+  std::vector<std::size_t> shape() const;
+  /// Names of the auxiliary coordinates (CF `coordinates` attribute of every variable).
+  std::vector<std::string> auxiliary_names() const;
+  const Coordinate* find_coordinate(const std::string& name) const;
+  /// Value of a global text attribute; empty if absent.
+  std::string text_attribute(const std::string& name) const;
+};
+
+/// Coordinates of a linear index (row-major over `shape`).
+std::vector<std::size_t> unravel(std::int64_t index, const std::vector<std::size_t>& shape);
+
+}  // namespace pcrf::cube

@@ -1,0 +1,59 @@
+/// \file cube_query.hpp
+/// \brief Post-processing of a result cube: selecting cases by coordinate values, the
+/// `info` summary, long CSV export, and median / 16th / 84th percentile statistics.
+#pragma once
+
+#include <cstddef>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "pcrf/cube/cube_reader.hpp"
+
+namespace pcrf::cube {
+
+/// "NAME=VALUE" on a coordinate (a dimension or an auxiliary coordinate such as
+/// varied_parameter). Numbers match within a relative 1e-9.
+struct Selector {
+  std::string coordinate;
+  std::string value;
+};
+/// \throws CubeError when the text is not NAME=VALUE.
+Selector parse_selector(const std::string& text);
+
+/// One flag per case (linear order): true when every selector matches.
+/// \throws CubeError naming an unknown coordinate or a value that is not on it.
+std::vector<bool> select_cases(const CubeLayout& layout, const std::vector<Selector>& selectors);
+
+/// Axes, metrics, completion, counts by status, first messages.
+void print_info(const CubeReader& cube, std::ostream& out);
+
+/// One row per selected case: every coordinate, the status, and the metrics (all when
+/// `metrics` is empty). NaN is written as an empty field.
+void export_csv(const CubeReader& cube, const std::vector<std::string>& metrics,
+                const std::vector<Selector>& selectors, std::ostream& out);
+
+/// Summary of a metric over the cases that share one value of a coordinate.
+struct GroupStats {
+  std::string value;        ///< the coordinate value
+  std::size_t cases = 0;    ///< selected cases in the group
+  std::size_t values = 0;   ///< of which finite values of the metric
+  double median = 0.0;
+  double p16 = 0.0;
+  double p84 = 0.0;
+};
+
+/// Groups the selected cases by `by` and summarizes `metric` across the rest (records,
+/// and any other axis left with several values, reported in `pooled`). In a one-at-a-time
+/// cube, grouping by a parameter keeps that parameter's sweep only.
+std::vector<GroupStats> group_stats(const CubeReader& cube, const std::string& by, const std::string& metric,
+                                    std::vector<Selector> selectors, std::vector<std::string>* pooled = nullptr);
+
+/// CSV: <by>,cases,values,median,p16,p84
+void print_stats(const std::string& by, const std::vector<GroupStats>& stats, std::ostream& out);
+
+/// Percentile q ∈ [0, 100] of sorted values with linear interpolation between order
+/// statistics (numpy's default). NaN when there are no values.
+double percentile(const std::vector<double>& sorted, double q);
+
+}  // namespace pcrf::cube

@@ -1,0 +1,44 @@
+/// \file cube_reader.hpp
+/// \brief Reads a result cube written by CubeWriter: its layout, the status of every case,
+/// metric values, failure messages and histories.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "pcrf/cube/cube_layout.hpp"
+
+namespace pcrf::cube {
+
+class CubeReader {
+ public:
+  /// \throws CubeError naming the file when it is missing or not a pcrf cube.
+  explicit CubeReader(const std::filesystem::path& file);
+  ~CubeReader();
+  CubeReader(const CubeReader&) = delete;
+  CubeReader& operator=(const CubeReader&) = delete;
+
+  const std::filesystem::path& file() const { return file_; }
+  /// Dimensions, coordinates, metrics, status flags and global attributes.
+  const CubeLayout& layout() const { return layout_; }
+
+  std::vector<std::int8_t> read_status() const;
+  /// A metric over the whole cube, in linear case order. \throws CubeError if unknown.
+  std::vector<double> read_metric(const std::string& name) const;
+  /// (case index, message) of every case that left a note, in the order they were stored.
+  std::vector<std::pair<std::int64_t, std::string>> read_notes() const;
+  /// Names of the stored time-history groups.
+  std::vector<std::string> history_names() const;
+
+ private:
+  struct Impl;
+  std::filesystem::path file_;
+  std::unique_ptr<Impl> impl_;
+  CubeLayout layout_;
+};
+
+}  // namespace pcrf::cube

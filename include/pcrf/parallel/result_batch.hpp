@@ -1,0 +1,32 @@
+/// \file result_batch.hpp
+/// \brief What the scheduler carries back from a worker: finished cases as fixed-width rows
+/// of doubles, each with an optional text note, and their byte form for MPI messages.
+///
+/// The scheduler never interprets a row: its width and the meaning of each column are
+/// agreed between the code that evaluates a case and the code that stores it.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace pcrf::parallel {
+
+/// One finished case.
+struct CaseOutcome {
+  std::int64_t case_index = -1;  ///< linear index of the case in its study
+  std::vector<double> row;       ///< fixed-width values (width agreed by both ends)
+  std::string note;              ///< free text (e.g. a failure message); usually empty
+};
+
+/// Outcomes travelling together in one message.
+using ResultBatch = std::vector<CaseOutcome>;
+
+/// Serializes a batch. \throws std::invalid_argument if a row's width is not `row_width`.
+std::vector<char> pack_results(const ResultBatch& batch, std::size_t row_width);
+
+/// Inverse of pack_results. \throws std::runtime_error on a malformed or mismatched buffer.
+ResultBatch unpack_results(const std::vector<char>& bytes, std::size_t row_width);
+
+}  // namespace pcrf::parallel

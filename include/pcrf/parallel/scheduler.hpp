@@ -1,0 +1,59 @@
+/// \file scheduler.hpp
+/// \brief Dynamic master–worker scheduling of case indices over MPI.
+///
+/// Rank 0 is the master: it hands out batches of case indices on request and receives
+/// finished rows. It also runs a worker of its own in a second thread, so one rank does all
+/// the work through the same code path, and rank 0's cores are not wasted with several.
+/// Every worker keeps one request in flight while it computes (prefetch), so the master's
+/// answer is already there when a batch ends.
+///
+/// The scheduler moves integers and fixed-width rows of doubles; it knows nothing of what a
+/// case is. Only the master thread calls MPI (MPI_THREAD_FUNNELED is enough).
+#pragma once
+
+#include <mpi.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "pcrf/parallel/result_batch.hpp"
+
+namespace pcrf::parallel {
+
+/// Computes one case. Should not throw: if it does anyway, the scheduler reports the case
+/// with a row of NaN and the exception text as its note.
+using CaseEvaluator = std::function<CaseOutcome(std::int64_t case_index)>;
+
+/// Master thread: receives outcomes as they arrive.
+using OutcomeHandler = std::function<void(ResultBatch&&)>;
+
+/// Master thread: called between messages, at least every poll interval (flushes, progress).
+using IdleHandler = std::function<void()>;
+
+struct ScheduleOptions {
+  std::size_t row_width = 0;        ///< values per result row, the same on every rank
+  std::size_t fixed_batch = 0;      ///< 0: guided batch sizes (see WorkQueue)
+  std::size_t max_batch = 64;       ///< cap of guided batches
+  double poll_interval_s = 0.002;   ///< master's sleep when nothing arrives
+};
+
+/// The master's work list.
+struct WorkList {
+  std::vector<std::int64_t> shared;  ///< any worker
+  std::vector<std::int64_t> pinned;  ///< only the worker inside rank 0's process
+};
+
+/// Rank 0. Returns when every case of `work` has come back and every worker has stopped.
+/// `evaluate` runs in rank 0's worker thread. If a handler throws, the local worker is
+/// stopped and the exception propagates: the caller must then MPI_Abort (remote workers
+/// would wait forever otherwise).
+void run_master(MPI_Comm comm, WorkList work, const ScheduleOptions& options,
+                const CaseEvaluator& evaluate, const OutcomeHandler& on_outcomes,
+                const IdleHandler& on_idle);
+
+/// Ranks ≥ 1. Returns when the master says there is no more work.
+void run_worker(MPI_Comm comm, const ScheduleOptions& options, const CaseEvaluator& evaluate);
+
+}  // namespace pcrf::parallel

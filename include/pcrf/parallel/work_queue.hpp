@@ -1,0 +1,44 @@
+/// \file work_queue.hpp
+/// \brief The master's list of cases still to hand out, and how big each hand-out is.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <vector>
+
+namespace pcrf::parallel {
+
+/// Cases not yet handed out. Pinned cases go only to the worker that runs inside the
+/// master's process (they produce output that never crosses MPI, e.g. time histories).
+///
+/// Batch sizes are guided: a hand-out is 1/(4·workers) of what is left, clamped to
+/// [1, max_batch], so early batches amortize messages and the last ones balance the tail
+/// (case costs differ by orders of magnitude). A fixed size can be forced instead.
+class WorkQueue {
+ public:
+  /// \param shared  cases any worker may run, in the order to run them
+  /// \param pinned  cases for the in-process worker only
+  /// \param workers number of workers that will ask (≥ 1)
+  /// \param fixed_batch 0: guided sizes; otherwise every batch has this size (or what's left)
+  /// \param max_batch upper bound of a guided batch
+  WorkQueue(std::vector<std::int64_t> shared, std::vector<std::int64_t> pinned, int workers,
+            std::size_t fixed_batch = 0, std::size_t max_batch = 64);
+
+  /// Next batch for a worker; empty when nothing is left for it.
+  std::vector<std::int64_t> take(bool in_process_worker);
+
+  /// Cases not yet handed out.
+  std::size_t remaining() const { return shared_.size() + pinned_.size(); }
+
+ private:
+  std::size_t batch_size() const;
+
+  std::deque<std::int64_t> shared_;
+  std::deque<std::int64_t> pinned_;
+  int workers_;
+  std::size_t fixed_batch_;
+  std::size_t max_batch_;
+};
+
+}  // namespace pcrf::parallel

@@ -1,0 +1,61 @@
+/// \file case_runner.hpp
+/// \brief Runs one case of a study: builds the frame, scales the record, calls solve_case
+/// and packs the stored metrics into a result row. Knows nothing of MPI or HDF5.
+///
+/// Row layout: [status, metric_1, …, metric_n] with the metrics of Study::metrics in order.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <vector>
+
+#include "pcrf/metrics/case_result.hpp"
+#include "pcrf/parallel/result_batch.hpp"
+#include "pcrf/solver/rocking_solver.hpp"
+#include "pcrf/study/case_space.hpp"
+#include "pcrf/study/record_source.hpp"
+#include "pcrf/study/study.hpp"
+
+namespace pcrf::study {
+
+class CaseRunner {
+ public:
+  /// Keeps references: the study, the space and the cache must outlive the runner.
+  CaseRunner(const Study& study, const CaseSpace& space, RecordCache& records);
+
+  std::size_t row_width() const { return 1 + metrics_.size(); }
+  const std::vector<const MetricInfo*>& metrics() const { return metrics_; }
+
+  /// Runs case `index`. Never throws: a failure becomes status solver_failure with NaN
+  /// metrics and the message as the outcome's note. Infinite metric values also count as a
+  /// solver failure.
+  parallel::CaseOutcome run(std::int64_t index, const HistorySink& history = {}) const noexcept;
+
+ private:
+  /// The record scaled for a case. Consecutive cases usually share record and scale (the
+  /// fastest axes are the frame parameters), so the last scaled record is kept: cheap cases
+  /// (a frame that never lifts off) would otherwise spend their time copying the record.
+  std::shared_ptr<const GroundMotion> scaled_record(std::size_t record, double scale) const;
+
+  const Study& study_;
+  const CaseSpace& space_;
+  RecordCache& records_;
+  std::vector<const MetricInfo*> metrics_;
+  OutputRequest request_;
+  struct LastScaled {
+    std::size_t record = static_cast<std::size_t>(-1);
+    double scale = 0.0;
+    std::shared_ptr<const GroundMotion> motion;
+  };
+  mutable std::mutex last_mutex_;
+  mutable LastScaled last_;
+};
+
+/// The status a row carries (a NaN status, from an evaluator that threw, is a solver failure).
+CaseStatus row_status(const parallel::CaseOutcome& outcome);
+
+/// Statuses that count as failures in progress lines and summaries.
+bool is_failure(CaseStatus status);
+
+}  // namespace pcrf::study

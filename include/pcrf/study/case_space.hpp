@@ -1,0 +1,73 @@
+/// \file case_space.hpp
+/// \brief The cases of a study as a row-major cube: linear index ↔ coordinates ↔ the case
+/// itself (record, scale factor, frame parameters).
+///
+/// Dimensions by plan:
+///   grid           record × scale × kappa × lambda × tan_alpha × lambda_h × pi_sigma_b ×
+///                  pi_sigma_c × pi_e_b × pi_e_c (a parameter not swept has one value)
+///   one-at-a-time  record × scale × case; `case` enumerates the base point (if included)
+///   and list       and each sweep value, or the listed cases; every case carries its label,
+///                  its eight parameter values and (one-at-a-time) the varied parameter.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "pcrf/study/study.hpp"
+
+namespace pcrf::study {
+
+/// One case, ready to build a frame and scale a record.
+struct CaseSpec {
+  std::size_t record = 0;  ///< index into Study::records
+  double scale = 1.0;
+  FrameParameters parameters;
+};
+
+/// A frame of the one-at-a-time or list plan (a value of the `case` dimension).
+struct CasePoint {
+  std::string label;   ///< "base", "kappa=1.2", or the list case's label
+  std::string varied;  ///< parameter swept ("none" for the base point); list: empty
+  FrameParameters parameters;
+};
+
+class CaseSpace {
+ public:
+  explicit CaseSpace(const Study& study);
+
+  PlanKind plan() const { return plan_; }
+  std::int64_t size() const { return size_; }
+  const std::vector<std::string>& dimension_names() const { return names_; }
+  const std::vector<std::size_t>& shape() const { return shape_; }
+
+  std::vector<std::size_t> coordinates(std::int64_t index) const;
+  std::int64_t index(const std::vector<std::size_t>& coordinates) const;
+  CaseSpec case_at(std::int64_t index) const;
+
+  const std::vector<std::string>& record_names() const { return record_names_; }
+  const std::vector<double>& scales() const { return scales_; }
+  /// Grid plan: values of each parameter axis.
+  const std::vector<double>& grid_values(std::size_t parameter) const { return grid_values_[parameter]; }
+  /// One-at-a-time and list plans: the frames along `case`.
+  const std::vector<CasePoint>& points() const { return points_; }
+  /// Distinct frames of the study (every parameter combination), for up-front checks.
+  std::vector<FrameParameters> frames() const;
+
+  /// The single case a history request names. \throws StudyError naming the request.
+  std::int64_t resolve(const HistoryRequest& request) const;
+
+ private:
+  PlanKind plan_;
+  FrameParameters base_;
+  std::vector<std::string> names_;
+  std::vector<std::size_t> shape_;
+  std::int64_t size_ = 1;
+  std::vector<std::string> record_names_;
+  std::vector<double> scales_;
+  std::array<std::vector<double>, kParameterCount> grid_values_;
+  std::vector<CasePoint> points_;
+};
+
+}  // namespace pcrf::study

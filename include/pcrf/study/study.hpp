@@ -1,0 +1,82 @@
+/// \file study.hpp
+/// \brief A parametric study as a study file defines it: the record and scale axes, the
+/// plan over the eight frame parameters, physics and solver settings, and what to keep.
+///
+/// A Study is plain data; study_parser.hpp makes one from TOML and checks every value that
+/// can be checked alone. studies/README.md documents every key.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "pcrf/model/frame.hpp"
+#include "pcrf/solver/settings.hpp"
+#include "pcrf/study/parameters.hpp"
+#include "pcrf/study/record_source.hpp"
+
+namespace pcrf::study {
+
+/// How the frame parameters are combined.
+enum class PlanKind {
+  kGrid,        ///< every combination of the parameter axes (the full cube)
+  kOneAtATime,  ///< each swept parameter alone, the others at the base point
+  kList,        ///< explicitly listed cases
+};
+std::string_view plan_name(PlanKind plan);  ///< "grid", "one-at-a-time", "list"
+
+/// A frame of the list plan.
+struct ListedCase {
+  std::string label;
+  FrameParameters parameters;
+};
+
+/// A case whose time history is wanted. Each given selector must match an axis value;
+/// every axis with more than one value must be given, so that exactly one case matches.
+struct HistoryRequest {
+  std::string label;                      ///< group name under /histories
+  std::optional<std::string> record;      ///< record axis value (its name)
+  std::optional<double> scale;
+  std::optional<std::string> case_label;  ///< one-at-a-time and list plans
+  std::array<std::optional<double>, kParameterCount> parameters;  ///< grid plan
+  std::string declared_at;                ///< "study.toml:40", for messages
+};
+
+/// How a run behaves; not part of what the study computes (not in its fingerprint).
+struct RunOptions {
+  double flush_interval_s = 30.0;     ///< the cube is flushed at least this often
+  double progress_interval_s = 5.0;   ///< progress line period on stderr; 0: none
+  std::size_t batch_size = 0;         ///< cases per hand-out; 0: guided
+};
+
+struct Study {
+  std::string name;
+  std::string description;
+  std::string file;                 ///< the study file as given (messages, attributes)
+  std::filesystem::path base_dir;   ///< relative record paths resolve against this
+  std::string text;                 ///< the study file's text (stored in the cube)
+
+  PlanKind plan = PlanKind::kGrid;
+  bool include_base = true;         ///< one-at-a-time: the base point is a case of its own
+
+  std::vector<RecordSource> records;
+  std::vector<double> scales{1.0};
+  FrameParameters base;             ///< the base point; h_m and m_c_kg of every case
+  /// Grid: the values of each parameter axis (empty: the base value only).
+  /// One-at-a-time: the values each parameter is swept over (empty: not swept).
+  std::array<std::vector<double>, kParameterCount> axes;
+  std::vector<ListedCase> cases;    ///< list plan
+
+  PhysicsOptions physics;
+  std::string solver_preset = "balanced";  ///< the preset `solver` started from
+  SolverSettings solver;
+  std::vector<std::string> metrics;  ///< metric names to store, in all_metrics() order
+  std::vector<HistoryRequest> histories;
+  RunOptions run;
+};
+
+}  // namespace pcrf::study

@@ -1,0 +1,26 @@
+/// \file study_check.hpp
+/// \brief The checks that need more than the study file: every record loads, every frame
+/// of the study can be built, every history request names exactly one case.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "pcrf/study/case_space.hpp"
+#include "pcrf/study/record_source.hpp"
+#include "pcrf/study/study.hpp"
+
+namespace pcrf::study {
+
+struct CheckedStudy {
+  std::string fingerprint;                  ///< see fingerprint.hpp
+  std::vector<std::int64_t> history_cases;  ///< case index of each Study::histories entry
+};
+
+/// Loads every record into `records` (so they are read once), builds every distinct frame
+/// and resolves the history requests. Runs before any work starts and before the output
+/// file is created. \throws StudyError naming the file, the key and the problem.
+CheckedStudy check_study(const Study& study, const CaseSpace& space, RecordCache& records);
+
+}  // namespace pcrf::study

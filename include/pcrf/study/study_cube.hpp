@@ -1,0 +1,28 @@
+/// \file study_cube.hpp
+/// \brief How a study maps onto a result cube: coordinate names and units, the metric
+/// variables, the status flags, the global attributes, and history groups.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "pcrf/cube/cube_layout.hpp"
+#include "pcrf/cube/cube_writer.hpp"
+#include "pcrf/solver/rocking_solver.hpp"
+#include "pcrf/study/case_space.hpp"
+#include "pcrf/study/study.hpp"
+
+namespace pcrf::study {
+
+/// The cube of a study. Dimensions as CaseSpace; `record` a text coordinate (with the
+/// auxiliary `record_source`); one-at-a-time and list plans add `case` with the auxiliary
+/// coordinates `case_label`, `varied_parameter` (one-at-a-time) and the eight parameters.
+cube::CubeLayout make_cube_layout(const Study& study, const CaseSpace& space, const std::string& fingerprint);
+
+/// A case's time history as a cube history group: a `t_s` dimension and one variable per
+/// HistorySample field; the case's coordinates as attributes.
+cube::HistoryTable make_history_table(const std::string& label, std::int64_t case_index, const Study& study,
+                                      const CaseSpace& space, const std::vector<HistorySample>& samples);
+
+}  // namespace pcrf::study

@@ -1,0 +1,32 @@
+/// \file study_parser.hpp
+/// \brief Reads a study file (TOML) into a Study, rejecting unknown keys, wrong types,
+/// empty or backwards ranges, out-of-range values and missing record files.
+#pragma once
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+
+#include "pcrf/study/study.hpp"
+
+namespace pcrf::study {
+
+/// A study cannot run as written. what() reads "FILE:LINE: KEY: problem" (LINE where known).
+class StudyError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Parses study text. `file` labels messages; relative record paths resolve against
+/// `base_dir`. \throws StudyError.
+Study parse_study(const std::string& text, const std::string& file,
+                  const std::filesystem::path& base_dir);
+
+/// Reads and parses a study file; record paths resolve against its folder.
+/// \throws StudyError (also when the file cannot be read).
+Study load_study(const std::filesystem::path& file);
+
+/// Reads a whole text file. \throws StudyError naming it.
+std::string read_text_file(const std::filesystem::path& file);
+
+}  // namespace pcrf::study

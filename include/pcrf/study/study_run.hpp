@@ -1,0 +1,45 @@
+/// \file study_run.hpp
+/// \brief Runs a study on every MPI rank: checks it, opens the cube (rank 0), schedules the
+/// cases, stores results as they come back and flushes periodically.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+
+#include "pcrf/parallel/mpi_session.hpp"
+
+namespace pcrf::study {
+
+struct StudyRunOptions {
+  std::filesystem::path study_file;
+  std::filesystem::path output;   ///< empty: "<study file stem>.h5" in the working directory
+  bool resume = false;            ///< continue an existing cube of the same study
+  bool overwrite = false;         ///< replace an existing cube
+  bool check_only = false;        ///< validate, print the case count, write nothing
+  std::optional<double> flush_interval_s;     ///< overrides [run] flush_interval_s
+  std::optional<double> progress_interval_s;  ///< overrides [run] progress_interval_s
+  std::optional<std::size_t> batch_size;      ///< overrides [run] batch_size
+};
+
+/// What rank 0 reports when the study is done.
+struct StudySummary {
+  std::int64_t total = 0;
+  std::int64_t already_done = 0;
+  std::int64_t computed = 0;
+  std::int64_t failed = 0;
+  std::filesystem::path output;
+};
+
+/// Default output of a study file.
+std::filesystem::path default_output(const std::filesystem::path& study_file);
+
+/// Runs on every rank. A study that cannot run (bad file, unreadable record, output exists,
+/// other study's cube) throws StudyError on rank 0 before any work and before the output is
+/// created; the other ranks then wait in MpiSession::quiet_barrier() and return std::nullopt
+/// (the caller exits with code 2). Rank 0's caller reports the error, then joins the barrier.
+/// Errors after work has started propagate on rank 0 (the caller must abort MPI).
+std::optional<StudySummary> run_study(const StudyRunOptions& options, const parallel::MpiSession& mpi);
+
+}  // namespace pcrf::study

@@ -1,0 +1,98 @@
+// `pcrf cube info|export|stats FILE`: looks into a result cube.
+#include <CLI/CLI.hpp>
+
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <memory>
+
+#include "cli/commands.hpp"
+#include "pcrf/cube/cube_query.hpp"
+
+namespace pcrf::cli {
+namespace {
+
+struct CubeArguments {
+  std::string file;
+  std::vector<std::string> metrics;
+  std::string metric;
+  std::vector<std::string> where;
+  std::string by;
+  std::string output;
+};
+
+std::vector<cube::Selector> selectors(const std::vector<std::string>& texts) {
+  std::vector<cube::Selector> result;
+  for (const auto& t : texts) result.push_back(cube::parse_selector(t));
+  return result;
+}
+
+/// Runs a cube action; cube problems (missing file, unknown name) are usage errors.
+template <class Action>
+void guarded(const std::string& file, Action action) {
+  try {
+    action();
+  } catch (const cube::CubeError& e) {
+    const std::string text = e.what();
+    throw UsageError(text.rfind(file, 0) == 0 ? text : file + ": " + text);
+  }
+}
+
+void with_output(const std::string& path, const std::function<void(std::ostream&)>& write) {
+  if (path.empty() || path == "-") {
+    write(std::cout);
+    return;
+  }
+  std::ofstream out(path);
+  if (!out) throw UsageError(path + ": cannot write");
+  write(out);
+}
+
+void add_where(CLI::App* cmd, CubeArguments& args) {
+  cmd->add_option("-w,--where", args.where, "keep cases with NAME=VALUE (any coordinate; repeatable)");
+}
+
+}  // namespace
+
+void add_cube_command(CLI::App& app) {
+  auto args = std::make_shared<CubeArguments>();
+  auto* cube_cmd = app.add_subcommand("cube", "Look into a result cube");
+  cube_cmd->require_subcommand(1);
+
+  auto* info = cube_cmd->add_subcommand("info", "Axes, metrics, completion and failures by status");
+  info->add_option("FILE", args->file, "result cube")->required();
+  info->callback([args] {
+    guarded(args->file, [&] { cube::print_info(cube::CubeReader(args->file), std::cout); });
+  });
+
+  auto* exporter = cube_cmd->add_subcommand("export", "Metrics as a long CSV table, one row per case");
+  exporter->add_option("FILE", args->file, "result cube")->required();
+  exporter->add_option("-m,--metric", args->metrics, "metric to export (repeatable; default: all)");
+  add_where(exporter, *args);
+  exporter->add_option("-o,--output", args->output, "CSV file (default: stdout)");
+  exporter->callback([args] {
+    guarded(args->file, [&] {
+      cube::CubeReader reader(args->file);
+      const auto chosen = selectors(args->where);
+      with_output(args->output, [&](std::ostream& out) { cube::export_csv(reader, args->metrics, chosen, out); });
+    });
+  });
+
+  auto* stats = cube_cmd->add_subcommand(
+      "stats", "Median and 16th/84th percentiles of a metric across records, per value of a parameter");
+  stats->add_option("FILE", args->file, "result cube")->required();
+  stats->add_option("--by", args->by, "coordinate to group by (e.g. kappa, scale)")->required();
+  stats->add_option("-m,--metric", args->metric, "metric to summarize")->required();
+  add_where(stats, *args);
+  stats->callback([args] {
+    guarded(args->file, [&] {
+      cube::CubeReader reader(args->file);
+      std::vector<std::string> pooled;
+      const auto result = cube::group_stats(reader, args->by, args->metric, selectors(args->where), &pooled);
+      for (const auto& p : pooled) std::cerr << "pcrf cube stats: also pooled over " << p << '\n';
+      cube::print_stats(args->by, result, std::cout);
+    });
+  });
+}
+
+}  // namespace pcrf::cli

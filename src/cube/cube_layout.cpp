@@ -1,0 +1,57 @@
+// Helpers of CubeLayout (see cube_layout.hpp).
+#include "pcrf/cube/cube_layout.hpp"
+
+#include <charconv>
+
+namespace pcrf::cube {
+
+std::string Coordinate::label(std::size_t i) const {
+  if (is_text) return strings.at(i);
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, numbers.at(i));
+  return std::string(buffer, result.ptr);
+}
+
+std::int64_t CubeLayout::case_count() const {
+  std::int64_t count = 1;
+  for (const auto& d : dimensions) count *= static_cast<std::int64_t>(d.size);
+  return count;
+}
+
+std::vector<std::size_t> CubeLayout::shape() const {
+  std::vector<std::size_t> result;
+  for (const auto& d : dimensions) result.push_back(d.size);
+  return result;
+}
+
+std::vector<std::string> CubeLayout::auxiliary_names() const {
+  std::vector<std::string> names;
+  for (const auto& c : coordinates)
+    if (c.name != c.dimension) names.push_back(c.name);
+  return names;
+}
+
+const Coordinate* CubeLayout::find_coordinate(const std::string& name) const {
+  for (const auto& c : coordinates)
+    if (c.name == name) return &c;
+  return nullptr;
+}
+
+std::string CubeLayout::text_attribute(const std::string& name) const {
+  for (const auto& a : attributes)
+    if (a.name == name)
+      if (const auto* text = std::get_if<std::string>(&a.value)) return *text;
+  return {};
+}
+
+std::vector<std::size_t> unravel(std::int64_t index, const std::vector<std::size_t>& shape) {
+  std::vector<std::size_t> coords(shape.size());
+  auto rest = static_cast<std::size_t>(index);
+  for (std::size_t d = shape.size(); d-- > 0;) {
+    coords[d] = rest % shape[d];
+    rest /= shape[d];
+  }
+  return coords;
+}
+
+}  // namespace pcrf::cube

@@ -1,0 +1,245 @@
+// Post-processing of result cubes (see cube_query.hpp).
+#include "pcrf/cube/cube_query.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <map>
+
+namespace pcrf::cube {
+namespace {
+
+std::size_t dimension_index(const CubeLayout& layout, const std::string& name) {
+  for (std::size_t d = 0; d < layout.dimensions.size(); ++d)
+    if (layout.dimensions[d].name == name) return d;
+  throw CubeError("no dimension '" + name + "'");
+}
+
+const Coordinate& coordinate(const CubeLayout& layout, const std::string& name) {
+  if (const Coordinate* c = layout.find_coordinate(name)) return *c;
+  std::string known;
+  for (const auto& c : layout.coordinates) known += (known.empty() ? "" : ", ") + c.name;
+  throw CubeError("no coordinate '" + name + "' (coordinates: " + known + ")");
+}
+
+std::string number_text(double value) {
+  if (std::isnan(value)) return "";
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, result.ptr);
+}
+
+/// Positions along the coordinate's dimension whose value matches `text`.
+std::vector<bool> matching_positions(const Coordinate& c, const std::string& text) {
+  std::vector<bool> match(c.size(), false);
+  double number = 0.0;
+  const bool numeric = !c.is_text && std::from_chars(text.data(), text.data() + text.size(), number).ec == std::errc{};
+  if (!c.is_text && !numeric) throw CubeError(c.name + "=" + text + ": '" + text + "' is not a number");
+  bool any = false;
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    match[i] = c.is_text ? c.strings[i] == text
+                         : std::fabs(c.numbers[i] - number) <= 1e-9 * std::max(std::fabs(number), 1e-300);
+    any = any || match[i];
+  }
+  if (!any) {
+    std::string values;
+    for (std::size_t i = 0; i < c.size() && i < 12; ++i) values += (i ? ", " : "") + c.label(i);
+    if (c.size() > 12) values += ", …";
+    throw CubeError(c.name + "=" + text + ": no such value (values: " + values + ")");
+  }
+  return match;
+}
+
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char ch : text) quoted += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+  return quoted + "\"";
+}
+
+std::string status_text(const CubeLayout& layout, std::int8_t value) {
+  if (value == kStatusNotRun) return "not_run";
+  for (const auto& f : layout.status_flags)
+    if (f.value == value) return f.meaning;
+  return std::to_string(value);
+}
+
+}  // namespace
+
+Selector parse_selector(const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
+    throw CubeError("selector '" + text + "': expected NAME=VALUE, e.g. kappa=1.8");
+  return {text.substr(0, eq), text.substr(eq + 1)};
+}
+
+std::vector<bool> select_cases(const CubeLayout& layout, const std::vector<Selector>& selectors) {
+  const auto shape = layout.shape();
+  std::vector<std::pair<std::size_t, std::vector<bool>>> conditions;  // (dimension, positions)
+  for (const auto& s : selectors) {
+    const Coordinate& c = coordinate(layout, s.coordinate);
+    conditions.emplace_back(dimension_index(layout, c.dimension), matching_positions(c, s.value));
+  }
+  std::vector<bool> selected(static_cast<std::size_t>(layout.case_count()), true);
+  if (conditions.empty()) return selected;
+  for (std::int64_t i = 0; i < layout.case_count(); ++i) {
+    const auto coords = unravel(i, shape);
+    for (const auto& [dim, positions] : conditions)
+      if (!positions[coords[dim]]) selected[static_cast<std::size_t>(i)] = false;
+  }
+  return selected;
+}
+
+void print_info(const CubeReader& cube, std::ostream& out) {
+  const auto& layout = cube.layout();
+  out << "cube: " << cube.file().string() << '\n';
+  out << "study: " << layout.text_attribute("study_name") << " (plan " << layout.text_attribute("plan")
+      << "), pcrf " << layout.text_attribute("pcrf_version") << ", fingerprint "
+      << layout.text_attribute(kFingerprintName) << '\n';
+  out << "dimensions:\n";
+  for (const auto& d : layout.dimensions) {
+    const Coordinate& c = coordinate(layout, d.name);
+    out << "  " << d.name << " (" << d.size << "): ";
+    for (std::size_t i = 0; i < c.size() && i < 6; ++i) out << (i ? ", " : "") << c.label(i);
+    if (c.size() > 6) out << ", … " << c.label(c.size() - 1);
+    out << '\n';
+  }
+  const auto auxiliary = layout.auxiliary_names();
+  if (!auxiliary.empty()) {
+    out << "auxiliary coordinates:";
+    for (const auto& a : auxiliary) out << ' ' << a;
+    out << '\n';
+  }
+  out << "metrics (" << layout.metrics.size() << "):\n";
+  for (const auto& m : layout.metrics) out << "  " << m.name << " [" << m.units << "]  " << m.long_name << '\n';
+  const auto status = cube.read_status();
+  std::map<std::int8_t, std::int64_t> counts;
+  for (auto s : status) ++counts[s];
+  const std::int64_t total = layout.case_count();
+  const std::int64_t done = total - (counts.count(kStatusNotRun) ? counts[kStatusNotRun] : 0);
+  char percent[32];
+  std::snprintf(percent, sizeof percent, "%.1f", total ? 100.0 * double(done) / double(total) : 100.0);
+  out << "completion: " << done << "/" << total << " cases (" << percent << " %)\n";
+  out << "status:\n";
+  for (const auto& [value, count] : counts) out << "  " << status_text(layout, value) << ": " << count << '\n';
+  const auto notes = cube.read_notes();
+  if (!notes.empty()) {
+    out << "messages (" << notes.size() << "):\n";
+    for (std::size_t i = 0; i < notes.size() && i < 5; ++i)
+      out << "  case " << notes[i].first << ": " << notes[i].second << '\n';
+  }
+  const auto histories = cube.history_names();
+  if (!histories.empty()) {
+    out << "histories:";
+    for (const auto& h : histories) out << ' ' << h;
+    out << '\n';
+  }
+}
+
+void export_csv(const CubeReader& cube, const std::vector<std::string>& metrics,
+                const std::vector<Selector>& selectors, std::ostream& out) {
+  const auto& layout = cube.layout();
+  std::vector<std::string> names = metrics;
+  if (names.empty())
+    for (const auto& m : layout.metrics) names.push_back(m.name);
+  std::vector<std::vector<double>> values;
+  for (const auto& name : names) values.push_back(cube.read_metric(name));
+  const auto selected = select_cases(layout, selectors);
+  const auto status = cube.read_status();
+  std::vector<std::size_t> coordinate_dims;
+  for (const auto& c : layout.coordinates) {
+    coordinate_dims.push_back(dimension_index(layout, c.dimension));
+    out << csv_field(c.name) << ',';
+  }
+  out << "status";
+  for (const auto& name : names) out << ',' << name;
+  out << '\n';
+  const auto shape = layout.shape();
+  for (std::int64_t i = 0; i < layout.case_count(); ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    if (!selected[k]) continue;
+    const auto coords = unravel(i, shape);
+    for (std::size_t c = 0; c < layout.coordinates.size(); ++c)
+      out << csv_field(layout.coordinates[c].label(coords[coordinate_dims[c]])) << ',';
+    out << status_text(layout, status[k]);
+    for (const auto& v : values) out << ',' << number_text(v[k]);
+    out << '\n';
+  }
+}
+
+double percentile(const std::vector<double>& sorted, double q) {
+  if (sorted.empty()) return std::nan("");
+  const double h = (static_cast<double>(sorted.size()) - 1.0) * q / 100.0;
+  const auto lo = static_cast<std::size_t>(std::floor(h));
+  const std::size_t hi = std::min(lo + 1, sorted.size() - 1);
+  return sorted[lo] + (h - static_cast<double>(lo)) * (sorted[hi] - sorted[lo]);
+}
+
+std::vector<GroupStats> group_stats(const CubeReader& cube, const std::string& by, const std::string& metric,
+                                    std::vector<Selector> selectors, std::vector<std::string>* pooled) {
+  const auto& layout = cube.layout();
+  const Coordinate& group_by = coordinate(layout, by);
+  const bool sweep = layout.find_coordinate("varied_parameter") != nullptr && by != "varied_parameter" &&
+                     layout.find_coordinate(by)->dimension == "case";
+  const bool varied_given = std::any_of(selectors.begin(), selectors.end(),
+                                        [](const Selector& s) { return s.coordinate == "varied_parameter"; });
+  if (sweep && !varied_given && by != "case_label" && by != "case") selectors.push_back({"varied_parameter", by});
+  const auto selected = select_cases(layout, selectors);
+  const auto values = cube.read_metric(metric);
+  const auto shape = layout.shape();
+  const std::size_t by_dim = dimension_index(layout, group_by.dimension);
+
+  std::vector<std::vector<double>> samples(group_by.size());
+  std::vector<std::size_t> cases(group_by.size(), 0);
+  std::vector<std::vector<bool>> seen(shape.size());
+  for (std::size_t d = 0; d < shape.size(); ++d) seen[d].assign(shape[d], false);
+  for (std::int64_t i = 0; i < layout.case_count(); ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    if (!selected[k]) continue;
+    const auto coords = unravel(i, shape);
+    for (std::size_t d = 0; d < shape.size(); ++d) seen[d][coords[d]] = true;
+    const std::size_t g = coords[by_dim];
+    ++cases[g];
+    if (std::isfinite(values[k])) samples[g].push_back(values[k]);
+  }
+  if (pooled != nullptr) {
+    for (std::size_t d = 0; d < shape.size(); ++d) {
+      const auto n = std::count(seen[d].begin(), seen[d].end(), true);
+      if (d != by_dim && layout.dimensions[d].name != "record" && n > 1)
+        pooled->push_back(layout.dimensions[d].name + " (" + std::to_string(n) + " values)");
+    }
+  }
+  // Groups keyed by value text: an auxiliary coordinate may repeat a value along its dimension.
+  std::vector<GroupStats> stats;
+  std::map<std::string, std::size_t> position;
+  for (std::size_t g = 0; g < group_by.size(); ++g) {
+    if (cases[g] == 0) continue;
+    const std::string value = group_by.label(g);
+    auto [it, inserted] = position.emplace(value, stats.size());
+    if (inserted) stats.push_back({value, 0, 0, 0, 0, 0});
+    stats[it->second].cases += cases[g];
+  }
+  std::vector<std::vector<double>> merged(stats.size());
+  for (std::size_t g = 0; g < group_by.size(); ++g)
+    if (cases[g] > 0) {
+      auto& target = merged[position[group_by.label(g)]];
+      target.insert(target.end(), samples[g].begin(), samples[g].end());
+    }
+  for (std::size_t s = 0; s < stats.size(); ++s) {
+    std::sort(merged[s].begin(), merged[s].end());
+    stats[s].values = merged[s].size();
+    stats[s].median = percentile(merged[s], 50.0);
+    stats[s].p16 = percentile(merged[s], 16.0);
+    stats[s].p84 = percentile(merged[s], 84.0);
+  }
+  return stats;
+}
+
+void print_stats(const std::string& by, const std::vector<GroupStats>& stats, std::ostream& out) {
+  out << csv_field(by) << ",cases,values,median,p16,p84\n";
+  for (const auto& s : stats)
+    out << csv_field(s.value) << ',' << s.cases << ',' << s.values << ',' << number_text(s.median) << ','
+        << number_text(s.p16) << ',' << number_text(s.p84) << '\n';
+}
+
+}  // namespace pcrf::cube

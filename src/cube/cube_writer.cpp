@@ -1,0 +1,361 @@
+// Result cube writer (see cube_writer.hpp): creates or reopens the file, keeps the cube in
+// memory and writes the chunks that changed at each flush.
+#include "pcrf/cube/cube_writer.hpp"
+
+#include <hdf5_hl.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+
+#include "cube/hdf5_util.hpp"
+#include "pcrf/cube/chunk_grid.hpp"
+#include "pcrf/cube/cube_reader.hpp"
+
+namespace pcrf::cube {
+namespace {
+
+constexpr const char* kMessagesGroup = "messages";
+constexpr const char* kHistoriesGroup = "histories";
+constexpr unsigned kDeflateLevel = 4;
+constexpr hsize_t kNotesChunk = 256;
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+/// Creation-order tracking as netCDF-4 files have it (readers then list in that order).
+h5::Handle ordered_plist(hid_t plist_class) {
+  auto p = h5::plist(H5Pcreate(plist_class), "cannot make a property list");
+  const unsigned flags = H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED;
+  if (plist_class != H5P_DATASET_CREATE) h5::check(H5Pset_link_creation_order(p, flags), "cannot set link order");
+  h5::check(H5Pset_attr_creation_order(p, flags), "cannot set attribute order");
+  return p;
+}
+
+std::vector<hsize_t> to_hsize(const std::vector<std::size_t>& values) {
+  return {values.begin(), values.end()};
+}
+
+void write_descriptive_attributes(hid_t object, const std::string& units, const std::string& long_name) {
+  if (!units.empty()) h5::write_attribute(object, "units", units);
+  if (!long_name.empty()) h5::write_attribute(object, "long_name", long_name);
+}
+
+/// A 1-D coordinate variable (text, index or numbers).
+h5::Handle create_coordinate(hid_t parent, const Coordinate& c) {
+  const std::string what = "cannot create coordinate '" + c.name + "'";
+  const hsize_t n = c.size();
+  auto s = h5::space(H5Screate_simple(1, &n, nullptr), what);
+  auto dcpl = ordered_plist(H5P_DATASET_CREATE);
+  h5::Handle d;
+  if (c.is_text) {
+    auto t = h5::vlen_string_type();
+    d = h5::dataset(H5Dcreate2(parent, c.name.c_str(), t, s, H5P_DEFAULT, dcpl, H5P_DEFAULT), what);
+    h5::write_strings(d, c.strings);
+  } else if (c.is_index) {
+    std::vector<std::int32_t> values(c.numbers.begin(), c.numbers.end());
+    d = h5::dataset(H5Dcreate2(parent, c.name.c_str(), H5T_STD_I32LE, s, H5P_DEFAULT, dcpl, H5P_DEFAULT), what);
+    h5::check(H5Dwrite(d, H5T_NATIVE_INT32, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), what);
+  } else {
+    d = h5::dataset(H5Dcreate2(parent, c.name.c_str(), H5T_IEEE_F64LE, s, H5P_DEFAULT, dcpl, H5P_DEFAULT), what);
+    h5::check(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, c.numbers.data()), what);
+  }
+  write_descriptive_attributes(d, c.units, c.long_name);
+  return d;
+}
+
+void write_global_attribute(hid_t file, const Attribute& a) {
+  std::visit([&](const auto& value) { h5::write_attribute(file, a.name, value); }, a.value);
+}
+
+std::string join(const std::vector<std::string>& words) {
+  std::string text;
+  for (const auto& w : words) text += (text.empty() ? "" : " ") + w;
+  return text;
+}
+
+}  // namespace
+
+struct CubeWriter::Impl {
+  std::filesystem::path path;
+  CubeLayout layout;
+  ChunkGrid grid;
+  h5::Handle file;  // declared first: closed last
+  std::vector<h5::Handle> scales;  // one per dimension
+  std::vector<h5::Handle> metric_sets;
+  h5::Handle status_set;
+  std::vector<std::vector<double>> metrics;  // [metric][case]
+  std::set<std::size_t> dirty_chunks;
+  std::vector<std::pair<std::int64_t, std::string>> pending_notes;
+  std::vector<HistoryTable> pending_histories;
+  bool closed = false;
+
+  Impl(std::filesystem::path p, CubeLayout l)
+      : path(std::move(p)), layout(std::move(l)), grid(layout.shape()) {}
+
+  std::string what(const std::string& problem) const { return path.string() + ": " + problem; }
+
+  void create(bool overwrite);
+  void open_existing(std::vector<std::int8_t>& status);
+  h5::Handle create_cube_variable(const std::string& name, hid_t file_type, hid_t memory_type,
+                                  const void* fill);
+  void write_chunk(std::size_t chunk, const std::vector<std::int8_t>& status);
+  void write_notes();
+  void write_history(const HistoryTable& table);
+};
+
+CubeWriter::CubeWriter(std::filesystem::path file, CubeLayout layout, OpenMode mode)
+    : impl_(std::make_unique<Impl>(std::move(file), std::move(layout))) {
+  h5::silence_library_errors();
+  const auto n = static_cast<std::size_t>(impl_->layout.case_count());
+  status_.assign(n, kStatusNotRun);
+  impl_->metrics.assign(impl_->layout.metrics.size(), std::vector<double>(n, kNaN));
+  const bool exists = std::filesystem::exists(impl_->path);
+  if (mode == OpenMode::kCreate && exists) throw CubeError(impl_->what("already exists"));
+  if (mode == OpenMode::kResume && exists) {
+    impl_->open_existing(status_);
+    resumed_ = true;
+  } else {
+    impl_->create(mode == OpenMode::kOverwrite);
+  }
+}
+
+CubeWriter::~CubeWriter() {
+  if (impl_ && !impl_->closed) {
+    try {
+      flush();  // keep what was computed even when the run is failing
+    } catch (...) {
+    }
+  }
+}
+
+void CubeWriter::Impl::create(bool overwrite) {
+  auto fcpl = ordered_plist(H5P_FILE_CREATE);
+  file = h5::file(H5Fcreate(path.c_str(), overwrite ? H5F_ACC_TRUNC : H5F_ACC_EXCL, fcpl, H5P_DEFAULT),
+                  what("cannot create the file"));
+  for (const auto& a : layout.attributes) write_global_attribute(file, a);
+  // Dimension coordinates first (netCDF-4 dimensions), then auxiliary coordinates.
+  for (const auto& dim : layout.dimensions) {
+    const Coordinate* c = layout.find_coordinate(dim.name);
+    if (c == nullptr || c->size() != dim.size)
+      throw CubeError(what("dimension '" + dim.name + "' needs a coordinate of " + std::to_string(dim.size) + " values"));
+    scales.push_back(create_coordinate(file, *c));
+    h5::check(H5DSset_scale(scales.back(), dim.name.c_str()), what("cannot make '" + dim.name + "' a dimension"));
+  }
+  for (const auto& c : layout.coordinates) {
+    if (c.name == c.dimension) continue;
+    auto dim = std::find_if(layout.dimensions.begin(), layout.dimensions.end(),
+                            [&](const Dimension& d) { return d.name == c.dimension; });
+    if (dim == layout.dimensions.end()) throw CubeError(what("coordinate '" + c.name + "' is over an unknown dimension"));
+    auto d = create_coordinate(file, c);
+    h5::check(H5DSattach_scale(d, scales[static_cast<std::size_t>(dim - layout.dimensions.begin())], 0),
+              what("cannot attach dimension to '" + c.name + "'"));
+  }
+  for (const auto& m : layout.metrics) {
+    metric_sets.push_back(create_cube_variable(m.name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &kNaN));
+    write_descriptive_attributes(metric_sets.back(), m.units, m.long_name);
+  }
+  const std::int8_t not_run = kStatusNotRun;
+  status_set = create_cube_variable(kStatusName, H5T_STD_I8LE, H5T_NATIVE_INT8, &not_run);
+  std::vector<std::int8_t> flag_values;
+  std::vector<std::string> flag_meanings;
+  for (const auto& f : layout.status_flags) {
+    flag_values.push_back(f.value);
+    flag_meanings.push_back(f.meaning);
+  }
+  h5::write_attribute(status_set, "long_name", std::string("how the case ended"));
+  h5::write_attribute(status_set, "flag_values", flag_values);
+  h5::write_attribute(status_set, "flag_meanings", join(flag_meanings));
+  h5::check(H5Fflush(file, H5F_SCOPE_GLOBAL), what("cannot flush"));
+}
+
+h5::Handle CubeWriter::Impl::create_cube_variable(const std::string& name, hid_t file_type,
+                                                  hid_t memory_type, const void* fill) {
+  const std::string problem = "cannot create variable '" + name + "'";
+  const auto dims = to_hsize(layout.shape());
+  auto s = h5::space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), what(problem));
+  auto dcpl = ordered_plist(H5P_DATASET_CREATE);
+  const auto chunk = to_hsize(grid.chunk_shape());
+  h5::check(H5Pset_chunk(dcpl, static_cast<int>(chunk.size()), chunk.data()), what(problem));
+  h5::check(H5Pset_shuffle(dcpl), what(problem));
+  h5::check(H5Pset_deflate(dcpl, kDeflateLevel), what(problem));
+  h5::check(H5Pset_fill_value(dcpl, memory_type, fill), what(problem));
+  auto d = h5::dataset(H5Dcreate2(file, name.c_str(), file_type, s, H5P_DEFAULT, dcpl, H5P_DEFAULT), what(problem));
+  // _FillValue has the variable's own type, as netCDF requires.
+  if (memory_type == H5T_NATIVE_INT8)
+    h5::write_int8_attribute(d, "_FillValue", *static_cast<const std::int8_t*>(fill));
+  else
+    h5::write_attribute(d, "_FillValue", *static_cast<const double*>(fill));
+  for (std::size_t i = 0; i < scales.size(); ++i)
+    h5::check(H5DSattach_scale(d, scales[i], static_cast<unsigned>(i)), what(problem + ": cannot attach dimensions"));
+  const auto auxiliary = layout.auxiliary_names();
+  if (!auxiliary.empty()) h5::write_attribute(d, "coordinates", join(auxiliary));
+  return d;
+}
+
+void CubeWriter::Impl::open_existing(std::vector<std::int8_t>& status) {
+  {
+    CubeReader reader(path);
+    const auto& old = reader.layout();
+    const std::string ours = layout.text_attribute(kFingerprintName);
+    const std::string theirs = old.text_attribute(kFingerprintName);
+    if (ours != theirs)
+      throw CubeError(what("was made by a different study (its fingerprint " + theirs +
+                           ", this study's " + ours + "); give another output file or use --overwrite"));
+    if (old.shape() != layout.shape() || old.metrics.size() != layout.metrics.size())
+      throw CubeError(what("has another shape or other metrics than this study"));
+    status = reader.read_status();
+    for (std::size_t m = 0; m < layout.metrics.size(); ++m)
+      metrics[m] = reader.read_metric(layout.metrics[m].name);
+  }
+  file = h5::file(H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), what("cannot open for writing"));
+  for (const auto& m : layout.metrics)
+    metric_sets.push_back(h5::dataset(H5Dopen2(file, m.name.c_str(), H5P_DEFAULT), what("cannot open '" + m.name + "'")));
+  status_set = h5::dataset(H5Dopen2(file, kStatusName, H5P_DEFAULT), what("cannot open 'status'"));
+}
+
+std::int64_t CubeWriter::done_count() const {
+  return std::count_if(status_.begin(), status_.end(), [](std::int8_t s) { return s != kStatusNotRun; });
+}
+
+void CubeWriter::store(std::int64_t index, std::int8_t status, const std::vector<double>& values) {
+  if (index < 0 || static_cast<std::size_t>(index) >= status_.size())
+    throw CubeError(impl_->what("case index " + std::to_string(index) + " is outside the cube"));
+  if (values.size() != impl_->metrics.size())
+    throw CubeError(impl_->what("case " + std::to_string(index) + " has " + std::to_string(values.size()) +
+                                " values for " + std::to_string(impl_->metrics.size()) + " metrics"));
+  const auto i = static_cast<std::size_t>(index);
+  status_[i] = status;
+  for (std::size_t m = 0; m < values.size(); ++m) impl_->metrics[m][i] = values[m];
+  impl_->dirty_chunks.insert(impl_->grid.chunk_of(index));
+}
+
+void CubeWriter::store_note(std::int64_t index, std::string note) {
+  impl_->pending_notes.emplace_back(index, std::move(note));
+}
+
+void CubeWriter::store_history(HistoryTable table) { impl_->pending_histories.push_back(std::move(table)); }
+
+void CubeWriter::Impl::write_chunk(std::size_t chunk, const std::vector<std::int8_t>& status) {
+  const auto r = grid.range(chunk);
+  const auto start = to_hsize(r.start);
+  const auto extent = to_hsize(r.extent);
+  const auto count = static_cast<hsize_t>(r.count);
+  auto memory = h5::space(H5Screate_simple(1, &count, nullptr), what("cannot make a dataspace"));
+  auto write = [&](hid_t set, hid_t memory_type, const void* data, const std::string& name) {
+    auto selection = h5::space(H5Dget_space(set), what("cannot select in '" + name + "'"));
+    h5::check(H5Sselect_hyperslab(selection, H5S_SELECT_SET, start.data(), nullptr, extent.data(), nullptr),
+              what("cannot select in '" + name + "'"));
+    h5::check(H5Dwrite(set, memory_type, memory, selection, H5P_DEFAULT, data), what("cannot write '" + name + "'"));
+  };
+  const auto first = static_cast<std::size_t>(r.first);
+  for (std::size_t m = 0; m < metric_sets.size(); ++m)
+    write(metric_sets[m], H5T_NATIVE_DOUBLE, metrics[m].data() + first, layout.metrics[m].name);
+  write(status_set, H5T_NATIVE_INT8, status.data() + first, kStatusName);
+}
+
+void CubeWriter::Impl::write_notes() {
+  if (pending_notes.empty()) return;
+  const std::string problem = what("cannot write case messages");
+  const bool exists = H5Lexists(file, kMessagesGroup, H5P_DEFAULT) > 0;
+  h5::Handle group, index_set, message_set;
+  if (!exists) {
+    auto gcpl = ordered_plist(H5P_GROUP_CREATE);
+    group = h5::group(H5Gcreate2(file, kMessagesGroup, H5P_DEFAULT, gcpl, H5P_DEFAULT), problem);
+    const hsize_t zero = 0, unlimited = H5S_UNLIMITED;
+    auto s = h5::space(H5Screate_simple(1, &zero, &unlimited), problem);
+    auto dcpl = ordered_plist(H5P_DATASET_CREATE);
+    h5::check(H5Pset_chunk(dcpl, 1, &kNotesChunk), problem);
+    index_set = h5::dataset(H5Dcreate2(group, "case_index", H5T_STD_I64LE, s, H5P_DEFAULT, dcpl, H5P_DEFAULT), problem);
+    h5::write_attribute(index_set, "long_name", std::string("linear index of the case"));
+    h5::check(H5DSset_scale(index_set, "case_index"), problem);
+    auto t = h5::vlen_string_type();
+    message_set = h5::dataset(H5Dcreate2(group, "text", t, s, H5P_DEFAULT, dcpl, H5P_DEFAULT), problem);
+    h5::check(H5DSattach_scale(message_set, index_set, 0), problem);
+  } else {
+    group = h5::group(H5Gopen2(file, kMessagesGroup, H5P_DEFAULT), problem);
+    index_set = h5::dataset(H5Dopen2(group, "case_index", H5P_DEFAULT), problem);
+    message_set = h5::dataset(H5Dopen2(group, "text", H5P_DEFAULT), problem);
+  }
+  auto old_space = h5::space(H5Dget_space(index_set), problem);
+  const auto old_size = static_cast<hsize_t>(H5Sget_simple_extent_npoints(old_space));
+  const hsize_t added = pending_notes.size();
+  const hsize_t new_size = old_size + added;
+  std::vector<std::int64_t> indices;
+  std::vector<const char*> texts;
+  for (const auto& [index, text] : pending_notes) {
+    indices.push_back(index);
+    texts.push_back(text.c_str());
+  }
+  auto memory = h5::space(H5Screate_simple(1, &added, nullptr), problem);
+  auto append = [&](hid_t set, hid_t memory_type, const void* data) {
+    h5::check(H5Dset_extent(set, &new_size), problem);
+    auto selection = h5::space(H5Dget_space(set), problem);
+    h5::check(H5Sselect_hyperslab(selection, H5S_SELECT_SET, &old_size, nullptr, &added, nullptr), problem);
+    h5::check(H5Dwrite(set, memory_type, memory, selection, H5P_DEFAULT, data), problem);
+  };
+  append(index_set, H5T_NATIVE_INT64, indices.data());
+  auto t = h5::vlen_string_type();
+  append(message_set, t, texts.data());
+  pending_notes.clear();
+}
+
+void CubeWriter::Impl::write_history(const HistoryTable& table) {
+  const std::string problem = what("cannot write history '" + table.name + "'");
+  if (table.columns.empty() || table.columns.size() != table.values.size())
+    throw CubeError(problem + ": columns and values do not match");
+  h5::Handle parent;
+  if (H5Lexists(file, kHistoriesGroup, H5P_DEFAULT) > 0) {
+    parent = h5::group(H5Gopen2(file, kHistoriesGroup, H5P_DEFAULT), problem);
+  } else {
+    auto gcpl = ordered_plist(H5P_GROUP_CREATE);
+    parent = h5::group(H5Gcreate2(file, kHistoriesGroup, H5P_DEFAULT, gcpl, H5P_DEFAULT), problem);
+  }
+  // A case recomputed after --resume replaces its history.
+  if (H5Lexists(parent, table.name.c_str(), H5P_DEFAULT) > 0)
+    h5::check(H5Ldelete(parent, table.name.c_str(), H5P_DEFAULT), problem);
+  auto gcpl = ordered_plist(H5P_GROUP_CREATE);
+  auto group = h5::group(H5Gcreate2(parent, table.name.c_str(), H5P_DEFAULT, gcpl, H5P_DEFAULT), problem);
+  for (const auto& a : table.attributes) write_global_attribute(group, a);
+  h5::Handle time_scale;
+  for (std::size_t c = 0; c < table.columns.size(); ++c) {
+    const auto& column = table.columns[c];
+    const hsize_t n = table.values[c].size();
+    auto s = h5::space(H5Screate_simple(1, &n, nullptr), problem);
+    auto dcpl = ordered_plist(H5P_DATASET_CREATE);
+    if (n > 0) {
+      const hsize_t chunk = std::min<hsize_t>(n, 8192);
+      h5::check(H5Pset_chunk(dcpl, 1, &chunk), problem);
+      h5::check(H5Pset_deflate(dcpl, kDeflateLevel), problem);
+    }
+    auto d = h5::dataset(H5Dcreate2(group, column.name.c_str(), H5T_IEEE_F64LE, s, H5P_DEFAULT, dcpl, H5P_DEFAULT), problem);
+    if (n > 0) h5::check(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, table.values[c].data()), problem);
+    write_descriptive_attributes(d, column.units, column.long_name);
+    if (c == 0) {
+      h5::check(H5DSset_scale(d, column.name.c_str()), problem);
+      time_scale = std::move(d);
+    } else {
+      h5::check(H5DSattach_scale(d, time_scale, 0), problem);
+    }
+  }
+}
+
+void CubeWriter::flush() {
+  auto& impl = *impl_;
+  for (std::size_t chunk : impl.dirty_chunks) impl.write_chunk(chunk, status_);
+  impl.dirty_chunks.clear();
+  impl.write_notes();
+  for (const auto& table : impl.pending_histories) impl.write_history(table);
+  impl.pending_histories.clear();
+  h5::check(H5Fflush(impl.file, H5F_SCOPE_GLOBAL), impl.what("cannot flush"));
+}
+
+void CubeWriter::close() {
+  flush();
+  impl_->metric_sets.clear();
+  impl_->status_set.reset();
+  impl_->scales.clear();
+  impl_->file.reset();
+  impl_->closed = true;
+}
+
+}  // namespace pcrf::cube

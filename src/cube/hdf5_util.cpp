@@ -1,0 +1,193 @@
+// HDF5 helpers (see hdf5_util.hpp). Attributes follow what netCDF-C writes, so that
+// netCDF4-python and xarray read them as plain text and numbers.
+#include "cube/hdf5_util.hpp"
+
+#include <algorithm>
+#include <mutex>
+
+namespace pcrf::cube::h5 {
+
+void silence_library_errors() {
+  static std::once_flag once;
+  std::call_once(once, [] { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); });
+}
+
+hid_t check(hid_t id, const std::string& what) {
+  if (id < 0) throw CubeError(what);
+  return id;
+}
+
+Handle vlen_string_type() {
+  auto t = type(H5Tcopy(H5T_C_S1), "cannot make a string type");
+  check(H5Tset_size(t, H5T_VARIABLE), "cannot make a string type");
+  check(H5Tset_cset(t, H5T_CSET_UTF8), "cannot make a string type");
+  return t;
+}
+
+namespace {
+
+void remove_if_present(hid_t object, const std::string& name) {
+  if (has_attribute(object, name)) check(H5Adelete(object, name.c_str()), "cannot replace attribute " + name);
+}
+
+void write_scalar(hid_t object, const std::string& name, hid_t file_type, hid_t memory_type,
+                  const void* value) {
+  remove_if_present(object, name);
+  auto s = space(H5Screate(H5S_SCALAR), "cannot make a dataspace");
+  auto a = attribute(H5Acreate2(object, name.c_str(), file_type, s, H5P_DEFAULT, H5P_DEFAULT),
+                     "cannot create attribute " + name);
+  check(H5Awrite(a, memory_type, value), "cannot write attribute " + name);
+}
+
+}  // namespace
+
+void write_attribute(hid_t object, const std::string& name, const std::string& text) {
+  // Fixed-length, NUL-terminated: netCDF-C's NC_CHAR. An empty text still needs one byte.
+  auto t = type(H5Tcopy(H5T_C_S1), "cannot make a string type");
+  check(H5Tset_size(t, std::max<std::size_t>(text.size(), 1)), "cannot size a string type");
+  check(H5Tset_strpad(t, H5T_STR_NULLTERM), "cannot make a string type");
+  check(H5Tset_cset(t, H5T_CSET_UTF8), "cannot make a string type");
+  std::string padded = text;
+  padded.resize(std::max<std::size_t>(text.size(), 1), '\0');
+  write_scalar(object, name, t, t, padded.data());
+}
+
+void write_attribute(hid_t object, const std::string& name, double value) {
+  write_scalar(object, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &value);
+}
+
+void write_attribute(hid_t object, const std::string& name, std::int64_t value) {
+  write_scalar(object, name, H5T_STD_I64LE, H5T_NATIVE_INT64, &value);
+}
+
+void write_int8_attribute(hid_t object, const std::string& name, std::int8_t value) {
+  write_scalar(object, name, H5T_STD_I8LE, H5T_NATIVE_INT8, &value);
+}
+
+void write_attribute(hid_t object, const std::string& name, const std::vector<std::int8_t>& values) {
+  remove_if_present(object, name);
+  const hsize_t n = values.size();
+  auto s = space(H5Screate_simple(1, &n, nullptr), "cannot make a dataspace");
+  auto a = attribute(H5Acreate2(object, name.c_str(), H5T_STD_I8LE, s, H5P_DEFAULT, H5P_DEFAULT),
+                     "cannot create attribute " + name);
+  check(H5Awrite(a, H5T_NATIVE_INT8, values.data()), "cannot write attribute " + name);
+}
+
+bool has_attribute(hid_t object, const std::string& name) {
+  return check(H5Aexists(object, name.c_str()), "cannot look for attribute " + name) > 0;
+}
+
+std::string read_text_attribute(hid_t object, const std::string& name) {
+  if (!has_attribute(object, name)) return {};
+  auto a = attribute(H5Aopen(object, name.c_str(), H5P_DEFAULT), "cannot open attribute " + name);
+  auto t = type(H5Aget_type(a), "cannot read attribute " + name);
+  if (H5Tget_class(t) != H5T_STRING) throw CubeError("attribute " + name + " is not text");
+  if (H5Tis_variable_str(t) > 0) {
+    char* value = nullptr;
+    auto memory = vlen_string_type();
+    check(H5Aread(a, memory, &value), "cannot read attribute " + name);
+    std::string text = value != nullptr ? value : "";
+    H5free_memory(value);
+    return text;
+  }
+  const std::size_t size = H5Tget_size(t);
+  std::string text(size, '\0');
+  check(H5Aread(a, t, text.data()), "cannot read attribute " + name);
+  text.resize(text.find('\0') == std::string::npos ? size : text.find('\0'));
+  return text;
+}
+
+std::vector<std::int8_t> read_int8_attribute(hid_t object, const std::string& name) {
+  auto a = attribute(H5Aopen(object, name.c_str(), H5P_DEFAULT), "cannot open attribute " + name);
+  auto s = space(H5Aget_space(a), "cannot read attribute " + name);
+  const auto n = H5Sget_simple_extent_npoints(s);
+  std::vector<std::int8_t> values(static_cast<std::size_t>(std::max<hssize_t>(n, 0)));
+  check(H5Aread(a, H5T_NATIVE_INT8, values.data()), "cannot read attribute " + name);
+  return values;
+}
+
+namespace {
+
+herr_t collect_attribute(hid_t object, const char* name, const H5A_info_t*, void* data) {
+  auto& out = *static_cast<std::vector<Attribute>*>(data);
+  try {
+    auto a = attribute(H5Aopen(object, name, H5P_DEFAULT), "cannot open attribute");
+    auto t = type(H5Aget_type(a), "cannot read attribute type");
+    auto s = space(H5Aget_space(a), "cannot read attribute space");
+    const bool scalar = H5Sget_simple_extent_npoints(s) == 1;
+    switch (H5Tget_class(t)) {
+      case H5T_STRING:
+        out.push_back({name, read_text_attribute(object, name)});
+        break;
+      case H5T_FLOAT:
+        if (scalar) {
+          double value = 0;
+          check(H5Aread(a, H5T_NATIVE_DOUBLE, &value), "cannot read attribute");
+          out.push_back({name, value});
+        }
+        break;
+      case H5T_INTEGER:
+        if (scalar) {
+          std::int64_t value = 0;
+          check(H5Aread(a, H5T_NATIVE_INT64, &value), "cannot read attribute");
+          out.push_back({name, value});
+        }
+        break;
+      default:
+        break;  // references, arrays: dimension-scale bookkeeping, not user attributes
+    }
+  } catch (const CubeError&) {
+    return -1;
+  }
+  return 0;
+}
+
+}  // namespace
+
+std::vector<Attribute> read_attributes(hid_t object) {
+  std::vector<Attribute> out;
+  hsize_t position = 0;
+  // Creation order when the file tracks it (ours do), name order otherwise.
+  if (H5Aiterate2(object, H5_INDEX_CRT_ORDER, H5_ITER_INC, &position, collect_attribute, &out) < 0) {
+    out.clear();
+    position = 0;
+    check(H5Aiterate2(object, H5_INDEX_NAME, H5_ITER_INC, &position, collect_attribute, &out),
+          "cannot list attributes");
+  }
+  return out;
+}
+
+void write_strings(hid_t dataset, const std::vector<std::string>& values) {
+  std::vector<const char*> pointers;
+  pointers.reserve(values.size());
+  for (const auto& v : values) pointers.push_back(v.c_str());
+  auto t = vlen_string_type();
+  check(H5Dwrite(dataset, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, pointers.data()),
+        "cannot write text values");
+}
+
+std::vector<std::string> read_strings(hid_t dataset) {
+  auto s = space(H5Dget_space(dataset), "cannot read a dataspace");
+  const auto n = static_cast<std::size_t>(std::max<hssize_t>(H5Sget_simple_extent_npoints(s), 0));
+  auto file_type = type(H5Dget_type(dataset), "cannot read a type");
+  std::vector<std::string> values;
+  values.reserve(n);
+  if (H5Tis_variable_str(file_type) > 0) {
+    std::vector<char*> pointers(n, nullptr);
+    auto t = vlen_string_type();
+    check(H5Dread(dataset, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, pointers.data()), "cannot read text values");
+    for (char* p : pointers) values.emplace_back(p != nullptr ? p : "");
+    check(H5Dvlen_reclaim(t, s, H5P_DEFAULT, pointers.data()), "cannot free text values");
+    return values;
+  }
+  const std::size_t width = H5Tget_size(file_type);
+  std::string buffer(n * width, '\0');
+  check(H5Dread(dataset, file_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer.data()), "cannot read text values");
+  for (std::size_t i = 0; i < n; ++i) {
+    std::string v = buffer.substr(i * width, width);
+    values.push_back(v.substr(0, v.find('\0')));
+  }
+  return values;
+}
+
+}  // namespace pcrf::cube::h5

@@ -1,0 +1,82 @@
+// Thin RAII and attribute helpers over the HDF5 C API, used by the cube writer and reader.
+// Every failing call throws CubeError with the caller's description of what failed.
+#pragma once
+
+#include <hdf5.h>
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "pcrf/cube/cube_layout.hpp"
+
+namespace pcrf::cube::h5 {
+
+/// Turns off HDF5's own error printing: failures become CubeError messages instead.
+void silence_library_errors();
+
+/// Owns one HDF5 identifier and closes it with the right function.
+class Handle {
+ public:
+  using Closer = herr_t (*)(hid_t);
+  Handle() = default;
+  Handle(hid_t id, Closer closer) : id_(id), closer_(closer) {}
+  Handle(Handle&& other) noexcept { *this = std::move(other); }
+  Handle& operator=(Handle&& other) noexcept {
+    if (this != &other) {
+      reset();
+      std::swap(id_, other.id_);
+      std::swap(closer_, other.closer_);
+    }
+    return *this;
+  }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  ~Handle() { reset(); }
+
+  hid_t get() const { return id_; }
+  operator hid_t() const { return id_; }  // NOLINT: handles pass straight to the C API
+  bool valid() const { return id_ >= 0; }
+  void reset() {
+    if (id_ >= 0 && closer_ != nullptr) closer_(id_);
+    id_ = -1;
+  }
+
+ private:
+  hid_t id_ = -1;
+  Closer closer_ = nullptr;
+};
+
+/// Throws CubeError(what) when an HDF5 call returned a negative value.
+hid_t check(hid_t id, const std::string& what);
+inline Handle file(hid_t id, const std::string& what) { return {check(id, what), H5Fclose}; }
+inline Handle group(hid_t id, const std::string& what) { return {check(id, what), H5Gclose}; }
+inline Handle dataset(hid_t id, const std::string& what) { return {check(id, what), H5Dclose}; }
+inline Handle space(hid_t id, const std::string& what) { return {check(id, what), H5Sclose}; }
+inline Handle type(hid_t id, const std::string& what) { return {check(id, what), H5Tclose}; }
+inline Handle plist(hid_t id, const std::string& what) { return {check(id, what), H5Pclose}; }
+inline Handle attribute(hid_t id, const std::string& what) { return {check(id, what), H5Aclose}; }
+
+/// Variable-length UTF-8 string type (what netCDF-4 calls NC_STRING).
+Handle vlen_string_type();
+
+// ---- attributes (netCDF-4 style: text as fixed-length strings, numbers as scalars) ----
+void write_attribute(hid_t object, const std::string& name, const std::string& text);
+void write_attribute(hid_t object, const std::string& name, double value);
+void write_attribute(hid_t object, const std::string& name, std::int64_t value);
+void write_attribute(hid_t object, const std::string& name, const std::vector<std::int8_t>& values);
+void write_int8_attribute(hid_t object, const std::string& name, std::int8_t value);
+
+bool has_attribute(hid_t object, const std::string& name);
+/// Text attribute (fixed-length or variable-length string); empty if absent.
+std::string read_text_attribute(hid_t object, const std::string& name);
+std::vector<std::int8_t> read_int8_attribute(hid_t object, const std::string& name);
+/// Every scalar text or numeric attribute of an object, in creation (or name) order.
+std::vector<Attribute> read_attributes(hid_t object);
+
+// ---- string datasets ----
+void write_strings(hid_t dataset, const std::vector<std::string>& values);
+std::vector<std::string> read_strings(hid_t dataset);
+
+}  // namespace pcrf::cube::h5

@@ -1,0 +1,86 @@
+// Byte form of a ResultBatch: a flat little header, then per case its index, its row and
+// its note. Both ends run the same binary, so native byte order and sizes are fine.
+#include "pcrf/parallel/result_batch.hpp"
+
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+namespace pcrf::parallel {
+namespace {
+
+class Writer {
+ public:
+  template <class T>
+  void put(const T& value) {
+    const auto* p = reinterpret_cast<const char*>(&value);
+    bytes_.insert(bytes_.end(), p, p + sizeof(T));
+  }
+  void put_bytes(const char* data, std::size_t n) { bytes_.insert(bytes_.end(), data, data + n); }
+  std::vector<char> take() { return std::move(bytes_); }
+
+ private:
+  std::vector<char> bytes_;
+};
+
+class Reader {
+ public:
+  explicit Reader(const std::vector<char>& bytes) : bytes_(bytes) {}
+  template <class T>
+  T get() {
+    T value{};
+    std::memcpy(&value, take(sizeof(T)), sizeof(T));
+    return value;
+  }
+  const char* take(std::size_t n) {
+    if (n > bytes_.size() - pos_) throw std::runtime_error("result message is truncated");
+    const char* p = bytes_.data() + pos_;
+    pos_ += n;
+    return p;
+  }
+  bool at_end() const { return pos_ == bytes_.size(); }
+
+ private:
+  const std::vector<char>& bytes_;
+  std::size_t pos_ = 0;
+};
+
+}  // namespace
+
+std::vector<char> pack_results(const ResultBatch& batch, std::size_t row_width) {
+  Writer w;
+  w.put(static_cast<std::uint64_t>(batch.size()));
+  w.put(static_cast<std::uint64_t>(row_width));
+  for (const auto& outcome : batch) {
+    if (outcome.row.size() != row_width)
+      throw std::invalid_argument("case " + std::to_string(outcome.case_index) + ": row has " +
+                                  std::to_string(outcome.row.size()) + " values, expected " +
+                                  std::to_string(row_width));
+    w.put(outcome.case_index);
+    w.put_bytes(reinterpret_cast<const char*>(outcome.row.data()), row_width * sizeof(double));
+    w.put(static_cast<std::uint64_t>(outcome.note.size()));
+    w.put_bytes(outcome.note.data(), outcome.note.size());
+  }
+  return w.take();
+}
+
+ResultBatch unpack_results(const std::vector<char>& bytes, std::size_t row_width) {
+  Reader r(bytes);
+  const auto count = r.get<std::uint64_t>();
+  const auto width = r.get<std::uint64_t>();
+  if (width != row_width)
+    throw std::runtime_error("result message has rows of " + std::to_string(width) +
+                             " values, expected " + std::to_string(row_width));
+  ResultBatch batch(count);
+  for (auto& outcome : batch) {
+    outcome.case_index = r.get<std::int64_t>();
+    outcome.row.resize(row_width);
+    std::memcpy(outcome.row.data(), r.take(row_width * sizeof(double)), row_width * sizeof(double));
+    const auto note_size = r.get<std::uint64_t>();
+    outcome.note.assign(r.take(note_size), note_size);
+  }
+  if (!r.at_end()) throw std::runtime_error("result message has trailing bytes");
+  return batch;
+}
+
+}  // namespace pcrf::parallel

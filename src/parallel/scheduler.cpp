@@ -1,0 +1,200 @@
+// Master–worker scheduling over MPI (see scheduler.hpp). Message protocol:
+//   worker → master  kTagRequest  packed ResultBatch (finished cases), asks for a batch
+//   worker → master  kTagFinish   packed ResultBatch, the worker's last message
+//   master → worker  kTagBatch    int64 case indices; empty means "stop"
+#include "pcrf/parallel/scheduler.hpp"
+
+#include <chrono>
+#include <list>
+#include <optional>
+#include <stdexcept>
+#include <thread>
+
+#include "parallel/local_channel.hpp"
+#include "pcrf/parallel/work_queue.hpp"
+
+namespace pcrf::parallel {
+namespace {
+
+using detail::Incoming;
+using detail::LocalChannel;
+
+constexpr int kTagRequest = 101;
+constexpr int kTagFinish = 102;
+constexpr int kTagBatch = 103;
+
+/// Short sleep used while waiting for a message that is not there yet.
+void nap() { std::this_thread::sleep_for(std::chrono::microseconds(100)); }
+
+/// A worker rank's link to rank 0.
+class MpiMasterLink final : public detail::MasterLink {
+ public:
+  MpiMasterLink(MPI_Comm comm, std::size_t row_width) : comm_(comm), row_width_(row_width) {}
+  ~MpiMasterLink() override { wait_send(); }
+
+  void request(ResultBatch finished) override { send(kTagRequest, finished); }
+  void finish(ResultBatch finished) override {
+    send(kTagFinish, finished);
+    wait_send();
+  }
+  std::vector<std::int64_t> receive_batch() override {
+    MPI_Status status;
+    for (int arrived = 0;;) {  // poll with naps rather than spin in MPI_Probe
+      MPI_Iprobe(0, kTagBatch, comm_, &arrived, &status);
+      if (arrived) break;
+      nap();
+    }
+    int count = 0;
+    MPI_Get_count(&status, MPI_INT64_T, &count);
+    std::vector<std::int64_t> batch(static_cast<std::size_t>(count));
+    MPI_Recv(batch.data(), count, MPI_INT64_T, 0, kTagBatch, comm_, MPI_STATUS_IGNORE);
+    return batch;
+  }
+
+ private:
+  void send(int tag, const ResultBatch& finished) {
+    wait_send();
+    buffer_ = pack_results(finished, row_width_);
+    MPI_Isend(buffer_.data(), static_cast<int>(buffer_.size()), MPI_BYTE, 0, tag, comm_, &pending_);
+  }
+  void wait_send() {
+    if (pending_ != MPI_REQUEST_NULL) MPI_Wait(&pending_, MPI_STATUS_IGNORE);
+  }
+
+  MPI_Comm comm_;
+  std::size_t row_width_;
+  std::vector<char> buffer_;
+  MPI_Request pending_ = MPI_REQUEST_NULL;
+};
+
+/// The master's side of the MPI workers: non-blocking receive and send.
+class MpiWorkers {
+ public:
+  MpiWorkers(MPI_Comm comm, std::size_t row_width) : comm_(comm), row_width_(row_width) {}
+
+  std::optional<Incoming> poll() {
+    reap_sends();
+    int arrived = 0;
+    MPI_Status status;
+    MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, comm_, &arrived, &status);
+    if (!arrived) return std::nullopt;
+    if (status.MPI_TAG != kTagRequest && status.MPI_TAG != kTagFinish)
+      throw std::runtime_error("scheduler: unexpected message tag " + std::to_string(status.MPI_TAG) +
+                               " from rank " + std::to_string(status.MPI_SOURCE));
+    int count = 0;
+    MPI_Get_count(&status, MPI_BYTE, &count);
+    std::vector<char> bytes(static_cast<std::size_t>(count));
+    MPI_Recv(bytes.data(), count, MPI_BYTE, status.MPI_SOURCE, status.MPI_TAG, comm_,
+             MPI_STATUS_IGNORE);
+    return Incoming{status.MPI_SOURCE, status.MPI_TAG == kTagFinish,
+                    unpack_results(bytes, row_width_)};
+  }
+
+  /// Non-blocking: a worker posts its receive only after its current batch, and the
+  /// master must not wait for that.
+  void reply(int rank, std::vector<std::int64_t> batch) {
+    sends_.push_back({MPI_REQUEST_NULL, std::move(batch)});
+    auto& send = sends_.back();
+    MPI_Isend(send.buffer.data(), static_cast<int>(send.buffer.size()), MPI_INT64_T, rank,
+              kTagBatch, comm_, &send.request);
+  }
+
+  void wait_all() {
+    for (auto& send : sends_) MPI_Wait(&send.request, MPI_STATUS_IGNORE);
+    sends_.clear();
+  }
+
+ private:
+  struct PendingSend {
+    MPI_Request request;
+    std::vector<std::int64_t> buffer;
+  };
+  void reap_sends() {
+    for (auto it = sends_.begin(); it != sends_.end();) {
+      int done = 0;
+      MPI_Test(&it->request, &done, MPI_STATUS_IGNORE);
+      it = done ? sends_.erase(it) : std::next(it);
+    }
+  }
+
+  MPI_Comm comm_;
+  std::size_t row_width_;
+  std::list<PendingSend> sends_;  // list: buffers must not move while in flight
+};
+
+/// The master's event loop over both kinds of worker.
+class Master {
+ public:
+  Master(MPI_Comm comm, WorkList work, const ScheduleOptions& options, int ranks)
+      : options_(options),
+        queue_(std::move(work.shared), std::move(work.pinned), ranks, options.fixed_batch,
+               options.max_batch),
+        remote_(comm, options.row_width),
+        active_workers_(ranks) {}
+
+  void run(const CaseEvaluator& evaluate, const OutcomeHandler& on_outcomes,
+           const IdleHandler& on_idle) {
+    std::thread local_worker([&] {
+      detail::worker_loop(local_, evaluate, options_.row_width, local_.stop_flag());
+    });
+    try {
+      loop(on_outcomes, on_idle);
+    } catch (...) {
+      local_.stop();
+      local_worker.join();
+      throw;
+    }
+    local_worker.join();
+    remote_.wait_all();
+  }
+
+ private:
+  void loop(const OutcomeHandler& on_outcomes, const IdleHandler& on_idle) {
+    while (active_workers_ > 0) {
+      bool busy = false;
+      while (auto message = remote_.poll()) busy = handle(std::move(*message), on_outcomes);
+      while (auto message = local_.poll()) busy = handle(std::move(*message), on_outcomes);
+      on_idle();
+      if (!busy) local_.wait(options_.poll_interval_s);
+    }
+  }
+
+  bool handle(Incoming message, const OutcomeHandler& on_outcomes) {
+    if (!message.results.empty()) on_outcomes(std::move(message.results));
+    if (message.finished) {
+      --active_workers_;
+      return true;
+    }
+    const bool in_process = message.worker == 0;
+    auto batch = queue_.take(in_process);
+    if (in_process)
+      local_.reply(std::move(batch));
+    else
+      remote_.reply(message.worker, std::move(batch));
+    return true;
+  }
+
+  ScheduleOptions options_;
+  WorkQueue queue_;
+  LocalChannel local_;
+  MpiWorkers remote_;
+  int active_workers_;
+};
+
+}  // namespace
+
+void run_master(MPI_Comm comm, WorkList work, const ScheduleOptions& options,
+                const CaseEvaluator& evaluate, const OutcomeHandler& on_outcomes,
+                const IdleHandler& on_idle) {
+  int ranks = 1;
+  MPI_Comm_size(comm, &ranks);
+  Master master(comm, std::move(work), options, ranks);
+  master.run(evaluate, on_outcomes, on_idle);
+}
+
+void run_worker(MPI_Comm comm, const ScheduleOptions& options, const CaseEvaluator& evaluate) {
+  MpiMasterLink link(comm, options.row_width);
+  detail::worker_loop(link, evaluate, options.row_width);
+}
+
+}  // namespace pcrf::parallel

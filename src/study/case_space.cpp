@@ -1,0 +1,152 @@
+// Enumeration of a study's cases (see case_space.hpp).
+#include "pcrf/study/case_space.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+
+#include "pcrf/study/study_parser.hpp"
+
+namespace pcrf::study {
+namespace {
+
+std::string shortest(double value) {
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, result.ptr);
+}
+
+bool same_value(double a, double b) { return std::fabs(a - b) <= 1e-12 * std::max(std::fabs(a), std::fabs(b)); }
+
+/// Position of `value` on an axis, or npos.
+std::size_t find_value(const std::vector<double>& axis, double value) {
+  for (std::size_t i = 0; i < axis.size(); ++i)
+    if (same_value(axis[i], value)) return i;
+  return std::string::npos;
+}
+
+}  // namespace
+
+CaseSpace::CaseSpace(const Study& study) : plan_(study.plan), base_(study.base), scales_(study.scales) {
+  for (const auto& r : study.records) record_names_.push_back(r.name);
+  names_ = {"record", "scale"};
+  shape_ = {record_names_.size(), scales_.size()};
+  if (plan_ == PlanKind::kGrid) {
+    for (std::size_t p = 0; p < kParameterCount; ++p) {
+      const auto& info = all_parameters()[p];
+      grid_values_[p] = study.axes[p].empty() ? std::vector<double>{base_.*info.member} : study.axes[p];
+      names_.emplace_back(info.name);
+      shape_.push_back(grid_values_[p].size());
+    }
+  } else if (plan_ == PlanKind::kOneAtATime) {
+    if (study.include_base) points_.push_back({"base", "none", base_});
+    for (std::size_t p = 0; p < kParameterCount; ++p) {
+      const auto& info = all_parameters()[p];
+      for (double v : study.axes[p]) {
+        CasePoint point{std::string(info.name) + "=" + shortest(v), std::string(info.name), base_};
+        point.parameters.*info.member = v;
+        points_.push_back(std::move(point));
+      }
+    }
+  } else {
+    for (const auto& c : study.cases) points_.push_back({c.label, "", c.parameters});
+  }
+  if (plan_ != PlanKind::kGrid) {
+    names_.emplace_back("case");
+    shape_.push_back(points_.size());
+  }
+  for (auto n : shape_) size_ *= static_cast<std::int64_t>(n);
+}
+
+std::vector<std::size_t> CaseSpace::coordinates(std::int64_t index) const {
+  std::vector<std::size_t> coords(shape_.size());
+  auto rest = static_cast<std::size_t>(index);
+  for (std::size_t d = shape_.size(); d-- > 0;) {
+    coords[d] = rest % shape_[d];
+    rest /= shape_[d];
+  }
+  return coords;
+}
+
+std::int64_t CaseSpace::index(const std::vector<std::size_t>& coordinates) const {
+  std::size_t index = 0;
+  for (std::size_t d = 0; d < shape_.size(); ++d) index = index * shape_[d] + coordinates.at(d);
+  return static_cast<std::int64_t>(index);
+}
+
+CaseSpec CaseSpace::case_at(std::int64_t index) const {
+  const auto c = coordinates(index);
+  CaseSpec spec{c[0], scales_[c[1]], base_};
+  if (plan_ == PlanKind::kGrid) {
+    for (std::size_t p = 0; p < kParameterCount; ++p)
+      spec.parameters.*all_parameters()[p].member = grid_values_[p][c[2 + p]];
+  } else {
+    spec.parameters = points_[c[2]].parameters;
+  }
+  return spec;
+}
+
+std::vector<FrameParameters> CaseSpace::frames() const {
+  if (plan_ != PlanKind::kGrid) {
+    std::vector<FrameParameters> frames;
+    for (const auto& p : points_) frames.push_back(p.parameters);
+    return frames;
+  }
+  std::vector<FrameParameters> frames{base_};
+  for (std::size_t p = 0; p < kParameterCount; ++p) {
+    std::vector<FrameParameters> next;
+    next.reserve(frames.size() * grid_values_[p].size());
+    for (const auto& f : frames)
+      for (double v : grid_values_[p]) {
+        next.push_back(f);
+        next.back().*all_parameters()[p].member = v;
+      }
+    frames = std::move(next);
+  }
+  return frames;
+}
+
+std::int64_t CaseSpace::resolve(const HistoryRequest& request) const {
+  auto fail = [&](const std::string& problem) -> std::size_t {
+    throw StudyError(request.declared_at + ": outputs.histories \"" + request.label + "\": " + problem);
+  };
+  auto pick_single = [&](std::size_t size, const std::string& key) -> std::size_t {
+    if (size == 1) return 0;
+    return fail("the " + key + " axis has " + std::to_string(size) + " values: give `" + key + "`");
+  };
+  std::vector<std::size_t> coords(shape_.size());
+  if (request.record) {
+    auto it = std::find(record_names_.begin(), record_names_.end(), *request.record);
+    coords[0] = it != record_names_.end() ? static_cast<std::size_t>(it - record_names_.begin())
+                                          : fail("no record is named \"" + *request.record + "\"");
+  } else {
+    coords[0] = pick_single(record_names_.size(), "record");
+  }
+  if (request.scale) {
+    coords[1] = find_value(scales_, *request.scale);
+    if (coords[1] == std::string::npos) fail("scale " + shortest(*request.scale) + " is not on the scale axis");
+  } else {
+    coords[1] = pick_single(scales_.size(), "scale");
+  }
+  if (plan_ == PlanKind::kGrid) {
+    for (std::size_t p = 0; p < kParameterCount; ++p) {
+      const std::string key(all_parameters()[p].name);
+      if (!request.parameters[p]) {
+        coords[2 + p] = pick_single(grid_values_[p].size(), key);
+        continue;
+      }
+      coords[2 + p] = find_value(grid_values_[p], *request.parameters[p]);
+      if (coords[2 + p] == std::string::npos)
+        fail(key + " " + shortest(*request.parameters[p]) + " is not on the " + key + " axis");
+    }
+  } else if (request.case_label) {
+    auto it = std::find_if(points_.begin(), points_.end(), [&](const CasePoint& p) { return p.label == *request.case_label; });
+    coords[2] = it != points_.end() ? static_cast<std::size_t>(it - points_.begin())
+                                    : fail("no case is labelled \"" + *request.case_label + "\"");
+  } else {
+    coords[2] = pick_single(points_.size(), "case");
+  }
+  return index(coords);
+}
+
+}  // namespace pcrf::study

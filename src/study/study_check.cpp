@@ -1,0 +1,59 @@
+// Up-front checks of a study (see study_check.hpp).
+#include "pcrf/study/study_check.hpp"
+
+#include <sstream>
+
+#include "pcrf/study/fingerprint.hpp"
+#include "pcrf/study/study_parser.hpp"
+
+namespace pcrf::study {
+namespace {
+
+void check_records(const Study& study, RecordCache& records) {
+  for (std::size_t r = 0; r < study.records.size(); ++r) {
+    const auto& source = study.records[r];
+    try {
+      records.put(r, load_record(source));
+    } catch (const std::exception& e) {
+      throw StudyError(source.declared_at + ": records: cannot load record \"" + source.name + "\" (" +
+                       source.describe() + "): " + e.what());
+    }
+  }
+}
+
+std::string describe(const FrameParameters& p) {
+  std::ostringstream out;
+  for (const auto& info : all_parameters()) out << (info.name == "kappa" ? "" : ", ") << info.name << '=' << p.*info.member;
+  return out.str();
+}
+
+void check_frames(const Study& study, const CaseSpace& space) {
+  for (const auto& parameters : space.frames()) {
+    try {
+      (void)make_frame(parameters);
+    } catch (const std::exception& e) {
+      const char* where = study.plan == PlanKind::kList ? "cases" : "axes";
+      throw StudyError(study.file + ": " + where + ": impossible geometry at " + describe(parameters) + ": " + e.what());
+    }
+  }
+}
+
+}  // namespace
+
+CheckedStudy check_study(const Study& study, const CaseSpace& space, RecordCache& records) {
+  check_records(study, records);
+  check_frames(study, space);
+  CheckedStudy checked;
+  for (const auto& h : study.histories) {
+    const std::int64_t index = space.resolve(h);
+    for (std::size_t k = 0; k < checked.history_cases.size(); ++k)
+      if (checked.history_cases[k] == index)
+        throw StudyError(h.declared_at + ": outputs.histories \"" + h.label + "\": names the same case as \"" +
+                         study.histories[k].label + "\"");
+    checked.history_cases.push_back(index);
+  }
+  checked.fingerprint = study_fingerprint(study, space, records);
+  return checked;
+}
+
+}  // namespace pcrf::study

@@ -1,0 +1,177 @@
+// Mapping of a study onto its result cube (see study_cube.hpp).
+#include "pcrf/study/study_cube.hpp"
+
+#include <chrono>
+#include <ctime>
+
+#include "pcrf/metrics/case_result.hpp"
+#include "pcrf/version.hpp"
+
+namespace pcrf::study {
+namespace {
+
+using cube::Attribute;
+using cube::Coordinate;
+
+Coordinate numbers(std::string name, std::string dimension, std::string units, std::string long_name,
+                   std::vector<double> values) {
+  Coordinate c;
+  c.name = std::move(name);
+  c.dimension = std::move(dimension);
+  c.units = std::move(units);
+  c.long_name = std::move(long_name);
+  c.numbers = std::move(values);
+  return c;
+}
+
+Coordinate texts(std::string name, std::string dimension, std::string long_name, std::vector<std::string> values) {
+  Coordinate c;
+  c.name = std::move(name);
+  c.dimension = std::move(dimension);
+  c.long_name = std::move(long_name);
+  c.strings = std::move(values);
+  c.is_text = true;
+  return c;
+}
+
+std::string utc_now() {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char buffer[32];
+  std::strftime(buffer, sizeof buffer, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return buffer;
+}
+
+void add_record_and_scale(const Study& study, const CaseSpace& space, std::vector<Coordinate>& coords) {
+  coords.push_back(texts("record", "record", "ground motion record", space.record_names()));
+  std::vector<std::string> sources;
+  for (const auto& r : study.records) sources.push_back(r.describe());
+  coords.push_back(texts("record_source", "record", "where the record comes from", sources));
+  coords.push_back(numbers("scale", "scale", "1", "factor applied to the record's accelerations", space.scales()));
+}
+
+void add_case_axis(const CaseSpace& space, std::vector<Coordinate>& coords) {
+  const auto& points = space.points();
+  std::vector<double> index(points.size());
+  std::vector<std::string> labels, varied;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    index[i] = static_cast<double>(i);
+    labels.push_back(points[i].label);
+    varied.push_back(points[i].varied);
+  }
+  Coordinate axis = numbers("case", "case", "", "frame number", index);
+  axis.is_index = true;
+  coords.push_back(std::move(axis));
+  coords.push_back(texts("case_label", "case", "frame label", labels));
+  if (space.plan() == PlanKind::kOneAtATime)
+    coords.push_back(texts("varied_parameter", "case", "parameter varied from the base point (none: the base point)", varied));
+  for (const auto& info : all_parameters()) {
+    std::vector<double> values;
+    for (const auto& p : points) values.push_back(p.parameters.*info.member);
+    coords.push_back(numbers(std::string(info.name), "case", "1", std::string(info.long_name), values));
+  }
+}
+
+std::vector<Attribute> global_attributes(const Study& study, const std::string& fingerprint) {
+  const auto& p = study.physics;
+  const auto& s = study.solver;
+  std::vector<Attribute> a{
+      {"Conventions", std::string("CF-1.8")},
+      {"title", "pcrf study " + study.name},
+      {"source", std::string("pcrf ") + kVersion},
+      {"pcrf_version", std::string(kVersion)},
+      {"date_created", utc_now()},
+      {"study_name", study.name},
+      {"study_description", study.description},
+      {"study_file", study.file},
+      {"study_text", study.text},
+      {cube::kFingerprintName, fingerprint},
+      {"plan", std::string(plan_name(study.plan))},
+      {"physics_uplift", to_string(p.uplift)},
+      {"physics_fracture_strain", p.fracture_strain},
+      {"physics_tail_s", p.tail_s},
+      {"physics_zeno_time_s", p.zeno_time_s},
+      {"physics_theta0_rad", p.theta0_rad},
+      {"physics_omega0_rad_s", p.omega0_rad_s},
+      {"solver_preset", study.solver_preset},
+      {"solver_integrator", to_string(s.integrator)},
+      {"solver_rtol", s.rtol},
+      {"solver_atol_theta_rad", s.atol_theta_rad},
+      {"solver_atol_omega_rad_s", s.atol_omega_rad_s},
+      {"solver_max_step_s", s.max_step_s},
+      {"solver_fixed_step_s", s.fixed_step_s},
+      {"solver_stop_at_samples", static_cast<std::int64_t>(s.stop_at_samples ? 1 : 0)},
+      {"solver_max_steps", static_cast<std::int64_t>(s.max_steps)},
+      {"solver_wall_time_limit_s", s.wall_time_limit_s},
+      {"frame_h_m", study.base.h_m},
+      {"frame_m_c_kg", study.base.m_c_kg},
+      {"gravity_m_s2", kGravity_m_s2},
+  };
+  for (const auto& info : all_parameters()) a.push_back({"base_" + std::string(info.name), study.base.*info.member});
+  return a;
+}
+
+}  // namespace
+
+cube::CubeLayout make_cube_layout(const Study& study, const CaseSpace& space, const std::string& fingerprint) {
+  cube::CubeLayout layout;
+  for (std::size_t d = 0; d < space.shape().size(); ++d)
+    layout.dimensions.push_back({space.dimension_names()[d], space.shape()[d]});
+  add_record_and_scale(study, space, layout.coordinates);
+  if (space.plan() == PlanKind::kGrid) {
+    for (std::size_t p = 0; p < kParameterCount; ++p) {
+      const auto& info = all_parameters()[p];
+      layout.coordinates.push_back(
+          numbers(std::string(info.name), std::string(info.name), "1", std::string(info.long_name), space.grid_values(p)));
+    }
+  } else {
+    add_case_axis(space, layout.coordinates);
+  }
+  for (const auto& name : study.metrics) {
+    const MetricInfo* m = find_metric(name);
+    layout.metrics.push_back({name, std::string(m->units), std::string(m->description)});
+  }
+  for (CaseStatus status : all_final_statuses())
+    layout.status_flags.push_back({static_cast<std::int8_t>(status), std::string(status_name(status))});
+  layout.attributes = global_attributes(study, fingerprint);
+  return layout;
+}
+
+cube::HistoryTable make_history_table(const std::string& label, std::int64_t case_index, const Study& study,
+                                      const CaseSpace& space, const std::vector<HistorySample>& samples) {
+  struct Column {
+    const char* name;
+    const char* units;
+    const char* long_name;
+    double HistorySample::*member;
+  };
+  static const Column columns[] = {
+      {"t_s", "s", "time", &HistorySample::t_s},
+      {"theta1_rad", "rad", "rotation of the pivoting column", &HistorySample::theta1_rad},
+      {"omega1_rad_s", "rad/s", "angular velocity of the pivoting column", &HistorySample::omega1_rad_s},
+      {"theta2_rad", "rad", "rotation of the beam", &HistorySample::theta2_rad},
+      {"theta3_rad", "rad", "rotation of the other column", &HistorySample::theta3_rad},
+      {"strain_column_left", "1", "left column tendon strain", &HistorySample::strain_column_left},
+      {"strain_column_right", "1", "right column tendon strain", &HistorySample::strain_column_right},
+      {"strain_beam", "1", "beam tendon strain", &HistorySample::strain_beam},
+      {"ground_accel_m_s2", "m/s2", "ground acceleration (scaled)", &HistorySample::ground_accel_m_s2},
+  };
+  cube::HistoryTable table;
+  table.name = label;
+  for (const auto& c : columns) {
+    table.columns.push_back({c.name, c.units, c.long_name});
+    std::vector<double> values;
+    values.reserve(samples.size());
+    for (const auto& s : samples) values.push_back(s.*c.member);
+    table.values.push_back(std::move(values));
+  }
+  const CaseSpec spec = space.case_at(case_index);
+  table.attributes = {{"case_index", static_cast<std::int64_t>(case_index)},
+                      {"record", study.records[spec.record].name},
+                      {"scale", spec.scale}};
+  for (const auto& info : all_parameters()) table.attributes.push_back({std::string(info.name), spec.parameters.*info.member});
+  return table;
+}
+
+}  // namespace pcrf::study

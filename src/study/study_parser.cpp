@@ -1,0 +1,475 @@
+// Study file parser (see study_parser.hpp and studies/README.md for the keys).
+#include "pcrf/study/study_parser.hpp"
+
+#include <fnmatch.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "pcrf/metrics/case_result.hpp"
+#include "study/toml_fields.hpp"
+
+namespace pcrf::study {
+
+std::string_view plan_name(PlanKind plan) {
+  switch (plan) {
+    case PlanKind::kGrid: return "grid";
+    case PlanKind::kOneAtATime: return "one-at-a-time";
+    case PlanKind::kList: return "list";
+  }
+  return "grid";
+}
+
+namespace {
+
+using detail::Fields;
+
+std::string number_text(double value) {
+  std::ostringstream out;
+  out.precision(17);
+  out << value;
+  return out.str();
+}
+
+/// Problem with one value of a parameter taken alone; empty when fine.
+std::string parameter_problem(std::size_t parameter, double value) {
+  const auto name = all_parameters()[parameter].name;
+  if (name == "lambda_h") return value > 0.0 && value < 1.0 ? "" : "must be between 0 and 1 (exclusive)";
+  if (name == "pi_sigma_b" || name == "pi_sigma_c") return value >= 0.0 ? "" : "must not be negative";
+  return value > 0.0 ? "" : "must be positive";
+}
+
+// ---- axis values: a number, a list of numbers, or a range table -------------------------
+
+std::vector<double> read_range(const toml::table& table, const std::string& path, const std::string& file) {
+  Fields range(table, path, file, {"from", "to", "count", "spacing"});
+  for (auto key : {"from", "to", "count"})
+    if (!range.has(key)) range.fail(key, "a range needs from, to and count");
+  const double from = *range.number("from");
+  const double to = *range.number("to");
+  const auto count = *range.integer("count");
+  const std::string spacing = range.text("spacing").value_or("linear");
+  if (count < 1) range.fail("count", "must be at least 1 (got " + std::to_string(count) + ")");
+  if (to < from) range.fail("to", "the range runs backwards (to " + number_text(to) + " < from " + number_text(from) + ")");
+  if (count == 1 && to != from) range.fail("count", "a range from " + number_text(from) + " to " + number_text(to) + " needs at least 2 values");
+  if (count > 1 && to == from) range.fail("count", "an empty range (from = to) has one value: use count = 1");
+  if (spacing != "linear" && spacing != "log") range.fail("spacing", "expected \"linear\" or \"log\", got \"" + spacing + "\"");
+  if (spacing == "log" && from <= 0.0) range.fail("from", "a log range must start above 0");
+  std::vector<double> values(static_cast<std::size_t>(count));
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const double t = count == 1 ? 0.0 : static_cast<double>(i) / static_cast<double>(count - 1);
+    values[i] = spacing == "log" ? from * std::pow(to / from, t) : from + t * (to - from);
+  }
+  values.front() = from;  // exact ends, whatever the rounding in between
+  values.back() = to;
+  return values;
+}
+
+std::vector<double> read_values(const Fields& fields, std::string_view key) {
+  const toml::node& node = *fields.node(key);
+  const std::string path = fields.path(key);
+  if (node.is_number()) return {Fields::number_at(fields.file(), node, path)};
+  if (const auto* table = node.as_table()) return read_range(*table, path, fields.file());
+  const auto* array = node.as_array();
+  if (array == nullptr)
+    fields.fail(key, "expected a number, a list of numbers or a range {from, to, count}, got " +
+                         Fields::type_name(node));
+  if (array->empty()) fields.fail(key, "empty list");
+  std::vector<double> values;
+  for (std::size_t i = 0; i < array->size(); ++i)
+    values.push_back(Fields::number_at(fields.file(), (*array)[i], path + "[" + std::to_string(i) + "]"));
+  return values;
+}
+
+/// Axis values must be distinct (they label a dimension) and each valid alone.
+void check_axis(const Fields& fields, std::string_view key, const std::vector<double>& values,
+                std::size_t parameter /* kParameterCount: the scale axis */) {
+  std::vector<double> sorted = values;
+  std::sort(sorted.begin(), sorted.end());
+  if (auto dup = std::adjacent_find(sorted.begin(), sorted.end()); dup != sorted.end())
+    fields.fail(key, "value " + number_text(*dup) + " appears twice");
+  for (double v : values) {
+    const std::string problem = parameter < kParameterCount ? parameter_problem(parameter, v)
+                                : (v > 0.0 ? "" : "must be positive");
+    if (!problem.empty()) fields.fail(key, "value " + number_text(v) + " " + problem);
+  }
+}
+
+/// A single parameter value (in [base], [[cases]] or a history selector).
+double read_parameter(const Fields& fields, std::size_t parameter) {
+  const auto key = all_parameters()[parameter].name;
+  const double value = *fields.number(key);
+  if (const auto problem = parameter_problem(parameter, value); !problem.empty())
+    fields.fail(key, "value " + number_text(value) + " " + problem);
+  return value;
+}
+
+// ---- sections ----------------------------------------------------------------------------
+
+void read_study_section(const Fields& top, Study& s) {
+  s.name = std::filesystem::path(s.file).stem().string();
+  const auto* table = top.subtable("study");
+  if (table == nullptr) return;
+  Fields f(*table, "study", s.file, {"name", "description"});
+  s.name = f.text("name").value_or(s.name);
+  s.description = f.text("description").value_or("");
+}
+
+void read_plan(const Fields& top, Study& s) {
+  const auto* table = top.subtable("plan");
+  if (table == nullptr) return;
+  Fields f(*table, "plan", s.file, {"kind", "include_base"});
+  const std::string kind = f.text("kind").value_or("grid");
+  if (kind == "grid") s.plan = PlanKind::kGrid;
+  else if (kind == "one-at-a-time") s.plan = PlanKind::kOneAtATime;
+  else if (kind == "list") s.plan = PlanKind::kList;
+  else f.fail("kind", "expected \"grid\", \"one-at-a-time\" or \"list\", got \"" + kind + "\"");
+  if (f.has("include_base") && s.plan != PlanKind::kOneAtATime)
+    f.fail("include_base", "only applies to plan \"one-at-a-time\"");
+  s.include_base = f.flag("include_base").value_or(true);
+}
+
+void read_base(const Fields& top, Study& s) {
+  const auto* table = top.subtable("base");
+  if (table == nullptr) return;
+  Fields f(*table, "base", s.file,
+           {"kappa", "lambda", "tan_alpha", "lambda_h", "pi_sigma_b", "pi_sigma_c", "pi_e_b", "pi_e_c", "h_m", "m_c_kg"});
+  for (std::size_t p = 0; p < kParameterCount; ++p)
+    if (f.has(all_parameters()[p].name)) s.base.*all_parameters()[p].member = read_parameter(f, p);
+  for (auto [key, member] : {std::pair{"h_m", &FrameParameters::h_m}, std::pair{"m_c_kg", &FrameParameters::m_c_kg}}) {
+    if (!f.has(key)) continue;
+    const double value = *f.number(key);
+    if (value <= 0.0) f.fail(key, "must be positive (got " + number_text(value) + ")");
+    s.base.*member = value;
+  }
+}
+
+void read_axes(const Fields& top, Study& s) {
+  const auto* table = top.subtable("axes");
+  if (table != nullptr) {
+    Fields f(*table, "axes", s.file,
+             {"scale", "kappa", "lambda", "tan_alpha", "lambda_h", "pi_sigma_b", "pi_sigma_c", "pi_e_b", "pi_e_c"});
+    if (f.has("scale")) {
+      s.scales = read_values(f, "scale");
+      check_axis(f, "scale", s.scales, kParameterCount);
+    }
+    for (std::size_t p = 0; p < kParameterCount; ++p) {
+      const auto key = all_parameters()[p].name;
+      if (!f.has(key)) continue;
+      if (s.plan == PlanKind::kList)
+        f.fail(key, "plan \"list\" takes its parameters from [[cases]], not from [axes]");
+      s.axes[p] = read_values(f, key);
+      check_axis(f, key, s.axes[p], p);
+    }
+  }
+  const bool swept = std::any_of(s.axes.begin(), s.axes.end(), [](const auto& v) { return !v.empty(); });
+  if (s.plan == PlanKind::kOneAtATime && !swept)
+    top.fail("axes", "plan \"one-at-a-time\" needs at least one parameter to sweep in [axes]");
+}
+
+void read_cases(const Fields& top, Study& s) {
+  const auto* array = top.array("cases");
+  if (array == nullptr) {
+    if (s.plan == PlanKind::kList) top.fail("cases", "plan \"list\" needs at least one [[cases]] table");
+    return;
+  }
+  if (s.plan != PlanKind::kList) top.fail("cases", "[[cases]] only applies to plan \"list\"");
+  if (array->empty()) top.fail("cases", "empty list");
+  std::set<std::string> labels;
+  for (std::size_t i = 0; i < array->size(); ++i) {
+    const std::string path = "cases[" + std::to_string(i) + "]";
+    const auto* table = (*array)[i].as_table();
+    if (table == nullptr) Fields::fail_at(s.file, &(*array)[i], path, "expected a table");
+    Fields f(*table, path, s.file,
+             {"label", "kappa", "lambda", "tan_alpha", "lambda_h", "pi_sigma_b", "pi_sigma_c", "pi_e_b", "pi_e_c"});
+    ListedCase c{f.text("label").value_or("case" + std::to_string(i)), s.base};
+    if (c.label.empty()) f.fail("label", "must not be empty");
+    if (!labels.insert(c.label).second) f.fail("label", "\"" + c.label + "\" is used by another case");
+    for (std::size_t p = 0; p < kParameterCount; ++p)
+      if (f.has(all_parameters()[p].name)) c.parameters.*all_parameters()[p].member = read_parameter(f, p);
+    s.cases.push_back(std::move(c));
+  }
+}
+
+// ---- records -----------------------------------------------------------------------------
+
+bool has_glob(const std::string& text) { return text.find_first_of("*?[") != std::string::npos; }
+
+/// Files named by one entry: a path, or a glob in its last component (sorted matches).
+std::vector<std::filesystem::path> resolve_files(const Fields& f, std::string_view key,
+                                                 const std::string& entry, const std::filesystem::path& base_dir) {
+  std::filesystem::path path(entry);
+  if (path.is_relative()) path = base_dir / path;
+  path = path.lexically_normal();
+  if (!has_glob(path.filename().string())) {
+    if (has_glob(path.parent_path().string())) f.fail(key, "wildcards are allowed in the file name only: " + entry);
+    if (!std::filesystem::is_regular_file(path)) f.fail(key, "file not found: " + path.string());
+    return {path};
+  }
+  if (has_glob(path.parent_path().string())) f.fail(key, "wildcards are allowed in the file name only: " + entry);
+  std::vector<std::filesystem::path> matches;
+  std::error_code error;
+  for (const auto& item : std::filesystem::directory_iterator(path.parent_path(), error))
+    if (item.is_regular_file() && ::fnmatch(path.filename().c_str(), item.path().filename().c_str(), 0) == 0)
+      matches.push_back(item.path());
+  if (matches.empty()) f.fail(key, "no file matches " + path.string());
+  std::sort(matches.begin(), matches.end());
+  return matches;
+}
+
+std::vector<RecordSource> read_record_entry(const Fields& f, const Study& s) {
+  const int given = int(f.has("file")) + int(f.has("files")) + int(f.has("synthetic"));
+  if (given != 1) f.fail("file", "give exactly one of file, files or synthetic");
+  std::vector<RecordSource> sources;
+  if (f.has("synthetic")) {
+    for (const auto key : {"format", "units", "dt_s"})
+      if (f.has(key)) f.fail(key, "only applies to record files");
+    for (const auto& text : f.texts("synthetic")) sources.push_back({text, std::nullopt, text, f.where("synthetic")});
+  } else {
+    const std::string_view key = f.has("file") ? "file" : "files";
+    if (key == "file" && !f.node("file")->is_string()) f.fail("file", "expected a string (use `files` for a list)");
+    RecordFileSpec spec;
+    try {
+      if (f.has("units")) spec.unit = parse_accel_unit(*f.text("units"));
+    } catch (const std::exception& e) {
+      f.fail("units", e.what());
+    }
+    std::optional<RecordFormat> format;
+    try {
+      if (f.has("format")) format = parse_record_format(*f.text("format"));
+    } catch (const std::exception& e) {
+      f.fail("format", e.what());
+    }
+    for (const auto& entry : f.texts(key)) {
+      for (const auto& path : resolve_files(f, key, entry, s.base_dir)) {
+        RecordFileSpec file_spec = spec;
+        file_spec.path = path;
+        file_spec.format = format.value_or(guess_record_format(path));
+        if (file_spec.format == RecordFormat::kOneColumn) {
+          if (!f.has("dt_s")) f.fail("dt_s", "one-column records need dt_s (the sample interval)");
+          file_spec.dt_s = *f.number("dt_s");
+          if (file_spec.dt_s <= 0.0) f.fail("dt_s", "must be positive");
+        } else if (f.has("dt_s")) {
+          f.fail("dt_s", "only applies to one-column records (the others carry their time step)");
+        }
+        sources.push_back({path.stem().string(), file_spec, "", f.where(key)});
+      }
+    }
+  }
+  if (f.has("name")) {
+    if (sources.size() != 1) f.fail("name", "only an entry that gives exactly one record can name it");
+    sources.front().name = *f.text("name");
+    if (sources.front().name.empty()) f.fail("name", "must not be empty");
+  }
+  return sources;
+}
+
+void read_records(const Fields& top, Study& s) {
+  const auto* array = top.array("records");
+  if (array == nullptr || array->empty())
+    top.fail("records", "a study needs at least one [[records]] table (file, files or synthetic)");
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < array->size(); ++i) {
+    const std::string path = "records[" + std::to_string(i) + "]";
+    const auto* table = (*array)[i].as_table();
+    if (table == nullptr) Fields::fail_at(s.file, &(*array)[i], path, "expected a table ([[records]])");
+    Fields f(*table, path, s.file, {"file", "files", "synthetic", "format", "units", "dt_s", "name"});
+    for (auto& source : read_record_entry(f, s)) {
+      if (!names.insert(source.name).second)
+        f.fail(f.has("synthetic") ? "synthetic" : (f.has("file") ? "file" : "files"),
+               "two records are named \"" + source.name + "\" (give one a `name`)");
+      s.records.push_back(std::move(source));
+    }
+  }
+}
+
+// ---- physics, solver, outputs, run -------------------------------------------------------
+
+double positive(const Fields& f, std::string_view key, double fallback, bool zero_ok) {
+  if (!f.has(key)) return fallback;
+  const double value = *f.number(key);
+  if (zero_ok ? value < 0.0 : value <= 0.0)
+    f.fail(key, std::string(zero_ok ? "must not be negative" : "must be positive") + " (got " + number_text(value) + ")");
+  return value;
+}
+
+void read_physics(const Fields& top, Study& s) {
+  const auto* table = top.subtable("physics");
+  if (table == nullptr) return;
+  Fields f(*table, "physics", s.file,
+           {"uplift", "fracture_strain", "tail_s", "zeno_time_s", "theta0_rad", "omega0_rad_s"});
+  try {
+    if (f.has("uplift")) s.physics.uplift = parse_uplift_criterion(*f.text("uplift"));
+  } catch (const std::invalid_argument& e) {
+    f.fail("uplift", e.what());
+  }
+  s.physics.fracture_strain = positive(f, "fracture_strain", s.physics.fracture_strain, false);
+  s.physics.tail_s = positive(f, "tail_s", s.physics.tail_s, true);
+  s.physics.zeno_time_s = positive(f, "zeno_time_s", s.physics.zeno_time_s, true);
+  s.physics.theta0_rad = f.number("theta0_rad").value_or(s.physics.theta0_rad);
+  s.physics.omega0_rad_s = f.number("omega0_rad_s").value_or(s.physics.omega0_rad_s);
+}
+
+void read_solver(const Fields& top, Study& s) {
+  s.solver = preset_settings("balanced");  // the same default as `pcrf run`
+  const auto* table = top.subtable("solver");
+  if (table == nullptr) return;
+  Fields f(*table, "solver", s.file,
+           {"preset", "integrator", "rtol", "atol_theta_rad", "atol_omega_rad_s", "max_step_s", "fixed_step_s",
+            "stop_at_samples", "max_steps", "wall_time_limit_s"});
+  try {
+    if (f.has("preset")) {
+      s.solver_preset = *f.text("preset");
+      s.solver = preset_settings(s.solver_preset);
+    }
+  } catch (const std::invalid_argument& e) {
+    f.fail("preset", e.what());
+  }
+  try {
+    if (f.has("integrator")) s.solver.integrator = parse_integrator(*f.text("integrator"));
+  } catch (const std::invalid_argument& e) {
+    f.fail("integrator", e.what());
+  }
+  s.solver.rtol = positive(f, "rtol", s.solver.rtol, false);
+  s.solver.atol_theta_rad = positive(f, "atol_theta_rad", s.solver.atol_theta_rad, false);
+  s.solver.atol_omega_rad_s = positive(f, "atol_omega_rad_s", s.solver.atol_omega_rad_s, false);
+  s.solver.max_step_s = positive(f, "max_step_s", s.solver.max_step_s, true);
+  s.solver.fixed_step_s = positive(f, "fixed_step_s", s.solver.fixed_step_s, true);
+  s.solver.stop_at_samples = f.flag("stop_at_samples").value_or(s.solver.stop_at_samples);
+  s.solver.wall_time_limit_s = positive(f, "wall_time_limit_s", s.solver.wall_time_limit_s, true);
+  if (f.has("max_steps")) {
+    const auto steps = *f.integer("max_steps");
+    if (steps < 1) f.fail("max_steps", "must be at least 1");
+    s.solver.max_steps = static_cast<long>(steps);
+  }
+}
+
+std::vector<std::string> metric_names() {
+  std::vector<std::string> names;
+  for (const auto& m : all_metrics()) names.emplace_back(m.name);
+  return names;
+}
+
+void read_metrics(const Fields& f, Study& s) {
+  if (!f.has("metrics")) return;
+  const auto names = f.texts("metrics");
+  std::vector<std::string_view> known;
+  for (const auto& m : all_metrics()) known.push_back(m.name);
+  s.metrics.clear();
+  for (const auto& name : names) {
+    if (find_metric(name) == nullptr) {
+      const auto hint = detail::closest_word(name, known);
+      f.fail("metrics", "unknown metric \"" + name + "\"" + (hint.empty() ? "" : " (did you mean \"" + hint + "\"?)"));
+    }
+    if (std::find(s.metrics.begin(), s.metrics.end(), name) != s.metrics.end())
+      f.fail("metrics", "metric \"" + name + "\" is listed twice");
+    s.metrics.push_back(name);
+  }
+}
+
+bool valid_group_name(const std::string& name) {
+  return !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+  });
+}
+
+void read_histories(const Fields& outputs, Study& s) {
+  const auto* array = outputs.array("histories");
+  if (array == nullptr) return;
+  std::set<std::string> labels;
+  for (std::size_t i = 0; i < array->size(); ++i) {
+    const std::string path = "outputs.histories[" + std::to_string(i) + "]";
+    const auto* table = (*array)[i].as_table();
+    if (table == nullptr) Fields::fail_at(s.file, &(*array)[i], path, "expected a table ([[outputs.histories]])");
+    Fields f(*table, path, s.file,
+             {"label", "record", "scale", "case", "kappa", "lambda", "tan_alpha", "lambda_h", "pi_sigma_b",
+              "pi_sigma_c", "pi_e_b", "pi_e_c"});
+    HistoryRequest request;
+    request.declared_at = f.where("label");
+    if (!f.has("label")) f.fail("label", "a history needs a label (its group name)");
+    request.label = *f.text("label");
+    if (!valid_group_name(request.label)) f.fail("label", "use letters, digits, '_', '-' and '.' only");
+    if (!labels.insert(request.label).second) f.fail("label", "\"" + request.label + "\" is used twice");
+    request.record = f.text("record");
+    request.scale = f.number("scale");
+    request.case_label = f.text("case");
+    if (request.case_label && s.plan == PlanKind::kGrid) f.fail("case", "plan \"grid\" selects cases by parameter values");
+    for (std::size_t p = 0; p < kParameterCount; ++p) {
+      if (!f.has(all_parameters()[p].name)) continue;
+      if (s.plan != PlanKind::kGrid) f.fail(all_parameters()[p].name, "plans other than \"grid\" select cases by `case` label");
+      request.parameters[p] = f.number(all_parameters()[p].name);
+    }
+    s.histories.push_back(std::move(request));
+  }
+}
+
+void read_outputs(const Fields& top, Study& s) {
+  s.metrics = metric_names();
+  const auto* table = top.subtable("outputs");
+  if (table == nullptr) return;
+  Fields f(*table, "outputs", s.file, {"metrics", "histories"});
+  read_metrics(f, s);
+  read_histories(f, s);
+}
+
+void read_run(const Fields& top, Study& s) {
+  const auto* table = top.subtable("run");
+  if (table == nullptr) return;
+  Fields f(*table, "run", s.file, {"flush_interval_s", "progress_interval_s", "batch_size"});
+  s.run.flush_interval_s = positive(f, "flush_interval_s", s.run.flush_interval_s, false);
+  s.run.progress_interval_s = positive(f, "progress_interval_s", s.run.progress_interval_s, true);
+  if (f.has("batch_size")) {
+    const auto size = *f.integer("batch_size");
+    if (size < 0) f.fail("batch_size", "must not be negative (0: automatic)");
+    s.run.batch_size = static_cast<std::size_t>(size);
+  }
+}
+
+}  // namespace
+
+Study parse_study(const std::string& text, const std::string& file, const std::filesystem::path& base_dir) {
+  toml::table root;
+  try {
+    root = toml::parse(text, file);
+  } catch (const toml::parse_error& e) {
+    throw StudyError(file + ":" + std::to_string(e.source().begin.line) + ": not valid TOML: " +
+                     std::string(e.description()));
+  }
+  Study s;
+  s.file = file;
+  s.base_dir = base_dir;
+  s.text = text;
+  Fields top(root, "", file,
+             {"study", "plan", "records", "axes", "base", "cases", "physics", "solver", "outputs", "run"});
+  read_study_section(top, s);
+  read_plan(top, s);
+  read_base(top, s);  // before axes and cases: they start from the base point
+  read_axes(top, s);
+  read_cases(top, s);
+  read_records(top, s);
+  read_physics(top, s);
+  read_solver(top, s);
+  read_outputs(top, s);
+  read_run(top, s);
+  return s;
+}
+
+std::string read_text_file(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw StudyError(file.string() + ": cannot read the file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+Study load_study(const std::filesystem::path& file) {
+  if (!std::filesystem::is_regular_file(file)) throw StudyError(file.string() + ": no such study file");
+  auto base_dir = std::filesystem::absolute(file).parent_path();
+  return parse_study(read_text_file(file), file.string(), base_dir);
+}
+
+}  // namespace pcrf::study

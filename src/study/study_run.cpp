@@ -1,0 +1,237 @@
+// Running a study across MPI ranks (see study_run.hpp). Rank 0 checks the study, opens the
+// cube and schedules; every rank (rank 0 in its worker thread) computes cases.
+#include "pcrf/study/study_run.hpp"
+
+#include <chrono>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <mutex>
+
+#include "pcrf/cube/cube_writer.hpp"
+#include "pcrf/parallel/scheduler.hpp"
+#include "pcrf/study/case_runner.hpp"
+#include "pcrf/study/progress.hpp"
+#include "pcrf/study/study_check.hpp"
+#include "pcrf/study/study_cube.hpp"
+#include "pcrf/study/study_parser.hpp"
+
+namespace pcrf::study {
+namespace {
+
+/// What every rank needs to compute cases.
+struct Prepared {
+  Study study;
+  std::unique_ptr<CaseSpace> space;
+  std::unique_ptr<RecordCache> records;
+
+  explicit Prepared(Study s)
+      : study(std::move(s)),
+        space(std::make_unique<CaseSpace>(study)),
+        records(std::make_unique<RecordCache>(study.records)) {}
+};
+
+/// Rank 0's part of the preparation: the checks and the open cube.
+struct MasterSetup {
+  CheckedStudy checked;
+  std::filesystem::path output;
+  std::unique_ptr<cube::CubeWriter> writer;
+};
+
+void apply_overrides(const StudyRunOptions& options, RunOptions& run) {
+  if (options.flush_interval_s) run.flush_interval_s = *options.flush_interval_s;
+  if (options.progress_interval_s) run.progress_interval_s = *options.progress_interval_s;
+  if (options.batch_size) run.batch_size = *options.batch_size;
+}
+
+MasterSetup prepare_master(const StudyRunOptions& options, const Prepared& p) {
+  MasterSetup m;
+  m.checked = check_study(p.study, *p.space, *p.records);
+  if (options.check_only) return m;
+  m.output = options.output.empty() ? default_output(options.study_file) : options.output;
+  if (std::filesystem::exists(m.output) && !options.resume && !options.overwrite)
+    throw StudyError(m.output.string() + ": already exists; use --resume to continue it or --overwrite to replace it");
+  const auto mode = options.resume ? cube::OpenMode::kResume
+                                   : (options.overwrite ? cube::OpenMode::kOverwrite : cube::OpenMode::kCreate);
+  try {
+    m.writer = std::make_unique<cube::CubeWriter>(m.output, make_cube_layout(p.study, *p.space, m.checked.fingerprint), mode);
+  } catch (const cube::CubeError& e) {
+    throw StudyError(e.what());
+  }
+  return m;
+}
+
+/// Time histories made in rank 0's worker thread, waiting for the master thread to store them.
+class HistoryInbox {
+ public:
+  void push(cube::HistoryTable table) {
+    std::lock_guard lock(mutex_);
+    tables_.push_back(std::move(table));
+  }
+  std::vector<cube::HistoryTable> take() {
+    std::lock_guard lock(mutex_);
+    return std::exchange(tables_, {});
+  }
+
+ private:
+  std::mutex mutex_;
+  std::vector<cube::HistoryTable> tables_;
+};
+
+parallel::ScheduleOptions schedule_options(const Study& study, const CaseRunner& runner) {
+  parallel::ScheduleOptions options;
+  options.row_width = runner.row_width();
+  options.fixed_batch = study.run.batch_size;
+  return options;
+}
+
+/// Rank 0's receiving end: stores outcomes and histories in the cube, flushes it every
+/// flush interval and reports progress. Runs in the master thread only.
+class ResultSink {
+ public:
+  ResultSink(cube::CubeWriter& writer, ProgressMeter& meter, HistoryInbox& inbox, double flush_interval_s)
+      : writer_(writer), meter_(meter), inbox_(inbox), flush_interval_s_(flush_interval_s) {}
+
+  void store(parallel::ResultBatch&& batch) {
+    std::int64_t failed = 0;
+    for (auto& outcome : batch) {
+      const CaseStatus status = row_status(outcome);
+      writer_.store(outcome.case_index, static_cast<std::int8_t>(status),
+                    std::vector<double>(outcome.row.begin() + 1, outcome.row.end()));
+      if (!outcome.note.empty()) writer_.store_note(outcome.case_index, std::move(outcome.note));
+      failed += is_failure(status) ? 1 : 0;
+    }
+    meter_.add(static_cast<std::int64_t>(batch.size()), failed);
+  }
+
+  void idle() {
+    take_histories();
+    const auto now = std::chrono::steady_clock::now();
+    if (std::chrono::duration<double>(now - last_flush_).count() >= flush_interval_s_) {
+      writer_.flush();
+      last_flush_ = now;
+    }
+    meter_.tick();
+  }
+
+  void close() {
+    take_histories();
+    writer_.close();
+  }
+
+ private:
+  void take_histories() {
+    for (auto& table : inbox_.take()) writer_.store_history(std::move(table));
+  }
+
+  cube::CubeWriter& writer_;
+  ProgressMeter& meter_;
+  HistoryInbox& inbox_;
+  double flush_interval_s_;
+  std::chrono::steady_clock::time_point last_flush_ = std::chrono::steady_clock::now();
+};
+
+/// Cases not done yet; the cases with a history stay on rank 0 (pinned).
+parallel::WorkList pending_cases(const cube::CubeWriter& writer, const std::map<std::int64_t, std::string>& histories) {
+  parallel::WorkList work;
+  const auto& status = writer.status();
+  for (std::size_t i = 0; i < status.size(); ++i) {
+    if (status[i] != cube::kStatusNotRun) continue;
+    const auto index = static_cast<std::int64_t>(i);
+    (histories.count(index) ? work.pinned : work.shared).push_back(index);
+  }
+  return work;
+}
+
+StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::MpiSession& mpi) {
+  CaseRunner runner(p.study, *p.space, *p.records);
+  std::map<std::int64_t, std::string> history_labels;
+  for (std::size_t h = 0; h < p.study.histories.size(); ++h)
+    history_labels[m.checked.history_cases[h]] = p.study.histories[h].label;
+
+  StudySummary summary{p.space->size(), m.writer->done_count(), 0, 0, m.output};
+  ProgressMeter meter(summary.total, summary.already_done, p.study.run.progress_interval_s, std::cerr);
+  HistoryInbox inbox;
+  ResultSink sink(*m.writer, meter, inbox, p.study.run.flush_interval_s);
+
+  // Runs in rank 0's worker thread; the only place where histories are recorded.
+  auto evaluate = [&](std::int64_t index) {
+    const auto label = history_labels.find(index);
+    if (label == history_labels.end()) return runner.run(index);
+    std::vector<HistorySample> samples;
+    auto outcome = runner.run(index, [&samples](const HistorySample& s) { samples.push_back(s); });
+    inbox.push(make_history_table(label->second, index, p.study, *p.space, samples));
+    return outcome;
+  };
+  parallel::run_master(mpi.comm(), pending_cases(*m.writer, history_labels), schedule_options(p.study, runner),
+                       evaluate, [&sink](parallel::ResultBatch&& batch) { sink.store(std::move(batch)); },
+                       [&sink] { sink.idle(); });
+  sink.close();
+  meter.finish(m.output.string());
+  summary.computed = meter.computed();
+  summary.failed = meter.failed();
+  return summary;
+}
+
+void run_worker_rank(const Prepared& p, const parallel::MpiSession& mpi) {
+  CaseRunner runner(p.study, *p.space, *p.records);
+  parallel::run_worker(mpi.comm(), schedule_options(p.study, runner),
+                       [&runner](std::int64_t index) { return runner.run(index); });
+}
+
+/// Workers parse the study text rank 0 checked (same base folder for relative records).
+std::unique_ptr<Prepared> receive_study(const parallel::MpiSession& mpi, const Prepared* master) {
+  const std::string text = mpi.broadcast(master ? master->study.text : std::string());
+  const std::string file = mpi.broadcast(master ? master->study.file : std::string());
+  const std::string base = mpi.broadcast(master ? master->study.base_dir.string() : std::string());
+  if (master != nullptr) return nullptr;
+  try {
+    return std::make_unique<Prepared>(parse_study(text, file, base));
+  } catch (const std::exception& e) {  // e.g. records not visible from this node
+    std::cerr << "pcrf: error on rank " << mpi.rank() << ": " << e.what() << std::endl;
+    mpi.abort(2);
+  }
+}
+
+}  // namespace
+
+std::filesystem::path default_output(const std::filesystem::path& study_file) {
+  return std::filesystem::current_path() / (study_file.stem().string() + ".h5");
+}
+
+std::optional<StudySummary> run_study(const StudyRunOptions& options, const parallel::MpiSession& mpi) {
+  std::unique_ptr<Prepared> prepared;
+  MasterSetup setup;
+  std::string error;
+  if (mpi.is_master()) {
+    try {
+      prepared = std::make_unique<Prepared>(load_study(options.study_file));
+      apply_overrides(options, prepared->study.run);
+      setup = prepare_master(options, *prepared);
+    } catch (const StudyError& e) {
+      error = e.what();
+    }
+  }
+  if (mpi.broadcast(error.empty() ? 1 : 0) == 0) {
+    if (mpi.is_master()) throw StudyError(error);  // the caller reports it, then joins the barrier
+    mpi.quiet_barrier();
+    return std::nullopt;
+  }
+  if (options.check_only) {
+    if (mpi.is_master())
+      std::cout << options.study_file.string() << ": ok, " << prepared->space->size() << " cases, fingerprint "
+                << setup.checked.fingerprint << std::endl;
+    return StudySummary{mpi.is_master() ? prepared->space->size() : 0, 0, 0, 0, {}};
+  }
+  if (auto received = receive_study(mpi, prepared.get())) prepared = std::move(received);
+
+  std::optional<StudySummary> summary;
+  if (mpi.is_master())
+    summary = run_master_rank(*prepared, setup, mpi);
+  else
+    run_worker_rank(*prepared, mpi);
+  mpi.quiet_barrier();
+  return summary ? summary : StudySummary{};
+}
+
+}  // namespace pcrf::study

@@ -1,0 +1,172 @@
+// Checked TOML table access for the study parser (see toml_fields.hpp).
+#include "study/toml_fields.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "pcrf/study/study_parser.hpp"
+
+namespace pcrf::study::detail {
+namespace {
+
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string list_words(const std::vector<std::string_view>& words) {
+  std::string text;
+  for (auto w : words) text += (text.empty() ? "" : ", ") + std::string(w);
+  return text;
+}
+
+}  // namespace
+
+std::string closest_word(std::string_view word, const std::vector<std::string_view>& candidates) {
+  std::string best;
+  std::size_t best_distance = 3;
+  for (auto c : candidates) {
+    const auto d = edit_distance(word, c);
+    if (d < best_distance) {
+      best_distance = d;
+      best = std::string(c);
+    }
+  }
+  if (best.empty())  // a truncated name: "theta_max" for "theta_max_rad"
+    for (auto c : candidates)
+      if (word.size() >= 3 && c.substr(0, word.size()) == word) return std::string(c);
+  return best;
+}
+
+Fields::Fields(const toml::table& table, std::string prefix, std::string file,
+               std::initializer_list<std::string_view> allowed)
+    : table_(table), prefix_(std::move(prefix)), file_(std::move(file)) {
+  const std::vector<std::string_view> known(allowed);
+  for (const auto& [key, value] : table_) {
+    if (std::find(known.begin(), known.end(), key.str()) != known.end()) continue;
+    std::string problem = "unknown key";
+    const auto hint = closest_word(key.str(), known);
+    problem += hint.empty() ? " (known keys: " + list_words(known) + ")" : " (did you mean '" + hint + "'?)";
+    fail_at(file_, &value, path(key.str()), problem);
+  }
+}
+
+std::string Fields::path(std::string_view key) const {
+  return prefix_.empty() ? std::string(key) : prefix_ + "." + std::string(key);
+}
+
+std::string Fields::type_name(const toml::node& node) {
+  switch (node.type()) {
+    case toml::node_type::string: return "a string";
+    case toml::node_type::integer: return "an integer";
+    case toml::node_type::floating_point: return "a number";
+    case toml::node_type::boolean: return "a boolean";
+    case toml::node_type::array: return "an array";
+    case toml::node_type::table: return "a table";
+    default: return "a date or time";
+  }
+}
+
+std::string Fields::where_at(const std::string& file, const toml::node* node) {
+  if (node != nullptr && node->source().begin.line > 0)
+    return file + ":" + std::to_string(node->source().begin.line);
+  return file;
+}
+
+void Fields::fail_at(const std::string& file, const toml::node* node, const std::string& path,
+                     const std::string& problem) {
+  throw StudyError(where_at(file, node) + ": " + path + ": " + problem);
+}
+
+std::string Fields::where(std::string_view key) const {
+  const toml::node* n = node(key);
+  // A missing key points at its table; at the root that says nothing: the file alone.
+  return where_at(file_, n != nullptr ? n : (prefix_.empty() ? nullptr : &table_));
+}
+
+void Fields::fail(std::string_view key, const std::string& problem) const {
+  throw StudyError(where(key) + ": " + path(key) + ": " + problem);
+}
+
+double Fields::number_at(const std::string& file, const toml::node& node, const std::string& path) {
+  double value = 0.0;
+  if (const auto* i = node.as_integer())
+    value = static_cast<double>(i->get());
+  else if (const auto* f = node.as_floating_point())
+    value = f->get();
+  else
+    fail_at(file, &node, path, "expected a number, got " + type_name(node));
+  if (!std::isfinite(value)) fail_at(file, &node, path, "must be a finite number");
+  return value;
+}
+
+std::optional<double> Fields::number(std::string_view key) const {
+  const toml::node* n = node(key);
+  if (n == nullptr) return std::nullopt;
+  return number_at(file_, *n, path(key));
+}
+
+std::optional<std::int64_t> Fields::integer(std::string_view key) const {
+  const toml::node* n = node(key);
+  if (n == nullptr) return std::nullopt;
+  if (const auto* i = n->as_integer()) return i->get();
+  fail(key, "expected an integer, got " + type_name(*n));
+}
+
+std::optional<std::string> Fields::text(std::string_view key) const {
+  const toml::node* n = node(key);
+  if (n == nullptr) return std::nullopt;
+  if (const auto* s = n->as_string()) return s->get();
+  fail(key, "expected a string, got " + type_name(*n));
+}
+
+std::optional<bool> Fields::flag(std::string_view key) const {
+  const toml::node* n = node(key);
+  if (n == nullptr) return std::nullopt;
+  if (const auto* b = n->as_boolean()) return b->get();
+  fail(key, "expected true or false, got " + type_name(*n));
+}
+
+const toml::table* Fields::subtable(std::string_view key) const {
+  const toml::node* n = node(key);
+  if (n == nullptr) return nullptr;
+  if (const auto* t = n->as_table()) return t;
+  fail(key, "expected a table ([" + path(key) + "]), got " + type_name(*n));
+}
+
+const toml::array* Fields::array(std::string_view key) const {
+  const toml::node* n = node(key);
+  if (n == nullptr) return nullptr;
+  if (const auto* a = n->as_array()) return a;
+  fail(key, "expected an array, got " + type_name(*n));
+}
+
+std::vector<std::string> Fields::texts(std::string_view key) const {
+  const toml::node* n = node(key);
+  if (n == nullptr) return {};
+  if (const auto* s = n->as_string()) return {s->get()};
+  const auto* a = n->as_array();
+  if (a == nullptr) fail(key, "expected a string or an array of strings, got " + type_name(*n));
+  if (a->empty()) fail(key, "empty list");
+  std::vector<std::string> values;
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    const auto* s = (*a)[i].as_string();
+    if (s == nullptr)
+      fail_at(file_, &(*a)[i], path(key) + "[" + std::to_string(i) + "]",
+              "expected a string, got " + type_name((*a)[i]));
+    values.push_back(s->get());
+  }
+  return values;
+}
+
+}  // namespace pcrf::study::detail

@@ -1,0 +1,161 @@
+// The cube file on its own: chunk ranges, write/flush/read back, resume, refusals, queries.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+#include "pcrf/cube/chunk_grid.hpp"
+#include "pcrf/cube/cube_query.hpp"
+#include "pcrf/cube/cube_reader.hpp"
+#include "pcrf/cube/cube_writer.hpp"
+#include "support/test_support.hpp"
+
+namespace pcrf::cube {
+namespace {
+
+TEST(ChunkGrid, ChunksAreContiguousRangesThatCoverTheCubeOnce) {
+  for (const auto& [shape, target] : std::vector<std::pair<std::vector<std::size_t>, std::size_t>>{
+           {{3, 4, 5}, 7}, {{13, 1, 9, 1, 1, 1, 1, 1, 1, 11}, 40}, {{2, 3}, 1000}, {{5}, 2}, {{1, 1, 100}, 30}}) {
+    const ChunkGrid grid(shape, target);
+    std::int64_t next = 0;
+    for (std::size_t c = 0; c < grid.chunk_count(); ++c) {
+      const auto r = grid.range(c);
+      EXPECT_EQ(r.first, next);
+      std::int64_t volume = 1;
+      for (std::size_t d = 0; d < shape.size(); ++d) {
+        volume *= static_cast<std::int64_t>(r.extent[d]);
+        EXPECT_LE(r.extent[d], grid.chunk_shape()[d]);
+      }
+      EXPECT_EQ(volume, r.count);
+      EXPECT_EQ(unravel(r.first, shape), r.start);
+      for (std::int64_t i = r.first; i < r.first + r.count; ++i) EXPECT_EQ(grid.chunk_of(i), c);
+      next += r.count;
+    }
+    std::int64_t total = 1;
+    for (auto n : shape) total *= static_cast<std::int64_t>(n);
+    EXPECT_EQ(next, total);
+  }
+}
+
+CubeLayout test_layout(const std::string& fingerprint = "f1") {
+  CubeLayout l;
+  l.dimensions = {{"record", 2}, {"scale", 3}, {"case", 4}};
+  Coordinate record{"record", "record", "", "ground motion", {}, {"ER1", "ER2 ü"}, true, false};
+  Coordinate scale{"scale", "scale", "1", "factor", {0.5, 1.0, 2.0}, {}, false, false};
+  Coordinate index{"case", "case", "", "frame number", {0, 1, 2, 3}, {}, false, true};
+  Coordinate varied{"varied_parameter", "case", "", "", {}, {"none", "kappa", "kappa", "lambda"}, true, false};
+  Coordinate kappa{"kappa", "case", "1", "", {1.8, 1.0, 3.0, 1.8}, {}, false, false};
+  l.coordinates = {record, scale, index, varied, kappa};
+  l.metrics = {{"theta_max_rad", "rad", "peak"}, {"impacts", "1", "count"}};
+  l.status_flags = {{0, "at_rest"}, {4, "solver_failure"}};
+  l.attributes = {{kFingerprintName, fingerprint}, {"plan", std::string("one-at-a-time")},
+                  {"solver_rtol", 1e-8}, {"solver_max_steps", std::int64_t{2000000}}, {"empty", std::string()}};
+  return l;
+}
+
+TEST(CubeFile, WritesFlushesAndReadsBack) {
+  const auto file = test::scratch_dir("cube_roundtrip") / "c.h5";
+  {
+    CubeWriter writer(file, test_layout(), OpenMode::kCreate);
+    writer.store(0, 0, {0.01, 3});
+    writer.store(23, 4, {NAN, NAN});
+    writer.store_note(23, "solver failed: step size too small");
+    HistoryTable h{"one", {{"case_index", std::int64_t{0}}}, {{"t_s", "s", "time"}, {"theta1_rad", "rad", ""}},
+                   {{0.0, 0.5, 1.0}, {0.0, 0.1, 0.0}}};
+    writer.store_history(h);
+    writer.close();
+  }
+  CubeReader reader(file);
+  const auto& l = reader.layout();
+  ASSERT_EQ(l.dimensions.size(), 3u);
+  EXPECT_EQ(l.dimensions[2].name, "case");
+  EXPECT_EQ(l.shape(), (std::vector<std::size_t>{2, 3, 4}));
+  EXPECT_EQ(l.find_coordinate("record")->strings[1], "ER2 ü");
+  EXPECT_EQ(l.find_coordinate("scale")->numbers[2], 2.0);
+  EXPECT_EQ(l.find_coordinate("varied_parameter")->dimension, "case");
+  EXPECT_TRUE(l.find_coordinate("case")->is_index);
+  ASSERT_EQ(l.metrics.size(), 2u);
+  EXPECT_EQ(l.metrics[0].units, "rad");
+  EXPECT_EQ(l.text_attribute(kFingerprintName), "f1");
+  EXPECT_EQ(l.text_attribute("empty"), "");
+  const auto status = reader.read_status();
+  EXPECT_EQ(status[0], 0);
+  EXPECT_EQ(status[23], 4);
+  EXPECT_EQ(std::count(status.begin(), status.end(), kStatusNotRun), 22);
+  const auto theta = reader.read_metric("theta_max_rad");
+  EXPECT_EQ(theta[0], 0.01);
+  EXPECT_TRUE(std::isnan(theta[1]));  // fill value
+  EXPECT_EQ(reader.read_metric("impacts")[0], 3.0);
+  ASSERT_EQ(reader.read_notes().size(), 1u);
+  EXPECT_EQ(reader.read_notes()[0].first, 23);
+  EXPECT_EQ(reader.history_names(), std::vector<std::string>{"one"});
+  EXPECT_THROW(reader.read_metric("nope"), CubeError);
+}
+
+TEST(CubeFile, ResumeKeepsDoneCasesAndRefusesAnotherStudy) {
+  const auto file = test::scratch_dir("cube_resume") / "c.h5";
+  {
+    CubeWriter writer(file, test_layout(), OpenMode::kCreate);
+    writer.store(5, 0, {0.02, 1});
+    writer.store_note(5, "first");
+    writer.flush();
+  }  // the destructor closes without losing what was flushed
+  EXPECT_THROW(CubeWriter(file, test_layout(), OpenMode::kCreate), CubeError);
+  try {
+    CubeWriter other(file, test_layout("f2"), OpenMode::kResume);
+    FAIL() << "resumed another study's cube";
+  } catch (const CubeError& e) {
+    EXPECT_NE(std::string(e.what()).find("was made by a different study"), std::string::npos) << e.what();
+  }
+  {
+    CubeWriter writer(file, test_layout(), OpenMode::kResume);
+    EXPECT_TRUE(writer.resumed());
+    EXPECT_EQ(writer.done_count(), 1);
+    EXPECT_EQ(writer.status()[5], 0);
+    writer.store(6, 0, {0.03, 2});
+    writer.store_note(6, "second");
+    writer.close();
+  }
+  {
+    CubeReader reader(file);
+    const auto theta = reader.read_metric("theta_max_rad");
+    EXPECT_EQ(theta[5], 0.02);
+    EXPECT_EQ(theta[6], 0.03);
+    ASSERT_EQ(reader.read_notes().size(), 2u);
+    EXPECT_EQ(reader.read_notes()[1].second, "second");
+  }  // HDF5 cannot truncate a file this process still has open
+  CubeWriter fresh(file, test_layout("f3"), OpenMode::kOverwrite);
+  EXPECT_EQ(fresh.done_count(), 0);
+}
+
+TEST(CubeFile, ReaderRejectsFilesThatAreNotCubes) {
+  const auto dir = test::scratch_dir("cube_not");
+  test::write_file(dir, "text.h5", "hello");
+  EXPECT_THROW(CubeReader(dir / "text.h5"), CubeError);
+  EXPECT_THROW(CubeReader(dir / "missing.h5"), CubeError);
+}
+
+TEST(CubeQuery, PercentilesInterpolateLikeNumpy) {
+  const std::vector<double> v = {1, 2, 3, 4, 10};
+  EXPECT_DOUBLE_EQ(percentile(v, 50), 3.0);
+  EXPECT_DOUBLE_EQ(percentile(v, 16), 1.64);   // numpy.percentile([1,2,3,4,10], 16)
+  EXPECT_DOUBLE_EQ(percentile(v, 84), 6.16);   // numpy.percentile([1,2,3,4,10], 84)
+  EXPECT_DOUBLE_EQ(percentile({7.0}, 84), 7.0);
+  EXPECT_TRUE(std::isnan(percentile({}, 50)));
+}
+
+TEST(CubeQuery, SelectorsMatchDimensionAndAuxiliaryCoordinates) {
+  const CubeLayout l = test_layout();
+  const auto by_scale = select_cases(l, {parse_selector("scale=1")});
+  EXPECT_EQ(std::count(by_scale.begin(), by_scale.end(), true), 2 * 4);
+  const auto by_varied = select_cases(l, {parse_selector("varied_parameter=kappa"), parse_selector("record=ER1")});
+  EXPECT_EQ(std::count(by_varied.begin(), by_varied.end(), true), 3 * 2);
+  EXPECT_TRUE(by_varied[1]);
+  EXPECT_FALSE(by_varied[0]);
+  EXPECT_THROW(select_cases(l, {parse_selector("scale=7")}), CubeError);
+  EXPECT_THROW(select_cases(l, {parse_selector("mass=1")}), CubeError);
+  EXPECT_THROW(parse_selector("scale"), CubeError);
+}
+
+}  // namespace
+}  // namespace pcrf::cube

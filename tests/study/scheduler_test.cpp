@@ -1,0 +1,83 @@
+// The scheduler's parts: result messages, guided batches, and a whole master run on one
+// rank (MPI singleton) where every case must come back exactly once.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <set>
+#include <thread>
+
+#include "pcrf/parallel/mpi_session.hpp"
+#include "pcrf/parallel/result_batch.hpp"
+#include "pcrf/parallel/scheduler.hpp"
+#include "pcrf/parallel/work_queue.hpp"
+
+namespace pcrf::parallel {
+namespace {
+
+TEST(ResultBatch, PacksAndUnpacksRowsAndNotes) {
+  const ResultBatch batch = {{7, {1.0, NAN, -2.5}, ""}, {42, {0.0, 3.0, 1e300}, "tendon, \"fracture\"\n"}};
+  const auto back = unpack_results(pack_results(batch, 3), 3);
+  ASSERT_EQ(back.size(), 2u);
+  EXPECT_EQ(back[1].case_index, 42);
+  EXPECT_EQ(back[1].note, batch[1].note);
+  EXPECT_TRUE(std::isnan(back[0].row[1]));
+  EXPECT_EQ(back[1].row[2], 1e300);
+  EXPECT_THROW(unpack_results(pack_results(batch, 3), 4), std::runtime_error);
+  EXPECT_THROW(pack_results(batch, 2), std::invalid_argument);
+}
+
+TEST(WorkQueue, GuidedBatchesShrinkAndPinnedCasesStayLocal) {
+  std::vector<std::int64_t> shared(1000);
+  for (std::size_t i = 0; i < shared.size(); ++i) shared[i] = static_cast<std::int64_t>(i);
+  WorkQueue queue(shared, {5000, 5001}, 2, 0, 64);
+  EXPECT_EQ(queue.take(false).size(), 64u);  // capped
+  auto local = queue.take(true);
+  EXPECT_EQ(local[0], 5000);
+  EXPECT_EQ(local[1], 5001);
+  std::size_t last = 64, taken = 64 + local.size() - 2;
+  while (queue.remaining() > 0) {
+    const auto batch = queue.take(false);
+    EXPECT_LE(batch.size(), last);
+    last = batch.size();
+    taken += batch.size();
+  }
+  EXPECT_EQ(last, 1u);  // the tail is handed out one by one
+  EXPECT_EQ(taken, 1000u);
+  EXPECT_TRUE(queue.take(true).empty());
+}
+
+TEST(Scheduler, OneRankRunsEveryCaseOnceThroughTheWorkerThread) {
+  MpiSession mpi;
+  ASSERT_EQ(mpi.size(), 1);
+  WorkList work;
+  for (std::int64_t i = 0; i < 300; ++i) work.shared.push_back(i);
+  work.pinned = {300, 301};
+  const auto master_thread = std::this_thread::get_id();
+  std::set<std::thread::id> workers;
+  auto evaluate = [&](std::int64_t index) {
+    workers.insert(std::this_thread::get_id());
+    if (index == 17) throw std::runtime_error("boom");  // must not stop the study
+    return CaseOutcome{index, {static_cast<double>(index), 2.0 * static_cast<double>(index)}, ""};
+  };
+  std::map<std::int64_t, CaseOutcome> received;
+  int idle_calls = 0;
+  ScheduleOptions options;
+  options.row_width = 2;
+  run_master(mpi.comm(), work, options, evaluate,
+             [&](ResultBatch&& batch) {
+               EXPECT_EQ(std::this_thread::get_id(), master_thread);
+               for (auto& o : batch) EXPECT_TRUE(received.emplace(o.case_index, o).second) << o.case_index;
+             },
+             [&] { ++idle_calls; });
+  ASSERT_EQ(received.size(), 302u);
+  EXPECT_EQ(received[299].row[1], 598.0);
+  EXPECT_TRUE(std::isnan(received[17].row[0]));
+  EXPECT_EQ(received[17].note, "boom");
+  EXPECT_GT(idle_calls, 0);
+  ASSERT_EQ(workers.size(), 1u);
+  EXPECT_NE(*workers.begin(), master_thread);
+}
+
+}  // namespace
+}  // namespace pcrf::parallel

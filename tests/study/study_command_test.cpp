@@ -1,0 +1,275 @@
+// `pcrf study` end to end: the cube equals `pcrf run` case by case, 1/2/3 ranks give the same
+// cube, a killed run resumes to the same cube, bad studies fail cleanly, outputs are protected.
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <sstream>
+#include <thread>
+
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include "pcrf/cube/cube_reader.hpp"
+#include "study/study_test_support.hpp"
+
+extern char** environ;
+
+namespace pcrf::study_test {
+namespace {
+
+/// Runs `pcrf study` on a study text written to dir/name.
+test::CommandResult run_study(const std::filesystem::path& dir, const std::string& name, const std::string& text,
+                              const std::string& arguments, const std::string& launcher = "") {
+  const auto file = test::write_file(dir, name, text);
+  return test::run_command("cd " + quoted(dir) + " && " + launcher + pcrf() + " study " + quoted(file) + " " + arguments);
+}
+
+/// Flat JSON object of `pcrf run`: key → number text, string or "null".
+std::map<std::string, std::string> parse_flat_json(const std::string& json) {
+  std::map<std::string, std::string> values;
+  static const std::regex pair(R"re("([a-z_0-9]+)":\s*("([^"]*)"|[^,}]+))re");
+  for (std::sregex_iterator it(json.begin(), json.end(), pair), end; it != end; ++it)
+    values[(*it)[1]] = (*it)[3].matched ? (*it)[3].str() : (*it)[2].str();
+  return values;
+}
+
+std::string status_meaning(const cube::CubeLayout& layout, std::int8_t value) {
+  for (const auto& f : layout.status_flags)
+    if (f.value == value) return f.meaning;
+  return "not_run";
+}
+
+TEST(StudyCommand, EveryCubeValueEqualsPcrfRunForThatCase) {
+  const auto dir = test::scratch_dir("study_equals_run");
+  const auto r = run_study(dir, "small.toml", small_grid_study(), "-o cube.h5 --progress-interval 0");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  cube::CubeReader cube(dir / "cube.h5");
+  const auto& layout = cube.layout();
+  const auto status = cube.read_status();
+  std::map<std::string, std::vector<double>> metrics;
+  for (const auto& m : layout.metrics) metrics[m.name] = cube.read_metric(m.name);
+  ASSERT_EQ(metrics.size(), 17u);  // every per-case metric by default
+  const auto shape = layout.shape();
+  for (std::int64_t i = 0; i < layout.case_count(); ++i) {
+    const auto c = cube::unravel(i, shape);
+    std::string args = " run --synthetic '" + layout.coordinates[0].strings[c[0]] + "'";
+    args += " --scale " + layout.find_coordinate("scale")->label(c[1]);
+    args += " --kappa " + layout.find_coordinate("kappa")->label(c[2]);
+    args += " --tan-alpha " + layout.find_coordinate("tan_alpha")->label(c[4]);
+    const auto run = test::run_command(pcrf() + args);
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const auto json = parse_flat_json(run.out);
+    const auto k = static_cast<std::size_t>(i);
+    EXPECT_EQ(json.at("status"), status_meaning(layout, status[k])) << "case " << i;
+    for (const auto& [name, values] : metrics) {
+      if (name == "wall_time_s") continue;
+      const std::string& text = json.at(name);
+      if (text == "null")
+        EXPECT_TRUE(std::isnan(values[k])) << name << " of case " << i;
+      else
+        EXPECT_EQ(std::strtod(text.c_str(), nullptr), values[k]) << name << " of case " << i << args;
+    }
+  }
+}
+
+TEST(StudyCommand, OneTwoAndThreeRanksGiveTheSameCube) {
+  PCRF_REQUIRE_MPIRUN();
+  const auto dir = test::scratch_dir("study_ranks");
+  const std::string text = small_grid_study("[run]\nbatch_size = 2\n");  // many hand-outs
+  for (int ranks : {1, 2, 3}) {
+    const auto r = run_study(dir, "small.toml", text, "-o cube" + std::to_string(ranks) + ".h5 --progress-interval 0",
+                             mpirun(ranks));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  expect_same_cube(dir / "cube1.h5", dir / "cube2.h5");
+  expect_same_cube(dir / "cube1.h5", dir / "cube3.h5");
+}
+
+TEST(StudyCommand, FailingCasesAreRecordedAndTheStudyGoesOn) {
+  const auto dir = test::scratch_dir("study_failures");
+  // Too few steps for a rocking frame: the cases that lift off fail, the others do not.
+  const std::string text = std::string("[[records]]\nsynthetic = \"") + kPulse +
+                           "\"\n[axes]\nscale = [0.5, 1.0]\n[solver]\nmax_steps = 20\n";
+  const auto r = run_study(dir, "fail.toml", text, "-o cube.h5 --progress-interval 0");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("1 failed"), std::string::npos) << r.err;
+  cube::CubeReader cube(dir / "cube.h5");
+  EXPECT_EQ(cube.read_status(), (std::vector<std::int8_t>{0, 4}));  // at_rest, solver_failure
+  ASSERT_EQ(cube.read_notes().size(), 1u);
+  EXPECT_EQ(cube.read_notes()[0].first, 1);
+  EXPECT_FALSE(cube.read_notes()[0].second.empty());
+}
+
+TEST(StudyCommand, MoreRanksThanCasesIsFine) {
+  PCRF_REQUIRE_MPIRUN();
+  const auto dir = test::scratch_dir("study_few_cases");
+  const std::string text = std::string("[[records]]\nsynthetic = \"") + kPulse + "\"\n[axes]\nkappa = [1.5, 2.5]\n";
+  const auto r = run_study(dir, "two.toml", text, "-o cube.h5 --progress-interval 0", mpirun(3));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto status = cube::CubeReader(dir / "cube.h5").read_status();
+  EXPECT_EQ(std::count(status.begin(), status.end(), cube::kStatusNotRun), 0);
+}
+
+/// Done/total of the last progress line in a stderr file.
+std::pair<long, long> last_progress(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::pair<long, long> last{0, 0};
+  static const std::regex progress(R"(pcrf study: (\d+)/(\d+) cases)");
+  for (std::string line; std::getline(in, line);) {
+    std::smatch m;
+    if (std::regex_search(line, m, progress)) last = {std::stol(m[1]), std::stol(m[2])};
+  }
+  return last;
+}
+
+TEST(StudyCommand, KilledRunResumesToTheUninterruptedCube) {
+  PCRF_REQUIRE_MPIRUN();
+  const auto dir = test::scratch_dir("study_kill_resume");
+  // 4 records × 3 scales × 9 κ × 9 tan α = 972 cases of a few ms each (~2 s on 2 ranks).
+  const std::string text = std::string("[[records]]\nsynthetic = [\"") + kPulse + "\", \"" + kPulse2 + "\", \"" + kNoise +
+                           "\", \"stochastic:seed=5,pga_g=1.3,duration_s=8\"]\n"
+                           "[axes]\nscale = [0.9, 1.1, 1.3]\nkappa = {from = 1.0, to = 3.0, count = 9}\n"
+                           "tan_alpha = {from = 0.16, to = 0.24, count = 9}\n";
+  const auto study = test::write_file(dir, "kill.toml", text);
+  const auto err = dir / "killed.err";
+  const std::string command = "cd " + quoted(dir) + " && exec " + mpirun(2) + pcrf() + " study " + quoted(study) +
+                              " -o killed.h5 --flush-interval 0.1 --progress-interval 0.1 --batch-size 1 2>" +
+                              quoted(err);
+  pid_t pid = 0;
+  const char* argv[] = {"/bin/sh", "-c", command.c_str(), nullptr};
+  ASSERT_EQ(posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ), 0);
+  // Kill mpirun once a good part (but not all) of the study is on disk.
+  std::pair<long, long> progress{0, 0};
+  for (int i = 0; i < 600 && !(progress.second > 0 && progress.first >= progress.second / 10); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    progress = last_progress(err);
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(150));  // past one more flush
+  ASSERT_EQ(::kill(pid, SIGKILL), 0);
+  int wstatus = 0;
+  ::waitpid(pid, &wstatus, 0);
+  // The ranks die with their launcher (PR_SET_PDEATHSIG); wait until none is left.
+  for (int i = 0; i < 100 && test::run_command("pgrep -f '[s]tudy_kill_resume.*killed.h5'").exit_code == 0; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  {
+    const auto status = cube::CubeReader(dir / "killed.h5").read_status();
+    const auto not_run = std::count(status.begin(), status.end(), cube::kStatusNotRun);
+    EXPECT_GT(not_run, 0) << "the study finished before it was killed: make it longer";
+    EXPECT_LT(not_run, static_cast<long>(status.size())) << "nothing was flushed before the kill";
+  }
+  const auto resumed = test::run_command("cd " + quoted(dir) + " && " + mpirun(2) + pcrf() + " study " + quoted(study) +
+                                         " -o killed.h5 --resume --progress-interval 0");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_NE(resumed.err.find("already done"), std::string::npos) << resumed.err;
+  const auto whole = test::run_command("cd " + quoted(dir) + " && " + mpirun(2) + pcrf() + " study " + quoted(study) +
+                                       " -o whole.h5 --progress-interval 0");
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  expect_same_cube(dir / "whole.h5", dir / "killed.h5");
+}
+
+struct BadStudy {
+  std::string name;
+  std::string text;
+  std::string message;
+};
+
+std::vector<BadStudy> bad_study_corpus(const std::filesystem::path& dir) {
+  test::write_file(dir, "garbage.AT2", "not\na\nPEER\nfile at all\n1 2 3\n");
+  const std::string pulse = std::string("[[records]]\nsynthetic = \"") + kPulse + "\"\n";
+  return {
+      {"unknown_key.toml", pulse + "[axes]\nkapa = [1, 2]\n", "unknown_key.toml:4: axes.kapa: unknown key (did you mean 'kappa'?)"},
+      {"unknown_table.toml", pulse + "[solvr]\nrtol = 1e-6\n", "unknown_table.toml:3: solvr: unknown key (did you mean 'solver'?)"},
+      {"wrong_type.toml", pulse + "[physics]\ntail_s = \"long\"\n", "wrong_type.toml:4: physics.tail_s: expected a number, got a string"},
+      {"empty_list.toml", pulse + "[axes]\nscale = []\n", "empty_list.toml:4: axes.scale: empty list"},
+      {"backwards.toml", pulse + "[axes]\nlambda = { from = 3, to = 2, count = 4 }\n", "axes.lambda.to: the range runs backwards"},
+      {"zero_count.toml", pulse + "[axes]\nlambda = { from = 2, to = 3, count = 0 }\n", "axes.lambda.count: must be at least 1 (got 0)"},
+      {"negative.toml", pulse + "[axes]\nkappa = [-1.0, 2.0]\n", "negative.toml:4: axes.kappa: value -1 must be positive"},
+      {"missing_record.toml", "[[records]]\nfile = \"records/ER99.AT2\"\n", "missing_record.toml:2: records[0].file: file not found:"},
+      {"no_match.toml", "[[records]]\nfiles = [\"records/*.AT2\"]\n", "no_match.toml:2: records[0].files: no file matches"},
+      {"unreadable_record.toml", "[[records]]\nfile = \"garbage.AT2\"\n",
+       "unreadable_record.toml:2: records: cannot load record \"garbage\""},
+      {"bad_synthetic.toml", "[[records]]\nsynthetic = \"square:amplitude_g=1\"\n",
+       "bad_synthetic.toml:2: records: cannot load record \"square:amplitude_g=1\""},
+      {"geometry.toml", pulse + "[axes]\nlambda = [0.1, 2.0]\ntan_alpha = 0.2\n",
+       "geometry.toml: axes: impossible geometry at kappa=1.8, lambda=0.1, tan_alpha=0.2"},
+      {"history.toml", pulse + "[axes]\nkappa = [1, 2]\n[[outputs.histories]]\nlabel = \"h\"\nkappa = 3\n",
+       "history.toml:6: outputs.histories \"h\": kappa 3 is not on the kappa axis"},
+      {"not_toml.toml", pulse + "[axes\n", "not_toml.toml:3: not valid TOML"},
+  };
+}
+
+TEST(StudyCommand, BadStudiesFailWithTheirMessageExitCode2AndNoOutput) {
+  const auto dir = test::scratch_dir("study_bad");
+  for (const auto& bad : bad_study_corpus(dir)) {
+    const auto r = run_study(dir, bad.name, bad.text, "-o out.h5");
+    EXPECT_EQ(r.exit_code, 2) << bad.name << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("pcrf: error: ", 0), 0u) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;  // one line
+    EXPECT_NE(r.err.find(bad.message), std::string::npos) << bad.name << "\ngot: " << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out.h5")) << bad.name;
+  }
+  const auto missing = test::run_command(pcrf() + " study " + quoted(dir / "nowhere.toml"));
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("nowhere.toml: no such study file"), std::string::npos) << missing.err;
+}
+
+TEST(StudyCommand, BadStudyUnderMpirunExitsWith2AndReportsOnce) {
+  PCRF_REQUIRE_MPIRUN();
+  const auto dir = test::scratch_dir("study_bad_mpi");
+  const auto r = run_study(dir, "bad.toml", "[[records]]\nsynthetic = \"sine:cycles=2\"\n[axes]\nkapa = 1\n", "-o out.h5",
+                           mpirun(2));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  const std::string line = "pcrf: error: " + (dir / "bad.toml").string() + ":4: axes.kapa: unknown key";
+  const auto first = r.err.find(line);
+  EXPECT_NE(first, std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find(line, first + 1), std::string::npos) << "reported twice:\n" << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.h5"));
+}
+
+TEST(StudyCommand, RefusesToOverwriteOrToResumeAnotherStudy) {
+  const auto dir = test::scratch_dir("study_protect");
+  const std::string text = std::string("[[records]]\nsynthetic = \"") + kPulse + "\"\n[axes]\nkappa = [1.5, 2.5]\n";
+  ASSERT_EQ(run_study(dir, "a.toml", text, "-o cube.h5 --progress-interval 0").exit_code, 0);
+  const auto again = run_study(dir, "a.toml", text, "-o cube.h5");
+  EXPECT_EQ(again.exit_code, 2);
+  EXPECT_NE(again.err.find("cube.h5: already exists; use --resume to continue it or --overwrite to replace it"),
+            std::string::npos) << again.err;
+  // Comments and layout are not the study: the same study resumes (nothing left to do).
+  const auto same = run_study(dir, "a.toml", "# a comment\n" + text, "-o cube.h5 --resume");
+  EXPECT_EQ(same.exit_code, 0) << same.err;
+  const auto other = run_study(dir, "b.toml", text + "tan_alpha = [0.18]\n", "-o cube.h5 --resume");
+  EXPECT_EQ(other.exit_code, 2);
+  EXPECT_NE(other.err.find("cube.h5: was made by a different study"), std::string::npos) << other.err;
+  const auto replaced = run_study(dir, "b.toml", text + "tan_alpha = [0.18]\n", "-o cube.h5 --overwrite --progress-interval 0");
+  EXPECT_EQ(replaced.exit_code, 0) << replaced.err;
+  EXPECT_EQ(cube::CubeReader(dir / "cube.h5").layout().find_coordinate("tan_alpha")->numbers,
+            std::vector<double>{0.18});
+}
+
+TEST(StudyCommand, ExampleStudiesAreValid) {
+  const auto demo = test::run_command(pcrf() + " study " + quoted(test::source_dir() / "studies" / "demo.toml") + " --check");
+  EXPECT_EQ(demo.exit_code, 0) << demo.err;
+  EXPECT_NE(demo.out.find(": ok, "), std::string::npos) << demo.out;
+}
+
+TEST(StudyCommand, PaperStudiesFindTheirRecords) {
+  PCRF_REQUIRE_RECORDS(records);
+  // The study files name their records relative to themselves: ../../shared/records.
+  if (!std::filesystem::is_directory(test::source_dir() / ".." / "shared" / "records"))
+    GTEST_SKIP() << "../shared/records not beside the checkout";
+  const auto studies = test::source_dir() / "studies";
+  const std::map<std::string, std::string> expected = {
+      {"paper_table3.toml", ": ok, 13 cases"}, {"paper_section7.toml", ": ok, "}, {"ida.toml", ": ok, "}};
+  for (const auto& [file, text] : expected) {
+    const auto r = test::run_command(pcrf() + " study " + quoted(studies / file) + " --check");
+    EXPECT_EQ(r.exit_code, 0) << file << ": " << r.err;
+    EXPECT_NE(r.out.find(text), std::string::npos) << file << ": " << r.out;
+  }
+}
+
+}  // namespace
+}  // namespace pcrf::study_test

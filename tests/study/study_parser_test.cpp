@@ -1,0 +1,168 @@
+// Study files: values, ranges, plans, defaults, and the errors of the parser (in process).
+#include <gtest/gtest.h>
+
+#include "pcrf/metrics/case_result.hpp"
+#include "pcrf/study/case_space.hpp"
+#include "pcrf/study/study_parser.hpp"
+#include "study/study_test_support.hpp"
+
+namespace pcrf::study {
+namespace {
+
+Study parse(const std::string& text) { return parse_study(text, "t.toml", test::source_dir()); }
+
+const std::string kRecords = "[[records]]\nsynthetic = \"sine:amplitude_g=1.5\"\n";
+
+/// The message of the StudyError a text raises ("" if none).
+std::string error_of(const std::string& text) {
+  try {
+    parse(text);
+  } catch (const StudyError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(StudyParser, DefaultsAreTheBasicModelAndEveryMetric) {
+  const Study s = parse(kRecords);
+  EXPECT_EQ(s.plan, PlanKind::kGrid);
+  EXPECT_EQ(s.name, "t");
+  EXPECT_EQ(s.scales, std::vector<double>{1.0});
+  EXPECT_DOUBLE_EQ(s.base.kappa, FrameParameters{}.kappa);
+  EXPECT_DOUBLE_EQ(s.base.pi_e_c, FrameParameters{}.pi_e_c);
+  EXPECT_EQ(s.metrics.size(), all_metrics().size());
+  EXPECT_EQ(s.solver.rtol, preset_settings("balanced").rtol);
+  EXPECT_EQ(CaseSpace(s).size(), 1);
+}
+
+TEST(StudyParser, ListsNumbersAndLinearAndLogRanges) {
+  const Study s = parse(kRecords +
+                        "[axes]\nscale = [0.5, 1]\nkappa = 2\nlambda = {from = 1.5, to = 2.5, count = 3}\n"
+                        "pi_e_c = {from = 1000, to = 100000, count = 3, spacing = \"log\"}\n");
+  EXPECT_EQ(s.scales, (std::vector<double>{0.5, 1.0}));
+  EXPECT_EQ(s.axes[0], std::vector<double>{2.0});
+  EXPECT_EQ(s.axes[1], (std::vector<double>{1.5, 2.0, 2.5}));
+  ASSERT_EQ(s.axes[7].size(), 3u);
+  EXPECT_DOUBLE_EQ(s.axes[7][1], 10000.0);
+  EXPECT_EQ(s.axes[7][2], 100000.0);  // exact end
+  const CaseSpace space(s);
+  EXPECT_EQ(space.size(), 2 * 1 * 3 * 3);
+  EXPECT_EQ(space.dimension_names().size(), 10u);
+}
+
+TEST(StudyParser, SyntheticRecordsAreNamedByTheirText) {
+  const Study s = parse("[[records]]\nsynthetic = [\"sine:cycles=1\", \"stochastic:seed=2\"]\n"
+                        "[[records]]\nsynthetic = \"sine:cycles=3\"\nname = \"three\"\n");
+  ASSERT_EQ(s.records.size(), 3u);
+  EXPECT_EQ(s.records[0].name, "sine:cycles=1");
+  EXPECT_EQ(s.records[2].name, "three");
+}
+
+TEST(StudyParser, RecordFilesResolveAgainstTheStudyFolderAndGlob) {
+  const auto dir = test::scratch_dir("parser_globs");
+  std::filesystem::create_directories(dir / "rec");
+  test::write_file(dir / "rec", "a.txt", "0 0\n0.01 0.1\n");
+  test::write_file(dir / "rec", "b.txt", "0 0\n0.01 0.2\n");
+  const Study s = parse_study("[[records]]\nfiles = [\"rec/*.txt\"]\nunits = \"g\"\n", "t.toml", dir);
+  ASSERT_EQ(s.records.size(), 2u);
+  EXPECT_EQ(s.records[0].name, "a");
+  EXPECT_EQ(s.records[1].file->path, dir / "rec" / "b.txt");
+  EXPECT_EQ(s.records[1].file->format, RecordFormat::kTwoColumn);
+}
+
+TEST(StudyParser, OneAtATimeSweepsEachParameterAroundTheBase) {
+  const Study s = parse(kRecords + "[plan]\nkind = \"one-at-a-time\"\n[base]\nkappa = 2.0\n"
+                                   "[axes]\nkappa = [1, 3]\ntan_alpha = [0.15, 0.25]\n");
+  const CaseSpace space(s);
+  ASSERT_EQ(space.points().size(), 5u);  // base + 2 + 2
+  EXPECT_EQ(space.points()[0].label, "base");
+  EXPECT_EQ(space.points()[0].varied, "none");
+  EXPECT_EQ(space.points()[1].label, "kappa=1");
+  EXPECT_EQ(space.points()[3].varied, "tan_alpha");
+  EXPECT_DOUBLE_EQ(space.points()[3].parameters.kappa, 2.0);  // the base, not the default
+  EXPECT_DOUBLE_EQ(space.points()[3].parameters.tan_alpha, 0.15);
+  EXPECT_EQ(space.dimension_names(), (std::vector<std::string>{"record", "scale", "case"}));
+}
+
+TEST(StudyParser, ListPlanTakesExplicitCases) {
+  const Study s = parse(kRecords + "[plan]\nkind = \"list\"\n[[cases]]\nlabel = \"stocky\"\ntan_alpha = 0.3\n"
+                                   "[[cases]]\nkappa = 3\n");
+  const CaseSpace space(s);
+  ASSERT_EQ(space.points().size(), 2u);
+  EXPECT_EQ(space.points()[0].label, "stocky");
+  EXPECT_EQ(space.points()[1].label, "case1");
+  EXPECT_DOUBLE_EQ(space.case_at(1).parameters.kappa, 3.0);
+}
+
+TEST(StudyParser, PhysicsSolverOutputsAndRun) {
+  const Study s = parse(kRecords +
+                        "[physics]\nuplift = \"paper\"\ntail_s = 2\n[solver]\npreset = \"fast\"\nrtol = 1e-6\n"
+                        "[outputs]\nmetrics = [\"theta_max_rad\", \"impacts\"]\n[run]\nflush_interval_s = 5\nbatch_size = 4\n");
+  EXPECT_EQ(s.physics.uplift, UpliftCriterion::kPaper);
+  EXPECT_EQ(s.physics.tail_s, 2.0);
+  EXPECT_EQ(s.solver.rtol, 1e-6);
+  EXPECT_EQ(s.solver.atol_theta_rad, preset_settings("fast").atol_theta_rad);
+  EXPECT_EQ(s.metrics, (std::vector<std::string>{"theta_max_rad", "impacts"}));
+  EXPECT_EQ(s.run.flush_interval_s, 5.0);
+  EXPECT_EQ(s.run.batch_size, 4u);
+}
+
+struct BadStudy {
+  std::string text;
+  std::string message;  ///< expected in the error
+};
+
+TEST(StudyParser, RejectsBadStudiesNamingFileLineKeyAndProblem) {
+  const std::vector<BadStudy> corpus = {
+      {kRecords + "[axes]\nkapa = 2\n", "t.toml:4: axes.kapa: unknown key (did you mean 'kappa'?)"},
+      {kRecords + "[axes]\nkappa = \"big\"\n", "t.toml:4: axes.kappa: expected a number, a list of numbers"},
+      {kRecords + "[axes]\nkappa = []\n", "t.toml:4: axes.kappa: empty list"},
+      {kRecords + "[axes]\nkappa = {from = 3, to = 1, count = 3}\n", "axes.kappa.to: the range runs backwards"},
+      {kRecords + "[axes]\nkappa = {from = 1, to = 3, count = 0}\n", "axes.kappa.count: must be at least 1"},
+      {kRecords + "[axes]\nscale = [-1, 1]\n", "axes.scale: value -1 must be positive"},
+      {kRecords + "[axes]\nlambda_h = [0.5, 1.2]\n", "axes.lambda_h: value 1.2 must be between 0 and 1"},
+      {kRecords + "[axes]\nkappa = [1, 1]\n", "axes.kappa: value 1 appears twice"},
+      {kRecords + "[physics]\nfracture_strain = \"x\"\n", "physics.fracture_strain: expected a number, got a string"},
+      {kRecords + "[solver]\nintegrator = \"euler\"\n", "t.toml:4: solver.integrator:"},
+      {kRecords + "[outputs]\nmetrics = [\"theta_max\"]\n", "unknown metric \"theta_max\" (did you mean \"theta_max_rad\"?)"},
+      {"[axes]\nkappa = 2\n", "t.toml: records: a study needs at least one [[records]]"},
+      {"[[records]]\nfile = \"no/such/file.AT2\"\n", "t.toml:2: records[0].file: file not found"},
+      {kRecords + "[plan]\nkind = \"random\"\n", "plan.kind: expected \"grid\", \"one-at-a-time\" or \"list\""},
+      {kRecords + "[plan]\nkind = \"one-at-a-time\"\n", "needs at least one parameter to sweep"},
+      {kRecords + "kappa = [1\n", "t.toml:3: not valid TOML"},
+  };
+  for (const auto& bad : corpus) {
+    const std::string message = error_of(bad.text);
+    EXPECT_NE(message.find(bad.message), std::string::npos) << "got: " << message << "\nfor:\n" << bad.text;
+  }
+}
+
+TEST(CaseSpace, LinearIndexAndCoordinatesRoundTrip) {
+  const Study s = parse(kRecords + "[axes]\nscale = [1, 2, 3]\nkappa = [1, 2]\npi_e_c = [1000, 2000, 3000, 4000]\n");
+  const CaseSpace space(s);
+  ASSERT_EQ(space.size(), 24);
+  for (std::int64_t i = 0; i < space.size(); ++i) EXPECT_EQ(space.index(space.coordinates(i)), i);
+  const CaseSpec last = space.case_at(23);  // last of every axis
+  EXPECT_EQ(last.scale, 3.0);
+  EXPECT_EQ(last.parameters.kappa, 2.0);
+  EXPECT_EQ(last.parameters.pi_e_c, 4000.0);
+  const CaseSpec second = space.case_at(1);  // the fastest axis moves first
+  EXPECT_EQ(second.parameters.pi_e_c, 2000.0);
+  EXPECT_EQ(second.scale, 1.0);
+}
+
+TEST(CaseSpace, HistoryRequestsNameExactlyOneCase) {
+  const Study s = parse(kRecords + "[axes]\nkappa = [1, 2]\n[[outputs.histories]]\nlabel = \"a\"\nkappa = 2\n"
+                                   "[[outputs.histories]]\nlabel = \"b\"\n");
+  const CaseSpace space(s);
+  EXPECT_EQ(space.resolve(s.histories[0]), 1);
+  try {
+    space.resolve(s.histories[1]);
+    FAIL() << "ambiguous request accepted";
+  } catch (const StudyError& e) {
+    EXPECT_NE(std::string(e.what()).find("the kappa axis has 2 values: give `kappa`"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace pcrf::study

@@ -1,0 +1,66 @@
+// Helpers of the study tests: running `pcrf study` (with or without mpirun), writing small
+// study files with short synthetic records, and comparing two cubes value by value.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "pcrf/cube/cube_reader.hpp"
+#include "support/test_support.hpp"
+
+namespace pcrf::study_test {
+
+inline std::string pcrf() { return "'" + test::pcrf_executable().string() + "'"; }
+
+inline std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
+
+/// Open MPI refuses root without these; CI runs as root.
+inline std::string mpirun(int ranks) {
+  return "env OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
+         "mpirun --oversubscribe -n " + std::to_string(ranks) + " ";
+}
+
+inline bool have_mpirun() { return test::run_command("command -v mpirun").exit_code == 0; }
+
+#define PCRF_REQUIRE_MPIRUN() \
+  if (!::pcrf::study_test::have_mpirun()) GTEST_SKIP() << "mpirun not found"
+
+/// Records short enough for tests (a few ms per case).
+inline const char* kPulse = "sine:amplitude_g=1.5,period_s=0.5,cycles=2,duration_s=3";
+inline const char* kPulse2 = "sine:amplitude_g=1.3,period_s=0.7,cycles=2,duration_s=3";
+inline const char* kNoise = "stochastic:seed=4,pga_g=1.4,duration_s=6";
+
+/// A small grid: 3 records × 2 scales × 2 κ × 2 tan α = 24 cases.
+inline std::string small_grid_study(const std::string& extra = "") {
+  return std::string("[study]\nname = \"small\"\n\n") +
+         "[[records]]\nsynthetic = [\"" + kPulse + "\", \"" + kPulse2 + "\", \"" + kNoise + "\"]\n\n" +
+         "[axes]\nscale = [0.9, 1.2]\nkappa = [1.2, 2.4]\ntan_alpha = [0.18, 0.22]\n\n" + extra;
+}
+
+/// Every value of every variable of `a` equals `b` (NaN equals NaN), except `ignored`.
+inline void expect_same_cube(const std::filesystem::path& a_file, const std::filesystem::path& b_file,
+                             const std::vector<std::string>& ignored = {"wall_time_s"}) {
+  cube::CubeReader a(a_file), b(b_file);
+  ASSERT_EQ(a.layout().shape(), b.layout().shape());
+  ASSERT_EQ(a.layout().metrics.size(), b.layout().metrics.size());
+  EXPECT_EQ(a.read_status(), b.read_status());
+  for (const auto& m : a.layout().metrics) {
+    if (std::find(ignored.begin(), ignored.end(), m.name) != ignored.end()) continue;
+    const auto x = a.read_metric(m.name);
+    const auto y = b.read_metric(m.name);
+    std::size_t differences = 0;
+    for (std::size_t i = 0; i < x.size(); ++i)
+      if (!(x[i] == y[i] || (std::isnan(x[i]) && std::isnan(y[i])))) ++differences;
+    EXPECT_EQ(differences, 0u) << m.name;
+  }
+  EXPECT_EQ(a.read_notes().size(), b.read_notes().size());
+}
+
+}  // namespace pcrf::study_test
