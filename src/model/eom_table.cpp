@@ -1,6 +1,7 @@
 // Chebyshev tabulation of the coefficients of Eq. (31), cell by cell, on first use.
 #include "pcrf/model/eom_table.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -22,6 +23,17 @@ std::array<double, N> chebyshev_fit(const std::array<double, N>& f) {
   }
   c[0] *= 0.5;
   return c;
+}
+
+// Coefficients of d/dx Σ c_k T_k(x): c'_{k−1} = c'_{k+1} + 2k c_k, c'_0 halved.
+template <std::size_t N>
+std::array<double, N> chebyshev_derivative(const std::array<double, N>& c) {
+  std::array<double, N + 1> d{};
+  for (std::size_t k = N - 1; k >= 1; --k) d[k - 1] = d[k + 1] + 2.0 * static_cast<double>(k) * c[k];
+  d[0] *= 0.5;
+  std::array<double, N> out{};
+  for (std::size_t k = 0; k < N; ++k) out[k] = d[k];
+  return out;
 }
 
 // Σ c_k T_k(x) by Clenshaw's recurrence.
@@ -65,6 +77,8 @@ void EomTable::build(Cell& cell, int index) const {
     if (!negative_branch(-u, I[j], J[j], Q[j], S[j])) return;
   }
   cell.c = {chebyshev_fit(I), chebyshev_fit(J), chebyshev_fit(Q), chebyshev_fit(S)};
+  cell.dc = {chebyshev_derivative(cell.c.I), chebyshev_derivative(cell.c.J), chebyshev_derivative(cell.c.Q),
+             chebyshev_derivative(cell.c.S)};
   // Self-check at two points between the nodes.
   for (const double x : {0.31, -0.77}) {
     const double u = u0 + 0.5 * (x + 1.0) * cell_rad_;
@@ -79,23 +93,62 @@ void EomTable::build(Cell& cell, int index) const {
   cell.state = Cell::State::kTabulated;
 }
 
-bool EomTable::acceleration(double theta1, double omega1, double ground_accel_m_s2, int side,
-                            double& theta1_ddot) const {
+const EomTable::Cell* EomTable::locate(double theta1, int side, double& x) const {
   const double u = side < 0 ? -theta1 : theta1;  // distance into the branch
   const double k = std::floor(u * inv_cell_) + 1.0;
-  if (k < 0.0 || k >= static_cast<double>(cells_.size()))
-    return eom_.acceleration(theta1, omega1, ground_accel_m_s2, side, theta1_ddot);
+  if (k < 0.0 || k >= static_cast<double>(cells_.size())) return nullptr;
   const int index = static_cast<int>(k);
   Cell& cell = cells_[static_cast<std::size_t>(index)];
   if (cell.state == Cell::State::kEmpty) build(cell, index);
-  if (cell.state == Cell::State::kExact)
-    return eom_.acceleration(theta1, omega1, ground_accel_m_s2, side, theta1_ddot);
-  const double x = 2.0 * (u - (index - 1) * cell_rad_) * inv_cell_ - 1.0;
-  const double I = clenshaw(cell.c.I, x), J = clenshaw(cell.c.J, x), Q = clenshaw(cell.c.Q, x),
-               S = clenshaw(cell.c.S, x);
+  if (cell.state == Cell::State::kExact) return nullptr;
+  x = 2.0 * (u - (index - 1) * cell_rad_) * inv_cell_ - 1.0;
+  return &cell;
+}
+
+bool EomTable::acceleration(double theta1, double omega1, double ground_accel_m_s2, int side,
+                            double& theta1_ddot) const {
+  double x = 0;
+  const Cell* cell = locate(theta1, side, x);
+  if (cell == nullptr) return eom_.acceleration(theta1, omega1, ground_accel_m_s2, side, theta1_ddot);
+  const double I = clenshaw(cell->c.I, x), J = clenshaw(cell->c.J, x), Q = clenshaw(cell->c.Q, x),
+               S = clenshaw(cell->c.S, x);
   // Side +1 is the odd mirror: J, G, K change sign, I and S do not (equation_of_motion.hpp).
   const double s = side < 0 ? 1.0 : -1.0;
   theta1_ddot = (S * ground_accel_m_s2 - s * J * omega1 * omega1 - s * Q) / I;
+  return true;
+}
+
+bool EomTable::acceleration_jacobian(double theta1, double omega1, double ground_accel_m_s2, int side,
+                                     double& theta1_ddot, double& d_theta, double& d_omega) const {
+  double x = 0;
+  const Cell* cell = locate(theta1, side, x);
+  if (cell == nullptr) {
+    // Exact terms (near the closing limit): central difference with a step well above
+    // round-off of the exact terms, which keep the θ₁-dependence at full precision.
+    const double h = 1e-7 * std::max(1.0, std::abs(theta1));
+    double up = 0, down = 0;
+    if (!eom_.acceleration(theta1, omega1, ground_accel_m_s2, side, theta1_ddot) ||
+        !eom_.acceleration(theta1 + h, omega1, ground_accel_m_s2, side, up) ||
+        !eom_.acceleration(theta1 - h, omega1, ground_accel_m_s2, side, down))
+      return false;
+    d_theta = (up - down) / (2.0 * h);
+    EomTerms t;
+    eom_.terms(theta1, side, t);
+    d_omega = -2.0 * t.J * omega1 / t.I;
+    return true;
+  }
+  const double I = clenshaw(cell->c.I, x), J = clenshaw(cell->c.J, x), Q = clenshaw(cell->c.Q, x),
+               S = clenshaw(cell->c.S, x);
+  const double s = side < 0 ? 1.0 : -1.0;
+  const double num = S * ground_accel_m_s2 - s * J * omega1 * omega1 - s * Q;
+  theta1_ddot = num / I;
+  // d/du = (2/w) d/dx, and u = −θ₁ on side −1, +θ₁ on side +1.
+  const double du_dx = 2.0 * inv_cell_ * (side < 0 ? -1.0 : 1.0);
+  const double dI = clenshaw(cell->dc.I, x), dJ = clenshaw(cell->dc.J, x), dQ = clenshaw(cell->dc.Q, x),
+               dS = clenshaw(cell->dc.S, x);
+  const double dnum = dS * ground_accel_m_s2 - s * dJ * omega1 * omega1 - s * dQ;
+  d_theta = du_dx * (dnum * I - num * dI) / (I * I);
+  d_omega = -2.0 * s * J * omega1 / I;
   return true;
 }
 

@@ -74,6 +74,7 @@ bool FourBar::solve(double theta1, Configuration& out) const {
   out.d_theta3 = dt3;
   out.dd_theta2 = ddt2;
   out.dd_theta3 = ddt3;
+  out.jacobian = det;
 
   // Centres of mass. Left column about A, beam from B, right column about D.
   const Vec2 gc{f_.b, f_.h};            // column centre relative to its pivot at rest
@@ -104,22 +105,41 @@ bool FourBar::solve(double theta1, Configuration& out) const {
 }
 
 double FourBar::find_closing_limit() const {
-  // The linkage closes at θ₁ = 0; walk outwards to the first angle where it does not,
-  // then bisect. π is beyond any physical sway.
+  // Walk outwards from rest (steps of 2 mrad) to the first toggle, where beam and right
+  // column align and the loop-closure Jacobian vanishes. Two shapes occur: the circles of
+  // the closure stop meeting (solve fails: the usual case, then bisect on that), or they
+  // touch at one angle and meet again, so |Jacobian| has a sharp local minimum at zero
+  // (then locate it by golden section). π is beyond any physical sway.
   Configuration c;
-  double good = 0.0, bad = -std::numbers::pi;
-  for (double t = -0.05; t > -std::numbers::pi; t -= 0.05) {
-    if (!solve(t, c)) {
-      bad = t;
-      break;
+  solve(0.0, c);
+  const double rest = std::abs(c.jacobian);
+  auto size = [&](double t) { return solve(t, c) ? std::abs(c.jacobian) / rest : -1.0; };
+  const double step = 0.002;
+  double prev2 = 1.0, prev = 1.0;
+  for (double t = -step; t > -std::numbers::pi; t -= step) {
+    const double now = size(t);
+    if (now < 0.0) {  // does not close: bisect between the last good angle and t
+      double good = t + step, bad = t;
+      for (int i = 0; i < 60; ++i) {
+        const double mid = 0.5 * (good + bad);
+        (size(mid) >= 0.0 ? good : bad) = mid;
+      }
+      return good;
     }
-    good = t;
+    if (prev < prev2 && prev <= now && prev < 0.05) {  // local minimum of |J| around t + step
+      double lo = t, hi = t + 2 * step;
+      const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+      for (int i = 0; i < 80; ++i) {
+        const double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
+        (size(a) < size(b) ? hi : lo) = (size(a) < size(b) ? b : a);
+      }
+      const double t_min = 0.5 * (lo + hi);
+      if (size(t_min) < 1e-6) return t_min;
+    }
+    prev2 = prev;
+    prev = now;
   }
-  for (int i = 0; i < 60; ++i) {
-    const double mid = 0.5 * (good + bad);
-    (solve(mid, c) ? good : bad) = mid;
-  }
-  return good;
+  return -std::numbers::pi;
 }
 
 }  // namespace pcrf

@@ -28,11 +28,13 @@ class FixedStepRun {
         r_(restitution_momentum(eom)),
         h_(solver.fixed_step_s > 0 ? solver.fixed_step_s : rec.dt_s()),
         t_end_(rec.duration_s() + physics.tail_s),
-        theta_stop_(std::min(eom.fracture_angle_rad(physics.fracture_strain), 0.999 * eom.closing_limit_rad())) {}
+        theta_stop_(std::min(eom.fracture_angle_rad(physics.fracture_strain), eom.overturn_angle_rad())) {}
 
   CaseResult run() {
     const auto start = std::chrono::steady_clock::now();
     result_ = initial_result(eom_, rec_, r_, true);
+    if (theta_stop_ <= 0.0)
+      return finish(CaseStatus::kTendonFracture, 0.0, start, "the initial tendon strain already reaches the fracture strain");
     State y{physics_.theta0_rad, physics_.omega0_rad_s};
     double t = 0.0;
     if (y.theta == 0.0 && y.omega == 0.0) {
@@ -62,7 +64,7 @@ class FixedStepRun {
       if (!std::isfinite(y.theta) || !std::isfinite(y.omega))
         return finish(CaseStatus::kSolverFailure, t, start, "non-finite state");
       if (std::abs(y.theta) >= theta_stop_) {
-        const bool fracture = eom_.fracture_angle_rad(physics_.fracture_strain) <= 0.999 * eom_.closing_limit_rad();
+        const bool fracture = eom_.fracture_angle_rad(physics_.fracture_strain) <= eom_.overturn_angle_rad();
         return finish(fracture ? CaseStatus::kTendonFracture : CaseStatus::kOverturned, t, start);
       }
     }

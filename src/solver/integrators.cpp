@@ -29,6 +29,15 @@ int rhs_thunk(realtype t, N_Vector y, N_Vector ydot, void* user) {
 int root_thunk(realtype t, N_Vector y, realtype* g, void* user) {
   return static_cast<OdeProblem*>(user)->roots(t, N_VGetArrayPointer(y), g);
 }
+int jac_thunk(realtype t, N_Vector y, N_Vector /*fy*/, SUNMatrix J, void* user, N_Vector, N_Vector, N_Vector) {
+  double dfdy[4];
+  const int flag = static_cast<OdeProblem*>(user)->jacobian(t, N_VGetArrayPointer(y), dfdy);
+  SM_ELEMENT_D(J, 0, 0) = dfdy[0];
+  SM_ELEMENT_D(J, 0, 1) = dfdy[1];
+  SM_ELEMENT_D(J, 1, 0) = dfdy[2];
+  SM_ELEMENT_D(J, 1, 1) = dfdy[3];
+  return flag;
+}
 // SUNDIALS reports errors through this handler instead of printing to stderr: a study
 // of thousands of cases must not flood the terminal; the message lands in the result.
 void error_thunk(int code, const char* module, const char* function, char* msg, void* data) {
@@ -107,6 +116,7 @@ class CvodeIntegrator final : public SundialsBase {
       A_ = check_ptr(SUNDenseMatrix(2, 2, ctx_), "SUNDenseMatrix");
       LS_ = check_ptr(SUNLinSol_Dense(y_, A_, ctx_), "SUNLinSol_Dense");
       check_flag(CVodeSetLinearSolver(mem_, LS_, A_), "CVodeSetLinearSolver");
+      if (p.has_jacobian()) check_flag(CVodeSetJacFn(mem_, jac_thunk), "CVodeSetJacFn");
     } else {
       NLS_ = check_ptr(SUNNonlinSol_FixedPoint(y_, 0, ctx_), "SUNNonlinSol_FixedPoint");
       check_flag(CVodeSetNonlinearSolver(mem_, NLS_), "CVodeSetNonlinearSolver");

@@ -31,6 +31,10 @@ class OdeProblem {
   virtual int rhs(double t, const double* y, double* ydot) = 0;
   virtual int roots(double t, const double* y, double* g) = 0;
   virtual int root_count() const = 0;
+  /// ∂f/∂y, row-major 2×2, for implicit methods. Returns 0 on success; a problem without
+  /// an analytic Jacobian returns −1 from has_jacobian() == false (difference quotients).
+  virtual bool has_jacobian() const { return false; }
+  virtual int jacobian(double /*t*/, const double* /*y*/, double* /*dfdy*/) { return -1; }
 };
 
 class OdeIntegrator {

@@ -54,6 +54,17 @@ class FlightProblem final : public detail::OdeProblem {
 
   int root_count() const override { return kRootCount; }
 
+  bool has_jacobian() const override { return true; }
+  int jacobian(double t, const double* y, double* dfdy) override {
+    double acc = 0, d_theta = 0, d_omega = 0;
+    if (!table_.acceleration_jacobian(y[0], y[1], record_.accel_m_s2(t), side, acc, d_theta, d_omega)) return 1;
+    dfdy[0] = 0.0;
+    dfdy[1] = 1.0;
+    dfdy[2] = d_theta;
+    dfdy[3] = d_omega;
+    return 0;
+  }
+
   /// Root directions for the current side: the impact only while closing, θ peaks only
   /// where |θ| is maximal, the limit only while opening.
   std::array<int, kRootCount> directions() const {
@@ -101,9 +112,7 @@ class CaseRun {
         history_(history),
         restitution_(restitution_momentum(eom_)),
         fracture_angle_rad_(eom_.fracture_angle_rad(physics.fracture_strain)),
-        // Overturning: the linkage cannot close beyond its limit; stop just before it so
-        // the kinematics stay defined at the located root.
-        overturn_angle_rad_(0.999 * eom_.closing_limit_rad()),
+        overturn_angle_rad_(eom_.overturn_angle_rad()),
         problem_(eom_, record_, std::min(fracture_angle_rad_, overturn_angle_rad_), request.omega_peak),
         integrator_(detail::make_integrator(solver, problem_)),
         t_end_(record.duration_s() + physics.tail_s) {}
@@ -152,7 +161,11 @@ class CaseRun {
 CaseResult CaseRun::run() {
   result_ = detail::initial_result(eom_, record_, restitution_, request_.omega_peak);
   try {
-    if (physics_.theta0_rad != 0.0 || physics_.omega0_rad_s != 0.0) start_displaced();
+    if (fracture_angle_rad_ <= 0.0) {
+      finish(CaseStatus::kTendonFracture, "the initial tendon strain already reaches the fracture strain");
+    } else if (physics_.theta0_rad != 0.0 || physics_.omega0_rad_s != 0.0) {
+      start_displaced();
+    }
     while (!done_) {
       if (at_rest_) {
         rest_until_uplift();

@@ -39,7 +39,9 @@ std::string number_text(double value) {
 std::string parameter_problem(std::size_t parameter, double value) {
   const auto name = all_parameters()[parameter].name;
   if (name == "lambda_h") return value > 0.0 && value < 1.0 ? "" : "must be between 0 and 1 (exclusive)";
-  if (name == "pi_sigma_b" || name == "pi_sigma_c") return value >= 0.0 ? "" : "must not be negative";
+  // Π = 0 is a frame without that tendon's prestress or stiffness (Π_E = 0, Π_σ > 0 is a
+  // constant-force tendon): every Π may be zero.
+  if (name.rfind("pi_", 0) == 0) return value >= 0.0 ? "" : "must not be negative";
   return value > 0.0 ? "" : "must be positive";
 }
 

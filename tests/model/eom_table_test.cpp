@@ -2,6 +2,7 @@
 // and beyond the range the cells can represent (where they fall back to exact terms).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "pcrf/model/eom_table.hpp"
@@ -68,6 +69,34 @@ TEST(EomTable, BuildsOnlyTheCellsItIsAskedFor) {
   double acc = 0;
   for (double th = 0.0; th > -0.03; th -= 1e-4) ASSERT_TRUE(table.acceleration(th, 0.1, 1.0, -1, acc));
   EXPECT_LE(table.cells_built(), 3);
+}
+
+TEST(EomTable, JacobianMatchesDifferencesOfTheExactTerms) {
+  for (double stiffness : {1.0, 1e4}) {  // the basic tendons, and 10⁴ times stiffer
+    FrameParameters p;
+    p.pi_e_b *= stiffness;
+    p.pi_e_c *= stiffness;
+    const EquationOfMotion eom(make_frame(p));
+    const EomTable table(eom);
+    for (double u : {1e-9, 4e-6, 0.003, 0.05, 0.4}) {
+      for (int side : {-1, +1}) {
+        const double theta = side < 0 ? -u : u, w = 0.3, a = 2.0;
+        double acc = 0, d_theta = 0, d_omega = 0, plus = 0, minus = 0;
+        ASSERT_TRUE(table.acceleration_jacobian(theta, w, a, side, acc, d_theta, d_omega));
+        const double h = 1e-7 * std::max(u, 1e-3);
+        ASSERT_TRUE(eom.acceleration(theta + h, w, a, side, plus));
+        ASSERT_TRUE(eom.acceleration(theta - h, w, a, side, minus));
+        const double fd = (plus - minus) / (2 * h);
+        // The derivative of the degree-9 interpolant is least accurate at the cell ends
+        // (Markov's inequality): a few parts in 10⁶ there, far more than Newton needs.
+        EXPECT_NEAR(d_theta, fd, 1e-5 * std::abs(fd)) << "u=" << u << " side=" << side << " k×" << stiffness;
+        // θ̈ is quadratic in θ̇, so a central difference with a large step is exact.
+        ASSERT_TRUE(eom.acceleration(theta, w + 0.1, a, side, plus));
+        ASSERT_TRUE(eom.acceleration(theta, w - 0.1, a, side, minus));
+        EXPECT_NEAR(d_omega, (plus - minus) / 0.2, 1e-9 * (std::abs(plus) + std::abs(minus)) + 1e-12);
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -26,6 +26,13 @@ class EomTable {
   /// θ̈₁ [rad/s²] as EquationOfMotion::acceleration, from the tabulated terms.
   bool acceleration(double theta1, double omega1, double ground_accel_m_s2, int side, double& theta1_ddot) const;
 
+  /// θ̈₁ and its partial derivatives ∂θ̈₁/∂θ₁ [1/s²] and ∂θ̈₁/∂θ̇₁ [1/s], for implicit
+  /// integrators. The θ₁-derivative comes from differentiating the Chebyshev series
+  /// (exact for the interpolant); a difference quotient of the tabulated θ̈₁ would lose
+  /// the small θ₁-dependent part to round-off next to the large step force at θ₁ = 0.
+  bool acceleration_jacobian(double theta1, double omega1, double ground_accel_m_s2, int side,
+                             double& theta1_ddot, double& d_theta, double& d_omega) const;
+
   /// Number of cells built so far (for tests and benchmarks).
   int cells_built() const { return built_; }
 
@@ -36,8 +43,13 @@ class EomTable {
   };
   struct Cell {
     enum class State : char { kEmpty, kTabulated, kExact } state = State::kEmpty;
-    Coefficients c;
+    Coefficients c;   ///< the series
+    Coefficients dc;  ///< the series of their x-derivatives
   };
+
+  /// The cell holding θ₁ on `side` (built on first use) and the local coordinate
+  /// x ∈ [−1, 1]; nullptr where the table does not apply (exact terms then).
+  const Cell* locate(double theta1, int side, double& x) const;
 
   bool negative_branch(double phi, double& I, double& J, double& Q, double& S) const;
   void build(Cell& cell, int index) const;

@@ -74,8 +74,14 @@ class EquationOfMotion {
   /// the joints into that side (side·θ̈ > 0) or holds them closed.
   double rest_acceleration(double ground_accel_m_s2, int side) const;
 
-  /// The linkage's closing limit |θ₁| [rad] (≈ 1.65 for the basic model).
+  /// The linkage's closing limit |θ₁| [rad] (1.6002 for the basic model).
   double closing_limit_rad() const { return -four_bar_.closing_limit_rad(); }
+
+  /// |θ₁| at which a case ends as overturned: 95 % of the closing limit [rad]. Near the
+  /// limit the linkage's Jacobian degenerates (dθ₃/dθ₁ → ∞), the equation of motion
+  /// stiffens without bound and no integrator step can reach the limit itself; a frame
+  /// rotated that far (≈ 87° for the basic model) is lost in any practical sense.
+  double overturn_angle_rad() const { return 0.95 * closing_limit_rad(); }
 
   /// Smallest |θ₁| at which a tendon's total strain reaches `fracture_strain`; +∞ when
   /// no tendon does before the closing limit [rad].

@@ -35,6 +35,9 @@ struct Configuration {
   double d_theta2 = 0, d_theta3 = 0;           ///< dθ₂/dθ₁, dθ₃/dθ₁
   double dd_theta2 = 0, dd_theta3 = 0;         ///< d²θ₂/dθ₁², d²θ₃/dθ₁²
   BodyMotion left, beam, right;                ///< left column, beam, right column
+  /// Determinant of the loop-closure Jacobian ∂(closure)/∂(θ₂, θ₃) [m²]; it vanishes
+  /// where beam and right column align (a toggle: the mechanism locks or snaps through).
+  double jacobian = 0;
 };
 
 class FourBar {
@@ -45,8 +48,9 @@ class FourBar {
   /// close at that angle (the circles do not meet or the linkage is at a toggle).
   bool solve(double theta1, Configuration& out) const;
 
-  /// The most negative θ₁ at which the linkage still closes, found once by bisection
-  /// (≈ −1.65 rad for the basic model) [rad].
+  /// The most negative θ₁ reached before the linkage stops closing or passes a toggle
+  /// (Jacobian sign change), found once by a scan and bisection (−1.6002 rad for the basic
+  /// model) [rad].
   double closing_limit_rad() const { return closing_limit_rad_; }
 
  private:
