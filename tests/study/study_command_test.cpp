@@ -251,9 +251,13 @@ TEST(StudyCommand, RefusesToOverwriteOrToResumeAnotherStudy) {
 }
 
 TEST(StudyCommand, ExampleStudiesAreValid) {
-  const auto demo = test::run_command(pcrf() + " study " + quoted(test::source_dir() / "studies" / "demo.toml") + " --check");
-  EXPECT_EQ(demo.exit_code, 0) << demo.err;
-  EXPECT_NE(demo.out.find(": ok, "), std::string::npos) << demo.out;
+  const std::map<std::string, std::string> expected = {{"demo.toml", ": ok, 324 cases"},
+                                                       {"extremes.toml", ": ok, 7776 cases"}};
+  for (const auto& [file, text] : expected) {
+    const auto r = test::run_command(pcrf() + " study " + quoted(test::source_dir() / "studies" / file) + " --check");
+    EXPECT_EQ(r.exit_code, 0) << file << ": " << r.err;
+    EXPECT_NE(r.out.find(text), std::string::npos) << file << ": " << r.out;
+  }
 }
 
 TEST(StudyCommand, PaperStudiesFindTheirRecords) {
@@ -263,7 +267,13 @@ TEST(StudyCommand, PaperStudiesFindTheirRecords) {
     GTEST_SKIP() << "../shared/records not beside the checkout";
   const auto studies = test::source_dir() / "studies";
   const std::map<std::string, std::string> expected = {
-      {"paper_table3.toml", ": ok, 13 cases"}, {"paper_section7.toml", ": ok, "}, {"ida.toml", ": ok, "}};
+      {"paper_table3.toml", ": ok, 13 cases"},
+      {"paper_section7.toml", ": ok, "},
+      {"ida.toml", ": ok, "},
+      {"numerics_audit/exact.toml", ": ok, 11 cases"},
+      {"numerics_audit/fixed_rk4_h1e-2.toml", ": ok, 11 cases"},
+      {"numerics_audit/fixed_rk4_h1e-3.toml", ": ok, 11 cases"},
+      {"numerics_audit/fixed_rk4_h1e-4.toml", ": ok, 11 cases"}};
   for (const auto& [file, text] : expected) {
     const auto r = test::run_command(pcrf() + " study " + quoted(studies / file) + " --check");
     EXPECT_EQ(r.exit_code, 0) << file << ": " << r.err;
