@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "pcrf/model/equation_of_motion.hpp"
@@ -113,7 +114,13 @@ TEST_P(EomConsistency, PeakStrainsAreTheMaximaOverTheVisitedRange) {
   EXPECT_DOUBLE_EQ(eom.peak_tendon_strains(0.01).strain_beam, at_end.strain_beam);
 }
 
-INSTANTIATE_TEST_SUITE_P(Frames, EomConsistency, ::testing::ValuesIn(frames()));
+/// Test names for the frames() above (readable ctest names instead of parameter bytes).
+std::string frame_name(const ::testing::TestParamInfo<FrameParameters>& param_info) {
+  static const char* const kNames[] = {"basic", "slender_light_low_beam", "stocky_heavy_deep_beam", "no_tendons"};
+  return kNames[param_info.index];
+}
+
+INSTANTIATE_TEST_SUITE_P(Frames, EomConsistency, ::testing::ValuesIn(frames()), frame_name);
 
 TEST(FrameValidation, ImpossibleGeometryNamesTheParameter) {
   FrameParameters p;
