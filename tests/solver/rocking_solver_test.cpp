@@ -159,20 +159,6 @@ TEST(RockingSolver, TendonFractureIsAStatus) {
   EXPECT_LT(r.t_end_s, 12.0);
 }
 
-TEST(RockingSolver, FrameWithoutTendonsOverturnsUnderAStrongPulse) {
-  FrameParameters p;
-  p.pi_sigma_b = p.pi_sigma_c = p.pi_e_b = p.pi_e_c = 0.0;
-  SinePulseSpec pulse;
-  pulse.amplitude_g = 1.0;
-  pulse.period_s = 2.0;
-  pulse.cycles = 1;
-  pulse.duration_s = 6.0;
-  const CaseResult r = solve_case(make_frame(p), make_sine_pulse_train(pulse), {}, {});
-  EXPECT_EQ(r.status, CaseStatus::kOverturned);
-  EXPECT_TRUE(std::isfinite(r.theta_max_rad));
-  EXPECT_GT(r.theta_max_rad, 1.5);
-}
-
 TEST(RockingSolver, FreeVibrationTailExtendsTheCaseUntilRest) {
   const Frame frame = basic_frame();
   SinePulseSpec pulse;
