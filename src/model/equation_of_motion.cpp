@@ -189,7 +189,7 @@ double EquationOfMotion::fracture_angle_rad(double fracture_strain) const {
     return std::max(has_column ? t.strain_column_max() : none, has_beam ? t.strain_beam : none) - fracture_strain;
   };
   if (excess(0.0) >= 0.0) return 0.0;
-  const int n = 400;
+  const int n = 100;
   double lo = 0.0;
   for (int i = 1; i <= n; ++i) {
     double hi = limit * i / n;

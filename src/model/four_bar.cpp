@@ -105,7 +105,7 @@ bool FourBar::solve(double theta1, Configuration& out) const {
 }
 
 double FourBar::find_closing_limit() const {
-  // Walk outwards from rest (steps of 2 mrad) to the first toggle, where beam and right
+  // Walk outwards from rest (steps of 20 mrad) to the first toggle, where beam and right
   // column align and the loop-closure Jacobian vanishes. Two shapes occur: the circles of
   // the closure stop meeting (solve fails: the usual case, then bisect on that), or they
   // touch at one angle and meet again, so |Jacobian| has a sharp local minimum at zero
@@ -114,7 +114,7 @@ double FourBar::find_closing_limit() const {
   solve(0.0, c);
   const double rest = std::abs(c.jacobian);
   auto size = [&](double t) { return solve(t, c) ? std::abs(c.jacobian) / rest : -1.0; };
-  const double step = 0.002;
+  const double step = 0.02;
   double prev2 = 1.0, prev = 1.0;
   for (double t = -step; t > -std::numbers::pi; t -= step) {
     const double now = size(t);

@@ -2,7 +2,6 @@
 #include "fixed_step_solver.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <string>
 
@@ -31,15 +30,14 @@ class FixedStepRun {
         theta_stop_(std::min(eom.fracture_angle_rad(physics.fracture_strain), eom.overturn_angle_rad())) {}
 
   CaseResult run() {
-    const auto start = std::chrono::steady_clock::now();
     result_ = initial_result(eom_, rec_, r_, true);
     if (theta_stop_ <= 0.0)
-      return finish(CaseStatus::kTendonFracture, 0.0, start, "the initial tendon strain already reaches the fracture strain");
+      return finish(CaseStatus::kTendonFracture, 0.0, "the initial tendon strain already reaches the fracture strain");
     State y{physics_.theta0_rad, physics_.omega0_rad_s};
     double t = 0.0;
     if (y.theta == 0.0 && y.omega == 0.0) {
       t = first_exceedance(rec_, 0.0, t_end_, eom_.uplift_threshold_m_s2());
-      if (std::isnan(t)) return finish(CaseStatus::kAtRest, t_end_, start);
+      if (std::isnan(t)) return finish(CaseStatus::kAtRest, t_end_);
       side_ = rec_.accel_m_s2(t) > 0.0 ? -1 : +1;
     } else {
       side_ = y.theta < 0.0 || (y.theta == 0.0 && y.omega < 0.0) ? -1 : +1;
@@ -49,7 +47,7 @@ class FixedStepRun {
     while (t < t_end_) {
       const double h = std::min(h_, t_end_ - t);
       State next{};
-      if (!step(t, h, y, next)) return finish(CaseStatus::kSolverFailure, t, start, "linkage cannot close");
+      if (!step(t, h, y, next)) return finish(CaseStatus::kSolverFailure, t, "linkage cannot close");
       t += h;
       ++result_.counts.steps;
       if (side_ * next.theta < 0.0) {  // θ₁ left the branch's side over the step
@@ -62,13 +60,13 @@ class FixedStepRun {
       note(t, y);
       emit(t, y);
       if (!std::isfinite(y.theta) || !std::isfinite(y.omega))
-        return finish(CaseStatus::kSolverFailure, t, start, "non-finite state");
+        return finish(CaseStatus::kSolverFailure, t, "non-finite state");
       if (std::abs(y.theta) >= theta_stop_) {
         const bool fracture = eom_.fracture_angle_rad(physics_.fracture_strain) <= eom_.overturn_angle_rad();
-        return finish(fracture ? CaseStatus::kTendonFracture : CaseStatus::kOverturned, t, start);
+        return finish(fracture ? CaseStatus::kTendonFracture : CaseStatus::kOverturned, t);
       }
     }
-    return finish(CaseStatus::kRockingAtEnd, t, start);
+    return finish(CaseStatus::kRockingAtEnd, t);
   }
 
  private:
@@ -104,14 +102,12 @@ class FixedStepRun {
     if (history_) history_(history_sample(eom_, rec_, t, y.theta, y.omega, side_));
   }
 
-  CaseResult finish(CaseStatus status, double t, std::chrono::steady_clock::time_point start,
-                    std::string message = {}) {
+  CaseResult finish(CaseStatus status, double t, std::string message = {}) {
     result_.status = status;
     result_.t_end_s = t;
     result_.message = std::move(message);
     result_.counts.rhs_evals = evals_;
     set_peak_strains(eom_, result_);
-    result_.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result_;
   }
 

@@ -178,7 +178,6 @@ CaseResult CaseRun::run() {
   }
   result_.counts = integrator_->counts();
   detail::set_peak_strains(eom_, result_);
-  result_.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   return result_;
 }
 
@@ -394,11 +393,17 @@ bool CaseRun::over_time() const {
 CaseResult solve_case(const Frame& frame, const GroundMotion& record, const PhysicsOptions& physics,
                       const SolverSettings& solver, const OutputRequest& request, const HistorySink& history) {
   detail::validate(solver, physics);
+  // Timed here, so that the per-case set-up (linkage limits, fracture angle, r) counts.
+  const auto start = std::chrono::steady_clock::now();
+  CaseResult result;
   if (solver.integrator == Integrator::kFixedRk4SignChange) {
-    return detail::solve_case_fixed_step(EquationOfMotion(frame), record, physics, solver, history);
+    result = detail::solve_case_fixed_step(EquationOfMotion(frame), record, physics, solver, history);
+  } else {
+    CaseRun run(frame, record, physics, solver, request, history);
+    result = run.run();
   }
-  CaseRun run(frame, record, physics, solver, request, history);
-  return run.run();
+  result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
 }
 
 }  // namespace pcrf
