@@ -60,6 +60,19 @@ void validate(const SolverSettings& s, const PhysicsOptions& p) {
   if (s.fixed_step_s < 0) throw std::invalid_argument("solver setting fixed_step_s must be ≥ 0");
 }
 
+StopAngles stop_angles(const EquationOfMotion& eom, const PhysicsOptions& physics) {
+  return {eom.fracture_angle_rad(physics.fracture_strain), eom.overturn_angle_rad()};
+}
+
+CaseStatus StopAngles::status() const {
+  return fracture_rad <= overturn_rad ? CaseStatus::kTendonFracture : CaseStatus::kOverturned;
+}
+
+const char* StopAngles::message() const {
+  return fracture_rad <= overturn_rad ? "tendon strain reached the fracture strain"
+                                      : "rotation reached the mechanism's closing limit";
+}
+
 CaseResult initial_result(const EquationOfMotion& eom, const GroundMotion& rec, double restitution,
                           bool omega_peak) {
   CaseResult r;

@@ -4,6 +4,8 @@
 /// do not depend on the integration. Private to the solver.
 #pragma once
 
+#include <algorithm>
+
 #include "pcrf/metrics/case_result.hpp"
 #include "pcrf/model/equation_of_motion.hpp"
 #include "pcrf/record/ground_motion.hpp"
@@ -28,6 +30,28 @@ void set_peak_strains(const EquationOfMotion& eom, CaseResult& result);
 /// Fills a history sample at θ₁, θ̇₁ on `side`.
 HistorySample history_sample(const EquationOfMotion& eom, const GroundMotion& rec, double t, double theta,
                              double omega, int side);
+
+/// Where a case stops on its own: the |θ₁| at which a tendon fractures and the one at which
+/// the frame is declared overturned, found once per case.
+struct StopAngles {
+  double fracture_rad;  ///< 0: a tendon is already broken at rest; +∞: none fractures
+  double overturn_rad;
+
+  double stop_rad() const { return std::min(fracture_rad, overturn_rad); }
+  bool broken_at_rest() const { return fracture_rad <= 0.0; }
+  /// Status and message of a case that reached stop_rad().
+  CaseStatus status() const;
+  const char* message() const;
+};
+StopAngles stop_angles(const EquationOfMotion& eom, const PhysicsOptions& physics);
+inline constexpr const char* kBrokenAtRestMessage = "the initial tendon strain already reaches the fracture strain";
+
+/// Branch a frame leaving rest enters: ü_g > 0 pushes it into θ₁ < 0.
+inline int uplift_side(double ground_accel_m_s2) { return ground_accel_m_s2 > 0.0 ? -1 : +1; }
+/// Branch of a displaced initial state: the side of θ₁, or of −θ̇₁ when θ₁ = 0.
+inline int initial_side(double theta_rad, double omega_rad_s) {
+  return theta_rad < 0.0 || (theta_rad == 0.0 && omega_rad_s < 0.0) ? -1 : +1;
+}
 
 /// Checks settings shared by every integrator. \throws std::invalid_argument
 void validate(const SolverSettings& s, const PhysicsOptions& p);

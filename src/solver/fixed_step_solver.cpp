@@ -27,20 +27,19 @@ class FixedStepRun {
         r_(restitution_momentum(eom)),
         h_(solver.fixed_step_s > 0 ? solver.fixed_step_s : rec.dt_s()),
         t_end_(rec.duration_s() + physics.tail_s),
-        theta_stop_(std::min(eom.fracture_angle_rad(physics.fracture_strain), eom.overturn_angle_rad())) {}
+        stop_(stop_angles(eom, physics)) {}
 
   CaseResult run() {
     result_ = initial_result(eom_, rec_, r_, true);
-    if (theta_stop_ <= 0.0)
-      return finish(CaseStatus::kTendonFracture, 0.0, "the initial tendon strain already reaches the fracture strain");
+    if (stop_.broken_at_rest()) return finish(CaseStatus::kTendonFracture, 0.0, kBrokenAtRestMessage);
     State y{physics_.theta0_rad, physics_.omega0_rad_s};
     double t = 0.0;
     if (y.theta == 0.0 && y.omega == 0.0) {
       t = first_exceedance(rec_, 0.0, t_end_, eom_.uplift_threshold_m_s2());
       if (std::isnan(t)) return finish(CaseStatus::kAtRest, t_end_);
-      side_ = rec_.accel_m_s2(t) > 0.0 ? -1 : +1;
+      side_ = uplift_side(rec_.accel_m_s2(t));
     } else {
-      side_ = y.theta < 0.0 || (y.theta == 0.0 && y.omega < 0.0) ? -1 : +1;
+      side_ = initial_side(y.theta, y.omega);
     }
     result_.t_uplift_s = t;
     emit(t, y);
@@ -61,10 +60,7 @@ class FixedStepRun {
       emit(t, y);
       if (!std::isfinite(y.theta) || !std::isfinite(y.omega))
         return finish(CaseStatus::kSolverFailure, t, "non-finite state");
-      if (std::abs(y.theta) >= theta_stop_) {
-        const bool fracture = eom_.fracture_angle_rad(physics_.fracture_strain) <= eom_.overturn_angle_rad();
-        return finish(fracture ? CaseStatus::kTendonFracture : CaseStatus::kOverturned, t);
-      }
+      if (std::abs(y.theta) >= stop_.stop_rad()) return finish(stop_.status(), t, stop_.message());
     }
     return finish(CaseStatus::kRockingAtEnd, t);
   }
@@ -119,7 +115,7 @@ class FixedStepRun {
   double r_;
   double h_;
   double t_end_;
-  double theta_stop_;
+  StopAngles stop_;
   int side_ = -1;
   mutable long evals_ = 0;
   CaseResult result_;

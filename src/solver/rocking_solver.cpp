@@ -111,9 +111,8 @@ class CaseRun {
         request_(request),
         history_(history),
         restitution_(restitution_momentum(eom_)),
-        fracture_angle_rad_(eom_.fracture_angle_rad(physics.fracture_strain)),
-        overturn_angle_rad_(eom_.overturn_angle_rad()),
-        problem_(eom_, record_, std::min(fracture_angle_rad_, overturn_angle_rad_), request.omega_peak),
+        stop_(detail::stop_angles(eom_, physics)),
+        problem_(eom_, record_, stop_.stop_rad(), request.omega_peak),
         integrator_(detail::make_integrator(solver, problem_)),
         t_end_(record.duration_s() + physics.tail_s) {}
 
@@ -143,8 +142,7 @@ class CaseRun {
   OutputRequest request_;
   const HistorySink& history_;
   double restitution_;
-  double fracture_angle_rad_;
-  double overturn_angle_rad_;
+  detail::StopAngles stop_;
   FlightProblem problem_;
   std::unique_ptr<detail::OdeIntegrator> integrator_;
   double t_end_;
@@ -161,8 +159,8 @@ class CaseRun {
 CaseResult CaseRun::run() {
   result_ = detail::initial_result(eom_, record_, restitution_, request_.omega_peak);
   try {
-    if (fracture_angle_rad_ <= 0.0) {
-      finish(CaseStatus::kTendonFracture, "the initial tendon strain already reaches the fracture strain");
+    if (stop_.broken_at_rest()) {
+      finish(CaseStatus::kTendonFracture, detail::kBrokenAtRestMessage);
     } else if (physics_.theta0_rad != 0.0 || physics_.omega0_rad_s != 0.0) {
       start_displaced();
     }
@@ -196,7 +194,7 @@ void CaseRun::rest_until_uplift() {
   t_ = t_open;
   if (std::isnan(result_.t_uplift_s)) result_.t_uplift_s = t_open;
   const double a = record_.accel_m_s2(t_open);
-  problem_.side = a > 0.0 ? -1 : +1;  // ü_g > 0 pushes the frame into θ₁ < 0
+  problem_.side = detail::uplift_side(a);
   const double y0[2] = {0.0, 0.0};
   at_rest_ = false;
   start_flight(t_open, y0);
@@ -204,7 +202,7 @@ void CaseRun::rest_until_uplift() {
 
 void CaseRun::start_displaced() {
   const double th = physics_.theta0_rad, w = physics_.omega0_rad_s;
-  problem_.side = th < 0.0 || (th == 0.0 && w < 0.0) ? -1 : +1;
+  problem_.side = detail::initial_side(th, w);
   const double y0[2] = {th, w};
   at_rest_ = false;
   result_.t_uplift_s = 0.0;
@@ -284,10 +282,8 @@ bool CaseRun::handle_roots(double t, double* y) {
   if (found[kOmegaPeak] && request_.omega_peak) note_omega(t, y[1]);
   if (found[kLimit]) {
     note_theta(t, y[0]);
-    const bool fracture = fracture_angle_rad_ <= overturn_angle_rad_;
     emit(t, y[0], y[1]);
-    finish(fracture ? CaseStatus::kTendonFracture : CaseStatus::kOverturned,
-           fracture ? "tendon strain reached the fracture strain" : "rotation reached the mechanism's closing limit");
+    finish(stop_.status(), stop_.message());
     return true;
   }
   if (!found[kImpact]) return false;
