@@ -178,8 +178,8 @@ struct Case {
   double threshold_g = 0;   ///< the frame's physical uplift threshold [g]
 };
 
-// ---- settings --------------------------------------------------------------------
-struct Setting {
+// ---- contenders: the solver settings compared -----------------------------------------
+struct Contender {
   std::string label;   ///< unique, e.g. "arkode-erk5/stop rtol=1e-06"
   std::string family;  ///< one line in the diagram, e.g. "arkode-erk5/stop"
   double knob = kNaN;  ///< rtol, or the fixed step divisor
@@ -274,7 +274,7 @@ struct Reference {
 
 struct Row {
   std::size_t case_index;
-  const Setting* setting;
+  const Contender* contender;
   Timed t;
 };
 
@@ -291,13 +291,13 @@ struct Options {
   std::string records_dir;
 };
 
-}  // namespace
+/// What the run produced: the reference of every case and one row per case × contender.
+struct Results {
+  std::vector<Reference> refs;
+  std::vector<Row> rows;
+};
 
-int main(int argc, char** argv) {
-  Options o;
-  CLI::App app{"Work-precision study of the rocking solver (issue 4). Writes OUT_runs.csv (one row per "
-               "case x setting), OUT_cases.csv (one row per case: reference, convergence check, "
-               "conditioning, floor) and a summary table on stdout."};
+void add_options(CLI::App& app, Options& o) {
   app.add_flag("--quick", o.quick, "a short run: basic frame, ER1/ER3/ER7/ER11, 2 synthetic motions, 5 tolerances");
   app.add_option("--frames", o.frames,
                  "comma list of frames: basic, slender, stocky, light_beam, heavy_beam, weak_prestress, "
@@ -323,9 +323,12 @@ int main(int argc, char** argv) {
   app.add_option("--time-limit", o.time_limit_s, "wall-time limit per solve [s]")->capture_default_str();
   app.add_option("--out", o.out, "output prefix: OUT_runs.csv, OUT_cases.csv")->capture_default_str();
   app.add_option("--records-dir", o.records_dir, "shared records folder (default $PCRF_RECORDS_DIR or ../shared/records)");
-  CLI11_PARSE(app, argc, argv);
 
-  // ---- what to run -------------------------------------------------------------
+}
+
+/// The cases: every selected frame × motion (paper records at each scale, synthetic motions
+/// at multiples of the frame's threshold). \throws std::invalid_argument for a bad selection.
+std::vector<Case> make_cases(Options& o) {
   if (o.rtols.empty()) o.rtols = o.quick ? "1e-3,1e-5,1e-7,1e-9,1e-11" : "1e-3,1e-4,1e-5,1e-6,1e-7,1e-8,1e-9,1e-10,1e-11";
   if (o.fixed_divs.empty()) o.fixed_divs = o.quick ? "1,10" : "1,2,4,10,100";
   if (o.frames.empty()) o.frames = o.quick ? "basic" : "";
@@ -338,10 +341,7 @@ int main(int argc, char** argv) {
     if (wanted_frames.empty() || std::find(wanted_frames.begin(), wanted_frames.end(), f.name) != wanted_frames.end())
       frames.push_back(f);
   }
-  if (frames.empty()) {
-    std::cerr << "no frame selected\n";
-    return 2;
-  }
+  if (frames.empty()) throw std::invalid_argument("no frame selected");
 
   fs::path records_dir = o.records_dir;
   if (records_dir.empty()) {
@@ -400,8 +400,13 @@ int main(int argc, char** argv) {
     }
   }
 
-  // Settings.
-  std::vector<Setting> settings;
+  return cases;
+}
+
+/// The solver settings compared: SUNDIALS tolerance sweeps, the atol study, fixed-step RK4
+/// and the presets. \throws std::invalid_argument for an unknown integrator.
+std::vector<Contender> make_contenders(const Options& o) {
+  std::vector<Contender> settings;
   const std::map<std::string, Integrator> integrators = {{"cvode-adams", Integrator::kCvodeAdams},
                                                          {"cvode-bdf", Integrator::kCvodeBdf},
                                                          {"arkode-erk5", Integrator::kArkodeErk5},
@@ -409,10 +414,7 @@ int main(int argc, char** argv) {
   const auto rtols = split_doubles(o.rtols);
   for (const auto& name : split(o.integrators)) {
     const auto it = integrators.find(name);
-    if (it == integrators.end()) {
-      std::cerr << "unknown integrator " << name << "\n";
-      return 2;
-    }
+    if (it == integrators.end()) throw std::invalid_argument("unknown integrator " + name);
     for (const auto& stop : split(o.stops)) {
       const bool on = stop == "on";
       const std::string family = name + (on ? "/stop" : "/nostop");
@@ -450,20 +452,15 @@ int main(int argc, char** argv) {
     }
   }
 
-  std::cerr << "pcrf_work_precision: " << cases.size() << " cases x " << settings.size() << " settings, "
-            << o.repeats << " timed repeats each\n";
-  if (cases.empty()) {
-    std::cerr << "no case to run\n";
-    return 0;
-  }
+  return settings;
+}
 
-  // ---- run ---------------------------------------------------------------------
+/// Runs the reference and every contender on every case; writes OUT_runs.csv, OUT_cases.csv.
+Results run_all(const Options& o, const std::vector<Case>& cases, const std::vector<Contender>& settings,
+                Clock::time_point start) {
   const std::string runs_path = o.out + "_runs.csv", cases_path = o.out + "_cases.csv";
   std::ofstream runs(runs_path), case_csv(cases_path);
-  if (!runs || !case_csv) {
-    std::cerr << "cannot write " << runs_path << " / " << cases_path << "\n";
-    return 1;
-  }
+  if (!runs || !case_csv) throw std::runtime_error("cannot write " + runs_path + " / " + cases_path);
   runs << "case,frame,motion,nominal,scale,family,setting,integrator,knob,rtol,atol_theta,atol_omega,stop_at_samples,"
           "fixed_step_s,status,theta_max_rad,t_theta_max_s,omega_max_rad_s,t_uplift_s,impacts,steps,rhs_evals,"
           "wall_median_s,wall_min_s,floor_s,cost_multiple,theta_ref_rad,err_theta_rel,err_t_theta_s,err_omega_rel,"
@@ -474,9 +471,10 @@ int main(int argc, char** argv) {
               "cross_d_impacts,cond_theta_rel,cond_t_theta_s,cond_d_impacts,floor_s,floor_ns_per_rhs,floor_table_s,"
               "floor_table_ns_per_rhs\n";
 
-  std::vector<Row> rows;
-  std::vector<Reference> refs(cases.size());
-  const auto start = Clock::now();
+  Results results;
+  results.refs.resize(cases.size());
+  auto& rows = results.rows;
+  auto& refs = results.refs;
   for (std::size_t ci = 0; ci < cases.size(); ++ci) {
     const Case& c = cases[ci];
     Reference& R = refs[ci];
@@ -521,7 +519,7 @@ int main(int argc, char** argv) {
              << fmt(1e9 * R.floor_table_s / static_cast<double>(c.motion.size()), 4) << '\n';
     case_csv.flush();
 
-    for (const Setting& st : settings) {
+    for (const Contender& st : settings) {
       SolverSettings s = st.s;
       if (s.integrator == Integrator::kFixedRk4SignChange) s.fixed_step_s = c.motion.dt_s() / -st.s.fixed_step_s;
       Row row{ci, &st, run_timed(c, c.motion, s, o.repeats)};
@@ -553,7 +551,14 @@ int main(int argc, char** argv) {
               << " cond=" << fmt(cond, 2) << "  elapsed " << fmt(seconds_since(start), 4) << " s\n";
   }
 
-  // ---- summary -----------------------------------------------------------------
+  return results;
+}
+
+/// One line per contender on stdout: errors against the reference, failures, cost.
+void print_summary(const Options& o, const std::vector<Case>& cases, const std::vector<Contender>& settings,
+                   const Results& results) {
+  const auto& rows = results.rows;
+  const auto& refs = results.refs;
   std::vector<double> floors, floors_table;
   for (const auto& R : refs) {
     floors.push_back(R.floor_s);
@@ -582,11 +587,11 @@ int main(int argc, char** argv) {
   std::printf("%-40s %4s %4s %4s %10s %10s %10s %10s %9s %9s %8s %10s %9s %9s\n", "setting", "n", "fail", "stat",
               "med_err", "p90_err", "worst_err", "worst>1mr", "med_dt_s", "med_dimp", "med_ms", "med_xfloor",
               "med_steps", "med_rhs");
-  for (const Setting& st : settings) {
+  for (const Contender& st : settings) {
     std::vector<double> err, err_big, dt, dimp, wall, mult, steps, rhs;
     int fails = 0, mismatch = 0, n = 0;
     for (const Row& row : rows) {
-      if (row.setting != &st) continue;
+      if (row.contender != &st) continue;
       const Reference& R = refs[row.case_index];
       const CaseResult& r = row.t.r;
       wall.push_back(row.t.wall_median_s);
@@ -608,6 +613,37 @@ int main(int argc, char** argv) {
                 quantile(err_big, 1.0), median(dt), median(dimp), 1e3 * median(wall), median(mult), median(steps),
                 median(rhs));
   }
-  std::cerr << "wrote " << runs_path << " and " << cases_path << " in " << fmt(seconds_since(start), 4) << " s\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  CLI::App app{"Work-precision study of the rocking solver (issue 4). Writes OUT_runs.csv (one row per "
+               "case x setting), OUT_cases.csv (one row per case: reference, convergence check, "
+               "conditioning, floor) and a summary table on stdout."};
+  add_options(app, o);
+  CLI11_PARSE(app, argc, argv);
+  try {
+    const std::vector<Case> cases = make_cases(o);
+    const std::vector<Contender> settings = make_contenders(o);
+    std::cerr << "pcrf_work_precision: " << cases.size() << " cases x " << settings.size() << " settings, "
+              << o.repeats << " timed repeats each\n";
+    if (cases.empty()) {
+      std::cerr << "no case to run\n";
+      return 0;
+    }
+    const auto start = Clock::now();
+    const Results results = run_all(o, cases, settings, start);
+    print_summary(o, cases, settings, results);
+    std::cerr << "wrote " << o.out << "_runs.csv and " << o.out << "_cases.csv in " << fmt(seconds_since(start), 4)
+              << " s\n";
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "pcrf_work_precision: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "pcrf_work_precision: " << e.what() << "\n";
+    return 1;
+  }
   return 0;
 }

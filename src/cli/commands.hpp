@@ -22,9 +22,7 @@ class UsageError : public std::runtime_error {
 int& exit_code();
 
 void add_run_command(CLI::App& app);    ///< `pcrf run`: one case, JSON on stdout
-#ifdef PCRF_HAVE_STUDY
 void add_study_command(CLI::App& app);  ///< `pcrf study FILE`: a parametric study (MPI)
 void add_cube_command(CLI::App& app);   ///< `pcrf cube info|export|stats FILE`
-#endif
 
 }  // namespace pcrf::cli

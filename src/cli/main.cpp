@@ -19,10 +19,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", pcrf::kVersion);
   app.require_subcommand(1);
   pcrf::cli::add_run_command(app);
-#ifdef PCRF_HAVE_STUDY
   pcrf::cli::add_study_command(app);
   pcrf::cli::add_cube_command(app);
-#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

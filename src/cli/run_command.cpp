@@ -9,7 +9,9 @@
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "cli/setting_flags.hpp"
 #include "pcrf/model/frame.hpp"
+#include "pcrf/model/parameters.hpp"
 #include "pcrf/record/record_readers.hpp"
 #include "pcrf/record/synthetic.hpp"
 #include "pcrf/solver/rocking_solver.hpp"
@@ -25,13 +27,9 @@ struct RunOptions {
   std::string synthetic;
   double scale = 1.0;
   FrameParameters frame;
-  std::string criterion = "physical";
-  std::string integrator;  // empty: the preset's
-  SolverSettings solver;  // explicit values, applied over the preset where given
-  std::vector<const CLI::Option*> solver_flags;  // which of them the user gave
-  PhysicsOptions physics;
+  std::unique_ptr<SettingFlags<PhysicsOptions>> physics;
+  std::unique_ptr<SettingFlags<SolverSettings>> solver;
   std::string history_file;
-  std::string preset = "balanced";
 };
 
 GroundMotion load_motion(const RunOptions& o) {
@@ -74,34 +72,13 @@ class CsvHistory {
   std::ofstream out_;
 };
 
-/// The preset, then every solver option the user gave explicitly.
-SolverSettings settings_from(const RunOptions& o) {
-  SolverSettings s = preset_settings(o.preset);
-  auto given = [&](const char* name) {
-    for (const CLI::Option* opt : o.solver_flags)
-      if (opt->check_name(name) && opt->count() > 0) return true;
-    return false;
-  };
-  if (!o.integrator.empty()) s.integrator = parse_integrator(o.integrator);
-  if (given("--rtol")) s.rtol = o.solver.rtol;
-  if (given("--atol-theta")) s.atol_theta_rad = o.solver.atol_theta_rad;
-  if (given("--atol-omega")) s.atol_omega_rad_s = o.solver.atol_omega_rad_s;
-  if (given("--max-step")) s.max_step_s = o.solver.max_step_s;
-  if (given("--fixed-step")) s.fixed_step_s = o.solver.fixed_step_s;
-  if (given("--stop-at-samples")) s.stop_at_samples = o.solver.stop_at_samples;
-  if (given("--time-limit")) s.wall_time_limit_s = o.solver.wall_time_limit_s;
-  return s;
-}
-
 void run(const RunOptions& o) {
   const GroundMotion motion = load_motion(o);
+  const PhysicsOptions physics = o.physics->resolve();
+  const SolverSettings solver = o.solver->resolve();
   Frame frame{};
-  PhysicsOptions physics = o.physics;
-  SolverSettings solver;
   try {
     frame = make_frame(o.frame);
-    physics.uplift = parse_uplift_criterion(o.criterion);
-    solver = settings_from(o);
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
@@ -120,6 +97,22 @@ void run(const RunOptions& o) {
   std::cout << to_json(result) << std::endl;
 }
 
+/// --kappa … --pi-e-c and --h-m, --m-c-kg (older spellings --h, --mc), from the parameter tables.
+void add_frame_flags(CLI::App* cmd, FrameParameters& frame) {
+  const std::string group = "frame (default: the paper's basic model)";
+  for (const auto& info : all_parameters())
+    cmd->add_option(flag_name(info.name), frame.*info.member, std::string(info.long_name))
+        ->capture_default_str()
+        ->group(group);
+  for (const auto& info : size_parameters()) {
+    const std::string older = info.name == "h_m" ? ",--h" : ",--mc";
+    cmd->add_option(flag_name(info.name) + older, frame.*info.member,
+                    std::string(info.long_name) + " [" + std::string(info.units) + "]")
+        ->capture_default_str()
+        ->group(group);
+  }
+}
+
 }  // namespace
 
 void add_run_command(CLI::App& app) {
@@ -133,33 +126,9 @@ void add_run_command(CLI::App& app) {
                   "synthetic motion, e.g. 'sine:amplitude_g=1.5,period_s=0.5,cycles=2' or "
                   "'stochastic:seed=3,pga_g=1.2,duration_s=20'");
   cmd->add_option("--scale", o->scale, "ground-motion scale factor [-]")->capture_default_str();
-  FrameParameters& f = o->frame;
-  cmd->add_option("--kappa", f.kappa, "κ = m_b/m_c [-]")->capture_default_str();
-  cmd->add_option("--lambda", f.lambda, "λ = L/h [-]")->capture_default_str();
-  cmd->add_option("--tan-alpha", f.tan_alpha, "tan α = b/h [-]")->capture_default_str();
-  cmd->add_option("--lambda-h", f.lambda_h, "λ_h = h_b/h [-]")->capture_default_str();
-  cmd->add_option("--pi-sigma-b", f.pi_sigma_b, "Π_σb = P_b0/(m_c g) [-]")->capture_default_str();
-  cmd->add_option("--pi-sigma-c", f.pi_sigma_c, "Π_σc = P_c0/(m_c g) [-]")->capture_default_str();
-  cmd->add_option("--pi-e-b", f.pi_e_b, "Π_Eb = E A_bs/(m_c g) [-]")->capture_default_str();
-  cmd->add_option("--pi-e-c", f.pi_e_c, "Π_Ec = E A_cs/(m_c g) [-]")->capture_default_str();
-  cmd->add_option("--h", f.h_m, "half column height h [m]")->capture_default_str();
-  cmd->add_option("--mc", f.m_c_kg, "column mass m_c [kg]")->capture_default_str();
-  cmd->add_option("--criterion", o->criterion, "uplift criterion: physical or paper")->capture_default_str();
-  cmd->add_option("--fracture-strain", o->physics.fracture_strain, "tendon fracture strain [-]")->capture_default_str();
-  cmd->add_option("--tail", o->physics.tail_s, "free vibration after the record [s]")->capture_default_str();
-  cmd->add_option("--zeno-time", o->physics.zeno_time_s, "return-to-rest time scale [s]")->capture_default_str();
-  cmd->add_option("--preset", o->preset, "accuracy preset: fast, balanced, reference (explicit solver options override it)")
-      ->capture_default_str();
-  cmd->add_option("--integrator", o->integrator, "arkode-erk5, arkode-erk8, cvode-adams, cvode-bdf, fixed-rk4");
-  auto& flags = o->solver_flags;
-  flags.push_back(cmd->add_option("--rtol", o->solver.rtol, "relative tolerance [-]"));
-  flags.push_back(cmd->add_option("--atol-theta", o->solver.atol_theta_rad, "absolute tolerance on θ₁ [rad]"));
-  flags.push_back(cmd->add_option("--atol-omega", o->solver.atol_omega_rad_s, "absolute tolerance on θ̇₁ [rad/s]"));
-  flags.push_back(cmd->add_option("--max-step", o->solver.max_step_s, "largest step [s], 0 = no limit"));
-  flags.push_back(cmd->add_option("--fixed-step", o->solver.fixed_step_s, "step of fixed-rk4 [s], 0 = the record's dt"));
-  flags.push_back(cmd->add_option("--stop-at-samples", o->solver.stop_at_samples,
-                                  "stop the integrator at every record sample (kinks of the interpolated record)"));
-  flags.push_back(cmd->add_option("--time-limit", o->solver.wall_time_limit_s, "wall-time limit of the case [s], 0 = none"));
+  add_frame_flags(cmd, o->frame);
+  o->physics = std::make_unique<SettingFlags<PhysicsOptions>>(cmd, physics_settings());
+  o->solver = std::make_unique<SettingFlags<SolverSettings>>(cmd, solver_settings());
   cmd->add_option("--history", o->history_file, "write the time history to this CSV file");
   cmd->callback([o]() { run(*o); });
 }

@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "cli/commands.hpp"
+#include "cli/setting_flags.hpp"
 #include "pcrf/parallel/mpi_session.hpp"
 #include "pcrf/study/study_parser.hpp"
 #include "pcrf/study/study_run.hpp"
@@ -12,21 +13,14 @@
 namespace pcrf::cli {
 namespace {
 
-/// Command-line values; negative numbers mean "not given" (the study file decides).
+/// Command-line values; the [run] flags override the study file's table.
 struct StudyArguments {
   study::StudyRunOptions run;
-  double flush_interval_s = -1.0;
-  double progress_interval_s = -1.0;
-  int batch_size = -1;
+  std::unique_ptr<SettingFlags<study::RunOptions>> run_flags;
 };
 
-void run_study_command(StudyArguments args) {
-  if (args.flush_interval_s >= 0.0) {
-    if (args.flush_interval_s == 0.0) throw UsageError("--flush-interval must be positive");
-    args.run.flush_interval_s = args.flush_interval_s;
-  }
-  if (args.progress_interval_s >= 0.0) args.run.progress_interval_s = args.progress_interval_s;
-  if (args.batch_size >= 0) args.run.batch_size = static_cast<std::size_t>(args.batch_size);
+void run_study_command(StudyArguments& args) {
+  args.run.run_overrides = args.run_flags->given();
 
   parallel::MpiSession mpi;
   std::optional<study::StudySummary> summary;
@@ -60,9 +54,7 @@ void add_study_command(CLI::App& app) {
   auto* overwrite = cmd->add_flag("--overwrite", args->run.overwrite, "replace an existing cube");
   resume->excludes(overwrite);
   cmd->add_flag("--check", args->run.check_only, "check the study (records, geometry) and print its size; compute nothing");
-  cmd->add_option("--flush-interval", args->flush_interval_s, "seconds between cube flushes (default: [run] flush_interval_s, 30)");
-  cmd->add_option("--progress-interval", args->progress_interval_s, "seconds between progress lines, 0: none (default 5)");
-  cmd->add_option("--batch-size", args->batch_size, "cases per hand-out, 0: guided (default)");
+  args->run_flags = std::make_unique<SettingFlags<study::RunOptions>>(cmd, study::run_settings());
   cmd->callback([args] { run_study_command(*args); });
 }
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "pcrf/record/ground_motion.hpp"
+#include "pcrf/units.hpp"
 
 namespace pcrf {
 namespace {

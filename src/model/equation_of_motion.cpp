@@ -6,7 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "pcrf/record/ground_motion.hpp"
+#include "pcrf/units.hpp"
 
 namespace pcrf {
 namespace {

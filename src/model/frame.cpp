@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "pcrf/record/ground_motion.hpp"
+#include "pcrf/units.hpp"
 
 namespace pcrf {
 namespace {

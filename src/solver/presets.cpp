@@ -24,6 +24,7 @@ SolverSettings preset_settings(const std::string& name) {
   SolverSettings s;
   s.integrator = Integrator::kArkodeErk5;
   s.stop_at_samples = true;
+  s.preset = name;
   if (name == "fast") {
     s.rtol = 1e-4;
     s.atol_theta_rad = 1e-6;

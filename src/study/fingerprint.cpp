@@ -24,6 +24,15 @@ void describe_parameters(std::ostream& out, const FrameParameters& p) {
   out << " h_m=" << p.h_m << " m_c_kg=" << p.m_c_kg;
 }
 
+/// "<table> key=value …" over the settings that determine results, in description order.
+template <class Target>
+void describe_settings(std::ostream& out, const SettingTable<Target>& table, const Target& values) {
+  out << table.name;
+  for (const auto& setting : table.settings)
+    if (setting.in_fingerprint) out << ' ' << setting.key << '=' << setting_text(setting.get(values));
+  out << '\n';
+}
+
 }  // namespace
 
 std::uint64_t fnv1a(std::string_view bytes, std::uint64_t hash) {
@@ -58,14 +67,8 @@ std::string canonical_description(const Study& study, const CaseSpace& space, Re
     describe_parameters(out, c.parameters);
     out << '\n';
   }
-  out << "physics uplift=" << to_string(study.physics.uplift) << " fracture_strain=" << study.physics.fracture_strain
-      << " tail_s=" << study.physics.tail_s << " zeno_time_s=" << study.physics.zeno_time_s
-      << " theta0_rad=" << study.physics.theta0_rad << " omega0_rad_s=" << study.physics.omega0_rad_s << '\n';
-  const auto& s = study.solver;
-  out << "solver integrator=" << to_string(s.integrator) << " rtol=" << s.rtol << " atol_theta_rad=" << s.atol_theta_rad
-      << " atol_omega_rad_s=" << s.atol_omega_rad_s << " max_step_s=" << s.max_step_s
-      << " fixed_step_s=" << s.fixed_step_s << " stop_at_samples=" << s.stop_at_samples << " max_steps=" << s.max_steps
-      << " wall_time_limit_s=" << s.wall_time_limit_s << '\n';
+  describe_settings(out, physics_settings(), study.physics);
+  describe_settings(out, solver_settings(), study.solver);
   out << "metrics";
   for (const auto& m : study.metrics) out << ' ' << m;
   out << '\n';

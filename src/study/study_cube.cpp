@@ -3,6 +3,8 @@
 
 #include <chrono>
 #include <ctime>
+#include <type_traits>
+#include <variant>
 
 #include "pcrf/metrics/case_result.hpp"
 #include "pcrf/version.hpp"
@@ -73,9 +75,25 @@ void add_case_axis(const CaseSpace& space, std::vector<Coordinate>& coords) {
   }
 }
 
+/// One attribute "<table>_<key>" per setting: numbers as float64, integers and flags as
+/// int64 (flags 0/1), choices as text.
+template <class Target>
+void add_settings(std::vector<Attribute>& attributes, const SettingTable<Target>& table, const Target& values) {
+  for (const auto& setting : table.settings) {
+    const std::string name = std::string(table.name) + "_" + std::string(setting.key);
+    std::visit(
+        [&](const auto& v) {
+          using V = std::decay_t<decltype(v)>;
+          if constexpr (std::is_same_v<V, bool>)
+            attributes.push_back({name, static_cast<std::int64_t>(v ? 1 : 0)});
+          else
+            attributes.push_back({name, v});
+        },
+        setting.get(values));
+  }
+}
+
 std::vector<Attribute> global_attributes(const Study& study, const std::string& fingerprint) {
-  const auto& p = study.physics;
-  const auto& s = study.solver;
   std::vector<Attribute> a{
       {"Conventions", std::string("CF-1.8")},
       {"title", "pcrf study " + study.name},
@@ -88,26 +106,12 @@ std::vector<Attribute> global_attributes(const Study& study, const std::string& 
       {"study_text", study.text},
       {cube::kFingerprintName, fingerprint},
       {"plan", std::string(plan_name(study.plan))},
-      {"physics_uplift", to_string(p.uplift)},
-      {"physics_fracture_strain", p.fracture_strain},
-      {"physics_tail_s", p.tail_s},
-      {"physics_zeno_time_s", p.zeno_time_s},
-      {"physics_theta0_rad", p.theta0_rad},
-      {"physics_omega0_rad_s", p.omega0_rad_s},
-      {"solver_preset", study.solver_preset},
-      {"solver_integrator", to_string(s.integrator)},
-      {"solver_rtol", s.rtol},
-      {"solver_atol_theta_rad", s.atol_theta_rad},
-      {"solver_atol_omega_rad_s", s.atol_omega_rad_s},
-      {"solver_max_step_s", s.max_step_s},
-      {"solver_fixed_step_s", s.fixed_step_s},
-      {"solver_stop_at_samples", static_cast<std::int64_t>(s.stop_at_samples ? 1 : 0)},
-      {"solver_max_steps", static_cast<std::int64_t>(s.max_steps)},
-      {"solver_wall_time_limit_s", s.wall_time_limit_s},
-      {"frame_h_m", study.base.h_m},
-      {"frame_m_c_kg", study.base.m_c_kg},
-      {"gravity_m_s2", kGravity_m_s2},
   };
+  add_settings(a, physics_settings(), study.physics);
+  add_settings(a, solver_settings(), study.solver);
+  a.push_back({"frame_h_m", study.base.h_m});
+  a.push_back({"frame_m_c_kg", study.base.m_c_kg});
+  a.push_back({"gravity_m_s2", kGravity_m_s2});
   for (const auto& info : all_parameters()) a.push_back({"base_" + std::string(info.name), study.base.*info.member});
   return a;
 }

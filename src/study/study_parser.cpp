@@ -35,14 +35,17 @@ std::string number_text(double value) {
   return out.str();
 }
 
-/// Problem with one value of a parameter taken alone; empty when fine.
-std::string parameter_problem(std::size_t parameter, double value) {
-  const auto name = all_parameters()[parameter].name;
-  if (name == "lambda_h") return value > 0.0 && value < 1.0 ? "" : "must be between 0 and 1 (exclusive)";
-  // Π = 0 is a frame without that tendon's prestress or stiffness (Π_E = 0, Π_σ > 0 is a
-  // constant-force tendon): every Π may be zero.
-  if (name.rfind("pi_", 0) == 0) return value >= 0.0 ? "" : "must not be negative";
-  return value > 0.0 ? "" : "must be positive";
+/// The keys of every frame parameter, for tables that take them all.
+std::vector<std::string_view> parameter_keys() {
+  std::vector<std::string_view> keys;
+  for (const auto& info : all_parameters()) keys.push_back(info.name);
+  return keys;
+}
+
+/// `keys` followed by the eight parameter keys.
+std::vector<std::string_view> with_parameter_keys(std::vector<std::string_view> keys) {
+  for (auto key : parameter_keys()) keys.push_back(key);
+  return keys;
 }
 
 // ---- axis values: a number, a list of numbers, or a range table -------------------------
@@ -95,19 +98,23 @@ void check_axis(const Fields& fields, std::string_view key, const std::vector<do
   if (auto dup = std::adjacent_find(sorted.begin(), sorted.end()); dup != sorted.end())
     fields.fail(key, "value " + number_text(*dup) + " appears twice");
   for (double v : values) {
-    const std::string problem = parameter < kParameterCount ? parameter_problem(parameter, v)
+    const std::string problem = parameter < kParameterCount ? parameter_problem(all_parameters()[parameter], v)
                                 : (v > 0.0 ? "" : "must be positive");
     if (!problem.empty()) fields.fail(key, "value " + number_text(v) + " " + problem);
   }
 }
 
-/// A single parameter value (in [base], [[cases]] or a history selector).
-double read_parameter(const Fields& fields, std::size_t parameter) {
-  const auto key = all_parameters()[parameter].name;
-  const double value = *fields.number(key);
-  if (const auto problem = parameter_problem(parameter, value); !problem.empty())
-    fields.fail(key, "value " + number_text(value) + " " + problem);
-  return value;
+/// Reads every parameter of `parameters` that `fields` gives into `frame` (in [base] and
+/// [[cases]]), checking each value against its domain.
+template <std::size_t N>
+void read_parameters(const Fields& fields, const std::array<ParameterInfo, N>& parameters, FrameParameters& frame) {
+  for (const auto& info : parameters) {
+    if (!fields.has(info.name)) continue;
+    const double value = *fields.number(info.name);
+    if (const auto problem = parameter_problem(info, value); !problem.empty())
+      fields.fail(info.name, "value " + number_text(value) + " " + problem);
+    frame.*info.member = value;
+  }
 }
 
 // ---- sections ----------------------------------------------------------------------------
@@ -138,23 +145,17 @@ void read_plan(const Fields& top, Study& s) {
 void read_base(const Fields& top, Study& s) {
   const auto* table = top.subtable("base");
   if (table == nullptr) return;
-  Fields f(*table, "base", s.file,
-           {"kappa", "lambda", "tan_alpha", "lambda_h", "pi_sigma_b", "pi_sigma_c", "pi_e_b", "pi_e_c", "h_m", "m_c_kg"});
-  for (std::size_t p = 0; p < kParameterCount; ++p)
-    if (f.has(all_parameters()[p].name)) s.base.*all_parameters()[p].member = read_parameter(f, p);
-  for (auto [key, member] : {std::pair{"h_m", &FrameParameters::h_m}, std::pair{"m_c_kg", &FrameParameters::m_c_kg}}) {
-    if (!f.has(key)) continue;
-    const double value = *f.number(key);
-    if (value <= 0.0) f.fail(key, "must be positive (got " + number_text(value) + ")");
-    s.base.*member = value;
-  }
+  std::vector<std::string_view> keys = parameter_keys();
+  for (const auto& info : size_parameters()) keys.push_back(info.name);
+  Fields f(*table, "base", s.file, keys);
+  read_parameters(f, all_parameters(), s.base);
+  read_parameters(f, size_parameters(), s.base);
 }
 
 void read_axes(const Fields& top, Study& s) {
   const auto* table = top.subtable("axes");
   if (table != nullptr) {
-    Fields f(*table, "axes", s.file,
-             {"scale", "kappa", "lambda", "tan_alpha", "lambda_h", "pi_sigma_b", "pi_sigma_c", "pi_e_b", "pi_e_c"});
+    Fields f(*table, "axes", s.file, with_parameter_keys({"scale"}));
     if (f.has("scale")) {
       s.scales = read_values(f, "scale");
       check_axis(f, "scale", s.scales, kParameterCount);
@@ -186,13 +187,11 @@ void read_cases(const Fields& top, Study& s) {
     const std::string path = "cases[" + std::to_string(i) + "]";
     const auto* table = (*array)[i].as_table();
     if (table == nullptr) Fields::fail_at(s.file, &(*array)[i], path, "expected a table");
-    Fields f(*table, path, s.file,
-             {"label", "kappa", "lambda", "tan_alpha", "lambda_h", "pi_sigma_b", "pi_sigma_c", "pi_e_b", "pi_e_c"});
+    Fields f(*table, path, s.file, with_parameter_keys({"label"}));
     ListedCase c{f.text("label").value_or("case" + std::to_string(i)), s.base};
     if (c.label.empty()) f.fail("label", "must not be empty");
     if (!labels.insert(c.label).second) f.fail("label", "\"" + c.label + "\" is used by another case");
-    for (std::size_t p = 0; p < kParameterCount; ++p)
-      if (f.has(all_parameters()[p].name)) c.parameters.*all_parameters()[p].member = read_parameter(f, p);
+    read_parameters(f, all_parameters(), c.parameters);
     s.cases.push_back(std::move(c));
   }
 }
@@ -291,65 +290,6 @@ void read_records(const Fields& top, Study& s) {
 
 // ---- physics, solver, outputs, run -------------------------------------------------------
 
-double positive(const Fields& f, std::string_view key, double fallback, bool zero_ok) {
-  if (!f.has(key)) return fallback;
-  const double value = *f.number(key);
-  if (zero_ok ? value < 0.0 : value <= 0.0)
-    f.fail(key, std::string(zero_ok ? "must not be negative" : "must be positive") + " (got " + number_text(value) + ")");
-  return value;
-}
-
-void read_physics(const Fields& top, Study& s) {
-  const auto* table = top.subtable("physics");
-  if (table == nullptr) return;
-  Fields f(*table, "physics", s.file,
-           {"uplift", "fracture_strain", "tail_s", "zeno_time_s", "theta0_rad", "omega0_rad_s"});
-  try {
-    if (f.has("uplift")) s.physics.uplift = parse_uplift_criterion(*f.text("uplift"));
-  } catch (const std::invalid_argument& e) {
-    f.fail("uplift", e.what());
-  }
-  s.physics.fracture_strain = positive(f, "fracture_strain", s.physics.fracture_strain, false);
-  s.physics.tail_s = positive(f, "tail_s", s.physics.tail_s, true);
-  s.physics.zeno_time_s = positive(f, "zeno_time_s", s.physics.zeno_time_s, true);
-  s.physics.theta0_rad = f.number("theta0_rad").value_or(s.physics.theta0_rad);
-  s.physics.omega0_rad_s = f.number("omega0_rad_s").value_or(s.physics.omega0_rad_s);
-}
-
-void read_solver(const Fields& top, Study& s) {
-  s.solver = preset_settings("balanced");  // the same default as `pcrf run`
-  const auto* table = top.subtable("solver");
-  if (table == nullptr) return;
-  Fields f(*table, "solver", s.file,
-           {"preset", "integrator", "rtol", "atol_theta_rad", "atol_omega_rad_s", "max_step_s", "fixed_step_s",
-            "stop_at_samples", "max_steps", "wall_time_limit_s"});
-  try {
-    if (f.has("preset")) {
-      s.solver_preset = *f.text("preset");
-      s.solver = preset_settings(s.solver_preset);
-    }
-  } catch (const std::invalid_argument& e) {
-    f.fail("preset", e.what());
-  }
-  try {
-    if (f.has("integrator")) s.solver.integrator = parse_integrator(*f.text("integrator"));
-  } catch (const std::invalid_argument& e) {
-    f.fail("integrator", e.what());
-  }
-  s.solver.rtol = positive(f, "rtol", s.solver.rtol, false);
-  s.solver.atol_theta_rad = positive(f, "atol_theta_rad", s.solver.atol_theta_rad, false);
-  s.solver.atol_omega_rad_s = positive(f, "atol_omega_rad_s", s.solver.atol_omega_rad_s, false);
-  s.solver.max_step_s = positive(f, "max_step_s", s.solver.max_step_s, true);
-  s.solver.fixed_step_s = positive(f, "fixed_step_s", s.solver.fixed_step_s, true);
-  s.solver.stop_at_samples = f.flag("stop_at_samples").value_or(s.solver.stop_at_samples);
-  s.solver.wall_time_limit_s = positive(f, "wall_time_limit_s", s.solver.wall_time_limit_s, true);
-  if (f.has("max_steps")) {
-    const auto steps = *f.integer("max_steps");
-    if (steps < 1) f.fail("max_steps", "must be at least 1");
-    s.solver.max_steps = static_cast<long>(steps);
-  }
-}
-
 std::vector<std::string> metric_names() {
   std::vector<std::string> names;
   for (const auto& m : all_metrics()) names.emplace_back(m.name);
@@ -387,9 +327,7 @@ void read_histories(const Fields& outputs, Study& s) {
     const std::string path = "outputs.histories[" + std::to_string(i) + "]";
     const auto* table = (*array)[i].as_table();
     if (table == nullptr) Fields::fail_at(s.file, &(*array)[i], path, "expected a table ([[outputs.histories]])");
-    Fields f(*table, path, s.file,
-             {"label", "record", "scale", "case", "kappa", "lambda", "tan_alpha", "lambda_h", "pi_sigma_b",
-              "pi_sigma_c", "pi_e_b", "pi_e_c"});
+    Fields f(*table, path, s.file, with_parameter_keys({"label", "record", "scale", "case"}));
     HistoryRequest request;
     request.declared_at = f.where("label");
     if (!f.has("label")) f.fail("label", "a history needs a label (its group name)");
@@ -418,19 +356,6 @@ void read_outputs(const Fields& top, Study& s) {
   read_histories(f, s);
 }
 
-void read_run(const Fields& top, Study& s) {
-  const auto* table = top.subtable("run");
-  if (table == nullptr) return;
-  Fields f(*table, "run", s.file, {"flush_interval_s", "progress_interval_s", "batch_size"});
-  s.run.flush_interval_s = positive(f, "flush_interval_s", s.run.flush_interval_s, false);
-  s.run.progress_interval_s = positive(f, "progress_interval_s", s.run.progress_interval_s, true);
-  if (f.has("batch_size")) {
-    const auto size = *f.integer("batch_size");
-    if (size < 0) f.fail("batch_size", "must not be negative (0: automatic)");
-    s.run.batch_size = static_cast<std::size_t>(size);
-  }
-}
-
 }  // namespace
 
 Study parse_study(const std::string& text, const std::string& file, const std::filesystem::path& base_dir) {
@@ -446,17 +371,18 @@ Study parse_study(const std::string& text, const std::string& file, const std::f
   s.base_dir = base_dir;
   s.text = text;
   Fields top(root, "", file,
-             {"study", "plan", "records", "axes", "base", "cases", "physics", "solver", "outputs", "run"});
+             {"study", "plan", "records", "axes", "base", "cases", physics_settings().name, solver_settings().name,
+              "outputs", run_settings().name});
   read_study_section(top, s);
   read_plan(top, s);
   read_base(top, s);  // before axes and cases: they start from the base point
   read_axes(top, s);
   read_cases(top, s);
   read_records(top, s);
-  read_physics(top, s);
-  read_solver(top, s);
+  detail::read_setting_table(top, physics_settings(), s.physics);
+  detail::read_setting_table(top, solver_settings(), s.solver);
   read_outputs(top, s);
-  read_run(top, s);
+  detail::read_setting_table(top, run_settings(), s.run);
   return s;
 }
 

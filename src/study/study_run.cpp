@@ -39,9 +39,7 @@ struct MasterSetup {
 };
 
 void apply_overrides(const StudyRunOptions& options, RunOptions& run) {
-  if (options.flush_interval_s) run.flush_interval_s = *options.flush_interval_s;
-  if (options.progress_interval_s) run.progress_interval_s = *options.progress_interval_s;
-  if (options.batch_size) run.batch_size = *options.batch_size;
+  for (const auto& [setting, value] : options.run_overrides) setting->set(run, value);
 }
 
 MasterSetup prepare_master(const StudyRunOptions& options, const Prepared& p) {

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "pcrf/study/study_parser.hpp"
+#include "pcrf/study/study_error.hpp"
 
 namespace pcrf::study::detail {
 namespace {
@@ -49,9 +49,8 @@ std::string closest_word(std::string_view word, const std::vector<std::string_vi
 }
 
 Fields::Fields(const toml::table& table, std::string prefix, std::string file,
-               std::initializer_list<std::string_view> allowed)
+               const std::vector<std::string_view>& known)
     : table_(table), prefix_(std::move(prefix)), file_(std::move(file)) {
-  const std::vector<std::string_view> known(allowed);
   for (const auto& [key, value] : table_) {
     if (std::find(known.begin(), known.end(), key.str()) != known.end()) continue;
     std::string problem = "unknown key";
@@ -149,6 +148,15 @@ const toml::array* Fields::array(std::string_view key) const {
   if (n == nullptr) return nullptr;
   if (const auto* a = n->as_array()) return a;
   fail(key, "expected an array, got " + type_name(*n));
+}
+
+SettingValue Fields::raw_value(std::string_view key) const {
+  const toml::node& n = *node(key);
+  if (const auto* i = n.as_integer()) return static_cast<std::int64_t>(i->get());
+  if (const auto* f = n.as_floating_point()) return f->get();
+  if (const auto* b = n.as_boolean()) return b->get();
+  if (const auto* s = n.as_string()) return s->get();
+  fail(key, "expected a single value, got " + type_name(n));
 }
 
 std::vector<std::string> Fields::texts(std::string_view key) const {

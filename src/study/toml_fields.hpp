@@ -5,11 +5,12 @@
 #include <toml++/toml.h>
 
 #include <cstdint>
-#include <initializer_list>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "pcrf/setting.hpp"
 
 namespace pcrf::study::detail {
 
@@ -18,7 +19,7 @@ class Fields {
   /// \param prefix dotted path of the table ("" for the root, "axes", "records[2]")
   /// \param allowed the keys this table may hold; any other key is an error
   Fields(const toml::table& table, std::string prefix, std::string file,
-         std::initializer_list<std::string_view> allowed);
+         const std::vector<std::string_view>& allowed);
 
   const toml::table& table() const { return table_; }
   bool has(std::string_view key) const { return table_.contains(key); }
@@ -31,6 +32,17 @@ class Fields {
   std::optional<bool> flag(std::string_view key) const;
   const toml::table* subtable(std::string_view key) const;
   const toml::array* array(std::string_view key) const;
+  /// The value of a described setting, checked against its description (nullopt when the
+  /// key is absent). \throws StudyError naming the key and the problem.
+  template <class Target>
+  std::optional<SettingValue> setting(const Setting<Target>& s) const {
+    const toml::node* n = node(s.key);
+    if (n == nullptr) return std::nullopt;
+    SettingValue value = raw_value(s.key);
+    if (const auto problem = check_setting(s, value); !problem.empty())
+      fail(s.key, problem.rfind("expected", 0) == 0 ? problem + ", got " + type_name(*n) : problem);
+    return value;
+  }
   /// A string or an array of strings.
   std::vector<std::string> texts(std::string_view key) const;
 
@@ -49,6 +61,9 @@ class Fields {
   const std::string& file() const { return file_; }
 
  private:
+  /// A scalar node as a SettingValue (integer, float, boolean or string).
+  SettingValue raw_value(std::string_view key) const;
+
   const toml::table& table_;
   std::string prefix_;
   std::string file_;
@@ -57,5 +72,19 @@ class Fields {
 /// The closest allowed word within two edits (else one that starts with `word`), for
 /// "did you mean" hints; empty if none.
 std::string closest_word(std::string_view word, const std::vector<std::string_view>& candidates);
+
+/// Reads the table `table.name` of `top` into `target` (starting from table.defaults):
+/// every key must be described, values are checked and applied in description order.
+template <class Target>
+void read_setting_table(const Fields& top, const SettingTable<Target>& table, Target& target) {
+  target = table.defaults;
+  const toml::table* node = top.subtable(table.name);
+  if (node == nullptr) return;
+  std::vector<std::string_view> keys;
+  for (const auto& s : table.settings) keys.push_back(s.key);
+  const Fields fields(*node, std::string(table.name), top.file(), keys);
+  for (const auto& s : table.settings)
+    if (auto value = fields.setting(s)) s.set(target, *value);
+}
 
 }  // namespace pcrf::study::detail

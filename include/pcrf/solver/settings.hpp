@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "pcrf/setting.hpp"
+
 namespace pcrf {
 
 /// When a frame at rest starts to rock.
@@ -33,6 +35,8 @@ enum class Integrator {
 Integrator parse_integrator(const std::string& text);  ///< "cvode-bdf", "cvode-adams", "arkode-erk5", "arkode-erk8", "fixed-rk4"
 std::string to_string(Integrator i);
 
+/// What the physics of a case includes. Every member is described (key, unit, default,
+/// check, doc) in physics_settings(); the comments here say only what the code needs.
 struct PhysicsOptions {
   UpliftCriterion uplift = UpliftCriterion::kPhysical;
   double fracture_strain = 0.01;   ///< total tendon strain at fracture [-]
@@ -46,7 +50,11 @@ struct PhysicsOptions {
   double omega0_rad_s = 0.0;
 };
 
+/// How the equation of motion is integrated. Described in solver_settings(), whose defaults
+/// are the "balanced" preset; a default-constructed SolverSettings is a tighter set used by
+/// tests and benchmarks that choose every value themselves.
 struct SolverSettings {
+  std::string preset = "custom";   ///< the preset these values started from
   Integrator integrator = Integrator::kArkodeErk5;
   double rtol = 1e-8;
   double atol_theta_rad = 1e-11;   ///< absolute tolerance on θ₁ [rad]
@@ -60,6 +68,12 @@ struct SolverSettings {
   bool stop_at_samples = true;
   double wall_time_limit_s = 0.0;  ///< 0: no limit; else status kTimeLimit
 };
+
+/// The [physics] table: every PhysicsOptions member, in the order study files document them.
+const SettingTable<PhysicsOptions>& physics_settings();
+/// The [solver] table: `preset` first (it sets every other value), then the members of
+/// SolverSettings. Defaults: the "balanced" preset.
+const SettingTable<SolverSettings>& solver_settings();
 
 /// Named accuracy presets: "fast", "balanced" (the default) and "reference". Each is a
 /// complete SolverSettings; the README lists the error and cost measured for each.

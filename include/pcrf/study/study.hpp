@@ -15,8 +15,9 @@
 #include <vector>
 
 #include "pcrf/model/frame.hpp"
+#include "pcrf/model/parameters.hpp"
+#include "pcrf/setting.hpp"
 #include "pcrf/solver/settings.hpp"
-#include "pcrf/study/parameters.hpp"
 #include "pcrf/study/record_source.hpp"
 
 namespace pcrf::study {
@@ -47,11 +48,15 @@ struct HistoryRequest {
 };
 
 /// How a run behaves; not part of what the study computes (not in its fingerprint).
+/// Described in run_settings().
 struct RunOptions {
-  double flush_interval_s = 30.0;     ///< the cube is flushed at least this often
-  double progress_interval_s = 5.0;   ///< progress line period on stderr; 0: none
-  std::size_t batch_size = 0;         ///< cases per hand-out; 0: guided
+  double flush_interval_s = 30.0;
+  double progress_interval_s = 5.0;
+  std::size_t batch_size = 0;
 };
+
+/// The [run] table; `pcrf study` also takes each key as a flag (`--flush-interval-s`).
+const SettingTable<RunOptions>& run_settings();
 
 struct Study {
   std::string name;
@@ -72,8 +77,7 @@ struct Study {
   std::vector<ListedCase> cases;    ///< list plan
 
   PhysicsOptions physics;
-  std::string solver_preset = "balanced";  ///< the preset `solver` started from
-  SolverSettings solver;
+  SolverSettings solver = preset_settings("balanced");
   std::vector<std::string> metrics;  ///< metric names to store, in all_metrics() order
   std::vector<HistoryRequest> histories;
   RunOptions run;

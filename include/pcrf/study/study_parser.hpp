@@ -4,18 +4,12 @@
 #pragma once
 
 #include <filesystem>
-#include <stdexcept>
 #include <string>
 
 #include "pcrf/study/study.hpp"
+#include "pcrf/study/study_error.hpp"
 
 namespace pcrf::study {
-
-/// A study cannot run as written. what() reads "FILE:LINE: KEY: problem" (LINE where known).
-class StudyError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 /// Parses study text. `file` labels messages; relative record paths resolve against
 /// `base_dir`. \throws StudyError.

@@ -7,8 +7,11 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <utility>
+#include <vector>
 
 #include "pcrf/parallel/mpi_session.hpp"
+#include "pcrf/study/study.hpp"
 
 namespace pcrf::study {
 
@@ -18,9 +21,8 @@ struct StudyRunOptions {
   bool resume = false;            ///< continue an existing cube of the same study
   bool overwrite = false;         ///< replace an existing cube
   bool check_only = false;        ///< validate, print the case count, write nothing
-  std::optional<double> flush_interval_s;     ///< overrides [run] flush_interval_s
-  std::optional<double> progress_interval_s;  ///< overrides [run] progress_interval_s
-  std::optional<std::size_t> batch_size;      ///< overrides [run] batch_size
+  /// [run] values that override the study file's (already checked against run_settings()).
+  std::vector<std::pair<const Setting<RunOptions>*, SettingValue>> run_overrides;
 };
 
 /// What rank 0 reports when the study is done.

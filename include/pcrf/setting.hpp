@@ -1,0 +1,257 @@
+/// \file setting.hpp
+/// \brief One description per setting: key, member, unit, default, validity check and a
+/// one-line doc. Study files, `pcrf run` flags, cube attributes, the study fingerprint and the
+/// key tables of studies/README.md are all derived from these descriptions.
+///
+/// A SettingTable<Target> describes the members of one options struct (PhysicsOptions,
+/// SolverSettings, the study's RunOptions, …) as they appear in one TOML table. The table
+/// holds its defaults as a Target value, so a default is written once, in the struct or in
+/// the preset that fills it. Readers apply values in table order, not in the order a user
+/// wrote them: a setting that replaces others (the solver `preset`) comes first.
+///
+/// This header knows no TOML, no command line and no HDF5: it turns text or typed values
+/// into checked member values and back.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+namespace pcrf {
+
+/// A setting's value as files and command lines carry it.
+using SettingValue = std::variant<double, std::int64_t, bool, std::string>;
+
+/// The kind of value a setting takes.
+enum class SettingType {
+  kNumber,   ///< a finite real number (TOML integer or float)
+  kInteger,  ///< a whole number
+  kFlag,     ///< true or false
+  kChoice,   ///< one word out of a fixed list
+};
+
+/// The range a number or integer setting admits.
+enum class Bound {
+  kAny,          ///< any finite value
+  kPositive,     ///< > 0
+  kNonNegative,  ///< ≥ 0
+  kAtLeastOne,   ///< ≥ 1 (integers)
+};
+
+template <class Target>
+struct Setting {
+  std::string_view key;   ///< TOML key, also the flag (`tail_s` → `--tail-s`) and attribute suffix
+  SettingType type = SettingType::kNumber;
+  std::string_view unit;  ///< UDUNITS text ("s", "rad", "rad/s", "1"); empty for flags and choices
+  Bound bound = Bound::kAny;
+  std::vector<std::string> choices;  ///< kChoice: the words allowed
+  std::string_view doc;              ///< one line, for help texts and the README tables
+  /// False for keys that change how a run behaves but not what it computes ([run]), and
+  /// for keys whose whole effect is captured by other keys (the solver `preset`).
+  bool in_fingerprint = true;
+  std::vector<std::string_view> aliases;  ///< older command-line spellings ("--tail")
+  std::function<SettingValue(const Target&)> get;
+  /// Stores a value that check_setting() accepted.
+  std::function<void(Target&, const SettingValue&)> set;
+};
+
+/// The settings of one options struct, as one TOML table holds them.
+template <class Target>
+struct SettingTable {
+  std::string_view name;  ///< TOML table, also the attribute prefix ("solver" → solver_rtol)
+  Target defaults;        ///< the value of every setting the user does not give
+  std::vector<Setting<Target>> settings;
+
+  const Setting<Target>* find(std::string_view key) const {
+    for (const auto& s : settings)
+      if (s.key == key) return &s;
+    return nullptr;
+  }
+};
+
+/// The command-line flag of a key: "tail_s" → "--tail-s", "pi_e_c" → "--pi-e-c".
+inline std::string flag_name(std::string_view key) {
+  std::string flag = "--";
+  for (char c : key) flag += c == '_' ? '-' : c;
+  return flag;
+}
+
+// ---- values as text ------------------------------------------------------------------------
+
+/// A value as the fingerprint, attributes and messages write it: numbers with 17 significant
+/// digits, flags as 1 or 0, words as they are.
+inline std::string setting_text(const SettingValue& value) {
+  std::ostringstream out;
+  out.precision(17);
+  std::visit([&out](const auto& v) { out << v; }, value);
+  return out.str();
+}
+
+/// "true"/"false" for flags; setting_text() for the rest. For documentation and JSON.
+inline std::string setting_display(const SettingValue& value) {
+  if (const bool* b = std::get_if<bool>(&value)) return *b ? "true" : "false";
+  return setting_text(value);
+}
+
+/// What the setting admits, for messages and tables: "number > 0 [s]", "true or false", …
+template <class Target>
+std::string setting_kind_text(const Setting<Target>& s) {
+  switch (s.type) {
+    case SettingType::kFlag: return "true or false";
+    case SettingType::kChoice: {
+      std::string text;
+      for (std::size_t i = 0; i < s.choices.size(); ++i)
+        text += (i == 0 ? "" : (i + 1 == s.choices.size() ? " or " : ", ")) + ("\"" + s.choices[i] + "\"");
+      return text;
+    }
+    case SettingType::kNumber:
+    case SettingType::kInteger: break;
+  }
+  std::string text = s.type == SettingType::kInteger ? "integer" : "number";
+  switch (s.bound) {
+    case Bound::kAny: break;
+    case Bound::kPositive: text += " > 0"; break;
+    case Bound::kNonNegative: text += " ≥ 0"; break;
+    case Bound::kAtLeastOne: text += " ≥ 1"; break;
+  }
+  if (!s.unit.empty() && s.unit != "1") text += " [" + std::string(s.unit) + "]";
+  return text;
+}
+
+/// Why `value` is not acceptable for `s`; empty when it is. A number given for an integer
+/// setting is accepted only when it is whole.
+template <class Target>
+std::string check_setting(const Setting<Target>& s, SettingValue& value) {
+  switch (s.type) {
+    case SettingType::kFlag:
+      return std::holds_alternative<bool>(value) ? "" : "expected true or false";
+    case SettingType::kChoice: {
+      const auto* word = std::get_if<std::string>(&value);
+      if (word == nullptr) return "expected " + setting_kind_text(s);
+      for (const auto& c : s.choices)
+        if (c == *word) return "";
+      return "unknown value \"" + *word + "\" (expected " + setting_kind_text(s) + ")";
+    }
+    case SettingType::kInteger:
+      if (const double* d = std::get_if<double>(&value)) {
+        if (!(std::isfinite(*d) && *d == std::floor(*d) && std::fabs(*d) < 9e15)) return "expected an integer";
+        value = static_cast<std::int64_t>(*d);
+      }
+      if (!std::holds_alternative<std::int64_t>(value)) return "expected an integer";
+      break;
+    case SettingType::kNumber:
+      if (const auto* i = std::get_if<std::int64_t>(&value)) value = static_cast<double>(*i);
+      if (!std::holds_alternative<double>(value)) return "expected a number";
+      if (!std::isfinite(std::get<double>(value))) return "must be a finite number";
+      break;
+  }
+  const double v = std::holds_alternative<double>(value) ? std::get<double>(value)
+                                                         : static_cast<double>(std::get<std::int64_t>(value));
+  const std::string got = " (got " + setting_text(value) + ")";
+  switch (s.bound) {
+    case Bound::kAny: return "";
+    case Bound::kPositive: return v > 0.0 ? "" : "must be positive" + got;
+    case Bound::kNonNegative: return v >= 0.0 ? "" : "must not be negative" + got;
+    case Bound::kAtLeastOne: return v >= 1.0 ? "" : "must be at least 1" + got;
+  }
+  return "";
+}
+
+/// Parses command-line text into the setting's type (then check_setting() applies).
+/// \throws std::invalid_argument naming the text when it is not of the setting's type.
+template <class Target>
+SettingValue parse_setting_text(const Setting<Target>& s, const std::string& text) {
+  switch (s.type) {
+    case SettingType::kFlag:
+      if (text == "true" || text == "1" || text == "on" || text == "yes") return true;
+      if (text == "false" || text == "0" || text == "off" || text == "no") return false;
+      throw std::invalid_argument("'" + text + "' is not true or false");
+    case SettingType::kChoice: return text;
+    case SettingType::kInteger:
+    case SettingType::kNumber: {
+      std::size_t used = 0;
+      double value = 0.0;
+      try {
+        value = std::stod(text, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used == 0 || used != text.size()) throw std::invalid_argument("'" + text + "' is not a number");
+      return value;
+    }
+  }
+  return text;
+}
+
+/// Checks and stores one value. \throws std::invalid_argument "key: problem".
+template <class Target>
+void apply_setting(const Setting<Target>& s, Target& target, SettingValue value) {
+  if (const auto problem = check_setting(s, value); !problem.empty())
+    throw std::invalid_argument(std::string(s.key) + ": " + problem);
+  s.set(target, value);
+}
+
+// ---- building descriptions -------------------------------------------------------------------
+
+/// A real-valued member.
+template <class Target>
+Setting<Target> number_setting(std::string_view key, double Target::*member, std::string_view unit, Bound bound,
+                               std::string_view doc) {
+  Setting<Target> s;
+  s.key = key;
+  s.type = SettingType::kNumber;
+  s.unit = unit;
+  s.bound = bound;
+  s.doc = doc;
+  s.get = [member](const Target& t) { return SettingValue(t.*member); };
+  s.set = [member](Target& t, const SettingValue& v) { t.*member = std::get<double>(v); };
+  return s;
+}
+
+/// An integer member of any integral type.
+template <class Target, class Int>
+Setting<Target> integer_setting(std::string_view key, Int Target::*member, Bound bound, std::string_view doc) {
+  Setting<Target> s;
+  s.key = key;
+  s.type = SettingType::kInteger;
+  s.unit = "1";
+  s.bound = bound;
+  s.doc = doc;
+  s.get = [member](const Target& t) { return SettingValue(static_cast<std::int64_t>(t.*member)); };
+  s.set = [member](Target& t, const SettingValue& v) { t.*member = static_cast<Int>(std::get<std::int64_t>(v)); };
+  return s;
+}
+
+/// A boolean member.
+template <class Target>
+Setting<Target> flag_setting(std::string_view key, bool Target::*member, std::string_view doc) {
+  Setting<Target> s;
+  s.key = key;
+  s.type = SettingType::kFlag;
+  s.doc = doc;
+  s.get = [member](const Target& t) { return SettingValue(t.*member); };
+  s.set = [member](Target& t, const SettingValue& v) { t.*member = std::get<bool>(v); };
+  return s;
+}
+
+/// An enumeration member with text forms `format(value)` and `parse(text)`.
+template <class Target, class Enum>
+Setting<Target> choice_setting(std::string_view key, Enum Target::*member, std::vector<Enum> values,
+                               std::string (*format)(Enum), Enum (*parse)(const std::string&), std::string_view doc) {
+  Setting<Target> s;
+  s.key = key;
+  s.type = SettingType::kChoice;
+  s.doc = doc;
+  for (Enum e : values) s.choices.push_back(format(e));
+  s.get = [member, format](const Target& t) { return SettingValue(format(t.*member)); };
+  s.set = [member, parse](Target& t, const SettingValue& v) { t.*member = parse(std::get<std::string>(v)); };
+  return s;
+}
+
+}  // namespace pcrf
