@@ -8,6 +8,7 @@
 
 #include "cli/commands.hpp"
 #include "pcrf/cube/cube_query.hpp"
+#include "pcrf/study/cube_vocabulary.hpp"
 
 namespace pcrf::cli {
 namespace {
@@ -62,7 +63,10 @@ void add_cube_command(CLI::App& app) {
   auto* info = cube_cmd->add_subcommand("info", "Axes, metrics, completion and failures by status");
   info->add_option("FILE", args->file, "result cube")->required();
   info->callback([args] {
-    guarded(args->file, [&] { cube::print_info(cube::CubeReader(args->file), std::cout); });
+    guarded(args->file, [&] {
+      const cube::CubeReader reader(args->file);
+      cube::print_info(reader, study::vocabulary::info_heading(reader.layout()), std::cout);
+    });
   });
 
   auto* exporter = cube_cmd->add_subcommand("export", "Metrics as a long CSV table, one row per case");
@@ -88,7 +92,9 @@ void add_cube_command(CLI::App& app) {
     guarded(args->file, [&] {
       cube::CubeReader reader(args->file);
       std::vector<std::string> pooled;
-      const auto result = cube::group_stats(reader, args->by, args->metric, selectors(args->where), &pooled);
+      const auto chosen = study::vocabulary::stats_selectors(reader.layout(), args->by, selectors(args->where));
+      const auto result = cube::group_stats(reader, args->by, args->metric, chosen,
+                                            {study::vocabulary::expected_pooling(), &pooled});
       for (const auto& p : pooled) std::cerr << "pcrf cube stats: also pooled over " << p << '\n';
       cube::print_stats(args->by, result, std::cout);
     });

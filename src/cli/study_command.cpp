@@ -21,6 +21,7 @@ struct StudyArguments {
 
 void run_study_command(StudyArguments& args) {
   args.run.run_overrides = args.run_flags->given();
+  args.run.progress = &std::cerr;
 
   parallel::MpiSession mpi;
   std::optional<study::StudySummary> summary;
@@ -41,6 +42,9 @@ void run_study_command(StudyArguments& args) {
     throw;
   }
   if (!summary) exit_code() = 2;  // rank ≠ 0 of a study that cannot run: rank 0 reported it
+  if (summary && args.run.check_only && mpi.is_master())
+    std::cout << args.run.study_file.string() << ": ok, " << summary->total << " cases, fingerprint "
+              << summary->fingerprint << std::endl;
 }
 
 }  // namespace

@@ -44,14 +44,4 @@ std::string CubeLayout::text_attribute(const std::string& name) const {
   return {};
 }
 
-std::vector<std::size_t> unravel(std::int64_t index, const std::vector<std::size_t>& shape) {
-  std::vector<std::size_t> coords(shape.size());
-  auto rest = static_cast<std::size_t>(index);
-  for (std::size_t d = shape.size(); d-- > 0;) {
-    coords[d] = rest % shape[d];
-    rest /= shape[d];
-  }
-  return coords;
-}
-
 }  // namespace pcrf::cube

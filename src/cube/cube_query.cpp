@@ -90,12 +90,10 @@ std::vector<bool> select_cases(const CubeLayout& layout, const std::vector<Selec
   return selected;
 }
 
-void print_info(const CubeReader& cube, std::ostream& out) {
+void print_info(const CubeReader& cube, const std::string& heading, std::ostream& out) {
   const auto& layout = cube.layout();
   out << "cube: " << cube.file().string() << '\n';
-  out << "study: " << layout.text_attribute("study_name") << " (plan " << layout.text_attribute("plan")
-      << "), pcrf " << layout.text_attribute("pcrf_version") << ", fingerprint "
-      << layout.text_attribute(kFingerprintName) << '\n';
+  if (!heading.empty()) out << heading << '\n';
   out << "dimensions:\n";
   for (const auto& d : layout.dimensions) {
     const Coordinate& c = coordinate(layout, d.name);
@@ -176,14 +174,9 @@ double percentile(const std::vector<double>& sorted, double q) {
 }
 
 std::vector<GroupStats> group_stats(const CubeReader& cube, const std::string& by, const std::string& metric,
-                                    std::vector<Selector> selectors, std::vector<std::string>* pooled) {
+                                    const std::vector<Selector>& selectors, const PoolReport& pool) {
   const auto& layout = cube.layout();
   const Coordinate& group_by = coordinate(layout, by);
-  const bool sweep = layout.find_coordinate("varied_parameter") != nullptr && by != "varied_parameter" &&
-                     layout.find_coordinate(by)->dimension == "case";
-  const bool varied_given = std::any_of(selectors.begin(), selectors.end(),
-                                        [](const Selector& s) { return s.coordinate == "varied_parameter"; });
-  if (sweep && !varied_given && by != "case_label" && by != "case") selectors.push_back({"varied_parameter", by});
   const auto selected = select_cases(layout, selectors);
   const auto values = cube.read_metric(metric);
   const auto shape = layout.shape();
@@ -202,11 +195,12 @@ std::vector<GroupStats> group_stats(const CubeReader& cube, const std::string& b
     ++cases[g];
     if (std::isfinite(values[k])) samples[g].push_back(values[k]);
   }
-  if (pooled != nullptr) {
+  if (pool.pooled != nullptr) {
     for (std::size_t d = 0; d < shape.size(); ++d) {
       const auto n = std::count(seen[d].begin(), seen[d].end(), true);
-      if (d != by_dim && layout.dimensions[d].name != "record" && n > 1)
-        pooled->push_back(layout.dimensions[d].name + " (" + std::to_string(n) + " values)");
+      const auto& name = layout.dimensions[d].name;
+      const bool expected = std::find(pool.expected.begin(), pool.expected.end(), name) != pool.expected.end();
+      if (d != by_dim && !expected && n > 1) pool.pooled->push_back(name + " (" + std::to_string(n) + " values)");
     }
   }
   // Groups keyed by value text: an auxiliary coordinate may repeat a value along its dimension.

@@ -1,5 +1,5 @@
-// Byte form of a ResultBatch: a flat little header, then per case its index, its row and
-// its note. Both ends run the same binary, so native byte order and sizes are fine.
+// Byte form of a ResultBatch: a flat little header, then per case its index, its status, its
+// row and its note. Both ends run the same binary, so native byte order and sizes are fine.
 #include "pcrf/parallel/result_batch.hpp"
 
 #include <cstring>
@@ -57,6 +57,7 @@ std::vector<char> pack_results(const ResultBatch& batch, std::size_t row_width) 
                                   std::to_string(outcome.row.size()) + " values, expected " +
                                   std::to_string(row_width));
     w.put(outcome.case_index);
+    w.put(outcome.status);
     w.put_bytes(reinterpret_cast<const char*>(outcome.row.data()), row_width * sizeof(double));
     w.put(static_cast<std::uint64_t>(outcome.note.size()));
     w.put_bytes(outcome.note.data(), outcome.note.size());
@@ -74,6 +75,7 @@ ResultBatch unpack_results(const std::vector<char>& bytes, std::size_t row_width
   ResultBatch batch(count);
   for (auto& outcome : batch) {
     outcome.case_index = r.get<std::int64_t>();
+    outcome.status = r.get<std::int8_t>();
     outcome.row.resize(row_width);
     std::memcpy(outcome.row.data(), r.take(row_width * sizeof(double)), row_width * sizeof(double));
     const auto note_size = r.get<std::uint64_t>();

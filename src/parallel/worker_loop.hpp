@@ -30,10 +30,10 @@ inline CaseOutcome evaluate_guarded(const CaseEvaluator& evaluate, std::int64_t 
   try {
     return evaluate(index);
   } catch (const std::exception& e) {
-    return {index, std::vector<double>(row_width, std::numeric_limits<double>::quiet_NaN()),
+    return {index, kEvaluatorThrew, std::vector<double>(row_width, std::numeric_limits<double>::quiet_NaN()),
             e.what()};
   } catch (...) {
-    return {index, std::vector<double>(row_width, std::numeric_limits<double>::quiet_NaN()),
+    return {index, kEvaluatorThrew, std::vector<double>(row_width, std::numeric_limits<double>::quiet_NaN()),
             "unknown exception"};
   }
 }

@@ -11,7 +11,7 @@ const double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 void mark_failed(parallel::CaseOutcome& outcome, const std::string& message) {
   std::fill(outcome.row.begin(), outcome.row.end(), kNaN);
-  outcome.row[0] = static_cast<double>(CaseStatus::kSolverFailure);
+  outcome.status = static_cast<std::int8_t>(CaseStatus::kSolverFailure);
   outcome.note = message;
 }
 
@@ -27,20 +27,21 @@ CaseRunner::CaseRunner(const Study& study, const CaseSpace& space, RecordCache& 
 }
 
 parallel::CaseOutcome CaseRunner::run(std::int64_t index, const HistorySink& history) const noexcept {
-  parallel::CaseOutcome outcome{index, std::vector<double>(row_width(), kNaN), {}};
+  parallel::CaseOutcome outcome{index, static_cast<std::int8_t>(CaseStatus::kSolverFailure),
+                                std::vector<double>(row_width(), kNaN), {}};
   try {
     const CaseSpec spec = space_.case_at(index);
     const Frame frame = make_frame(spec.parameters);
     const auto motion = scaled_record(spec.record, spec.scale);
     const CaseResult result = solve_case(frame, *motion, study_.physics, study_.solver, request_, history);
-    outcome.row[0] = static_cast<double>(static_cast<int>(result.status));
+    outcome.status = static_cast<std::int8_t>(result.status);
     for (std::size_t m = 0; m < metrics_.size(); ++m) {
       const double value = metrics_[m]->get(result);
       if (std::isinf(value)) {
         mark_failed(outcome, "case " + std::to_string(index) + ": non-finite " + std::string(metrics_[m]->name));
         return outcome;
       }
-      outcome.row[1 + m] = value;
+      outcome.row[m] = value;
     }
     outcome.note = result.message;
   } catch (const std::exception& e) {
@@ -58,10 +59,9 @@ std::shared_ptr<const GroundMotion> CaseRunner::scaled_record(std::size_t record
   return last_.motion;
 }
 
-CaseStatus row_status(const parallel::CaseOutcome& outcome) {
-  const double status = outcome.row.empty() ? kNaN : outcome.row[0];
-  if (!std::isfinite(status)) return CaseStatus::kSolverFailure;
-  return static_cast<CaseStatus>(static_cast<std::int8_t>(status));
+CaseStatus outcome_status(const parallel::CaseOutcome& outcome) {
+  if (outcome.status == parallel::kEvaluatorThrew) return CaseStatus::kSolverFailure;
+  return static_cast<CaseStatus>(outcome.status);
 }
 
 bool is_failure(CaseStatus status) {

@@ -5,7 +5,9 @@
 #include <charconv>
 #include <cmath>
 
-#include "pcrf/study/study_parser.hpp"
+#include "pcrf/row_major.hpp"
+#include "pcrf/study/cube_vocabulary.hpp"
+#include "pcrf/study/study_error.hpp"
 
 namespace pcrf::study {
 namespace {
@@ -29,7 +31,7 @@ std::size_t find_value(const std::vector<double>& axis, double value) {
 
 CaseSpace::CaseSpace(const Study& study) : plan_(study.plan), base_(study.base), scales_(study.scales) {
   for (const auto& r : study.records) record_names_.push_back(r.name);
-  names_ = {"record", "scale"};
+  names_ = {vocabulary::kRecord, vocabulary::kScale};
   shape_ = {record_names_.size(), scales_.size()};
   if (plan_ == PlanKind::kGrid) {
     for (std::size_t p = 0; p < kParameterCount; ++p) {
@@ -52,26 +54,16 @@ CaseSpace::CaseSpace(const Study& study) : plan_(study.plan), base_(study.base),
     for (const auto& c : study.cases) points_.push_back({c.label, "", c.parameters});
   }
   if (plan_ != PlanKind::kGrid) {
-    names_.emplace_back("case");
+    names_.emplace_back(vocabulary::kCase);
     shape_.push_back(points_.size());
   }
   for (auto n : shape_) size_ *= static_cast<std::int64_t>(n);
 }
 
-std::vector<std::size_t> CaseSpace::coordinates(std::int64_t index) const {
-  std::vector<std::size_t> coords(shape_.size());
-  auto rest = static_cast<std::size_t>(index);
-  for (std::size_t d = shape_.size(); d-- > 0;) {
-    coords[d] = rest % shape_[d];
-    rest /= shape_[d];
-  }
-  return coords;
-}
+std::vector<std::size_t> CaseSpace::coordinates(std::int64_t index) const { return unravel(index, shape_); }
 
 std::int64_t CaseSpace::index(const std::vector<std::size_t>& coordinates) const {
-  std::size_t index = 0;
-  for (std::size_t d = 0; d < shape_.size(); ++d) index = index * shape_[d] + coordinates.at(d);
-  return static_cast<std::int64_t>(index);
+  return ravel(coordinates, shape_);
 }
 
 CaseSpec CaseSpace::case_at(std::int64_t index) const {

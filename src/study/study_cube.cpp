@@ -7,6 +7,7 @@
 #include <variant>
 
 #include "pcrf/metrics/case_result.hpp"
+#include "pcrf/study/cube_vocabulary.hpp"
 #include "pcrf/version.hpp"
 
 namespace pcrf::study {
@@ -14,6 +15,7 @@ namespace {
 
 using cube::Attribute;
 using cube::Coordinate;
+namespace names = vocabulary;
 
 Coordinate numbers(std::string name, std::string dimension, std::string units, std::string long_name,
                    std::vector<double> values) {
@@ -46,11 +48,11 @@ std::string utc_now() {
 }
 
 void add_record_and_scale(const Study& study, const CaseSpace& space, std::vector<Coordinate>& coords) {
-  coords.push_back(texts("record", "record", "ground motion record", space.record_names()));
+  coords.push_back(texts(names::kRecord, names::kRecord, "ground motion record", space.record_names()));
   std::vector<std::string> sources;
   for (const auto& r : study.records) sources.push_back(r.describe());
-  coords.push_back(texts("record_source", "record", "where the record comes from", sources));
-  coords.push_back(numbers("scale", "scale", "1", "factor applied to the record's accelerations", space.scales()));
+  coords.push_back(texts(names::kRecordSource, names::kRecord, "where the record comes from", sources));
+  coords.push_back(numbers(names::kScale, names::kScale, "1", "factor applied to the record's accelerations", space.scales()));
 }
 
 void add_case_axis(const CaseSpace& space, std::vector<Coordinate>& coords) {
@@ -62,16 +64,16 @@ void add_case_axis(const CaseSpace& space, std::vector<Coordinate>& coords) {
     labels.push_back(points[i].label);
     varied.push_back(points[i].varied);
   }
-  Coordinate axis = numbers("case", "case", "", "frame number", index);
+  Coordinate axis = numbers(names::kCase, names::kCase, "", "frame number", index);
   axis.is_index = true;
   coords.push_back(std::move(axis));
-  coords.push_back(texts("case_label", "case", "frame label", labels));
+  coords.push_back(texts(names::kCaseLabel, names::kCase, "frame label", labels));
   if (space.plan() == PlanKind::kOneAtATime)
-    coords.push_back(texts("varied_parameter", "case", "parameter varied from the base point (none: the base point)", varied));
+    coords.push_back(texts(names::kVariedParameter, names::kCase, "parameter varied from the base point (none: the base point)", varied));
   for (const auto& info : all_parameters()) {
     std::vector<double> values;
     for (const auto& p : points) values.push_back(p.parameters.*info.member);
-    coords.push_back(numbers(std::string(info.name), "case", "1", std::string(info.long_name), values));
+    coords.push_back(numbers(std::string(info.name), names::kCase, "1", std::string(info.long_name), values));
   }
 }
 
@@ -98,14 +100,14 @@ std::vector<Attribute> global_attributes(const Study& study, const std::string& 
       {"Conventions", std::string("CF-1.8")},
       {"title", "pcrf study " + study.name},
       {"source", std::string("pcrf ") + kVersion},
-      {"pcrf_version", std::string(kVersion)},
+      {names::kPcrfVersion, std::string(kVersion)},
       {"date_created", utc_now()},
-      {"study_name", study.name},
+      {names::kStudyName, study.name},
       {"study_description", study.description},
       {"study_file", study.file},
       {"study_text", study.text},
       {cube::kFingerprintName, fingerprint},
-      {"plan", std::string(plan_name(study.plan))},
+      {names::kPlan, std::string(plan_name(study.plan))},
   };
   add_settings(a, physics_settings(), study.physics);
   add_settings(a, solver_settings(), study.solver);
@@ -172,8 +174,8 @@ cube::HistoryTable make_history_table(const std::string& label, std::int64_t cas
   }
   const CaseSpec spec = space.case_at(case_index);
   table.attributes = {{"case_index", static_cast<std::int64_t>(case_index)},
-                      {"record", study.records[spec.record].name},
-                      {"scale", spec.scale}};
+                      {names::kRecord, study.records[spec.record].name},
+                      {names::kScale, spec.scale}};
   for (const auto& info : all_parameters()) table.attributes.push_back({std::string(info.name), spec.parameters.*info.member});
   return table;
 }

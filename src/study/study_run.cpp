@@ -93,9 +93,8 @@ class ResultSink {
   void store(parallel::ResultBatch&& batch) {
     std::int64_t failed = 0;
     for (auto& outcome : batch) {
-      const CaseStatus status = row_status(outcome);
-      writer_.store(outcome.case_index, static_cast<std::int8_t>(status),
-                    std::vector<double>(outcome.row.begin() + 1, outcome.row.end()));
+      const CaseStatus status = outcome_status(outcome);
+      writer_.store(outcome.case_index, static_cast<std::int8_t>(status), std::move(outcome.row));
       if (!outcome.note.empty()) writer_.store_note(outcome.case_index, std::move(outcome.note));
       failed += is_failure(status) ? 1 : 0;
     }
@@ -141,14 +140,15 @@ parallel::WorkList pending_cases(const cube::CubeWriter& writer, const std::map<
   return work;
 }
 
-StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::MpiSession& mpi) {
+StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::MpiSession& mpi,
+                             std::ostream& progress) {
   CaseRunner runner(p.study, *p.space, *p.records);
   std::map<std::int64_t, std::string> history_labels;
   for (std::size_t h = 0; h < p.study.histories.size(); ++h)
     history_labels[m.checked.history_cases[h]] = p.study.histories[h].label;
 
-  StudySummary summary{p.space->size(), m.writer->done_count(), 0, 0, m.output};
-  ProgressMeter meter(summary.total, summary.already_done, p.study.run.progress_interval_s, std::cerr);
+  StudySummary summary{p.space->size(), m.writer->done_count(), 0, 0, m.output, m.checked.fingerprint};
+  ProgressMeter meter(summary.total, summary.already_done, p.study.run.progress_interval_s, progress);
   HistoryInbox inbox;
   ResultSink sink(*m.writer, meter, inbox, p.study.run.flush_interval_s);
 
@@ -215,17 +215,15 @@ std::optional<StudySummary> run_study(const StudyRunOptions& options, const para
     mpi.quiet_barrier();
     return std::nullopt;
   }
-  if (options.check_only) {
-    if (mpi.is_master())
-      std::cout << options.study_file.string() << ": ok, " << prepared->space->size() << " cases, fingerprint "
-                << setup.checked.fingerprint << std::endl;
-    return StudySummary{mpi.is_master() ? prepared->space->size() : 0, 0, 0, 0, {}};
-  }
+  if (options.check_only)
+    return mpi.is_master() ? StudySummary{prepared->space->size(), 0, 0, 0, {}, setup.checked.fingerprint}
+                           : StudySummary{};
   if (auto received = receive_study(mpi, prepared.get())) prepared = std::move(received);
 
   std::optional<StudySummary> summary;
+  static std::ostream nowhere(nullptr);  // a stream without a buffer discards what it is given
   if (mpi.is_master())
-    summary = run_master_rank(*prepared, setup, mpi);
+    summary = run_master_rank(*prepared, setup, mpi, options.progress ? *options.progress : nowhere);
   else
     run_worker_rank(*prepared, mpi);
   mpi.quiet_barrier();

@@ -16,11 +16,13 @@ namespace pcrf::parallel {
 namespace {
 
 TEST(ResultBatch, PacksAndUnpacksRowsAndNotes) {
-  const ResultBatch batch = {{7, {1.0, NAN, -2.5}, ""}, {42, {0.0, 3.0, 1e300}, "tendon, \"fracture\"\n"}};
+  const ResultBatch batch = {{7, 0, {1.0, NAN, -2.5}, ""}, {42, 3, {0.0, 3.0, 1e300}, "tendon, \"fracture\"\n"}};
   const auto back = unpack_results(pack_results(batch, 3), 3);
   ASSERT_EQ(back.size(), 2u);
   EXPECT_EQ(back[1].case_index, 42);
   EXPECT_EQ(back[1].note, batch[1].note);
+  EXPECT_EQ(back[0].status, 0);
+  EXPECT_EQ(back[1].status, 3);
   EXPECT_TRUE(std::isnan(back[0].row[1]));
   EXPECT_EQ(back[1].row[2], 1e300);
   EXPECT_THROW(unpack_results(pack_results(batch, 3), 4), std::runtime_error);
@@ -58,7 +60,7 @@ TEST(Scheduler, OneRankRunsEveryCaseOnceThroughTheWorkerThread) {
   auto evaluate = [&](std::int64_t index) {
     workers.insert(std::this_thread::get_id());
     if (index == 17) throw std::runtime_error("boom");  // must not stop the study
-    return CaseOutcome{index, {static_cast<double>(index), 2.0 * static_cast<double>(index)}, ""};
+    return CaseOutcome{index, 1, {static_cast<double>(index), 2.0 * static_cast<double>(index)}, ""};
   };
   std::map<std::int64_t, CaseOutcome> received;
   int idle_calls = 0;
@@ -73,6 +75,8 @@ TEST(Scheduler, OneRankRunsEveryCaseOnceThroughTheWorkerThread) {
   ASSERT_EQ(received.size(), 302u);
   EXPECT_EQ(received[299].row[1], 598.0);
   EXPECT_TRUE(std::isnan(received[17].row[0]));
+  EXPECT_EQ(received[17].status, kEvaluatorThrew);
+  EXPECT_EQ(received[299].status, 1);
   EXPECT_EQ(received[17].note, "boom");
   EXPECT_GT(idle_calls, 0);
   ASSERT_EQ(workers.size(), 1u);

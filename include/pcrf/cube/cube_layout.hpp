@@ -13,6 +13,8 @@
 #include <variant>
 #include <vector>
 
+#include "pcrf/row_major.hpp"
+
 namespace pcrf::cube {
 
 /// A cube file cannot be made, read or continued; what() names the file and the problem.
@@ -86,7 +88,6 @@ struct CubeLayout {
   std::string text_attribute(const std::string& name) const;
 };
 
-/// Coordinates of a linear index (row-major over `shape`).
-std::vector<std::size_t> unravel(std::int64_t index, const std::vector<std::size_t>& shape);
+using pcrf::unravel;  // row-major, as every cube stores its cases
 
 }  // namespace pcrf::cube

@@ -25,8 +25,9 @@ Selector parse_selector(const std::string& text);
 /// \throws CubeError naming an unknown coordinate or a value that is not on it.
 std::vector<bool> select_cases(const CubeLayout& layout, const std::vector<Selector>& selectors);
 
-/// Axes, metrics, completion, counts by status, first messages.
-void print_info(const CubeReader& cube, std::ostream& out);
+/// Axes, metrics, completion, counts by status, first messages; `heading` (a line naming
+/// what the cube holds, from the layer that made it) after the file name, when not empty.
+void print_info(const CubeReader& cube, const std::string& heading, std::ostream& out);
 
 /// One row per selected case: every coordinate, the status, and the metrics (all when
 /// `metrics` is empty). NaN is written as an empty field.
@@ -43,11 +44,15 @@ struct GroupStats {
   double p84 = 0.0;
 };
 
-/// Groups the selected cases by `by` and summarizes `metric` across the rest (records,
-/// and any other axis left with several values, reported in `pooled`). In a one-at-a-time
-/// cube, grouping by a parameter keeps that parameter's sweep only.
+/// Which dimensions group_stats() pools over without remark, and where it lists the others.
+struct PoolReport {
+  std::vector<std::string> expected;         ///< e.g. the record axis: pooling over it is the point
+  std::vector<std::string>* pooled = nullptr;  ///< receives "NAME (N values)" for every other pooled axis
+};
+
+/// Groups the selected cases by `by` and summarizes `metric` across the rest.
 std::vector<GroupStats> group_stats(const CubeReader& cube, const std::string& by, const std::string& metric,
-                                    std::vector<Selector> selectors, std::vector<std::string>* pooled = nullptr);
+                                    const std::vector<Selector>& selectors, const PoolReport& pool = {});
 
 /// CSV: <by>,cases,values,median,p16,p84
 void print_stats(const std::string& by, const std::vector<GroupStats>& stats, std::ostream& out);

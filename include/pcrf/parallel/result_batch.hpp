@@ -1,9 +1,11 @@
 /// \file result_batch.hpp
-/// \brief What the scheduler carries back from a worker: finished cases as fixed-width rows
-/// of doubles, each with an optional text note, and their byte form for MPI messages.
+/// \brief What the scheduler carries back from a worker: finished cases, each with a status
+/// code, a fixed-width row of doubles and an optional text note, and their byte form for
+/// MPI messages.
 ///
-/// The scheduler never interprets a row: its width and the meaning of each column are
-/// agreed between the code that evaluates a case and the code that stores it.
+/// The scheduler never interprets a status or a row: the codes, the row's width and the
+/// meaning of each column are agreed between the code that evaluates a case and the code
+/// that stores it. The one code the scheduler sets itself is kEvaluatorThrew.
 #pragma once
 
 #include <cstddef>
@@ -13,9 +15,13 @@
 
 namespace pcrf::parallel {
 
+/// Status of a case whose evaluator threw instead of returning an outcome.
+inline constexpr std::int8_t kEvaluatorThrew = -2;
+
 /// One finished case.
 struct CaseOutcome {
   std::int64_t case_index = -1;  ///< linear index of the case in its study
+  std::int8_t status = kEvaluatorThrew;  ///< how the case ended, in the evaluator's codes
   std::vector<double> row;       ///< fixed-width values (width agreed by both ends)
   std::string note;              ///< free text (e.g. a failure message); usually empty
 };

@@ -2,7 +2,7 @@
 /// \brief Runs one case of a study: builds the frame, scales the record, calls solve_case
 /// and packs the stored metrics into a result row. Knows nothing of MPI or HDF5.
 ///
-/// Row layout: [status, metric_1, …, metric_n] with the metrics of Study::metrics in order.
+/// An outcome's status is the CaseStatus; its row holds the metrics of Study::metrics in order.
 #pragma once
 
 #include <cstdint>
@@ -24,7 +24,7 @@ class CaseRunner {
   /// Keeps references: the study, the space and the cache must outlive the runner.
   CaseRunner(const Study& study, const CaseSpace& space, RecordCache& records);
 
-  std::size_t row_width() const { return 1 + metrics_.size(); }
+  std::size_t row_width() const { return metrics_.size(); }
   const std::vector<const MetricInfo*>& metrics() const { return metrics_; }
 
   /// Runs case `index`. Never throws: a failure becomes status solver_failure with NaN
@@ -52,8 +52,8 @@ class CaseRunner {
   mutable LastScaled last_;
 };
 
-/// The status a row carries (a NaN status, from an evaluator that threw, is a solver failure).
-CaseStatus row_status(const parallel::CaseOutcome& outcome);
+/// The status an outcome carries (an evaluator that threw: a solver failure).
+CaseStatus outcome_status(const parallel::CaseOutcome& outcome);
 
 /// Statuses that count as failures in progress lines and summaries.
 bool is_failure(CaseStatus status);

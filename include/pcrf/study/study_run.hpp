@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <ostream>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -21,6 +23,8 @@ struct StudyRunOptions {
   bool resume = false;            ///< continue an existing cube of the same study
   bool overwrite = false;         ///< replace an existing cube
   bool check_only = false;        ///< validate, print the case count, write nothing
+  /// Where rank 0 writes progress lines and the closing line (the CLI: stderr); null: nowhere.
+  std::ostream* progress = nullptr;
   /// [run] values that override the study file's (already checked against run_settings()).
   std::vector<std::pair<const Setting<RunOptions>*, SettingValue>> run_overrides;
 };
@@ -32,6 +36,7 @@ struct StudySummary {
   std::int64_t computed = 0;
   std::int64_t failed = 0;
   std::filesystem::path output;
+  std::string fingerprint;  ///< the study's fingerprint (also what --check reports)
 };
 
 /// Default output of a study file.

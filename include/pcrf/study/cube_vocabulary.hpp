@@ -1,0 +1,39 @@
+/// \file cube_vocabulary.hpp
+/// \brief The names a study gives its cube (coordinates and attributes), written once and
+/// used both where the cube is made (study_cube.cpp) and where it is queried (the CLI's
+/// defaults for `pcrf cube`). The cube layer itself knows none of them.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "pcrf/cube/cube_layout.hpp"
+#include "pcrf/cube/cube_query.hpp"
+
+namespace pcrf::study::vocabulary {
+
+// Coordinates.
+inline constexpr const char* kRecord = "record";
+inline constexpr const char* kRecordSource = "record_source";
+inline constexpr const char* kScale = "scale";
+inline constexpr const char* kCase = "case";
+inline constexpr const char* kCaseLabel = "case_label";
+inline constexpr const char* kVariedParameter = "varied_parameter";
+// Global attributes.
+inline constexpr const char* kStudyName = "study_name";
+inline constexpr const char* kPlan = "plan";
+inline constexpr const char* kPcrfVersion = "pcrf_version";
+
+/// "study: NAME (plan P), pcrf V, fingerprint F", for `pcrf cube info`.
+std::string info_heading(const cube::CubeLayout& layout);
+
+/// The selectors `pcrf cube stats --by BY` uses: in a one-at-a-time cube, grouping by a
+/// parameter keeps that parameter's sweep only (varied_parameter = BY), unless the user
+/// selected a sweep already.
+std::vector<cube::Selector> stats_selectors(const cube::CubeLayout& layout, const std::string& by,
+                                            std::vector<cube::Selector> selectors);
+
+/// Axes that statistics pool over by design (records): not reported as pooled.
+std::vector<std::string> expected_pooling();
+
+}  // namespace pcrf::study::vocabulary

@@ -1,0 +1,26 @@
+// The study's names in its cube (see cube_vocabulary.hpp).
+#include "pcrf/study/cube_vocabulary.hpp"
+
+#include <algorithm>
+
+namespace pcrf::study::vocabulary {
+
+std::string info_heading(const cube::CubeLayout& layout) {
+  return "study: " + layout.text_attribute(kStudyName) + " (plan " + layout.text_attribute(kPlan) + "), pcrf " +
+         layout.text_attribute(kPcrfVersion) + ", fingerprint " + layout.text_attribute(cube::kFingerprintName);
+}
+
+std::vector<cube::Selector> stats_selectors(const cube::CubeLayout& layout, const std::string& by,
+                                            std::vector<cube::Selector> selectors) {
+  const cube::Coordinate* group_by = layout.find_coordinate(by);
+  const bool sweep = layout.find_coordinate(kVariedParameter) != nullptr && group_by != nullptr &&
+                     group_by->dimension == kCase && by != kVariedParameter && by != kCaseLabel && by != kCase;
+  const bool varied_given = std::any_of(selectors.begin(), selectors.end(),
+                                        [](const cube::Selector& s) { return s.coordinate == kVariedParameter; });
+  if (sweep && !varied_given) selectors.push_back({kVariedParameter, by});
+  return selectors;
+}
+
+std::vector<std::string> expected_pooling() { return {kRecord}; }
+
+}  // namespace pcrf::study::vocabulary
