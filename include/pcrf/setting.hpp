@@ -13,6 +13,7 @@
 /// into checked member values and back.
 #pragma once
 
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -93,9 +94,15 @@ inline std::string setting_text(const SettingValue& value) {
   return out.str();
 }
 
-/// "true"/"false" for flags; setting_text() for the rest. For documentation and JSON.
+/// For people: "true"/"false" for flags, the shortest text that reads back as the same
+/// number, words as they are.
 inline std::string setting_display(const SettingValue& value) {
   if (const bool* b = std::get_if<bool>(&value)) return *b ? "true" : "false";
+  if (const double* d = std::get_if<double>(&value)) {
+    char buffer[32];
+    const auto end = std::to_chars(buffer, buffer + sizeof buffer, *d).ptr;
+    return std::string(buffer, end);
+  }
   return setting_text(value);
 }
 

@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   pcrf::cli::add_run_command(app);
   pcrf::cli::add_study_command(app);
   pcrf::cli::add_cube_command(app);
+  pcrf::cli::add_settings_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

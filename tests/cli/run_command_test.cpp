@@ -1,9 +1,12 @@
 // `pcrf run` end to end: JSON on stdout, the history CSV, one-line errors with exit 2.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <string>
 
+#include "pcrf/solver/settings.hpp"
+#include "support/setting_values.hpp"
 #include "support/test_support.hpp"
 
 namespace pcrf {
@@ -90,6 +93,58 @@ INSTANTIATE_TEST_SUITE_P(
                       BadArgs{"--synthetic 'quake:x=1'", "quake"},
                       BadArgs{"--synthetic 'sine:amplitude_g=1' --kappa abc", "kappa"},
                       BadArgs{"--synthetic 'sine:amplitude_g=1' --no-such-option", "no-such-option"}));
+
+}  // namespace
+}  // namespace pcrf
+
+namespace pcrf {
+namespace {
+
+const std::string kPulse = " run --synthetic 'sine:amplitude_g=1.5,period_s=0.5,cycles=2,duration_s=2'";
+
+/// Every [physics] and [solver] key of a study file is a `pcrf run` flag named after it,
+/// takes a valid value and rejects an invalid one naming the flag.
+template <class Target>
+void expect_every_key_is_a_flag(const SettingTable<Target>& table) {
+  for (const auto& s : table.settings) {
+    const std::string flag = flag_name(s.key);
+    const std::string value = test::toml_literal(test::other_value(s, s.get(table.defaults)));
+    const std::string unquoted = value.front() == '"' ? value.substr(1, value.size() - 2) : value;
+    const auto ok = test::run_command(pcrf() + kPulse + " " + flag + "=" + unquoted);
+    EXPECT_EQ(ok.exit_code, 0) << flag << "=" << unquoted << ": " << ok.err;
+    if (const auto bad = test::out_of_bound_text(s)) {
+      const auto r = test::run_command(pcrf() + kPulse + " " + flag + "=" + *bad);
+      EXPECT_EQ(r.exit_code, 2) << flag << "=" << *bad;
+      EXPECT_NE(r.err.find(flag), std::string::npos) << r.err;
+    }
+  }
+}
+
+TEST(RunCommandSettings, EveryPhysicsKeyIsAFlag) { expect_every_key_is_a_flag(physics_settings()); }
+TEST(RunCommandSettings, EverySolverKeyIsAFlag) { expect_every_key_is_a_flag(solver_settings()); }
+
+TEST(RunCommandSettings, FlagsTakeEffectAndOlderSpellingsStillWork) {
+  auto json_number = [](const std::string& json, const std::string& key) {
+    const auto at = json.find("\"" + key + "\": ");
+    return at == std::string::npos ? std::nan("") : std::stod(json.substr(at + key.size() + 4));
+  };
+  const auto base = test::run_command(pcrf() + kPulse);
+  const auto tail = test::run_command(pcrf() + kPulse + " --tail-s 1.5");
+  const auto tail_old = test::run_command(pcrf() + kPulse + " --tail 1.5");
+  ASSERT_EQ(base.exit_code, 0) << base.err;
+  EXPECT_DOUBLE_EQ(json_number(tail.out, "t_end_s"), json_number(base.out, "t_end_s") + 1.5);
+  EXPECT_EQ(json_number(tail_old.out, "t_end_s"), json_number(tail.out, "t_end_s"));
+  // Without stops at the record samples the integrator takes fewer, longer steps.
+  const auto no_stop = test::run_command(pcrf() + kPulse + " --no-stop-at-samples");
+  const auto no_stop_eq = test::run_command(pcrf() + kPulse + " --stop-at-samples=false");
+  EXPECT_LT(json_number(no_stop.out, "steps"), json_number(base.out, "steps"));
+  EXPECT_EQ(json_number(no_stop_eq.out, "steps"), json_number(no_stop.out, "steps"));
+  // The preset applies before single values, whatever the order on the command line.
+  const auto loose = test::run_command(pcrf() + kPulse + " --rtol 1e-3 --preset reference");
+  const auto loose_first = test::run_command(pcrf() + kPulse + " --preset reference --rtol 1e-3");
+  EXPECT_EQ(json_number(loose.out, "steps"), json_number(loose_first.out, "steps"));
+  EXPECT_NE(json_number(loose.out, "steps"), json_number(test::run_command(pcrf() + kPulse + " --preset reference").out, "steps"));
+}
 
 }  // namespace
 }  // namespace pcrf
