@@ -1,6 +1,8 @@
 // `pcrf cube info|export|stats FILE`: looks into a result cube.
 #include <CLI/CLI.hpp>
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <functional>
 #include <iostream>
@@ -45,7 +47,7 @@ void with_output(const std::string& path, const std::function<void(std::ostream&
     return;
   }
   std::ofstream out(path);
-  if (!out) throw UsageError(path + ": cannot write");
+  if (!out) throw UsageError(path + ": cannot create: " + std::strerror(errno));
   write(out);
 }
 

@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "cli/commands.hpp"
+#include "pcrf/printable.hpp"
 #include "pcrf/version.hpp"
 
 namespace pcrf::cli {
@@ -31,13 +32,13 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "pcrf: error: " << e.what() << " (see pcrf --help)\n";
+    std::cerr << "pcrf: error: " << pcrf::printable(e.what()) << " (see pcrf --help)\n";
     return 2;
   } catch (const pcrf::cli::UsageError& e) {
-    std::cerr << "pcrf: error: " << e.what() << "\n";
+    std::cerr << "pcrf: error: " << pcrf::printable(e.what()) << "\n";
     return 2;
   } catch (const std::exception& e) {
-    std::cerr << "pcrf: internal error: " << e.what() << "\n";
+    std::cerr << "pcrf: internal error: " << pcrf::printable(e.what()) << "\n";
     return 1;
   }
   return pcrf::cli::exit_code();

@@ -1,7 +1,9 @@
 // `pcrf run`: one case from the command line; the result record as JSON on stdout.
 #include <CLI/CLI.hpp>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -56,7 +58,7 @@ GroundMotion load_motion(const RunOptions& o) {
 class CsvHistory {
  public:
   explicit CsvHistory(const std::string& path) : out_(path) {
-    if (!out_) throw UsageError("cannot write history file '" + path + "'");
+    if (!out_) throw UsageError(path + ": cannot create the history file: " + std::strerror(errno));
     out_ << "t_s,theta1_rad,omega1_rad_s,theta2_rad,theta3_rad,strain_column_left,"
             "strain_column_right,strain_beam,ground_accel_m_s2\n";
   }

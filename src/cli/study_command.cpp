@@ -7,6 +7,7 @@
 #include "cli/commands.hpp"
 #include "cli/setting_flags.hpp"
 #include "pcrf/parallel/mpi_session.hpp"
+#include "pcrf/printable.hpp"
 #include "pcrf/study/study_parser.hpp"
 #include "pcrf/study/study_run.hpp"
 
@@ -30,13 +31,13 @@ void run_study_command(StudyArguments& args) {
   } catch (const study::StudyError& e) {
     // Nothing has started. Report here, before MPI_Finalize, and not through UsageError in
     // main(): once another rank has exited with code 2, mpirun may end this one at any time.
-    std::cerr << "pcrf: error: " << e.what() << std::endl;
+    std::cerr << "pcrf: error: " << printable(e.what()) << std::endl;
     mpi.quiet_barrier();  // the other ranks wait for this line before they leave
     exit_code() = 2;
     return;
   } catch (const std::exception& e) {
     if (mpi.size() > 1) {  // other ranks are waiting for work that will never come
-      std::cerr << "pcrf: error: " << e.what() << std::endl;
+      std::cerr << "pcrf: error: " << printable(e.what()) << std::endl;
       mpi.abort(1);
     }
     throw;

@@ -12,9 +12,32 @@ void silence_library_errors() {
   std::call_once(once, [] { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); });
 }
 
+namespace {
+
+/// The innermost messages of HDF5's error stack (the library's own reason), e.g.
+/// "unable to open file: ... errno = 28, error message = 'No space left on device'".
+std::string library_reason() {
+  std::vector<std::string> messages;
+  H5Ewalk2(
+      H5E_DEFAULT, H5E_WALK_UPWARD,
+      [](unsigned, const H5E_error2_t* e, void* data) -> herr_t {
+        auto& out = *static_cast<std::vector<std::string>*>(data);
+        if (e->desc != nullptr && *e->desc != '\0' && out.size() < 2) out.emplace_back(e->desc);
+        return 0;
+      },
+      &messages);
+  H5Eclear2(H5E_DEFAULT);
+  std::string reason;
+  for (auto it = messages.rbegin(); it != messages.rend(); ++it) reason += (reason.empty() ? "" : ": ") + *it;
+  return reason;
+}
+
+}  // namespace
+
 hid_t check(hid_t id, const std::string& what) {
-  if (id < 0) throw CubeError(what);
-  return id;
+  if (id >= 0) return id;
+  const std::string reason = library_reason();
+  throw CubeError(reason.empty() ? what : what + " (" + reason + ")");
 }
 
 Handle vlen_string_type() {

@@ -9,8 +9,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <cstdint>
 #include <fstream>
 #include <sstream>
@@ -18,6 +20,8 @@
 #include <system_error>
 #include <utility>
 #include <vector>
+
+#include "pcrf/printable.hpp"
 
 namespace pcrf {
 
@@ -56,12 +60,13 @@ std::string to_upper(std::string_view s) {
   return out;
 }
 
-/// A token as it appears in a message: quoted, and cut short so a binary file stays readable.
+/// A token as it appears in a message: quoted, cut short and with unprintable bytes
+/// escaped, so that a binary file stays readable.
 std::string quote_token(std::string_view token) {
   constexpr std::size_t kMaxShown = 40;
   // Built by append: GCC 12 reports a false -Wrestrict for "'" + std::string(...).
   std::string out(1, '\'');
-  out.append(token.substr(0, kMaxShown));
+  out.append(printable(token.substr(0, kMaxShown)));
   if (token.size() > kMaxShown) out.append("...");
   out.push_back('\'');
   return out;
@@ -96,16 +101,50 @@ bool parse_integer(std::string_view token, long long& value) {
   return !token.empty() && ec == std::errc() && ptr == end;
 }
 
-/// The whole file as text. A missing file, a directory or an unreadable file is a RecordError.
+/// The whole file as text. A missing file, a folder or a FIFO, an unreadable file, a UTF-16
+/// file and a binary file (a NUL byte) are RecordErrors.
 std::string read_text(const std::filesystem::path& file) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec)) fail_file(file, "no such file");
+  const auto status = std::filesystem::status(file, ec);
+  if (!std::filesystem::exists(status)) fail_file(file, "no such file");
+  if (!std::filesystem::is_regular_file(status)) fail_file(file, "not a regular file");
   std::ifstream in(file, std::ios::binary);
-  if (!in) fail_file(file, "cannot open file");
+  if (!in) fail_file(file, std::string("cannot open file: ") + std::strerror(errno));
   std::ostringstream text;
   text << in.rdbuf();
-  if (in.bad()) fail_file(file, "read error");
-  return std::move(text).str();
+  if (in.bad()) fail_file(file, std::string("read error: ") + std::strerror(errno));
+  std::string bytes = std::move(text).str();
+  if (bytes.size() >= 2 && ((bytes[0] == '\xFF' && bytes[1] == '\xFE') || (bytes[0] == '\xFE' && bytes[1] == '\xFF')))
+    fail_file(file, "UTF-16 text; save it as ASCII or UTF-8");
+  if (const auto nul = bytes.find('\0'); nul != std::string::npos) {
+    const auto line = 1 + static_cast<std::size_t>(std::count(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(nul), '\n'));
+    fail_at(file, line, "a NUL byte: this is not a text file");
+  }
+  return bytes;
+}
+
+/// Sample intervals a ground-motion record can have: strong-motion records are sampled at
+/// 0.001–0.05 s; anything outside 10 µs–1 s is a unit or header error.
+constexpr double kMinDt_s = 1e-5;
+constexpr double kMaxDt_s = 1.0;
+
+/// A record needs two samples (an interval to interpolate over) and a plausible dt.
+void check_sampling(const std::filesystem::path& file, std::size_t line_number, double dt_s, std::size_t samples) {
+  if (!(dt_s >= kMinDt_s && dt_s <= kMaxDt_s)) {
+    std::ostringstream text;
+    text << "sample interval " << dt_s << " s is outside the range of ground-motion records (" << kMinDt_s
+         << " to " << kMaxDt_s << " s)";
+    fail_at(file, line_number, text.str());
+  }
+  if (samples < 2) fail_at(file, line_number, "a record needs at least 2 samples, found " + std::to_string(samples));
+}
+
+/// value × factor in m/s², refusing a value whose conversion overflows.
+double to_m_s2_checked(const std::filesystem::path& file, std::size_t line_number, double value, double factor,
+                       std::string_view token) {
+  const double converted = value * factor;
+  if (!std::isfinite(converted)) fail_at(file, line_number, "value " + quote_token(token) + " overflows in m/s²");
+  return converted;
 }
 
 /// Lines without their '\n' or "\r\n"; a last line without a line end is kept.
@@ -357,7 +396,7 @@ GroundMotion read_at2(const std::filesystem::path& file) {
     split_whitespace(lines[i], tokens);
     for (std::string_view token : tokens) {
       const double value_g = parse_value(file, line_number, token);
-      if (found < npts) accel_m_s2.push_back(value_g * kGravity_m_s2);
+      if (found < npts) accel_m_s2.push_back(to_m_s2_checked(file, line_number, value_g, kGravity_m_s2, token));
       else if (extra_line == 0) extra_line = line_number;
       ++found;
     }
@@ -371,6 +410,7 @@ GroundMotion read_at2(const std::filesystem::path& file) {
     fail_at(file, lines.size(), "fewer values than NPTS: found " + std::to_string(found) +
                                     ", expected NPTS = " + std::to_string(npts));
   }
+  check_sampling(file, 4, header.dt_s, accel_m_s2.size());
   return GroundMotion(record_name(file), header.dt_s, std::move(accel_m_s2));
 }
 
@@ -391,13 +431,14 @@ GroundMotion read_two_column(const std::filesystem::path& file, AccelUnit unit) 
                                      std::to_string(fields.size()));
     }
     steps.add(parse_value(file, line_number, fields[0]), line_number);
-    accel_m_s2.push_back(parse_value(file, line_number, fields[1]) * factor);
+    accel_m_s2.push_back(to_m_s2_checked(file, line_number, parse_value(file, line_number, fields[1]), factor, fields[1]));
   }
   if (steps.rows() < 2) {
     fail_at(file, std::max<std::size_t>(lines.size(), 1),
             "need at least 2 data rows to find the time step, found " +
                 std::to_string(steps.rows()));
   }
+  check_sampling(file, lines.size(), steps.dt_s(), accel_m_s2.size());
   return GroundMotion(record_name(file), steps.dt_s(), std::move(accel_m_s2));
 }
 
@@ -414,12 +455,13 @@ GroundMotion read_one_column(const std::filesystem::path& file, double dt_s, Acc
   for (std::size_t i = 0; i < lines.size(); ++i) {
     split_fields(file, i + 1, lines[i], fields);
     for (std::string_view field : fields) {
-      accel_m_s2.push_back(parse_value(file, i + 1, field) * factor);
+      accel_m_s2.push_back(to_m_s2_checked(file, i + 1, parse_value(file, i + 1, field), factor, field));
     }
   }
   if (accel_m_s2.empty()) {
     fail_at(file, std::max<std::size_t>(lines.size(), 1), "no values in file");
   }
+  check_sampling(file, lines.size(), dt_s, accel_m_s2.size());
   return GroundMotion(record_name(file), dt_s, std::move(accel_m_s2));
 }
 

@@ -44,20 +44,24 @@ double paper_trigger_time(const GroundMotion& rec, double lambda_g) {
   return kNaN;
 }
 
+namespace {
+
+/// Every value that determines results, checked against its description.
+template <class Target>
+void validate_table(const SettingTable<Target>& table, const Target& values) {
+  for (const auto& setting : table.settings) {
+    if (!setting.in_fingerprint) continue;  // the preset name only says where the values came from
+    SettingValue value = setting.get(values);
+    if (const auto problem = check_setting(setting, value); !problem.empty())
+      throw std::invalid_argument(std::string(table.name) + " setting " + std::string(setting.key) + " " + problem);
+  }
+}
+
+}  // namespace
+
 void validate(const SolverSettings& s, const PhysicsOptions& p) {
-  auto positive = [](double v, const char* name) {
-    if (!(v > 0.0) || !std::isfinite(v))
-      throw std::invalid_argument(std::string("solver setting ") + name + " must be positive");
-  };
-  positive(s.rtol, "rtol");
-  positive(s.atol_theta_rad, "atol_theta_rad");
-  positive(s.atol_omega_rad_s, "atol_omega_rad_s");
-  if (s.max_steps <= 0) throw std::invalid_argument("solver setting max_steps must be positive");
-  if (s.max_step_s < 0) throw std::invalid_argument("solver setting max_step_s must be ≥ 0");
-  positive(p.fracture_strain, "fracture_strain");
-  positive(p.zeno_time_s, "zeno_time_s");
-  if (!(p.tail_s >= 0.0)) throw std::invalid_argument("physics option tail_s must be ≥ 0");
-  if (s.fixed_step_s < 0) throw std::invalid_argument("solver setting fixed_step_s must be ≥ 0");
+  validate_table(solver_settings(), s);
+  validate_table(physics_settings(), p);
 }
 
 StopAngles stop_angles(const EquationOfMotion& eom, const PhysicsOptions& physics) {

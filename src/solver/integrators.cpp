@@ -83,6 +83,13 @@ class SundialsBase : public OdeIntegrator {
   void accumulate() {
     if (started_) add(done_, segment());
   }
+  /// SUNDIALS allocates its root counter without zeroing it and sets it during the first
+  /// step's set-up; a segment whose set-up failed (no RHS evaluation at all) read it
+  /// uninitialized. Such a segment evaluated nothing: its counts are zero.
+  static SolverCounts settled(SolverCounts c) {
+    if (c.rhs_evals == 0) c.root_evals = 0;
+    return c;
+  }
   static void add(SolverCounts& into, const SolverCounts& s) {
     into.steps += s.steps;
     into.rhs_evals += s.rhs_evals;
@@ -163,7 +170,7 @@ class CvodeIntegrator final : public SundialsBase {
     if (LS_) CVodeGetNumLinRhsEvals(mem_, &nfe_ls);
     c.rhs_evals += nfe_ls;
     CVodeGetNumGEvals(mem_, &c.root_evals);
-    return c;
+    return settled(c);
   }
 
   void* mem_ = nullptr;
@@ -224,7 +231,7 @@ class ErkIntegrator final : public SundialsBase {
     ERKStepGetNumSteps(mem_, &c.steps);
     ERKStepGetNumRhsEvals(mem_, &c.rhs_evals);
     ERKStepGetNumGEvals(mem_, &c.root_evals);
-    return c;
+    return settled(c);
   }
 
   void* mem_ = nullptr;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -386,9 +387,23 @@ bool CaseRun::over_time() const {
 
 }  // namespace
 
+void check_initial_state(const Frame& frame, const PhysicsOptions& physics) {
+  if (physics.theta0_rad == 0.0) return;
+  const EquationOfMotion eom(frame);
+  if (!(std::fabs(physics.theta0_rad) < eom.overturn_angle_rad())) {
+    char text[256];
+    std::snprintf(text, sizeof text,
+                  "theta0_rad: |θ₀| = %.6g rad is not below this frame's overturning angle %.6g rad "
+                  "(95 %% of its closing limit %.6g rad)",
+                  std::fabs(physics.theta0_rad), eom.overturn_angle_rad(), eom.closing_limit_rad());
+    throw std::invalid_argument(text);
+  }
+}
+
 CaseResult solve_case(const Frame& frame, const GroundMotion& record, const PhysicsOptions& physics,
                       const SolverSettings& solver, const OutputRequest& request, const HistorySink& history) {
   detail::validate(solver, physics);
+  check_initial_state(frame, physics);
   // Timed here, so that the per-case set-up (linkage limits, fracture angle, r) counts.
   const auto start = std::chrono::steady_clock::now();
   CaseResult result;

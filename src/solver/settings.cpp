@@ -48,7 +48,7 @@ const SettingTable<PhysicsOptions>& physics_settings() {
     s.push_back(number_setting("tail_s", &P::tail_s, "s", Bound::kNonNegative,
                                "free vibration computed after the record ends"));
     s.back().aliases = {"--tail"};
-    s.push_back(number_setting("zeno_time_s", &P::zeno_time_s, "s", Bound::kNonNegative,
+    s.push_back(number_setting("zeno_time_s", &P::zeno_time_s, "s", Bound::kPositive,
                                "return-to-rest time scale (README, \"Return to rest\")"));
     s.back().aliases = {"--zeno-time"};
     s.push_back(number_setting("theta0_rad", &P::theta0_rad, "rad", Bound::kAny,

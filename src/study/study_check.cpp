@@ -4,7 +4,8 @@
 #include <sstream>
 
 #include "pcrf/study/fingerprint.hpp"
-#include "pcrf/study/study_parser.hpp"
+#include "pcrf/solver/rocking_solver.hpp"
+#include "pcrf/study/study_error.hpp"
 
 namespace pcrf::study {
 namespace {
@@ -29,11 +30,19 @@ std::string describe(const FrameParameters& p) {
 
 void check_frames(const Study& study, const CaseSpace& space) {
   for (const auto& parameters : space.frames()) {
+    Frame frame{};
     try {
-      (void)make_frame(parameters);
+      frame = make_frame(parameters);
     } catch (const std::exception& e) {
       const char* where = study.plan == PlanKind::kList ? "cases" : "axes";
       throw StudyError(study.file + ": " + where + ": impossible geometry at " + describe(parameters) + ": " + e.what());
+    }
+    try {
+      check_initial_state(frame, study.physics);
+    } catch (const std::invalid_argument& e) {
+      const auto line = study.setting_lines.find("physics.theta0_rad");
+      throw StudyError((line != study.setting_lines.end() ? line->second : study.file) + ": physics." + e.what() +
+                       " (frame " + describe(parameters) + ")");
     }
   }
 }

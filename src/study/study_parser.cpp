@@ -4,6 +4,8 @@
 #include <fnmatch.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <cctype>
 #include <cmath>
 #include <fstream>
@@ -208,7 +210,10 @@ std::vector<std::filesystem::path> resolve_files(const Fields& f, std::string_vi
   path = path.lexically_normal();
   if (!has_glob(path.filename().string())) {
     if (has_glob(path.parent_path().string())) f.fail(key, "wildcards are allowed in the file name only: " + entry);
-    if (!std::filesystem::is_regular_file(path)) f.fail(key, "file not found: " + path.string());
+    std::error_code error;
+    const auto status = std::filesystem::status(path, error);
+    if (!std::filesystem::exists(status)) f.fail(key, "file not found: " + path.string());
+    if (!std::filesystem::is_regular_file(status)) f.fail(key, "not a regular file: " + path.string());
     return {path};
   }
   if (has_glob(path.parent_path().string())) f.fail(key, "wildcards are allowed in the file name only: " + entry);
@@ -379,23 +384,26 @@ Study parse_study(const std::string& text, const std::string& file, const std::f
   read_axes(top, s);
   read_cases(top, s);
   read_records(top, s);
-  detail::read_setting_table(top, physics_settings(), s.physics);
-  detail::read_setting_table(top, solver_settings(), s.solver);
+  detail::read_setting_table(top, physics_settings(), s.physics, s.setting_lines);
+  detail::read_setting_table(top, solver_settings(), s.solver, s.setting_lines);
   read_outputs(top, s);
-  detail::read_setting_table(top, run_settings(), s.run);
+  detail::read_setting_table(top, run_settings(), s.run, s.setting_lines);
   return s;
 }
 
 std::string read_text_file(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
-  if (!in) throw StudyError(file.string() + ": cannot read the file");
+  if (!in) throw StudyError(file.string() + ": cannot read the file: " + std::strerror(errno));
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
 }
 
 Study load_study(const std::filesystem::path& file) {
-  if (!std::filesystem::is_regular_file(file)) throw StudyError(file.string() + ": no such study file");
+  std::error_code error;
+  const auto status = std::filesystem::status(file, error);
+  if (!std::filesystem::exists(status)) throw StudyError(file.string() + ": no such study file");
+  if (!std::filesystem::is_regular_file(status)) throw StudyError(file.string() + ": not a regular file");
   auto base_dir = std::filesystem::absolute(file).parent_path();
   return parse_study(read_text_file(file), file.string(), base_dir);
 }

@@ -5,6 +5,7 @@
 #include <toml++/toml.h>
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -75,16 +76,22 @@ std::string closest_word(std::string_view word, const std::vector<std::string_vi
 
 /// Reads the table `table.name` of `top` into `target` (starting from table.defaults):
 /// every key must be described, values are checked and applied in description order.
+/// `lines` receives "FILE:LINE" of each key given, by "table.key".
 template <class Target>
-void read_setting_table(const Fields& top, const SettingTable<Target>& table, Target& target) {
+void read_setting_table(const Fields& top, const SettingTable<Target>& table, Target& target,
+                        std::map<std::string, std::string>& lines) {
   target = table.defaults;
   const toml::table* node = top.subtable(table.name);
   if (node == nullptr) return;
   std::vector<std::string_view> keys;
   for (const auto& s : table.settings) keys.push_back(s.key);
   const Fields fields(*node, std::string(table.name), top.file(), keys);
-  for (const auto& s : table.settings)
-    if (auto value = fields.setting(s)) s.set(target, *value);
+  for (const auto& s : table.settings) {
+    if (auto value = fields.setting(s)) {
+      s.set(target, *value);
+      lines[fields.path(s.key)] = fields.where(s.key);
+    }
+  }
 }
 
 }  // namespace pcrf::study::detail

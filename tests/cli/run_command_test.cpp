@@ -92,7 +92,12 @@ INSTANTIATE_TEST_SUITE_P(
                       BadArgs{"--synthetic 'sine:amplitude_g=1' --rtol 0", "rtol"},
                       BadArgs{"--synthetic 'quake:x=1'", "quake"},
                       BadArgs{"--synthetic 'sine:amplitude_g=1' --kappa abc", "kappa"},
-                      BadArgs{"--synthetic 'sine:amplitude_g=1' --no-such-option", "no-such-option"}));
+                      BadArgs{"--synthetic 'sine:amplitude_g=1' --no-such-option", "no-such-option"},
+                      BadArgs{"--record /tmp", "/tmp: not a regular file"},
+                      BadArgs{"--synthetic 'sine:amplitude_g=1' --theta0-rad 100", "theta0_rad: |θ₀| = 100 rad"},
+                      BadArgs{"--synthetic 'sine:amplitude_g=1' --history /no/such/dir/h.csv",
+                              "/no/such/dir/h.csv: cannot create the history file: No such file or directory"},
+                      BadArgs{"--synthetic 'sine:amplitude_g=1' --zeno-time-s 0", "--zeno-time-s: must be positive"}));
 
 }  // namespace
 }  // namespace pcrf

@@ -179,6 +179,7 @@ struct BadStudy {
 
 std::vector<BadStudy> bad_study_corpus(const std::filesystem::path& dir) {
   test::write_file(dir, "garbage.AT2", "not\na\nPEER\nfile at all\n1 2 3\n");
+  test::write_file(dir, "dt.AT2", "PEER\nX\nACCELERATION IN UNITS OF G\nNPTS=  3, DT= 1e300 SEC\n0.1 0.2 0.1\n");
   const std::string pulse = std::string("[[records]]\nsynthetic = \"") + kPulse + "\"\n";
   return {
       {"unknown_key.toml", pulse + "[axes]\nkapa = [1, 2]\n", "unknown_key.toml:4: axes.kapa: unknown key (did you mean 'kappa'?)"},
@@ -199,6 +200,12 @@ std::vector<BadStudy> bad_study_corpus(const std::filesystem::path& dir) {
       {"history.toml", pulse + "[axes]\nkappa = [1, 2]\n[[outputs.histories]]\nlabel = \"h\"\nkappa = 3\n",
        "history.toml:6: outputs.histories \"h\": kappa 3 is not on the kappa axis"},
       {"not_toml.toml", pulse + "[axes\n", "not_toml.toml:3: not valid TOML"},
+      {"theta0.toml", pulse + "[physics]\ntheta0_rad = 100\n",
+       "theta0.toml:4: physics.theta0_rad: |θ₀| = 100 rad is not below this frame's overturning angle"},
+      {"folder_record.toml", "[[records]]\nfile = \".\"\n", "folder_record.toml:2: records[0].file: not a regular file"},
+      {"absurd_dt.toml", "[[records]]\nfile = \"dt.AT2\"\n", "dt.AT2:4: sample interval 1e+300 s is outside"},
+      {"negative_flush.toml", pulse + "[run]\nflush_interval_s = -1\n",
+       "negative_flush.toml:4: run.flush_interval_s: must be positive (got -1)"},
   };
 }
 
@@ -215,6 +222,15 @@ TEST(StudyCommand, BadStudiesFailWithTheirMessageExitCode2AndNoOutput) {
   const auto missing = test::run_command(pcrf() + " study " + quoted(dir / "nowhere.toml"));
   EXPECT_EQ(missing.exit_code, 2);
   EXPECT_NE(missing.err.find("nowhere.toml: no such study file"), std::string::npos) << missing.err;
+  const auto folder = test::run_command(pcrf() + " study " + quoted(dir));
+  EXPECT_EQ(folder.exit_code, 2);
+  EXPECT_NE(folder.err.find(": not a regular file"), std::string::npos) << folder.err;
+  for (const char* flag : {"--flush-interval -1", "--progress-interval-s -1", "--batch-size -3", "--flush-interval nan"}) {
+    const auto bad_flag = run_study(dir, "ok.toml", std::string("[[records]]\nsynthetic = \"") + kPulse + "\"\n",
+                                    std::string("-o out.h5 ") + flag);
+    EXPECT_EQ(bad_flag.exit_code, 2) << flag << ": " << bad_flag.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out.h5")) << flag;
+  }
 }
 
 TEST(StudyCommand, BadStudyUnderMpirunExitsWith2AndReportsOnce) {

@@ -42,9 +42,14 @@ struct OutputRequest {
   bool omega_peak = true;  ///< locate max |θ̇₁| exactly (adds the root g₂)
 };
 
+/// Checks that a displaced initial state (physics.theta0_rad) is one the frame can be in:
+/// |θ₀| below its overturning angle (95 % of the closing limit, where the linkage folds).
+/// \throws std::invalid_argument "theta0_rad: …" naming both angles.
+void check_initial_state(const Frame& frame, const PhysicsOptions& physics);
+
 /// Solves one case. Never throws for a physical or numerical failure: the result's
 /// status says what happened (message gives detail). Throws std::invalid_argument only
-/// for invalid settings (non-positive tolerance, unknown integrator).
+/// for invalid settings (a value outside its description, an impossible initial state).
 CaseResult solve_case(const Frame& frame, const GroundMotion& record,
                       const PhysicsOptions& physics, const SolverSettings& solver,
                       const OutputRequest& request = {}, const HistorySink& history = {});

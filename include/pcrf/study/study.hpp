@@ -9,6 +9,7 @@
 #include <array>
 #include <cstddef>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -78,6 +79,8 @@ struct Study {
 
   PhysicsOptions physics;
   SolverSettings solver = preset_settings("balanced");
+  /// "FILE:LINE" of each setting the file gives, by "table.key" (for later checks' messages).
+  std::map<std::string, std::string> setting_lines;
   std::vector<std::string> metrics;  ///< metric names to store, in all_metrics() order
   std::vector<HistoryRequest> histories;
   RunOptions run;
