@@ -43,6 +43,7 @@ enum class Bound {
   kPositive,     ///< > 0
   kNonNegative,  ///< ≥ 0
   kAtLeastOne,   ///< ≥ 1 (integers)
+  kFraction,     ///< in [0, 1)
 };
 
 template <class Target>
@@ -126,6 +127,7 @@ std::string setting_kind_text(const Setting<Target>& s) {
     case Bound::kPositive: text += " > 0"; break;
     case Bound::kNonNegative: text += " ≥ 0"; break;
     case Bound::kAtLeastOne: text += " ≥ 1"; break;
+    case Bound::kFraction: text += " in [0, 1)"; break;
   }
   if (!s.unit.empty() && s.unit != "1") text += " [" + std::string(s.unit) + "]";
   return text;
@@ -166,6 +168,7 @@ std::string check_setting(const Setting<Target>& s, SettingValue& value) {
     case Bound::kPositive: return v > 0.0 ? "" : "must be positive" + got;
     case Bound::kNonNegative: return v >= 0.0 ? "" : "must not be negative" + got;
     case Bound::kAtLeastOne: return v >= 1.0 ? "" : "must be at least 1" + got;
+    case Bound::kFraction: return v >= 0.0 && v < 1.0 ? "" : "must be at least 0 and below 1" + got;
   }
   return "";
 }

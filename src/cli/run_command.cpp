@@ -11,9 +11,11 @@
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "cli/record_flags.hpp"
 #include "cli/setting_flags.hpp"
 #include "pcrf/model/frame.hpp"
 #include "pcrf/model/parameters.hpp"
+#include "pcrf/record/intensity.hpp"
 #include "pcrf/record/record_readers.hpp"
 #include "pcrf/record/synthetic.hpp"
 #include "pcrf/solver/rocking_solver.hpp"
@@ -22,34 +24,41 @@ namespace pcrf::cli {
 namespace {
 
 struct RunOptions {
-  std::string record_file;
-  std::string format;  // empty: from the extension
-  std::string units = "g";
-  double dt_s = 0.0;
-  std::string synthetic;
+  RecordFlags record;
   double scale = 1.0;
+  CLI::Option* scale_flag = nullptr;
+  double intensity = 0.0;  ///< with --measure: the target intensity, in the measure's units
+  CLI::Option* intensity_flag = nullptr;
+  std::unique_ptr<SettingFlags<IntensitySpec>> measure;
   FrameParameters frame;
   std::unique_ptr<SettingFlags<PhysicsOptions>> physics;
   std::unique_ptr<SettingFlags<SolverSettings>> solver;
   std::string history_file;
 };
 
-GroundMotion load_motion(const RunOptions& o) {
-  if (o.record_file.empty() == o.synthetic.empty())
-    throw UsageError("give exactly one of --record FILE or --synthetic SPEC");
+/// The factor the record is scaled by: --scale, or --intensity over the record's measure.
+double scale_factor(const RunOptions& o, const GroundMotion& motion) {
+  const auto measure_flags = o.measure->given();
+  const bool by_intensity = o.intensity_flag->count() > 0;
+  if (!by_intensity) {
+    if (!measure_flags.empty()) throw UsageError("--measure, --period-s and --damping go with --intensity VALUE");
+    return o.scale;
+  }
+  if (o.scale_flag->count() > 0) throw UsageError("give either --scale or --intensity, not both");
+  if (!(o.intensity > 0.0)) throw UsageError("--intensity must be positive");
+  const IntensitySpec spec = o.measure->resolve();
+  if (const auto problem = intensity_spec_problem(spec); !problem.empty()) throw UsageError("--period-s: " + problem);
+  const double im = intensity_of(motion, spec);
+  if (!(im > 0.0)) throw UsageError(motion.name() + ": its " + to_string(spec.measure) + " is 0: it cannot be scaled");
+  return o.intensity / im;
+}
+
+GroundMotion load_motion(const RunOptions& o, double& factor) {
+  const GroundMotion motion = o.record.load();
+  factor = scale_factor(o, motion);
   try {
-    if (!o.synthetic.empty()) return make_synthetic(o.synthetic).scaled(o.scale);
-    RecordFileSpec spec;
-    spec.path = o.record_file;
-    spec.format = o.format.empty() ? guess_record_format(spec.path) : parse_record_format(o.format);
-    spec.unit = parse_accel_unit(o.units);
-    spec.dt_s = o.dt_s;
-    if (spec.format == RecordFormat::kOneColumn && !(o.dt_s > 0))
-      throw UsageError("--dt is required (and > 0) for a one-column record");
-    return read_record(spec).scaled(o.scale);
-  } catch (const RecordError& e) {
-    throw UsageError(e.what());
-  } catch (const std::invalid_argument& e) {
+    return motion.scaled(factor);
+  } catch (const std::invalid_argument& e) {  // a scale that overflows the record
     throw UsageError(e.what());
   }
 }
@@ -75,7 +84,8 @@ class CsvHistory {
 };
 
 void run(const RunOptions& o) {
-  const GroundMotion motion = load_motion(o);
+  double factor = 1.0;
+  const GroundMotion motion = load_motion(o, factor);
   const PhysicsOptions physics = o.physics->resolve();
   const SolverSettings solver = o.solver->resolve();
   Frame frame{};
@@ -96,7 +106,10 @@ void run(const RunOptions& o) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
-  std::cout << to_json(result) << std::endl;
+  JsonObject json;
+  json.number("scale_factor", factor);
+  add_to_json(json, result);
+  std::cout << json.str() << std::endl;
 }
 
 /// --kappa … --pi-e-c and --h-m, --m-c-kg (older spellings --h, --mc), from the parameter tables.
@@ -120,14 +133,11 @@ void add_frame_flags(CLI::App* cmd, FrameParameters& frame) {
 void add_run_command(CLI::App& app) {
   auto o = std::make_shared<RunOptions>();
   CLI::App* cmd = app.add_subcommand("run", "Solve one case and print its result record as JSON");
-  cmd->add_option("--record", o->record_file, "ground-motion file (.AT2, two-column or one-column text)");
-  cmd->add_option("--format", o->format, "record format: at2, two-column, one-column (default: from extension)");
-  cmd->add_option("--units", o->units, "acceleration units of a text record: g, m/s2, cm/s2")->capture_default_str();
-  cmd->add_option("--dt", o->dt_s, "sample interval of a one-column record [s]");
-  cmd->add_option("--synthetic", o->synthetic,
-                  "synthetic motion, e.g. 'sine:amplitude_g=1.5,period_s=0.5,cycles=2' or "
-                  "'stochastic:seed=3,pga_g=1.2,duration_s=20'");
-  cmd->add_option("--scale", o->scale, "ground-motion scale factor [-]")->capture_default_str();
+  o->record.add_to(cmd, false, true);
+  o->scale_flag = cmd->add_option("--scale", o->scale, "ground-motion scale factor [-]")->capture_default_str();
+  o->intensity_flag = cmd->add_option("--intensity", o->intensity,
+                                      "scale the record to this intensity of --measure (in its units: g or m/s)");
+  o->measure = std::make_unique<SettingFlags<IntensitySpec>>(cmd, intensity_settings());
   add_frame_flags(cmd, o->frame);
   o->physics = std::make_unique<SettingFlags<PhysicsOptions>>(cmd, physics_settings());
   o->solver = std::make_unique<SettingFlags<SolverSettings>>(cmd, solver_settings());

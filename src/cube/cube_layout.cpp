@@ -37,6 +37,20 @@ const Coordinate* CubeLayout::find_coordinate(const std::string& name) const {
   return nullptr;
 }
 
+const SideVariable* CubeLayout::find_side_variable(const std::string& name) const {
+  for (const auto& v : side_variables)
+    if (v.name == name) return &v;
+  return nullptr;
+}
+
+std::size_t CubeLayout::side_size(const SideVariable& variable) const {
+  std::size_t n = 1;
+  for (const auto& name : variable.dimensions)
+    for (const auto& d : dimensions)
+      if (d.name == name) n *= d.size;
+  return n;
+}
+
 std::string CubeLayout::text_attribute(const std::string& name) const {
   for (const auto& a : attributes)
     if (a.name == name)

@@ -131,8 +131,15 @@ CubeReader::CubeReader(const std::filesystem::path& file) : file_(file), impl_(s
     auto d = impl_->open(name);
     auto t = h5::type(H5Dget_type(d), impl_->what("cannot read '" + name + "'"));
     auto ds = h5::space(H5Dget_space(d), impl_->what("cannot read '" + name + "'"));
-    if (H5Tget_class(t) != H5T_FLOAT || H5Sget_simple_extent_ndims(ds) != rank) continue;
-    layout_.metrics.push_back({name, h5::read_text_attribute(d, "units"), h5::read_text_attribute(d, "long_name")});
+    if (H5Tget_class(t) != H5T_FLOAT) continue;
+    const int variable_rank = H5Sget_simple_extent_ndims(ds);
+    if (variable_rank == rank) {
+      layout_.metrics.push_back({name, h5::read_text_attribute(d, "units"), h5::read_text_attribute(d, "long_name")});
+    } else if (variable_rank > 0 && variable_rank < rank) {
+      SideVariable side{name, h5::read_text_attribute(d, "units"), h5::read_text_attribute(d, "long_name"), {}, {}};
+      for (int k = 0; k < variable_rank; ++k) side.dimensions.push_back(dimension_name(d, static_cast<unsigned>(k)));
+      layout_.side_variables.push_back(std::move(side));
+    }
   }
   auto root = h5::group(H5Gopen2(impl_->file, "/", H5P_DEFAULT), impl_->what("cannot open the root group"));
   layout_.attributes = h5::read_attributes(root);
@@ -154,6 +161,16 @@ std::vector<double> CubeReader::read_metric(const std::string& name) const {
   if (!known) throw CubeError(impl_->what("has no metric '" + name + "'"));
   auto d = impl_->open(name);
   std::vector<double> values(static_cast<std::size_t>(layout_.case_count()));
+  h5::check(H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
+            impl_->what("cannot read '" + name + "'"));
+  return values;
+}
+
+std::vector<double> CubeReader::read_side(const std::string& name) const {
+  const SideVariable* v = layout_.find_side_variable(name);
+  if (v == nullptr) throw CubeError(impl_->what("has no variable '" + name + "' (over some of its dimensions)"));
+  auto d = impl_->open(name);
+  std::vector<double> values(layout_.side_size(*v));
   h5::check(H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
             impl_->what("cannot read '" + name + "'"));
   return values;

@@ -82,6 +82,8 @@ struct CubeWriter::Impl {
   h5::Handle file;  // declared first: closed last
   std::vector<h5::Handle> scales;  // one per dimension
   std::vector<h5::Handle> metric_sets;
+  std::vector<h5::Handle> side_sets;  // one per layout.side_variables
+  std::vector<bool> side_dirty;
   h5::Handle status_set;
   std::vector<std::vector<double>> metrics;  // [metric][case]
   std::set<std::size_t> dirty_chunks;
@@ -98,6 +100,8 @@ struct CubeWriter::Impl {
   void open_existing(std::vector<std::int8_t>& status);
   h5::Handle create_cube_variable(const std::string& name, hid_t file_type, hid_t memory_type,
                                   const void* fill);
+  h5::Handle create_side_variable(const SideVariable& v);
+  void write_side(std::size_t index);
   void write_chunk(std::size_t chunk, const std::vector<std::int8_t>& status);
   void write_notes();
   void write_history(const HistoryTable& table);
@@ -154,6 +158,10 @@ void CubeWriter::Impl::create(bool overwrite) {
     metric_sets.push_back(create_cube_variable(m.name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &kNaN));
     write_descriptive_attributes(metric_sets.back(), m.units, m.long_name);
   }
+  for (std::size_t v = 0; v < layout.side_variables.size(); ++v) {
+    side_sets.push_back(create_side_variable(layout.side_variables[v]));
+    write_side(v);
+  }
   const std::int8_t not_run = kStatusNotRun;
   status_set = create_cube_variable(kStatusName, H5T_STD_I8LE, H5T_NATIVE_INT8, &not_run);
   std::vector<std::int8_t> flag_values;
@@ -192,6 +200,50 @@ h5::Handle CubeWriter::Impl::create_cube_variable(const std::string& name, hid_t
   return d;
 }
 
+h5::Handle CubeWriter::Impl::create_side_variable(const SideVariable& v) {
+  const std::string problem = "cannot create variable '" + v.name + "'";
+  std::vector<hsize_t> dims;
+  std::vector<std::size_t> scale_of;
+  for (const auto& name : v.dimensions) {
+    auto it = std::find_if(layout.dimensions.begin(), layout.dimensions.end(),
+                           [&](const Dimension& d) { return d.name == name; });
+    if (it == layout.dimensions.end()) throw CubeError(what(problem + ": no dimension '" + name + "'"));
+    dims.push_back(it->size);
+    scale_of.push_back(static_cast<std::size_t>(it - layout.dimensions.begin()));
+  }
+  auto s = h5::space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), what(problem));
+  auto dcpl = ordered_plist(H5P_DATASET_CREATE);
+  h5::check(H5Pset_fill_value(dcpl, H5T_NATIVE_DOUBLE, &kNaN), what(problem));
+  auto d = h5::dataset(H5Dcreate2(file, v.name.c_str(), H5T_IEEE_F64LE, s, H5P_DEFAULT, dcpl, H5P_DEFAULT), what(problem));
+  h5::write_attribute(d, "_FillValue", kNaN);
+  write_descriptive_attributes(d, v.units, v.long_name);
+  for (std::size_t i = 0; i < scale_of.size(); ++i)
+    h5::check(H5DSattach_scale(d, scales[scale_of[i]], static_cast<unsigned>(i)), what(problem + ": cannot attach dimensions"));
+  return d;
+}
+
+void CubeWriter::Impl::write_side(std::size_t index) {
+  const auto& v = layout.side_variables[index];
+  if (v.values.empty()) return;
+  h5::check(H5Dwrite(side_sets[index], H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.values.data()),
+            what("cannot write '" + v.name + "'"));
+}
+
+void CubeWriter::store_side(const std::string& name, std::vector<double> values) {
+  auto& vars = impl_->layout.side_variables;
+  for (std::size_t v = 0; v < vars.size(); ++v) {
+    if (vars[v].name != name) continue;
+    if (values.size() != impl_->layout.side_size(vars[v]))
+      throw CubeError(impl_->what("'" + name + "' takes " + std::to_string(impl_->layout.side_size(vars[v])) +
+                                  " values, got " + std::to_string(values.size())));
+    vars[v].values = std::move(values);
+    impl_->side_dirty.resize(vars.size(), false);
+    impl_->side_dirty[v] = true;
+    return;
+  }
+  throw CubeError(impl_->what("has no side variable '" + name + "'"));
+}
+
 void CubeWriter::Impl::open_existing(std::vector<std::int8_t>& status) {
   {
     CubeReader reader(path);
@@ -211,6 +263,10 @@ void CubeWriter::Impl::open_existing(std::vector<std::int8_t>& status) {
   for (const auto& m : layout.metrics)
     metric_sets.push_back(h5::dataset(H5Dopen2(file, m.name.c_str(), H5P_DEFAULT), what("cannot open '" + m.name + "'")));
   status_set = h5::dataset(H5Dopen2(file, kStatusName, H5P_DEFAULT), what("cannot open 'status'"));
+  for (const auto& v : layout.side_variables) {
+    if (H5Lexists(file, v.name.c_str(), H5P_DEFAULT) <= 0) throw CubeError(what("has no variable '" + v.name + "'"));
+    side_sets.push_back(h5::dataset(H5Dopen2(file, v.name.c_str(), H5P_DEFAULT), what("cannot open '" + v.name + "'")));
+  }
 }
 
 std::int64_t CubeWriter::done_count() const {
@@ -346,12 +402,16 @@ void CubeWriter::flush() {
   impl.write_notes();
   for (const auto& table : impl.pending_histories) impl.write_history(table);
   impl.pending_histories.clear();
+  for (std::size_t v = 0; v < impl.side_dirty.size(); ++v)
+    if (impl.side_dirty[v]) impl.write_side(v);
+  impl.side_dirty.assign(impl.side_dirty.size(), false);
   h5::check(H5Fflush(impl.file, H5F_SCOPE_GLOBAL), impl.what("cannot flush"));
 }
 
 void CubeWriter::close() {
   flush();
   impl_->metric_sets.clear();
+  impl_->side_sets.clear();
   impl_->status_set.reset();
   impl_->scales.clear();
   impl_->file.reset();

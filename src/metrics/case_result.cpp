@@ -1,6 +1,8 @@
 // Per-case result record: metric table, status names, JSON.
 #include "pcrf/metrics/case_result.hpp"
 
+#include "pcrf/json.hpp"
+
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -66,64 +68,22 @@ const MetricInfo* find_metric(std::string_view name) {
   return nullptr;
 }
 
-namespace {
-
-void write_number(std::ostringstream& os, double v) {
-  if (!std::isfinite(v)) {
-    os << "null";
-    return;
-  }
-  // Shortest text that reads back to the same double (2.69, not 2.6899999999999999).
-  char buf[32];
-  const auto end = std::to_chars(buf, buf + sizeof buf, v).ptr;
-  os << std::string_view(buf, static_cast<std::size_t>(end - buf));
-}
-
-void write_string(std::ostringstream& os, std::string_view s) {
-  os << '"';
-  for (const char c : s) {
-    switch (c) {
-      case '"': os << "\\\""; break;
-      case '\\': os << "\\\\"; break;
-      case '\n': os << "\\n"; break;
-      case '\t': os << "\\t"; break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", c);
-          os << buf;
-        } else {
-          os << c;
-        }
-    }
-  }
-  os << '"';
-}
-
-}  // namespace
-
 std::string to_json(const CaseResult& r) {
-  std::ostringstream os;
-  os << '{';
-  bool first = true;
+  JsonObject json;
+  add_to_json(json, r);
+  return json.str();
+}
+
+void add_to_json(JsonObject& json, const CaseResult& r) {
   for (const auto& m : all_metrics()) {
-    if (!first) os << ", ";
-    first = false;
-    write_string(os, m.name);
-    os << ": ";
-    if (m.is_count) {
-      os << static_cast<long>(m.get(r));
-    } else {
-      write_number(os, m.get(r));
-    }
+    if (m.is_count)
+      json.integer(m.name, static_cast<long long>(m.get(r)));
+    else
+      json.number(m.name, m.get(r));
   }
-  os << ", \"status\": ";
-  write_string(os, status_name(r.status));
-  os << ", \"reinits\": " << r.counts.reinits;
-  os << ", \"message\": ";
-  write_string(os, r.message);
-  os << '}';
-  return os.str();
+  json.text("status", status_name(r.status));
+  json.integer("reinits", r.counts.reinits);
+  json.text("message", r.message);
 }
 
 }  // namespace pcrf

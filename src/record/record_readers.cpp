@@ -342,6 +342,22 @@ class TimeStepCheck {
   double first_step_s_ = 0.0;
 };
 
+/// Checks that `skip_rows` leaves something of a file of `lines` lines.
+void check_skip(const std::filesystem::path& file, std::size_t skip_rows, std::size_t lines) {
+  if (skip_rows >= lines && lines > 0)
+    fail_file(file, "skip_rows = " + std::to_string(skip_rows) + " skips every line of the file (" +
+                        std::to_string(lines) + " lines)");
+}
+
+/// "RSN174" from "RSN174_IMPVALL.H_H-E11230": the NGA record sequence number, or "".
+std::string rsn_of(const std::filesystem::path& file) {
+  const std::string stem = file.stem().string();
+  if (to_upper(stem.substr(0, 3)) != "RSN") return "";
+  std::size_t end = 3;
+  while (end < stem.size() && std::isdigit(static_cast<unsigned char>(stem[end]))) ++end;
+  return end > 3 ? stem.substr(3, end - 3) : "";
+}
+
 }  // namespace
 
 // ---- units and formats ------------------------------------------------------------------------
@@ -414,7 +430,7 @@ GroundMotion read_at2(const std::filesystem::path& file) {
   return GroundMotion(record_name(file), header.dt_s, std::move(accel_m_s2));
 }
 
-GroundMotion read_two_column(const std::filesystem::path& file, AccelUnit unit) {
+GroundMotion read_two_column(const std::filesystem::path& file, AccelUnit unit, std::size_t skip_rows) {
   const std::string text = read_text(file);
   const std::vector<std::string_view> lines = split_lines(text);
   const double factor = to_m_s2(unit);
@@ -422,7 +438,8 @@ GroundMotion read_two_column(const std::filesystem::path& file, AccelUnit unit) 
   std::vector<double> accel_m_s2;
   std::vector<std::string_view> fields;
   TimeStepCheck steps(file);
-  for (std::size_t i = 0; i < lines.size(); ++i) {
+  check_skip(file, skip_rows, lines.size());
+  for (std::size_t i = skip_rows; i < lines.size(); ++i) {
     const std::size_t line_number = i + 1;
     split_fields(file, line_number, lines[i], fields);
     if (fields.empty()) continue;  // blank or comment line
@@ -442,7 +459,7 @@ GroundMotion read_two_column(const std::filesystem::path& file, AccelUnit unit) 
   return GroundMotion(record_name(file), steps.dt_s(), std::move(accel_m_s2));
 }
 
-GroundMotion read_one_column(const std::filesystem::path& file, double dt_s, AccelUnit unit) {
+GroundMotion read_one_column(const std::filesystem::path& file, double dt_s, AccelUnit unit, std::size_t skip_rows) {
   if (!(dt_s > 0.0) || !std::isfinite(dt_s)) {
     fail_file(file, "one-column record needs dt_s > 0, got " + std::to_string(dt_s));
   }
@@ -452,7 +469,8 @@ GroundMotion read_one_column(const std::filesystem::path& file, double dt_s, Acc
 
   std::vector<double> accel_m_s2;
   std::vector<std::string_view> fields;
-  for (std::size_t i = 0; i < lines.size(); ++i) {
+  check_skip(file, skip_rows, lines.size());
+  for (std::size_t i = skip_rows; i < lines.size(); ++i) {
     split_fields(file, i + 1, lines[i], fields);
     for (std::string_view field : fields) {
       accel_m_s2.push_back(to_m_s2_checked(file, i + 1, parse_value(file, i + 1, field), factor, field));
@@ -467,11 +485,41 @@ GroundMotion read_one_column(const std::filesystem::path& file, double dt_s, Acc
 
 GroundMotion read_record(const RecordFileSpec& spec) {
   switch (spec.format) {
-    case RecordFormat::kAt2: return read_at2(spec.path);
-    case RecordFormat::kTwoColumn: return read_two_column(spec.path, spec.unit);
-    case RecordFormat::kOneColumn: return read_one_column(spec.path, spec.dt_s, spec.unit);
+    case RecordFormat::kAt2:
+      if (spec.skip_rows > 0) fail_file(spec.path, "skip_rows applies to text records only (.AT2 has its header)");
+      return read_at2(spec.path);
+    case RecordFormat::kTwoColumn: return read_two_column(spec.path, spec.unit, spec.skip_rows);
+    case RecordFormat::kOneColumn: return read_one_column(spec.path, spec.dt_s, spec.unit, spec.skip_rows);
   }
   fail_file(spec.path, "invalid RecordFormat value");
+}
+
+RecordMetadata read_metadata(const RecordFileSpec& spec) {
+  RecordMetadata meta;
+  meta.rsn = rsn_of(spec.path);
+  if (spec.format != RecordFormat::kAt2) return meta;
+  const std::string text = read_text(spec.path);
+  const auto lines = split_lines(text);
+  if (lines.size() < 2) return meta;
+  meta.title = printable(trim(lines[1]));
+  // "Event, date, station, component" (NGA-West2) or "Event, year, station, component (note)".
+  std::vector<std::string> parts;
+  std::string_view rest = lines[1];
+  for (int k = 0; k < 3; ++k) {
+    const auto comma = rest.find(',');
+    if (comma == std::string_view::npos) break;
+    parts.emplace_back(trim(rest.substr(0, comma)));
+    rest = rest.substr(comma + 1);
+  }
+  parts.emplace_back(trim(rest));
+  if (parts.size() >= 3) {
+    meta.event = printable(parts.front());
+    meta.station = printable(parts[parts.size() - 2]);
+    std::vector<std::string_view> words;
+    split_whitespace(parts.back(), words);  // the component is the last field's first word
+    if (!words.empty()) meta.component = printable(words.front());
+  }
+  return meta;
 }
 
 }  // namespace pcrf

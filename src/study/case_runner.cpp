@@ -32,7 +32,7 @@ parallel::CaseOutcome CaseRunner::run(std::int64_t index, const HistorySink& his
   try {
     const CaseSpec spec = space_.case_at(index);
     const Frame frame = make_frame(spec.parameters);
-    const auto motion = scaled_record(spec.record, spec.scale);
+    const auto motion = scaled_record(spec.record, scale_factor(spec));
     const CaseResult result = solve_case(frame, *motion, study_.physics, study_.solver, request_, history);
     outcome.status = static_cast<std::int8_t>(result.status);
     for (std::size_t m = 0; m < metrics_.size(); ++m) {
@@ -50,6 +50,11 @@ parallel::CaseOutcome CaseRunner::run(std::int64_t index, const HistorySink& his
     mark_failed(outcome, "unknown exception");
   }
   return outcome;
+}
+
+double CaseRunner::scale_factor(const CaseSpec& spec) const {
+  if (!study_.intensity) return spec.level;
+  return spec.level / records_.intensity(spec.record, *study_.intensity);
 }
 
 std::shared_ptr<const GroundMotion> CaseRunner::scaled_record(std::size_t record, double scale) const {

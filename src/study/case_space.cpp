@@ -29,10 +29,10 @@ std::size_t find_value(const std::vector<double>& axis, double value) {
 
 }  // namespace
 
-CaseSpace::CaseSpace(const Study& study) : plan_(study.plan), base_(study.base), scales_(study.scales) {
+CaseSpace::CaseSpace(const Study& study) : plan_(study.plan), base_(study.base), levels_(study.levels) {
   for (const auto& r : study.records) record_names_.push_back(r.name);
-  names_ = {vocabulary::kRecord, vocabulary::kScale};
-  shape_ = {record_names_.size(), scales_.size()};
+  names_ = {vocabulary::kRecord, study.intensity ? vocabulary::kIntensity : vocabulary::kScale};
+  shape_ = {record_names_.size(), levels_.size()};
   if (plan_ == PlanKind::kGrid) {
     for (std::size_t p = 0; p < kParameterCount; ++p) {
       const auto& info = all_parameters()[p];
@@ -68,7 +68,7 @@ std::int64_t CaseSpace::index(const std::vector<std::size_t>& coordinates) const
 
 CaseSpec CaseSpace::case_at(std::int64_t index) const {
   const auto c = coordinates(index);
-  CaseSpec spec{c[0], scales_[c[1]], base_};
+  CaseSpec spec{c[0], levels_[c[1]], base_};
   if (plan_ == PlanKind::kGrid) {
     for (std::size_t p = 0; p < kParameterCount; ++p)
       spec.parameters.*all_parameters()[p].member = grid_values_[p][c[2 + p]];
@@ -115,10 +115,11 @@ std::int64_t CaseSpace::resolve(const HistoryRequest& request) const {
     coords[0] = pick_single(record_names_.size(), "record");
   }
   if (request.scale) {
-    coords[1] = find_value(scales_, *request.scale);
-    if (coords[1] == std::string::npos) fail("scale " + shortest(*request.scale) + " is not on the scale axis");
+    coords[1] = find_value(levels_, *request.scale);
+    if (coords[1] == std::string::npos)
+      fail(names_[1] + " " + shortest(*request.scale) + " is not on the " + names_[1] + " axis");
   } else {
-    coords[1] = pick_single(scales_.size(), "scale");
+    coords[1] = pick_single(levels_.size(), names_[1]);
   }
   if (plan_ == PlanKind::kGrid) {
     for (std::size_t p = 0; p < kParameterCount; ++p) {

@@ -52,8 +52,9 @@ std::string canonical_description(const Study& study, const CaseSpace& space, Re
     out << "record " << study.records[r].name << " dt_s=" << motion.dt_s() << " n=" << motion.size()
         << " samples=" << samples_hash(motion) << '\n';
   }
-  out << "scale";
-  for (double s : study.scales) out << ' ' << s;
+  if (study.intensity) describe_settings(out, intensity_settings(), *study.intensity);
+  out << (study.intensity ? "intensity" : "scale");
+  for (double s : study.levels) out << ' ' << s;
   out << "\nbase";
   describe_parameters(out, study.base);
   out << '\n';

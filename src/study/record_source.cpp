@@ -16,7 +16,7 @@ GroundMotion load_record(const RecordSource& source) {
 }
 
 RecordCache::RecordCache(std::vector<RecordSource> sources)
-    : sources_(std::move(sources)), loaded_(sources_.size()) {}
+    : sources_(std::move(sources)), loaded_(sources_.size()), intensities_(sources_.size()) {}
 
 const GroundMotion& RecordCache::get(std::size_t index) {
   std::lock_guard lock(mutex_);
@@ -24,6 +24,14 @@ const GroundMotion& RecordCache::get(std::size_t index) {
   // Loading under the lock is fine: each record loads once, and only rank 0 has two threads.
   if (!slot) slot = std::make_unique<GroundMotion>(load_record(sources_.at(index)));
   return *slot;
+}
+
+double RecordCache::intensity(std::size_t index, const IntensitySpec& spec) {
+  const GroundMotion& motion = get(index);
+  std::lock_guard lock(mutex_);
+  auto& value = intensities_.at(index);
+  if (!value) value = intensity_of(motion, spec);
+  return *value;
 }
 
 void RecordCache::put(std::size_t index, GroundMotion motion) {

@@ -1,6 +1,7 @@
 // The README's key tables from the setting descriptions (see settings_doc.hpp).
 #include "pcrf/study/settings_doc.hpp"
 
+#include "pcrf/record/intensity.hpp"
 #include "pcrf/solver/settings.hpp"
 #include "pcrf/study/study.hpp"
 
@@ -15,7 +16,8 @@ std::string marked(const SettingTable<Target>& table) {
 }  // namespace
 
 std::string all_settings_markdown() {
-  return marked(physics_settings()) + "\n" + marked(solver_settings()) + "\n" + marked(run_settings());
+  return marked(intensity_settings()) + "\n" + marked(physics_settings()) + "\n" + marked(solver_settings()) + "\n" +
+         marked(run_settings());
 }
 
 }  // namespace pcrf::study

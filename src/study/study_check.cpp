@@ -1,6 +1,7 @@
 // Up-front checks of a study (see study_check.hpp).
 #include "pcrf/study/study_check.hpp"
 
+#include <cmath>
 #include <sstream>
 
 #include "pcrf/study/fingerprint.hpp"
@@ -19,6 +20,12 @@ void check_records(const Study& study, RecordCache& records) {
       throw StudyError(source.declared_at + ": records: cannot load record \"" + source.name + "\" (" +
                        source.describe() + "): " + e.what());
     }
+    if (!study.intensity) continue;
+    const double im = records.intensity(r, *study.intensity);
+    if (!(im > 0.0) || !std::isfinite(im))
+      throw StudyError(source.declared_at + ": records: record \"" + source.name + "\" has " +
+                       to_string(study.intensity->measure) + " = " + std::to_string(im) +
+                       ": it cannot be scaled to an intensity");
   }
 }
 

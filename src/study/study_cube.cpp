@@ -47,12 +47,46 @@ std::string utc_now() {
   return buffer;
 }
 
-void add_record_and_scale(const Study& study, const CaseSpace& space, std::vector<Coordinate>& coords) {
+/// What a record calls itself: the AT2 title line, else the file name or the synthetic text.
+std::string record_title(const RecordSource& source) {
+  if (!source.file) return source.synthetic;
+  try {
+    const auto meta = read_metadata(*source.file);
+    if (!meta.title.empty()) return meta.title;
+  } catch (const RecordError&) {  // the record itself loaded: a title is not worth failing for
+  }
+  return source.file->path.filename().string();
+}
+
+/// The record axis (names, sources, titles, and with an intensity axis each record's
+/// unscaled intensity) and the second axis, `scale` or `intensity`.
+void add_record_and_level(const Study& study, const CaseSpace& space, RecordCache& records,
+                          cube::CubeLayout& layout) {
+  auto& coords = layout.coordinates;
   coords.push_back(texts(names::kRecord, names::kRecord, "ground motion record", space.record_names()));
-  std::vector<std::string> sources;
-  for (const auto& r : study.records) sources.push_back(r.describe());
+  std::vector<std::string> sources, titles;
+  for (const auto& r : study.records) {
+    sources.push_back(r.describe());
+    titles.push_back(record_title(r));
+  }
   coords.push_back(texts(names::kRecordSource, names::kRecord, "where the record comes from", sources));
-  coords.push_back(numbers(names::kScale, names::kScale, "1", "factor applied to the record's accelerations", space.scales()));
+  coords.push_back(texts(names::kRecordTitle, names::kRecord, "the record's own title (AT2 header)", titles));
+  if (!study.intensity) {
+    coords.push_back(numbers(names::kScale, names::kScale, "1", "factor applied to the record's accelerations", space.levels()));
+    return;
+  }
+  const IntensitySpec& im = *study.intensity;
+  const std::string units(intensity_units(im.measure));
+  const std::string long_name = intensity_long_name(im.measure, im.period_s, im.damping);
+  coords.push_back(numbers(names::kIntensity, names::kIntensity, units, long_name, space.levels()));
+  std::vector<double> unscaled;
+  for (std::size_t r = 0; r < study.records.size(); ++r) unscaled.push_back(records.intensity(r, im));
+  coords.push_back(numbers("record_" + to_string(im.measure), names::kRecord, units, "unscaled record's " + long_name, unscaled));
+  cube::SideVariable factor{names::kScaleFactor, "1", "factor applied to the record's accelerations to reach the intensity",
+                            {names::kRecord, names::kIntensity}, {}};
+  for (double im_r : unscaled)
+    for (double level : space.levels()) factor.values.push_back(level / im_r);
+  layout.side_variables.push_back(std::move(factor));
 }
 
 void add_case_axis(const CaseSpace& space, std::vector<Coordinate>& coords) {
@@ -120,11 +154,12 @@ std::vector<Attribute> global_attributes(const Study& study, const std::string& 
 
 }  // namespace
 
-cube::CubeLayout make_cube_layout(const Study& study, const CaseSpace& space, const std::string& fingerprint) {
+cube::CubeLayout make_cube_layout(const Study& study, const CaseSpace& space, RecordCache& records,
+                                  const std::string& fingerprint) {
   cube::CubeLayout layout;
   for (std::size_t d = 0; d < space.shape().size(); ++d)
     layout.dimensions.push_back({space.dimension_names()[d], space.shape()[d]});
-  add_record_and_scale(study, space, layout.coordinates);
+  add_record_and_level(study, space, records, layout);
   if (space.plan() == PlanKind::kGrid) {
     for (std::size_t p = 0; p < kParameterCount; ++p) {
       const auto& info = all_parameters()[p];
@@ -175,7 +210,7 @@ cube::HistoryTable make_history_table(const std::string& label, std::int64_t cas
   const CaseSpec spec = space.case_at(case_index);
   table.attributes = {{"case_index", static_cast<std::int64_t>(case_index)},
                       {names::kRecord, study.records[spec.record].name},
-                      {names::kScale, spec.scale}};
+                      {space.dimension_names()[1], spec.level}};
   for (const auto& info : all_parameters()) table.attributes.push_back({std::string(info.name), spec.parameters.*info.member});
   return table;
 }

@@ -154,13 +154,33 @@ void read_base(const Fields& top, Study& s) {
   read_parameters(f, size_parameters(), s.base);
 }
 
+void read_intensity(const Fields& top, Study& s) {
+  if (top.subtable(intensity_settings().name) == nullptr) return;
+  IntensitySpec spec;
+  detail::read_setting_table(top, intensity_settings(), spec, s.setting_lines);
+  if (const auto problem = intensity_spec_problem(spec); !problem.empty()) {
+    const auto line = s.setting_lines.find("intensity.period_s");
+    throw StudyError((line != s.setting_lines.end() ? line->second : top.where("intensity")) + ": intensity.period_s: " + problem);
+  }
+  s.intensity = spec;
+}
+
 void read_axes(const Fields& top, Study& s) {
   const auto* table = top.subtable("axes");
+  const bool has_intensity_axis = table != nullptr && table->contains("intensity");
+  if (s.intensity && !has_intensity_axis)
+    top.fail("intensity", "an [intensity] table needs [axes] intensity = [...] (values in " +
+                              std::string(intensity_units(s.intensity->measure)) + ")");
   if (table != nullptr) {
-    Fields f(*table, "axes", s.file, with_parameter_keys({"scale"}));
-    if (f.has("scale")) {
-      s.scales = read_values(f, "scale");
-      check_axis(f, "scale", s.scales, kParameterCount);
+    Fields f(*table, "axes", s.file, with_parameter_keys({"scale", "intensity"}));
+    if (f.has("scale") && f.has("intensity"))
+      f.fail("intensity", "give either scale (one factor for every record) or intensity (each record scaled to it), not both");
+    if (f.has("intensity") && !s.intensity)
+      f.fail("intensity", "an intensity axis needs an [intensity] table naming the measure (pga_g, pgv_m_s or sa_g)");
+    for (const char* key : {"scale", "intensity"}) {
+      if (!f.has(key)) continue;
+      s.levels = read_values(f, key);
+      check_axis(f, key, s.levels, kParameterCount);
     }
     for (std::size_t p = 0; p < kParameterCount; ++p) {
       const auto key = all_parameters()[p].name;
@@ -202,6 +222,32 @@ void read_cases(const Fields& top, Study& s) {
 
 bool has_glob(const std::string& text) { return text.find_first_of("*?[") != std::string::npos; }
 
+/// Natural order of file names: digit runs compare as numbers, so ER2 sorts before ER10.
+bool natural_less(const std::string& a, const std::string& b) {
+  std::size_t i = 0, j = 0;
+  while (i < a.size() && j < b.size()) {
+    const bool digit_a = std::isdigit(static_cast<unsigned char>(a[i])) != 0;
+    const bool digit_b = std::isdigit(static_cast<unsigned char>(b[j])) != 0;
+    if (digit_a && digit_b) {
+      std::size_t ei = i, ej = j;
+      while (ei < a.size() && std::isdigit(static_cast<unsigned char>(a[ei]))) ++ei;
+      while (ej < b.size() && std::isdigit(static_cast<unsigned char>(b[ej]))) ++ej;
+      std::size_t zi = i, zj = j;  // skip leading zeros, then the longer number is larger
+      while (zi + 1 < ei && a[zi] == '0') ++zi;
+      while (zj + 1 < ej && b[zj] == '0') ++zj;
+      if (ei - zi != ej - zj) return ei - zi < ej - zj;
+      if (const int c = a.compare(zi, ei - zi, b, zj, ej - zj); c != 0) return c < 0;
+      i = ei;
+      j = ej;
+    } else {
+      if (a[i] != b[j]) return a[i] < b[j];
+      ++i;
+      ++j;
+    }
+  }
+  return a.size() - i < b.size() - j;
+}
+
 /// Files named by one entry: a path, or a glob in its last component (sorted matches).
 std::vector<std::filesystem::path> resolve_files(const Fields& f, std::string_view key,
                                                  const std::string& entry, const std::filesystem::path& base_dir) {
@@ -223,7 +269,9 @@ std::vector<std::filesystem::path> resolve_files(const Fields& f, std::string_vi
     if (item.is_regular_file() && ::fnmatch(path.filename().c_str(), item.path().filename().c_str(), 0) == 0)
       matches.push_back(item.path());
   if (matches.empty()) f.fail(key, "no file matches " + path.string());
-  std::sort(matches.begin(), matches.end());
+  std::sort(matches.begin(), matches.end(), [](const auto& a, const auto& b) {
+    return natural_less(a.filename().string(), b.filename().string());
+  });
   return matches;
 }
 
@@ -232,7 +280,7 @@ std::vector<RecordSource> read_record_entry(const Fields& f, const Study& s) {
   if (given != 1) f.fail("file", "give exactly one of file, files or synthetic");
   std::vector<RecordSource> sources;
   if (f.has("synthetic")) {
-    for (const auto key : {"format", "units", "dt_s"})
+    for (const auto key : {"format", "units", "dt_s", "skip_rows"})
       if (f.has(key)) f.fail(key, "only applies to record files");
     for (const auto& text : f.texts("synthetic")) sources.push_back({text, std::nullopt, text, f.where("synthetic")});
   } else {
@@ -243,6 +291,10 @@ std::vector<RecordSource> read_record_entry(const Fields& f, const Study& s) {
       if (f.has("units")) spec.unit = parse_accel_unit(*f.text("units"));
     } catch (const std::exception& e) {
       f.fail("units", e.what());
+    }
+    if (const auto skip = f.integer("skip_rows")) {
+      if (*skip < 0) f.fail("skip_rows", "must not be negative (got " + std::to_string(*skip) + ")");
+      spec.skip_rows = static_cast<std::size_t>(*skip);
     }
     std::optional<RecordFormat> format;
     try {
@@ -255,6 +307,8 @@ std::vector<RecordSource> read_record_entry(const Fields& f, const Study& s) {
         RecordFileSpec file_spec = spec;
         file_spec.path = path;
         file_spec.format = format.value_or(guess_record_format(path));
+        if (file_spec.format == RecordFormat::kAt2 && file_spec.skip_rows > 0)
+          f.fail("skip_rows", "applies to text records only (.AT2 files have their own header)");
         if (file_spec.format == RecordFormat::kOneColumn) {
           if (!f.has("dt_s")) f.fail("dt_s", "one-column records need dt_s (the sample interval)");
           file_spec.dt_s = *f.number("dt_s");
@@ -283,7 +337,7 @@ void read_records(const Fields& top, Study& s) {
     const std::string path = "records[" + std::to_string(i) + "]";
     const auto* table = (*array)[i].as_table();
     if (table == nullptr) Fields::fail_at(s.file, &(*array)[i], path, "expected a table ([[records]])");
-    Fields f(*table, path, s.file, {"file", "files", "synthetic", "format", "units", "dt_s", "name"});
+    Fields f(*table, path, s.file, {"file", "files", "synthetic", "format", "units", "dt_s", "skip_rows", "name"});
     for (auto& source : read_record_entry(f, s)) {
       if (!names.insert(source.name).second)
         f.fail(f.has("synthetic") ? "synthetic" : (f.has("file") ? "file" : "files"),
@@ -332,7 +386,7 @@ void read_histories(const Fields& outputs, Study& s) {
     const std::string path = "outputs.histories[" + std::to_string(i) + "]";
     const auto* table = (*array)[i].as_table();
     if (table == nullptr) Fields::fail_at(s.file, &(*array)[i], path, "expected a table ([[outputs.histories]])");
-    Fields f(*table, path, s.file, with_parameter_keys({"label", "record", "scale", "case"}));
+    Fields f(*table, path, s.file, with_parameter_keys({"label", "record", "scale", "intensity", "case"}));
     HistoryRequest request;
     request.declared_at = f.where("label");
     if (!f.has("label")) f.fail("label", "a history needs a label (its group name)");
@@ -340,7 +394,11 @@ void read_histories(const Fields& outputs, Study& s) {
     if (!valid_group_name(request.label)) f.fail("label", "use letters, digits, '_', '-' and '.' only");
     if (!labels.insert(request.label).second) f.fail("label", "\"" + request.label + "\" is used twice");
     request.record = f.text("record");
-    request.scale = f.number("scale");
+    const char* level_key = s.intensity ? "intensity" : "scale";
+    for (const char* key : {"scale", "intensity"})
+      if (f.has(key) && std::string_view(key) != level_key)
+        f.fail(key, std::string("this study's second axis is `") + level_key + "`");
+    request.scale = f.number(level_key);
     request.case_label = f.text("case");
     if (request.case_label && s.plan == PlanKind::kGrid) f.fail("case", "plan \"grid\" selects cases by parameter values");
     for (std::size_t p = 0; p < kParameterCount; ++p) {
@@ -376,11 +434,12 @@ Study parse_study(const std::string& text, const std::string& file, const std::f
   s.base_dir = base_dir;
   s.text = text;
   Fields top(root, "", file,
-             {"study", "plan", "records", "axes", "base", "cases", physics_settings().name, solver_settings().name,
-              "outputs", run_settings().name});
+             {"study", "plan", "records", "axes", "base", "cases", intensity_settings().name, physics_settings().name,
+              solver_settings().name, "outputs", run_settings().name});
   read_study_section(top, s);
   read_plan(top, s);
   read_base(top, s);  // before axes and cases: they start from the base point
+  read_intensity(top, s);  // before axes: it decides what the second axis is
   read_axes(top, s);
   read_cases(top, s);
   read_records(top, s);

@@ -52,7 +52,7 @@ MasterSetup prepare_master(const StudyRunOptions& options, const Prepared& p) {
   const auto mode = options.resume ? cube::OpenMode::kResume
                                    : (options.overwrite ? cube::OpenMode::kOverwrite : cube::OpenMode::kCreate);
   try {
-    m.writer = std::make_unique<cube::CubeWriter>(m.output, make_cube_layout(p.study, *p.space, m.checked.fingerprint), mode);
+    m.writer = std::make_unique<cube::CubeWriter>(m.output, make_cube_layout(p.study, *p.space, *p.records, m.checked.fingerprint), mode);
   } catch (const cube::CubeError& e) {
     throw StudyError(e.what());
   }

@@ -136,7 +136,7 @@ TEST(CubeInterop, ExportWritesOneRowPerSelectedCase) {
   std::istringstream in(r.out);
   std::string header;
   std::getline(in, header);
-  EXPECT_EQ(header, "record,scale,kappa,lambda,tan_alpha,lambda_h,pi_sigma_b,pi_sigma_c,pi_e_b,pi_e_c,record_source,"
+  EXPECT_EQ(header, "record,scale,kappa,lambda,tan_alpha,lambda_h,pi_sigma_b,pi_sigma_c,pi_e_b,pi_e_c,record_source,record_title,"
                     "status,theta_max_rad,impacts");
   int rows = 0;
   for (std::string line; std::getline(in, line); ++rows) EXPECT_NE(line.find(",0.9,1.2,2,"), std::string::npos) << line;

@@ -27,7 +27,7 @@ TEST(StudyParser, DefaultsAreTheBasicModelAndEveryMetric) {
   const Study s = parse(kRecords);
   EXPECT_EQ(s.plan, PlanKind::kGrid);
   EXPECT_EQ(s.name, "t");
-  EXPECT_EQ(s.scales, std::vector<double>{1.0});
+  EXPECT_EQ(s.levels, std::vector<double>{1.0});
   EXPECT_DOUBLE_EQ(s.base.kappa, FrameParameters{}.kappa);
   EXPECT_DOUBLE_EQ(s.base.pi_e_c, FrameParameters{}.pi_e_c);
   EXPECT_EQ(s.metrics.size(), all_metrics().size());
@@ -39,7 +39,7 @@ TEST(StudyParser, ListsNumbersAndLinearAndLogRanges) {
   const Study s = parse(kRecords +
                         "[axes]\nscale = [0.5, 1]\nkappa = 2\nlambda = {from = 1.5, to = 2.5, count = 3}\n"
                         "pi_e_c = {from = 1000, to = 100000, count = 3, spacing = \"log\"}\n");
-  EXPECT_EQ(s.scales, (std::vector<double>{0.5, 1.0}));
+  EXPECT_EQ(s.levels, (std::vector<double>{0.5, 1.0}));
   EXPECT_EQ(s.axes[0], std::vector<double>{2.0});
   EXPECT_EQ(s.axes[1], (std::vector<double>{1.5, 2.0, 2.5}));
   ASSERT_EQ(s.axes[7].size(), 3u);
@@ -143,12 +143,12 @@ TEST(CaseSpace, LinearIndexAndCoordinatesRoundTrip) {
   ASSERT_EQ(space.size(), 24);
   for (std::int64_t i = 0; i < space.size(); ++i) EXPECT_EQ(space.index(space.coordinates(i)), i);
   const CaseSpec last = space.case_at(23);  // last of every axis
-  EXPECT_EQ(last.scale, 3.0);
+  EXPECT_EQ(last.level, 3.0);
   EXPECT_EQ(last.parameters.kappa, 2.0);
   EXPECT_EQ(last.parameters.pi_e_c, 4000.0);
   const CaseSpec second = space.case_at(1);  // the fastest axis moves first
   EXPECT_EQ(second.parameters.pi_e_c, 2000.0);
-  EXPECT_EQ(second.scale, 1.0);
+  EXPECT_EQ(second.level, 1.0);
 }
 
 TEST(CaseSpace, HistoryRequestsNameExactlyOneCase) {

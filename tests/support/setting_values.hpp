@@ -24,6 +24,7 @@ SettingValue other_value(const Setting<Target>& s, const SettingValue& current) 
     case SettingType::kNumber: break;
   }
   const double v = std::get<double>(current);
+  if (s.bound == Bound::kFraction) return v == 0.0 ? 0.5 : 0.5 * v;
   return v == 0.0 ? 0.5 : 2.0 * v;
 }
 
@@ -38,6 +39,7 @@ std::optional<std::string> out_of_bound_text(const Setting<Target>& s) {
     case Bound::kPositive: return std::string("0");
     case Bound::kNonNegative: return std::string("-1");
     case Bound::kAtLeastOne: return std::string("0");
+    case Bound::kFraction: return std::string("1");
   }
   return std::nullopt;
 }

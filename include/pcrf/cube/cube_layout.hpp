@@ -53,6 +53,17 @@ struct MetricVariable {
   std::string long_name;
 };
 
+/// A float64 variable over some of the dimensions (not all: that is a metric), e.g. a scale
+/// factor per record and intensity, or a summary per curve. Written whole, at creation or
+/// whenever the producer has new values; NaN where not known.
+struct SideVariable {
+  std::string name;
+  std::string units;
+  std::string long_name;
+  std::vector<std::string> dimensions;  ///< a subset of the cube's, in the cube's order
+  std::vector<double> values;           ///< row-major over `dimensions`; empty: all NaN
+};
+
 /// One value of the int8 `status` variable (CF flag_values / flag_meanings).
 struct StatusFlag {
   std::int8_t value = 0;
@@ -76,6 +87,7 @@ struct CubeLayout {
   std::vector<Dimension> dimensions;
   std::vector<Coordinate> coordinates;
   std::vector<MetricVariable> metrics;
+  std::vector<SideVariable> side_variables;
   std::vector<StatusFlag> status_flags;
   std::vector<Attribute> attributes;
 
@@ -84,6 +96,9 @@ struct CubeLayout {
   /// Names of the auxiliary coordinates (CF `coordinates` attribute of every variable).
   std::vector<std::string> auxiliary_names() const;
   const Coordinate* find_coordinate(const std::string& name) const;
+  const SideVariable* find_side_variable(const std::string& name) const;
+  /// Number of values of a side variable (the product of its dimensions' sizes).
+  std::size_t side_size(const SideVariable& variable) const;
   /// Value of a global text attribute; empty if absent.
   std::string text_attribute(const std::string& name) const;
 };

@@ -29,6 +29,8 @@ class CubeReader {
   std::vector<std::int8_t> read_status() const;
   /// A metric over the whole cube, in linear case order. \throws CubeError if unknown.
   std::vector<double> read_metric(const std::string& name) const;
+  /// A side variable (over some dimensions), row-major over its dimensions. \throws CubeError.
+  std::vector<double> read_side(const std::string& name) const;
   /// (case index, message) of every case that left a note, in the order they were stored.
   std::vector<std::pair<std::int64_t, std::string>> read_notes() const;
   /// Names of the stored time-history groups.

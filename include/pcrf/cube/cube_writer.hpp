@@ -61,6 +61,9 @@ class CubeWriter {
   void store_note(std::int64_t index, std::string note);
   /// Queues a history group (written at the next flush).
   void store_history(HistoryTable table);
+  /// Replaces the values of a side variable of the layout (written at the next flush).
+  /// \throws CubeError for an unknown name or a wrong number of values.
+  void store_side(const std::string& name, std::vector<double> values);
 
   /// Writes what changed since the last flush and flushes the file to disk.
   void flush();

@@ -10,6 +10,8 @@
 #include <string_view>
 #include <vector>
 
+#include "pcrf/json.hpp"
+
 namespace pcrf {
 
 /// How a case ended. The integer values are stored in result cubes (CF flag_values):
@@ -76,5 +78,7 @@ const MetricInfo* find_metric(std::string_view name);
 
 /// The record as one JSON object (keys as the field names above, NaN as null).
 std::string to_json(const CaseResult& result);
+/// The same keys, added to an object the caller is building (e.g. with the scale factor).
+void add_to_json(JsonObject& json, const CaseResult& result);
 
 }  // namespace pcrf

@@ -54,12 +54,15 @@ GroundMotion read_at2(const std::filesystem::path& file);
 /// every data row needs exactly two fields; an empty field (",,", a leading or trailing comma)
 /// is an error. At least two rows are needed; dt is the mean step (t_last − t_first)/(n − 1),
 /// and each step must lie within 1e-6 (relative) of the first one.
-GroundMotion read_two_column(const std::filesystem::path& file, AccelUnit unit);
+/// `skip_rows` lines at the top are dropped first (headers, or the extra leading sample some
+/// converters add); line numbers in messages stay those of the file.
+GroundMotion read_two_column(const std::filesystem::path& file, AccelUnit unit, std::size_t skip_rows = 0);
 
 /// One value a line (or several per line), acceleration in `unit`, sampled every dt_s.
 /// Same comment and separator rules as read_two_column. A dt_s that is not positive and
 /// finite, or a file without values, is a RecordError.
-GroundMotion read_one_column(const std::filesystem::path& file, double dt_s, AccelUnit unit);
+GroundMotion read_one_column(const std::filesystem::path& file, double dt_s, AccelUnit unit,
+                             std::size_t skip_rows = 0);
 
 /// Where a record comes from, as a study file or the command line names it.
 struct RecordFileSpec {
@@ -67,10 +70,24 @@ struct RecordFileSpec {
   RecordFormat format = RecordFormat::kAt2;
   AccelUnit unit = AccelUnit::kG;  ///< ignored for .AT2 (always g)
   double dt_s = 0.0;               ///< one-column only
+  std::size_t skip_rows = 0;       ///< text formats: lines dropped at the top of the file
 };
 
 /// Reads a record by its spec; the record's name is the file stem.
 GroundMotion read_record(const RecordFileSpec& spec);
+
+/// What a record file says about itself. AT2 files: `title` is header line 2 ("Imperial
+/// Valley-06, 10/15/1979, El Centro Array #11, 230"), split at its commas into event, (date,)
+/// station and component. Any file: `rsn` from a name like "RSN174_…". Empty where unknown.
+struct RecordMetadata {
+  std::string title;
+  std::string event;
+  std::string station;
+  std::string component;
+  std::string rsn;
+};
+/// \throws RecordError when an AT2 file cannot be read.
+RecordMetadata read_metadata(const RecordFileSpec& spec);
 
 /// Guesses the format from the extension: ".at2" (any case) → AT2, else two-column.
 RecordFormat guess_record_format(const std::filesystem::path& file);

@@ -37,6 +37,8 @@ class CaseRunner {
   /// fastest axes are the frame parameters), so the last scaled record is kept: cheap cases
   /// (a frame that never lifts off) would otherwise spend their time copying the record.
   std::shared_ptr<const GroundMotion> scaled_record(std::size_t record, double scale) const;
+  /// The factor a case multiplies its record by: its level, or level / IM(record).
+  double scale_factor(const CaseSpec& spec) const;
 
   const Study& study_;
   const CaseSpace& space_;

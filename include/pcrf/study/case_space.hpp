@@ -22,7 +22,7 @@ namespace pcrf::study {
 /// One case, ready to build a frame and scale a record.
 struct CaseSpec {
   std::size_t record = 0;  ///< index into Study::records
-  double scale = 1.0;
+  double level = 1.0;  ///< the record's scale factor, or (intensity axis) its target intensity
   FrameParameters parameters;
 };
 
@@ -47,7 +47,8 @@ class CaseSpace {
   CaseSpec case_at(std::int64_t index) const;
 
   const std::vector<std::string>& record_names() const { return record_names_; }
-  const std::vector<double>& scales() const { return scales_; }
+  /// Values of the second axis (`scale` or `intensity`, see Study::levels).
+  const std::vector<double>& levels() const { return levels_; }
   /// Grid plan: values of each parameter axis.
   const std::vector<double>& grid_values(std::size_t parameter) const { return grid_values_[parameter]; }
   /// One-at-a-time and list plans: the frames along `case`.
@@ -65,7 +66,7 @@ class CaseSpace {
   std::vector<std::size_t> shape_;
   std::int64_t size_ = 1;
   std::vector<std::string> record_names_;
-  std::vector<double> scales_;
+  std::vector<double> levels_;
   std::array<std::vector<double>, kParameterCount> grid_values_;
   std::vector<CasePoint> points_;
 };

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "pcrf/record/ground_motion.hpp"
+#include "pcrf/record/intensity.hpp"
 #include "pcrf/record/record_readers.hpp"
 
 namespace pcrf::study {
@@ -38,6 +39,9 @@ class RecordCache {
   /// The unscaled motion of record `index`, loading it on first use.
   const GroundMotion& get(std::size_t index);
 
+  /// The unscaled record's value of an intensity measure, computed once per record.
+  double intensity(std::size_t index, const IntensitySpec& spec);
+
   /// Stores a motion already loaded elsewhere (e.g. during validation).
   void put(std::size_t index, GroundMotion motion);
 
@@ -46,6 +50,7 @@ class RecordCache {
  private:
   std::vector<RecordSource> sources_;
   std::vector<std::unique_ptr<GroundMotion>> loaded_;
+  std::vector<std::optional<double>> intensities_;  // of the one measure a study uses
   std::mutex mutex_;
 };
 

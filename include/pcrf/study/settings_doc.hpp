@@ -19,7 +19,7 @@ std::string markdown_table(const SettingTable<Target>& table) {
   return text;
 }
 
-/// Every table a study file takes settings from ([physics], [solver], [run]), each under a
+/// Every table a study file takes settings from ([intensity], [physics], [solver], [run]), each under a
 /// marker line `<!-- settings:NAME -->` and closed by `<!-- /settings -->`, as the README holds them.
 std::string all_settings_markdown();
 

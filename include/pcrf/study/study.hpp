@@ -17,6 +17,7 @@
 
 #include "pcrf/model/frame.hpp"
 #include "pcrf/model/parameters.hpp"
+#include "pcrf/record/intensity.hpp"
 #include "pcrf/setting.hpp"
 #include "pcrf/solver/settings.hpp"
 #include "pcrf/study/record_source.hpp"
@@ -70,7 +71,11 @@ struct Study {
   bool include_base = true;         ///< one-at-a-time: the base point is a case of its own
 
   std::vector<RecordSource> records;
-  std::vector<double> scales{1.0};
+  /// The values of the second axis: scale factors of the records (`scale`), or, when
+  /// `intensity` is set, intensities in the measure's units (each record gets its own factor
+  /// intensity / IM(record)).
+  std::vector<double> levels{1.0};
+  std::optional<IntensitySpec> intensity;  ///< the [intensity] table, when given
   FrameParameters base;             ///< the base point; h_m and m_c_kg of every case
   /// Grid: the values of each parameter axis (empty: the base value only).
   /// One-at-a-time: the values each parameter is swept over (empty: not swept).

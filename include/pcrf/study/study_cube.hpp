@@ -18,7 +18,10 @@ namespace pcrf::study {
 /// The cube of a study. Dimensions as CaseSpace; `record` a text coordinate (with the
 /// auxiliary `record_source`); one-at-a-time and list plans add `case` with the auxiliary
 /// coordinates `case_label`, `varied_parameter` (one-at-a-time) and the eight parameters.
-cube::CubeLayout make_cube_layout(const Study& study, const CaseSpace& space, const std::string& fingerprint);
+/// With an intensity axis, `intensity` replaces `scale`, each record carries its unscaled
+/// intensity (`record_<measure>`), and `scale_factor(record, intensity)` holds the factors.
+cube::CubeLayout make_cube_layout(const Study& study, const CaseSpace& space, RecordCache& records,
+                                  const std::string& fingerprint);
 
 /// A case's time history as a cube history group: a `t_s` dimension and one variable per
 /// HistorySample field; the case's coordinates as attributes.

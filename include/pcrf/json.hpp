@@ -1,0 +1,87 @@
+/// \file json.hpp
+/// \brief A small writer of one-line JSON objects, for the command line's outputs
+/// (`pcrf run`, `pcrf record`): numbers as the shortest text that reads back to the same
+/// double, NaN and infinities as null, strings escaped.
+#pragma once
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace pcrf {
+
+class JsonObject {
+ public:
+  JsonObject& number(std::string_view key, double value) {
+    start(key);
+    write_number(value);
+    return *this;
+  }
+  JsonObject& integer(std::string_view key, long long value) {
+    start(key);
+    out_ << value;
+    return *this;
+  }
+  JsonObject& text(std::string_view key, std::string_view value) {
+    start(key);
+    write_string(value);
+    return *this;
+  }
+  JsonObject& numbers(std::string_view key, const std::vector<double>& values) {
+    start(key);
+    out_ << '[';
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      if (i > 0) out_ << ", ";
+      write_number(values[i]);
+    }
+    out_ << ']';
+    return *this;
+  }
+  std::string str() const { return out_.str() + '}'; }
+
+ private:
+  void start(std::string_view key) {
+    out_ << (first_ ? "{" : ", ");
+    first_ = false;
+    write_string(key);
+    out_ << ": ";
+  }
+  void write_number(double v) {
+    if (!std::isfinite(v)) {
+      out_ << "null";
+      return;
+    }
+    char buffer[32];
+    const auto end = std::to_chars(buffer, buffer + sizeof buffer, v).ptr;
+    out_ << std::string_view(buffer, static_cast<std::size_t>(end - buffer));
+  }
+  void write_string(std::string_view s) {
+    out_ << '"';
+    for (const char c : s) {
+      switch (c) {
+        case '"': out_ << "\\\""; break;
+        case '\\': out_ << "\\\\"; break;
+        case '\n': out_ << "\\n"; break;
+        case '\t': out_ << "\\t"; break;
+        default:
+          if (static_cast<unsigned char>(c) < 0x20) {
+            char buffer[8];
+            std::snprintf(buffer, sizeof buffer, "\\u%04x", c);
+            out_ << buffer;
+          } else {
+            out_ << c;
+          }
+      }
+    }
+    out_ << '"';
+  }
+
+  std::ostringstream out_;
+  bool first_ = true;
+};
+
+}  // namespace pcrf

@@ -1,0 +1,74 @@
+/// \file intensity.hpp
+/// \brief Intensity measures of a ground-motion record, computed from the record alone.
+///
+/// The record is taken as the engine integrates it: samples at t = i·dt, linear between
+/// them, zero after the last one. No filtering or baseline correction is applied.
+///
+///   PGA      max |a_i|, and the first time it occurs.
+///   PGV/PGD  peaks of v = ∫a dt and d = ∫v dt by the trapezoidal rule from v = d = 0.
+///   Arias    I_A = π/(2g) ∫ a² dt, the integral of the linear interpolant done exactly
+///            (dt/3 · (a_i² + a_i a_{i+1} + a_{i+1}²) per interval).
+///   D5–95    time between 5 % and 95 % of I_A (cumulative I_A interpolated linearly
+///            between samples).
+///   Sa(T, ζ) pseudo-spectral acceleration ω² max |u| of the linear oscillator
+///            ü + 2ζω u̇ + ω² u = −a(t), from rest. Nigam & Jennings (1969): the response to
+///            a piecewise-linear excitation is exact from sample to sample; the peak is
+///            taken at the record's samples and over one natural period of free vibration
+///            after the record ends (the sample spacing continued).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "pcrf/record/ground_motion.hpp"
+#include "pcrf/setting.hpp"
+
+namespace pcrf {
+
+struct PeakAcceleration {
+  double pga_g = 0.0;   ///< peak |a| [g]
+  double t_pga_s = 0.0; ///< first time of the peak [s]
+};
+PeakAcceleration peak_acceleration(const GroundMotion& record);
+
+/// Peak |v| [m/s] of the trapezoidal integral of the record.
+double peak_velocity_m_s(const GroundMotion& record);
+/// Peak |d| [m] of the trapezoidal double integral of the record.
+double peak_displacement_m(const GroundMotion& record);
+/// Arias intensity [m/s].
+double arias_intensity_m_s(const GroundMotion& record);
+/// 5–95 % significant duration [s] (0 for a record without motion).
+double significant_duration_s(const GroundMotion& record);
+
+/// 5 %-damped (or `damping`) pseudo-spectral acceleration at `period_s` [g].
+/// \throws std::invalid_argument when period_s ≤ 0 or damping is not in [0, 1).
+double spectral_acceleration_g(const GroundMotion& record, double period_s, double damping = 0.05);
+
+/// A measure a study can scale records to: "pga_g", "pgv_m_s" or "sa_g".
+enum class IntensityMeasure { kPga, kPgv, kSa };
+IntensityMeasure parse_intensity_measure(const std::string& text);  ///< \throws std::invalid_argument
+std::string to_string(IntensityMeasure measure);
+/// UDUNITS of a measure's values: "g" ("9.81 m s-2" is spelled out in cube attributes), "m/s".
+std::string_view intensity_units(IntensityMeasure measure);
+/// "peak ground acceleration", "spectral acceleration Sa(T = 1 s, 5 % damping)", …
+std::string intensity_long_name(IntensityMeasure measure, double period_s, double damping);
+
+/// Which measure, and for Sa the oscillator.
+struct IntensitySpec {
+  IntensityMeasure measure = IntensityMeasure::kPga;
+  double period_s = 0.0;   ///< Sa only
+  double damping = 0.05;   ///< Sa only
+};
+/// The record's value of the measure, in its units.
+double intensity_of(const GroundMotion& record, const IntensitySpec& spec);
+
+/// The [intensity] table of a study (and the `pcrf run` flags --measure, --period-s,
+/// --damping). Whether period_s is needed depends on the measure: check_intensity_spec().
+const SettingTable<IntensitySpec>& intensity_settings();
+/// Why a spec cannot be used (the only one: sa_g without a period, a problem of period_s);
+/// empty when it can.
+std::string intensity_spec_problem(const IntensitySpec& spec);
+
+}  // namespace pcrf

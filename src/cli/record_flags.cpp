@@ -1,0 +1,54 @@
+// Flags that name one ground motion (see record_flags.hpp).
+#include "cli/record_flags.hpp"
+
+#include "cli/commands.hpp"
+#include "pcrf/record/synthetic.hpp"
+
+namespace pcrf::cli {
+
+void RecordFlags::add_to(CLI::App* cmd, bool file_positional, bool synthetic_allowed) {
+  const std::string group = "record";
+  if (file_positional)
+    cmd->add_option("FILE", file, "ground-motion file (.AT2, two-column or one-column text)")->required();
+  else
+    cmd->add_option("--record", file, "ground-motion file (.AT2, two-column or one-column text)")->group(group);
+  cmd->add_option("--format", format, "record format: at2, two-column, one-column (default: from extension)")->group(group);
+  cmd->add_option("--units", units, "acceleration units of a text record: g, m/s2, cm/s2")->capture_default_str()->group(group);
+  cmd->add_option("--dt", dt_s, "sample interval of a one-column record [s]")->group(group);
+  cmd->add_option("--skip-rows", skip_rows, "text records: lines to drop at the top (headers, an added leading sample)")
+      ->group(group);
+  if (synthetic_allowed)
+    cmd->add_option("--synthetic", synthetic,
+                    "synthetic motion, e.g. 'sine:amplitude_g=1.5,period_s=0.5,cycles=2' or "
+                    "'stochastic:seed=3,pga_g=1.2,duration_s=20'")
+        ->group(group);
+}
+
+RecordFileSpec RecordFlags::spec() const {
+  RecordFileSpec spec;
+  spec.path = file;
+  try {
+    spec.format = format.empty() ? guess_record_format(spec.path) : parse_record_format(format);
+    spec.unit = parse_accel_unit(units);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  spec.dt_s = dt_s;
+  spec.skip_rows = skip_rows;
+  if (spec.format == RecordFormat::kOneColumn && !(dt_s > 0)) throw UsageError("--dt is required (and > 0) for a one-column record");
+  return spec;
+}
+
+GroundMotion RecordFlags::load() const {
+  if (file.empty() == synthetic.empty()) throw UsageError("give exactly one of --record FILE or --synthetic SPEC");
+  try {
+    if (!synthetic.empty()) return make_synthetic(synthetic);
+    return read_record(spec());
+  } catch (const RecordError& e) {
+    throw UsageError(e.what());
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+}
+
+}  // namespace pcrf::cli
