@@ -7,9 +7,11 @@
 #include <functional>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "cli/commands.hpp"
 #include "pcrf/cube/cube_query.hpp"
+#include "pcrf/study/cube_fragility.hpp"
 #include "pcrf/study/cube_vocabulary.hpp"
 
 namespace pcrf::cli {
@@ -17,6 +19,8 @@ namespace {
 
 struct CubeArguments {
   std::string file;
+  std::optional<double> mce;
+  std::string csv;
   std::vector<std::string> metrics;
   std::string metric;
   std::vector<std::string> where;
@@ -85,7 +89,8 @@ void add_cube_command(CLI::App& app) {
   });
 
   auto* stats = cube_cmd->add_subcommand(
-      "stats", "Median and 16th/84th percentiles of a metric across records, per value of a parameter");
+      "stats", "Median and 16th/84th percentiles of a metric across records, per value of a parameter; collapsed "
+               "cases (tendon fracture, overturned) are counted apart, not in the percentiles");
   stats->add_option("FILE", args->file, "result cube")->required();
   stats->add_option("--by", args->by, "coordinate to group by (e.g. kappa, scale)")->required();
   stats->add_option("-m,--metric", args->metric, "metric to summarize")->required();
@@ -96,9 +101,28 @@ void add_cube_command(CLI::App& app) {
       std::vector<std::string> pooled;
       const auto chosen = study::vocabulary::stats_selectors(reader.layout(), args->by, selectors(args->where));
       const auto result = cube::group_stats(reader, args->by, args->metric, chosen,
-                                            {study::vocabulary::expected_pooling(), &pooled});
+                                            {study::vocabulary::expected_pooling(), &pooled,
+                                             study::vocabulary::collapse_statuses()});
       for (const auto& p : pooled) std::cerr << "pcrf cube stats: also pooled over " << p << '\n';
-      cube::print_stats(args->by, result, std::cout);
+      cube::print_stats(args->by, study::vocabulary::kCollapses, result, std::cout);
+    });
+  });
+
+  auto* fragility = cube_cmd->add_subcommand(
+      "fragility", "Lognormal collapse fragility of each frame (median, beta, 90 % bootstrap intervals)");
+  fragility->add_option("FILE", args->file, "result cube with an intensity axis")->required();
+  add_where(fragility, *args);
+  fragility->add_option("--mce", args->mce, "MCE intensity (the measure's units): adds the collapse margin ratio");
+  fragility->add_option("--csv", args->csv, "also write the table as CSV to this file");
+  fragility->callback([args] {
+    guarded(args->file, [&] {
+      if (args->mce && !(*args->mce > 0.0)) throw UsageError("--mce must be positive");
+      cube::CubeReader reader(args->file);
+      const auto frames = study::cube_fragility(reader, selectors(args->where));
+      const auto units = study::intensity_units(reader);
+      study::print_fragility(frames, units, args->mce, false, std::cout);
+      if (!args->csv.empty())
+        with_output(args->csv, [&](std::ostream& out) { study::print_fragility(frames, units, args->mce, true, out); });
     });
   });
 }

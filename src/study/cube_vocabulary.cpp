@@ -3,6 +3,8 @@
 
 #include <algorithm>
 
+#include "pcrf/metrics/case_result.hpp"
+
 namespace pcrf::study::vocabulary {
 
 std::string info_heading(const cube::CubeLayout& layout) {
@@ -22,5 +24,9 @@ std::vector<cube::Selector> stats_selectors(const cube::CubeLayout& layout, cons
 }
 
 std::vector<std::string> expected_pooling() { return {kRecord}; }
+
+std::vector<std::int8_t> collapse_statuses() {
+  return {static_cast<std::int8_t>(CaseStatus::kTendonFracture), static_cast<std::int8_t>(CaseStatus::kOverturned)};
+}
 
 }  // namespace pcrf::study::vocabulary

@@ -160,15 +160,48 @@ TEST(CubeInterop, StatsGivesMedianAndPercentilesAcrossRecords) {
   std::string header, first;
   std::getline(in, header);
   std::getline(in, first);
-  EXPECT_EQ(header, "kappa,cases,values,median,p16,p84");
-  EXPECT_EQ(first.rfind("1.2,3,3,", 0), 0u) << first;
+  EXPECT_EQ(header, "kappa,cases,collapses,values,median,p16,p84");
+  EXPECT_EQ(first.rfind("1.2,3,0,3,", 0), 0u) << first;
   const auto fields = numbers(std::regex_replace(first, std::regex(","), " "));
-  ASSERT_EQ(fields.size(), 6u);
-  EXPECT_EQ(fields[3], across[1]);  // median of three
-  EXPECT_DOUBLE_EQ(fields[4], cube::percentile(across, 16.0));
+  ASSERT_EQ(fields.size(), 7u);
+  EXPECT_EQ(fields[4], across[1]);  // median of three
+  EXPECT_DOUBLE_EQ(fields[5], cube::percentile(across, 16.0));
   const auto oat = test::run_command(pcrf() + " cube stats " + quoted(oat_cube() / "oat.h5") + " --by kappa -m impacts");
   ASSERT_EQ(oat.exit_code, 0) << oat.err;
   EXPECT_EQ(std::count(oat.out.begin(), oat.out.end(), '\n'), 3) << oat.out;  // header + the kappa sweep's 2 values
+}
+
+TEST(CubeInterop, StatsCountCollapsesApart) {
+  // Strong pulses: at the larger scales the frame collapses, and a collapsed case's θ_max
+  // (the angle where it stopped) must not enter the percentiles.
+  const auto dir = test::scratch_dir("stats_collapses");
+  const auto file = test::write_file(dir, "c.toml", std::string("[[records]]\nsynthetic = [\"") + kPulse + "\", \"" + kPulse2 +
+                                                       "\"]\n[axes]\nscale = [1.0, 3.0, 6.0]\n");
+  ASSERT_EQ(test::run_command(pcrf() + " study " + quoted(file) + " -o " + quoted(dir / "c.h5") + " --progress-interval 0").exit_code, 0);
+  cube::CubeReader cube(dir / "c.h5");
+  const auto status = cube.read_status();
+  const auto theta = cube.read_metric("theta_max_rad");
+  const auto r = test::run_command(pcrf() + " cube stats " + quoted(dir / "c.h5") + " --by scale -m theta_max_rad");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::istringstream in(r.out);
+  std::string line;
+  std::getline(in, line);
+  int total_collapses = 0;
+  for (std::size_t level = 0; std::getline(in, line); ++level) {
+    const auto fields = numbers(std::regex_replace(line, std::regex(","), " "));
+    std::vector<double> kept;
+    int collapses = 0;
+    for (std::size_t record = 0; record < 2; ++record) {
+      const auto k = record * 3 + level;
+      const bool collapsed = status[k] == 2 || status[k] == 3;
+      collapses += collapsed;
+      if (!collapsed) kept.push_back(theta[k]);
+    }
+    total_collapses += collapses;
+    EXPECT_EQ(fields[2], collapses) << line;
+    EXPECT_EQ(fields[3], static_cast<double>(kept.size())) << line;
+  }
+  EXPECT_GT(total_collapses, 0) << "no case collapsed: make the pulses stronger";
 }
 
 }  // namespace

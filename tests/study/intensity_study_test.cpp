@@ -6,6 +6,10 @@
 #include <cmath>
 #include <map>
 
+#include <fstream>
+#include <sstream>
+
+#include "pcrf/analysis/fragility.hpp"
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/record/intensity.hpp"
 #include "pcrf/record/synthetic.hpp"
@@ -78,6 +82,50 @@ TEST(IntensityStudy, BadIntensityStudiesAreRejected) {
   const auto both = test::run_command(pcrf() + " run --synthetic '" + kPulse + "' --scale 2 --intensity 1");
   EXPECT_EQ(both.exit_code, 2);
   EXPECT_NE(both.err.find("either --scale or --intensity"), std::string::npos) << both.err;
+}
+
+TEST(IntensityStudy, FragilityFitsTheStripesOfTheCube) {
+  const auto dir = test::scratch_dir("fragility_cli");
+  std::string records = "[[records]]\nsynthetic = [";
+  for (int seed = 1; seed <= 8; ++seed)
+    records += std::string(seed > 1 ? ", " : "") + "\"stochastic:seed=" + std::to_string(seed) + ",pga_g=1,duration_s=8\"";
+  records += "]\n";
+  const std::string text = records + "[intensity]\nmeasure = \"pga_g\"\n[axes]\nintensity = [1.5, 2.5, 4, 6, 9]\n";
+  ASSERT_EQ(run_in(dir, text, "-o f.h5 --progress-interval 0").exit_code, 0);
+  const auto r = test::run_command(pcrf() + " cube fragility " + quoted(dir / "f.h5") + " --mce 1.5 --csv " + quoted(dir / "f.csv"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("median [g]"), std::string::npos) << r.out;
+  // The same fit from the cube's statuses.
+  cube::CubeReader cube(dir / "f.h5");
+  const auto status = cube.read_status();
+  const auto& levels = cube.layout().find_coordinate("intensity")->numbers;
+  std::vector<analysis::Stripe> stripes;
+  for (std::size_t l = 0; l < levels.size(); ++l) {
+    analysis::Stripe s{levels[l], 0, 0};
+    for (std::size_t rec = 0; rec < 8; ++rec) {
+      s.trials += 1;
+      s.collapses += status[rec * levels.size() + l] == 2 || status[rec * levels.size() + l] == 3;
+    }
+    stripes.push_back(s);
+  }
+  const auto fit = analysis::fit_stripes(stripes);
+  ASSERT_TRUE(fit) << r.out;
+  std::ifstream csv(dir / "f.csv");
+  std::string header, row;
+  std::getline(csv, header);
+  std::getline(csv, row);
+  EXPECT_EQ(header.rfind("frame,records,cases,collapses,failed,median [g],", 0), 0u) << header;
+  std::vector<std::string> cells;
+  for (std::stringstream in(row); std::getline(in, header, ',');) cells.push_back(header);
+  ASSERT_EQ(cells.size(), 12u) << row;
+  EXPECT_NEAR(std::stod(cells[5]), fit->median, 1e-3 * fit->median);
+  EXPECT_NEAR(std::stod(cells[8]), fit->beta, 1e-3 * fit->beta);
+  EXPECT_NEAR(std::stod(cells[11]), fit->median / 1.5, 1e-3 * fit->median);
+  // A cube without an intensity axis has nothing to fit against.
+  ASSERT_EQ(run_in(dir, kTwoPulses, "-o s.h5 --progress-interval 0").exit_code, 0);
+  const auto scale_only = test::run_command(pcrf() + " cube fragility " + quoted(dir / "s.h5"));
+  EXPECT_EQ(scale_only.exit_code, 2);
+  EXPECT_NE(scale_only.err.find("has no 'intensity' axis"), std::string::npos) << scale_only.err;
 }
 
 TEST(IntensityStudy, GlobsSortNaturallyAndTextRecordsSkipRows) {

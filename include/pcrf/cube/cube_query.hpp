@@ -38,24 +38,28 @@ void export_csv(const CubeReader& cube, const std::vector<std::string>& metrics,
 struct GroupStats {
   std::string value;        ///< the coordinate value
   std::size_t cases = 0;    ///< selected cases in the group
-  std::size_t values = 0;   ///< of which finite values of the metric
+  std::size_t set_apart = 0;  ///< cases whose status is set apart (e.g. collapses): not in the values
+  std::size_t values = 0;   ///< finite values of the metric among the other cases
   double median = 0.0;
   double p16 = 0.0;
   double p84 = 0.0;
 };
 
-/// Which dimensions group_stats() pools over without remark, and where it lists the others.
+/// Which dimensions group_stats() pools over without remark, and where it lists the others;
+/// which statuses it counts apart instead of summarizing their values.
 struct PoolReport {
   std::vector<std::string> expected;         ///< e.g. the record axis: pooling over it is the point
   std::vector<std::string>* pooled = nullptr;  ///< receives "NAME (N values)" for every other pooled axis
+  std::vector<std::int8_t> set_apart;        ///< e.g. collapses, whose metrics stop at the collapse
 };
 
 /// Groups the selected cases by `by` and summarizes `metric` across the rest.
 std::vector<GroupStats> group_stats(const CubeReader& cube, const std::string& by, const std::string& metric,
                                     const std::vector<Selector>& selectors, const PoolReport& pool = {});
 
-/// CSV: <by>,cases,values,median,p16,p84
-void print_stats(const std::string& by, const std::vector<GroupStats>& stats, std::ostream& out);
+/// CSV: <by>,cases,<set_apart_name>,values,median,p16,p84
+void print_stats(const std::string& by, const std::string& set_apart_name, const std::vector<GroupStats>& stats,
+                 std::ostream& out);
 
 /// Percentile q ∈ [0, 100] of sorted values with linear interpolation between order
 /// statistics (numpy's default). NaN when there are no values.

@@ -4,6 +4,7 @@
 /// defaults for `pcrf cube`). The cube layer itself knows none of them.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -38,5 +39,10 @@ std::vector<cube::Selector> stats_selectors(const cube::CubeLayout& layout, cons
 
 /// Axes that statistics pool over by design (records): not reported as pooled.
 std::vector<std::string> expected_pooling();
+
+/// The statuses that are collapses (tendon fracture, overturned): their metrics stop at the
+/// collapse, so statistics count them apart (`collapses`) rather than mixing them in.
+std::vector<std::int8_t> collapse_statuses();
+inline constexpr const char* kCollapses = "collapses";
 
 }  // namespace pcrf::study::vocabulary

@@ -1,0 +1,44 @@
+/// \file cube_fragility.hpp
+/// \brief Collapse fragility of every frame of a result cube: the cube's cases turned into
+/// the numbers the estimators of analysis/fragility.hpp take, and their fits.
+///
+/// A grid cube with an `intensity` axis gives stripes: at each intensity, the records whose
+/// case ended (at rest, rocking, fracture, overturned) and how many of them collapsed
+/// (tendon fracture or overturned). Cases that failed (solver_failure, time_limit) or were
+/// not run count in neither and are reported. The bootstrap resamples records.
+#pragma once
+
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "pcrf/analysis/fragility.hpp"
+#include "pcrf/cube/cube_query.hpp"
+#include "pcrf/cube/cube_reader.hpp"
+
+namespace pcrf::study {
+
+struct FrameFragility {
+  std::string frame;              ///< "kappa=1.8,lambda=2" (the frame axes with several values), or "all"
+  std::size_t records = 0;        ///< records on the cube's record axis
+  std::size_t cases = 0;          ///< cases that ended with a verdict
+  double collapses = 0.0;         ///< of which collapsed
+  std::size_t failed = 0;         ///< cases with no verdict (solver failure, time limit, not run)
+  std::optional<analysis::Lognormal> fit;
+  analysis::BootstrapResult interval;
+};
+
+/// One entry per frame of the selected cases. \throws cube::CubeError when the cube has no
+/// intensity axis (scale-only cubes have no common intensity to fit against).
+std::vector<FrameFragility> cube_fragility(const cube::CubeReader& cube, const std::vector<cube::Selector>& selectors);
+
+/// Units and name of the cube's intensity ("g", "peak ground acceleration").
+std::string intensity_units(const cube::CubeReader& cube);
+
+/// A table, one row per frame: records, collapses, median and β with their 90 % intervals,
+/// and with `mce` the collapse margin ratio median / MCE. `csv`: comma-separated.
+void print_fragility(const std::vector<FrameFragility>& frames, const std::string& units, std::optional<double> mce,
+                     bool csv, std::ostream& out);
+
+}  // namespace pcrf::study

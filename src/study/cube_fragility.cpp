@@ -1,0 +1,162 @@
+// Collapse fragility of a cube's frames (see cube_fragility.hpp).
+#include "pcrf/study/cube_fragility.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include "pcrf/metrics/case_result.hpp"
+#include "pcrf/row_major.hpp"
+#include "pcrf/study/cube_vocabulary.hpp"
+
+namespace pcrf::study {
+namespace {
+
+bool is_collapse(std::int8_t status) {
+  return status == static_cast<std::int8_t>(CaseStatus::kTendonFracture) ||
+         status == static_cast<std::int8_t>(CaseStatus::kOverturned);
+}
+
+bool has_verdict(std::int8_t status) {
+  return status == static_cast<std::int8_t>(CaseStatus::kAtRest) ||
+         status == static_cast<std::int8_t>(CaseStatus::kRockingAtEnd) || is_collapse(status);
+}
+
+std::size_t dimension_index(const cube::CubeLayout& layout, const std::string& name) {
+  for (std::size_t d = 0; d < layout.dimensions.size(); ++d)
+    if (layout.dimensions[d].name == name) return d;
+  throw cube::CubeError("has no '" + name + "' axis: fragility needs records scaled to a common intensity "
+                        "([intensity] table and [axes] intensity)");
+}
+
+std::string frame_label(const cube::CubeLayout& layout, const std::vector<std::size_t>& coords, std::size_t record_dim,
+                        std::size_t level_dim) {
+  std::string label;
+  for (std::size_t d = 0; d < coords.size(); ++d) {
+    if (d == record_dim || d == level_dim || layout.dimensions[d].size < 2) continue;
+    const auto& name = layout.dimensions[d].name;
+    const cube::Coordinate* c = layout.find_coordinate(name == vocabulary::kCase ? vocabulary::kCaseLabel : name);
+    label += (label.empty() ? "" : ",") + (name == vocabulary::kCase ? c->label(coords[d]) : name + "=" + c->label(coords[d]));
+  }
+  return label.empty() ? "all" : label;
+}
+
+/// Per frame: per record, per intensity, the case's status (or not-run).
+struct FrameCases {
+  std::string label;
+  std::vector<std::vector<std::int8_t>> status;  // [record][level]
+};
+
+}  // namespace
+
+std::string intensity_units(const cube::CubeReader& cube) {
+  const auto* c = cube.layout().find_coordinate(vocabulary::kIntensity);
+  return c == nullptr ? "" : c->units;
+}
+
+std::vector<FrameFragility> cube_fragility(const cube::CubeReader& cube, const std::vector<cube::Selector>& selectors) {
+  const auto& layout = cube.layout();
+  const std::size_t record_dim = dimension_index(layout, vocabulary::kRecord);
+  const std::size_t level_dim = dimension_index(layout, vocabulary::kIntensity);
+  const auto& levels = layout.find_coordinate(vocabulary::kIntensity)->numbers;
+  const std::size_t records = layout.dimensions[record_dim].size;
+  const auto shape = layout.shape();
+  const auto selected = cube::select_cases(layout, selectors);
+  const auto status = cube.read_status();
+
+  std::map<std::string, FrameCases> frames;  // by label, in label order
+  std::vector<std::string> order;
+  for (std::int64_t i = 0; i < layout.case_count(); ++i) {
+    if (!selected[static_cast<std::size_t>(i)]) continue;
+    const auto coords = unravel(i, shape);
+    const std::string label = frame_label(layout, coords, record_dim, level_dim);
+    auto [it, inserted] = frames.try_emplace(label);
+    if (inserted) {
+      order.push_back(label);
+      it->second.label = label;
+      it->second.status.assign(records, std::vector<std::int8_t>(levels.size(), cube::kStatusNotRun));
+    }
+    it->second.status[coords[record_dim]][coords[level_dim]] = status[static_cast<std::size_t>(i)];
+  }
+
+  std::vector<FrameFragility> result;
+  for (const auto& label : order) {
+    const FrameCases& f = frames.at(label);
+    FrameFragility out;
+    out.frame = label;
+    out.records = records;
+    auto stripes_of = [&](const std::vector<std::size_t>& sample) {
+      std::vector<analysis::Stripe> stripes(levels.size());
+      for (std::size_t l = 0; l < levels.size(); ++l) {
+        stripes[l].intensity = levels[l];
+        for (std::size_t r : sample) {
+          const std::int8_t s = f.status[r][l];
+          if (!has_verdict(s)) continue;
+          stripes[l].trials += 1.0;
+          stripes[l].collapses += is_collapse(s) ? 1.0 : 0.0;
+        }
+      }
+      return stripes;
+    };
+    std::vector<std::size_t> all(records);
+    for (std::size_t r = 0; r < records; ++r) all[r] = r;
+    for (const auto& s : stripes_of(all)) {
+      out.cases += static_cast<std::size_t>(s.trials);
+      out.collapses += s.collapses;
+    }
+    out.failed = records * levels.size() - out.cases;
+    out.fit = analysis::fit_stripes(stripes_of(all));
+    if (out.fit)
+      out.interval = analysis::bootstrap(records, [&](const std::vector<std::size_t>& sample) {
+        return analysis::fit_stripes(stripes_of(sample));
+      });
+    result.push_back(std::move(out));
+  }
+  return result;
+}
+
+void print_fragility(const std::vector<FrameFragility>& frames, const std::string& units, std::optional<double> mce,
+                     bool csv, std::ostream& out) {
+  const std::string u = units.empty() ? "" : " [" + units + "]";
+  auto number = [](double v) {
+    if (!std::isfinite(v)) return std::string();
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.4g", v);
+    return std::string(buffer);
+  };
+  const std::vector<std::string> header{"frame", "records", "cases", "collapses", "failed", "median" + u,
+                                        "median_5%" + u, "median_95%" + u, "beta", "beta_5%", "beta_95%"};
+  std::vector<std::vector<std::string>> rows;
+  for (const auto& f : frames) {
+    const double nan = std::nan("");
+    const auto& fit = f.fit;
+    std::vector<std::string> row{f.frame, std::to_string(f.records), std::to_string(f.cases), number(f.collapses),
+                                 std::to_string(f.failed), number(fit ? fit->median : nan),
+                                 number(fit ? f.interval.median.low : nan), number(fit ? f.interval.median.high : nan),
+                                 number(fit ? fit->beta : nan), number(fit ? f.interval.beta.low : nan),
+                                 number(fit ? f.interval.beta.high : nan)};
+    if (mce) row.push_back(number(fit ? fit->median / *mce : nan));
+    rows.push_back(std::move(row));
+  }
+  auto columns = header;
+  if (mce) columns.push_back("CMR");
+  std::vector<std::size_t> width(columns.size());
+  for (std::size_t c = 0; c < columns.size(); ++c) {
+    width[c] = columns[c].size();
+    for (const auto& r : rows) width[c] = std::max(width[c], r[c].size());
+  }
+  auto line = [&](const std::vector<std::string>& cells) {
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      if (csv) {
+        out << (c ? "," : "") << cells[c];
+      } else {
+        out << (c ? "  " : "") << cells[c] << std::string(width[c] - cells[c].size(), ' ');
+      }
+    }
+    out << '\n';
+  };
+  line(columns);
+  for (const auto& r : rows) line(r);
+}
+
+}  // namespace pcrf::study
