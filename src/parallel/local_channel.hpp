@@ -25,7 +25,7 @@ class LocalChannel final : public MasterLink {
   // Worker side.
   void request(ResultBatch finished) override { push({0, false, std::move(finished)}); }
   void finish(ResultBatch finished) override { push({0, true, std::move(finished)}); }
-  std::vector<std::int64_t> receive_batch() override {
+  WorkBatch receive_batch() override {
     std::unique_lock lock(mutex_);
     batch_ready_.wait(lock, [this] { return !batches_.empty() || stop_; });
     if (batches_.empty()) return {};
@@ -42,7 +42,7 @@ class LocalChannel final : public MasterLink {
     requests_.pop_front();
     return message;
   }
-  void reply(std::vector<std::int64_t> batch) {
+  void reply(WorkBatch batch) {
     {
       std::lock_guard lock(mutex_);
       batches_.push_back(std::move(batch));
@@ -78,7 +78,7 @@ class LocalChannel final : public MasterLink {
   std::mutex mutex_;
   std::condition_variable request_ready_, batch_ready_;
   std::deque<Incoming> requests_;
-  std::deque<std::vector<std::int64_t>> batches_;
+  std::deque<WorkBatch> batches_;
   bool stop_ = false;
   std::atomic<bool> stop_flag_{false};
 };

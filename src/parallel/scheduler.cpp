@@ -1,7 +1,8 @@
 // Master–worker scheduling over MPI (see scheduler.hpp). Message protocol:
 //   worker → master  kTagRequest  packed ResultBatch (finished cases), asks for a batch
 //   worker → master  kTagFinish   packed ResultBatch, the worker's last message
-//   master → worker  kTagBatch    int64 case indices; empty means "stop"
+//   master → worker  kTagBatch    WorkItems (index, argument) as bytes; empty means "stop",
+//                                 one item of index kWaitIndex "nothing ready: report and ask again"
 #include "pcrf/parallel/scheduler.hpp"
 
 #include <chrono>
@@ -37,17 +38,17 @@ class MpiMasterLink final : public detail::MasterLink {
     send(kTagFinish, finished);
     wait_send();
   }
-  std::vector<std::int64_t> receive_batch() override {
+  WorkBatch receive_batch() override {
     MPI_Status status;
     for (int arrived = 0;;) {  // poll with naps rather than spin in MPI_Probe
       MPI_Iprobe(0, kTagBatch, comm_, &arrived, &status);
       if (arrived) break;
       nap();
     }
-    int count = 0;
-    MPI_Get_count(&status, MPI_INT64_T, &count);
-    std::vector<std::int64_t> batch(static_cast<std::size_t>(count));
-    MPI_Recv(batch.data(), count, MPI_INT64_T, 0, kTagBatch, comm_, MPI_STATUS_IGNORE);
+    int bytes = 0;
+    MPI_Get_count(&status, MPI_BYTE, &bytes);
+    WorkBatch batch(static_cast<std::size_t>(bytes) / sizeof(WorkItem));
+    MPI_Recv(batch.data(), bytes, MPI_BYTE, 0, kTagBatch, comm_, MPI_STATUS_IGNORE);
     return batch;
   }
 
@@ -92,10 +93,10 @@ class MpiWorkers {
 
   /// Non-blocking: a worker posts its receive only after its current batch, and the
   /// master must not wait for that.
-  void reply(int rank, std::vector<std::int64_t> batch) {
+  void reply(int rank, WorkBatch batch) {
     sends_.push_back({MPI_REQUEST_NULL, std::move(batch)});
     auto& send = sends_.back();
-    MPI_Isend(send.buffer.data(), static_cast<int>(send.buffer.size()), MPI_INT64_T, rank,
+    MPI_Isend(send.buffer.data(), static_cast<int>(send.buffer.size() * sizeof(WorkItem)), MPI_BYTE, rank,
               kTagBatch, comm_, &send.request);
   }
 
@@ -107,7 +108,7 @@ class MpiWorkers {
  private:
   struct PendingSend {
     MPI_Request request;
-    std::vector<std::int64_t> buffer;
+    WorkBatch buffer;
   };
   void reap_sends() {
     for (auto it = sends_.begin(); it != sends_.end();) {
@@ -125,12 +126,9 @@ class MpiWorkers {
 /// The master's event loop over both kinds of worker.
 class Master {
  public:
-  Master(MPI_Comm comm, WorkList work, const ScheduleOptions& options, int ranks)
-      : options_(options),
-        queue_(std::move(work.shared), std::move(work.pinned), ranks, options.fixed_batch,
-               options.max_batch),
-        remote_(comm, options.row_width),
-        active_workers_(ranks) {}
+  Master(MPI_Comm comm, WorkSource& work, const ScheduleOptions& options, int ranks)
+      : options_(options), work_(work), remote_(comm, options.row_width), active_workers_(ranks),
+        in_flight_(static_cast<std::size_t>(ranks), 0) {}
 
   void run(const CaseEvaluator& evaluate, const OutcomeHandler& on_outcomes,
            const IdleHandler& on_idle) {
@@ -154,41 +152,73 @@ class Master {
       bool busy = false;
       while (auto message = remote_.poll()) busy = handle(std::move(*message), on_outcomes);
       while (auto message = local_.poll()) busy = handle(std::move(*message), on_outcomes);
+      serve_held();
       on_idle();
       if (!busy) local_.wait(options_.poll_interval_s);
     }
   }
 
   bool handle(Incoming message, const OutcomeHandler& on_outcomes) {
+    const auto worker = static_cast<std::size_t>(message.worker);
+    in_flight_[worker] -= message.results.size();
+    for (const auto& outcome : message.results) work_.completed(outcome);
     if (!message.results.empty()) on_outcomes(std::move(message.results));
     if (message.finished) {
       --active_workers_;
       return true;
     }
-    const bool in_process = message.worker == 0;
-    auto batch = queue_.take(in_process);
-    if (in_process)
-      local_.reply(std::move(batch));
-    else
-      remote_.reply(message.worker, std::move(batch));
+    if (!serve(message.worker)) {
+      // Nothing ready. A worker that still holds cases is told to report them (they may be
+      // what the source waits for); one that holds nothing waits here for work.
+      if (in_flight_[worker] > 0)
+        reply(message.worker, detail::wait_batch());
+      else
+        held_.push_back(message.worker);
+    }
     return true;
   }
 
+  /// Answers a worker with work, or "stop" once the source is exhausted; false if neither.
+  bool serve(int worker) {
+    WorkBatch batch = work_.take(worker == 0);
+    if (batch.empty() && !work_.exhausted()) return false;
+    in_flight_[static_cast<std::size_t>(worker)] += batch.size();
+    reply(worker, std::move(batch));
+    return true;
+  }
+
+  void serve_held() {
+    for (auto it = held_.begin(); it != held_.end();) it = serve(*it) ? held_.erase(it) : std::next(it);
+  }
+
+  void reply(int worker, WorkBatch batch) {
+    if (worker == 0)
+      local_.reply(std::move(batch));
+    else
+      remote_.reply(worker, std::move(batch));
+  }
+
   ScheduleOptions options_;
-  WorkQueue queue_;
+  WorkSource& work_;
   LocalChannel local_;
   MpiWorkers remote_;
   int active_workers_;
+  std::vector<std::size_t> in_flight_;  ///< cases handed to each worker and not back yet
+  std::list<int> held_;                 ///< workers waiting for work to appear
 };
 
 }  // namespace
 
-void run_master(MPI_Comm comm, WorkList work, const ScheduleOptions& options,
-                const CaseEvaluator& evaluate, const OutcomeHandler& on_outcomes,
-                const IdleHandler& on_idle) {
+int worker_count(MPI_Comm comm) {
   int ranks = 1;
   MPI_Comm_size(comm, &ranks);
-  Master master(comm, std::move(work), options, ranks);
+  return ranks;
+}
+
+void run_master(MPI_Comm comm, WorkSource& work, const ScheduleOptions& options,
+                const CaseEvaluator& evaluate, const OutcomeHandler& on_outcomes,
+                const IdleHandler& on_idle) {
+  Master master(comm, work, options, worker_count(comm));
   master.run(evaluate, on_outcomes, on_idle);
 }
 

@@ -20,12 +20,12 @@ std::size_t WorkQueue::batch_size() const {
   return std::clamp<std::size_t>(guided, 1, max_batch_);
 }
 
-std::vector<std::int64_t> WorkQueue::take(bool in_process_worker) {
+WorkBatch WorkQueue::take(bool in_process_worker) {
   std::size_t n = batch_size();
-  std::vector<std::int64_t> batch;
+  WorkBatch batch;
   auto move_from = [&](std::deque<std::int64_t>& source) {
     while (n > 0 && !source.empty()) {
-      batch.push_back(source.front());
+      batch.push_back({source.front(), 0.0});
       source.pop_front();
       --n;
     }

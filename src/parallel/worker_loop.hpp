@@ -13,46 +13,56 @@
 
 namespace pcrf::parallel::detail {
 
+/// The master's answer "nothing is ready yet: report what you have and ask again" — one item
+/// with this index. (An empty batch means "stop".)
+inline constexpr std::int64_t kWaitIndex = -1;
+inline WorkBatch wait_batch() { return {WorkItem{kWaitIndex, 0.0}}; }
+inline bool is_wait(const WorkBatch& batch) { return batch.size() == 1 && batch.front().case_index == kWaitIndex; }
+
 /// How a worker talks to its master.
 class MasterLink {
  public:
   virtual ~MasterLink() = default;
   /// Reports finished cases and asks for the next batch (answered by receive_batch).
   virtual void request(ResultBatch finished) = 0;
-  /// Blocks until the master's answer to the oldest open request; empty: stop.
-  virtual std::vector<std::int64_t> receive_batch() = 0;
+  /// Blocks until the master's answer to the oldest open request: work, "wait" (is_wait),
+  /// or empty: stop.
+  virtual WorkBatch receive_batch() = 0;
   /// Reports the last finished cases; the master expects nothing more from this worker.
   virtual void finish(ResultBatch finished) = 0;
 };
 
-inline CaseOutcome evaluate_guarded(const CaseEvaluator& evaluate, std::int64_t index,
-                                    std::size_t row_width) {
+inline CaseOutcome evaluate_guarded(const CaseEvaluator& evaluate, const WorkItem& item, std::size_t row_width) {
   try {
-    return evaluate(index);
+    return evaluate(item);
   } catch (const std::exception& e) {
-    return {index, kEvaluatorThrew, std::vector<double>(row_width, std::numeric_limits<double>::quiet_NaN()),
+    return {item.case_index, kEvaluatorThrew, std::vector<double>(row_width, std::numeric_limits<double>::quiet_NaN()),
             e.what()};
   } catch (...) {
-    return {index, kEvaluatorThrew, std::vector<double>(row_width, std::numeric_limits<double>::quiet_NaN()),
+    return {item.case_index, kEvaluatorThrew, std::vector<double>(row_width, std::numeric_limits<double>::quiet_NaN()),
             "unknown exception"};
   }
 }
 
 /// Request, compute, report — with one request always in flight so that the next batch
-/// is on its way while the current one is computed. `stop` (optional) abandons the work
-/// between two cases without reporting (the master is failing).
+/// is on its way while the current one is computed. When the master has nothing ready it
+/// answers "wait": the worker then reports what it computed (an adaptive plan may need it to
+/// make new work) and asks again. `stop` (optional) abandons the work between two cases
+/// without reporting (the master is failing).
 inline void worker_loop(MasterLink& link, const CaseEvaluator& evaluate, std::size_t row_width,
                         const std::atomic<bool>* stop = nullptr) {
   auto stopping = [stop] { return stop != nullptr && stop->load(); };
   link.request({});
-  std::vector<std::int64_t> batch = link.receive_batch();
+  WorkBatch batch = link.receive_batch();
   ResultBatch finished;
   while (!batch.empty()) {
-    link.request(std::move(finished));  // prefetch the next batch
+    link.request(std::move(finished));  // prefetch the next batch (or, after "wait", report)
     finished.clear();
-    for (std::int64_t index : batch) {
-      if (stopping()) return;
-      finished.push_back(evaluate_guarded(evaluate, index, row_width));
+    if (!is_wait(batch)) {
+      for (const WorkItem& item : batch) {
+        if (stopping()) return;
+        finished.push_back(evaluate_guarded(evaluate, item, row_width));
+      }
     }
     batch = link.receive_batch();
   }

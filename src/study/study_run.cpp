@@ -10,6 +10,7 @@
 
 #include "pcrf/cube/cube_writer.hpp"
 #include "pcrf/parallel/scheduler.hpp"
+#include "pcrf/parallel/work_queue.hpp"
 #include "pcrf/study/case_runner.hpp"
 #include "pcrf/study/progress.hpp"
 #include "pcrf/study/study_check.hpp"
@@ -129,15 +130,17 @@ class ResultSink {
 };
 
 /// Cases not done yet; the cases with a history stay on rank 0 (pinned).
-parallel::WorkList pending_cases(const cube::CubeWriter& writer, const std::map<std::int64_t, std::string>& histories) {
-  parallel::WorkList work;
+parallel::WorkQueue pending_cases(const cube::CubeWriter& writer, const std::map<std::int64_t, std::string>& histories,
+                                  const Study& study, const parallel::MpiSession& mpi) {
+  std::vector<std::int64_t> shared, pinned;
   const auto& status = writer.status();
   for (std::size_t i = 0; i < status.size(); ++i) {
     if (status[i] != cube::kStatusNotRun) continue;
     const auto index = static_cast<std::int64_t>(i);
-    (histories.count(index) ? work.pinned : work.shared).push_back(index);
+    (histories.count(index) ? pinned : shared).push_back(index);
   }
-  return work;
+  return parallel::WorkQueue(std::move(shared), std::move(pinned), parallel::worker_count(mpi.comm()),
+                             study.run.batch_size);
 }
 
 StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::MpiSession& mpi,
@@ -153,7 +156,8 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
   ResultSink sink(*m.writer, meter, inbox, p.study.run.flush_interval_s);
 
   // Runs in rank 0's worker thread; the only place where histories are recorded.
-  auto evaluate = [&](std::int64_t index) {
+  auto evaluate = [&](const parallel::WorkItem& item) {
+    const std::int64_t index = item.case_index;
     const auto label = history_labels.find(index);
     if (label == history_labels.end()) return runner.run(index);
     std::vector<HistorySample> samples;
@@ -161,7 +165,8 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
     inbox.push(make_history_table(label->second, index, p.study, *p.space, samples));
     return outcome;
   };
-  parallel::run_master(mpi.comm(), pending_cases(*m.writer, history_labels), schedule_options(p.study, runner),
+  auto work = pending_cases(*m.writer, history_labels, p.study, mpi);
+  parallel::run_master(mpi.comm(), work, schedule_options(p.study, runner),
                        evaluate, [&sink](parallel::ResultBatch&& batch) { sink.store(std::move(batch)); },
                        [&sink] { sink.idle(); });
   sink.close();
@@ -174,7 +179,7 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
 void run_worker_rank(const Prepared& p, const parallel::MpiSession& mpi) {
   CaseRunner runner(p.study, *p.space, *p.records);
   parallel::run_worker(mpi.comm(), schedule_options(p.study, runner),
-                       [&runner](std::int64_t index) { return runner.run(index); });
+                       [&runner](const parallel::WorkItem& item) { return runner.run(item.case_index); });
 }
 
 /// Workers parse the study text rank 0 checked (same base folder for relative records).

@@ -35,8 +35,8 @@ TEST(WorkQueue, GuidedBatchesShrinkAndPinnedCasesStayLocal) {
   WorkQueue queue(shared, {5000, 5001}, 2, 0, 64);
   EXPECT_EQ(queue.take(false).size(), 64u);  // capped
   auto local = queue.take(true);
-  EXPECT_EQ(local[0], 5000);
-  EXPECT_EQ(local[1], 5001);
+  EXPECT_EQ(local[0].case_index, 5000);
+  EXPECT_EQ(local[1].case_index, 5001);
   std::size_t last = 64, taken = 64 + local.size() - 2;
   while (queue.remaining() > 0) {
     const auto batch = queue.take(false);
@@ -52,12 +52,13 @@ TEST(WorkQueue, GuidedBatchesShrinkAndPinnedCasesStayLocal) {
 TEST(Scheduler, OneRankRunsEveryCaseOnceThroughTheWorkerThread) {
   MpiSession mpi;
   ASSERT_EQ(mpi.size(), 1);
-  WorkList work;
-  for (std::int64_t i = 0; i < 300; ++i) work.shared.push_back(i);
-  work.pinned = {300, 301};
+  std::vector<std::int64_t> shared;
+  for (std::int64_t i = 0; i < 300; ++i) shared.push_back(i);
+  WorkQueue work(shared, {300, 301}, 1);
   const auto master_thread = std::this_thread::get_id();
   std::set<std::thread::id> workers;
-  auto evaluate = [&](std::int64_t index) {
+  auto evaluate = [&](const WorkItem& item) {
+    const std::int64_t index = item.case_index;
     workers.insert(std::this_thread::get_id());
     if (index == 17) throw std::runtime_error("boom");  // must not stop the study
     return CaseOutcome{index, 1, {static_cast<double>(index), 2.0 * static_cast<double>(index)}, ""};
@@ -81,6 +82,55 @@ TEST(Scheduler, OneRankRunsEveryCaseOnceThroughTheWorkerThread) {
   EXPECT_GT(idle_calls, 0);
   ASSERT_EQ(workers.size(), 1u);
   EXPECT_NE(*workers.begin(), master_thread);
+}
+
+/// Chains of cases: case k of a chain exists only once case k − 1 has come back, the way
+/// an adaptive plan makes its next run. Every step must run once, in order, with the
+/// argument its chain chose.
+class ChainSource final : public WorkSource {
+ public:
+  ChainSource(int chains, int length) : length_(length), next_(static_cast<std::size_t>(chains), 0), ready_() {
+    for (int c = 0; c < chains; ++c) ready_.push_back(c);
+  }
+  WorkBatch take(bool) override {
+    WorkBatch batch;
+    if (!ready_.empty()) {
+      const int c = ready_.front();
+      ready_.erase(ready_.begin());
+      batch.push_back({c * 1000 + next_[static_cast<std::size_t>(c)], 0.5 * c + next_[static_cast<std::size_t>(c)]});
+    }
+    return batch;
+  }
+  void completed(const CaseOutcome& outcome) override {
+    const auto c = static_cast<std::size_t>(outcome.case_index / 1000);
+    EXPECT_EQ(outcome.case_index % 1000, next_[c]) << "out of order";
+    if (++next_[c] < length_) ready_.push_back(static_cast<int>(c));
+    else ++done_;
+  }
+  bool exhausted() const override { return done_ == static_cast<int>(next_.size()); }
+
+ private:
+  int length_;
+  std::vector<int> next_;
+  std::vector<int> ready_;
+  int done_ = 0;
+};
+
+TEST(Scheduler, AnAdaptiveSourceGetsEachResultBeforeItsNextCase) {
+  MpiSession mpi;
+  ChainSource chains(5, 20);
+  ScheduleOptions options;
+  options.row_width = 1;
+  std::map<std::int64_t, double> arguments;
+  run_master(mpi.comm(), chains, options,
+             [](const WorkItem& item) { return CaseOutcome{item.case_index, 0, {item.argument}, ""}; },
+             [&](ResultBatch&& batch) {
+               for (auto& o : batch) EXPECT_TRUE(arguments.emplace(o.case_index, o.row[0]).second);
+             },
+             [] {});
+  ASSERT_EQ(arguments.size(), 100u);
+  EXPECT_EQ(arguments[3019], 0.5 * 3 + 19);
+  EXPECT_TRUE(chains.exhausted());
 }
 
 }  // namespace

@@ -19,12 +19,13 @@
 #include <vector>
 
 #include "pcrf/parallel/result_batch.hpp"
+#include "pcrf/parallel/work_source.hpp"
 
 namespace pcrf::parallel {
 
 /// Computes one case. Should not throw: if it does anyway, the scheduler reports the case
-/// with a row of NaN and the exception text as its note.
-using CaseEvaluator = std::function<CaseOutcome(std::int64_t case_index)>;
+/// with status kEvaluatorThrew, a row of NaN and the exception text as its note.
+using CaseEvaluator = std::function<CaseOutcome(const WorkItem& item)>;
 
 /// Master thread: receives outcomes as they arrive.
 using OutcomeHandler = std::function<void(ResultBatch&&)>;
@@ -39,19 +40,17 @@ struct ScheduleOptions {
   double poll_interval_s = 0.002;   ///< master's sleep when nothing arrives
 };
 
-/// The master's work list.
-struct WorkList {
-  std::vector<std::int64_t> shared;  ///< any worker
-  std::vector<std::int64_t> pinned;  ///< only the worker inside rank 0's process
-};
-
-/// Rank 0. Returns when every case of `work` has come back and every worker has stopped.
-/// `evaluate` runs in rank 0's worker thread. If a handler throws, the local worker is
-/// stopped and the exception propagates: the caller must then MPI_Abort (remote workers
-/// would wait forever otherwise).
-void run_master(MPI_Comm comm, WorkList work, const ScheduleOptions& options,
+/// Rank 0. Returns when `work` is exhausted, every case handed out has come back and every
+/// worker has stopped. A worker that asks while nothing is ready waits (its request is held
+/// until the source has work, or says it never will). `evaluate` runs in rank 0's worker
+/// thread. If a handler throws, the local worker is stopped and the exception propagates:
+/// the caller must then MPI_Abort (remote workers would wait forever otherwise).
+void run_master(MPI_Comm comm, WorkSource& work, const ScheduleOptions& options,
                 const CaseEvaluator& evaluate, const OutcomeHandler& on_outcomes,
                 const IdleHandler& on_idle);
+
+/// Number of workers a master has: every rank, rank 0's worker thread included.
+int worker_count(MPI_Comm comm);
 
 /// Ranks ≥ 1. Returns when the master says there is no more work.
 void run_worker(MPI_Comm comm, const ScheduleOptions& options, const CaseEvaluator& evaluate);

@@ -7,6 +7,8 @@
 #include <deque>
 #include <vector>
 
+#include "pcrf/parallel/work_source.hpp"
+
 namespace pcrf::parallel {
 
 /// Cases not yet handed out. Pinned cases go only to the worker that runs inside the
@@ -15,7 +17,7 @@ namespace pcrf::parallel {
 /// Batch sizes are guided: a hand-out is 1/(4·workers) of what is left, clamped to
 /// [1, max_batch], so early batches amortize messages and the last ones balance the tail
 /// (case costs differ by orders of magnitude). A fixed size can be forced instead.
-class WorkQueue {
+class WorkQueue final : public WorkSource {
  public:
   /// \param shared  cases any worker may run, in the order to run them
   /// \param pinned  cases for the in-process worker only
@@ -26,7 +28,8 @@ class WorkQueue {
             std::size_t fixed_batch = 0, std::size_t max_batch = 64);
 
   /// Next batch for a worker; empty when nothing is left for it.
-  std::vector<std::int64_t> take(bool in_process_worker);
+  WorkBatch take(bool in_process_worker) override;
+  bool exhausted() const override { return remaining() == 0; }
 
   /// Cases not yet handed out.
   std::size_t remaining() const { return shared_.size() + pinned_.size(); }
