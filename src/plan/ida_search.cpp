@@ -1,0 +1,81 @@
+// Hunt-and-fill search of one IDA curve (see ida_search.hpp).
+#include "pcrf/plan/ida_search.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace pcrf::plan {
+namespace {
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+}
+
+IdaSearch::IdaSearch(const IdaSearchSettings& settings) : settings_(settings) {
+  if (!(settings_.start > 0.0)) throw std::invalid_argument("IDA start must be positive");
+  if (settings_.step <= 0.0) settings_.step = settings_.start;
+  if (!(settings_.resolution > 0.0 && settings_.resolution < 1.0))
+    throw std::invalid_argument("IDA resolution must be in (0, 1)");
+  if (!(settings_.max_intensity >= settings_.start)) throw std::invalid_argument("IDA max_intensity must be ≥ start");
+  if (settings_.max_runs < 2) throw std::invalid_argument("IDA max_runs must be at least 2");
+}
+
+void IdaSearch::add(double intensity, bool collapsed) { runs_.push_back({intensity, collapsed}); }
+
+double IdaSearch::collapse_intensity() const {
+  double c = kNaN;
+  for (const auto& r : runs_)
+    if (r.collapsed && !(r.intensity >= c)) c = r.intensity;
+  return c;
+}
+
+double IdaSearch::last_safe_intensity() const {
+  const double c = collapse_intensity();
+  double s = kNaN;
+  for (const auto& r : runs_)
+    if (!r.collapsed && (std::isnan(c) || r.intensity < c) && !(r.intensity <= s)) s = r.intensity;
+  return s;
+}
+
+bool IdaSearch::bracketed() const {
+  const double c = collapse_intensity(), s = last_safe_intensity();
+  if (std::isnan(c)) return !std::isnan(s) && s >= settings_.max_intensity;  // censored at the cap
+  return !std::isnan(s) && c / s - 1.0 <= settings_.resolution;
+}
+
+std::optional<double> IdaSearch::hunt() const {
+  if (runs_.empty()) return settings_.start;
+  const double last = runs_.back().intensity;
+  if (last >= settings_.max_intensity) return std::nullopt;  // safe at the cap: censored
+  const double k = static_cast<double>(runs_.size());
+  return std::min(last + settings_.step * k, settings_.max_intensity);
+}
+
+std::optional<double> IdaSearch::fill() const {
+  const double s = last_safe_intensity();
+  std::vector<double> points{0.0};
+  for (const auto& r : runs_)
+    if (!r.collapsed && r.intensity <= s) points.push_back(r.intensity);
+  std::sort(points.begin(), points.end());
+  double best_gap = 0.0, at = kNaN;
+  for (std::size_t i = 1; i < points.size(); ++i) {
+    if (points[i] - points[i - 1] > best_gap) {
+      best_gap = points[i] - points[i - 1];
+      at = 0.5 * (points[i] + points[i - 1]);
+    }
+  }
+  if (std::isnan(at) || best_gap <= settings_.resolution * s) return std::nullopt;  // nothing left worth a run
+  return at;
+}
+
+std::optional<double> IdaSearch::next() const {
+  if (runs() >= settings_.max_runs) return std::nullopt;
+  const double c = collapse_intensity();
+  if (std::isnan(c)) return hunt();
+  const double s = last_safe_intensity();
+  if (std::isnan(s)) return 0.5 * c;  // the first collapse came at once: come down
+  if (!bracketed()) return 0.5 * (s + c);
+  return fill();
+}
+
+}  // namespace pcrf::plan
