@@ -35,6 +35,7 @@ enum class SettingType {
   kInteger,  ///< a whole number
   kFlag,     ///< true or false
   kChoice,   ///< one word out of a fixed list
+  kWords,    ///< a list of distinct words out of a fixed list (TOML array; flag: comma-separated)
 };
 
 /// The range a number or integer setting admits.
@@ -44,6 +45,7 @@ enum class Bound {
   kNonNegative,  ///< ≥ 0
   kAtLeastOne,   ///< ≥ 1 (integers)
   kFraction,     ///< in [0, 1)
+  kOpenUnit,     ///< in (0, 1)
 };
 
 template <class Target>
@@ -112,8 +114,9 @@ template <class Target>
 std::string setting_kind_text(const Setting<Target>& s) {
   switch (s.type) {
     case SettingType::kFlag: return "true or false";
-    case SettingType::kChoice: {
-      std::string text;
+    case SettingType::kChoice:
+    case SettingType::kWords: {
+      std::string text = s.type == SettingType::kWords ? "list of " : "";
       for (std::size_t i = 0; i < s.choices.size(); ++i)
         text += (i == 0 ? "" : (i + 1 == s.choices.size() ? " or " : ", ")) + ("\"" + s.choices[i] + "\"");
       return text;
@@ -128,6 +131,7 @@ std::string setting_kind_text(const Setting<Target>& s) {
     case Bound::kNonNegative: text += " ≥ 0"; break;
     case Bound::kAtLeastOne: text += " ≥ 1"; break;
     case Bound::kFraction: text += " in [0, 1)"; break;
+    case Bound::kOpenUnit: text += " in (0, 1)"; break;
   }
   if (!s.unit.empty() && s.unit != "1") text += " [" + std::string(s.unit) + "]";
   return text;
@@ -146,6 +150,21 @@ std::string check_setting(const Setting<Target>& s, SettingValue& value) {
       for (const auto& c : s.choices)
         if (c == *word) return "";
       return "unknown value \"" + *word + "\" (expected " + setting_kind_text(s) + ")";
+    }
+    case SettingType::kWords: {
+      const auto* words = std::get_if<std::string>(&value);
+      if (words == nullptr) return "expected " + setting_kind_text(s);
+      std::vector<std::string> seen;
+      std::stringstream in(*words);
+      for (std::string word; std::getline(in, word, ',');) {
+        bool known = false;
+        for (const auto& c : s.choices) known = known || c == word;
+        if (!known) return "unknown value \"" + word + "\" (expected " + setting_kind_text(s) + ")";
+        for (const auto& w : seen)
+          if (w == word) return "\"" + word + "\" is listed twice";
+        seen.push_back(word);
+      }
+      return seen.empty() ? "the list is empty" : "";
     }
     case SettingType::kInteger:
       if (const double* d = std::get_if<double>(&value)) {
@@ -169,6 +188,7 @@ std::string check_setting(const Setting<Target>& s, SettingValue& value) {
     case Bound::kNonNegative: return v >= 0.0 ? "" : "must not be negative" + got;
     case Bound::kAtLeastOne: return v >= 1.0 ? "" : "must be at least 1" + got;
     case Bound::kFraction: return v >= 0.0 && v < 1.0 ? "" : "must be at least 0 and below 1" + got;
+    case Bound::kOpenUnit: return v > 0.0 && v < 1.0 ? "" : "must be above 0 and below 1" + got;
   }
   return "";
 }
@@ -182,7 +202,8 @@ SettingValue parse_setting_text(const Setting<Target>& s, const std::string& tex
       if (text == "true" || text == "1" || text == "on" || text == "yes") return true;
       if (text == "false" || text == "0" || text == "off" || text == "no") return false;
       throw std::invalid_argument("'" + text + "' is not true or false");
-    case SettingType::kChoice: return text;
+    case SettingType::kChoice:
+    case SettingType::kWords: return text;
     case SettingType::kInteger:
     case SettingType::kNumber: {
       std::size_t used = 0;
@@ -247,6 +268,20 @@ Setting<Target> flag_setting(std::string_view key, bool Target::*member, std::st
   s.doc = doc;
   s.get = [member](const Target& t) { return SettingValue(t.*member); };
   s.set = [member](Target& t, const SettingValue& v) { t.*member = std::get<bool>(v); };
+  return s;
+}
+
+/// A list of words held as one comma-separated string member.
+template <class Target>
+Setting<Target> words_setting(std::string_view key, std::string Target::*member, std::vector<std::string> choices,
+                              std::string_view doc) {
+  Setting<Target> s;
+  s.key = key;
+  s.type = SettingType::kWords;
+  s.choices = std::move(choices);
+  s.doc = doc;
+  s.get = [member](const Target& t) { return SettingValue(t.*member); };
+  s.set = [member](Target& t, const SettingValue& v) { t.*member = std::get<std::string>(v); };
   return s;
 }
 

@@ -269,6 +269,13 @@ void CubeWriter::Impl::open_existing(std::vector<std::int8_t>& status) {
   }
 }
 
+const std::vector<double>& CubeWriter::values(const std::string& metric) const {
+  const auto& metrics = impl_->layout.metrics;
+  for (std::size_t m = 0; m < metrics.size(); ++m)
+    if (metrics[m].name == metric) return impl_->metrics[m];
+  throw CubeError(impl_->what("has no metric '" + metric + "'"));
+}
+
 std::int64_t CubeWriter::done_count() const {
   return std::count_if(status_.begin(), status_.end(), [](std::int8_t s) { return s != kStatusNotRun; });
 }

@@ -53,15 +53,23 @@ std::optional<double> IdaSearch::hunt() const {
 
 std::optional<double> IdaSearch::fill() const {
   const double s = last_safe_intensity();
-  std::vector<double> points{0.0};
+  std::vector<double> points;
   for (const auto& r : runs_)
     if (!r.collapsed && r.intensity <= s) points.push_back(r.intensity);
   std::sort(points.begin(), points.end());
+  // A fill run may collapse (an IDA curve need not be monotone); the bracket then restarts
+  // between the gap's lower end and it. Fill only where the runs left after this one can
+  // bisect that bracket down to the resolution, so the curve always ends bracketed. The gap
+  // below the first run is left alone: a collapse there has no safe run under it.
+  const int left_after = settings_.max_runs - runs() - 1;
   double best_gap = 0.0, at = kNaN;
   for (std::size_t i = 1; i < points.size(); ++i) {
-    if (points[i] - points[i - 1] > best_gap) {
+    const double mid = 0.5 * (points[i] + points[i - 1]);
+    const double width = mid / points[i - 1] - 1.0;
+    const int needed = width > settings_.resolution ? static_cast<int>(std::ceil(std::log2(width / settings_.resolution))) : 0;
+    if (needed <= left_after && points[i] - points[i - 1] > best_gap) {
       best_gap = points[i] - points[i - 1];
-      at = 0.5 * (points[i] + points[i - 1]);
+      at = mid;
     }
   }
   if (std::isnan(at) || best_gap <= settings_.resolution * s) return std::nullopt;  // nothing left worth a run

@@ -9,8 +9,9 @@ namespace {
 
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-void mark_failed(parallel::CaseOutcome& outcome, const std::string& message) {
-  std::fill(outcome.row.begin(), outcome.row.end(), kNaN);
+/// A failed case: its metrics NaN (an IDA's intensity and factor columns stay).
+void mark_failed(parallel::CaseOutcome& outcome, std::size_t metric_count, const std::string& message) {
+  std::fill(outcome.row.begin(), outcome.row.begin() + static_cast<std::ptrdiff_t>(metric_count), kNaN);
   outcome.status = static_cast<std::int8_t>(CaseStatus::kSolverFailure);
   outcome.note = message;
 }
@@ -26,28 +27,39 @@ CaseRunner::CaseRunner(const Study& study, const CaseSpace& space, RecordCache& 
     if (m->name == "omega_max_rad_s" || m->name == "t_omega_max_s") request_.omega_peak = true;
 }
 
-parallel::CaseOutcome CaseRunner::run(std::int64_t index, const HistorySink& history) const noexcept {
+double CaseRunner::level_of(const CaseSpec& spec, const parallel::WorkItem& item) {
+  return std::isnan(spec.level) ? item.argument : spec.level;
+}
+
+parallel::CaseOutcome CaseRunner::run(const parallel::WorkItem& item, const HistorySink& history) const noexcept {
+  const std::int64_t index = item.case_index;
   parallel::CaseOutcome outcome{index, static_cast<std::int8_t>(CaseStatus::kSolverFailure),
                                 std::vector<double>(row_width(), kNaN), {}};
   try {
-    const CaseSpec spec = space_.case_at(index);
+    CaseSpec spec = space_.case_at(index);
+    spec.level = level_of(spec, item);
+    const double factor = scale_factor(spec);
+    if (study_.ida) {  // the run's intensity and factor travel with it, whatever happens next
+      outcome.row[metrics_.size()] = spec.level;
+      outcome.row[metrics_.size() + 1] = factor;
+    }
     const Frame frame = make_frame(spec.parameters);
-    const auto motion = scaled_record(spec.record, scale_factor(spec));
+    const auto motion = scaled_record(spec.record, factor);
     const CaseResult result = solve_case(frame, *motion, study_.physics, study_.solver, request_, history);
     outcome.status = static_cast<std::int8_t>(result.status);
     for (std::size_t m = 0; m < metrics_.size(); ++m) {
       const double value = metrics_[m]->get(result);
       if (std::isinf(value)) {
-        mark_failed(outcome, "case " + std::to_string(index) + ": non-finite " + std::string(metrics_[m]->name));
+        mark_failed(outcome, metrics_.size(), "case " + std::to_string(index) + ": non-finite " + std::string(metrics_[m]->name));
         return outcome;
       }
       outcome.row[m] = value;
     }
     outcome.note = result.message;
   } catch (const std::exception& e) {
-    mark_failed(outcome, e.what());
+    mark_failed(outcome, metrics_.size(), e.what());
   } catch (...) {
-    mark_failed(outcome, "unknown exception");
+    mark_failed(outcome, metrics_.size(), "unknown exception");
   }
   return outcome;
 }

@@ -31,8 +31,16 @@ std::size_t find_value(const std::vector<double>& axis, double value) {
 
 CaseSpace::CaseSpace(const Study& study) : plan_(study.plan), base_(study.base), levels_(study.levels) {
   for (const auto& r : study.records) record_names_.push_back(r.name);
-  names_ = {vocabulary::kRecord, study.intensity ? vocabulary::kIntensity : vocabulary::kScale};
-  shape_ = {record_names_.size(), levels_.size()};
+  names_ = {vocabulary::kRecord};
+  shape_ = {record_names_.size()};
+  if (study.ida) {
+    ida_runs_ = static_cast<std::size_t>(study.ida->max_runs);
+    levels_.clear();  // each run's intensity comes with it (WorkItem::argument)
+  } else {
+    names_.emplace_back(study.intensity ? vocabulary::kIntensity : vocabulary::kScale);
+    shape_.push_back(levels_.size());
+  }
+  frame_dim_ = shape_.size();
   if (plan_ == PlanKind::kGrid) {
     for (std::size_t p = 0; p < kParameterCount; ++p) {
       const auto& info = all_parameters()[p];
@@ -57,6 +65,10 @@ CaseSpace::CaseSpace(const Study& study) : plan_(study.plan), base_(study.base),
     names_.emplace_back(vocabulary::kCase);
     shape_.push_back(points_.size());
   }
+  if (ida_runs_ > 0) {
+    names_.emplace_back(vocabulary::kIdaPoint);
+    shape_.push_back(ida_runs_);
+  }
   for (auto n : shape_) size_ *= static_cast<std::int64_t>(n);
 }
 
@@ -68,12 +80,12 @@ std::int64_t CaseSpace::index(const std::vector<std::size_t>& coordinates) const
 
 CaseSpec CaseSpace::case_at(std::int64_t index) const {
   const auto c = coordinates(index);
-  CaseSpec spec{c[0], levels_[c[1]], base_};
+  CaseSpec spec{c[0], levels_.empty() ? std::nan("") : levels_[c[1]], base_};
   if (plan_ == PlanKind::kGrid) {
     for (std::size_t p = 0; p < kParameterCount; ++p)
-      spec.parameters.*all_parameters()[p].member = grid_values_[p][c[2 + p]];
+      spec.parameters.*all_parameters()[p].member = grid_values_[p][c[frame_dim_ + p]];
   } else {
-    spec.parameters = points_[c[2]].parameters;
+    spec.parameters = points_[c[frame_dim_]].parameters;
   }
   return spec;
 }

@@ -53,6 +53,7 @@ std::string canonical_description(const Study& study, const CaseSpace& space, Re
         << " samples=" << samples_hash(motion) << '\n';
   }
   if (study.intensity) describe_settings(out, intensity_settings(), *study.intensity);
+  if (study.ida) describe_settings(out, ida_settings(), *study.ida);
   out << (study.intensity ? "intensity" : "scale");
   for (double s : study.levels) out << ' ' << s;
   out << "\nbase";

@@ -78,10 +78,11 @@ void add_record_and_level(const Study& study, const CaseSpace& space, RecordCach
   const IntensitySpec& im = *study.intensity;
   const std::string units(intensity_units(im.measure));
   const std::string long_name = intensity_long_name(im.measure, im.period_s, im.damping);
-  coords.push_back(numbers(names::kIntensity, names::kIntensity, units, long_name, space.levels()));
   std::vector<double> unscaled;
   for (std::size_t r = 0; r < study.records.size(); ++r) unscaled.push_back(records.intensity(r, im));
   coords.push_back(numbers("record_" + to_string(im.measure), names::kRecord, units, "unscaled record's " + long_name, unscaled));
+  if (study.ida) return;  // the intensities are the runs' own (ida_intensity)
+  coords.push_back(numbers(names::kIntensity, names::kIntensity, units, long_name, space.levels()));
   cube::SideVariable factor{names::kScaleFactor, "1", "factor applied to the record's accelerations to reach the intensity",
                             {names::kRecord, names::kIntensity}, {}};
   for (double im_r : unscaled)
@@ -129,6 +130,28 @@ void add_settings(std::vector<Attribute>& attributes, const SettingTable<Target>
   }
 }
 
+/// An IDA's extra axis and variables: `ida_point` (the runs of a curve, in the order run),
+/// each run's intensity and scale factor, and per curve (every axis but ida_point) the
+/// collapse intensity, the last safe intensity and the number of runs.
+void add_ida_variables(const Study& study, const CaseSpace& space, cube::CubeLayout& layout) {
+  std::vector<double> points(space.ida_runs());
+  for (std::size_t k = 0; k < points.size(); ++k) points[k] = static_cast<double>(k);
+  Coordinate axis = numbers(names::kIdaPoint, names::kIdaPoint, "", "run of the IDA curve, in the order run", points);
+  axis.is_index = true;
+  layout.coordinates.push_back(std::move(axis));
+  const IntensitySpec& im = *study.intensity;
+  const std::string units(intensity_units(im.measure));
+  const std::string measure = intensity_long_name(im.measure, im.period_s, im.damping);
+  layout.metrics.push_back({names::kIdaIntensity, units, "intensity of the run: " + measure});
+  layout.metrics.push_back({names::kScaleFactor, "1", "factor applied to the record's accelerations for the run"});
+  std::vector<std::string> curve_axes(space.dimension_names().begin(), space.dimension_names().end() - 1);
+  layout.side_variables.push_back({names::kCollapseIntensity, units,
+                                   "lowest intensity found to collapse (NaN: none up to max_intensity, right-censored)",
+                                   curve_axes, {}});
+  layout.side_variables.push_back({names::kLastSafeIntensity, units, "highest safe intensity below the collapse", curve_axes, {}});
+  layout.side_variables.push_back({names::kIdaRuns, "1", "runs of the curve so far", curve_axes, {}});
+}
+
 std::vector<Attribute> global_attributes(const Study& study, const std::string& fingerprint) {
   std::vector<Attribute> a{
       {"Conventions", std::string("CF-1.8")},
@@ -143,6 +166,8 @@ std::vector<Attribute> global_attributes(const Study& study, const std::string& 
       {cube::kFingerprintName, fingerprint},
       {names::kPlan, std::string(plan_name(study.plan))},
   };
+  if (study.intensity) add_settings(a, intensity_settings(), *study.intensity);
+  if (study.ida) add_settings(a, ida_settings(), *study.ida);
   add_settings(a, physics_settings(), study.physics);
   add_settings(a, solver_settings(), study.solver);
   a.push_back({"frame_h_m", study.base.h_m});
@@ -173,6 +198,7 @@ cube::CubeLayout make_cube_layout(const Study& study, const CaseSpace& space, Re
     const MetricInfo* m = find_metric(name);
     layout.metrics.push_back({name, std::string(m->units), std::string(m->description)});
   }
+  if (study.ida) add_ida_variables(study, space, layout);
   for (CaseStatus status : all_final_statuses())
     layout.status_flags.push_back({static_cast<std::int8_t>(status), std::string(status_name(status))});
   layout.attributes = global_attributes(study, fingerprint);

@@ -154,6 +154,20 @@ void read_base(const Fields& top, Study& s) {
   read_parameters(f, size_parameters(), s.base);
 }
 
+/// What an IDA needs of the outputs: no histories (its cases are chosen as it runs), and
+/// θ_max stored when it defines collapse.
+void check_ida_outputs(const Fields& top, const Study& s) {
+  if (!s.ida) return;
+  if (!s.histories.empty())
+    Fields::fail_at(s.file, nullptr, "outputs.histories", "an IDA chooses its cases as it runs: histories are not available");
+  const bool theta_stored = std::find(s.metrics.begin(), s.metrics.end(), "theta_max_rad") != s.metrics.end();
+  if (s.ida->theta_limit_rad > 0.0 && !theta_stored) {
+    const auto line = s.setting_lines.find("ida.theta_limit_rad");
+    throw StudyError((line != s.setting_lines.end() ? line->second : top.where("ida")) +
+                     ": ida.theta_limit_rad: needs theta_max_rad among [outputs] metrics");
+  }
+}
+
 void read_intensity(const Fields& top, Study& s) {
   if (top.subtable(intensity_settings().name) == nullptr) return;
   IntensitySpec spec;
@@ -165,10 +179,30 @@ void read_intensity(const Fields& top, Study& s) {
   s.intensity = spec;
 }
 
+void read_ida(const Fields& top, Study& s) {
+  const toml::table* table = top.subtable(ida_settings().name);
+  if (table == nullptr) return;
+  IdaOptions ida;
+  detail::read_setting_table(top, ida_settings(), ida, s.setting_lines);
+  const Fields f(*table, "ida", s.file, {"start", "step", "resolution", "max_intensity", "max_runs", "collapse", "theta_limit_rad"});
+  if (!s.intensity)
+    top.fail("ida", "an IDA needs an intensity measure: add an [intensity] table (measure = \"pga_g\", \"pgv_m_s\" or \"sa_g\")");
+  if (!f.has("start")) f.fail("start", "required: the first intensity of every curve");
+  if (!f.has("max_intensity")) f.fail("max_intensity", "required: the largest intensity the search may run");
+  if (ida.max_intensity < ida.start)
+    f.fail("max_intensity", "must be at least start (" + number_text(ida.start) + ")");
+  if (ida.max_runs < 2) f.fail("max_runs", "must be at least 2 (got " + std::to_string(ida.max_runs) + ")");
+  s.ida = ida;
+}
+
 void read_axes(const Fields& top, Study& s) {
   const auto* table = top.subtable("axes");
   const bool has_intensity_axis = table != nullptr && table->contains("intensity");
-  if (s.intensity && !has_intensity_axis)
+  if (s.ida && table != nullptr && (table->contains("intensity") || table->contains("scale")))
+    Fields(*table, "axes", s.file, with_parameter_keys({"scale", "intensity"}))
+        .fail(table->contains("intensity") ? "intensity" : "scale",
+              "with [ida] the search chooses the intensities: give no intensity or scale axis");
+  if (s.intensity && !s.ida && !has_intensity_axis)
     top.fail("intensity", "an [intensity] table needs [axes] intensity = [...] (values in " +
                               std::string(intensity_units(s.intensity->measure)) + ")");
   if (table != nullptr) {
@@ -434,18 +468,20 @@ Study parse_study(const std::string& text, const std::string& file, const std::f
   s.base_dir = base_dir;
   s.text = text;
   Fields top(root, "", file,
-             {"study", "plan", "records", "axes", "base", "cases", intensity_settings().name, physics_settings().name,
-              solver_settings().name, "outputs", run_settings().name});
+             {"study", "plan", "records", "axes", "base", "cases", intensity_settings().name, ida_settings().name,
+              physics_settings().name, solver_settings().name, "outputs", run_settings().name});
   read_study_section(top, s);
   read_plan(top, s);
   read_base(top, s);  // before axes and cases: they start from the base point
   read_intensity(top, s);  // before axes: it decides what the second axis is
+  read_ida(top, s);
   read_axes(top, s);
   read_cases(top, s);
   read_records(top, s);
   detail::read_setting_table(top, physics_settings(), s.physics, s.setting_lines);
   detail::read_setting_table(top, solver_settings(), s.solver, s.setting_lines);
   read_outputs(top, s);
+  check_ida_outputs(top, s);
   detail::read_setting_table(top, run_settings(), s.run, s.setting_lines);
   return s;
 }

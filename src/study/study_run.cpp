@@ -3,6 +3,7 @@
 #include "pcrf/study/study_run.hpp"
 
 #include <chrono>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -12,6 +13,7 @@
 #include "pcrf/parallel/scheduler.hpp"
 #include "pcrf/parallel/work_queue.hpp"
 #include "pcrf/study/case_runner.hpp"
+#include "pcrf/study/ida_work.hpp"
 #include "pcrf/study/progress.hpp"
 #include "pcrf/study/study_check.hpp"
 #include "pcrf/study/study_cube.hpp"
@@ -88,8 +90,11 @@ parallel::ScheduleOptions schedule_options(const Study& study, const CaseRunner&
 /// flush interval and reports progress. Runs in the master thread only.
 class ResultSink {
  public:
-  ResultSink(cube::CubeWriter& writer, ProgressMeter& meter, HistoryInbox& inbox, double flush_interval_s)
-      : writer_(writer), meter_(meter), inbox_(inbox), flush_interval_s_(flush_interval_s) {}
+  /// `before_flush` (optional) updates what the cube holds besides the cases (IDA summaries).
+  ResultSink(cube::CubeWriter& writer, ProgressMeter& meter, HistoryInbox& inbox, double flush_interval_s,
+             std::function<void()> before_flush = {})
+      : writer_(writer), meter_(meter), inbox_(inbox), flush_interval_s_(flush_interval_s),
+        before_flush_(std::move(before_flush)) {}
 
   void store(parallel::ResultBatch&& batch) {
     std::int64_t failed = 0;
@@ -106,6 +111,7 @@ class ResultSink {
     take_histories();
     const auto now = std::chrono::steady_clock::now();
     if (std::chrono::duration<double>(now - last_flush_).count() >= flush_interval_s_) {
+      if (before_flush_) before_flush_();
       writer_.flush();
       last_flush_ = now;
     }
@@ -114,6 +120,7 @@ class ResultSink {
 
   void close() {
     take_histories();
+    if (before_flush_) before_flush_();
     writer_.close();
   }
 
@@ -126,6 +133,7 @@ class ResultSink {
   ProgressMeter& meter_;
   HistoryInbox& inbox_;
   double flush_interval_s_;
+  std::function<void()> before_flush_;
   std::chrono::steady_clock::time_point last_flush_ = std::chrono::steady_clock::now();
 };
 
@@ -153,20 +161,29 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
   StudySummary summary{p.space->size(), m.writer->done_count(), 0, 0, m.output, m.checked.fingerprint};
   ProgressMeter meter(summary.total, summary.already_done, p.study.run.progress_interval_s, progress);
   HistoryInbox inbox;
-  ResultSink sink(*m.writer, meter, inbox, p.study.run.flush_interval_s);
+  // The cases come from the IDA's search, or from the list of cases not done yet.
+  std::unique_ptr<parallel::WorkSource> work;
+  std::function<void()> before_flush;
+  if (p.study.ida) {
+    auto ida = make_ida_plan(p.study, *p.space, *m.writer, parallel::worker_count(mpi.comm()));
+    before_flush = [plan = ida.get(), writer = m.writer.get()] { store_ida_summaries(*plan, *writer); };
+    work = std::move(ida);
+  } else {
+    work = std::make_unique<parallel::WorkQueue>(pending_cases(*m.writer, history_labels, p.study, mpi));
+  }
+  ResultSink sink(*m.writer, meter, inbox, p.study.run.flush_interval_s, before_flush);
 
   // Runs in rank 0's worker thread; the only place where histories are recorded.
   auto evaluate = [&](const parallel::WorkItem& item) {
     const std::int64_t index = item.case_index;
     const auto label = history_labels.find(index);
-    if (label == history_labels.end()) return runner.run(index);
+    if (label == history_labels.end()) return runner.run(item);
     std::vector<HistorySample> samples;
-    auto outcome = runner.run(index, [&samples](const HistorySample& s) { samples.push_back(s); });
+    auto outcome = runner.run(item, [&samples](const HistorySample& s) { samples.push_back(s); });
     inbox.push(make_history_table(label->second, index, p.study, *p.space, samples));
     return outcome;
   };
-  auto work = pending_cases(*m.writer, history_labels, p.study, mpi);
-  parallel::run_master(mpi.comm(), work, schedule_options(p.study, runner),
+  parallel::run_master(mpi.comm(), *work, schedule_options(p.study, runner),
                        evaluate, [&sink](parallel::ResultBatch&& batch) { sink.store(std::move(batch)); },
                        [&sink] { sink.idle(); });
   sink.close();
@@ -179,7 +196,7 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
 void run_worker_rank(const Prepared& p, const parallel::MpiSession& mpi) {
   CaseRunner runner(p.study, *p.space, *p.records);
   parallel::run_worker(mpi.comm(), schedule_options(p.study, runner),
-                       [&runner](const parallel::WorkItem& item) { return runner.run(item.case_index); });
+                       [&runner](const parallel::WorkItem& item) { return runner.run(item); });
 }
 
 /// Workers parse the study text rank 0 checked (same base folder for relative records).

@@ -156,6 +156,15 @@ SettingValue Fields::raw_value(std::string_view key) const {
   if (const auto* f = n.as_floating_point()) return f->get();
   if (const auto* b = n.as_boolean()) return b->get();
   if (const auto* s = n.as_string()) return s->get();
+  if (const auto* a = n.as_array()) {  // a list of words, as one comma-separated value
+    std::string words;
+    for (std::size_t i = 0; i < a->size(); ++i) {
+      const auto* w = (*a)[i].as_string();
+      if (w == nullptr) fail_at(file_, &(*a)[i], path(key) + "[" + std::to_string(i) + "]", "expected a string");
+      words += (i ? "," : "") + w->get();
+    }
+    return words;
+  }
   fail(key, "expected a single value, got " + type_name(n));
 }
 

@@ -50,7 +50,7 @@ TEST(IdaSearch, BracketsEveryCollapseIntensityToTheResolutionWithin16Runs) {
     EXPECT_GE(c, x_c);
     EXPECT_LT(s, x_c);
     EXPECT_LE(c / s - 1.0, 0.02) << "x_c = " << x_c;
-    EXPECT_EQ(search.runs(), 16);  // the rest of the budget fills the curve
+    EXPECT_LE(search.runs(), 16);  // the rest of the budget fills the curve, where a new bracket could still close
   }
   EXPECT_LE(worst_runs_to_bracket, 13);
 }
@@ -67,13 +67,20 @@ TEST(IdaSearch, ACollapseBandBelowTheFirstCollapseIsFoundByTheFill) {
   // again from 5: the fill finds the band, and the lowest collapse wins.
   const auto band = [](double x) { return (x >= 2.2 && x <= 2.6) || x >= 5.0; };
   const auto s16 = trace(defaults(), band);
-  EXPECT_LT(s16.collapse_intensity(), 2.61);  // found, though 16 runs do not bracket it to 2 %
-  EXPECT_LT(s16.last_safe_intensity(), s16.collapse_intensity());
+  EXPECT_LE(s16.collapse_intensity() / s16.last_safe_intensity() - 1.0, 0.02);  // bracketed, whichever it found
   auto more = defaults();
   more.max_runs = 30;
   const auto s30 = trace(more, band);
   EXPECT_GE(s30.collapse_intensity(), 2.2);
   EXPECT_LE(s30.collapse_intensity() / s30.last_safe_intensity() - 1.0, 0.02);
+}
+
+TEST(IdaSearch, AFillThatFindsALowerCollapseStillEndsBracketed) {
+  // Non-monotone curves: collapse bands at random places below the main collapse.
+  for (double band = 0.7; band < 8.0; band *= 1.07) {
+    const auto s = trace(defaults(), [band](double x) { return (x >= band && x <= band * 1.1) || x >= 9.0; });
+    EXPECT_LE(s.collapse_intensity() / s.last_safe_intensity() - 1.0, 0.02) << "band at " << band;
+  }
 }
 
 TEST(IdaSearch, TheSameResultsGiveTheSameRuns) {

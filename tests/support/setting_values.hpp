@@ -17,6 +17,7 @@ SettingValue other_value(const Setting<Target>& s, const SettingValue& current) 
   switch (s.type) {
     case SettingType::kFlag: return !std::get<bool>(current);
     case SettingType::kInteger: return std::get<std::int64_t>(current) * 2 + 1;
+    case SettingType::kWords: return s.choices.front();
     case SettingType::kChoice:
       for (std::size_t i = 0; i < s.choices.size(); ++i)
         if (s.choices[i] == std::get<std::string>(current)) return s.choices[(i + 1) % s.choices.size()];
@@ -24,7 +25,7 @@ SettingValue other_value(const Setting<Target>& s, const SettingValue& current) 
     case SettingType::kNumber: break;
   }
   const double v = std::get<double>(current);
-  if (s.bound == Bound::kFraction) return v == 0.0 ? 0.5 : 0.5 * v;
+  if (s.bound == Bound::kFraction || s.bound == Bound::kOpenUnit) return v == 0.0 ? 0.5 : 0.5 * v;
   return v == 0.0 ? 0.5 : 2.0 * v;
 }
 
@@ -32,7 +33,7 @@ SettingValue other_value(const Setting<Target>& s, const SettingValue& current) 
 /// its type is allowed.
 template <class Target>
 std::optional<std::string> out_of_bound_text(const Setting<Target>& s) {
-  if (s.type == SettingType::kChoice) return std::string("no-such-word");
+  if (s.type == SettingType::kChoice || s.type == SettingType::kWords) return std::string("no-such-word");
   if (s.type == SettingType::kFlag) return std::string("maybe");
   switch (s.bound) {
     case Bound::kAny: return std::nullopt;
@@ -40,6 +41,7 @@ std::optional<std::string> out_of_bound_text(const Setting<Target>& s) {
     case Bound::kNonNegative: return std::string("-1");
     case Bound::kAtLeastOne: return std::string("0");
     case Bound::kFraction: return std::string("1");
+    case Bound::kOpenUnit: return std::string("1");
   }
   return std::nullopt;
 }

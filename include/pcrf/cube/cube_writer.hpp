@@ -54,6 +54,9 @@ class CubeWriter {
   /// Status of every case (kStatusNotRun where not computed yet).
   const std::vector<std::int8_t>& status() const { return status_; }
   std::int64_t done_count() const;
+  /// The values of a metric held in memory (every case, NaN where not computed).
+  /// \throws CubeError for an unknown metric.
+  const std::vector<double>& values(const std::string& metric) const;
 
   /// Stores one case in memory. `values` holds one value per metric, in layout order.
   void store(std::int64_t index, std::int8_t status, const std::vector<double>& values);

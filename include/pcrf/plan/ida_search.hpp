@@ -11,8 +11,10 @@
 ///         collapse until (collapse − safe)/safe ≤ `resolution` (when the very first run
 ///         collapses, halve down from it until a run is safe).
 ///  fill   the remaining runs, up to `max_runs`, halve the largest gap between the safe
-///         runs (0 counts as one), so the curve is traced where the frame survives. A fill
-///         run that collapses lowers the collapse and the bracket is refined again.
+///         runs, so the curve is traced where the frame survives. A fill run that collapses
+///         lowers the collapse and the bracket is refined again; a gap is filled only while
+///         the runs left could bisect such a new bracket down to `resolution`, so a curve that
+///         was bracketed stays bracketed.
 /// The next intensity depends only on this curve's own results, so a resumed or differently
 /// scheduled search makes the same runs.
 #pragma once

@@ -2,7 +2,8 @@
 /// \brief Runs one case of a study: builds the frame, scales the record, calls solve_case
 /// and packs the stored metrics into a result row. Knows nothing of MPI or HDF5.
 ///
-/// An outcome's status is the CaseStatus; its row holds the metrics of Study::metrics in order.
+/// An outcome's status is the CaseStatus; its row holds the metrics of Study::metrics in order,
+/// then, in an IDA, the run's intensity and scale factor (ida_columns()).
 #pragma once
 
 #include <cstdint>
@@ -12,6 +13,7 @@
 
 #include "pcrf/metrics/case_result.hpp"
 #include "pcrf/parallel/result_batch.hpp"
+#include "pcrf/parallel/work_source.hpp"
 #include "pcrf/solver/rocking_solver.hpp"
 #include "pcrf/study/case_space.hpp"
 #include "pcrf/study/record_source.hpp"
@@ -24,13 +26,13 @@ class CaseRunner {
   /// Keeps references: the study, the space and the cache must outlive the runner.
   CaseRunner(const Study& study, const CaseSpace& space, RecordCache& records);
 
-  std::size_t row_width() const { return metrics_.size(); }
+  std::size_t row_width() const { return metrics_.size() + (study_.ida ? 2 : 0); }
   const std::vector<const MetricInfo*>& metrics() const { return metrics_; }
 
-  /// Runs case `index`. Never throws: a failure becomes status solver_failure with NaN
-  /// metrics and the message as the outcome's note. Infinite metric values also count as a
-  /// solver failure.
-  parallel::CaseOutcome run(std::int64_t index, const HistorySink& history = {}) const noexcept;
+  /// Runs case `item.case_index` (in an IDA, at the intensity `item.argument`). Never throws:
+  /// a failure becomes status solver_failure with NaN metrics and the message as the
+  /// outcome's note. Infinite metric values also count as a solver failure.
+  parallel::CaseOutcome run(const parallel::WorkItem& item, const HistorySink& history = {}) const noexcept;
 
  private:
   /// The record scaled for a case. Consecutive cases usually share record and scale (the
@@ -39,6 +41,8 @@ class CaseRunner {
   std::shared_ptr<const GroundMotion> scaled_record(std::size_t record, double scale) const;
   /// The factor a case multiplies its record by: its level, or level / IM(record).
   double scale_factor(const CaseSpec& spec) const;
+  /// The level of a case: its axis value, or in an IDA the intensity its work item carries.
+  static double level_of(const CaseSpec& spec, const parallel::WorkItem& item);
 
   const Study& study_;
   const CaseSpace& space_;

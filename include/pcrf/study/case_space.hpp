@@ -56,6 +56,12 @@ class CaseSpace {
   /// Distinct frames of the study (every parameter combination), for up-front checks.
   std::vector<FrameParameters> frames() const;
 
+  /// IDA: runs per curve (the last axis, ida_point); 0 otherwise. Curve c's k-th run is case
+  /// c · ida_runs() + k, the curves being the records × frames in row-major order.
+  std::size_t ida_runs() const { return ida_runs_; }
+  /// Number of curves of an IDA (records × frames).
+  std::int64_t curves() const { return ida_runs_ > 0 ? size_ / static_cast<std::int64_t>(ida_runs_) : 0; }
+
   /// The single case a history request names. \throws StudyError naming the request.
   std::int64_t resolve(const HistoryRequest& request) const;
 
@@ -67,6 +73,8 @@ class CaseSpace {
   std::int64_t size_ = 1;
   std::vector<std::string> record_names_;
   std::vector<double> levels_;
+  std::size_t frame_dim_ = 2;  ///< first frame axis (after record and the level axis, if any)
+  std::size_t ida_runs_ = 0;
   std::array<std::vector<double>, kParameterCount> grid_values_;
   std::vector<CasePoint> points_;
 };

@@ -17,6 +17,7 @@
 
 #include "pcrf/model/frame.hpp"
 #include "pcrf/model/parameters.hpp"
+#include "pcrf/plan/ida_search.hpp"
 #include "pcrf/record/intensity.hpp"
 #include "pcrf/setting.hpp"
 #include "pcrf/solver/settings.hpp"
@@ -60,6 +61,23 @@ struct RunOptions {
 /// The [run] table; `pcrf study` also takes each key as a flag (`--flush-interval-s`).
 const SettingTable<RunOptions>& run_settings();
 
+/// The [ida] table: an adaptive search of each record's collapse intensity, per frame.
+/// Described in ida_settings(); the search itself is plan::IdaSearch.
+struct IdaOptions {
+  double start = 0.0;
+  double step = 0.0;
+  double resolution = 0.02;
+  double max_intensity = 0.0;
+  long max_runs = 16;
+  std::string collapse = "tendon_fracture,overturned";
+  double theta_limit_rad = 0.0;
+
+  plan::IdaSearchSettings search() const {
+    return {start, step, resolution, max_intensity, static_cast<int>(max_runs)};
+  }
+};
+const SettingTable<IdaOptions>& ida_settings();
+
 struct Study {
   std::string name;
   std::string description;
@@ -76,6 +94,8 @@ struct Study {
   /// intensity / IM(record)).
   std::vector<double> levels{1.0};
   std::optional<IntensitySpec> intensity;  ///< the [intensity] table, when given
+  /// The [ida] table, when given: the intensity axis becomes a search, `levels` is unused.
+  std::optional<IdaOptions> ida;
   FrameParameters base;             ///< the base point; h_m and m_c_kg of every case
   /// Grid: the values of each parameter axis (empty: the base value only).
   /// One-at-a-time: the values each parameter is swept over (empty: not swept).

@@ -1,0 +1,70 @@
+// The adaptive IDA as a work source (see ida_plan.hpp).
+#include "pcrf/plan/ida_plan.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace pcrf::plan {
+namespace {
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+}
+
+IdaPlan::IdaPlan(std::size_t curves, const IdaSearchSettings& settings, CollapseTest collapsed, int workers)
+    : settings_(settings),
+      collapsed_(std::move(collapsed)),
+      workers_(std::max(workers, 1)),
+      searches_(curves, IdaSearch(settings)),
+      in_flight_(curves, kNaN) {
+  for (std::size_t c = 0; c < curves; ++c) ready_.push_back(c);
+}
+
+void IdaPlan::replay(std::size_t curve, int point, double intensity, bool collapsed) {
+  if (point != searches_.at(curve).runs())
+    throw std::invalid_argument("IDA replay: curve " + std::to_string(curve) + " point " + std::to_string(point) +
+                                " out of order");
+  searches_[curve].add(intensity, collapsed);
+  refresh(curve);
+}
+
+void IdaPlan::refresh(std::size_t curve) {
+  const bool wants = searches_[curve].next().has_value() && std::isnan(in_flight_[curve]);
+  const auto at = std::find(ready_.begin(), ready_.end(), curve);
+  if (wants && at == ready_.end()) ready_.push_back(curve);
+  if (!wants && at != ready_.end()) ready_.erase(at);
+}
+
+parallel::WorkBatch IdaPlan::take(bool) {
+  // Guided: a share of the ready curves, so every worker gets some while many are ready.
+  const std::size_t share = 4 * static_cast<std::size_t>(workers_);
+  const std::size_t n = std::clamp<std::size_t>((ready_.size() + share - 1) / share, 1, 64);
+  parallel::WorkBatch batch;
+  while (batch.size() < n && !ready_.empty()) {
+    const std::size_t c = ready_.front();
+    ready_.erase(ready_.begin());
+    const double x = *searches_[c].next();
+    in_flight_[c] = x;
+    ++running_;
+    const auto index = static_cast<std::int64_t>(c) * settings_.max_runs + searches_[c].runs();
+    batch.push_back({index, x});
+  }
+  return batch;
+}
+
+void IdaPlan::completed(const parallel::CaseOutcome& outcome) {
+  const auto c = static_cast<std::size_t>(outcome.case_index / settings_.max_runs);
+  if (c >= searches_.size() || std::isnan(in_flight_[c])) return;  // not one of ours
+  searches_[c].add(in_flight_[c], collapsed_(outcome));
+  in_flight_[c] = kNaN;
+  --running_;
+  refresh(c);
+}
+
+bool IdaPlan::exhausted() const { return ready_.empty() && running_ == 0; }
+
+std::size_t IdaPlan::finished_curves() const {
+  return static_cast<std::size_t>(std::count_if(searches_.begin(), searches_.end(), [](const IdaSearch& s) { return s.done(); }));
+}
+
+}  // namespace pcrf::plan

@@ -1,0 +1,82 @@
+// A study's adaptive IDA as scheduler work (see ida_work.hpp).
+#include "pcrf/study/ida_work.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "pcrf/metrics/case_result.hpp"
+#include "pcrf/study/case_runner.hpp"
+#include "pcrf/study/cube_vocabulary.hpp"
+
+namespace pcrf::study {
+namespace {
+
+/// Which verdicts end a curve's hunt: the [ida] collapse statuses, a failed run (its
+/// response is unknown: conservatively a collapse, as IDA practice counts non-convergence),
+/// and, with theta_limit_rad, a peak rotation at or above it.
+class CollapseRule {
+ public:
+  explicit CollapseRule(const Study& study) : limit_rad_(study.ida->theta_limit_rad) {
+    std::stringstream words(study.ida->collapse);
+    for (std::string word; std::getline(words, word, ',');)
+      for (CaseStatus s : all_final_statuses())
+        if (status_name(s) == word) statuses_.push_back(static_cast<std::int8_t>(s));
+    const auto it = std::find(study.metrics.begin(), study.metrics.end(), "theta_max_rad");
+    theta_column_ = it == study.metrics.end() ? -1 : static_cast<int>(it - study.metrics.begin());
+  }
+
+  bool operator()(std::int8_t status, double theta_max_rad) const {
+    const auto s = static_cast<CaseStatus>(status);
+    if (is_failure(s) || status == parallel::kEvaluatorThrew) return true;
+    if (std::find(statuses_.begin(), statuses_.end(), status) != statuses_.end()) return true;
+    return limit_rad_ > 0.0 && theta_max_rad >= limit_rad_;
+  }
+  /// θ_max of a row (NaN when not stored).
+  double theta(const std::vector<double>& row) const { return theta_column_ < 0 ? std::nan("") : row[static_cast<std::size_t>(theta_column_)]; }
+  int theta_column() const { return theta_column_; }
+
+ private:
+  double limit_rad_;
+  std::vector<std::int8_t> statuses_;
+  int theta_column_;
+};
+
+}  // namespace
+
+std::unique_ptr<plan::IdaPlan> make_ida_plan(const Study& study, const CaseSpace& space, const cube::CubeWriter& writer,
+                                             int workers) {
+  const CollapseRule rule(study);
+  auto plan = std::make_unique<plan::IdaPlan>(
+      static_cast<std::size_t>(space.curves()), study.ida->search(),
+      [rule](const parallel::CaseOutcome& o) { return rule(o.status, rule.theta(o.row)); }, workers);
+  // Resume: each curve's stored runs, in order, up to the first one not stored (a curve has
+  // at most one run in flight, so a killed run leaves no gap before its last stored point).
+  const auto& status = writer.status();
+  const auto& intensity = writer.values(vocabulary::kIdaIntensity);
+  const std::vector<double>* theta = rule.theta_column() < 0 ? nullptr : &writer.values("theta_max_rad");
+  const auto runs = static_cast<std::int64_t>(space.ida_runs());
+  for (std::int64_t c = 0; c < space.curves(); ++c) {
+    for (std::int64_t k = 0; k < runs; ++k) {
+      const auto i = static_cast<std::size_t>(c * runs + k);
+      if (status[i] == cube::kStatusNotRun) break;
+      plan->replay(static_cast<std::size_t>(c), static_cast<int>(k), intensity[i],
+                   rule(status[i], theta ? (*theta)[i] : std::nan("")));
+    }
+  }
+  return plan;
+}
+
+void store_ida_summaries(const plan::IdaPlan& plan, cube::CubeWriter& writer) {
+  std::vector<double> collapse, safe, runs;
+  for (std::size_t c = 0; c < plan.curves(); ++c) {
+    collapse.push_back(plan.curve(c).collapse_intensity());
+    safe.push_back(plan.curve(c).last_safe_intensity());
+    runs.push_back(static_cast<double>(plan.curve(c).runs()));
+  }
+  writer.store_side(vocabulary::kCollapseIntensity, std::move(collapse));
+  writer.store_side(vocabulary::kLastSafeIntensity, std::move(safe));
+  writer.store_side(vocabulary::kIdaRuns, std::move(runs));
+}
+
+}  // namespace pcrf::study

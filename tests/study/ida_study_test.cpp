@@ -1,0 +1,156 @@
+// The adaptive IDA end to end: the cube holds every curve's runs over ida_point and its
+// summaries; a curve's collapse and last safe intensities rerun with `pcrf run` collapse and
+// do not; ranks do not change the result; a killed IDA resumes to the uninterrupted cube.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <chrono>
+#include <cmath>
+#include <thread>
+
+#include "pcrf/cube/cube_reader.hpp"
+#include "study/study_test_support.hpp"
+
+extern char** environ;
+
+namespace pcrf::study_test {
+namespace {
+
+std::string ida_study(int records, int max_runs) {
+  std::string text = "[[records]]\nsynthetic = [";
+  for (int seed = 1; seed <= records; ++seed)
+    text += std::string(seed > 1 ? ", " : "") + "\"stochastic:seed=" + std::to_string(seed) + ",pga_g=1,duration_s=8\"";
+  return text + "]\n[axes]\nkappa = [1.4, 2.2]\n[intensity]\nmeasure = \"pga_g\"\n[ida]\nstart = 0.5\nmax_intensity = 8\n"
+                "max_runs = " + std::to_string(max_runs) + "\n[outputs]\nmetrics = [\"theta_max_rad\", \"impacts\"]\n";
+}
+
+test::CommandResult run_ida(const std::filesystem::path& dir, const std::string& text, const std::string& output,
+                            const std::string& launcher = "") {
+  const auto file = test::write_file(dir, "ida.toml", text);
+  return test::run_command("cd " + quoted(dir) + " && " + launcher + pcrf() + " study " + quoted(file) + " -o " + output +
+                           " --progress-interval 0");
+}
+
+bool collapsed(std::int8_t status) { return status == 2 || status == 3 || status == 4 || status == 5; }
+
+TEST(IdaStudy, CurvesAreBracketedAndTheirEndsRerunAsTheySay) {
+  const auto dir = test::scratch_dir("ida_study");
+  ASSERT_EQ(run_ida(dir, ida_study(3, 14), "ida.h5").exit_code, 0);
+  cube::CubeReader cube(dir / "ida.h5");
+  const auto& layout = cube.layout();
+  ASSERT_EQ(layout.dimensions.back().name, "ida_point");
+  ASSERT_EQ(layout.dimensions.back().size, 14u);
+  const auto status = cube.read_status();
+  const auto intensity = cube.read_metric("ida_intensity");
+  const auto c = cube.read_side("collapse_intensity");
+  const auto s = cube.read_side("last_safe_intensity");
+  const auto runs = cube.read_side("ida_runs");
+  ASSERT_EQ(c.size(), 6u);  // 3 records × 2 frames
+  const auto* kappa = layout.find_coordinate("kappa");
+  for (std::size_t curve = 0; curve < 6; ++curve) {
+    // The summaries are those of the stored points.
+    double lowest_collapse = NAN, highest_safe = NAN;
+    int stored = 0;
+    for (std::size_t k = 0; k < 14; ++k) {
+      const auto i = curve * 14 + k;
+      if (status[i] == cube::kStatusNotRun) continue;
+      ++stored;
+      if (collapsed(status[i]) && !(intensity[i] >= lowest_collapse)) lowest_collapse = intensity[i];
+    }
+    for (std::size_t k = 0; k < 14; ++k) {
+      const auto i = curve * 14 + k;
+      if (status[i] != cube::kStatusNotRun && !collapsed(status[i]) && intensity[i] < lowest_collapse &&
+          !(intensity[i] <= highest_safe))
+        highest_safe = intensity[i];
+    }
+    EXPECT_EQ(runs[curve], stored);
+    ASSERT_EQ(c[curve], lowest_collapse) << "curve " << curve;
+    EXPECT_EQ(s[curve], highest_safe);
+    EXPECT_LE(c[curve] / s[curve] - 1.0, 0.02) << "curve " << curve;
+    // Rerun both ends alone.
+    const std::size_t record = curve / 2;
+    const std::string base = pcrf() + " run --synthetic 'stochastic:seed=" + std::to_string(record + 1) +
+                             ",pga_g=1,duration_s=8' --kappa " + kappa->label(curve % 2) + " --measure pga_g --intensity ";
+    auto status_at = [&](double x) {
+      char text[32];
+      std::snprintf(text, sizeof text, "%.17g", x);
+      const auto r = test::run_command(base + text);
+      const auto at = r.out.find("\"status\": \"");
+      return r.out.substr(at + 11, r.out.find('"', at + 11) - at - 11);
+    };
+    const auto at_collapse = status_at(c[curve]);
+    EXPECT_TRUE(at_collapse == "tendon_fracture" || at_collapse == "overturned") << at_collapse;
+    const auto at_safe = status_at(s[curve]);
+    EXPECT_TRUE(at_safe == "at_rest" || at_safe == "rocking_at_end") << at_safe;
+  }
+}
+
+TEST(IdaStudy, RanksDoNotChangeTheCurves) {
+  PCRF_REQUIRE_MPIRUN();
+  const auto dir = test::scratch_dir("ida_ranks");
+  ASSERT_EQ(run_ida(dir, ida_study(4, 12), "one.h5").exit_code, 0);
+  ASSERT_EQ(run_ida(dir, ida_study(4, 12), "three.h5", mpirun(3)).exit_code, 0);
+  expect_same_cube(dir / "one.h5", dir / "three.h5");
+  cube::CubeReader one(dir / "one.h5"), three(dir / "three.h5");
+  EXPECT_EQ(one.read_side("collapse_intensity"), three.read_side("collapse_intensity"));
+  EXPECT_EQ(one.read_side("ida_runs"), three.read_side("ida_runs"));
+}
+
+TEST(IdaStudy, AKilledIdaResumesToTheUninterruptedCube) {
+  const auto dir = test::scratch_dir("ida_kill");
+  const std::string text = ida_study(14, 14);
+  const auto start = std::chrono::steady_clock::now();
+  ASSERT_EQ(run_ida(dir, text, "whole.h5").exit_code, 0);
+  const double whole_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const std::string command = "cd " + quoted(dir) + " && exec " + pcrf() + " study ida.toml -o killed.h5" +
+                              " --flush-interval-s 0.02 --progress-interval 0";
+  pid_t pid = 0;
+  const char* argv[] = {"/bin/sh", "-c", command.c_str(), nullptr};
+  ASSERT_EQ(posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ), 0);
+  std::this_thread::sleep_for(std::chrono::duration<double>(0.5 * whole_s));
+  ::kill(pid, SIGKILL);
+  int wstatus = 0;
+  ::waitpid(pid, &wstatus, 0);
+  {
+    cube::CubeReader killed(dir / "killed.h5");
+    const auto runs = killed.read_side("ida_runs");
+    const auto whole_runs = cube::CubeReader(dir / "whole.h5").read_side("ida_runs");
+    EXPECT_NE(runs, whole_runs) << "the IDA finished before it was killed: make it longer";
+  }
+  const auto resumed = test::run_command("cd " + quoted(dir) + " && " + pcrf() + " study ida.toml -o killed.h5 --resume --progress-interval 0");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  expect_same_cube(dir / "whole.h5", dir / "killed.h5");
+  cube::CubeReader whole(dir / "whole.h5"), killed(dir / "killed.h5");
+  EXPECT_EQ(whole.read_side("collapse_intensity"), killed.read_side("collapse_intensity"));
+  EXPECT_EQ(whole.read_side("last_safe_intensity"), killed.read_side("last_safe_intensity"));
+  EXPECT_EQ(whole.read_side("ida_runs"), killed.read_side("ida_runs"));
+}
+
+TEST(IdaStudy, BadIdaStudiesAreRejected) {
+  const auto dir = test::scratch_dir("ida_bad");
+  const std::string records = "[[records]]\nsynthetic = \"stochastic:seed=1,pga_g=1,duration_s=4\"\n";
+  const std::string im = "[intensity]\nmeasure = \"pga_g\"\n";
+  const std::vector<std::pair<std::string, std::string>> corpus = {
+      {records + "[ida]\nstart = 0.5\nmax_intensity = 8\n", "an IDA needs an intensity measure"},
+      {records + im + "[ida]\nstart = 0.5\nmax_intensity = 8\nresolution = 0\n", "ida.resolution: must be above 0 and below 1"},
+      {records + im + "[ida]\nstart = 0.5\nmax_intensity = 8\nresolution = 1\n", "ida.resolution: must be above 0 and below 1"},
+      {records + im + "[ida]\nstart = 0.5\nmax_intensity = 8\nmax_runs = 1\n", "ida.max_runs: must be at least 2"},
+      {records + im + "[ida]\nmax_intensity = 8\n", "ida.start: required"},
+      {records + im + "[ida]\nstart = 0.5\n", "ida.max_intensity: required"},
+      {records + im + "[ida]\nstart = 0.5\nmax_intensity = 8\ncollapse = [\"at_rest\"]\n", "ida.collapse: unknown value \"at_rest\""},
+      {records + im + "[ida]\nstart = 0.5\nmax_intensity = 8\n[axes]\nintensity = [1]\n", "the search chooses the intensities"},
+      {records + im + "[ida]\nstart = 0.5\nmax_intensity = 8\ntheta_limit_rad = 0.1\n[outputs]\nmetrics = [\"impacts\"]\n",
+       "ida.theta_limit_rad: needs theta_max_rad"},
+  };
+  for (const auto& [text, message] : corpus) {
+    const auto r = run_ida(dir, text, "bad.h5");
+    EXPECT_EQ(r.exit_code, 2) << text;
+    EXPECT_NE(r.err.find(message), std::string::npos) << "got: " << r.err << "\nfor:\n" << text;
+    EXPECT_FALSE(std::filesystem::exists(dir / "bad.h5"));
+  }
+}
+
+}  // namespace
+}  // namespace pcrf::study_test
