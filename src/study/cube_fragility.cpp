@@ -50,12 +50,72 @@ struct FrameCases {
 }  // namespace
 
 std::string intensity_units(const cube::CubeReader& cube) {
-  const auto* c = cube.layout().find_coordinate(vocabulary::kIntensity);
-  return c == nullptr ? "" : c->units;
+  if (const auto* c = cube.layout().find_coordinate(vocabulary::kIntensity)) return c->units;
+  if (const auto* v = cube.layout().find_side_variable(vocabulary::kCollapseIntensity)) return v->units;
+  return "";
 }
+
+namespace {
+
+/// IDA cube: each curve's collapse intensity, or (none found) a right-censored value at its
+/// last safe intensity; one fit per frame, the bootstrap resampling records.
+std::vector<FrameFragility> ida_fragility(const cube::CubeReader& cube, const std::vector<cube::Selector>& selectors) {
+  const auto& layout = cube.layout();
+  const std::size_t record_dim = dimension_index(layout, vocabulary::kRecord);
+  const std::size_t point_dim = dimension_index(layout, vocabulary::kIdaPoint);
+  const std::size_t records = layout.dimensions[record_dim].size;
+  const std::size_t runs = layout.dimensions[point_dim].size;
+  const auto collapse = cube.read_side(vocabulary::kCollapseIntensity);
+  const auto safe = cube.read_side(vocabulary::kLastSafeIntensity);
+  const auto selected = cube::select_cases(layout, selectors);
+  std::vector<std::size_t> curve_shape(layout.shape());
+  curve_shape.pop_back();  // ida_point is the last axis
+
+  std::map<std::string, std::vector<std::size_t>> curves_of;  // frame label → its curves, by record
+  std::vector<std::string> order;
+  for (std::size_t curve = 0; curve < collapse.size(); ++curve) {
+    if (!selected[curve * runs]) continue;
+    auto coords = unravel(static_cast<std::int64_t>(curve), curve_shape);
+    coords.push_back(0);
+    const std::string label = frame_label(layout, coords, record_dim, point_dim);
+    auto [it, inserted] = curves_of.try_emplace(label);
+    if (inserted) order.push_back(label);
+    it->second.push_back(curve);
+  }
+  std::vector<FrameFragility> result;
+  for (const auto& label : order) {
+    const auto& curves = curves_of.at(label);
+    FrameFragility out;
+    out.frame = label;
+    out.records = records;
+    auto fit = [&](const std::vector<std::size_t>& sample) {
+      std::vector<double> observed, censored;
+      for (std::size_t k : sample) {
+        const std::size_t curve = curves[k];
+        if (std::isfinite(collapse[curve])) observed.push_back(collapse[curve]);
+        else if (std::isfinite(safe[curve])) censored.push_back(safe[curve]);
+      }
+      return analysis::fit_censored(observed, censored);
+    };
+    for (std::size_t curve : curves) {
+      if (std::isfinite(collapse[curve]) || std::isfinite(safe[curve])) ++out.cases;
+      if (std::isfinite(collapse[curve])) out.collapses += 1.0;
+    }
+    out.failed = curves.size() - out.cases;
+    std::vector<std::size_t> all(curves.size());
+    for (std::size_t k = 0; k < all.size(); ++k) all[k] = k;
+    out.fit = fit(all);
+    if (out.fit) out.interval = analysis::bootstrap(curves.size(), fit);
+    result.push_back(std::move(out));
+  }
+  return result;
+}
+
+}  // namespace
 
 std::vector<FrameFragility> cube_fragility(const cube::CubeReader& cube, const std::vector<cube::Selector>& selectors) {
   const auto& layout = cube.layout();
+  if (layout.find_side_variable(vocabulary::kCollapseIntensity) != nullptr) return ida_fragility(cube, selectors);
   const std::size_t record_dim = dimension_index(layout, vocabulary::kRecord);
   const std::size_t level_dim = dimension_index(layout, vocabulary::kIntensity);
   const auto& levels = layout.find_coordinate(vocabulary::kIntensity)->numbers;

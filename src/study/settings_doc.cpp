@@ -16,7 +16,7 @@ std::string marked(const SettingTable<Target>& table) {
 }  // namespace
 
 std::string all_settings_markdown() {
-  return marked(intensity_settings()) + "\n" + marked(physics_settings()) + "\n" + marked(solver_settings()) + "\n" +
+  return marked(intensity_settings()) + "\n" + marked(ida_settings()) + "\n" + marked(physics_settings()) + "\n" + marked(solver_settings()) + "\n" +
          marked(run_settings());
 }
 

@@ -10,6 +10,10 @@
 #include <cmath>
 #include <thread>
 
+#include <fstream>
+#include <sstream>
+
+#include "pcrf/analysis/fragility.hpp"
 #include "pcrf/cube/cube_reader.hpp"
 #include "study/study_test_support.hpp"
 
@@ -85,6 +89,42 @@ TEST(IdaStudy, CurvesAreBracketedAndTheirEndsRerunAsTheySay) {
     const auto at_safe = status_at(s[curve]);
     EXPECT_TRUE(at_safe == "at_rest" || at_safe == "rocking_at_end") << at_safe;
   }
+}
+
+TEST(IdaStudy, FragilityFitsTheCollapseIntensitiesWithCensoring) {
+  const auto dir = test::scratch_dir("ida_fragility");
+  // max_intensity 3 g censors the records that survive it.
+  std::string text = ida_study(8, 12);
+  text.replace(text.find("max_intensity = 8"), 17, "max_intensity = 3");
+  ASSERT_EQ(run_ida(dir, text, "ida.h5").exit_code, 0);
+  cube::CubeReader cube(dir / "ida.h5");
+  const auto c = cube.read_side("collapse_intensity");
+  const auto s = cube.read_side("last_safe_intensity");
+  const auto r = test::run_command(pcrf() + " cube fragility " + quoted(dir / "ida.h5") + " --csv " + quoted(dir / "f.csv"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream csv(dir / "f.csv");
+  std::string line;
+  std::getline(csv, line);
+  int censored_total = 0;
+  for (std::size_t frame = 0; frame < 2; ++frame) {
+    std::vector<double> observed, censored;
+    for (std::size_t record = 0; record < 8; ++record) {
+      const auto curve = record * 2 + frame;  // record-major, then κ
+      if (std::isfinite(c[curve])) observed.push_back(c[curve]);
+      else censored.push_back(s[curve]);
+    }
+    censored_total += static_cast<int>(censored.size());
+    const auto fit = analysis::fit_censored(observed, censored);
+    ASSERT_TRUE(std::getline(csv, line));
+    std::vector<std::string> cells;
+    std::stringstream in(line);
+    for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+    ASSERT_TRUE(fit) << line;
+    EXPECT_EQ(std::stod(cells[3]), static_cast<double>(observed.size())) << line;
+    EXPECT_NEAR(std::stod(cells[5]), fit->median, 1e-3 * fit->median) << line;
+    EXPECT_NEAR(std::stod(cells[8]), fit->beta, 1e-3 * fit->beta) << line;
+  }
+  EXPECT_GT(censored_total, 0) << "no record survived 3 g: lower max_intensity";
 }
 
 TEST(IdaStudy, RanksDoNotChangeTheCurves) {

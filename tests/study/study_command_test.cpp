@@ -286,6 +286,7 @@ TEST(StudyCommand, PaperStudiesFindTheirRecords) {
       {"paper_table3.toml", ": ok, 13 cases"},
       {"paper_section7.toml", ": ok, "},
       {"ida.toml", ": ok, "},
+      {"fema_p695_ida.toml", ": ok, 1056 cases"},  // 22 records × 3 frames × 16 runs at most
       {"numerics_audit/exact.toml", ": ok, 11 cases"},
       {"numerics_audit/fixed_rk4_h1e-2.toml", ": ok, 11 cases"},
       {"numerics_audit/fixed_rk4_h1e-3.toml", ": ok, 11 cases"},

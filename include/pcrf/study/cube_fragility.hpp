@@ -5,7 +5,9 @@
 /// A grid cube with an `intensity` axis gives stripes: at each intensity, the records whose
 /// case ended (at rest, rocking, fracture, overturned) and how many of them collapsed
 /// (tendon fracture or overturned). Cases that failed (solver_failure, time_limit) or were
-/// not run count in neither and are reported. The bootstrap resamples records.
+/// not run count in neither and are reported. An IDA cube gives each record's collapse
+/// intensity, right-censored at its last safe intensity where none was found (fitted by
+/// censored maximum likelihood). The bootstrap resamples records.
 #pragma once
 
 #include <optional>
@@ -22,7 +24,7 @@ namespace pcrf::study {
 struct FrameFragility {
   std::string frame;              ///< "kappa=1.8,lambda=2" (the frame axes with several values), or "all"
   std::size_t records = 0;        ///< records on the cube's record axis
-  std::size_t cases = 0;          ///< cases that ended with a verdict
+  std::size_t cases = 0;          ///< cases that ended with a verdict (IDA: curves)
   double collapses = 0.0;         ///< of which collapsed
   std::size_t failed = 0;         ///< cases with no verdict (solver failure, time limit, not run)
   std::optional<analysis::Lognormal> fit;
