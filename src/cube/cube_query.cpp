@@ -110,6 +110,14 @@ void print_info(const CubeReader& cube, const std::string& heading, std::ostream
   }
   out << "metrics (" << layout.metrics.size() << "):\n";
   for (const auto& m : layout.metrics) out << "  " << m.name << " [" << m.units << "]  " << m.long_name << '\n';
+  if (!layout.side_variables.empty()) {
+    out << "variables over some axes:\n";
+    for (const auto& v : layout.side_variables) {
+      out << "  " << v.name << " (";
+      for (std::size_t d = 0; d < v.dimensions.size(); ++d) out << (d ? ", " : "") << v.dimensions[d];
+      out << ") [" << v.units << "]  " << v.long_name << '\n';
+    }
+  }
   const auto status = cube.read_status();
   std::map<std::int8_t, std::int64_t> counts;
   for (auto s : status) ++counts[s];

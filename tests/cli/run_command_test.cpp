@@ -153,3 +153,31 @@ TEST(RunCommandSettings, FlagsTakeEffectAndOlderSpellingsStillWork) {
 
 }  // namespace
 }  // namespace pcrf
+
+namespace pcrf {
+namespace {
+
+TEST(RecordCommand, PrintsTheIntensityMeasuresAsJson) {
+  const auto dir = test::scratch_dir("record_command");
+  const auto file = test::write_file(dir, "RSN9_TEST.AT2",
+                                     "PEER NGA STRONG MOTION DATABASE RECORD\nSome Event, 1/2/2000, Some Station, 90\n"
+                                     "ACCELERATION TIME SERIES IN UNITS OF G\nNPTS=   4, DT=   .0100 SEC\n0.1 -0.3 0.2 0.0\n");
+  const auto r = test::run_command(pcrf() + " record " + file.string() + " --period 0.5 --period 1");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* key : {"\"npts\": 4", "\"dt_s\": 0.01", "\"duration_s\": 0.03", "\"pga_g\": 0.3", "\"t_pga_s\": 0.01",
+                          "\"pgv_m_s\": ", "\"pgd_m\": ", "\"arias_intensity_m_s\": ", "\"significant_duration_s\": ",
+                          "\"periods_s\": [0.5, 1]", "\"sa_g\": [", "\"event\": \"Some Event\"", "\"station\": \"Some Station\"",
+                          "\"component\": \"90\"", "\"rsn\": \"9\""})
+    EXPECT_NE(r.out.find(key), std::string::npos) << key << " in " << r.out;
+  const auto text = test::write_file(dir, "fema.txt", "0 0\n0 0.1\n0.01 0.2\n0.02 -0.4\n");
+  const auto skipped = test::run_command(pcrf() + " record " + text.string() + " --skip-rows 1");
+  ASSERT_EQ(skipped.exit_code, 0) << skipped.err;
+  EXPECT_NE(skipped.out.find("\"t_pga_s\": 0.02"), std::string::npos) << skipped.out;
+  EXPECT_NE(skipped.out.find("\"npts\": 3"), std::string::npos) << skipped.out;
+  const auto bad = test::run_command(pcrf() + " record " + file.string() + " --period 0");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--period must be positive"), std::string::npos) << bad.err;
+}
+
+}  // namespace
+}  // namespace pcrf
