@@ -18,6 +18,7 @@ std::string_view status_name(CaseStatus status) {
     case CaseStatus::kOverturned: return "overturned";
     case CaseStatus::kSolverFailure: return "solver_failure";
     case CaseStatus::kTimeLimit: return "time_limit";
+    case CaseStatus::kInvalidFrame: return "invalid_frame";
     case CaseStatus::kNotRun: return "not_run";
   }
   return "unknown";
@@ -26,7 +27,8 @@ std::string_view status_name(CaseStatus status) {
 const std::vector<CaseStatus>& all_final_statuses() {
   static const std::vector<CaseStatus> all = {CaseStatus::kAtRest,         CaseStatus::kRockingAtEnd,
                                               CaseStatus::kTendonFracture, CaseStatus::kOverturned,
-                                              CaseStatus::kSolverFailure,  CaseStatus::kTimeLimit};
+                                              CaseStatus::kSolverFailure,  CaseStatus::kTimeLimit,
+                                              CaseStatus::kInvalidFrame};
   return all;
 }
 

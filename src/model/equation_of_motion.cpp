@@ -177,18 +177,22 @@ TendonState EquationOfMotion::peak_tendon_strains(double abs_theta_rad) const {
   return peak;
 }
 
-double EquationOfMotion::fracture_angle_rad(double fracture_strain) const {
-  // Strain grows with |θ₁| on the physical range; bisect on the first crossing found by a
-  // coarse scan so that a non-monotone tail near the closing limit cannot fool us.
-  const double limit = closing_limit_rad();
+double EquationOfMotion::strain_excess(double theta_abs_rad, double fracture_strain) const {
   // A tendon with no stiffness is no tendon: it cannot fracture.
   const double none = -std::numeric_limits<double>::infinity();
   const bool has_column = frame_.EA_c > 0.0, has_beam = frame_.EA_b > 0.0;
-  auto excess = [&](double a) {
-    const TendonState t = tendons(-a, -1);
-    return std::max(has_column ? t.strain_column_max() : none, has_beam ? t.strain_beam : none) - fracture_strain;
-  };
-  if (excess(0.0) >= 0.0) return 0.0;
+  const TendonState t = tendons(-theta_abs_rad, -1);
+  return std::max(has_column ? t.strain_column_max() : none, has_beam ? t.strain_beam : none) - fracture_strain;
+}
+
+bool EquationOfMotion::broken_at_rest(double fracture_strain) const { return strain_excess(0.0, fracture_strain) >= 0.0; }
+
+double EquationOfMotion::fracture_angle_rad(double fracture_strain) const {
+  // Strain grows with |θ₁| on the physical range; bisect on the first crossing found by a
+  // coarse scan so that a non-monotone tail near the closing limit cannot fool us.
+  auto excess = [&](double a) { return strain_excess(a, fracture_strain); };
+  if (broken_at_rest(fracture_strain)) return 0.0;
+  const double limit = closing_limit_rad();
   const int n = 100;
   double lo = 0.0;
   for (int i = 1; i <= n; ++i) {

@@ -21,8 +21,7 @@ Vec2 operator*(double k, Vec2 a) { return {k * a.x, k * a.y}; }
 FourBar::FourBar(const Frame& frame)
     : f_(frame),
       r_beam_(2.0 * std::hypot(frame.L_b, frame.h_b)),
-      r_right_(2.0 * frame.h),
-      closing_limit_rad_(find_closing_limit()) {}
+      r_right_(2.0 * frame.h) {}
 
 bool FourBar::solve(double theta1, Configuration& out) const {
   const double c1 = std::cos(theta1), s1 = std::sin(theta1);

@@ -4,8 +4,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace pcrf::detail {
 namespace {
@@ -60,8 +62,12 @@ void validate_table(const SettingTable<Target>& table, const Target& values) {
 }  // namespace
 
 void validate(const SolverSettings& s, const PhysicsOptions& p) {
+  // A study solves millions of cases with the same settings: check a pair once per thread.
+  thread_local std::optional<std::pair<SolverSettings, PhysicsOptions>> last_valid;
+  if (last_valid && last_valid->first == s && last_valid->second == p) return;
   validate_table(solver_settings(), s);
   validate_table(physics_settings(), p);
+  last_valid.emplace(s, p);
 }
 
 StopAngles stop_angles(const EquationOfMotion& eom, const PhysicsOptions& physics) {

@@ -8,12 +8,14 @@
 #include <cstdio>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "case_common.hpp"
 #include "fixed_step_solver.hpp"
 #include "integrators.hpp"
+#include "prepared_frame.hpp"
 #include "pcrf/model/eom_table.hpp"
 #include "pcrf/model/equation_of_motion.hpp"
 #include "pcrf/model/impact.hpp"
@@ -30,9 +32,8 @@ enum Root { kImpact = 0, kThetaPeak = 1, kOmegaPeak = 2, kLimit = 3, kRootCount 
 /// The ODE of one flight (between two impacts) on a fixed side.
 class FlightProblem final : public detail::OdeProblem {
  public:
-  FlightProblem(const EquationOfMotion& eom, const GroundMotion& record, double theta_stop_rad,
-                bool omega_peak)
-      : table_(eom), record_(record), theta_stop_rad_(theta_stop_rad), omega_peak_(omega_peak) {}
+  FlightProblem(const EomTable& table, const GroundMotion& record, double theta_stop_rad, bool omega_peak)
+      : table_(table), record_(record), theta_stop_rad_(theta_stop_rad), omega_peak_(omega_peak) {}
 
   int side = -1;
 
@@ -90,7 +91,7 @@ class FlightProblem final : public detail::OdeProblem {
     return true;
   }
 
-  EomTable table_;
+  const EomTable& table_;  // the prepared frame's: built once for every case of the frame
   const GroundMotion& record_;
   double theta_stop_rad_;
   bool omega_peak_;
@@ -103,19 +104,19 @@ class FlightProblem final : public detail::OdeProblem {
 /// The state machine of one case.
 class CaseRun {
  public:
-  CaseRun(const Frame& frame, const GroundMotion& record, const PhysicsOptions& physics,
-          const SolverSettings& solver, const OutputRequest& request, const HistorySink& history)
-      : eom_(frame),
+  CaseRun(PreparedFrame& frame, const GroundMotion& record, const SolverSettings& solver, const OutputRequest& request,
+          const HistorySink& history)
+      : eom_(frame.eom()),
         record_(record),
-        physics_(physics),
+        physics_(frame.physics()),
         solver_(solver),
         request_(request),
         history_(history),
-        restitution_(restitution_momentum(eom_)),
-        stop_(detail::stop_angles(eom_, physics)),
-        problem_(eom_, record_, stop_.stop_rad(), request.omega_peak),
+        restitution_(frame.restitution()),
+        stop_(frame.stop_angles()),
+        problem_(frame.table(), record_, stop_.stop_rad(), request.omega_peak),
         integrator_(detail::make_integrator(solver, problem_)),
-        t_end_(record.duration_s() + physics.tail_s) {}
+        t_end_(record.duration_s() + physics_.tail_s) {}
 
   CaseResult run();
 
@@ -136,7 +137,7 @@ class CaseRun {
   void finish(CaseStatus status, std::string message = {});
   bool over_time() const;
 
-  EquationOfMotion eom_;
+  const EquationOfMotion& eom_;
   const GroundMotion& record_;
   PhysicsOptions physics_;
   SolverSettings solver_;
@@ -387,9 +388,10 @@ bool CaseRun::over_time() const {
 
 }  // namespace
 
-void check_initial_state(const Frame& frame, const PhysicsOptions& physics) {
+namespace {
+
+void check_initial_state(const EquationOfMotion& eom, const PhysicsOptions& physics) {
   if (physics.theta0_rad == 0.0) return;
-  const EquationOfMotion eom(frame);
   if (!(std::fabs(physics.theta0_rad) < eom.overturn_angle_rad())) {
     char text[256];
     std::snprintf(text, sizeof text,
@@ -400,21 +402,56 @@ void check_initial_state(const Frame& frame, const PhysicsOptions& physics) {
   }
 }
 
-CaseResult solve_case(const Frame& frame, const GroundMotion& record, const PhysicsOptions& physics,
-                      const SolverSettings& solver, const OutputRequest& request, const HistorySink& history) {
-  detail::validate(solver, physics);
-  check_initial_state(frame, physics);
+}  // namespace
+
+void check_initial_state(const Frame& frame, const PhysicsOptions& physics) {
+  if (physics.theta0_rad != 0.0) check_initial_state(EquationOfMotion(frame), physics);
+}
+
+namespace {
+
+/// A case whose frame rests through the whole record: what CaseRun would report, without
+/// its set-up (closing limit, fracture angle, coefficient table, integrator). nullopt when
+/// the case needs the full run (it lifts, starts displaced, is broken at rest or records a
+/// history).
+std::optional<CaseResult> rest_throughout(PreparedFrame& frame, const GroundMotion& record, const OutputRequest& request,
+                                          const HistorySink& history) {
+  const PhysicsOptions& physics = frame.physics();
+  if (history || frame.broken_at_rest() || physics.theta0_rad != 0.0 || physics.omega0_rad_s != 0.0) return std::nullopt;
+  const double t_end = record.duration_s() + physics.tail_s;
+  if (!std::isnan(first_exceedance(record, 0.0, t_end, frame.eom().uplift_threshold_m_s2()))) return std::nullopt;
+  CaseResult result = detail::initial_result(frame.eom(), record, frame.restitution(), request.omega_peak);
+  result.status = CaseStatus::kAtRest;
+  result.t_end_s = t_end;
+  return result;
+}
+
+}  // namespace
+
+CaseResult solve_case(PreparedFrame& frame, const GroundMotion& record, const SolverSettings& solver,
+                      const OutputRequest& request, const HistorySink& history) {
+  detail::validate(solver, frame.physics());
+  check_initial_state(frame.eom(), frame.physics());
   // Timed here, so that the per-case set-up (linkage limits, fracture angle, r) counts.
   const auto start = std::chrono::steady_clock::now();
   CaseResult result;
   if (solver.integrator == Integrator::kFixedRk4SignChange) {
-    result = detail::solve_case_fixed_step(EquationOfMotion(frame), record, physics, solver, history);
+    result = detail::solve_case_fixed_step(frame.eom(), record, frame.physics(), solver, history);
+  } else if (auto at_rest = rest_throughout(frame, record, request, history)) {
+    result = std::move(*at_rest);
   } else {
-    CaseRun run(frame, record, physics, solver, request, history);
+    CaseRun run(frame, record, solver, request, history);
     result = run.run();
   }
   result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
+}
+
+CaseResult solve_case(const Frame& frame, const GroundMotion& record, const PhysicsOptions& physics,
+                      const SolverSettings& solver, const OutputRequest& request, const HistorySink& history) {
+  detail::validate(solver, physics);  // settings first: they are the caller's, the frame may be the study's
+  PreparedFrame prepared(frame, physics);
+  return solve_case(prepared, record, solver, request, history);
 }
 
 }  // namespace pcrf

@@ -1,6 +1,7 @@
 // One case of a study, from index to result row (see case_runner.hpp).
 #include "pcrf/study/case_runner.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -27,6 +28,25 @@ CaseRunner::CaseRunner(const Study& study, const CaseSpace& space, RecordCache& 
     if (m->name == "omega_max_rad_s" || m->name == "t_omega_max_s") request_.omega_peak = true;
 }
 
+PreparedFrame& CaseRunner::prepared(const FrameParameters& parameters) const {
+  std::lock_guard lock(last_mutex_);
+  auto same = [&](const Prepared& p) {
+    for (const auto& info : all_parameters())
+      if (p.parameters.*info.member != parameters.*info.member) return false;
+    for (const auto& info : size_parameters())
+      if (p.parameters.*info.member != parameters.*info.member) return false;
+    return true;
+  };
+  auto it = std::find_if(prepared_.begin(), prepared_.end(), same);
+  if (it == prepared_.end()) {
+    if (prepared_.size() >= kPreparedFrames) prepared_.pop_back();
+    prepared_.insert(prepared_.begin(), {parameters, prepare_frame(make_frame(parameters), study_.physics)});
+  } else if (it != prepared_.begin()) {
+    std::rotate(prepared_.begin(), it, it + 1);  // most recent first
+  }
+  return *prepared_.front().frame;
+}
+
 double CaseRunner::level_of(const CaseSpec& spec, const parallel::WorkItem& item) {
   return std::isnan(spec.level) ? item.argument : spec.level;
 }
@@ -43,9 +63,16 @@ parallel::CaseOutcome CaseRunner::run(const parallel::WorkItem& item, const Hist
       outcome.row[metrics_.size()] = spec.level;
       outcome.row[metrics_.size() + 1] = factor;
     }
-    const Frame frame = make_frame(spec.parameters);
+    PreparedFrame* frame = nullptr;
+    try {
+      frame = &prepared(spec.parameters);
+    } catch (const std::invalid_argument& e) {  // make_frame's geometry, or InvalidFrame
+      outcome.status = static_cast<std::int8_t>(CaseStatus::kInvalidFrame);
+      outcome.note = std::string("invalid frame: ") + e.what();
+      return outcome;
+    }
     const auto motion = scaled_record(spec.record, factor);
-    const CaseResult result = solve_case(frame, *motion, study_.physics, study_.solver, request_, history);
+    const CaseResult result = solve_case(*frame, *motion, study_.solver, request_, history);
     outcome.status = static_cast<std::int8_t>(result.status);
     for (std::size_t m = 0; m < metrics_.size(); ++m) {
       const double value = metrics_[m]->get(result);
@@ -71,9 +98,14 @@ double CaseRunner::scale_factor(const CaseSpec& spec) const {
 
 std::shared_ptr<const GroundMotion> CaseRunner::scaled_record(std::size_t record, double scale) const {
   std::lock_guard lock(last_mutex_);
-  if (!last_.motion || last_.record != record || last_.scale != scale)
-    last_ = {record, scale, std::make_shared<const GroundMotion>(records_.get(record).scaled(scale))};
-  return last_.motion;
+  auto it = std::find_if(scaled_.begin(), scaled_.end(),
+                         [&](const LastScaled& s) { return s.record == record && s.scale == scale; });
+  if (it == scaled_.end()) {
+    if (scaled_.size() >= kScaledRecords) scaled_.pop_back();
+    scaled_.insert(scaled_.begin(), {record, scale, std::make_shared<const GroundMotion>(records_.get(record).scaled(scale))});
+    it = scaled_.begin();
+  }
+  return it->motion;
 }
 
 CaseStatus outcome_status(const parallel::CaseOutcome& outcome) {

@@ -90,6 +90,16 @@ CaseSpec CaseSpace::case_at(std::int64_t index) const {
   return spec;
 }
 
+std::vector<std::int64_t> CaseSpace::frame_major(std::vector<std::int64_t> indices) const {
+  // Key: the frame's position among the frame axes, then the record and level axes.
+  std::int64_t frames = 1;
+  for (std::size_t d = frame_dim_; d < shape_.size(); ++d) frames *= static_cast<std::int64_t>(shape_[d]);
+  const std::int64_t per_frame = size_ / frames;
+  auto key = [&](std::int64_t index) { return (index % frames) * per_frame + index / frames; };
+  std::stable_sort(indices.begin(), indices.end(), [&](std::int64_t a, std::int64_t b) { return key(a) < key(b); });
+  return indices;
+}
+
 std::vector<FrameParameters> CaseSpace::frames() const {
   if (plan_ != PlanKind::kGrid) {
     std::vector<FrameParameters> frames;

@@ -139,7 +139,7 @@ class ResultSink {
 
 /// Cases not done yet; the cases with a history stay on rank 0 (pinned).
 parallel::WorkQueue pending_cases(const cube::CubeWriter& writer, const std::map<std::int64_t, std::string>& histories,
-                                  const Study& study, const parallel::MpiSession& mpi) {
+                                  const Study& study, const CaseSpace& space, const parallel::MpiSession& mpi) {
   std::vector<std::int64_t> shared, pinned;
   const auto& status = writer.status();
   for (std::size_t i = 0; i < status.size(); ++i) {
@@ -147,7 +147,7 @@ parallel::WorkQueue pending_cases(const cube::CubeWriter& writer, const std::map
     const auto index = static_cast<std::int64_t>(i);
     (histories.count(index) ? pinned : shared).push_back(index);
   }
-  return parallel::WorkQueue(std::move(shared), std::move(pinned), parallel::worker_count(mpi.comm()),
+  return parallel::WorkQueue(space.frame_major(std::move(shared)), std::move(pinned), parallel::worker_count(mpi.comm()),
                              study.run.batch_size);
 }
 
@@ -169,7 +169,7 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
     before_flush = [plan = ida.get(), writer = m.writer.get()] { store_ida_summaries(*plan, *writer); };
     work = std::move(ida);
   } else {
-    work = std::make_unique<parallel::WorkQueue>(pending_cases(*m.writer, history_labels, p.study, mpi));
+    work = std::make_unique<parallel::WorkQueue>(pending_cases(*m.writer, history_labels, p.study, *p.space, mpi));
   }
   ResultSink sink(*m.writer, meter, inbox, p.study.run.flush_interval_s, before_flush);
 

@@ -23,6 +23,9 @@ enum class CaseStatus : std::int8_t {
   kOverturned = 3,      ///< the mechanism reached its limit angle and cannot close
   kSolverFailure = 4,   ///< the integrator failed or produced a non-finite state
   kTimeLimit = 5,       ///< the case hit its wall-time limit
+  /// The frame cannot be built, or lies outside the domain where the rigid-body rocking
+  /// model holds (studies/README.md, "Valid frames"); it is not simulated.
+  kInvalidFrame = 6,
   kNotRun = -1,         ///< placeholder in a cube for a case not computed yet
 };
 

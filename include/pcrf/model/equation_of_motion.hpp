@@ -86,9 +86,14 @@ class EquationOfMotion {
   /// Smallest |θ₁| at which a tendon's total strain reaches `fracture_strain`; +∞ when
   /// no tendon does before the closing limit [rad].
   double fracture_angle_rad(double fracture_strain) const;
+  /// True when a tendon's strain at rest already reaches `fracture_strain` (prestrained
+  /// beyond fracture): fracture_angle_rad() is 0. Needs no scan.
+  bool broken_at_rest(double fracture_strain) const;
 
  private:
   bool negative_branch_terms(double phi, EomTerms& out, Configuration& c) const;
+  /// Largest tendon strain at |θ₁| minus `fracture_strain` (tendons without stiffness left out).
+  double strain_excess(double theta_abs_rad, double fracture_strain) const;
 
   Frame frame_;
   FourBar four_bar_;

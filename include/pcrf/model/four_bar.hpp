@@ -14,6 +14,8 @@
 /// above zero (an integrator overshooting an impact) is smooth and harmless.
 #pragma once
 
+#include <optional>
+
 #include "pcrf/model/frame.hpp"
 
 namespace pcrf {
@@ -49,9 +51,12 @@ class FourBar {
   bool solve(double theta1, Configuration& out) const;
 
   /// The most negative θ₁ reached before the linkage stops closing or passes a toggle
-  /// (Jacobian sign change), found once by a scan and bisection (−1.6002 rad for the basic
-  /// model) [rad].
-  double closing_limit_rad() const { return closing_limit_rad_; }
+  /// (Jacobian sign change), found on first use by a scan and bisection (−1.6002 rad for the
+  /// basic model) [rad]. A frame that never lifts never needs it.
+  double closing_limit_rad() const {
+    if (!closing_limit_rad_) closing_limit_rad_ = find_closing_limit();
+    return *closing_limit_rad_;
+  }
 
  private:
   double find_closing_limit() const;
@@ -59,7 +64,7 @@ class FourBar {
   Frame f_;
   double r_beam_;   ///< 2R_b [m]
   double r_right_;  ///< 2h [m]
-  double closing_limit_rad_;
+  mutable std::optional<double> closing_limit_rad_;  ///< not thread-safe: one FourBar per thread
 };
 
 }  // namespace pcrf

@@ -20,6 +20,9 @@
 #include "pcrf/metrics/case_result.hpp"
 #include "pcrf/model/frame.hpp"
 #include "pcrf/record/ground_motion.hpp"
+
+#include <memory>
+#include <stdexcept>
 #include "pcrf/solver/settings.hpp"
 
 namespace pcrf {
@@ -47,9 +50,31 @@ struct OutputRequest {
 /// \throws std::invalid_argument "theta0_rad: …" naming both angles.
 void check_initial_state(const Frame& frame, const PhysicsOptions& physics);
 
+/// A frame that the rigid-body rocking model cannot represent: its geometry is impossible,
+/// it cannot stand at rest (uplift threshold ≤ 0) or its impacts would not be dissipative
+/// rocking impacts (coefficient of restitution outside [0, 1]). what() says which.
+class InvalidFrame : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+/// A frame prepared for solving under fixed physics options. Only what a case needs is
+/// computed, when it first needs it, and kept for every later case of the same frame: the
+/// uplift threshold and restitution at once; the closing limit, the fracture angle and the
+/// tabulated coefficients of Eq. (31) only when a case lifts the frame. Not thread-safe:
+/// one per thread.
+class PreparedFrame;
+
+/// \throws InvalidFrame naming the failed condition.
+std::shared_ptr<PreparedFrame> prepare_frame(const Frame& frame, const PhysicsOptions& physics);
+
 /// Solves one case. Never throws for a physical or numerical failure: the result's
 /// status says what happened (message gives detail). Throws std::invalid_argument only
 /// for invalid settings (a value outside its description, an impossible initial state).
+CaseResult solve_case(PreparedFrame& frame, const GroundMotion& record, const SolverSettings& solver,
+                      const OutputRequest& request = {}, const HistorySink& history = {});
+
+/// The same for a frame used once. \throws InvalidFrame as prepare_frame().
 CaseResult solve_case(const Frame& frame, const GroundMotion& record,
                       const PhysicsOptions& physics, const SolverSettings& solver,
                       const OutputRequest& request = {}, const HistorySink& history = {});

@@ -48,6 +48,8 @@ struct PhysicsOptions {
   /// A non-zero state starts in flight on the side of θ₁ (of −θ̇₁ when θ₁ = 0).
   double theta0_rad = 0.0;
   double omega0_rad_s = 0.0;
+
+  bool operator==(const PhysicsOptions&) const = default;
 };
 
 /// How the equation of motion is integrated. Described in solver_settings(), whose defaults
@@ -67,6 +69,8 @@ struct SolverSettings {
   /// keeps the integrators at their design order (without restarting them).
   bool stop_at_samples = true;
   double wall_time_limit_s = 0.0;  ///< 0: no limit; else status kTimeLimit
+
+  bool operator==(const SolverSettings&) const = default;
 };
 
 /// The [physics] table: every PhysicsOptions member, in the order study files document them.

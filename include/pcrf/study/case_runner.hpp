@@ -35,9 +35,10 @@ class CaseRunner {
   parallel::CaseOutcome run(const parallel::WorkItem& item, const HistorySink& history = {}) const noexcept;
 
  private:
-  /// The record scaled for a case. Consecutive cases usually share record and scale (the
-  /// fastest axes are the frame parameters), so the last scaled record is kept: cheap cases
-  /// (a frame that never lifts off) would otherwise spend their time copying the record.
+  /// The record scaled for a case. The cases of a frame come together (CaseSpace::
+  /// frame_major), one per record and level, so the scaled records of the last few dozen
+  /// (record, level) pairs are kept: cheap cases (a frame that never lifts off) would
+  /// otherwise spend their time copying records.
   std::shared_ptr<const GroundMotion> scaled_record(std::size_t record, double scale) const;
   /// The factor a case multiplies its record by: its level, or level / IM(record).
   double scale_factor(const CaseSpec& spec) const;
@@ -55,7 +56,18 @@ class CaseRunner {
     std::shared_ptr<const GroundMotion> motion;
   };
   mutable std::mutex last_mutex_;
-  mutable LastScaled last_;
+  mutable std::vector<LastScaled> scaled_;  ///< most recent first
+  static constexpr std::size_t kScaledRecords = 64;
+
+  /// The frame of a case, prepared once and kept for the next cases of the same frame (a
+  /// grid hands out every record and level of a frame together). \throws InvalidFrame.
+  PreparedFrame& prepared(const FrameParameters& parameters) const;
+  struct Prepared {
+    FrameParameters parameters;
+    std::shared_ptr<PreparedFrame> frame;
+  };
+  mutable std::vector<Prepared> prepared_;  ///< most recent first
+  static constexpr std::size_t kPreparedFrames = 32;
 };
 
 /// The status an outcome carries (an evaluator that threw: a solver failure).

@@ -53,6 +53,9 @@ class CaseSpace {
   const std::vector<double>& grid_values(std::size_t parameter) const { return grid_values_[parameter]; }
   /// One-at-a-time and list plans: the frames along `case`.
   const std::vector<CasePoint>& points() const { return points_; }
+  /// `indices` reordered so that the cases of one frame (every record and level) are
+  /// adjacent, frames in storage order: a worker then prepares each frame once.
+  std::vector<std::int64_t> frame_major(std::vector<std::int64_t> indices) const;
   /// Distinct frames of the study (every parameter combination), for up-front checks.
   std::vector<FrameParameters> frames() const;
 
