@@ -43,9 +43,14 @@ void run_study_command(StudyArguments& args) {
     throw;
   }
   if (!summary) exit_code() = 2;  // rank ≠ 0 of a study that cannot run: rank 0 reported it
-  if (summary && args.run.check_only && mpi.is_master())
+  if (summary && args.run.check_only && mpi.is_master()) {
     std::cout << args.run.study_file.string() << ": ok, " << summary->total << " cases, fingerprint "
               << summary->fingerprint << std::endl;
+    if (summary->invalid_frames > 0)
+      std::cout << args.run.study_file.string() << ": " << summary->invalid_cases << " cases ("
+                << summary->invalid_frames << " frames) lie outside the model's domain and will end as invalid_frame, "
+                << "e.g. " << summary->first_invalid << std::endl;
+  }
 }
 
 }  // namespace

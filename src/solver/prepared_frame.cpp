@@ -8,18 +8,30 @@
 namespace pcrf {
 namespace {
 
-/// The domain of the model. The frame rests on its feet only while gravity and prestress
-/// hold it closed: a threshold ≤ 0 means it opens under its own weight. An impact must
-/// dissipate and keep the frame rocking towards the other side: r < 0 would send it back
-/// (the momentum balance then needs a rebound the model does not have) and r > 1 would
-/// create energy.
+/// The domain of the model (studies/README.md, "Valid frames"), three conditions at rest,
+/// in terms of Eq. (31) on the θ₁ ≤ 0 branch (I θ̈ + … + G g + K = S ü_g):
+///  - the ground's inertia and gravity act on the mechanism the way a rocking frame's do,
+///    λ_g = G/S > 0: with a beam so deep that S changes sign (λ_h ≈ 0.865 at λ = 2,
+///    tan α = 0.8) the uplift threshold passes through a pole and turns negative, the linkage
+///    moving against the ground — not a rocking frame;
+///  - gravity and prestress hold the frame closed, threshold (G g + K)/S > 0, else it opens
+///    under its own weight;
+///  - an impact dissipates and sends the frame on to the other side, 0 ≤ r ≤ 1: r < 0 would
+///    send it back (a rebound the momentum balance of rocking impacts does not have), r > 1
+///    would create energy.
 void check_domain(const EquationOfMotion& eom, double restitution) {
-  char text[200];
+  char text[240];
+  if (!(eom.lambda_g() > 0.0)) {
+    std::snprintf(text, sizeof text,
+                  "the ground cannot rock this frame: its uplift coefficient G/S = %.4g is not positive (a beam this "
+                  "deep turns the linkage against the ground motion)", eom.lambda_g());
+    throw InvalidFrame(text);
+  }
   const double threshold_g = eom.uplift_threshold_m_s2() / kGravity_m_s2;
   if (!(threshold_g > 0.0)) {
     std::snprintf(text, sizeof text,
-                  "the frame cannot stand at rest: its uplift threshold is %.4g g (gravity and prestress do not "
-                  "hold it closed)", threshold_g);
+                  "the frame cannot stand at rest: its uplift threshold is %.4g g (gravity and prestress do not hold "
+                  "it closed)", threshold_g);
     throw InvalidFrame(text);
   }
   if (!(restitution >= 0.0 && restitution <= 1.0)) {

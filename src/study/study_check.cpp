@@ -35,14 +35,19 @@ std::string describe(const FrameParameters& p) {
   return out.str();
 }
 
-void check_frames(const Study& study, const CaseSpace& space) {
-  for (const auto& parameters : space.frames()) {
+/// Counts the frames the model cannot represent, and checks the initial state of the rest.
+void check_frames(const Study& study, const CaseSpace& space, CheckedStudy& checked) {
+  const auto frames = space.frames();
+  const std::int64_t cases_per_frame = space.size() / static_cast<std::int64_t>(frames.size());
+  for (const auto& parameters : frames) {
     Frame frame{};
     try {
       frame = make_frame(parameters);
-    } catch (const std::exception& e) {
-      const char* where = study.plan == PlanKind::kList ? "cases" : "axes";
-      throw StudyError(study.file + ": " + where + ": impossible geometry at " + describe(parameters) + ": " + e.what());
+      (void)prepare_frame(frame, study.physics);
+    } catch (const std::invalid_argument& e) {  // impossible geometry, or InvalidFrame
+      if (checked.invalid_frames++ == 0) checked.first_invalid = describe(parameters) + ": " + e.what();
+      checked.invalid_cases += cases_per_frame;
+      continue;
     }
     try {
       check_initial_state(frame, study.physics);
@@ -58,8 +63,8 @@ void check_frames(const Study& study, const CaseSpace& space) {
 
 CheckedStudy check_study(const Study& study, const CaseSpace& space, RecordCache& records) {
   check_records(study, records);
-  check_frames(study, space);
   CheckedStudy checked;
+  check_frames(study, space, checked);
   for (const auto& h : study.histories) {
     const std::int64_t index = space.resolve(h);
     for (std::size_t k = 0; k < checked.history_cases.size(); ++k)

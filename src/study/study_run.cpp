@@ -158,7 +158,8 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
   for (std::size_t h = 0; h < p.study.histories.size(); ++h)
     history_labels[m.checked.history_cases[h]] = p.study.histories[h].label;
 
-  StudySummary summary{p.space->size(), m.writer->done_count(), 0, 0, m.output, m.checked.fingerprint};
+  StudySummary summary{p.space->size(), m.writer->done_count(), 0, 0, m.output, m.checked.fingerprint,
+                       m.checked.invalid_cases, m.checked.invalid_frames, m.checked.first_invalid};
   ProgressMeter meter(summary.total, summary.already_done, p.study.run.progress_interval_s, progress);
   HistoryInbox inbox;
   // The cases come from the IDA's search, or from the list of cases not done yet.
@@ -237,9 +238,11 @@ std::optional<StudySummary> run_study(const StudyRunOptions& options, const para
     mpi.quiet_barrier();
     return std::nullopt;
   }
-  if (options.check_only)
-    return mpi.is_master() ? StudySummary{prepared->space->size(), 0, 0, 0, {}, setup.checked.fingerprint}
-                           : StudySummary{};
+  if (options.check_only) {
+    if (!mpi.is_master()) return StudySummary{};
+    const auto& c = setup.checked;
+    return StudySummary{prepared->space->size(), 0, 0, 0, {}, c.fingerprint, c.invalid_cases, c.invalid_frames, c.first_invalid};
+  }
   if (auto received = receive_study(mpi, prepared.get())) prepared = std::move(received);
 
   std::optional<StudySummary> summary;

@@ -195,8 +195,6 @@ std::vector<BadStudy> bad_study_corpus(const std::filesystem::path& dir) {
        "unreadable_record.toml:2: records: cannot load record \"garbage\""},
       {"bad_synthetic.toml", "[[records]]\nsynthetic = \"square:amplitude_g=1\"\n",
        "bad_synthetic.toml:2: records: cannot load record \"square:amplitude_g=1\""},
-      {"geometry.toml", pulse + "[axes]\nlambda = [0.1, 2.0]\ntan_alpha = 0.2\n",
-       "geometry.toml: axes: impossible geometry at kappa=1.8, lambda=0.1, tan_alpha=0.2"},
       {"history.toml", pulse + "[axes]\nkappa = [1, 2]\n[[outputs.histories]]\nlabel = \"h\"\nkappa = 3\n",
        "history.toml:6: outputs.histories \"h\": kappa 3 is not on the kappa axis"},
       {"not_toml.toml", pulse + "[axes\n", "not_toml.toml:3: not valid TOML"},
@@ -231,6 +229,29 @@ TEST(StudyCommand, BadStudiesFailWithTheirMessageExitCode2AndNoOutput) {
     EXPECT_EQ(bad_flag.exit_code, 2) << flag << ": " << bad_flag.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "out.h5")) << flag;
   }
+}
+
+TEST(StudyCommand, InvalidFramesBecomeCasesAndTheStudyGoesOn) {
+  // λ = 0.1 < tan α: the columns overlap; λ_h = 0.7 at tan α = 0.8: r < 0. Neither aborts.
+  const auto dir = test::scratch_dir("study_invalid_frames");
+  const std::string text = std::string("[[records]]\nsynthetic = \"") + kPulse + "\"\n[axes]\nscale = [1, 2]\n"
+                           "lambda = [0.1, 2.0]\ntan_alpha = [0.2, 0.8]\nlambda_h = [0.2, 0.7]\n";
+  const auto check = run_study(dir, "invalid.toml", text, "--check");
+  ASSERT_EQ(check.exit_code, 0) << check.err;
+  // λ = 0.1 fails with both tan α (4 frames), λ = 2 with tan α = 0.8, λ_h = 0.7 (1 frame): × 2 scales.
+  EXPECT_NE(check.out.find("10 cases (5 frames) lie outside the model's domain"), std::string::npos) << check.out;
+  const auto r = run_study(dir, "invalid.toml", text, "-o invalid.h5 --progress-interval 0");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  cube::CubeReader cube(dir / "invalid.h5");
+  const auto status = cube.read_status();
+  EXPECT_EQ(std::count(status.begin(), status.end(), 6), 10);  // invalid_frame
+  EXPECT_EQ(std::count(status.begin(), status.end(), cube::kStatusNotRun), 0);
+  bool named = false;
+  for (const auto& [index, note] : cube.read_notes()) named = named || note.find("coefficient of restitution") != std::string::npos;
+  EXPECT_TRUE(named);
+  const auto single = test::run_command(pcrf() + " run --synthetic '" + kPulse + "' --lambda 2 --tan-alpha 0.8 --lambda-h 0.7");
+  EXPECT_EQ(single.exit_code, 2);  // a single run keeps its error
+  EXPECT_NE(single.err.find("coefficient of restitution"), std::string::npos) << single.err;
 }
 
 TEST(StudyCommand, BadStudyUnderMpirunExitsWith2AndReportsOnce) {

@@ -67,6 +67,8 @@ class EquationOfMotion {
 
   /// λ_g = G(0)/S(0), the paper's uplift coefficient (prestress ignored) [-].
   double lambda_g() const { return lambda_g_; }
+  /// The terms of Eq. (31) at rest (θ₁ = 0⁻).
+  const EomTerms& rest_terms() const { return rest_; }
   /// Ground acceleration that opens the closed frame, prestress included [m/s²].
   double uplift_threshold_m_s2() const { return uplift_threshold_m_s2_; }
 

@@ -16,11 +16,15 @@ namespace pcrf::study {
 struct CheckedStudy {
   std::string fingerprint;                  ///< see fingerprint.hpp
   std::vector<std::int64_t> history_cases;  ///< case index of each Study::histories entry
+  std::int64_t invalid_frames = 0;          ///< frames the model cannot represent
+  std::int64_t invalid_cases = 0;           ///< their cases (they end as invalid_frame)
+  std::string first_invalid;                ///< "kappa=…, …: why", for the --check report
 };
 
 /// Loads every record into `records` (so they are read once), builds every distinct frame
-/// and resolves the history requests. Runs before any work starts and before the output
-/// file is created. \throws StudyError naming the file, the key and the problem.
+/// (an invalid one is counted, not an error: its cases end as invalid_frame) and resolves
+/// the history requests. Runs before any work starts and before the output file is
+/// created. \throws StudyError naming the file, the key and the problem.
 CheckedStudy check_study(const Study& study, const CaseSpace& space, RecordCache& records);
 
 }  // namespace pcrf::study

@@ -37,6 +37,9 @@ struct StudySummary {
   std::int64_t failed = 0;
   std::filesystem::path output;
   std::string fingerprint;  ///< the study's fingerprint (also what --check reports)
+  std::int64_t invalid_cases = 0;  ///< cases whose frame the model cannot represent
+  std::int64_t invalid_frames = 0;
+  std::string first_invalid;       ///< one of them and why
 };
 
 /// Default output of a study file.
