@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 
+#include "pcrf/plan/sampling.hpp"
 #include "pcrf/row_major.hpp"
 #include "pcrf/study/cube_vocabulary.hpp"
 #include "pcrf/study/study_error.hpp"
@@ -25,6 +26,36 @@ std::size_t find_value(const std::vector<double>& axis, double value) {
   for (std::size_t i = 0; i < axis.size(); ++i)
     if (same_value(axis[i], value)) return i;
   return std::string::npos;
+}
+
+/// The frames of a sampled plan: unit points mapped onto each varied parameter's range.
+std::vector<CasePoint> sampled_points(const Study& study) {
+  std::vector<std::size_t> varied;
+  for (std::size_t p = 0; p < kParameterCount; ++p)
+    if (study.ranges[p]) varied.push_back(p);
+  const std::size_t d = varied.size();
+  plan::UnitPoints unit;
+  if (study.plan == PlanKind::kLhs) unit = plan::latin_hypercube(study.samples, d, study.seed);
+  else if (study.plan == PlanKind::kSobol) unit = plan::sobol_points(study.samples, d, study.scramble, study.seed);
+  else unit = plan::saltelli_design(study.samples, d, study.scramble, study.seed).points;
+  std::vector<CasePoint> points(unit.size() / d);
+  for (std::size_t row = 0; row < points.size(); ++row) {
+    CasePoint& point = points[row];
+    point.parameters = study.base;
+    for (std::size_t k = 0; k < d; ++k) {
+      const auto& info = all_parameters()[varied[k]];
+      point.parameters.*info.member = study.ranges[varied[k]]->at(unit[row * d + k]);
+    }
+    if (study.plan != PlanKind::kSaltelli) {
+      point.label = "s" + std::to_string(row);
+      continue;
+    }
+    const std::size_t block = plan::SaltelliDesign::block(row, d);
+    point.sample = static_cast<long>(plan::SaltelliDesign::sample(row, d));
+    point.block = block == 0 ? "A" : block == 1 ? "B" : "AB_" + std::string(all_parameters()[varied[block - 2]].name);
+    point.label = "s" + std::to_string(point.sample) + ":" + point.block;
+  }
+  return points;
 }
 
 }  // namespace
@@ -49,17 +80,19 @@ CaseSpace::CaseSpace(const Study& study) : plan_(study.plan), base_(study.base),
       shape_.push_back(grid_values_[p].size());
     }
   } else if (plan_ == PlanKind::kOneAtATime) {
-    if (study.include_base) points_.push_back({"base", "none", base_});
+    if (study.include_base) points_.push_back({"base", "none", base_, "", -1});
     for (std::size_t p = 0; p < kParameterCount; ++p) {
       const auto& info = all_parameters()[p];
       for (double v : study.axes[p]) {
-        CasePoint point{std::string(info.name) + "=" + shortest(v), std::string(info.name), base_};
+        CasePoint point{std::string(info.name) + "=" + shortest(v), std::string(info.name), base_, "", -1};
         point.parameters.*info.member = v;
         points_.push_back(std::move(point));
       }
     }
+  } else if (is_sampled(plan_)) {
+    points_ = sampled_points(study);
   } else {
-    for (const auto& c : study.cases) points_.push_back({c.label, "", c.parameters});
+    for (const auto& c : study.cases) points_.push_back({c.label, "", c.parameters, "", -1});
   }
   if (plan_ != PlanKind::kGrid) {
     names_.emplace_back(vocabulary::kCase);

@@ -64,6 +64,13 @@ std::string canonical_description(const Study& study, const CaseSpace& space, Re
     for (double v : study.axes[p]) out << ' ' << v;
     out << '\n';
   }
+  if (is_sampled(study.plan)) {
+    out << "sampled samples=" << study.samples << " seed=" << study.seed << " scramble=" << study.scramble;
+    for (std::size_t p = 0; p < kParameterCount; ++p)
+      if (const auto& r = study.ranges[p])
+        out << ' ' << all_parameters()[p].name << '=' << r->from << ':' << r->to << (r->log ? ":log" : "");
+    out << '\n';
+  }
   for (const auto& c : study.cases) {
     out << "case " << c.label;
     describe_parameters(out, c.parameters);

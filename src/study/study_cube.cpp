@@ -105,6 +105,16 @@ void add_case_axis(const CaseSpace& space, std::vector<Coordinate>& coords) {
   coords.push_back(texts(names::kCaseLabel, names::kCase, "frame label", labels));
   if (space.plan() == PlanKind::kOneAtATime)
     coords.push_back(texts(names::kVariedParameter, names::kCase, "parameter varied from the base point (none: the base point)", varied));
+  if (space.plan() == PlanKind::kSaltelli) {
+    std::vector<std::string> blocks;
+    std::vector<double> samples;
+    for (const auto& p : points) {
+      blocks.push_back(p.block);
+      samples.push_back(static_cast<double>(p.sample));
+    }
+    coords.push_back(texts(names::kSaltelliBlock, names::kCase, "Saltelli design block: A, B or AB_<parameter>", blocks));
+    coords.push_back(numbers(names::kSaltelliSample, names::kCase, "1", "Saltelli base sample the frame belongs to", samples));
+  }
   for (const auto& info : all_parameters()) {
     std::vector<double> values;
     for (const auto& p : points) values.push_back(p.parameters.*info.member);

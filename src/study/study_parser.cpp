@@ -22,6 +22,9 @@ std::string_view plan_name(PlanKind plan) {
     case PlanKind::kGrid: return "grid";
     case PlanKind::kOneAtATime: return "one-at-a-time";
     case PlanKind::kList: return "list";
+    case PlanKind::kLhs: return "lhs";
+    case PlanKind::kSobol: return "sobol";
+    case PlanKind::kSaltelli: return "saltelli";
   }
   return "grid";
 }
@@ -92,6 +95,31 @@ std::vector<double> read_values(const Fields& fields, std::string_view key) {
   return values;
 }
 
+/// A sampled plan's range: {from, to} (and spacing), every value inside the parameter's
+/// domain; a list, a single number or a count is an error.
+SampledRange read_sampled_range(const Fields& fields, std::size_t parameter) {
+  const auto& info = all_parameters()[parameter];
+  const toml::node& node = *fields.node(info.name);
+  const auto* table = node.as_table();
+  if (table == nullptr)
+    fields.fail(info.name, "a sampled plan draws from a range: give {from = A, to = B}, not " + Fields::type_name(node));
+  const std::string path = fields.path(info.name);
+  Fields range(*table, path, fields.file(), {"from", "to", "spacing", "count"});
+  if (range.has("count")) range.fail("count", "a sampled plan draws `samples` values: no count");
+  for (auto key : {"from", "to"})
+    if (!range.has(key)) range.fail(key, "a range needs from and to");
+  SampledRange r{*range.number("from"), *range.number("to"), false};
+  const std::string spacing = range.text("spacing").value_or("linear");
+  if (spacing != "linear" && spacing != "log") range.fail("spacing", "expected \"linear\" or \"log\", got \"" + spacing + "\"");
+  r.log = spacing == "log";
+  if (!(r.to > r.from)) range.fail("to", "must be above from (" + number_text(r.from) + ")");
+  if (r.log && !(r.from > 0.0)) range.fail("from", "a log range must start above 0");
+  for (auto [key, value] : {std::pair{"from", r.from}, std::pair{"to", r.to}})
+    if (const auto problem = parameter_problem(info, value); !problem.empty())
+      range.fail(key, "value " + number_text(value) + " " + problem);
+  return r;
+}
+
 /// Axis values must be distinct (they label a dimension) and each valid alone.
 void check_axis(const Fields& fields, std::string_view key, const std::vector<double>& values,
                 std::size_t parameter /* kParameterCount: the scale axis */) {
@@ -133,15 +161,31 @@ void read_study_section(const Fields& top, Study& s) {
 void read_plan(const Fields& top, Study& s) {
   const auto* table = top.subtable("plan");
   if (table == nullptr) return;
-  Fields f(*table, "plan", s.file, {"kind", "include_base"});
+  Fields f(*table, "plan", s.file, {"kind", "include_base", "samples", "seed", "scramble"});
   const std::string kind = f.text("kind").value_or("grid");
-  if (kind == "grid") s.plan = PlanKind::kGrid;
-  else if (kind == "one-at-a-time") s.plan = PlanKind::kOneAtATime;
-  else if (kind == "list") s.plan = PlanKind::kList;
-  else f.fail("kind", "expected \"grid\", \"one-at-a-time\" or \"list\", got \"" + kind + "\"");
+  bool known = false;
+  for (PlanKind p : {PlanKind::kGrid, PlanKind::kOneAtATime, PlanKind::kList, PlanKind::kLhs, PlanKind::kSobol,
+                     PlanKind::kSaltelli})
+    if (plan_name(p) == kind) s.plan = p, known = true;
+  if (!known)
+    f.fail("kind", "expected \"grid\", \"one-at-a-time\", \"list\", \"lhs\", \"sobol\" or \"saltelli\", got \"" + kind + "\"");
   if (f.has("include_base") && s.plan != PlanKind::kOneAtATime)
     f.fail("include_base", "only applies to plan \"one-at-a-time\"");
   s.include_base = f.flag("include_base").value_or(true);
+  for (const char* key : {"samples", "seed"})
+    if (f.has(key) && !is_sampled(s.plan)) f.fail(key, "only applies to the sampled plans (lhs, sobol, saltelli)");
+  if (f.has("scramble") && s.plan != PlanKind::kSobol && s.plan != PlanKind::kSaltelli)
+    f.fail("scramble", "only applies to plans \"sobol\" and \"saltelli\"");
+  if (is_sampled(s.plan)) {
+    if (!f.has("samples")) f.fail("samples", "required: how many points to draw");
+    const auto n = *f.integer("samples");
+    if (n < 2) f.fail("samples", "must be at least 2 (got " + std::to_string(n) + ")");
+    s.samples = static_cast<std::size_t>(n);
+    const auto seed = f.integer("seed").value_or(0);
+    if (seed < 0) f.fail("seed", "must not be negative");
+    s.seed = static_cast<std::uint64_t>(seed);
+    s.scramble = f.flag("scramble").value_or(false);
+  }
 }
 
 void read_base(const Fields& top, Study& s) {
@@ -221,9 +265,19 @@ void read_axes(const Fields& top, Study& s) {
       if (!f.has(key)) continue;
       if (s.plan == PlanKind::kList)
         f.fail(key, "plan \"list\" takes its parameters from [[cases]], not from [axes]");
+      if (is_sampled(s.plan)) {
+        s.ranges[p] = read_sampled_range(f, p);
+        continue;
+      }
       s.axes[p] = read_values(f, key);
       check_axis(f, key, s.axes[p], p);
     }
+  }
+  if (is_sampled(s.plan)) {
+    const auto varied = std::count_if(s.ranges.begin(), s.ranges.end(), [](const auto& r) { return r.has_value(); });
+    if (varied == 0) top.fail("axes", "a sampled plan needs at least one parameter range {from, to} in [axes]");
+    if (s.plan == PlanKind::kSaltelli && varied < 2)
+      top.fail("axes", "plan \"saltelli\" needs at least two varied parameters (sensitivity apportions variance among them)");
   }
   const bool swept = std::any_of(s.axes.begin(), s.axes.end(), [](const auto& v) { return !v.empty(); });
   if (s.plan == PlanKind::kOneAtATime && !swept)

@@ -8,6 +8,9 @@
 ///   one-at-a-time  record × scale × case; `case` enumerates the base point (if included)
 ///   and list       and each sweep value, or the listed cases; every case carries its label,
 ///                  its eight parameter values and (one-at-a-time) the varied parameter.
+///   lhs, sobol,    record × scale × case; `case` enumerates the sampled frames ("s0", …);
+///   saltelli       saltelli's are grouped by base sample j: A_j, B_j, A_B^(i)_j for each
+///                  varied parameter i, labelled "s<j>:A", "s<j>:B", "s<j>:AB_<parameter>".
 #pragma once
 
 #include <cstddef>
@@ -28,9 +31,11 @@ struct CaseSpec {
 
 /// A frame of the one-at-a-time or list plan (a value of the `case` dimension).
 struct CasePoint {
-  std::string label;   ///< "base", "kappa=1.2", or the list case's label
+  std::string label;   ///< "base", "kappa=1.2", the list case's label, or "s12" (sampled)
   std::string varied;  ///< parameter swept ("none" for the base point); list: empty
   FrameParameters parameters;
+  std::string block;   ///< saltelli: "A", "B" or "AB_<parameter>"
+  long sample = -1;    ///< saltelli: the base sample j this frame belongs to
 };
 
 class CaseSpace {

@@ -28,6 +28,8 @@ inline constexpr const char* kIdaRuns = "ida_runs";
 inline constexpr const char* kCase = "case";
 inline constexpr const char* kCaseLabel = "case_label";
 inline constexpr const char* kVariedParameter = "varied_parameter";
+inline constexpr const char* kSaltelliBlock = "saltelli_block";
+inline constexpr const char* kSaltelliSample = "saltelli_sample";
 // Global attributes.
 inline constexpr const char* kStudyName = "study_name";
 inline constexpr const char* kPlan = "plan";

@@ -7,6 +7,8 @@
 #pragma once
 
 #include <array>
+#include <cmath>
+#include <cstdint>
 #include <cstddef>
 #include <filesystem>
 #include <map>
@@ -30,8 +32,24 @@ enum class PlanKind {
   kGrid,        ///< every combination of the parameter axes (the full cube)
   kOneAtATime,  ///< each swept parameter alone, the others at the base point
   kList,        ///< explicitly listed cases
+  kLhs,         ///< a Latin hypercube over the [axes] ranges
+  kSobol,       ///< Sobol' low-discrepancy points over the [axes] ranges
+  kSaltelli,    ///< the A, B, A_B^(i) design for Sobol' sensitivity indices
 };
-std::string_view plan_name(PlanKind plan);  ///< "grid", "one-at-a-time", "list"
+/// True for the plans that sample the [axes] ranges (lhs, sobol, saltelli).
+inline bool is_sampled(PlanKind plan) {
+  return plan == PlanKind::kLhs || plan == PlanKind::kSobol || plan == PlanKind::kSaltelli;
+}
+
+/// The interval a sampled plan draws a parameter from: uniformly, or log-uniformly.
+struct SampledRange {
+  double from = 0.0;
+  double to = 0.0;
+  bool log = false;
+  /// The value at unit coordinate u ∈ [0, 1).
+  double at(double u) const { return log ? from * std::pow(to / from, u) : from + u * (to - from); }
+};
+std::string_view plan_name(PlanKind plan);  ///< "grid", "one-at-a-time", "list", "lhs", "sobol", "saltelli"
 
 /// A frame of the list plan.
 struct ListedCase {
@@ -101,6 +119,13 @@ struct Study {
   /// One-at-a-time: the values each parameter is swept over (empty: not swept).
   std::array<std::vector<double>, kParameterCount> axes;
   std::vector<ListedCase> cases;    ///< list plan
+  /// Sampled plans: each varied parameter's range (unset: the parameter stays at `base`),
+  /// the number of samples (saltelli: base samples N, N(d + 2) frames), the seed, and
+  /// whether Sobol' points are Owen-scrambled.
+  std::array<std::optional<SampledRange>, kParameterCount> ranges;
+  std::size_t samples = 0;
+  std::uint64_t seed = 0;
+  bool scramble = false;
 
   PhysicsOptions physics;
   SolverSettings solver = preset_settings("balanced");
