@@ -12,6 +12,7 @@
 #include "cli/commands.hpp"
 #include "pcrf/cube/cube_query.hpp"
 #include "pcrf/study/cube_fragility.hpp"
+#include "pcrf/study/cube_sensitivity.hpp"
 #include "pcrf/study/cube_vocabulary.hpp"
 
 namespace pcrf::cli {
@@ -123,6 +124,27 @@ void add_cube_command(CLI::App& app) {
       study::print_fragility(frames, units, args->mce, false, std::cout);
       if (!args->csv.empty())
         with_output(args->csv, [&](std::ostream& out) { study::print_fragility(frames, units, args->mce, true, out); });
+    });
+  });
+
+  auto* sensitivity = cube_cmd->add_subcommand(
+      "sensitivity", "First-order and total Sobol' indices of a saltelli cube, with 90 % bootstrap intervals");
+  sensitivity->add_option("FILE", args->file, "result cube of a saltelli plan")->required();
+  sensitivity->add_option("-m,--metric", args->metric, "a metric, or `collapse` (tendon fracture or overturned)")->required();
+  add_where(sensitivity, *args);
+  sensitivity->add_option("--by", args->by, "`record`: one set of indices per record (default: across records)");
+  sensitivity->add_option("--csv", args->csv, "also write the table as CSV to this file");
+  sensitivity->callback([args] {
+    guarded(args->file, [&] {
+      if (!args->by.empty() && args->by != "record") throw UsageError("--by takes `record` only");
+      cube::CubeReader reader(args->file);
+      const auto groups = study::cube_sensitivity(reader, args->metric, selectors(args->where), args->by == "record");
+      for (const auto& g : groups)
+        if (g.dropped > 0)
+          std::cerr << "pcrf cube sensitivity: " << g.record << ": " << g.dropped
+                    << " base samples left out (a frame without a value)\n";
+      study::print_sensitivity(groups, false, std::cout);
+      if (!args->csv.empty()) with_output(args->csv, [&](std::ostream& out) { study::print_sensitivity(groups, true, out); });
     });
   });
 }
