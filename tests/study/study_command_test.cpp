@@ -308,6 +308,7 @@ TEST(StudyCommand, PaperStudiesFindTheirRecords) {
       {"paper_section7.toml", ": ok, "},
       {"ida.toml", ": ok, "},
       {"fema_p695_ida.toml", ": ok, 1056 cases"},  // 22 records × 3 frames × 16 runs at most
+      {"sensitivity.toml", ": ok, 33280 cases"},   // 13 records × 256 × (8 + 2) frames
       {"numerics_audit/exact.toml", ": ok, 11 cases"},
       {"numerics_audit/fixed_rk4_h1e-2.toml", ": ok, 11 cases"},
       {"numerics_audit/fixed_rk4_h1e-3.toml", ": ok, 11 cases"},

@@ -1,0 +1,115 @@
+// Sampled plans end to end: the cube's frames are the plan's points mapped onto the ranges,
+// the saltelli cube's indices are the estimator's on its outputs, and bad sampled studies
+// are refused with their file, line and key.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "pcrf/analysis/sobol_indices.hpp"
+#include "pcrf/cube/cube_reader.hpp"
+#include "pcrf/plan/sampling.hpp"
+#include "study/study_test_support.hpp"
+
+namespace pcrf::study_test {
+namespace {
+
+test::CommandResult run_in(const std::filesystem::path& dir, const std::string& text, const std::string& args) {
+  const auto file = test::write_file(dir, "s.toml", text);
+  return test::run_command("cd " + quoted(dir) + " && " + pcrf() + " study " + quoted(file) + " " + args);
+}
+
+const std::string kRecords = std::string("[[records]]\nsynthetic = [\"") + kPulse + "\", \"" + kPulse2 + "\"]\n";
+
+TEST(SampledStudy, LatinHypercubeFramesFillTheRanges) {
+  const auto dir = test::scratch_dir("sampled_lhs");
+  const std::string text = kRecords + "[plan]\nkind = \"lhs\"\nsamples = 20\nseed = 4\n[axes]\n"
+                                      "kappa = {from = 1.2, to = 2.4}\npi_e_c = {from = 1000, to = 8000, spacing = \"log\"}\n";
+  ASSERT_EQ(run_in(dir, text, "-o lhs.h5 --progress-interval 0").exit_code, 0);
+  cube::CubeReader cube(dir / "lhs.h5");
+  const auto& layout = cube.layout();
+  EXPECT_EQ(layout.dimensions.back().name, "case");
+  EXPECT_EQ(layout.dimensions.back().size, 20u);
+  const auto unit = plan::latin_hypercube(20, 2, 4);
+  const auto* kappa = layout.find_coordinate("kappa");
+  const auto* pi_e_c = layout.find_coordinate("pi_e_c");
+  for (std::size_t j = 0; j < 20; ++j) {
+    EXPECT_DOUBLE_EQ(kappa->numbers[j], 1.2 + unit[j * 2] * 1.2);
+    EXPECT_DOUBLE_EQ(pi_e_c->numbers[j], 1000.0 * std::pow(8.0, unit[j * 2 + 1]));
+  }
+  EXPECT_DOUBLE_EQ(layout.find_coordinate("lambda")->numbers[7], 2.0);  // not varied: the base
+}
+
+TEST(SampledStudy, SensitivityOfASaltelliCubeIsTheEstimatorOnItsOutputs) {
+  const auto dir = test::scratch_dir("sampled_saltelli");
+  const std::string text = kRecords + "[plan]\nkind = \"saltelli\"\nsamples = 32\nscramble = true\n[axes]\n"
+                                      "kappa = {from = 1.2, to = 2.4}\ntan_alpha = {from = 0.15, to = 0.25}\n"
+                                      "lambda_h = {from = 0.15, to = 0.25}\n";
+  ASSERT_EQ(run_in(dir, text, "-o sal.h5 --progress-interval 0").exit_code, 0);
+  const auto r = test::run_command(pcrf() + " cube sensitivity " + quoted(dir / "sal.h5") + " -m impacts --csv " +
+                                   quoted(dir / "sal.csv"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  cube::CubeReader cube(dir / "sal.h5");
+  const auto impacts = cube.read_metric("impacts");
+  const auto status = cube.read_status();
+  const std::size_t frames = 32 * 5;
+  analysis::SaltelliOutputs o{{}, {}, std::vector<std::vector<double>>(3)};
+  for (std::size_t j = 0; j < 32; ++j) {
+    std::vector<double> y(5);
+    bool ok = true;
+    for (std::size_t b = 0; b < 5; ++b) {
+      const std::size_t c = j * 5 + b;  // record-major: case c of record 0 and record 1
+      ok = ok && status[c] <= 3 && status[frames + c] <= 3;
+      y[b] = 0.5 * (impacts[c] + impacts[frames + c]);
+    }
+    if (!ok) continue;
+    o.f_a.push_back(y[0]);
+    o.f_b.push_back(y[1]);
+    for (std::size_t i = 0; i < 3; ++i) o.f_ab[i].push_back(y[2 + i]);
+  }
+  const auto expected = analysis::sobol_indices(o);
+  std::ifstream csv(dir / "sal.csv");
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line, "record,parameter,S1,S1_5%,S1_95%,ST,ST_5%,ST_95%,samples");
+  for (std::size_t i = 0; i < 3; ++i) {
+    ASSERT_TRUE(std::getline(csv, line));
+    std::vector<std::string> cells;
+    std::stringstream in(line);
+    for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+    ASSERT_EQ(cells.size(), 9u) << line;
+    EXPECT_EQ(cells[1], (std::vector<std::string>{"kappa", "tan_alpha", "lambda_h"})[i]);
+    EXPECT_NEAR(std::stod(cells[2]), expected[i].s1, 5e-4) << line;
+    EXPECT_NEAR(std::stod(cells[5]), expected[i].st, 5e-4) << line;
+  }
+  const auto by_record = test::run_command(pcrf() + " cube sensitivity " + quoted(dir / "sal.h5") + " -m collapse --by record");
+  ASSERT_EQ(by_record.exit_code, 0) << by_record.err;
+  EXPECT_EQ(std::count(by_record.out.begin(), by_record.out.end(), '\n'), 7) << by_record.out;  // header + 2 × 3
+}
+
+TEST(SampledStudy, BadSampledStudiesAreRejected) {
+  const auto dir = test::scratch_dir("sampled_bad");
+  const std::vector<std::pair<std::string, std::string>> corpus = {
+      {kRecords + "[plan]\nkind = \"lhs\"\nsamples = 1\n[axes]\nkappa = {from = 1, to = 2}\n", "s.toml:5: plan.samples: must be at least 2"},
+      {kRecords + "[plan]\nkind = \"sobol\"\nsamples = 8\n[axes]\nkappa = [1, 2]\n", "s.toml:7: axes.kappa: a sampled plan draws from a range"},
+      {kRecords + "[plan]\nkind = \"sobol\"\nsamples = 8\n[axes]\nkappa = {from = 0, to = 2, spacing = \"log\"}\n",
+       "axes.kappa.from: a log range must start above 0"},
+      {kRecords + "[plan]\nkind = \"saltelli\"\nsamples = 8\n[axes]\nkappa = {from = 1, to = 2}\n",
+       "plan \"saltelli\" needs at least two varied parameters"},
+      {kRecords + "[plan]\nkind = \"lhs\"\n[axes]\nkappa = {from = 1, to = 2}\n", "plan.samples: required"},
+      {kRecords + "[plan]\nkind = \"lhs\"\nsamples = 4\n[axes]\nkappa = {from = 1, to = 2, count = 3}\n", "no count"},
+  };
+  for (const auto& [text, message] : corpus) {
+    const auto r = run_in(dir, text, "-o bad.h5");
+    EXPECT_EQ(r.exit_code, 2) << text;
+    EXPECT_NE(r.err.find(message), std::string::npos) << "got: " << r.err << "\nfor:\n" << text;
+  }
+  ASSERT_EQ(run_in(dir, kRecords, "-o grid.h5 --progress-interval 0").exit_code, 0);
+  const auto not_saltelli = test::run_command(pcrf() + " cube sensitivity " + quoted(dir / "grid.h5") + " -m impacts");
+  EXPECT_EQ(not_saltelli.exit_code, 2);
+  EXPECT_NE(not_saltelli.err.find("is not a saltelli design"), std::string::npos) << not_saltelli.err;
+}
+
+}  // namespace
+}  // namespace pcrf::study_test
