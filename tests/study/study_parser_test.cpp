@@ -127,7 +127,7 @@ TEST(StudyParser, RejectsBadStudiesNamingFileLineKeyAndProblem) {
       {kRecords + "[outputs]\nmetrics = [\"theta_max\"]\n", "unknown metric \"theta_max\" (did you mean \"theta_max_rad\"?)"},
       {"[axes]\nkappa = 2\n", "t.toml: records: a study needs at least one [[records]]"},
       {"[[records]]\nfile = \"no/such/file.AT2\"\n", "t.toml:2: records[0].file: file not found"},
-      {kRecords + "[plan]\nkind = \"random\"\n", "plan.kind: expected \"grid\", \"one-at-a-time\" or \"list\""},
+      {kRecords + "[plan]\nkind = \"random\"\n", "plan.kind: expected \"grid\", \"one-at-a-time\", \"list\", \"lhs\", \"sobol\" or \"saltelli\""},
       {kRecords + "[plan]\nkind = \"one-at-a-time\"\n", "needs at least one parameter to sweep"},
       {kRecords + "kappa = [1\n", "t.toml:3: not valid TOML"},
   };
