@@ -59,6 +59,12 @@ const std::vector<MetricInfo>& all_metrics() {
       {"root_evals", "1", "root-function evaluations",
        [](const CaseResult& r) { return static_cast<double>(r.counts.root_evals); }, true},
       {"wall_time_s", "s", "wall-clock time of the case", [](const CaseResult& r) { return r.wall_time_s; }},
+      {"status_stable", "1", "1 when the verdict survives the perturbation test (record x (1 +- 1e-9, 1e-7, 1e-6)), else 0",
+       [](const CaseResult& r) { return r.status_stable; }, false, true},
+      {"theta_max_spread", "1", "relative spread (max - min)/theta_max of peak |theta1| across the perturbation test",
+       [](const CaseResult& r) { return r.theta_max_spread; }, false, true},
+      {"collapse_fraction", "1", "share of the perturbation test's runs (the case and its six twins) that collapse",
+       [](const CaseResult& r) { return r.collapse_fraction; }, false, true},
   };
   return metrics;
 }

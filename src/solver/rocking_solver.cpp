@@ -428,6 +428,59 @@ std::optional<CaseResult> rest_throughout(PreparedFrame& frame, const GroundMoti
 
 }  // namespace
 
+namespace {
+
+/// What a verdict is for the check: survived (at rest or still rocking), a tendon fracture,
+/// an overturning, or a failure (no verdict).
+int verdict_class(CaseStatus s) {
+  switch (s) {
+    case CaseStatus::kAtRest:
+    case CaseStatus::kRockingAtEnd: return 0;
+    case CaseStatus::kTendonFracture: return 1;
+    case CaseStatus::kOverturned: return 2;
+    default: return 3;
+  }
+}
+
+bool collapsed(CaseStatus s) { return s == CaseStatus::kTendonFracture || s == CaseStatus::kOverturned; }
+
+/// The perturbation factors of the verdict check: the record scaled by 1 ± 1e-9, 1 ± 1e-7
+/// and 1 ± 1e-6, far below any real uncertainty of a record (issue 11's definition of a
+/// well-conditioned case).
+constexpr double kPerturbations[] = {1e-9, -1e-9, 1e-7, -1e-7, 1e-6, -1e-6};
+
+/// Fills the verdict-check metrics of `nominal`. The twins are run only where a verdict can
+/// flip: a case that collapsed, or that came within half of its stop angle (fracture or
+/// overturning). Further from collapse a 1e-6 perturbation does not double θ_max (the worst
+/// measured sensitivity is 19 % for 1e-9): the verdict is stable, and the spread not measured.
+void check_verdict(PreparedFrame& frame, const GroundMotion& record, const SolverSettings& solver,
+                   const OutputRequest& request, CaseResult& nominal) {
+  const int verdict = verdict_class(nominal.status);
+  const bool near = collapsed(nominal.status) || verdict == 3 ||
+                    (nominal.theta_max_rad > 0.0 && nominal.theta_max_rad >= 0.5 * frame.stop_angles().stop_rad());
+  nominal.collapse_fraction = collapsed(nominal.status) ? 1.0 : 0.0;
+  if (!near) {
+    nominal.status_stable = 1.0;
+    return;
+  }
+  SolverSettings twin_settings = solver;
+  twin_settings.verdict_check = false;
+  double lo = nominal.theta_max_rad, hi = nominal.theta_max_rad, collapses = nominal.collapse_fraction;
+  bool stable = true;
+  for (double e : kPerturbations) {
+    const CaseResult twin = solve_case(frame, record.scaled(1.0 + e), twin_settings, request);
+    stable = stable && verdict_class(twin.status) == verdict;
+    collapses += collapsed(twin.status) ? 1.0 : 0.0;
+    lo = std::min(lo, twin.theta_max_rad);
+    hi = std::max(hi, twin.theta_max_rad);
+  }
+  nominal.status_stable = stable ? 1.0 : 0.0;
+  nominal.collapse_fraction = collapses / (1.0 + std::size(kPerturbations));
+  nominal.theta_max_spread = nominal.theta_max_rad > 0.0 ? (hi - lo) / nominal.theta_max_rad : 0.0;
+}
+
+}  // namespace
+
 CaseResult solve_case(PreparedFrame& frame, const GroundMotion& record, const SolverSettings& solver,
                       const OutputRequest& request, const HistorySink& history) {
   detail::validate(solver, frame.physics());
@@ -443,6 +496,7 @@ CaseResult solve_case(PreparedFrame& frame, const GroundMotion& record, const So
     CaseRun run(frame, record, solver, request, history);
     result = run.run();
   }
+  if (solver.verdict_check) check_verdict(frame, record, solver, request, result);
   result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

@@ -98,6 +98,9 @@ const SettingTable<SolverSettings>& solver_settings() {
     s.push_back(number_setting("wall_time_limit_s", &S::wall_time_limit_s, "s", Bound::kNonNegative,
                                "a case that takes longer ends as time_limit; 0: no limit"));
     s.back().aliases = {"--time-limit"};
+    s.push_back(flag_setting("verdict_check", &S::verdict_check,
+                             "run each case near collapse again with its record scaled by 1 ± 1e-9, 1e-7, 1e-6: "
+                             "status_stable, theta_max_spread, collapse_fraction"));
     return t;
   }();
   return table;

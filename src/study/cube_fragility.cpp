@@ -45,6 +45,7 @@ std::string frame_label(const cube::CubeLayout& layout, const std::vector<std::s
 struct FrameCases {
   std::string label;
   std::vector<std::vector<std::int8_t>> status;  // [record][level]
+  std::vector<std::vector<double>> fraction;     // [record][level]: collapse_fraction, NaN if not checked
 };
 
 }  // namespace
@@ -123,6 +124,10 @@ std::vector<FrameFragility> cube_fragility(const cube::CubeReader& cube, const s
   const auto shape = layout.shape();
   const auto selected = cube::select_cases(layout, selectors);
   const auto status = cube.read_status();
+  // With verdict checks, a case counts by the share of its perturbed runs that collapsed.
+  std::vector<double> fraction;
+  for (const auto& m : layout.metrics)
+    if (m.name == "collapse_fraction") fraction = cube.read_metric(m.name);
 
   std::map<std::string, FrameCases> frames;  // by label, in label order
   std::vector<std::string> order;
@@ -135,8 +140,10 @@ std::vector<FrameFragility> cube_fragility(const cube::CubeReader& cube, const s
       order.push_back(label);
       it->second.label = label;
       it->second.status.assign(records, std::vector<std::int8_t>(levels.size(), cube::kStatusNotRun));
+      it->second.fraction.assign(records, std::vector<double>(levels.size(), std::nan("")));
     }
     it->second.status[coords[record_dim]][coords[level_dim]] = status[static_cast<std::size_t>(i)];
+    if (!fraction.empty()) it->second.fraction[coords[record_dim]][coords[level_dim]] = fraction[static_cast<std::size_t>(i)];
   }
 
   std::vector<FrameFragility> result;
@@ -153,7 +160,8 @@ std::vector<FrameFragility> cube_fragility(const cube::CubeReader& cube, const s
           const std::int8_t s = f.status[r][l];
           if (!has_verdict(s)) continue;
           stripes[l].trials += 1.0;
-          stripes[l].collapses += is_collapse(s) ? 1.0 : 0.0;
+          const double share = f.fraction[r][l];
+          stripes[l].collapses += std::isfinite(share) ? share : (is_collapse(s) ? 1.0 : 0.0);
         }
       }
       return stripes;

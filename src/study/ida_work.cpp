@@ -67,7 +67,7 @@ std::unique_ptr<plan::IdaPlan> make_ida_plan(const Study& study, const CaseSpace
   return plan;
 }
 
-void store_ida_summaries(const plan::IdaPlan& plan, cube::CubeWriter& writer) {
+void store_ida_summaries(const Study& study, const plan::IdaPlan& plan, cube::CubeWriter& writer) {
   std::vector<double> collapse, safe, runs;
   for (std::size_t c = 0; c < plan.curves(); ++c) {
     collapse.push_back(plan.curve(c).collapse_intensity());
@@ -77,6 +77,21 @@ void store_ida_summaries(const plan::IdaPlan& plan, cube::CubeWriter& writer) {
   writer.store_side(vocabulary::kCollapseIntensity, std::move(collapse));
   writer.store_side(vocabulary::kLastSafeIntensity, std::move(safe));
   writer.store_side(vocabulary::kIdaRuns, std::move(runs));
+  if (!study.solver.verdict_check) return;
+  // The band of intensities whose verdicts failed the perturbation test, per curve.
+  const auto& stable = writer.values("status_stable");
+  const auto& intensity = writer.values(vocabulary::kIdaIntensity);
+  const auto points = static_cast<std::size_t>(plan.max_runs());
+  std::vector<double> from(plan.curves(), std::nan("")), to(plan.curves(), std::nan(""));
+  for (std::size_t c = 0; c < plan.curves(); ++c)
+    for (std::size_t k = 0; k < points; ++k) {
+      const std::size_t i = c * points + k;
+      if (stable[i] != 0.0) continue;
+      if (!(intensity[i] >= from[c])) from[c] = intensity[i];
+      if (!(intensity[i] <= to[c])) to[c] = intensity[i];
+    }
+  writer.store_side(vocabulary::kUnstableFrom, std::move(from));
+  writer.store_side(vocabulary::kUnstableTo, std::move(to));
 }
 
 }  // namespace pcrf::study

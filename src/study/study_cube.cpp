@@ -160,6 +160,14 @@ void add_ida_variables(const Study& study, const CaseSpace& space, cube::CubeLay
                                    curve_axes, {}});
   layout.side_variables.push_back({names::kLastSafeIntensity, units, "highest safe intensity below the collapse", curve_axes, {}});
   layout.side_variables.push_back({names::kIdaRuns, "1", "runs of the curve so far", curve_axes, {}});
+  if (study.solver.verdict_check) {
+    layout.side_variables.push_back({names::kUnstableFrom, units,
+                                     "lowest intensity of the curve whose verdict failed the perturbation test (NaN: none)",
+                                     curve_axes, {}});
+    layout.side_variables.push_back({names::kUnstableTo, units,
+                                     "highest intensity of the curve whose verdict failed the perturbation test (NaN: none)",
+                                     curve_axes, {}});
+  }
 }
 
 std::vector<Attribute> global_attributes(const Study& study, const std::string& fingerprint) {

@@ -437,9 +437,11 @@ void read_records(const Fields& top, Study& s) {
 
 // ---- physics, solver, outputs, run -------------------------------------------------------
 
-std::vector<std::string> metric_names() {
+/// The default metrics: every one, the verdict check's only when it runs.
+std::vector<std::string> metric_names(bool verdict_check) {
   std::vector<std::string> names;
-  for (const auto& m : all_metrics()) names.emplace_back(m.name);
+  for (const auto& m : all_metrics())
+    if (verdict_check || !m.needs_verdict_check) names.emplace_back(m.name);
   return names;
 }
 
@@ -456,6 +458,8 @@ void read_metrics(const Fields& f, Study& s) {
     }
     if (std::find(s.metrics.begin(), s.metrics.end(), name) != s.metrics.end())
       f.fail("metrics", "metric \"" + name + "\" is listed twice");
+    if (find_metric(name)->needs_verdict_check && !s.solver.verdict_check)
+      f.fail("metrics", "metric \"" + name + "\" needs [solver] verdict_check = true");
     s.metrics.push_back(name);
   }
 }
@@ -499,7 +503,7 @@ void read_histories(const Fields& outputs, Study& s) {
 }
 
 void read_outputs(const Fields& top, Study& s) {
-  s.metrics = metric_names();
+  s.metrics = metric_names(s.solver.verdict_check);
   const auto* table = top.subtable("outputs");
   if (table == nullptr) return;
   Fields f(*table, "outputs", s.file, {"metrics", "histories"});

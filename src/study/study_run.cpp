@@ -167,7 +167,9 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
   std::function<void()> before_flush;
   if (p.study.ida) {
     auto ida = make_ida_plan(p.study, *p.space, *m.writer, parallel::worker_count(mpi.comm()));
-    before_flush = [plan = ida.get(), writer = m.writer.get()] { store_ida_summaries(*plan, *writer); };
+    before_flush = [&study = p.study, plan = ida.get(), writer = m.writer.get()] {
+      store_ida_summaries(study, *plan, *writer);
+    };
     work = std::move(ida);
   } else {
     work = std::make_unique<parallel::WorkQueue>(pending_cases(*m.writer, history_labels, p.study, *p.space, mpi));

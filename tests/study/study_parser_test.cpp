@@ -30,7 +30,10 @@ TEST(StudyParser, DefaultsAreTheBasicModelAndEveryMetric) {
   EXPECT_EQ(s.levels, std::vector<double>{1.0});
   EXPECT_DOUBLE_EQ(s.base.kappa, FrameParameters{}.kappa);
   EXPECT_DOUBLE_EQ(s.base.pi_e_c, FrameParameters{}.pi_e_c);
-  EXPECT_EQ(s.metrics.size(), all_metrics().size());
+  // every metric but the verdict check's three (they need [solver] verdict_check = true)
+  EXPECT_EQ(s.metrics.size(), all_metrics().size() - 3);
+  const Study checked = parse(kRecords + "[solver]\nverdict_check = true\n");
+  EXPECT_EQ(checked.metrics.size(), all_metrics().size());
   EXPECT_EQ(s.solver.rtol, preset_settings("balanced").rtol);
   EXPECT_EQ(CaseSpace(s).size(), 1);
 }
@@ -130,6 +133,7 @@ TEST(StudyParser, RejectsBadStudiesNamingFileLineKeyAndProblem) {
       {kRecords + "[plan]\nkind = \"random\"\n", "plan.kind: expected \"grid\", \"one-at-a-time\", \"list\", \"lhs\", \"sobol\" or \"saltelli\""},
       {kRecords + "[plan]\nkind = \"one-at-a-time\"\n", "needs at least one parameter to sweep"},
       {kRecords + "kappa = [1\n", "t.toml:3: not valid TOML"},
+      {kRecords + "[outputs]\nmetrics = [\"status_stable\"]\n", "metric \"status_stable\" needs [solver] verdict_check = true"},
   };
   for (const auto& bad : corpus) {
     const std::string message = error_of(bad.text);

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -62,6 +63,11 @@ struct CaseResult {
   double t_end_s = 0.0;             ///< time at which the case ended [s]
   SolverCounts counts;
   double wall_time_s = 0.0;         ///< wall-clock time of the case [s]
+  // Verdict check (SolverSettings::verdict_check); NaN when not checked.
+  double status_stable = kNotChecked;     ///< 1: every perturbed twin reached the same verdict; 0: not
+  double theta_max_spread = kNotChecked;  ///< (max − min)/θ_max over the case and its twins [-]
+  double collapse_fraction = kNotChecked; ///< share of the case and its twins that collapsed [-]
+  static constexpr double kNotChecked = std::numeric_limits<double>::quiet_NaN();
   std::string message;              ///< failure detail; empty when none
 };
 
@@ -72,6 +78,7 @@ struct MetricInfo {
   std::string_view description;
   double (*get)(const CaseResult&);
   bool is_count = false;  ///< an integer count (impacts, steps, ...)
+  bool needs_verdict_check = false;  ///< only computed with [solver] verdict_check = true
 };
 
 /// Every numeric metric of CaseResult (status excluded), in a stable order.

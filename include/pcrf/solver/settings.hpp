@@ -69,6 +69,7 @@ struct SolverSettings {
   /// keeps the integrators at their design order (without restarting them).
   bool stop_at_samples = true;
   double wall_time_limit_s = 0.0;  ///< 0: no limit; else status kTimeLimit
+  bool verdict_check = false;      ///< perturbed twin runs: status_stable, theta_max_spread, collapse_fraction
 
   bool operator==(const SolverSettings&) const = default;
 };

@@ -4,7 +4,8 @@
 ///
 /// A grid cube with an `intensity` axis gives stripes: at each intensity, the records whose
 /// case ended (at rest, rocking, fracture, overturned) and how many of them collapsed
-/// (tendon fracture or overturned). Cases that failed (solver_failure, time_limit) or were
+/// (tendon fracture or overturned) — or, when the cube holds verdict checks, the sum of the
+/// cases' `collapse_fraction` (the share of their perturbed runs that collapsed). Cases that failed (solver_failure, time_limit) or were
 /// not run count in neither and are reported. An IDA cube gives each record's collapse
 /// intensity, right-censored at its last safe intensity where none was found (fitted by
 /// censored maximum likelihood). The bootstrap resamples records.

@@ -18,7 +18,8 @@ namespace pcrf::study {
 std::unique_ptr<plan::IdaPlan> make_ida_plan(const Study& study, const CaseSpace& space, const cube::CubeWriter& writer,
                                              int workers);
 
-/// collapse_intensity, last_safe_intensity and ida_runs of every curve, into the cube.
-void store_ida_summaries(const plan::IdaPlan& plan, cube::CubeWriter& writer);
+/// collapse_intensity, last_safe_intensity and ida_runs of every curve, into the cube; with
+/// verdict checks also the band of intensities whose verdicts were unstable.
+void store_ida_summaries(const Study& study, const plan::IdaPlan& plan, cube::CubeWriter& writer);
 
 }  // namespace pcrf::study
