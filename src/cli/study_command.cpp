@@ -1,7 +1,9 @@
 // `pcrf study FILE`: runs a parametric study, on one rank or under mpirun.
 #include <CLI/CLI.hpp>
 
+#include <csignal>
 #include <iostream>
+#include <atomic>
 #include <memory>
 
 #include "cli/commands.hpp"
@@ -20,11 +22,32 @@ struct StudyArguments {
   std::unique_ptr<SettingFlags<study::RunOptions>> run_flags;
 };
 
+/// The signal that asked the run to stop (SIGTERM from a scheduler, SIGINT from Ctrl-C or
+/// forwarded by mpirun); 0 while none has.
+std::atomic<int> stop_signal{0};
+static_assert(std::atomic<int>::is_always_lock_free, "set from a signal handler");
+
+extern "C" void on_stop_signal(int number) { stop_signal.store(number); }
+
+/// Every rank catches SIGTERM and SIGINT: rank 0 stops handing out work and flushes, the
+/// others finish the batch they hold and are then told to stop. A second signal is not
+/// caught again (the default action ends the process).
+void catch_stop_signals() {
+  struct sigaction action {};
+  action.sa_handler = on_stop_signal;
+  action.sa_flags = SA_RESETHAND;
+  sigemptyset(&action.sa_mask);
+  ::sigaction(SIGTERM, &action, nullptr);
+  ::sigaction(SIGINT, &action, nullptr);
+}
+
 void run_study_command(StudyArguments& args) {
   args.run.run_overrides = args.run_flags->given();
   args.run.progress = &std::cerr;
+  args.run.stop_signal = &stop_signal;
 
   parallel::MpiSession mpi;
+  catch_stop_signals();
   std::optional<study::StudySummary> summary;
   try {
     summary = study::run_study(args.run, mpi);
@@ -43,6 +66,14 @@ void run_study_command(StudyArguments& args) {
     throw;
   }
   if (!summary) exit_code() = 2;  // rank ≠ 0 of a study that cannot run: rank 0 reported it
+  if (summary && mpi.is_master() && summary->stopped_by != 0) {
+    const std::string name = summary->stopped_by == SIGTERM ? "SIGTERM" : summary->stopped_by == SIGINT ? "SIGINT" : "a signal";
+    std::cerr << "pcrf study: stopped by " << name << ": " << summary->already_done + summary->computed << " of "
+              << summary->total << " cases saved in " << summary->output.string() << "; continue with: pcrf study "
+              << args.run.study_file.string() << " -o " << summary->output.string() << " --resume" << std::endl;
+  }
+  if (summary && summary->stopped_by != 0) exit_code() = 128 + summary->stopped_by;
+  if (!mpi.is_master() && stop_signal.load() != 0) exit_code() = 128 + stop_signal.load();
   if (summary && args.run.check_only && mpi.is_master()) {
     std::cout << args.run.study_file.string() << ": ok, " << summary->total << " cases, fingerprint "
               << summary->fingerprint << std::endl;

@@ -241,6 +241,7 @@ void read_ida(const Fields& top, Study& s) {
 
 void read_axes(const Fields& top, Study& s) {
   const auto* table = top.subtable("axes");
+  if (table != nullptr) s.setting_lines["axes"] = top.where("axes");
   const bool has_intensity_axis = table != nullptr && table->contains("intensity");
   if (s.ida && table != nullptr && (table->contains("intensity") || table->contains("scale")))
     Fields(*table, "axes", s.file, with_parameter_keys({"scale", "intensity"}))

@@ -45,11 +45,31 @@ void apply_overrides(const StudyRunOptions& options, RunOptions& run) {
   for (const auto& [setting, value] : options.run_overrides) setting->set(run, value);
 }
 
+/// True when `a` and `b` name the same file (or would: an output not made yet compares by
+/// its absolute, normalized path).
+bool same_file(const std::filesystem::path& a, const std::filesystem::path& b) {
+  std::error_code error;
+  if (std::filesystem::exists(a, error) && std::filesystem::exists(b, error))
+    return std::filesystem::equivalent(a, b, error);
+  return std::filesystem::weakly_canonical(a, error) == std::filesystem::weakly_canonical(b, error);
+}
+
+/// An output must never be one of the study's inputs, whatever --overwrite says.
+void check_output_is_not_an_input(const std::filesystem::path& output, const StudyRunOptions& options, const Study& study) {
+  if (same_file(output, options.study_file))
+    throw StudyError(output.string() + ": -o names the study file itself; choose another output (--overwrite does not apply to inputs)");
+  for (const auto& r : study.records)
+    if (r.file && same_file(output, r.file->path))
+      throw StudyError(output.string() + ": -o names the record file of \"" + r.name +
+                       "\"; choose another output (--overwrite does not apply to inputs)");
+}
+
 MasterSetup prepare_master(const StudyRunOptions& options, const Prepared& p) {
   MasterSetup m;
   m.checked = check_study(p.study, *p.space, *p.records);
   if (options.check_only) return m;
   m.output = options.output.empty() ? default_output(options.study_file) : options.output;
+  check_output_is_not_an_input(m.output, options, p.study);
   if (std::filesystem::exists(m.output) && !options.resume && !options.overwrite)
     throw StudyError(m.output.string() + ": already exists; use --resume to continue it or --overwrite to replace it");
   const auto mode = options.resume ? cube::OpenMode::kResume
@@ -151,8 +171,23 @@ parallel::WorkQueue pending_cases(const cube::CubeWriter& writer, const std::map
                              study.run.batch_size);
 }
 
+/// A work source that runs dry when a stop signal arrives: the master then tells every
+/// worker to stop, collects the cases in flight, and the cube is flushed as at the end.
+class StopOnSignal final : public parallel::WorkSource {
+ public:
+  StopOnSignal(parallel::WorkSource& work, const std::atomic<int>* signal) : work_(work), signal_(signal) {}
+  parallel::WorkBatch take(bool in_process) override { return stopped() ? parallel::WorkBatch{} : work_.take(in_process); }
+  void completed(const parallel::CaseOutcome& o) override { work_.completed(o); }
+  bool exhausted() const override { return stopped() || work_.exhausted(); }
+  bool stopped() const { return signal_ != nullptr && signal_->load() != 0; }
+
+ private:
+  parallel::WorkSource& work_;
+  const std::atomic<int>* signal_;
+};
+
 StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::MpiSession& mpi,
-                             std::ostream& progress) {
+                             std::ostream& progress, const std::atomic<int>* stop_signal) {
   CaseRunner runner(p.study, *p.space, *p.records);
   std::map<std::int64_t, std::string> history_labels;
   for (std::size_t h = 0; h < p.study.histories.size(); ++h)
@@ -186,13 +221,15 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
     inbox.push(make_history_table(label->second, index, p.study, *p.space, samples));
     return outcome;
   };
-  parallel::run_master(mpi.comm(), *work, schedule_options(p.study, runner),
+  StopOnSignal stoppable(*work, stop_signal);
+  parallel::run_master(mpi.comm(), stoppable, schedule_options(p.study, runner),
                        evaluate, [&sink](parallel::ResultBatch&& batch) { sink.store(std::move(batch)); },
                        [&sink] { sink.idle(); });
   sink.close();
   meter.finish(m.output.string());
   summary.computed = meter.computed();
   summary.failed = meter.failed();
+  if (stoppable.stopped()) summary.stopped_by = stop_signal->load();
   return summary;
 }
 
@@ -250,7 +287,7 @@ std::optional<StudySummary> run_study(const StudyRunOptions& options, const para
   std::optional<StudySummary> summary;
   static std::ostream nowhere(nullptr);  // a stream without a buffer discards what it is given
   if (mpi.is_master())
-    summary = run_master_rank(*prepared, setup, mpi, options.progress ? *options.progress : nowhere);
+    summary = run_master_rank(*prepared, setup, mpi, options.progress ? *options.progress : nowhere, options.stop_signal);
   else
     run_worker_rank(*prepared, mpi);
   mpi.quiet_barrier();

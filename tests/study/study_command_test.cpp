@@ -254,6 +254,67 @@ TEST(StudyCommand, InvalidFramesBecomeCasesAndTheStudyGoesOn) {
   EXPECT_NE(single.err.find("coefficient of restitution"), std::string::npos) << single.err;
 }
 
+TEST(StudyCommand, AnOutputIsNeverOneOfTheInputs) {
+  const auto dir = test::scratch_dir("study_output_input");
+  const auto record = test::write_file(dir, "rec.AT2", "PEER\nX\nACCELERATION IN UNITS OF G\nNPTS=  3, DT= .01 SEC\n0.1 0.2 0.1\n");
+  const std::string text = "[[records]]\nfile = \"rec.AT2\"\n";
+  const auto self = run_study(dir, "self.toml", text, "-o self.toml --overwrite");
+  EXPECT_EQ(self.exit_code, 2);
+  EXPECT_NE(self.err.find("-o names the study file itself"), std::string::npos) << self.err;
+  EXPECT_EQ(test::run_command("head -1 " + quoted(dir / "self.toml")).out, "[[records]]\n");
+  const auto rec = run_study(dir, "self.toml", text, "-o ./rec.AT2 --overwrite");
+  EXPECT_EQ(rec.exit_code, 2);
+  EXPECT_NE(rec.err.find("-o names the record file of \"rec\""), std::string::npos) << rec.err;
+  EXPECT_EQ(test::run_command("head -1 " + quoted(record)).out, "PEER\n");
+  // A study far beyond the machine's memory is refused at --check, naming the file and line.
+  const auto huge = run_study(dir, "huge.toml", std::string("[[records]]\nsynthetic = \"") + kPulse + "\"\n[axes]\n"
+                              "scale = {from = 0.1, to = 1, count = 1000}\nkappa = {from = 1, to = 2, count = 1000}\n"
+                              "lambda = {from = 1.5, to = 2.5, count = 1000}\ntan_alpha = {from = 0.1, to = 0.2, count = 1000}\n",
+                              "--check");
+  EXPECT_EQ(huge.exit_code, 2);
+  EXPECT_NE(huge.err.find("huge.toml:3: axes: 1e+12 cases need about"), std::string::npos) << huge.err;
+}
+
+TEST(StudyCommand, SigtermFlushesAndSaysHowToResume) {
+  const auto dir = test::scratch_dir("study_sigterm");
+  const std::string text = std::string("[[records]]\nsynthetic = [\"") + kPulse + "\", \"" + kPulse2 + "\", \"" + kNoise +
+                           "\"]\n[axes]\nscale = [0.9, 1.1, 1.3]\nkappa = {from = 1.0, to = 3.0, count = 9}\n"
+                           "tan_alpha = {from = 0.16, to = 0.24, count = 9}\n";
+  const auto study = test::write_file(dir, "sig.toml", text);
+  const auto err = dir / "sig.err";
+  // A long flush interval: without the signal's flush, the cube would hold nothing.
+  const std::string command = "cd " + quoted(dir) + " && exec " + pcrf() + " study " + quoted(study) +
+                              " -o sig.h5 --flush-interval-s 1000 --progress-interval-s 0.05 2>" + quoted(err);
+  pid_t pid = 0;
+  const char* argv[] = {"/bin/sh", "-c", command.c_str(), nullptr};
+  ASSERT_EQ(posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ), 0);
+  std::pair<long, long> progress{0, 0};
+  for (int i = 0; i < 600 && !(progress.second > 0 && progress.first >= progress.second / 10); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    progress = last_progress(err);
+  }
+  ASSERT_EQ(::kill(pid, SIGTERM), 0);
+  int wstatus = 0;
+  ::waitpid(pid, &wstatus, 0);
+  ASSERT_TRUE(WIFEXITED(wstatus));
+  EXPECT_EQ(WEXITSTATUS(wstatus), 128 + SIGTERM);
+  std::ifstream in(err);
+  std::stringstream text_err;
+  text_err << in.rdbuf();
+  const std::regex saved(R"(stopped by SIGTERM: (\d+) of (\d+) cases saved in sig\.h5; continue with: pcrf study .*sig\.toml -o sig\.h5 --resume)");
+  std::smatch m;
+  const std::string e = text_err.str();
+  ASSERT_TRUE(std::regex_search(e, m, saved)) << e;
+  const auto status = cube::CubeReader(dir / "sig.h5").read_status();
+  EXPECT_EQ(std::count_if(status.begin(), status.end(), [](std::int8_t s) { return s != cube::kStatusNotRun; }),
+            std::stol(m[1].str()));
+  EXPECT_GT(std::stol(m[1].str()), 0);
+  const auto resumed = test::run_command("cd " + quoted(dir) + " && " + pcrf() + " study sig.toml -o sig.h5 --resume --progress-interval 0");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  ASSERT_EQ(test::run_command("cd " + quoted(dir) + " && " + pcrf() + " study sig.toml -o whole.h5 --progress-interval 0").exit_code, 0);
+  expect_same_cube(dir / "whole.h5", dir / "sig.h5");
+}
+
 TEST(StudyCommand, BadStudyUnderMpirunExitsWith2AndReportsOnce) {
   PCRF_REQUIRE_MPIRUN();
   const auto dir = test::scratch_dir("study_bad_mpi");

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -25,6 +26,9 @@ struct StudyRunOptions {
   bool check_only = false;        ///< validate, print the case count, write nothing
   /// Where rank 0 writes progress lines and the closing line (the CLI: stderr); null: nowhere.
   std::ostream* progress = nullptr;
+  /// Set (to the signal's number) when the run should stop: rank 0 hands out no more work,
+  /// collects what is in flight, flushes and returns. Null: never.
+  const std::atomic<int>* stop_signal = nullptr;
   /// [run] values that override the study file's (already checked against run_settings()).
   std::vector<std::pair<const Setting<RunOptions>*, SettingValue>> run_overrides;
 };
@@ -40,6 +44,7 @@ struct StudySummary {
   std::int64_t invalid_cases = 0;  ///< cases whose frame the model cannot represent
   std::int64_t invalid_frames = 0;
   std::string first_invalid;       ///< one of them and why
+  int stopped_by = 0;              ///< the signal that stopped the run early; 0: it ran to the end
 };
 
 /// Default output of a study file.
