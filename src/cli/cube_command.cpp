@@ -73,6 +73,13 @@ void add_cube_command(CLI::App& app) {
     guarded(args->file, [&] {
       const cube::CubeReader reader(args->file);
       cube::print_info(reader, study::vocabulary::info_heading(reader.layout()), std::cout);
+      // Vouch for nothing unread: a variable whose chunks no longer decompress is damage.
+      const auto damage = reader.damage();
+      if (!damage.empty()) {
+        for (const auto& d : damage) std::cout << "DAMAGED: " << d << '\n';
+        throw UsageError(args->file + ": damaged: " + std::to_string(damage.size()) +
+                         " variables cannot be read; --resume cannot continue it");
+      }
     });
   });
 

@@ -191,6 +191,22 @@ std::vector<std::pair<std::int64_t, std::string>> CubeReader::read_notes() const
   return notes;
 }
 
+std::vector<std::string> CubeReader::damage() const {
+  std::vector<std::string> problems;
+  auto attempt = [&](const std::string& name, const auto& read) {
+    try {
+      read();
+    } catch (const CubeError& e) {
+      problems.push_back(name + ": " + e.what());
+    }
+  };
+  attempt(kStatusName, [&] { (void)read_status(); });
+  for (const auto& m : layout_.metrics) attempt(m.name, [&] { (void)read_metric(m.name); });
+  for (const auto& v : layout_.side_variables) attempt(v.name, [&] { (void)read_side(v.name); });
+  attempt("messages", [&] { (void)read_notes(); });
+  return problems;
+}
+
 std::vector<std::string> CubeReader::history_names() const {
   if (H5Lexists(impl_->file, "histories", H5P_DEFAULT) <= 0) return {};
   auto group = h5::group(H5Gopen2(impl_->file, "histories", H5P_DEFAULT), impl_->what("cannot open histories"));

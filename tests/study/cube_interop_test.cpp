@@ -206,3 +206,32 @@ TEST(CubeInterop, StatsCountCollapsesApart) {
 
 }  // namespace
 }  // namespace pcrf::study_test
+
+namespace pcrf::study_test {
+namespace {
+
+TEST(CubeInterop, InfoFindsAVariableThatNoLongerDecompresses) {
+  if (!python_has("h5py")) GTEST_SKIP() << "python3-h5py missing";
+  const auto dir = grid_cube();
+  const auto copy = dir / "damaged.h5";
+  std::filesystem::copy_file(dir / "grid.h5", copy, std::filesystem::copy_options::overwrite_existing);
+  const auto whole = test::run_command(pcrf() + " cube info " + quoted(copy));
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  EXPECT_EQ(whole.out.find("DAMAGED"), std::string::npos);
+  // Flip bytes inside the first compressed chunk of theta_max_rad, as a kill during a write
+  // or a bad disk would leave it.
+  python(dir, "import h5py\n"
+              "f = h5py.File('damaged.h5', 'r')\n"
+              "offset = f['theta_max_rad'].id.get_chunk_info(0).byte_offset\n"
+              "f.close()\n"
+              "data = bytearray(open('damaged.h5', 'rb').read())\n"
+              "for i in range(offset + 8, offset + 120): data[i] ^= 0x5A\n"
+              "open('damaged.h5', 'wb').write(data)\n");
+  const auto damaged = test::run_command(pcrf() + " cube info " + quoted(copy));
+  EXPECT_EQ(damaged.exit_code, 2);
+  EXPECT_NE(damaged.out.find("DAMAGED: theta_max_rad"), std::string::npos) << damaged.out;
+  EXPECT_NE(damaged.err.find("damaged: 1 variables cannot be read"), std::string::npos) << damaged.err;
+}
+
+}  // namespace
+}  // namespace pcrf::study_test

@@ -33,6 +33,9 @@ class CubeReader {
   std::vector<double> read_side(const std::string& name) const;
   /// (case index, message) of every case that left a note, in the order they were stored.
   std::vector<std::pair<std::int64_t, std::string>> read_notes() const;
+  /// Reads every variable in full (decompressing every chunk) and returns what cannot be
+  /// read, one line each ("theta_max_rad: cannot read (…)"); empty when the file is whole.
+  std::vector<std::string> damage() const;
   /// Names of the stored time-history groups.
   std::vector<std::string> history_names() const;
 
