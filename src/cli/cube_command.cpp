@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "cli/commands.hpp"
+#include "pcrf/cube/cube_merge.hpp"
 #include "pcrf/cube/cube_query.hpp"
 #include "pcrf/study/cube_fragility.hpp"
 #include "pcrf/study/cube_sensitivity.hpp"
@@ -20,6 +21,8 @@ namespace {
 
 struct CubeArguments {
   std::string file;
+  std::vector<std::string> parts;
+  bool overwrite = false;
   std::optional<double> mce;
   std::string csv;
   std::vector<std::string> metrics;
@@ -152,6 +155,18 @@ void add_cube_command(CLI::App& app) {
                     << " base samples left out (a frame without a value)\n";
       study::print_sensitivity(groups, false, std::cout);
       if (!args->csv.empty()) with_output(args->csv, [&](std::ostream& out) { study::print_sensitivity(groups, true, out); });
+    });
+  });
+
+  auto* merge = cube_cmd->add_subcommand("merge", "Join the cubes of a sharded run (pcrf study --shard K/N) into one");
+  merge->add_option("PARTS", args->parts, "the shards' cubes")->required();
+  merge->add_option("-o,--output", args->output, "the merged cube")->required();
+  merge->add_flag("--overwrite", args->overwrite, "replace an existing output");
+  merge->callback([args] {
+    guarded(args->output, [&] {
+      std::vector<std::filesystem::path> parts(args->parts.begin(), args->parts.end());
+      cube::merge_cubes(parts, args->output, args->overwrite);
+      std::cout << "merged " << parts.size() << " parts into " << args->output << '\n';
     });
   });
 }

@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 
 #include <csignal>
+#include <cstdio>
 #include <iostream>
 #include <atomic>
 #include <memory>
@@ -19,6 +20,7 @@ namespace {
 /// Command-line values; the [run] flags override the study file's table.
 struct StudyArguments {
   study::StudyRunOptions run;
+  std::string shard;  ///< "K/N", or empty
   std::unique_ptr<SettingFlags<study::RunOptions>> run_flags;
 };
 
@@ -43,6 +45,14 @@ void catch_stop_signals() {
 
 void run_study_command(StudyArguments& args) {
   args.run.run_overrides = args.run_flags->given();
+  if (!args.shard.empty()) {
+    unsigned long k = 0, n = 0;
+    char extra = 0;
+    if (std::sscanf(args.shard.c_str(), "%lu/%lu%c", &k, &n, &extra) != 2 || n < 1 || k < 1 || k > n)
+      throw UsageError("--shard " + args.shard + ": expected K/N with 1 ≤ K ≤ N, e.g. 3/8");
+    args.run.shard_index = k - 1;
+    args.run.shard_count = n;
+  }
   args.run.progress = &std::cerr;
   args.run.stop_signal = &stop_signal;
 
@@ -96,6 +106,8 @@ void add_study_command(CLI::App& app) {
   resume->excludes(overwrite);
   cmd->add_flag("--check", args->run.check_only, "check the study (records, geometry) and print its size; compute nothing");
   args->run_flags = std::make_unique<SettingFlags<study::RunOptions>>(cmd, study::run_settings());
+  cmd->add_option("--shard", args->shard,
+                  "compute shard K of N (K/N): a deterministic 1/N of the cases; join the parts with pcrf cube merge");
   cmd->callback([args] { run_study_command(*args); });
 }
 

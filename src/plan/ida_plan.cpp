@@ -28,8 +28,15 @@ void IdaPlan::replay(std::size_t curve, int point, double intensity, bool collap
   refresh(curve);
 }
 
+void IdaPlan::skip(std::size_t curve) {
+  skipped_.resize(searches_.size(), false);
+  skipped_[curve] = true;
+  refresh(curve);
+}
+
 void IdaPlan::refresh(std::size_t curve) {
-  const bool wants = searches_[curve].next().has_value() && std::isnan(in_flight_[curve]);
+  const bool skipped = curve < skipped_.size() && skipped_[curve];
+  const bool wants = !skipped && searches_[curve].next().has_value() && std::isnan(in_flight_[curve]);
   const auto at = std::find(ready_.begin(), ready_.end(), curve);
   if (wants && at == ready_.end()) ready_.push_back(curve);
   if (!wants && at != ready_.end()) ready_.erase(at);

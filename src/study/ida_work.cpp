@@ -69,10 +69,12 @@ std::unique_ptr<plan::IdaPlan> make_ida_plan(const Study& study, const CaseSpace
 
 void store_ida_summaries(const Study& study, const plan::IdaPlan& plan, cube::CubeWriter& writer) {
   std::vector<double> collapse, safe, runs;
+  const double none = std::nan("");  // a curve another shard computes: nothing known here
   for (std::size_t c = 0; c < plan.curves(); ++c) {
-    collapse.push_back(plan.curve(c).collapse_intensity());
-    safe.push_back(plan.curve(c).last_safe_intensity());
-    runs.push_back(static_cast<double>(plan.curve(c).runs()));
+    const bool here = !plan.skipped(c);
+    collapse.push_back(here ? plan.curve(c).collapse_intensity() : none);
+    safe.push_back(here ? plan.curve(c).last_safe_intensity() : none);
+    runs.push_back(here ? static_cast<double>(plan.curve(c).runs()) : none);
   }
   writer.store_side(vocabulary::kCollapseIntensity, std::move(collapse));
   writer.store_side(vocabulary::kLastSafeIntensity, std::move(safe));

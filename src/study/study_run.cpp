@@ -9,6 +9,7 @@
 #include <memory>
 #include <mutex>
 
+#include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/cube/cube_writer.hpp"
 #include "pcrf/parallel/scheduler.hpp"
 #include "pcrf/parallel/work_queue.hpp"
@@ -70,12 +71,28 @@ MasterSetup prepare_master(const StudyRunOptions& options, const Prepared& p) {
   if (options.check_only) return m;
   m.output = options.output.empty() ? default_output(options.study_file) : options.output;
   check_output_is_not_an_input(m.output, options, p.study);
+  if (options.shard_count > 1 && !p.study.histories.empty())
+    throw StudyError(p.study.file + ": outputs.histories: a sharded run cannot store histories yet; run the histories "
+                                    "unsharded or leave them out");
+  const std::string shard = options.shard_count > 1 ? std::to_string(options.shard_index + 1) + "/" +
+                                                           std::to_string(options.shard_count) : "";
+  if (options.resume && std::filesystem::exists(m.output)) {
+    try {
+      const std::string theirs = cube::CubeReader(m.output).layout().text_attribute(cube::kShardName);
+      if (theirs != shard)
+        throw StudyError(m.output.string() + ": is shard \"" + (theirs.empty() ? "none" : theirs) +
+                         "\" of the study; this run is shard \"" + (shard.empty() ? "none" : shard) + "\"");
+    } catch (const cube::CubeError&) {  // not readable: CubeWriter says why
+    }
+  }
   if (std::filesystem::exists(m.output) && !options.resume && !options.overwrite)
     throw StudyError(m.output.string() + ": already exists; use --resume to continue it or --overwrite to replace it");
   const auto mode = options.resume ? cube::OpenMode::kResume
                                    : (options.overwrite ? cube::OpenMode::kOverwrite : cube::OpenMode::kCreate);
   try {
-    m.writer = std::make_unique<cube::CubeWriter>(m.output, make_cube_layout(p.study, *p.space, *p.records, m.checked.fingerprint), mode);
+    auto layout = make_cube_layout(p.study, *p.space, *p.records, m.checked.fingerprint);
+    if (!shard.empty()) layout.attributes.push_back({cube::kShardName, shard});
+    m.writer = std::make_unique<cube::CubeWriter>(m.output, std::move(layout), mode);
   } catch (const cube::CubeError& e) {
     throw StudyError(e.what());
   }
@@ -158,16 +175,27 @@ class ResultSink {
 };
 
 /// Cases not done yet; the cases with a history stay on rank 0 (pinned).
+/// The half-open range [first, last) of `total` items that shard `index` of `count` owns.
+std::pair<std::int64_t, std::int64_t> shard_range(std::int64_t total, std::size_t index, std::size_t count) {
+  const auto n = static_cast<std::int64_t>(count), k = static_cast<std::int64_t>(index);
+  return {total * k / n, total * (k + 1) / n};
+}
+
 parallel::WorkQueue pending_cases(const cube::CubeWriter& writer, const std::map<std::int64_t, std::string>& histories,
-                                  const Study& study, const CaseSpace& space, const parallel::MpiSession& mpi) {
+                                  const Study& study, const CaseSpace& space, const parallel::MpiSession& mpi,
+                                  const StudyRunOptions& options) {
+  std::vector<std::int64_t> all(static_cast<std::size_t>(space.size()));
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<std::int64_t>(i);
+  all = space.frame_major(std::move(all));
+  const auto [first, last] = shard_range(space.size(), options.shard_index, options.shard_count);
   std::vector<std::int64_t> shared, pinned;
   const auto& status = writer.status();
-  for (std::size_t i = 0; i < status.size(); ++i) {
-    if (status[i] != cube::kStatusNotRun) continue;
-    const auto index = static_cast<std::int64_t>(i);
+  for (std::int64_t p = first; p < last; ++p) {
+    const std::int64_t index = all[static_cast<std::size_t>(p)];
+    if (status[static_cast<std::size_t>(index)] != cube::kStatusNotRun) continue;
     (histories.count(index) ? pinned : shared).push_back(index);
   }
-  return parallel::WorkQueue(space.frame_major(std::move(shared)), std::move(pinned), parallel::worker_count(mpi.comm()),
+  return parallel::WorkQueue(std::move(shared), std::move(pinned), parallel::worker_count(mpi.comm()),
                              study.run.batch_size);
 }
 
@@ -187,7 +215,8 @@ class StopOnSignal final : public parallel::WorkSource {
 };
 
 StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::MpiSession& mpi,
-                             std::ostream& progress, const std::atomic<int>* stop_signal) {
+                             std::ostream& progress, const StudyRunOptions& options) {
+  const std::atomic<int>* stop_signal = options.stop_signal;
   CaseRunner runner(p.study, *p.space, *p.records);
   std::map<std::int64_t, std::string> history_labels;
   for (std::size_t h = 0; h < p.study.histories.size(); ++h)
@@ -202,12 +231,15 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
   std::function<void()> before_flush;
   if (p.study.ida) {
     auto ida = make_ida_plan(p.study, *p.space, *m.writer, parallel::worker_count(mpi.comm()));
+    const auto [first, last] = shard_range(p.space->curves(), options.shard_index, options.shard_count);
+    for (std::int64_t c = 0; c < p.space->curves(); ++c)
+      if (c < first || c >= last) ida->skip(static_cast<std::size_t>(c));
     before_flush = [&study = p.study, plan = ida.get(), writer = m.writer.get()] {
       store_ida_summaries(study, *plan, *writer);
     };
     work = std::move(ida);
   } else {
-    work = std::make_unique<parallel::WorkQueue>(pending_cases(*m.writer, history_labels, p.study, *p.space, mpi));
+    work = std::make_unique<parallel::WorkQueue>(pending_cases(*m.writer, history_labels, p.study, *p.space, mpi, options));
   }
   ResultSink sink(*m.writer, meter, inbox, p.study.run.flush_interval_s, before_flush);
 
@@ -287,7 +319,7 @@ std::optional<StudySummary> run_study(const StudyRunOptions& options, const para
   std::optional<StudySummary> summary;
   static std::ostream nowhere(nullptr);  // a stream without a buffer discards what it is given
   if (mpi.is_master())
-    summary = run_master_rank(*prepared, setup, mpi, options.progress ? *options.progress : nowhere, options.stop_signal);
+    summary = run_master_rank(*prepared, setup, mpi, options.progress ? *options.progress : nowhere, options);
   else
     run_worker_rank(*prepared, mpi);
   mpi.quiet_barrier();

@@ -81,6 +81,8 @@ inline constexpr std::int8_t kStatusNotRun = -1;
 inline constexpr const char* kStatusName = "status";
 /// Global attribute that identifies the study a cube belongs to (compared by --resume).
 inline constexpr const char* kFingerprintName = "study_fingerprint";
+/// Global attribute of a cube that holds one shard of a run ("2/8"); absent when unsharded.
+inline constexpr const char* kShardName = "shard";
 
 /// Everything that defines a cube file before any case is computed.
 struct CubeLayout {

@@ -31,6 +31,10 @@ class IdaPlan final : public parallel::WorkSource {
   /// come in order; a curve's later runs are then those the search makes next.
   void replay(std::size_t curve, int point, double intensity, bool collapsed);
 
+  /// Leaves a curve out of this run (another shard computes it).
+  void skip(std::size_t curve);
+  bool skipped(std::size_t curve) const { return curve < skipped_.size() && skipped_[curve]; }
+
   parallel::WorkBatch take(bool in_process_worker) override;
   void completed(const parallel::CaseOutcome& outcome) override;
   bool exhausted() const override;
@@ -50,6 +54,7 @@ class IdaPlan final : public parallel::WorkSource {
   std::vector<double> in_flight_;      ///< intensity handed out per curve; NaN: none
   std::vector<std::size_t> ready_;     ///< curves whose next run can be handed out
   std::size_t running_ = 0;            ///< curves with a run in flight
+  std::vector<bool> skipped_;          ///< curves another shard computes
 };
 
 }  // namespace pcrf::plan

@@ -26,6 +26,10 @@ struct StudyRunOptions {
   bool check_only = false;        ///< validate, print the case count, write nothing
   /// Where rank 0 writes progress lines and the closing line (the CLI: stderr); null: nowhere.
   std::ostream* progress = nullptr;
+  /// Compute only shard `shard_index` (0-based) of `shard_count`: a contiguous 1/N of the
+  /// cases in the order they are handed out (frames together), or of the IDA's curves.
+  std::size_t shard_index = 0;
+  std::size_t shard_count = 1;
   /// Set (to the signal's number) when the run should stop: rank 0 hands out no more work,
   /// collects what is in flight, flushes and returns. Null: never.
   const std::atomic<int>* stop_signal = nullptr;

@@ -1,0 +1,84 @@
+// Joining the cubes of a sharded run (see cube_merge.hpp).
+#include "pcrf/cube/cube_merge.hpp"
+
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "pcrf/cube/cube_reader.hpp"
+#include "pcrf/cube/cube_writer.hpp"
+
+namespace pcrf::cube {
+
+void merge_cubes(const std::vector<std::filesystem::path>& parts, const std::filesystem::path& output, bool overwrite) {
+  if (parts.empty()) throw CubeError("no cube to merge");
+  std::error_code error;
+  for (const auto& part : parts)
+    if (std::filesystem::exists(output, error) && std::filesystem::equivalent(part, output, error))
+      throw CubeError(output.string() + ": -o names one of the parts");
+  if (std::filesystem::exists(output, error) && !overwrite)
+    throw CubeError(output.string() + ": already exists; use --overwrite to replace it");
+
+  std::vector<std::unique_ptr<CubeReader>> readers;
+  for (const auto& part : parts) readers.push_back(std::make_unique<CubeReader>(part));
+  const CubeLayout& first = readers.front()->layout();
+  const std::string fingerprint = first.text_attribute(kFingerprintName);
+  for (std::size_t p = 1; p < readers.size(); ++p) {
+    const auto& layout = readers[p]->layout();
+    if (layout.text_attribute(kFingerprintName) != fingerprint)
+      throw CubeError(parts[p].string() + ": is from another study (fingerprint " + layout.text_attribute(kFingerprintName) +
+                      ", " + parts.front().string() + " has " + fingerprint + ")");
+    if (layout.shape() != first.shape() || layout.metrics.size() != first.metrics.size())
+      throw CubeError(parts[p].string() + ": has another shape or other metrics than " + parts.front().string());
+  }
+
+  // Which part holds each case; a case in two parts, or in none, is an error.
+  const auto n = static_cast<std::size_t>(first.case_count());
+  std::vector<int> owner(n, -1);
+  std::vector<std::vector<std::int8_t>> status;
+  for (std::size_t p = 0; p < readers.size(); ++p) {
+    status.push_back(readers[p]->read_status());
+    for (std::size_t i = 0; i < n; ++i) {
+      if (status[p][i] == kStatusNotRun) continue;
+      if (owner[i] >= 0)
+        throw CubeError(parts[p].string() + ": case " + std::to_string(i) + " is also in " +
+                        parts[static_cast<std::size_t>(owner[i])].string() + ": the parts overlap");
+      owner[i] = static_cast<int>(p);
+    }
+  }
+  std::size_t missing = 0, first_missing = n;
+  for (std::size_t i = 0; i < n; ++i)
+    if (owner[i] < 0 && ++missing == 1) first_missing = i;
+  // An IDA leaves the points after a curve's end not run in every part: those are not missing.
+  const bool ida = first.find_side_variable("ida_runs") != nullptr;
+  if (missing > 0 && !ida)
+    throw CubeError(std::to_string(missing) + " of " + std::to_string(n) + " cases are in no part (the first: case " +
+                    std::to_string(first_missing) + "); run the missing shards, then merge again");
+
+  CubeLayout layout = first;
+  std::erase_if(layout.attributes, [](const Attribute& a) { return a.name == kShardName; });
+  for (auto& side : layout.side_variables) {  // each value from the part that has it
+    side.values.assign(layout.side_size(side), std::nan(""));
+    for (const auto& reader : readers) {
+      const auto values = reader->read_side(side.name);
+      for (std::size_t k = 0; k < values.size(); ++k)
+        if (std::isnan(side.values[k]) && !std::isnan(values[k])) side.values[k] = values[k];
+    }
+  }
+  CubeWriter writer(output, layout, overwrite ? OpenMode::kOverwrite : OpenMode::kCreate);
+  std::vector<std::vector<std::vector<double>>> metrics(readers.size());
+  for (std::size_t p = 0; p < readers.size(); ++p)
+    for (const auto& m : first.metrics) metrics[p].push_back(readers[p]->read_metric(m.name));
+  std::vector<double> row(first.metrics.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    if (owner[i] < 0) continue;
+    const auto p = static_cast<std::size_t>(owner[i]);
+    for (std::size_t m = 0; m < row.size(); ++m) row[m] = metrics[p][m][i];
+    writer.store(static_cast<std::int64_t>(i), status[p][i], row);
+  }
+  for (const auto& reader : readers)
+    for (auto& [index, note] : reader->read_notes()) writer.store_note(index, note);
+  writer.close();
+}
+
+}  // namespace pcrf::cube

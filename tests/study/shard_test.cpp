@@ -1,0 +1,67 @@
+// Sharded runs: K/N shards of a study, merged, equal the unsharded cube; overlapping or
+// missing parts are reported, not merged; an IDA shards by curves.
+#include <gtest/gtest.h>
+
+#include "pcrf/cube/cube_reader.hpp"
+#include "study/study_test_support.hpp"
+
+namespace pcrf::study_test {
+namespace {
+
+test::CommandResult study_in(const std::filesystem::path& dir, const std::string& args) {
+  return test::run_command("cd " + quoted(dir) + " && " + pcrf() + " study s.toml --progress-interval 0 " + args);
+}
+
+test::CommandResult merge_in(const std::filesystem::path& dir, const std::string& args) {
+  return test::run_command("cd " + quoted(dir) + " && " + pcrf() + " cube merge " + args);
+}
+
+TEST(Shards, MergedShardsEqualTheUnshardedCube) {
+  const auto dir = test::scratch_dir("shards_grid");
+  test::write_file(dir, "s.toml", small_grid_study());
+  ASSERT_EQ(study_in(dir, "-o whole.h5").exit_code, 0);
+  for (int k = 1; k <= 3; ++k) ASSERT_EQ(study_in(dir, "--shard " + std::to_string(k) + "/3 -o part" + std::to_string(k) + ".h5").exit_code, 0);
+  {
+    cube::CubeReader part(dir / "part2.h5");
+    EXPECT_EQ(part.layout().text_attribute("shard"), "2/3");
+    const auto status = part.read_status();
+    const auto done = std::count_if(status.begin(), status.end(), [](std::int8_t s) { return s != cube::kStatusNotRun; });
+    EXPECT_NEAR(static_cast<double>(done), static_cast<double>(status.size()) / 3.0, 1.0);
+  }
+  const auto missing = merge_in(dir, "part1.h5 part3.h5 -o all.h5");
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("cases are in no part"), std::string::npos) << missing.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "all.h5"));
+  const auto overlap = merge_in(dir, "part1.h5 part2.h5 part2.h5 -o all.h5");
+  EXPECT_EQ(overlap.exit_code, 2);
+  EXPECT_NE(overlap.err.find("the parts overlap"), std::string::npos) << overlap.err;
+  const auto merged = merge_in(dir, "part1.h5 part2.h5 part3.h5 -o all.h5");
+  ASSERT_EQ(merged.exit_code, 0) << merged.err;
+  expect_same_cube(dir / "whole.h5", dir / "all.h5");
+  EXPECT_EQ(cube::CubeReader(dir / "all.h5").layout().text_attribute("shard"), "");
+  // A shard resumes only as the same shard.
+  const auto wrong = study_in(dir, "--shard 1/3 -o part2.h5 --resume");
+  EXPECT_EQ(wrong.exit_code, 2);
+  EXPECT_NE(wrong.err.find("is shard \"2/3\""), std::string::npos) << wrong.err;
+  EXPECT_EQ(study_in(dir, "--shard 4/3 -o x.h5").exit_code, 2);
+}
+
+TEST(Shards, AnIdaShardsByCurves) {
+  const auto dir = test::scratch_dir("shards_ida");
+  std::string text = "[[records]]\nsynthetic = [";
+  for (int seed = 1; seed <= 4; ++seed)
+    text += std::string(seed > 1 ? ", " : "") + "\"stochastic:seed=" + std::to_string(seed) + ",pga_g=1,duration_s=6\"";
+  text += "]\n[intensity]\nmeasure = \"pga_g\"\n[ida]\nstart = 0.5\nmax_intensity = 6\nmax_runs = 10\n";
+  test::write_file(dir, "s.toml", text);
+  ASSERT_EQ(study_in(dir, "-o whole.h5").exit_code, 0);
+  ASSERT_EQ(study_in(dir, "--shard 1/2 -o a.h5").exit_code, 0);
+  ASSERT_EQ(study_in(dir, "--shard 2/2 -o b.h5").exit_code, 0);
+  ASSERT_EQ(merge_in(dir, "a.h5 b.h5 -o all.h5").exit_code, 0);
+  expect_same_cube(dir / "whole.h5", dir / "all.h5");
+  cube::CubeReader whole(dir / "whole.h5"), all(dir / "all.h5");
+  EXPECT_EQ(whole.read_side("collapse_intensity"), all.read_side("collapse_intensity"));
+  EXPECT_EQ(whole.read_side("ida_runs"), all.read_side("ida_runs"));
+}
+
+}  // namespace
+}  // namespace pcrf::study_test
