@@ -83,6 +83,11 @@ void run_study_command(StudyArguments& args) {
               << args.run.study_file.string() << " -o " << summary->output.string() << " --resume" << std::endl;
   }
   if (summary && summary->stopped_by != 0) exit_code() = 128 + summary->stopped_by;
+  if (summary && !summary->error.empty()) {
+    std::cerr << "pcrf: error: " << printable(summary->error)
+              << "; the cube keeps its last complete checkpoint: free space, then --resume" << std::endl;
+    exit_code() = 2;
+  }
   if (!mpi.is_master() && stop_signal.load() != 0) exit_code() = 128 + stop_signal.load();
   if (summary && args.run.check_only && mpi.is_master()) {
     std::cout << args.run.study_file.string() << ": ok, " << summary->total << " cases, fingerprint "

@@ -207,6 +207,25 @@ std::vector<std::string> CubeReader::damage() const {
   return problems;
 }
 
+HistoryTable CubeReader::read_history(const std::string& name) const {
+  const std::string where = "histories/" + name;
+  auto group = h5::group(H5Gopen2(impl_->file, where.c_str(), H5P_DEFAULT), impl_->what("cannot open " + where));
+  HistoryTable table;
+  table.name = name;
+  table.attributes = h5::read_attributes(group);
+  for (const auto& column : link_names(group)) {  // creation order: the time axis first
+    auto d = impl_->open(where + "/" + column);
+    auto s = h5::space(H5Dget_space(d), impl_->what("cannot read " + where));
+    std::vector<double> values(static_cast<std::size_t>(H5Sget_simple_extent_npoints(s)));
+    if (!values.empty())
+      h5::check(H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
+                impl_->what("cannot read " + where + "/" + column));
+    table.columns.push_back({column, h5::read_text_attribute(d, "units"), h5::read_text_attribute(d, "long_name")});
+    table.values.push_back(std::move(values));
+  }
+  return table;
+}
+
 std::vector<std::string> CubeReader::history_names() const {
   if (H5Lexists(impl_->file, "histories", H5P_DEFAULT) <= 0) return {};
   auto group = h5::group(H5Gopen2(impl_->file, "histories", H5P_DEFAULT), impl_->what("cannot open histories"));

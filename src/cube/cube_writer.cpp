@@ -2,6 +2,13 @@
 // memory and writes the chunks that changed at each flush.
 #include "pcrf/cube/cube_writer.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+
 #include <hdf5_hl.h>
 
 #include <algorithm>
@@ -83,12 +90,11 @@ struct CubeWriter::Impl {
   std::vector<h5::Handle> scales;  // one per dimension
   std::vector<h5::Handle> metric_sets;
   std::vector<h5::Handle> side_sets;  // one per layout.side_variables
-  std::vector<bool> side_dirty;
   h5::Handle status_set;
   std::vector<std::vector<double>> metrics;  // [metric][case]
-  std::set<std::size_t> dirty_chunks;
-  std::vector<std::pair<std::int64_t, std::string>> pending_notes;
-  std::vector<HistoryTable> pending_histories;
+  std::set<std::size_t> touched_chunks;      // chunks holding at least one computed case
+  std::vector<std::pair<std::int64_t, std::string>> pending_notes;  // every note (all are rewritten)
+  std::vector<HistoryTable> pending_histories;                      // every history, likewise
   bool closed = false;
 
   Impl(std::filesystem::path p, CubeLayout l)
@@ -96,7 +102,9 @@ struct CubeWriter::Impl {
 
   std::string what(const std::string& problem) const { return path.string() + ": " + problem; }
 
-  void create(bool overwrite);
+  void create(const std::filesystem::path& target);
+  void checkpoint(const std::vector<std::int8_t>& status);
+  void close_handles();
   void open_existing(std::vector<std::int8_t>& status);
   h5::Handle create_cube_variable(const std::string& name, hid_t file_type, hid_t memory_type,
                                   const void* fill);
@@ -118,9 +126,8 @@ CubeWriter::CubeWriter(std::filesystem::path file, CubeLayout layout, OpenMode m
   if (mode == OpenMode::kResume && exists) {
     impl_->open_existing(status_);
     resumed_ = true;
-  } else {
-    impl_->create(mode == OpenMode::kOverwrite);
   }
+  flush();  // the file exists, complete, from the start (an overwritten one is replaced whole)
 }
 
 CubeWriter::~CubeWriter() {
@@ -132,10 +139,13 @@ CubeWriter::~CubeWriter() {
   }
 }
 
-void CubeWriter::Impl::create(bool overwrite) {
+void CubeWriter::Impl::create(const std::filesystem::path& target) {
   auto fcpl = ordered_plist(H5P_FILE_CREATE);
-  file = h5::file(H5Fcreate(path.c_str(), overwrite ? H5F_ACC_TRUNC : H5F_ACC_EXCL, fcpl, H5P_DEFAULT),
-                  what("cannot create the file"));
+  // In memory (the core driver, no backing store): the file image is written to disk by
+  // checkpoint(), so a full disk is a write() error of ours, never a half-closed HDF5 file.
+  auto fapl = h5::plist(H5Pcreate(H5P_FILE_ACCESS), what("cannot make a property list"));
+  h5::check(H5Pset_fapl_core(fapl, 1 << 20, 0), what("cannot use the in-memory driver"));
+  file = h5::file(H5Fcreate(target.c_str(), H5F_ACC_TRUNC, fcpl, fapl), what("cannot create the file"));
   for (const auto& a : layout.attributes) write_global_attribute(file, a);
   // Dimension coordinates first (netCDF-4 dimensions), then auxiliary coordinates.
   for (const auto& dim : layout.dimensions) {
@@ -160,7 +170,6 @@ void CubeWriter::Impl::create(bool overwrite) {
   }
   for (std::size_t v = 0; v < layout.side_variables.size(); ++v) {
     side_sets.push_back(create_side_variable(layout.side_variables[v]));
-    write_side(v);
   }
   const std::int8_t not_run = kStatusNotRun;
   status_set = create_cube_variable(kStatusName, H5T_STD_I8LE, H5T_NATIVE_INT8, &not_run);
@@ -173,7 +182,6 @@ void CubeWriter::Impl::create(bool overwrite) {
   h5::write_attribute(status_set, "long_name", std::string("how the case ended"));
   h5::write_attribute(status_set, "flag_values", flag_values);
   h5::write_attribute(status_set, "flag_meanings", join(flag_meanings));
-  h5::check(H5Fflush(file, H5F_SCOPE_GLOBAL), what("cannot flush"));
 }
 
 h5::Handle CubeWriter::Impl::create_cube_variable(const std::string& name, hid_t file_type,
@@ -237,36 +245,28 @@ void CubeWriter::store_side(const std::string& name, std::vector<double> values)
       throw CubeError(impl_->what("'" + name + "' takes " + std::to_string(impl_->layout.side_size(vars[v])) +
                                   " values, got " + std::to_string(values.size())));
     vars[v].values = std::move(values);
-    impl_->side_dirty.resize(vars.size(), false);
-    impl_->side_dirty[v] = true;
     return;
   }
   throw CubeError(impl_->what("has no side variable '" + name + "'"));
 }
 
 void CubeWriter::Impl::open_existing(std::vector<std::int8_t>& status) {
-  {
-    CubeReader reader(path);
-    const auto& old = reader.layout();
-    const std::string ours = layout.text_attribute(kFingerprintName);
-    const std::string theirs = old.text_attribute(kFingerprintName);
-    if (ours != theirs)
-      throw CubeError(what("was made by a different study (its fingerprint " + theirs +
-                           ", this study's " + ours + "); give another output file or use --overwrite"));
-    if (old.shape() != layout.shape() || old.metrics.size() != layout.metrics.size())
-      throw CubeError(what("has another shape or other metrics than this study"));
-    status = reader.read_status();
-    for (std::size_t m = 0; m < layout.metrics.size(); ++m)
-      metrics[m] = reader.read_metric(layout.metrics[m].name);
-  }
-  file = h5::file(H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), what("cannot open for writing"));
-  for (const auto& m : layout.metrics)
-    metric_sets.push_back(h5::dataset(H5Dopen2(file, m.name.c_str(), H5P_DEFAULT), what("cannot open '" + m.name + "'")));
-  status_set = h5::dataset(H5Dopen2(file, kStatusName, H5P_DEFAULT), what("cannot open 'status'"));
-  for (const auto& v : layout.side_variables) {
-    if (H5Lexists(file, v.name.c_str(), H5P_DEFAULT) <= 0) throw CubeError(what("has no variable '" + v.name + "'"));
-    side_sets.push_back(h5::dataset(H5Dopen2(file, v.name.c_str(), H5P_DEFAULT), what("cannot open '" + v.name + "'")));
-  }
+  CubeReader reader(path);
+  const auto& old = reader.layout();
+  const std::string ours = layout.text_attribute(kFingerprintName);
+  const std::string theirs = old.text_attribute(kFingerprintName);
+  if (ours != theirs)
+    throw CubeError(what("was made by a different study (its fingerprint " + theirs +
+                         ", this study's " + ours + "); give another output file or use --overwrite"));
+  if (old.shape() != layout.shape() || old.metrics.size() != layout.metrics.size())
+    throw CubeError(what("has another shape or other metrics than this study"));
+  status = reader.read_status();
+  for (std::size_t m = 0; m < layout.metrics.size(); ++m) metrics[m] = reader.read_metric(layout.metrics[m].name);
+  for (std::size_t i = 0; i < status.size(); ++i)
+    if (status[i] != kStatusNotRun) touched_chunks.insert(grid.chunk_of(static_cast<std::int64_t>(i)));
+  pending_notes = reader.read_notes();
+  for (const auto& name : reader.history_names()) pending_histories.push_back(reader.read_history(name));
+  // Side variables start from the study's values (the producer stores new ones).
 }
 
 const std::vector<double>& CubeWriter::values(const std::string& metric) const {
@@ -289,14 +289,18 @@ void CubeWriter::store(std::int64_t index, std::int8_t status, const std::vector
   const auto i = static_cast<std::size_t>(index);
   status_[i] = status;
   for (std::size_t m = 0; m < values.size(); ++m) impl_->metrics[m][i] = values[m];
-  impl_->dirty_chunks.insert(impl_->grid.chunk_of(index));
+  impl_->touched_chunks.insert(impl_->grid.chunk_of(index));
 }
 
 void CubeWriter::store_note(std::int64_t index, std::string note) {
   impl_->pending_notes.emplace_back(index, std::move(note));
 }
 
-void CubeWriter::store_history(HistoryTable table) { impl_->pending_histories.push_back(std::move(table)); }
+void CubeWriter::store_history(HistoryTable table) {
+  auto& all = impl_->pending_histories;  // a case recomputed after --resume replaces its history
+  std::erase_if(all, [&](const HistoryTable& t) { return t.name == table.name; });
+  all.push_back(std::move(table));
+}
 
 void CubeWriter::Impl::write_chunk(std::size_t chunk, const std::vector<std::int8_t>& status) {
   const auto r = grid.range(chunk);
@@ -359,7 +363,6 @@ void CubeWriter::Impl::write_notes() {
   append(index_set, H5T_NATIVE_INT64, indices.data());
   auto t = h5::vlen_string_type();
   append(message_set, t, texts.data());
-  pending_notes.clear();
 }
 
 void CubeWriter::Impl::write_history(const HistoryTable& table) {
@@ -402,26 +405,93 @@ void CubeWriter::Impl::write_history(const HistoryTable& table) {
   }
 }
 
-void CubeWriter::flush() {
-  auto& impl = *impl_;
-  for (std::size_t chunk : impl.dirty_chunks) impl.write_chunk(chunk, status_);
-  impl.dirty_chunks.clear();
-  impl.write_notes();
-  for (const auto& table : impl.pending_histories) impl.write_history(table);
-  impl.pending_histories.clear();
-  for (std::size_t v = 0; v < impl.side_dirty.size(); ++v)
-    if (impl.side_dirty[v]) impl.write_side(v);
-  impl.side_dirty.assign(impl.side_dirty.size(), false);
-  h5::check(H5Fflush(impl.file, H5F_SCOPE_GLOBAL), impl.what("cannot flush"));
+void CubeWriter::Impl::close_handles() {
+  metric_sets.clear();
+  side_sets.clear();
+  status_set.reset();
+  scales.clear();
+  file.reset();
 }
+
+/// Writes `image` to `target` and syncs it. \throws CubeError naming the file and the OS
+/// reason (a full disk: "No space left on device"); the partial file is then removed.
+void write_image(const std::filesystem::path& target, const std::vector<char>& image, const std::string& cube) {
+  auto fail = [&](const std::string& what) {
+    const std::string reason = std::strerror(errno);
+    std::error_code ignored;
+    std::filesystem::remove(target, ignored);
+    throw CubeError(cube + ": " + what + " " + target.string() + ": " + reason);
+  };
+  const int fd = ::open(target.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (fd < 0) fail("cannot create");
+  std::size_t done = 0;
+  while (done < image.size()) {
+    const ssize_t n = ::write(fd, image.data() + done, image.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int saved = errno;
+      ::close(fd);
+      errno = saved == 0 ? EIO : saved;
+      fail("cannot write");
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  if (::fsync(fd) != 0) {
+    const int saved = errno;
+    ::close(fd);
+    errno = saved;
+    fail("cannot sync");
+  }
+  if (::close(fd) != 0) fail("cannot close");
+}
+
+/// fsync of a file or folder; false with errno set on failure.
+bool sync_path(const std::filesystem::path& p, bool directory) {
+  const int fd = ::open(p.c_str(), directory ? O_RDONLY | O_DIRECTORY : O_RDONLY);
+  if (fd < 0) return false;
+  const bool ok = ::fsync(fd) == 0;
+  const int saved = errno;
+  ::close(fd);
+  errno = saved;
+  return ok;
+}
+
+void CubeWriter::Impl::checkpoint(const std::vector<std::int8_t>& status) {
+  // A complete new file beside the cube, synced, then renamed over it: a process killed at
+  // any moment, or a disk that fills, leaves the last complete cube (and perhaps a stray
+  // .partial file, replaced by the next checkpoint).
+  const std::filesystem::path partial = path.string() + ".partial";
+  std::vector<char> image;
+  try {
+    create(partial);
+    for (std::size_t chunk : touched_chunks) write_chunk(chunk, status);
+    write_notes();
+    for (const auto& table : pending_histories) write_history(table);
+    for (std::size_t v = 0; v < layout.side_variables.size(); ++v) write_side(v);
+    h5::check(H5Fflush(file, H5F_SCOPE_GLOBAL), what("cannot flush"));
+    const ssize_t size = H5Fget_file_image(file, nullptr, 0);
+    if (size <= 0) throw CubeError(what("cannot take the file's image"));
+    image.resize(static_cast<std::size_t>(size));
+    if (H5Fget_file_image(file, image.data(), image.size()) != size) throw CubeError(what("cannot take the file's image"));
+    close_handles();
+  } catch (...) {
+    close_handles();
+    throw;
+  }
+  write_image(partial, image, path.string());
+  if (std::rename(partial.c_str(), path.c_str()) != 0) {
+    const std::string reason = std::strerror(errno);
+    std::error_code ignored;
+    std::filesystem::remove(partial, ignored);
+    throw CubeError(what("cannot replace the cube with its new checkpoint: " + reason));
+  }
+  (void)sync_path(path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path(), true);
+}
+
+void CubeWriter::flush() { impl_->checkpoint(status_); }
 
 void CubeWriter::close() {
   flush();
-  impl_->metric_sets.clear();
-  impl_->side_sets.clear();
-  impl_->status_set.reset();
-  impl_->scales.clear();
-  impl_->file.reset();
   impl_->closed = true;
 }
 

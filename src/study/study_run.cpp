@@ -2,6 +2,7 @@
 // cube and schedules; every rank (rank 0 in its worker thread) computes cases.
 #include "pcrf/study/study_run.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <functional>
 #include <iostream>
@@ -147,23 +148,48 @@ class ResultSink {
   void idle() {
     take_histories();
     const auto now = std::chrono::steady_clock::now();
-    if (std::chrono::duration<double>(now - last_flush_).count() >= flush_interval_s_) {
-      if (before_flush_) before_flush_();
-      writer_.flush();
-      last_flush_ = now;
+    // A checkpoint rewrites the cube: the next one comes a flush interval after this one
+    // ends, and never sooner than 9 × its duration, so checkpoints take at most a tenth of the run.
+    const double period_s = std::max(flush_interval_s_, 9.0 * last_checkpoint_s_);
+    if (error_.empty() && std::chrono::duration<double>(now - last_flush_).count() >= period_s) {
+      guard([&] {
+        if (before_flush_) before_flush_();
+        writer_.flush();
+      });
+      last_flush_ = std::chrono::steady_clock::now();
+      last_checkpoint_s_ = std::chrono::duration<double>(last_flush_ - now).count();
     }
     meter_.tick();
   }
 
   void close() {
     take_histories();
-    if (before_flush_) before_flush_();
-    writer_.close();
+    if (!error_.empty()) return;  // the last complete checkpoint stays as it is
+    guard([&] {
+      if (before_flush_) before_flush_();
+      writer_.close();
+    });
   }
+
+  /// The first write error (a full disk, an I/O error), naming the file and the reason.
+  const std::string& error() const { return error_; }
+  /// Called once when a write fails, to stop the hand-out of work.
+  void on_error(std::function<void()> stop) { stop_ = std::move(stop); }
 
  private:
   void take_histories() {
     for (auto& table : inbox_.take()) writer_.store_history(std::move(table));
+  }
+
+  /// Runs a write; a CubeError ends the run in order instead of tearing it down.
+  template <class Write>
+  void guard(Write write) {
+    try {
+      write();
+    } catch (const cube::CubeError& e) {
+      error_ = e.what();
+      if (stop_) stop_();
+    }
   }
 
   cube::CubeWriter& writer_;
@@ -171,6 +197,9 @@ class ResultSink {
   HistoryInbox& inbox_;
   double flush_interval_s_;
   std::function<void()> before_flush_;
+  std::function<void()> stop_;
+  std::string error_;
+  double last_checkpoint_s_ = 0.0;
   std::chrono::steady_clock::time_point last_flush_ = std::chrono::steady_clock::now();
 };
 
@@ -199,19 +228,23 @@ parallel::WorkQueue pending_cases(const cube::CubeWriter& writer, const std::map
                              study.run.batch_size);
 }
 
-/// A work source that runs dry when a stop signal arrives: the master then tells every
-/// worker to stop, collects the cases in flight, and the cube is flushed as at the end.
+/// A work source that runs dry when a stop signal arrives or the cube cannot be written: the
+/// master then tells every worker to stop and collects the cases in flight, and the run ends
+/// in order (no rank is left waiting).
 class StopOnSignal final : public parallel::WorkSource {
  public:
   StopOnSignal(parallel::WorkSource& work, const std::atomic<int>* signal) : work_(work), signal_(signal) {}
-  parallel::WorkBatch take(bool in_process) override { return stopped() ? parallel::WorkBatch{} : work_.take(in_process); }
+  parallel::WorkBatch take(bool in_process) override { return stopping() ? parallel::WorkBatch{} : work_.take(in_process); }
   void completed(const parallel::CaseOutcome& o) override { work_.completed(o); }
-  bool exhausted() const override { return stopped() || work_.exhausted(); }
+  bool exhausted() const override { return stopping() || work_.exhausted(); }
   bool stopped() const { return signal_ != nullptr && signal_->load() != 0; }
+  void fail() { failed_ = true; }
 
  private:
+  bool stopping() const { return stopped() || failed_; }
   parallel::WorkSource& work_;
   const std::atomic<int>* signal_;
+  bool failed_ = false;  // master thread only
 };
 
 StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::MpiSession& mpi,
@@ -223,7 +256,7 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
     history_labels[m.checked.history_cases[h]] = p.study.histories[h].label;
 
   StudySummary summary{p.space->size(), m.writer->done_count(), 0, 0, m.output, m.checked.fingerprint,
-                       m.checked.invalid_cases, m.checked.invalid_frames, m.checked.first_invalid};
+                       m.checked.invalid_cases, m.checked.invalid_frames, m.checked.first_invalid, 0, {}};
   ProgressMeter meter(summary.total, summary.already_done, p.study.run.progress_interval_s, progress);
   HistoryInbox inbox;
   // The cases come from the IDA's search, or from the list of cases not done yet.
@@ -254,6 +287,7 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
     return outcome;
   };
   StopOnSignal stoppable(*work, stop_signal);
+  sink.on_error([&stoppable] { stoppable.fail(); });
   parallel::run_master(mpi.comm(), stoppable, schedule_options(p.study, runner),
                        evaluate, [&sink](parallel::ResultBatch&& batch) { sink.store(std::move(batch)); },
                        [&sink] { sink.idle(); });
@@ -262,6 +296,7 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
   summary.computed = meter.computed();
   summary.failed = meter.failed();
   if (stoppable.stopped()) summary.stopped_by = stop_signal->load();
+  summary.error = sink.error();
   return summary;
 }
 
@@ -312,7 +347,7 @@ std::optional<StudySummary> run_study(const StudyRunOptions& options, const para
   if (options.check_only) {
     if (!mpi.is_master()) return StudySummary{};
     const auto& c = setup.checked;
-    return StudySummary{prepared->space->size(), 0, 0, 0, {}, c.fingerprint, c.invalid_cases, c.invalid_frames, c.first_invalid};
+    return StudySummary{prepared->space->size(), 0, 0, 0, {}, c.fingerprint, c.invalid_cases, c.invalid_frames, c.first_invalid, 0, {}};
   }
   if (auto received = receive_study(mpi, prepared.get())) prepared = std::move(received);
 

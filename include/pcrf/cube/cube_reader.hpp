@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "pcrf/cube/cube_layout.hpp"
+#include "pcrf/cube/cube_writer.hpp"
 
 namespace pcrf::cube {
 
@@ -38,6 +39,8 @@ class CubeReader {
   std::vector<std::string> damage() const;
   /// Names of the stored time-history groups.
   std::vector<std::string> history_names() const;
+  /// One history group, as CubeWriter::store_history took it. \throws CubeError.
+  HistoryTable read_history(const std::string& name) const;
 
  private:
   struct Impl;

@@ -49,6 +49,8 @@ struct StudySummary {
   std::int64_t invalid_frames = 0;
   std::string first_invalid;       ///< one of them and why
   int stopped_by = 0;              ///< the signal that stopped the run early; 0: it ran to the end
+  /// A write error that ended the run early (the cube keeps its last complete checkpoint).
+  std::string error;
 };
 
 /// Default output of a study file.

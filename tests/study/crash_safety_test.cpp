@@ -1,0 +1,85 @@
+// Long runs that survive: a kill at random instants never leaves a cube that cannot be read
+// or resumed, and the resumed cube equals the uninterrupted one; a full disk ends the run
+// with one line and exit code 2, keeping the last complete cube for --resume.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/mount.h>
+#include <sys/wait.h>
+
+#include <chrono>
+#include <random>
+#include <thread>
+
+#include "pcrf/cube/cube_reader.hpp"
+#include "study/study_test_support.hpp"
+
+extern char** environ;
+
+namespace pcrf::study_test {
+namespace {
+
+const std::string kStudy = std::string("[[records]]\nsynthetic = [\"") + kPulse + "\", \"" + kPulse2 + "\", \"" + kNoise +
+                           "\"]\n[axes]\nscale = [0.9, 1.1, 1.3]\nkappa = {from = 1.0, to = 3.0, count = 6}\n"
+                           "tan_alpha = {from = 0.16, to = 0.24, count = 6}\n";
+
+pid_t spawn(const std::string& command) {
+  pid_t pid = 0;
+  const char* argv[] = {"/bin/sh", "-c", command.c_str(), nullptr};
+  EXPECT_EQ(posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ), 0);
+  return pid;
+}
+
+TEST(CrashSafety, KillsAtRandomInstantsNeverCorruptTheCube) {
+  const auto dir = test::scratch_dir("crash_kills");
+  test::write_file(dir, "k.toml", kStudy);
+  const auto start = std::chrono::steady_clock::now();
+  ASSERT_EQ(test::run_command("cd " + quoted(dir) + " && " + pcrf() + " study k.toml -o whole.h5 --progress-interval 0").exit_code, 0);
+  const double whole_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> instant(0.0, 1.2 * whole_s);
+  const int kills = 24;
+  int interrupted = 0;
+  for (int k = 0; k < kills; ++k) {
+    // Each run continues the last one: creation, checkpoints and the final close all get hit.
+    const pid_t pid = spawn("cd " + quoted(dir) + " && exec " + pcrf() +
+                            " study k.toml -o killed.h5 --resume --flush-interval-s 0.001 --progress-interval 0 2>/dev/null");
+    std::this_thread::sleep_for(std::chrono::duration<double>(instant(random)));
+    ::kill(pid, SIGKILL);
+    int wstatus = 0;
+    ::waitpid(pid, &wstatus, 0);
+    interrupted += WIFSIGNALED(wstatus);
+    if (!std::filesystem::exists(dir / "killed.h5")) continue;  // killed before the first checkpoint
+    const auto info = test::run_command(pcrf() + " cube info " + quoted(dir / "killed.h5"));
+    ASSERT_EQ(info.exit_code, 0) << "kill " << k << " left a cube that cannot be read:\n" << info.out << info.err;
+  }
+  EXPECT_GT(interrupted, kills / 3);
+  const auto resumed = test::run_command("cd " + quoted(dir) + " && " + pcrf() + " study k.toml -o killed.h5 --resume --progress-interval 0");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  expect_same_cube(dir / "whole.h5", dir / "killed.h5");
+}
+
+TEST(CrashSafety, AFullDiskEndsTheRunCleanlyAndTheCubeResumes) {
+  const auto dir = test::scratch_dir("crash_full_disk");
+  const auto small = dir / "small";
+  std::filesystem::create_directories(small);
+  ::umount(small.c_str());
+  if (::mount("tmpfs", small.c_str(), "tmpfs", 0, "size=192k") != 0) GTEST_SKIP() << "cannot mount a tmpfs here (needs root)";
+  test::write_file(dir, "f.toml", kStudy);
+  const auto full = test::run_command("cd " + quoted(dir) + " && " + pcrf() +
+                                      " study f.toml -o small/f.h5 --flush-interval-s 0.01 --progress-interval 0");
+  EXPECT_EQ(full.exit_code, 2) << full.err;
+  EXPECT_NE(full.err.find("No space left on device"), std::string::npos) << full.err;
+  EXPECT_NE(full.err.find("--resume"), std::string::npos) << full.err;
+  ASSERT_TRUE(std::filesystem::exists(small / "f.h5"));
+  EXPECT_EQ(test::run_command(pcrf() + " cube info " + quoted(small / "f.h5")).exit_code, 0);
+  std::filesystem::copy_file(small / "f.h5", dir / "f.h5", std::filesystem::copy_options::overwrite_existing);
+  ::umount(small.c_str());
+  // Space freed (here: a disk with room): --resume finishes it, equal to an uninterrupted run.
+  ASSERT_EQ(test::run_command("cd " + quoted(dir) + " && " + pcrf() + " study f.toml -o f.h5 --resume --progress-interval 0").exit_code, 0);
+  ASSERT_EQ(test::run_command("cd " + quoted(dir) + " && " + pcrf() + " study f.toml -o whole.h5 --progress-interval 0").exit_code, 0);
+  expect_same_cube(dir / "whole.h5", dir / "f.h5");
+}
+
+}  // namespace
+}  // namespace pcrf::study_test
