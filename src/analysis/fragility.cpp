@@ -3,6 +3,8 @@
 // log-likelihoods, no derivatives to get wrong.
 #include "pcrf/analysis/fragility.hpp"
 
+#include "pcrf/analysis/percentile.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -63,14 +65,6 @@ std::array<double, 2> minimize(const std::function<double(const std::array<doubl
 }
 
 Lognormal from_parameters(const std::array<double, 2>& x) { return {std::exp(x[0]), std::exp(x[1])}; }
-
-double percentile(std::vector<double> values, double q) {
-  std::sort(values.begin(), values.end());
-  const double h = (static_cast<double>(values.size()) - 1.0) * q;
-  const auto lo = static_cast<std::size_t>(std::floor(h));
-  const std::size_t hi = std::min(lo + 1, values.size() - 1);
-  return values[lo] + (h - static_cast<double>(lo)) * (values[hi] - values[lo]);
-}
 
 }  // namespace
 

@@ -1,6 +1,8 @@
 // Sobol' indices from a Saltelli design (see sobol_indices.hpp).
 #include "pcrf/analysis/sobol_indices.hpp"
 
+#include "pcrf/analysis/percentile.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -36,16 +38,6 @@ Estimate estimate(const SaltelliOutputs& o, const std::vector<std::size_t>& rows
     e.st[i] = variance > 0.0 ? total / (2.0 * static_cast<double>(n)) / variance : nan;
   }
   return e;
-}
-
-double percentile(std::vector<double> values, double q) {
-  values.erase(std::remove_if(values.begin(), values.end(), [](double v) { return std::isnan(v); }), values.end());
-  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
-  std::sort(values.begin(), values.end());
-  const double h = (static_cast<double>(values.size()) - 1.0) * q;
-  const auto lo = static_cast<std::size_t>(std::floor(h));
-  const std::size_t hi = std::min(lo + 1, values.size() - 1);
-  return values[lo] + (h - static_cast<double>(lo)) * (values[hi] - values[lo]);
 }
 
 }  // namespace

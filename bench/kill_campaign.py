@@ -1,0 +1,90 @@
+#!/usr/bin/env python3
+"""Kill campaign (not a test): SIGKILL a study at random instants, hundreds of times, with a
+tiny flush interval, each run resuming the last; after every kill the cube must read
+(`pcrf cube info` exit 0), and the resumed cube must equal an uninterrupted run.
+
+    python3 bench/kill_campaign.py --pcrf build/pcrf [--kills 300] [--ranks 1]
+
+Prints how many kills hit, how many left a cube, whether any cube was unreadable, and
+whether the final cube equals the uninterrupted one (status and every metric but wall time).
+"""
+import argparse
+import os
+import random
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+
+import h5py
+import numpy as np
+
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+STUDY = """[[records]]
+synthetic = ["sine:amplitude_g=1.5,period_s=0.5,cycles=2,duration_s=3", "sine:amplitude_g=1.3,period_s=0.7,cycles=2,duration_s=3",
+             "stochastic:seed=3,pga_g=1.2,duration_s=6"]
+[axes]
+scale = [0.9, 1.1, 1.3]
+kappa = {from = 1.0, to = 3.0, count = 8}
+tan_alpha = {from = 0.16, to = 0.24, count = 8}
+"""
+
+
+def command(pcrf, ranks, output, extra):
+    launcher = ["mpirun", "--oversubscribe", "-n", str(ranks)] if ranks > 1 else []
+    return launcher + [pcrf, "study", "k.toml", "-o", output, "--progress-interval", "0"] + extra
+
+
+def same(a, b):
+    with h5py.File(a, "r") as x, h5py.File(b, "r") as y:
+        if not np.array_equal(x["status"][()], y["status"][()]):
+            return False
+        for name, var in x.items():
+            if isinstance(var, h5py.Dataset) and var.shape == x["status"].shape and name not in ("status", "wall_time_s"):
+                if not np.array_equal(var[()], y[name][()], equal_nan=True):
+                    return False
+    return True
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--pcrf", required=True)
+    parser.add_argument("--kills", type=int, default=300)
+    parser.add_argument("--ranks", type=int, default=1)
+    parser.add_argument("--seed", type=int, default=1)
+    args = parser.parse_args()
+    pcrf = os.path.abspath(args.pcrf)
+    work = tempfile.mkdtemp(prefix="pcrf_kills_")
+    os.chdir(work)
+    open("k.toml", "w").write(STUDY)
+    t0 = time.time()
+    subprocess.run(command(pcrf, args.ranks, "whole.h5", []), check=True, capture_output=True, env=ENV)
+    whole_s = time.time() - t0
+    rng = random.Random(args.seed)
+    hit = left = unreadable = 0
+    for k in range(args.kills):
+        p = subprocess.Popen(command(pcrf, args.ranks, "killed.h5", ["--resume", "--flush-interval-s", "0.001"]),
+                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=ENV, start_new_session=True)
+        time.sleep(rng.uniform(0.0, 1.2 * whole_s))
+        if p.poll() is None:
+            hit += 1
+            os.killpg(p.pid, signal.SIGKILL)
+        p.wait()
+        if os.path.exists("killed.h5"):
+            left += 1
+            info = subprocess.run([pcrf, "cube", "info", "killed.h5"], capture_output=True, env=ENV)
+            if info.returncode != 0:
+                unreadable += 1
+                print(f"kill {k}: unreadable cube:\n{info.stderr.decode()}")
+        if os.path.exists("killed.h5") and subprocess.run([pcrf, "cube", "info", "killed.h5"], capture_output=True,
+                                                          env=ENV).stdout.decode().find("(100.0 %)") >= 0:
+            os.remove("killed.h5")  # finished: start over, so that creation gets hit again
+    subprocess.run(command(pcrf, args.ranks, "killed.h5", ["--resume"]), check=True, capture_output=True, env=ENV)
+    print(f"{args.kills} runs, {hit} killed while running, {left} left a cube, {unreadable} unreadable; "
+          f"resumed cube equals the uninterrupted one: {same('whole.h5', 'killed.h5')}")
+    return 1 if unreadable else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
