@@ -56,13 +56,6 @@ struct Run {
   double stable = std::nan(""), fraction = std::nan("");
 };
 
-int verdict(CaseStatus s) {
-  if (s == CaseStatus::kAtRest || s == CaseStatus::kRockingAtEnd) return 0;
-  if (s == CaseStatus::kTendonFracture) return 1;
-  if (s == CaseStatus::kOverturned) return 2;
-  return 3;
-}
-bool collapsed(CaseStatus s) { return verdict(s) == 1 || verdict(s) == 2; }
 
 double median(std::vector<double> v) {
   if (v.empty()) return std::nan("");
@@ -169,7 +162,7 @@ int main(int argc, char** argv) {
   auto start = Clock::now();
   parallel_for(cases.size(), threads, [&](std::size_t i) {
     ref[i] = solve(cases[i], reference_settings(), 1.0);
-    for (double e : perturbations) well[i] = well[i] && verdict(solve(cases[i], reference_settings(), 1.0 + e).status) == verdict(ref[i].status);
+    for (double e : perturbations) well[i] = well[i] && verdict_of(solve(cases[i], reference_settings(), 1.0 + e).status) == verdict_of(ref[i].status);
   });
   std::cerr << "reference and twins: " << std::chrono::duration<double>(Clock::now() - start).count() << " s\n";
 
@@ -205,7 +198,7 @@ int main(int argc, char** argv) {
   std::map<std::pair<std::size_t, std::size_t>, double> first_collapse;  // (record, frame) → PGA
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const auto key = std::make_pair(cases[i].record, cases[i].frame);
-    if (collapsed(ref[i].status) && !first_collapse.count(key)) first_collapse[key] = cases[i].pga_g;
+    if (is_collapse(ref[i].status) && !first_collapse.count(key)) first_collapse[key] = cases[i].pga_g;
   }
   const double edges[] = {0.0, 0.7, 0.85, 0.95, 1.05, 1.2, 1.5, 1e9};
   std::printf("\nill-conditioned share by PGA / the curve's first collapsing PGA (reference):\n");
@@ -231,13 +224,13 @@ int main(int argc, char** argv) {
     std::vector<double> err, dimp, times;
     for (std::size_t i = 0; i < cases.size(); ++i) {
       const Run& r = runs[k][i];
-      const bool same = verdict(r.status) == verdict(ref[i].status);
+      const bool same = verdict_of(r.status) == verdict_of(ref[i].status);
       agree += same;
       agree_well += same && well[i];
       times.push_back(r.time_s);
       impacts_equal += r.impacts == ref[i].impacts;
       dimp.push_back(std::fabs(double(r.impacts - ref[i].impacts)));
-      if (ref[i].theta > 0 && !collapsed(ref[i].status) && !collapsed(r.status))
+      if (ref[i].theta > 0 && !is_collapse(ref[i].status) && !is_collapse(r.status))
         err.push_back(std::fabs(r.theta - ref[i].theta) / ref[i].theta);
     }
     // First collapsing level of each curve: the contender's against the reference's.
@@ -247,8 +240,8 @@ int main(int argc, char** argv) {
         long first_ref = -1, first_k = -1;
         for (std::size_t i = 0; i < cases.size(); ++i) {
           if (cases[i].record != rc || cases[i].frame != f) continue;
-          if (first_ref < 0 && collapsed(ref[i].status)) first_ref = long(cases[i].level);
-          if (first_k < 0 && collapsed(runs[k][i].status)) first_k = long(cases[i].level);
+          if (first_ref < 0 && is_collapse(ref[i].status)) first_ref = long(cases[i].level);
+          if (first_k < 0 && is_collapse(runs[k][i].status)) first_k = long(cases[i].level);
         }
         ++curves;
         same_level += first_ref == first_k;
@@ -261,17 +254,15 @@ int main(int argc, char** argv) {
                 100.0 * impacts_equal / double(cases.size()), median(dimp), 1e3 * median(times));
   }
   double t_off = 0, t_on = 0;
-  int twins = 0, flagged = 0, flagged_ill = 0;
+  int flagged = 0, flagged_ill = 0;
   for (std::size_t i = 0; i < cases.size(); ++i) {
     t_off += runs[1][i].time_s;  // balanced
     t_on += check[i].time_s;
-    twins += !std::isnan(check[i].stable) && check[i].fraction != (collapsed(check[i].status) ? 1.0 : 0.0) ? 0 : 0;
     if (check[i].stable == 0.0) {
       ++flagged;
       flagged_ill += !well[i];
     }
   }
-  (void)twins;
   std::printf("\nverdict_check on `balanced`: %.2f× the time of the unchecked runs (%.1f s vs %.1f s of solver time); "
               "%d cases flagged unstable, %d of them ill-conditioned in the reference\n",
               t_on / t_off, t_on, t_off, flagged, flagged_ill);

@@ -37,6 +37,12 @@ const Coordinate* CubeLayout::find_coordinate(const std::string& name) const {
   return nullptr;
 }
 
+std::optional<std::size_t> CubeLayout::find_dimension(const std::string& name) const {
+  for (std::size_t d = 0; d < dimensions.size(); ++d)
+    if (dimensions[d].name == name) return d;
+  return std::nullopt;
+}
+
 const SideVariable* CubeLayout::find_side_variable(const std::string& name) const {
   for (const auto& v : side_variables)
     if (v.name == name) return &v;
@@ -46,8 +52,7 @@ const SideVariable* CubeLayout::find_side_variable(const std::string& name) cons
 std::size_t CubeLayout::side_size(const SideVariable& variable) const {
   std::size_t n = 1;
   for (const auto& name : variable.dimensions)
-    for (const auto& d : dimensions)
-      if (d.name == name) n *= d.size;
+    if (const auto d = find_dimension(name)) n *= dimensions[*d].size;
   return n;
 }
 

@@ -10,8 +10,7 @@ namespace pcrf::cube {
 namespace {
 
 std::size_t dimension_index(const CubeLayout& layout, const std::string& name) {
-  for (std::size_t d = 0; d < layout.dimensions.size(); ++d)
-    if (layout.dimensions[d].name == name) return d;
+  if (const auto d = layout.find_dimension(name)) return *d;
   throw CubeError("no dimension '" + name + "'");
 }
 

@@ -93,8 +93,8 @@ struct CubeWriter::Impl {
   h5::Handle status_set;
   std::vector<std::vector<double>> metrics;  // [metric][case]
   std::set<std::size_t> touched_chunks;      // chunks holding at least one computed case
-  std::vector<std::pair<std::int64_t, std::string>> pending_notes;  // every note (all are rewritten)
-  std::vector<HistoryTable> pending_histories;                      // every history, likewise
+  std::vector<std::pair<std::int64_t, std::string>> notes;  // every note: each checkpoint writes them all
+  std::vector<HistoryTable> histories;                      // every history, likewise
   bool closed = false;
 
   Impl(std::filesystem::path p, CubeLayout l)
@@ -213,11 +213,10 @@ h5::Handle CubeWriter::Impl::create_side_variable(const SideVariable& v) {
   std::vector<hsize_t> dims;
   std::vector<std::size_t> scale_of;
   for (const auto& name : v.dimensions) {
-    auto it = std::find_if(layout.dimensions.begin(), layout.dimensions.end(),
-                           [&](const Dimension& d) { return d.name == name; });
-    if (it == layout.dimensions.end()) throw CubeError(what(problem + ": no dimension '" + name + "'"));
-    dims.push_back(it->size);
-    scale_of.push_back(static_cast<std::size_t>(it - layout.dimensions.begin()));
+    const auto d = layout.find_dimension(name);
+    if (!d) throw CubeError(what(problem + ": no dimension '" + name + "'"));
+    dims.push_back(layout.dimensions[*d].size);
+    scale_of.push_back(*d);
   }
   auto s = h5::space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), what(problem));
   auto dcpl = ordered_plist(H5P_DATASET_CREATE);
@@ -264,8 +263,8 @@ void CubeWriter::Impl::open_existing(std::vector<std::int8_t>& status) {
   for (std::size_t m = 0; m < layout.metrics.size(); ++m) metrics[m] = reader.read_metric(layout.metrics[m].name);
   for (std::size_t i = 0; i < status.size(); ++i)
     if (status[i] != kStatusNotRun) touched_chunks.insert(grid.chunk_of(static_cast<std::int64_t>(i)));
-  pending_notes = reader.read_notes();
-  for (const auto& name : reader.history_names()) pending_histories.push_back(reader.read_history(name));
+  notes = reader.read_notes();
+  for (const auto& name : reader.history_names()) histories.push_back(reader.read_history(name));
   // Side variables start from the study's values (the producer stores new ones).
 }
 
@@ -293,11 +292,11 @@ void CubeWriter::store(std::int64_t index, std::int8_t status, const std::vector
 }
 
 void CubeWriter::store_note(std::int64_t index, std::string note) {
-  impl_->pending_notes.emplace_back(index, std::move(note));
+  impl_->notes.emplace_back(index, std::move(note));
 }
 
 void CubeWriter::store_history(HistoryTable table) {
-  auto& all = impl_->pending_histories;  // a case recomputed after --resume replaces its history
+  auto& all = impl_->histories;  // a case recomputed after --resume replaces its history
   std::erase_if(all, [&](const HistoryTable& t) { return t.name == table.name; });
   all.push_back(std::move(table));
 }
@@ -320,49 +319,31 @@ void CubeWriter::Impl::write_chunk(std::size_t chunk, const std::vector<std::int
   write(status_set, H5T_NATIVE_INT8, status.data() + first, kStatusName);
 }
 
+/// Every note, into the fresh checkpoint file (/messages/case_index and /messages/text).
 void CubeWriter::Impl::write_notes() {
-  if (pending_notes.empty()) return;
+  if (notes.empty()) return;
   const std::string problem = what("cannot write case messages");
-  const bool exists = H5Lexists(file, kMessagesGroup, H5P_DEFAULT) > 0;
-  h5::Handle group, index_set, message_set;
-  if (!exists) {
-    auto gcpl = ordered_plist(H5P_GROUP_CREATE);
-    group = h5::group(H5Gcreate2(file, kMessagesGroup, H5P_DEFAULT, gcpl, H5P_DEFAULT), problem);
-    const hsize_t zero = 0, unlimited = H5S_UNLIMITED;
-    auto s = h5::space(H5Screate_simple(1, &zero, &unlimited), problem);
-    auto dcpl = ordered_plist(H5P_DATASET_CREATE);
-    h5::check(H5Pset_chunk(dcpl, 1, &kNotesChunk), problem);
-    index_set = h5::dataset(H5Dcreate2(group, "case_index", H5T_STD_I64LE, s, H5P_DEFAULT, dcpl, H5P_DEFAULT), problem);
-    h5::write_attribute(index_set, "long_name", std::string("linear index of the case"));
-    h5::check(H5DSset_scale(index_set, "case_index"), problem);
-    auto t = h5::vlen_string_type();
-    message_set = h5::dataset(H5Dcreate2(group, "text", t, s, H5P_DEFAULT, dcpl, H5P_DEFAULT), problem);
-    h5::check(H5DSattach_scale(message_set, index_set, 0), problem);
-  } else {
-    group = h5::group(H5Gopen2(file, kMessagesGroup, H5P_DEFAULT), problem);
-    index_set = h5::dataset(H5Dopen2(group, "case_index", H5P_DEFAULT), problem);
-    message_set = h5::dataset(H5Dopen2(group, "text", H5P_DEFAULT), problem);
-  }
-  auto old_space = h5::space(H5Dget_space(index_set), problem);
-  const auto old_size = static_cast<hsize_t>(H5Sget_simple_extent_npoints(old_space));
-  const hsize_t added = pending_notes.size();
-  const hsize_t new_size = old_size + added;
+  auto gcpl = ordered_plist(H5P_GROUP_CREATE);
+  auto group = h5::group(H5Gcreate2(file, kMessagesGroup, H5P_DEFAULT, gcpl, H5P_DEFAULT), problem);
+  const hsize_t n = notes.size();
+  auto s = h5::space(H5Screate_simple(1, &n, nullptr), problem);
+  auto dcpl = ordered_plist(H5P_DATASET_CREATE);
+  const hsize_t chunk = std::min(n, kNotesChunk);
+  h5::check(H5Pset_chunk(dcpl, 1, &chunk), problem);
+  auto index_set = h5::dataset(H5Dcreate2(group, "case_index", H5T_STD_I64LE, s, H5P_DEFAULT, dcpl, H5P_DEFAULT), problem);
+  h5::write_attribute(index_set, "long_name", std::string("linear index of the case"));
+  h5::check(H5DSset_scale(index_set, "case_index"), problem);
+  auto t = h5::vlen_string_type();
+  auto message_set = h5::dataset(H5Dcreate2(group, "text", t, s, H5P_DEFAULT, dcpl, H5P_DEFAULT), problem);
+  h5::check(H5DSattach_scale(message_set, index_set, 0), problem);
   std::vector<std::int64_t> indices;
   std::vector<const char*> texts;
-  for (const auto& [index, text] : pending_notes) {
+  for (const auto& [index, text] : notes) {
     indices.push_back(index);
     texts.push_back(text.c_str());
   }
-  auto memory = h5::space(H5Screate_simple(1, &added, nullptr), problem);
-  auto append = [&](hid_t set, hid_t memory_type, const void* data) {
-    h5::check(H5Dset_extent(set, &new_size), problem);
-    auto selection = h5::space(H5Dget_space(set), problem);
-    h5::check(H5Sselect_hyperslab(selection, H5S_SELECT_SET, &old_size, nullptr, &added, nullptr), problem);
-    h5::check(H5Dwrite(set, memory_type, memory, selection, H5P_DEFAULT, data), problem);
-  };
-  append(index_set, H5T_NATIVE_INT64, indices.data());
-  auto t = h5::vlen_string_type();
-  append(message_set, t, texts.data());
+  h5::check(H5Dwrite(index_set, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, indices.data()), problem);
+  h5::check(H5Dwrite(message_set, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, texts.data()), problem);
 }
 
 void CubeWriter::Impl::write_history(const HistoryTable& table) {
@@ -376,9 +357,6 @@ void CubeWriter::Impl::write_history(const HistoryTable& table) {
     auto gcpl = ordered_plist(H5P_GROUP_CREATE);
     parent = h5::group(H5Gcreate2(file, kHistoriesGroup, H5P_DEFAULT, gcpl, H5P_DEFAULT), problem);
   }
-  // A case recomputed after --resume replaces its history.
-  if (H5Lexists(parent, table.name.c_str(), H5P_DEFAULT) > 0)
-    h5::check(H5Ldelete(parent, table.name.c_str(), H5P_DEFAULT), problem);
   auto gcpl = ordered_plist(H5P_GROUP_CREATE);
   auto group = h5::group(H5Gcreate2(parent, table.name.c_str(), H5P_DEFAULT, gcpl, H5P_DEFAULT), problem);
   for (const auto& a : table.attributes) write_global_attribute(group, a);
@@ -466,7 +444,7 @@ void CubeWriter::Impl::checkpoint(const std::vector<std::int8_t>& status) {
     create(partial);
     for (std::size_t chunk : touched_chunks) write_chunk(chunk, status);
     write_notes();
-    for (const auto& table : pending_histories) write_history(table);
+    for (const auto& table : histories) write_history(table);
     for (std::size_t v = 0; v < layout.side_variables.size(); ++v) write_side(v);
     h5::check(H5Fflush(file, H5F_SCOPE_GLOBAL), what("cannot flush"));
     const ssize_t size = H5Fget_file_image(file, nullptr, 0);

@@ -32,6 +32,24 @@ const std::vector<CaseStatus>& all_final_statuses() {
   return all;
 }
 
+bool is_collapse(CaseStatus status) {
+  return status == CaseStatus::kTendonFracture || status == CaseStatus::kOverturned;
+}
+
+bool has_verdict(CaseStatus status) {
+  return status == CaseStatus::kAtRest || status == CaseStatus::kRockingAtEnd || is_collapse(status);
+}
+
+Verdict verdict_of(CaseStatus status) {
+  switch (status) {
+    case CaseStatus::kAtRest:
+    case CaseStatus::kRockingAtEnd: return Verdict::kSurvived;
+    case CaseStatus::kTendonFracture: return Verdict::kTendonFracture;
+    case CaseStatus::kOverturned: return Verdict::kOverturned;
+    default: return Verdict::kNone;
+  }
+}
+
 const std::vector<MetricInfo>& all_metrics() {
   static const std::vector<MetricInfo> metrics = {
       {"lambda_g", "1", "paper's uplift coefficient G(0)/S(0), in units of g",

@@ -16,8 +16,10 @@ IdaPlan::IdaPlan(std::size_t curves, const IdaSearchSettings& settings, Collapse
       collapsed_(std::move(collapsed)),
       workers_(std::max(workers, 1)),
       searches_(curves, IdaSearch(settings)),
-      in_flight_(curves, kNaN) {
-  for (std::size_t c = 0; c < curves; ++c) ready_.push_back(c);
+      in_flight_(curves, kNaN),
+      queued_(curves, false),
+      skipped_(curves, false) {
+  for (std::size_t c = 0; c < curves; ++c) refresh(c);
 }
 
 void IdaPlan::replay(std::size_t curve, int point, double intensity, bool collapsed) {
@@ -29,27 +31,35 @@ void IdaPlan::replay(std::size_t curve, int point, double intensity, bool collap
 }
 
 void IdaPlan::skip(std::size_t curve) {
-  skipped_.resize(searches_.size(), false);
-  skipped_[curve] = true;
+  skipped_.at(curve) = true;
   refresh(curve);
 }
 
 void IdaPlan::refresh(std::size_t curve) {
-  const bool skipped = curve < skipped_.size() && skipped_[curve];
-  const bool wants = !skipped && searches_[curve].next().has_value() && std::isnan(in_flight_[curve]);
-  const auto at = std::find(ready_.begin(), ready_.end(), curve);
-  if (wants && at == ready_.end()) ready_.push_back(curve);
-  if (!wants && at != ready_.end()) ready_.erase(at);
+  const bool wants = !skipped_[curve] && searches_[curve].next().has_value() && std::isnan(in_flight_[curve]);
+  // Constant time whatever the number of curves: a curve leaves the queue by its flag, and
+  // take() drops the stale entry when it reaches it.
+  if (wants && !queued_[curve]) {
+    queued_[curve] = true;
+    ++ready_count_;
+    ready_.push_back(curve);
+  } else if (!wants && queued_[curve]) {
+    queued_[curve] = false;
+    --ready_count_;
+  }
 }
 
 parallel::WorkBatch IdaPlan::take(bool) {
   // Guided: a share of the ready curves, so every worker gets some while many are ready.
   const std::size_t share = 4 * static_cast<std::size_t>(workers_);
-  const std::size_t n = std::clamp<std::size_t>((ready_.size() + share - 1) / share, 1, 64);
+  const std::size_t n = std::clamp<std::size_t>((ready_count_ + share - 1) / share, 1, 64);
   parallel::WorkBatch batch;
-  while (batch.size() < n && !ready_.empty()) {
+  while (batch.size() < n && ready_count_ > 0) {
     const std::size_t c = ready_.front();
-    ready_.erase(ready_.begin());
+    ready_.pop_front();
+    if (!queued_[c]) continue;  // left the queue since it was put there
+    queued_[c] = false;
+    --ready_count_;
     const double x = *searches_[c].next();
     in_flight_[c] = x;
     ++running_;
@@ -68,7 +78,7 @@ void IdaPlan::completed(const parallel::CaseOutcome& outcome) {
   refresh(c);
 }
 
-bool IdaPlan::exhausted() const { return ready_.empty() && running_ == 0; }
+bool IdaPlan::exhausted() const { return ready_count_ == 0 && running_ == 0; }
 
 std::size_t IdaPlan::finished_curves() const {
   return static_cast<std::size_t>(std::count_if(searches_.begin(), searches_.end(), [](const IdaSearch& s) { return s.done(); }));

@@ -430,19 +430,6 @@ std::optional<CaseResult> rest_throughout(PreparedFrame& frame, const GroundMoti
 
 namespace {
 
-/// What a verdict is for the check: survived (at rest or still rocking), a tendon fracture,
-/// an overturning, or a failure (no verdict).
-int verdict_class(CaseStatus s) {
-  switch (s) {
-    case CaseStatus::kAtRest:
-    case CaseStatus::kRockingAtEnd: return 0;
-    case CaseStatus::kTendonFracture: return 1;
-    case CaseStatus::kOverturned: return 2;
-    default: return 3;
-  }
-}
-
-bool collapsed(CaseStatus s) { return s == CaseStatus::kTendonFracture || s == CaseStatus::kOverturned; }
 
 /// The perturbation factors of the verdict check: the record scaled by 1 ± 1e-9, 1 ± 1e-7
 /// and 1 ± 1e-6, far below any real uncertainty of a record (issue 11's definition of a
@@ -455,10 +442,10 @@ constexpr double kPerturbations[] = {1e-9, -1e-9, 1e-7, -1e-7, 1e-6, -1e-6};
 /// measured sensitivity is 19 % for 1e-9): the verdict is stable, and the spread not measured.
 void check_verdict(PreparedFrame& frame, const GroundMotion& record, const SolverSettings& solver,
                    const OutputRequest& request, CaseResult& nominal) {
-  const int verdict = verdict_class(nominal.status);
-  const bool near = collapsed(nominal.status) || verdict == 3 ||
+  const Verdict verdict = verdict_of(nominal.status);
+  const bool near = is_collapse(nominal.status) || verdict == Verdict::kNone ||
                     (nominal.theta_max_rad > 0.0 && nominal.theta_max_rad >= 0.5 * frame.stop_angles().stop_rad());
-  nominal.collapse_fraction = collapsed(nominal.status) ? 1.0 : 0.0;
+  nominal.collapse_fraction = is_collapse(nominal.status) ? 1.0 : 0.0;
   if (!near) {
     nominal.status_stable = 1.0;
     return;
@@ -469,8 +456,8 @@ void check_verdict(PreparedFrame& frame, const GroundMotion& record, const Solve
   bool stable = true;
   for (double e : kPerturbations) {
     const CaseResult twin = solve_case(frame, record.scaled(1.0 + e), twin_settings, request);
-    stable = stable && verdict_class(twin.status) == verdict;
-    collapses += collapsed(twin.status) ? 1.0 : 0.0;
+    stable = stable && verdict_of(twin.status) == verdict;
+    collapses += is_collapse(twin.status) ? 1.0 : 0.0;
     lo = std::min(lo, twin.theta_max_rad);
     hi = std::max(hi, twin.theta_max_rad);
   }

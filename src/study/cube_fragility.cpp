@@ -12,19 +12,9 @@
 namespace pcrf::study {
 namespace {
 
-bool is_collapse(std::int8_t status) {
-  return status == static_cast<std::int8_t>(CaseStatus::kTendonFracture) ||
-         status == static_cast<std::int8_t>(CaseStatus::kOverturned);
-}
-
-bool has_verdict(std::int8_t status) {
-  return status == static_cast<std::int8_t>(CaseStatus::kAtRest) ||
-         status == static_cast<std::int8_t>(CaseStatus::kRockingAtEnd) || is_collapse(status);
-}
 
 std::size_t dimension_index(const cube::CubeLayout& layout, const std::string& name) {
-  for (std::size_t d = 0; d < layout.dimensions.size(); ++d)
-    if (layout.dimensions[d].name == name) return d;
+  if (const auto d = layout.find_dimension(name)) return *d;
   throw cube::CubeError("has no '" + name + "' axis: fragility needs records scaled to a common intensity "
                         "([intensity] table and [axes] intensity)");
 }
@@ -157,7 +147,7 @@ std::vector<FrameFragility> cube_fragility(const cube::CubeReader& cube, const s
       for (std::size_t l = 0; l < levels.size(); ++l) {
         stripes[l].intensity = levels[l];
         for (std::size_t r : sample) {
-          const std::int8_t s = f.status[r][l];
+          const auto s = static_cast<CaseStatus>(f.status[r][l]);
           if (!has_verdict(s)) continue;
           stripes[l].trials += 1.0;
           const double share = f.fraction[r][l];

@@ -26,11 +26,9 @@ std::vector<double> outputs(const cube::CubeReader& cube, const std::string& met
     return values;
   }
   std::vector<double> values(status.size(), kNaN);
-  const auto collapses = vocabulary::collapse_statuses();
   for (std::size_t i = 0; i < status.size(); ++i) {
     const auto s = static_cast<CaseStatus>(status[i]);
-    if (s == CaseStatus::kAtRest || s == CaseStatus::kRockingAtEnd) values[i] = 0.0;
-    else if (std::find(collapses.begin(), collapses.end(), status[i]) != collapses.end()) values[i] = 1.0;
+    if (has_verdict(s)) values[i] = is_collapse(s) ? 1.0 : 0.0;
   }
   return values;
 }

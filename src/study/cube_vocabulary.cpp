@@ -26,7 +26,10 @@ std::vector<cube::Selector> stats_selectors(const cube::CubeLayout& layout, cons
 std::vector<std::string> expected_pooling() { return {kRecord}; }
 
 std::vector<std::int8_t> collapse_statuses() {
-  return {static_cast<std::int8_t>(CaseStatus::kTendonFracture), static_cast<std::int8_t>(CaseStatus::kOverturned)};
+  std::vector<std::int8_t> codes;
+  for (CaseStatus s : all_final_statuses())
+    if (is_collapse(s)) codes.push_back(static_cast<std::int8_t>(s));
+  return codes;
 }
 
 }  // namespace pcrf::study::vocabulary

@@ -20,8 +20,7 @@ const SettingTable<IdaOptions>& ida_settings() {
     s.push_back(integer_setting("max_runs", &I::max_runs, Bound::kAtLeastOne, "runs per curve (≥ 2): hunt, bracket, then fill"));
     std::vector<std::string> statuses;
     for (CaseStatus status : all_final_statuses())
-      if (status == CaseStatus::kTendonFracture || status == CaseStatus::kOverturned)
-        statuses.emplace_back(status_name(status));
+      if (is_collapse(status)) statuses.emplace_back(status_name(status));
     s.push_back(words_setting("collapse", &I::collapse, statuses,
                               "statuses that count as collapse (a solver failure or time limit always does)"));
     s.push_back(number_setting("theta_limit_rad", &I::theta_limit_rad, "rad", Bound::kNonNegative,

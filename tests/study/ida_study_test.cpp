@@ -17,8 +17,6 @@
 #include "pcrf/cube/cube_reader.hpp"
 #include "study/study_test_support.hpp"
 
-extern char** environ;
-
 namespace pcrf::study_test {
 namespace {
 
@@ -146,9 +144,8 @@ TEST(IdaStudy, AKilledIdaResumesToTheUninterruptedCube) {
   const double whole_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::string command = "cd " + quoted(dir) + " && exec " + pcrf() + " study ida.toml -o killed.h5" +
                               " --flush-interval-s 0.02 --progress-interval 0";
-  pid_t pid = 0;
-  const char* argv[] = {"/bin/sh", "-c", command.c_str(), nullptr};
-  ASSERT_EQ(posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ), 0);
+  const pid_t pid = spawn_shell(command);
+  ASSERT_GT(pid, 0);
   std::this_thread::sleep_for(std::chrono::duration<double>(0.5 * whole_s));
   ::kill(pid, SIGKILL);
   int wstatus = 0;

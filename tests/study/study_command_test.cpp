@@ -16,8 +16,6 @@
 #include "pcrf/cube/cube_reader.hpp"
 #include "study/study_test_support.hpp"
 
-extern char** environ;
-
 namespace pcrf::study_test {
 namespace {
 
@@ -139,9 +137,8 @@ TEST(StudyCommand, KilledRunResumesToTheUninterruptedCube) {
   const std::string command = "cd " + quoted(dir) + " && exec " + mpirun(2) + pcrf() + " study " + quoted(study) +
                               " -o killed.h5 --flush-interval 0.1 --progress-interval 0.1 --batch-size 1 2>" +
                               quoted(err);
-  pid_t pid = 0;
-  const char* argv[] = {"/bin/sh", "-c", command.c_str(), nullptr};
-  ASSERT_EQ(posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ), 0);
+  const pid_t pid = spawn_shell(command);
+  ASSERT_GT(pid, 0);
   // Kill mpirun once a good part (but not all) of the study is on disk.
   std::pair<long, long> progress{0, 0};
   for (int i = 0; i < 600 && !(progress.second > 0 && progress.first >= progress.second / 10); ++i) {
@@ -285,9 +282,8 @@ TEST(StudyCommand, SigtermFlushesAndSaysHowToResume) {
   // A long flush interval: without the signal's flush, the cube would hold nothing.
   const std::string command = "cd " + quoted(dir) + " && exec " + pcrf() + " study " + quoted(study) +
                               " -o sig.h5 --flush-interval-s 1000 --progress-interval-s 0.05 2>" + quoted(err);
-  pid_t pid = 0;
-  const char* argv[] = {"/bin/sh", "-c", command.c_str(), nullptr};
-  ASSERT_EQ(posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ), 0);
+  const pid_t pid = spawn_shell(command);
+  ASSERT_GT(pid, 0);
   std::pair<long, long> progress{0, 0};
   for (int i = 0; i < 600 && !(progress.second > 0 && progress.first >= progress.second / 10); ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));

@@ -12,10 +12,22 @@
 #include <string>
 #include <vector>
 
+#include <spawn.h>
+
 #include "pcrf/cube/cube_reader.hpp"
 #include "support/test_support.hpp"
 
+extern char** environ;
+
 namespace pcrf::study_test {
+
+/// Starts `/bin/sh -c command` in the background (for tests that signal or kill a run);
+/// its pid, or 0 when it could not be started.
+inline pid_t spawn_shell(const std::string& command) {
+  pid_t pid = 0;
+  const char* argv[] = {"/bin/sh", "-c", command.c_str(), nullptr};
+  return posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ) == 0 ? pid : 0;
+}
 
 inline std::string pcrf() { return "'" + test::pcrf_executable().string() + "'"; }
 

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <optional>
 #include <variant>
 #include <vector>
 
@@ -98,6 +99,8 @@ struct CubeLayout {
   /// Names of the auxiliary coordinates (CF `coordinates` attribute of every variable).
   std::vector<std::string> auxiliary_names() const;
   const Coordinate* find_coordinate(const std::string& name) const;
+  /// Position of a dimension among `dimensions`, or nullopt when the cube has none of that name.
+  std::optional<std::size_t> find_dimension(const std::string& name) const;
   const SideVariable* find_side_variable(const std::string& name) const;
   /// Number of values of a side variable (the product of its dimensions' sizes).
   std::size_t side_size(const SideVariable& variable) const;

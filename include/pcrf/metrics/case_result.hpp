@@ -34,6 +34,14 @@ enum class CaseStatus : std::int8_t {
 std::string_view status_name(CaseStatus status);
 /// All statuses that a case can end with, in flag order (kNotRun excluded).
 const std::vector<CaseStatus>& all_final_statuses();
+/// A collapse: a tendon fractured or the frame overturned.
+bool is_collapse(CaseStatus status);
+/// The case says something about the frame: it survived (at rest, still rocking) or
+/// collapsed. A solver failure, a time limit or an invalid frame does not.
+bool has_verdict(CaseStatus status);
+/// What a case says about the frame, as verdict checks and benchmarks compare cases.
+enum class Verdict { kSurvived, kTendonFracture, kOverturned, kNone };
+Verdict verdict_of(CaseStatus status);
 
 /// Solver work counters, summed over every re-initialization of the integrator.
 struct SolverCounts {

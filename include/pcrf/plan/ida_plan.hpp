@@ -11,6 +11,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <vector>
 
@@ -33,7 +34,7 @@ class IdaPlan final : public parallel::WorkSource {
 
   /// Leaves a curve out of this run (another shard computes it).
   void skip(std::size_t curve);
-  bool skipped(std::size_t curve) const { return curve < skipped_.size() && skipped_[curve]; }
+  bool skipped(std::size_t curve) const { return skipped_[curve]; }
 
   parallel::WorkBatch take(bool in_process_worker) override;
   void completed(const parallel::CaseOutcome& outcome) override;
@@ -52,7 +53,9 @@ class IdaPlan final : public parallel::WorkSource {
   int workers_;
   std::vector<IdaSearch> searches_;
   std::vector<double> in_flight_;      ///< intensity handed out per curve; NaN: none
-  std::vector<std::size_t> ready_;     ///< curves whose next run can be handed out
+  std::deque<std::size_t> ready_;      ///< curves whose next run can be handed out (and stale entries)
+  std::vector<bool> queued_;           ///< which curves are in ready_ for real
+  std::size_t ready_count_ = 0;        ///< how many
   std::size_t running_ = 0;            ///< curves with a run in flight
   std::vector<bool> skipped_;          ///< curves another shard computes
 };
