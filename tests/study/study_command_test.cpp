@@ -124,6 +124,15 @@ std::pair<long, long> last_progress(const std::filesystem::path& file) {
   return last;
 }
 
+/// Waits (12 s at most) until the progress lines in `err` report a tenth of the cases done.
+void wait_for_a_tenth(const std::filesystem::path& err) {
+  std::pair<long, long> progress{0, 0};
+  for (int i = 0; i < 600 && !(progress.second > 0 && progress.first >= progress.second / 10); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    progress = last_progress(err);
+  }
+}
+
 TEST(StudyCommand, KilledRunResumesToTheUninterruptedCube) {
   PCRF_REQUIRE_MPIRUN();
   const auto dir = test::scratch_dir("study_kill_resume");
@@ -140,11 +149,7 @@ TEST(StudyCommand, KilledRunResumesToTheUninterruptedCube) {
   const pid_t pid = spawn_shell(command);
   ASSERT_GT(pid, 0);
   // Kill mpirun once a good part (but not all) of the study is on disk.
-  std::pair<long, long> progress{0, 0};
-  for (int i = 0; i < 600 && !(progress.second > 0 && progress.first >= progress.second / 10); ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    progress = last_progress(err);
-  }
+  wait_for_a_tenth(err);
   std::this_thread::sleep_for(std::chrono::milliseconds(150));  // past one more flush
   ASSERT_EQ(::kill(pid, SIGKILL), 0);
   int wstatus = 0;
@@ -284,11 +289,7 @@ TEST(StudyCommand, SigtermFlushesAndSaysHowToResume) {
                               " -o sig.h5 --flush-interval-s 1000 --progress-interval-s 0.05 2>" + quoted(err);
   const pid_t pid = spawn_shell(command);
   ASSERT_GT(pid, 0);
-  std::pair<long, long> progress{0, 0};
-  for (int i = 0; i < 600 && !(progress.second > 0 && progress.first >= progress.second / 10); ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    progress = last_progress(err);
-  }
+  wait_for_a_tenth(err);
   ASSERT_EQ(::kill(pid, SIGTERM), 0);
   int wstatus = 0;
   ::waitpid(pid, &wstatus, 0);
