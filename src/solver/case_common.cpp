@@ -9,6 +9,8 @@
 #include <string>
 #include <utility>
 
+#include "pcrf/units.hpp"
+
 namespace pcrf::detail {
 namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -110,19 +112,33 @@ void set_peak_strains(const EquationOfMotion& eom, CaseResult& result) {
   result.strain_beam_max = peak.strain_beam;
 }
 
-HistorySample history_sample(const EquationOfMotion& eom, const GroundMotion& rec, double t, double theta,
-                             double omega, int side) {
-  HistorySample s{};
+void HistoryRows::add(double t, double theta, double omega, int side, std::uint32_t events) {
+  if (!sink_) return;
+  if (held_ && t == row_.t_s) {
+    row_.omega1_after_rad_s = omega;
+    row_.event = static_cast<double>(static_cast<std::uint32_t>(row_.event) | events);
+    return;
+  }
+  finish();
+  HistorySample& s = row_;
   s.t_s = t;
   s.theta1_rad = theta;
   s.omega1_rad_s = omega;
-  eom.configuration(theta, side, s.theta2_rad, s.theta3_rad);
-  const TendonState ts = eom.tendons(theta, side);
+  s.omega1_after_rad_s = omega;
+  eom_.configuration(theta, side, s.theta2_rad, s.theta3_rad);
+  const TendonState ts = eom_.tendons(theta, side);
   s.strain_column_left = ts.strain_column_left;
   s.strain_column_right = ts.strain_column_right;
   s.strain_beam = ts.strain_beam;
-  s.ground_accel_m_s2 = rec.accel_m_s2(t);
-  return s;
+  s.ground_accel_m_s2 = rec_.accel_m_s2(t);
+  s.ground_accel_g = s.ground_accel_m_s2 / kGravity_m_s2;
+  s.event = static_cast<double>(events);
+  held_ = true;
+}
+
+void HistoryRows::finish() {
+  if (held_) sink_(row_);
+  held_ = false;
 }
 
 }  // namespace pcrf::detail

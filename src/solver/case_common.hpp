@@ -27,9 +27,27 @@ CaseResult initial_result(const EquationOfMotion& eom, const GroundMotion& rec, 
 /// Peak strains from the peak rotation (every |θ₁| up to it has been visited).
 void set_peak_strains(const EquationOfMotion& eom, CaseResult& result);
 
-/// Fills a history sample at θ₁, θ̇₁ on `side`.
-HistorySample history_sample(const EquationOfMotion& eom, const GroundMotion& rec, double t, double theta,
-                             double omega, int side);
+/// Builds a case's history rows and hands them to the sink in strictly increasing time:
+/// rows added at the same instant (an impact and the restart after it, an impact and the
+/// return to rest) become one row, whose `omega1_after_rad_s` is the last velocity given
+/// and whose events are the union. A row is held until a later one arrives or finish().
+class HistoryRows {
+ public:
+  HistoryRows(const HistorySink& sink, const EquationOfMotion& eom, const GroundMotion& rec)
+      : sink_(sink), eom_(eom), rec_(rec) {}
+  bool wanted() const { return static_cast<bool>(sink_); }
+  /// The state (θ₁, θ̇₁) on `side` at t, with `events` (HistoryEvent bits).
+  void add(double t, double theta, double omega, int side, std::uint32_t events = kEventNone);
+  /// Hands over the held row.
+  void finish();
+
+ private:
+  const HistorySink& sink_;
+  const EquationOfMotion& eom_;
+  const GroundMotion& rec_;
+  bool held_ = false;
+  HistorySample row_{};
+};
 
 /// Where a case stops on its own: the |θ₁| at which a tendon fractures and the one at which
 /// the frame is declared overturned, found once per case.

@@ -23,7 +23,7 @@ class FixedStepRun {
         rec_(rec),
         physics_(physics),
         solver_(solver),
-        history_(history),
+        history_(history, eom, rec),
         r_(restitution_momentum(eom)),
         h_(solver.fixed_step_s > 0 ? solver.fixed_step_s : rec.dt_s()),
         t_end_(rec.duration_s() + physics.tail_s),
@@ -42,21 +42,26 @@ class FixedStepRun {
       side_ = initial_side(y.theta, y.omega);
     }
     result_.t_uplift_s = t;
-    emit(t, y);
+    emit(t, y, kEventUplift);
     while (t < t_end_) {
       const double h = std::min(h_, t_end_ - t);
       State next{};
       if (!step(t, h, y, next)) return finish(CaseStatus::kSolverFailure, t, "linkage cannot close");
       t += h;
       ++result_.counts.steps;
+      std::uint32_t events = kEventNone;
+      const double omega_arriving = next.omega;
       if (side_ * next.theta < 0.0) {  // θ₁ left the branch's side over the step
         // Sign change over the step: impact at the step end, not located.
         next.omega *= r_;
         side_ = -side_;
         ++result_.impacts;
+        events = kEventImpact;
       }
       y = next;
+      last_ = y;
       note(t, y);
+      if (events == kEventImpact) emit(t, State{y.theta, omega_arriving}, events);
       emit(t, y);
       if (!std::isfinite(y.theta) || !std::isfinite(y.omega))
         return finish(CaseStatus::kSolverFailure, t, "non-finite state");
@@ -94,11 +99,13 @@ class FixedStepRun {
     }
   }
 
-  void emit(double t, State y) const {
-    if (history_) history_(history_sample(eom_, rec_, t, y.theta, y.omega, side_));
-  }
+  void emit(double t, State y, std::uint32_t events = kEventNone) { history_.add(t, y.theta, y.omega, side_, events); }
 
   CaseResult finish(CaseStatus status, double t, std::string message = {}) {
+    if (history_.wanted()) {
+      history_.add(t, last_.theta, last_.omega, side_, is_collapse(status) ? kEventStop | kEventEnd : kEventEnd);
+      history_.finish();
+    }
     result_.status = status;
     result_.t_end_s = t;
     result_.message = std::move(message);
@@ -111,7 +118,8 @@ class FixedStepRun {
   const GroundMotion& rec_;
   PhysicsOptions physics_;
   SolverSettings solver_;
-  const HistorySink& history_;
+  HistoryRows history_;
+  State last_{0.0, 0.0};  // the state at the last step's end
   double r_;
   double h_;
   double t_end_;

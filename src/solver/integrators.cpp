@@ -52,11 +52,13 @@ class SundialsBase : public OdeIntegrator {
     check_flag(SUNContext_Create(nullptr, &ctx_), "SUNContext_Create");
     y_ = check_ptr(N_VNew_Serial(2, ctx_), "N_VNew_Serial");
     atol_ = check_ptr(N_VNew_Serial(2, ctx_), "N_VNew_Serial");
+    dky_ = check_ptr(N_VNew_Serial(2, ctx_), "N_VNew_Serial");
     N_VGetArrayPointer(atol_)[0] = s.atol_theta_rad;
     N_VGetArrayPointer(atol_)[1] = s.atol_omega_rad_s;
     N_VConst(0.0, y_);
   }
   ~SundialsBase() override {
+    N_VDestroy(dky_);
     N_VDestroy(atol_);
     N_VDestroy(y_);
     SUNContext_Free(&ctx_);
@@ -101,6 +103,7 @@ class SundialsBase : public OdeIntegrator {
   SUNContext ctx_ = nullptr;
   N_Vector y_ = nullptr;
   N_Vector atol_ = nullptr;
+  N_Vector dky_ = nullptr;  ///< dense output
   SolverCounts done_;  ///< counts of finished segments
   std::string error_;
   bool started_ = false;
@@ -149,9 +152,9 @@ class CvodeIntegrator final : public SundialsBase {
 
   void set_stop_time(double t_stop) override { check_flag(CVodeSetStopTime(mem_, t_stop), "CVodeSetStopTime"); }
 
-  Outcome advance(double tout, double& t, double* y) override {
+  Outcome advance(double tout, double& t, double* y, bool one_step) override {
     realtype tret = t;
-    const int flag = CVode(mem_, tout, y_, &tret, CV_NORMAL);
+    const int flag = CVode(mem_, tout, y_, &tret, one_step ? CV_ONE_STEP : CV_NORMAL);
     t = tret;
     store(y);
     if (flag == CV_ROOT_RETURN) return Outcome::kRoot;
@@ -160,6 +163,12 @@ class CvodeIntegrator final : public SundialsBase {
   }
 
   void root_info(int* found) override { check_flag(CVodeGetRootInfo(mem_, found), "CVodeGetRootInfo"); }
+
+  void interpolate(double t, double* y) override {
+    check_flag(CVodeGetDky(mem_, t, 0, dky_), "CVodeGetDky");
+    y[0] = N_VGetArrayPointer(dky_)[0];
+    y[1] = N_VGetArrayPointer(dky_)[1];
+  }
 
  private:
   SolverCounts segment() override {
@@ -213,9 +222,9 @@ class ErkIntegrator final : public SundialsBase {
     check_flag(ERKStepSetStopTime(mem_, t_stop), "ERKStepSetStopTime");
   }
 
-  Outcome advance(double tout, double& t, double* y) override {
+  Outcome advance(double tout, double& t, double* y, bool one_step) override {
     realtype tret = t;
-    const int flag = ERKStepEvolve(mem_, tout, y_, &tret, ARK_NORMAL);
+    const int flag = ERKStepEvolve(mem_, tout, y_, &tret, one_step ? ARK_ONE_STEP : ARK_NORMAL);
     t = tret;
     store(y);
     if (flag == ARK_ROOT_RETURN) return Outcome::kRoot;
@@ -224,6 +233,12 @@ class ErkIntegrator final : public SundialsBase {
   }
 
   void root_info(int* found) override { check_flag(ERKStepGetRootInfo(mem_, found), "ERKStepGetRootInfo"); }
+
+  void interpolate(double t, double* y) override {
+    check_flag(ERKStepGetDky(mem_, t, 0, dky_), "ERKStepGetDky");
+    y[0] = N_VGetArrayPointer(dky_)[0];
+    y[1] = N_VGetArrayPointer(dky_)[1];
+  }
 
  private:
   SolverCounts segment() override {

@@ -52,8 +52,12 @@ class OdeIntegrator {
   /// Moves the stop time (no restart): the integrator will not step beyond it.
   virtual void set_stop_time(double t_stop) = 0;
   /// Integrates towards tout (never beyond the stop time); on return t and y hold the
-  /// state reached. kRoot: root_info() says which roots were found.
-  virtual Outcome advance(double tout, double& t, double* y) = 0;
+  /// state reached. kRoot: root_info() says which roots were found. `one_step`: return
+  /// after a single internal step (its end, or a root or the stop time within it) — the
+  /// same steps and roots as without it, and interpolate() then covers [previous return, t].
+  virtual Outcome advance(double tout, double& t, double* y, bool one_step = false) = 0;
+  /// The state at t from the integrator's interpolant of its last step (dense output).
+  virtual void interpolate(double t, double* y) = 0;
   /// found[i] ≠ 0 when root i was found at the last kRoot return.
   virtual void root_info(int* found) = 0;
   /// Counters summed over every restart.

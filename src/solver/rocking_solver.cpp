@@ -111,7 +111,8 @@ class CaseRun {
         physics_(frame.physics()),
         solver_(solver),
         request_(request),
-        history_(history),
+        history_(history, frame.eom(), record),
+        history_dt_s_(request.history_dt_s > 0.0 ? request.history_dt_s : record.dt_s()),
         restitution_(frame.restitution()),
         stop_(frame.stop_angles()),
         problem_(frame.table(), record_, stop_.stop_rad(), request.omega_peak),
@@ -129,11 +130,14 @@ class CaseRun {
   bool returns_to_rest(double t, double omega_after) const;
   bool holds_closed(double t) const;
   void settle(double t);
-  void start_flight(double t, const double* y);
+  void start_flight(double t, const double* y, std::uint32_t events = kEventNone);
   void note_theta(double t, double theta);
   void note_omega(double t, double omega);
-  void emit(double t, double theta, double omega);
+  void emit(double t, double theta, double omega, std::uint32_t events = kEventNone);
   void emit_rest_until(double t);
+  /// History rows at the output times before t_until, from the last step's interpolant.
+  void emit_dense_before(double t_until);
+  double next_history_time() const { return static_cast<double>(next_history_sample_) * history_dt_s_; }
   void finish(CaseStatus status, std::string message = {});
   bool over_time() const;
 
@@ -142,7 +146,8 @@ class CaseRun {
   PhysicsOptions physics_;
   SolverSettings solver_;
   OutputRequest request_;
-  const HistorySink& history_;
+  detail::HistoryRows history_;
+  double history_dt_s_;  // output interval of the history
   double restitution_;
   detail::StopAngles stop_;
   FlightProblem problem_;
@@ -154,6 +159,7 @@ class CaseRun {
   bool at_rest_ = true;
   bool done_ = false;
   double t_ = 0.0;
+  double last_y_[2] = {0.0, 0.0};  // state at t_ while in flight
   std::size_t next_history_sample_ = 0;
   CaseResult result_;
 };
@@ -175,6 +181,10 @@ CaseResult CaseRun::run() {
     }
   } catch (const detail::IntegratorError& e) {
     finish(CaseStatus::kSolverFailure, e.what());
+  }
+  if (history_.wanted()) {
+    emit(result_.t_end_s, at_rest_ ? 0.0 : last_y_[0], at_rest_ ? 0.0 : last_y_[1], kEventEnd);
+    history_.finish();
   }
   result_.counts = integrator_->counts();
   detail::set_peak_strains(eom_, result_);
@@ -199,7 +209,7 @@ void CaseRun::rest_until_uplift() {
   problem_.side = detail::uplift_side(a);
   const double y0[2] = {0.0, 0.0};
   at_rest_ = false;
-  start_flight(t_open, y0);
+  start_flight(t_open, y0, kEventUplift);
 }
 
 void CaseRun::start_displaced() {
@@ -210,10 +220,10 @@ void CaseRun::start_displaced() {
   result_.t_uplift_s = 0.0;
   note_theta(0.0, th);
   if (request_.omega_peak) note_omega(0.0, w);
-  start_flight(0.0, y0);
+  start_flight(0.0, y0, kEventUplift);
 }
 
-void CaseRun::start_flight(double t, const double* y) {
+void CaseRun::start_flight(double t, const double* y, std::uint32_t events) {
   const auto dirs = problem_.directions();
   // A flight leaving θ₁ = 0 with speed v against a closing acceleration a lasts 2v/a.
   // Short flights (late in a Zeno sequence) are shorter than the integrator's own first
@@ -226,7 +236,7 @@ void CaseRun::start_flight(double t, const double* y) {
     if (std::isfinite(flight_s) && flight_s < 0.01) h0 = flight_s / 16.0;
   }
   integrator_->restart(t, y, dirs.data(), t_end_, h0);
-  emit(t, y[0], y[1]);
+  emit(t, y[0], y[1], events);
 }
 
 void CaseRun::fly() {
@@ -245,12 +255,13 @@ void CaseRun::fly() {
   } else if (t_ >= record_.duration_s()) {
     integrator_->set_stop_time(t_end_);
   }
-  if (history_) {
-    const double t_hist = static_cast<double>(next_history_sample_) * dt;
-    if (t_hist > t_) tout = std::min(tout, t_hist);
-  }
-  const auto outcome = integrator_->advance(tout, t, y);
+  // With a history, one step at a time: the rows between steps come from the step's
+  // interpolant, and the steps and roots stay those of a run without a history.
+  const auto outcome = integrator_->advance(tout, t, y, history_.wanted());
+  if (outcome != detail::OdeIntegrator::Outcome::kFailure) emit_dense_before(t);
   t_ = t;
+  last_y_[0] = y[0];
+  last_y_[1] = y[1];
   if (outcome == detail::OdeIntegrator::Outcome::kFailure) {
     finish(CaseStatus::kSolverFailure, integrator_->last_error());
     return;
@@ -265,7 +276,7 @@ void CaseRun::fly() {
   }
   if (outcome == detail::OdeIntegrator::Outcome::kRoot) {
     if (handle_roots(t, y)) return;
-  } else if (history_ && t >= static_cast<double>(next_history_sample_) * record_.dt_s()) {
+  } else if (history_.wanted() && t >= next_history_time()) {
     emit(t, y[0], y[1]);
   }
   note_theta(t, y[0]);
@@ -280,11 +291,17 @@ void CaseRun::fly() {
 bool CaseRun::handle_roots(double t, double* y) {
   int found[kRootCount] = {0, 0, 0, 0};
   integrator_->root_info(found);
-  if (found[kThetaPeak]) note_theta(t, y[0]);
-  if (found[kOmegaPeak] && request_.omega_peak) note_omega(t, y[1]);
+  if (found[kThetaPeak]) {
+    note_theta(t, y[0]);
+    emit(t, y[0], y[1], kEventThetaPeak);
+  }
+  if (found[kOmegaPeak] && request_.omega_peak) {
+    note_omega(t, y[1]);
+    emit(t, y[0], y[1], kEventOmegaPeak);
+  }
   if (found[kLimit]) {
     note_theta(t, y[0]);
-    emit(t, y[0], y[1]);
+    emit(t, y[0], y[1], kEventStop);
     finish(stop_.status(), stop_.message());
     return true;
   }
@@ -306,7 +323,7 @@ bool CaseRun::handle_roots(double t, double* y) {
 void CaseRun::impact(double t, double* y) {
   const double omega_before = y[1];
   if (request_.omega_peak) note_omega(t, omega_before);
-  emit(t, 0.0, omega_before);
+  emit(t, 0.0, omega_before, kEventImpact);
   ++result_.impacts;
   const double omega_after = restitution_ * omega_before;
   problem_.side = -problem_.side;
@@ -343,7 +360,7 @@ bool CaseRun::holds_closed(double t) const {
 void CaseRun::settle(double t) {
   at_rest_ = true;
   t_ = t;
-  emit(t, 0.0, 0.0);
+  emit(t, 0.0, 0.0, kEventRest);
 }
 
 void CaseRun::note_theta(double t, double theta) {
@@ -360,17 +377,25 @@ void CaseRun::note_omega(double t, double omega) {
   }
 }
 
-void CaseRun::emit(double t, double theta, double omega) {
-  if (!history_) return;
-  history_(detail::history_sample(eom_, record_, t, theta, omega, problem_.side));
-  while (static_cast<double>(next_history_sample_) * record_.dt_s() <= t) ++next_history_sample_;
+void CaseRun::emit(double t, double theta, double omega, std::uint32_t events) {
+  if (!history_.wanted()) return;
+  history_.add(t, theta, omega, problem_.side, events);
+  while (next_history_time() <= t) ++next_history_sample_;
+}
+
+void CaseRun::emit_dense_before(double t_until) {
+  if (!history_.wanted()) return;
+  double y[2];
+  while (next_history_time() < t_until) {
+    const double t = next_history_time();
+    integrator_->interpolate(t, y);
+    emit(t, y[0], y[1]);
+  }
 }
 
 void CaseRun::emit_rest_until(double t_until) {
-  if (!history_) return;
-  while (static_cast<double>(next_history_sample_) * record_.dt_s() < t_until) {
-    emit(static_cast<double>(next_history_sample_) * record_.dt_s(), 0.0, 0.0);
-  }
+  if (!history_.wanted()) return;
+  while (next_history_time() < t_until) emit(next_history_time(), 0.0, 0.0);
 }
 
 void CaseRun::finish(CaseStatus status, std::string message) {

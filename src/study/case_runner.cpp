@@ -51,7 +51,8 @@ double CaseRunner::level_of(const CaseSpec& spec, const parallel::WorkItem& item
   return std::isnan(spec.level) ? item.argument : spec.level;
 }
 
-parallel::CaseOutcome CaseRunner::run(const parallel::WorkItem& item, const HistorySink& history) const noexcept {
+parallel::CaseOutcome CaseRunner::run(const parallel::WorkItem& item, const HistorySink& history,
+                                      double history_dt_s) const noexcept {
   const std::int64_t index = item.case_index;
   parallel::CaseOutcome outcome{index, static_cast<std::int8_t>(CaseStatus::kSolverFailure),
                                 std::vector<double>(row_width(), kNaN), {}};
@@ -72,7 +73,9 @@ parallel::CaseOutcome CaseRunner::run(const parallel::WorkItem& item, const Hist
       return outcome;
     }
     const auto motion = scaled_record(spec.record, factor);
-    const CaseResult result = solve_case(*frame, *motion, study_.solver, request_, history);
+    OutputRequest request = request_;
+    request.history_dt_s = history_dt_s;
+    const CaseResult result = solve_case(*frame, *motion, study_.solver, request, history);
     outcome.status = static_cast<std::int8_t>(result.status);
     for (std::size_t m = 0; m < metrics_.size(); ++m) {
       const double value = metrics_[m]->get(result);

@@ -225,27 +225,10 @@ cube::CubeLayout make_cube_layout(const Study& study, const CaseSpace& space, Re
 
 cube::HistoryTable make_history_table(const std::string& label, std::int64_t case_index, const Study& study,
                                       const CaseSpace& space, const std::vector<HistorySample>& samples) {
-  struct Column {
-    const char* name;
-    const char* units;
-    const char* long_name;
-    double HistorySample::*member;
-  };
-  static const Column columns[] = {
-      {"t_s", "s", "time", &HistorySample::t_s},
-      {"theta1_rad", "rad", "rotation of the pivoting column", &HistorySample::theta1_rad},
-      {"omega1_rad_s", "rad/s", "angular velocity of the pivoting column", &HistorySample::omega1_rad_s},
-      {"theta2_rad", "rad", "rotation of the beam", &HistorySample::theta2_rad},
-      {"theta3_rad", "rad", "rotation of the other column", &HistorySample::theta3_rad},
-      {"strain_column_left", "1", "left column tendon strain", &HistorySample::strain_column_left},
-      {"strain_column_right", "1", "right column tendon strain", &HistorySample::strain_column_right},
-      {"strain_beam", "1", "beam tendon strain", &HistorySample::strain_beam},
-      {"ground_accel_m_s2", "m/s2", "ground acceleration (scaled)", &HistorySample::ground_accel_m_s2},
-  };
   cube::HistoryTable table;
   table.name = label;
-  for (const auto& c : columns) {
-    table.columns.push_back({c.name, c.units, c.long_name});
+  for (const auto& c : history_columns()) {
+    table.columns.push_back({std::string(c.name), std::string(c.units), std::string(c.long_name)});
     std::vector<double> values;
     values.reserve(samples.size());
     for (const auto& s : samples) values.push_back(s.*c.member);

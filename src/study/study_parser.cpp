@@ -479,7 +479,7 @@ void read_histories(const Fields& outputs, Study& s) {
     const std::string path = "outputs.histories[" + std::to_string(i) + "]";
     const auto* table = (*array)[i].as_table();
     if (table == nullptr) Fields::fail_at(s.file, &(*array)[i], path, "expected a table ([[outputs.histories]])");
-    Fields f(*table, path, s.file, with_parameter_keys({"label", "record", "scale", "intensity", "case"}));
+    Fields f(*table, path, s.file, with_parameter_keys({"label", "record", "scale", "intensity", "case", "dt_s"}));
     HistoryRequest request;
     request.declared_at = f.where("label");
     if (!f.has("label")) f.fail("label", "a history needs a label (its group name)");
@@ -492,6 +492,10 @@ void read_histories(const Fields& outputs, Study& s) {
       if (f.has(key) && std::string_view(key) != level_key)
         f.fail(key, std::string("this study's second axis is `") + level_key + "`");
     request.scale = f.number(level_key);
+    if (const auto dt = f.number("dt_s")) {
+      if (!(*dt > 0.0)) f.fail("dt_s", "the output interval must be a positive number of seconds");
+      request.dt_s = *dt;
+    }
     request.case_label = f.text("case");
     if (request.case_label && s.plan == PlanKind::kGrid) f.fail("case", "plan \"grid\" selects cases by parameter values");
     for (std::size_t p = 0; p < kParameterCount; ++p) {

@@ -210,7 +210,7 @@ std::pair<std::int64_t, std::int64_t> shard_range(std::int64_t total, std::size_
   return {total * k / n, total * (k + 1) / n};
 }
 
-parallel::WorkQueue pending_cases(const cube::CubeWriter& writer, const std::map<std::int64_t, std::string>& histories,
+parallel::WorkQueue pending_cases(const cube::CubeWriter& writer, const std::map<std::int64_t, const HistoryRequest*>& histories,
                                   const Study& study, const CaseSpace& space, const parallel::MpiSession& mpi,
                                   const StudyRunOptions& options) {
   std::vector<std::int64_t> all(static_cast<std::size_t>(space.size()));
@@ -251,9 +251,9 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
                              std::ostream& progress, const StudyRunOptions& options) {
   const std::atomic<int>* stop_signal = options.stop_signal;
   CaseRunner runner(p.study, *p.space, *p.records);
-  std::map<std::int64_t, std::string> history_labels;
+  std::map<std::int64_t, const HistoryRequest*> history_requests;
   for (std::size_t h = 0; h < p.study.histories.size(); ++h)
-    history_labels[m.checked.history_cases[h]] = p.study.histories[h].label;
+    history_requests[m.checked.history_cases[h]] = &p.study.histories[h];
 
   StudySummary summary{p.space->size(), m.writer->done_count(), 0, 0, m.output, m.checked.fingerprint,
                        m.checked.invalid_cases, m.checked.invalid_frames, m.checked.first_invalid, 0, {}};
@@ -272,18 +272,18 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
     };
     work = std::move(ida);
   } else {
-    work = std::make_unique<parallel::WorkQueue>(pending_cases(*m.writer, history_labels, p.study, *p.space, mpi, options));
+    work = std::make_unique<parallel::WorkQueue>(pending_cases(*m.writer, history_requests, p.study, *p.space, mpi, options));
   }
   ResultSink sink(*m.writer, meter, inbox, p.study.run.flush_interval_s, before_flush);
 
   // Runs in rank 0's worker thread; the only place where histories are recorded.
   auto evaluate = [&](const parallel::WorkItem& item) {
     const std::int64_t index = item.case_index;
-    const auto label = history_labels.find(index);
-    if (label == history_labels.end()) return runner.run(item);
+    const auto request = history_requests.find(index);
+    if (request == history_requests.end()) return runner.run(item);
     std::vector<HistorySample> samples;
-    auto outcome = runner.run(item, [&samples](const HistorySample& s) { samples.push_back(s); });
-    inbox.push(make_history_table(label->second, index, p.study, *p.space, samples));
+    auto outcome = runner.run(item, [&samples](const HistorySample& s) { samples.push_back(s); }, request->second->dt_s);
+    inbox.push(make_history_table(request->second->label, index, p.study, *p.space, samples));
     return outcome;
   };
   StopOnSignal stoppable(*work, stop_signal);

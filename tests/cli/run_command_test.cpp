@@ -5,6 +5,7 @@
 #include <fstream>
 #include <string>
 
+#include "pcrf/solver/history.hpp"
 #include "pcrf/solver/settings.hpp"
 #include "support/setting_values.hpp"
 #include "support/test_support.hpp"
@@ -37,21 +38,30 @@ TEST(RunCommand, FrameParametersChangeTheResult) {
   EXPECT_NE(a.out, b.out);
 }
 
-TEST(RunCommand, WritesTheHistoryCsv) {
+TEST(RunCommand, WritesTheHistoryCsvAtTheAskedInterval) {
   const auto dir = test::scratch_dir("run_history");
   const auto csv = dir / "h.csv";
-  const auto r = test::run_command(pcrf() + " run --synthetic 'sine:amplitude_g=1.5,period_s=0.5,cycles=2,duration_s=3' --history " +
-                                   csv.string());
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  std::ifstream in(csv);
-  std::string header;
-  std::getline(in, header);
-  EXPECT_EQ(header,
-            "t_s,theta1_rad,omega1_rad_s,theta2_rad,theta3_rad,strain_column_left,strain_column_right,strain_beam,"
-            "ground_accel_m_s2");
-  int rows = 0;
-  for (std::string line; std::getline(in, line);) ++rows;
-  EXPECT_GE(rows, 601);  // every record sample (3 s at 5 ms) plus impacts
+  const std::string base = pcrf() + " run --synthetic 'sine:amplitude_g=1.5,period_s=0.5,cycles=2,duration_s=3' --history " +
+                           csv.string();
+  std::string expected_header;
+  for (const auto& c : history_columns()) expected_header += (expected_header.empty() ? "" : ",") + std::string(c.name);
+  for (const auto& [flag, minimum_rows] : {std::pair{"", 601}, std::pair{" --history-dt-s 0.001", 3001}}) {
+    const auto r = test::run_command(base + flag);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    std::ifstream in(csv);
+    std::string header;
+    std::getline(in, header);
+    EXPECT_EQ(header, expected_header);
+    int rows = 0;
+    double last_t = -1.0;
+    for (std::string line; std::getline(in, line); ++rows) {
+      const double t = std::stod(line.substr(0, line.find(',')));
+      EXPECT_GT(t, last_t) << line;
+      last_t = t;
+    }
+    EXPECT_GE(rows, minimum_rows) << flag;  // every output time (3 s) plus the events
+  }
+  EXPECT_EQ(test::run_command(base + " --history-dt-s 0").exit_code, 2);
 }
 
 TEST(RunCommand, ReadsAPeerRecord) {

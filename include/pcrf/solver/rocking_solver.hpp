@@ -20,6 +20,7 @@
 #include "pcrf/metrics/case_result.hpp"
 #include "pcrf/model/frame.hpp"
 #include "pcrf/record/ground_motion.hpp"
+#include "pcrf/solver/history.hpp"
 
 #include <memory>
 #include <stdexcept>
@@ -27,22 +28,13 @@
 
 namespace pcrf {
 
-/// One point of a time history.
-struct HistorySample {
-  double t_s;
-  double theta1_rad, omega1_rad_s;
-  double theta2_rad, theta3_rad;
-  double strain_column_left, strain_column_right, strain_beam;
-  double ground_accel_m_s2;
-};
-
-/// Receives the time history at every record sample time (and at each impact, twice:
-/// before and after). Empty function: no history.
-using HistorySink = std::function<void(const HistorySample&)>;
-
 /// What the caller wants computed; anything false is skipped (and left NaN).
 struct OutputRequest {
   bool omega_peak = true;  ///< locate max |θ̇₁| exactly (adds the root g₂)
+  /// Output interval of the history [s]; 0: the record's sample interval. Rows between
+  /// steps come from the integrator's interpolant (the fixed-step contender has none and
+  /// gives a row per step).
+  double history_dt_s = 0.0;
 };
 
 /// Checks that a displaced initial state (physics.theta0_rad) is one the frame can be in:

@@ -31,8 +31,10 @@ class CaseRunner {
 
   /// Runs case `item.case_index` (in an IDA, at the intensity `item.argument`). Never throws:
   /// a failure becomes status solver_failure with NaN metrics and the message as the
-  /// outcome's note. Infinite metric values also count as a solver failure.
-  parallel::CaseOutcome run(const parallel::WorkItem& item, const HistorySink& history = {}) const noexcept;
+  /// outcome's note. Infinite metric values also count as a solver failure. With a history
+  /// sink, rows come every `history_dt_s` seconds (0: the record's dt) plus every event.
+  parallel::CaseOutcome run(const parallel::WorkItem& item, const HistorySink& history = {},
+                            double history_dt_s = 0.0) const noexcept;
 
  private:
   /// The record scaled for a case. The cases of a frame come together (CaseSpace::

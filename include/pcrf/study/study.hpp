@@ -65,6 +65,7 @@ struct HistoryRequest {
   std::optional<double> scale;
   std::optional<std::string> case_label;  ///< one-at-a-time and list plans
   std::array<std::optional<double>, kParameterCount> parameters;  ///< grid plan
+  double dt_s = 0.0;                      ///< output interval [s]; 0: the record's dt
   std::string declared_at;                ///< "study.toml:40", for messages
 };
 

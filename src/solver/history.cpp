@@ -1,0 +1,29 @@
+// The columns of a time history (see include/pcrf/solver/history.hpp).
+#include "pcrf/solver/history.hpp"
+
+namespace pcrf {
+
+const std::vector<HistoryColumn>& history_columns() {
+  static const std::vector<HistoryColumn> columns = {
+      {"t_s", "s", "time", &HistorySample::t_s},
+      {"theta1_rad", "rad", "rotation of the pivoting column", &HistorySample::theta1_rad},
+      {"omega1_rad_s", "rad/s", "angular velocity of the pivoting column (arriving, at an impact)",
+       &HistorySample::omega1_rad_s},
+      {"omega1_after_rad_s", "rad/s", "angular velocity leaving the row's instant (differs at an impact)",
+       &HistorySample::omega1_after_rad_s},
+      {"theta2_rad", "rad", "rotation of the beam", &HistorySample::theta2_rad},
+      {"theta3_rad", "rad", "rotation of the other column", &HistorySample::theta3_rad},
+      {"strain_column_left", "1", "left column tendon strain", &HistorySample::strain_column_left},
+      {"strain_column_right", "1", "right column tendon strain", &HistorySample::strain_column_right},
+      {"strain_beam", "1", "beam tendon strain", &HistorySample::strain_beam},
+      {"ground_accel_m_s2", "m/s2", "ground acceleration (scaled)", &HistorySample::ground_accel_m_s2},
+      {"ground_accel_g", "1", "ground acceleration (scaled) in units of g = 9.81 m/s2", &HistorySample::ground_accel_g},
+      {"event", "1",
+       "event flags (sum): 1 uplift, 2 impact, 4 peak of theta1, 8 peak of omega1, 16 return to rest, "
+       "32 fracture or overturning, 64 end",
+       &HistorySample::event},
+  };
+  return columns;
+}
+
+}  // namespace pcrf
