@@ -69,6 +69,10 @@ void validate(const SolverSettings& s, const PhysicsOptions& p) {
   if (last_valid && last_valid->first == s && last_valid->second == p) return;
   validate_table(solver_settings(), s);
   validate_table(physics_settings(), p);
+  if (p.uplift == UpliftCriterion::kPaperProcedure && s.integrator != Integrator::kFixedRk4SignChange)
+    throw std::invalid_argument(
+        "physics setting uplift = \"paper-procedure\" reproduces the paper's fixed-step procedure: it needs solver "
+        "setting integrator = \"fixed-rk4\" (and a fixed_step_s)");
   last_valid.emplace(s, p);
 }
 

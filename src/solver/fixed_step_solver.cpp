@@ -35,7 +35,11 @@ class FixedStepRun {
     State y{physics_.theta0_rad, physics_.omega0_rad_s};
     double t = 0.0;
     if (y.theta == 0.0 && y.omega == 0.0) {
-      t = first_exceedance(rec_, 0.0, t_end_, eom_.uplift_threshold_m_s2());
+      // The paper's procedure starts the motion at its trigger t_RI, held or not by the
+      // prestress; the physical criteria start it where the net force opens the joints.
+      t = physics_.uplift == UpliftCriterion::kPaperProcedure
+              ? paper_trigger_time(rec_, eom_.lambda_g())
+              : first_exceedance(rec_, 0.0, t_end_, eom_.uplift_threshold_m_s2());
       if (std::isnan(t)) return finish(CaseStatus::kAtRest, t_end_);
       side_ = uplift_side(rec_.accel_m_s2(t));
     } else {

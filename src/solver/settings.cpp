@@ -8,10 +8,18 @@ namespace pcrf {
 UpliftCriterion parse_uplift_criterion(const std::string& text) {
   if (text == "physical") return UpliftCriterion::kPhysical;
   if (text == "paper") return UpliftCriterion::kPaper;
-  throw std::invalid_argument("unknown uplift criterion '" + text + "' (expected physical or paper)");
+  if (text == "paper-procedure") return UpliftCriterion::kPaperProcedure;
+  throw std::invalid_argument("unknown uplift criterion '" + text + "' (expected physical, paper or paper-procedure)");
 }
 
-std::string to_string(UpliftCriterion c) { return c == UpliftCriterion::kPaper ? "paper" : "physical"; }
+std::string to_string(UpliftCriterion c) {
+  switch (c) {
+    case UpliftCriterion::kPhysical: return "physical";
+    case UpliftCriterion::kPaper: return "paper";
+    case UpliftCriterion::kPaperProcedure: return "paper-procedure";
+  }
+  return "unknown";
+}
 
 Integrator parse_integrator(const std::string& text) {
   if (text == "cvode-bdf") return Integrator::kCvodeBdf;
@@ -39,9 +47,10 @@ const SettingTable<PhysicsOptions>& physics_settings() {
   static const SettingTable<PhysicsOptions> table = [] {
     SettingTable<PhysicsOptions> t{"physics", PhysicsOptions{}, {}};
     auto& s = t.settings;
-    s.push_back(choice_setting("uplift", &P::uplift, {UpliftCriterion::kPhysical, UpliftCriterion::kPaper},
+    s.push_back(choice_setting("uplift", &P::uplift, {UpliftCriterion::kPhysical, UpliftCriterion::kPaper, UpliftCriterion::kPaperProcedure},
                                &to_string, &parse_uplift_criterion,
-                               "uplift criterion (README, \"Uplift criteria\")"));
+                               "uplift criterion (README, \"Uplift criteria\"); paper-procedure is NON-PHYSICAL "
+                               "(motion from the paper's t_RI, no contact condition; with integrator fixed-rk4)"));
     s.back().aliases = {"--criterion"};
     s.push_back(number_setting("fracture_strain", &P::fracture_strain, "1", Bound::kPositive,
                                "total tendon strain at fracture"));
