@@ -30,6 +30,8 @@ struct CubeArguments {
   std::vector<std::string> where;
   std::string by;
   std::string output;
+  std::string history;
+  std::string points;
 };
 
 std::vector<cube::Selector> selectors(const std::vector<std::string>& texts) {
@@ -91,9 +93,16 @@ void add_cube_command(CLI::App& app) {
   exporter->add_option("-m,--metric", args->metrics, "metric to export (repeatable; default: all)");
   add_where(exporter, *args);
   exporter->add_option("-o,--output", args->output, "CSV file (default: stdout)");
+  auto* history = exporter->add_option("--history", args->history,
+                                       "instead: the stored history group /histories/NAME, one row per time");
+  history->excludes(exporter->get_option("--metric"))->excludes(exporter->get_option("--where"));
   exporter->callback([args] {
     guarded(args->file, [&] {
       cube::CubeReader reader(args->file);
+      if (!args->history.empty()) {
+        with_output(args->output, [&](std::ostream& out) { cube::export_history_csv(reader, args->history, out); });
+        return;
+      }
       const auto chosen = selectors(args->where);
       with_output(args->output, [&](std::ostream& out) { cube::export_csv(reader, args->metrics, chosen, out); });
     });
@@ -125,6 +134,8 @@ void add_cube_command(CLI::App& app) {
   add_where(fragility, *args);
   fragility->add_option("--mce", args->mce, "MCE intensity (the measure's units): adds the collapse margin ratio");
   fragility->add_option("--csv", args->csv, "also write the table as CSV to this file");
+  fragility->add_option("--points", args->points,
+                        "also write the fitted data as CSV to this file: stripes, or IDA collapse and censored intensities");
   fragility->callback([args] {
     guarded(args->file, [&] {
       if (args->mce && !(*args->mce > 0.0)) throw UsageError("--mce must be positive");
@@ -134,6 +145,8 @@ void add_cube_command(CLI::App& app) {
       study::print_fragility(frames, units, args->mce, false, std::cout);
       if (!args->csv.empty())
         with_output(args->csv, [&](std::ostream& out) { study::print_fragility(frames, units, args->mce, true, out); });
+      if (!args->points.empty())
+        with_output(args->points, [&](std::ostream& out) { study::print_fragility_points(frames, out); });
     });
   });
 

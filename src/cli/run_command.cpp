@@ -81,7 +81,7 @@ class CsvHistory {
     char value[32];
     const char* separator = "";
     for (const auto& c : history_columns()) {
-      std::snprintf(value, sizeof value, "%.12g", s.*c.member);
+      std::snprintf(value, sizeof value, "%.17g", s.*c.member);
       out_ << separator << value;
       separator = ",";
     }

@@ -2,6 +2,7 @@
 #include "pcrf/cube/cube_query.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <charconv>
 #include <cmath>
 #include <map>
@@ -47,13 +48,6 @@ std::vector<bool> matching_positions(const Coordinate& c, const std::string& tex
     throw CubeError(c.name + "=" + text + ": no such value (values: " + values + ")");
   }
   return match;
-}
-
-std::string csv_field(const std::string& text) {
-  if (text.find_first_of(",\"\n") == std::string::npos) return text;
-  std::string quoted = "\"";
-  for (char ch : text) quoted += ch == '"' ? std::string("\"\"") : std::string(1, ch);
-  return quoted + "\"";
 }
 
 std::string status_text(const CubeLayout& layout, std::int8_t value) {
@@ -141,14 +135,76 @@ void print_info(const CubeReader& cube, const std::string& heading, std::ostream
   }
 }
 
+/// A metric, or a side variable repeated over the dimensions it does not have (e.g. a
+/// curve's collapse intensity on each of the curve's cases).
+std::vector<double> per_case_values(const CubeReader& cube, const std::string& name) {
+  const auto& layout = cube.layout();
+  const SideVariable* side = layout.find_side_variable(name);
+  if (side == nullptr) return cube.read_metric(name);
+  const auto own = cube.read_side(name);
+  const auto shape = layout.shape();
+  std::vector<std::size_t> dims, own_shape;
+  for (const auto& d : side->dimensions) {
+    dims.push_back(dimension_index(layout, d));
+    own_shape.push_back(shape[dims.back()]);
+  }
+  std::vector<double> result(static_cast<std::size_t>(layout.case_count()));
+  for (std::int64_t i = 0; i < layout.case_count(); ++i) {
+    const auto coords = unravel(i, shape);
+    std::size_t k = 0;
+    for (std::size_t d = 0; d < dims.size(); ++d) k = k * own_shape[d] + coords[dims[d]];
+    result[static_cast<std::size_t>(i)] = own[k];
+  }
+  return result;
+}
+
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char ch : text) quoted += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+  return quoted + "\"";
+}
+
+void print_table(const std::vector<std::vector<std::string>>& rows, bool csv, std::ostream& out) {
+  std::vector<std::size_t> width;
+  for (const auto& r : rows) {
+    width.resize(std::max(width.size(), r.size()), 0);
+    for (std::size_t c = 0; c < r.size(); ++c) width[c] = std::max(width[c], r[c].size());
+  }
+  for (const auto& r : rows) {
+    for (std::size_t c = 0; c < r.size(); ++c) {
+      if (csv) out << (c ? "," : "") << csv_field(r[c]);
+      else out << (c ? "  " : "") << r[c] << (c + 1 < r.size() ? std::string(width[c] - r[c].size(), ' ') : "");
+    }
+    out << '\n';
+  }
+}
+
+void export_history_csv(const CubeReader& cube, const std::string& name, std::ostream& out) {
+  const HistoryTable table = cube.read_history(name);
+  for (std::size_t c = 0; c < table.columns.size(); ++c) out << (c ? "," : "") << csv_field(table.columns[c].name);
+  out << '\n';
+  const std::size_t rows = table.values.empty() ? 0 : table.values.front().size();
+  char value[32];
+  for (std::size_t r = 0; r < rows; ++r) {
+    for (std::size_t c = 0; c < table.columns.size(); ++c) {
+      std::snprintf(value, sizeof value, "%.17g", table.values[c][r]);
+      out << (c ? "," : "") << value;
+    }
+    out << '\n';
+  }
+}
+
 void export_csv(const CubeReader& cube, const std::vector<std::string>& metrics,
                 const std::vector<Selector>& selectors, std::ostream& out) {
   const auto& layout = cube.layout();
   std::vector<std::string> names = metrics;
-  if (names.empty())
+  if (names.empty()) {
     for (const auto& m : layout.metrics) names.push_back(m.name);
+    for (const auto& v : layout.side_variables) names.push_back(v.name);
+  }
   std::vector<std::vector<double>> values;
-  for (const auto& name : names) values.push_back(cube.read_metric(name));
+  for (const auto& name : names) values.push_back(per_case_values(cube, name));
   const auto selected = select_cases(layout, selectors);
   const auto status = cube.read_status();
   std::vector<std::size_t> coordinate_dims;

@@ -89,9 +89,11 @@ std::vector<FrameFragility> ida_fragility(const cube::CubeReader& cube, const st
       return analysis::fit_censored(observed, censored);
     };
     for (std::size_t curve : curves) {
-      if (std::isfinite(collapse[curve]) || std::isfinite(safe[curve])) ++out.cases;
-      if (std::isfinite(collapse[curve])) out.collapses += 1.0;
+      if (std::isfinite(collapse[curve])) out.collapse_intensities.push_back(collapse[curve]);
+      else if (std::isfinite(safe[curve])) out.censored_intensities.push_back(safe[curve]);
     }
+    out.cases = out.collapse_intensities.size() + out.censored_intensities.size();
+    out.collapses = static_cast<double>(out.collapse_intensities.size());
     out.failed = curves.size() - out.cases;
     std::vector<std::size_t> all(curves.size());
     for (std::size_t k = 0; k < all.size(); ++k) all[k] = k;
@@ -158,12 +160,13 @@ std::vector<FrameFragility> cube_fragility(const cube::CubeReader& cube, const s
     };
     std::vector<std::size_t> all(records);
     for (std::size_t r = 0; r < records; ++r) all[r] = r;
-    for (const auto& s : stripes_of(all)) {
+    out.stripes = stripes_of(all);
+    for (const auto& s : out.stripes) {
       out.cases += static_cast<std::size_t>(s.trials);
       out.collapses += s.collapses;
     }
     out.failed = records * levels.size() - out.cases;
-    out.fit = analysis::fit_stripes(stripes_of(all));
+    out.fit = analysis::fit_stripes(out.stripes);
     if (out.fit)
       out.interval = analysis::bootstrap(records, [&](const std::vector<std::size_t>& sample) {
         return analysis::fit_stripes(stripes_of(sample));
@@ -198,23 +201,29 @@ void print_fragility(const std::vector<FrameFragility>& frames, const std::strin
   }
   auto columns = header;
   if (mce) columns.push_back("CMR");
-  std::vector<std::size_t> width(columns.size());
-  for (std::size_t c = 0; c < columns.size(); ++c) {
-    width[c] = columns[c].size();
-    for (const auto& r : rows) width[c] = std::max(width[c], r[c].size());
-  }
-  auto line = [&](const std::vector<std::string>& cells) {
-    for (std::size_t c = 0; c < cells.size(); ++c) {
-      if (csv) {
-        out << (c ? "," : "") << cells[c];
-      } else {
-        out << (c ? "  " : "") << cells[c] << std::string(width[c] - cells[c].size(), ' ');
-      }
+  rows.insert(rows.begin(), columns);
+  cube::print_table(rows, csv, out);
+}
+
+
+void print_fragility_points(const std::vector<FrameFragility>& frames, std::ostream& out) {
+  out << "frame,kind,intensity,trials,collapses\n";
+  char line[256];
+  for (const auto& f : frames) {
+    const std::string frame = cube::csv_field(f.frame);
+    for (const auto& s : f.stripes) {
+      std::snprintf(line, sizeof line, ",stripe,%.10g,%.10g,%.10g\n", s.intensity, s.trials, s.collapses);
+      out << frame << line;
     }
-    out << '\n';
-  };
-  line(columns);
-  for (const auto& r : rows) line(r);
+    for (double x : f.collapse_intensities) {
+      std::snprintf(line, sizeof line, ",collapse,%.10g,1,1\n", x);
+      out << frame << line;
+    }
+    for (double x : f.censored_intensities) {
+      std::snprintf(line, sizeof line, ",censored,%.10g,1,0\n", x);
+      out << frame << line;
+    }
+  }
 }
 
 }  // namespace pcrf::study

@@ -117,14 +117,7 @@ void print_sensitivity(const std::vector<SensitivityGroup>& groups, bool csv, st
       rows.push_back({g.record, g.parameters[i], number(s.s1), number(s.s1_low), number(s.s1_high), number(s.st),
                       number(s.st_low), number(s.st_high), std::to_string(g.samples)});
     }
-  std::vector<std::size_t> width(rows.front().size(), 0);
-  for (const auto& r : rows)
-    for (std::size_t c = 0; c < r.size(); ++c) width[c] = std::max(width[c], r[c].size());
-  for (const auto& r : rows) {
-    for (std::size_t c = 0; c < r.size(); ++c)
-      out << (c ? (csv ? "," : "  ") : "") << r[c] << (csv ? "" : std::string(width[c] - r[c].size(), ' '));
-    out << '\n';
-  }
+  cube::print_table(rows, csv, out);
 }
 
 }  // namespace pcrf::study

@@ -9,6 +9,7 @@
 
 #include "pcrf/cube/cube_query.hpp"
 #include "pcrf/cube/cube_reader.hpp"
+#include "pcrf/solver/history.hpp"
 #include "study/study_test_support.hpp"
 
 namespace pcrf::study_test {
@@ -144,6 +145,29 @@ TEST(CubeInterop, ExportWritesOneRowPerSelectedCase) {
   const auto bad = test::run_command(pcrf() + " cube export " + quoted(dir / "grid.h5") + " --where kappa=7");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find("kappa=7: no such value (values: 1.2, 2.4)"), std::string::npos) << bad.err;
+}
+
+TEST(CubeInterop, ExportsAStoredHistoryAsTheRunCommandsCsv) {
+  const auto dir = grid_cube();
+  const auto r = test::run_command(pcrf() + " cube export " + quoted(dir / "grid.h5") + " --history pulse");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::istringstream in(r.out);
+  std::string header;
+  std::getline(in, header);
+  std::string expected;
+  for (const auto& c : history_columns()) expected += (expected.empty() ? "" : ",") + std::string(c.name);
+  EXPECT_EQ(header, expected);
+  double last_t = -1.0;
+  int rows = 0;
+  for (std::string line; std::getline(in, line); ++rows) {
+    const double t = std::stod(line.substr(0, line.find(',')));
+    EXPECT_GT(t, last_t);
+    last_t = t;
+  }
+  EXPECT_GT(rows, 100);
+  const auto missing = test::run_command(pcrf() + " cube export " + quoted(dir / "grid.h5") + " --history nope");
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("nope"), std::string::npos) << missing.err;
 }
 
 TEST(CubeInterop, StatsGivesMedianAndPercentilesAcrossRecords) {

@@ -6,6 +6,7 @@
 #include <spawn.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <thread>
@@ -123,6 +124,54 @@ TEST(IdaStudy, FragilityFitsTheCollapseIntensitiesWithCensoring) {
     EXPECT_NEAR(std::stod(cells[8]), fit->beta, 1e-3 * fit->beta) << line;
   }
   EXPECT_GT(censored_total, 0) << "no record survived 3 g: lower max_intensity";
+
+  // --points lists what was fitted: each curve's collapse intensity, or its censoring value.
+  const auto points = test::run_command(pcrf() + " cube fragility " + quoted(dir / "ida.h5") + " --points " +
+                                        quoted(dir / "p.csv"));
+  ASSERT_EQ(points.exit_code, 0) << points.err;
+  std::ifstream p(dir / "p.csv");
+  std::getline(p, line);
+  EXPECT_EQ(line, "frame,kind,intensity,trials,collapses");
+  std::vector<double> listed_collapse, listed_censored, stored_collapse, stored_censored;
+  while (std::getline(p, line)) {
+    std::vector<std::string> cells;
+    std::stringstream in(line);
+    for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+    ASSERT_EQ(cells.size(), 5u) << line;
+    (cells[1] == "collapse" ? listed_collapse : listed_censored).push_back(std::stod(cells[2]));
+  }
+  for (std::size_t curve = 0; curve < c.size(); ++curve)
+    (std::isfinite(c[curve]) ? stored_collapse : stored_censored).push_back(std::isfinite(c[curve]) ? c[curve] : s[curve]);
+  for (auto* v : {&listed_collapse, &listed_censored, &stored_collapse, &stored_censored}) std::sort(v->begin(), v->end());
+  ASSERT_EQ(listed_collapse.size(), stored_collapse.size());
+  ASSERT_EQ(listed_censored.size(), stored_censored.size());
+  for (std::size_t i = 0; i < listed_collapse.size(); ++i)
+    EXPECT_NEAR(listed_collapse[i], stored_collapse[i], 1e-9 * stored_collapse[i]);
+  for (std::size_t i = 0; i < listed_censored.size(); ++i)
+    EXPECT_NEAR(listed_censored[i], stored_censored[i], 1e-9 * stored_censored[i]);
+
+  // The export repeats each curve's collapse intensity on its runs, beside the run's intensity.
+  const auto exported = test::run_command(pcrf() + " cube export " + quoted(dir / "ida.h5") +
+                                          " -m ida_intensity -m collapse_intensity");
+  ASSERT_EQ(exported.exit_code, 0) << exported.err;
+  const auto runs = cube.read_metric("ida_intensity");  // over every dimension: read as a metric
+  std::istringstream rows(exported.out);
+  std::getline(rows, line);
+  std::size_t k = 0;
+  for (; std::getline(rows, line); ++k) {
+    const auto last = line.rfind(','), before = line.rfind(',', last - 1);
+    const std::string run = line.substr(before + 1, last - before - 1), curve = line.substr(last + 1);
+    if (std::isfinite(runs[k])) {
+      EXPECT_NEAR(std::stod(run), runs[k], 1e-12 * runs[k]) << line;
+    }
+    const std::size_t curve_index = k / (runs.size() / c.size());
+    if (std::isfinite(c[curve_index])) {
+      EXPECT_NEAR(std::stod(curve), c[curve_index], 1e-12 * c[curve_index]) << line;
+    } else {
+      EXPECT_TRUE(curve.empty()) << line;
+    }
+  }
+  EXPECT_EQ(k, runs.size());
 }
 
 TEST(IdaStudy, RanksDoNotChangeTheCurves) {

@@ -29,8 +29,19 @@ std::vector<bool> select_cases(const CubeLayout& layout, const std::vector<Selec
 /// what the cube holds, from the layer that made it) after the file name, when not empty.
 void print_info(const CubeReader& cube, const std::string& heading, std::ostream& out);
 
-/// One row per selected case: every coordinate, the status, and the metrics (all when
-/// `metrics` is empty). NaN is written as an empty field.
+/// A CSV field: the text, quoted (with doubled quotes) when it holds a comma, quote or newline.
+std::string csv_field(const std::string& text);
+
+/// A table whose first row is the header: aligned columns for people, or CSV.
+void print_table(const std::vector<std::vector<std::string>>& rows, bool csv, std::ostream& out);
+
+/// A stored history group as CSV: a header of its column names, one row per time.
+/// \throws CubeError naming the group when it does not exist.
+void export_history_csv(const CubeReader& cube, const std::string& name, std::ostream& out);
+
+/// One row per selected case: every coordinate, the status, and the named metrics or side
+/// variables (all of both when `metrics` is empty; a side variable repeats over the
+/// dimensions it lacks). NaN is written as an empty field.
 void export_csv(const CubeReader& cube, const std::vector<std::string>& metrics,
                 const std::vector<Selector>& selectors, std::ostream& out);
 

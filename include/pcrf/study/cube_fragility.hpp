@@ -30,6 +30,10 @@ struct FrameFragility {
   std::size_t failed = 0;         ///< cases with no verdict (solver failure, time limit, not run)
   std::optional<analysis::Lognormal> fit;
   analysis::BootstrapResult interval;
+  /// What was fitted: the stripes (grid cube), or each curve's collapse intensity and the
+  /// last safe intensity of curves that never collapsed (IDA cube; right-censored).
+  std::vector<analysis::Stripe> stripes;
+  std::vector<double> collapse_intensities, censored_intensities;
 };
 
 /// One entry per frame of the selected cases. \throws cube::CubeError when the cube has no
@@ -43,5 +47,10 @@ std::string intensity_units(const cube::CubeReader& cube);
 /// and with `mce` the collapse margin ratio median / MCE. `csv`: comma-separated.
 void print_fragility(const std::vector<FrameFragility>& frames, const std::string& units, std::optional<double> mce,
                      bool csv, std::ostream& out);
+
+/// The fitted data as CSV: frame,kind,intensity,trials,collapses with kind `stripe` (the
+/// records with a verdict at that intensity and how many collapsed), `collapse` (one IDA
+/// curve's collapse intensity) or `censored` (a curve safe up to that intensity).
+void print_fragility_points(const std::vector<FrameFragility>& frames, std::ostream& out);
 
 }  // namespace pcrf::study
