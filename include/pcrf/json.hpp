@@ -41,7 +41,29 @@ class JsonObject {
     out_ << ']';
     return *this;
   }
-  std::string str() const { return out_.str() + '}'; }
+  JsonObject& texts(std::string_view key, const std::vector<std::string>& values) {
+    start(key);
+    out_ << '[';
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      if (i > 0) out_ << ", ";
+      write_string(values[i]);
+    }
+    out_ << ']';
+    return *this;
+  }
+  JsonObject& object(std::string_view key, const JsonObject& value) {
+    start(key);
+    out_ << value.str();
+    return *this;
+  }
+  JsonObject& objects(std::string_view key, const std::vector<JsonObject>& values) {
+    start(key);
+    out_ << '[';
+    for (std::size_t i = 0; i < values.size(); ++i) out_ << (i > 0 ? ", " : "") << values[i].str();
+    out_ << ']';
+    return *this;
+  }
+  std::string str() const { return (first_ ? std::string("{") : out_.str()) + '}'; }
 
  private:
   void start(std::string_view key) {

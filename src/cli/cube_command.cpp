@@ -32,6 +32,7 @@ struct CubeArguments {
   std::string output;
   std::string history;
   std::string points;
+  bool json = false;
 };
 
 std::vector<cube::Selector> selectors(const std::vector<std::string>& texts) {
@@ -74,10 +75,12 @@ void add_cube_command(CLI::App& app) {
 
   auto* info = cube_cmd->add_subcommand("info", "Axes, metrics, completion and failures by status");
   info->add_option("FILE", args->file, "result cube")->required();
+  info->add_flag("--json", args->json, "one JSON object for scripts (dimensions with values, metrics with units, …)");
   info->callback([args] {
     guarded(args->file, [&] {
       const cube::CubeReader reader(args->file);
-      cube::print_info(reader, study::vocabulary::info_heading(reader.layout()), std::cout);
+      if (args->json) cube::print_info_json(reader, std::cout);
+      else cube::print_info(reader, study::vocabulary::info_heading(reader.layout()), std::cout);
       // Vouch for nothing unread: a variable whose chunks no longer decompress is damage.
       const auto damage = reader.damage();
       if (!damage.empty()) {

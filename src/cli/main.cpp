@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   pcrf::cli::add_record_command(app);
   pcrf::cli::add_study_command(app);
   pcrf::cli::add_cube_command(app);
+  pcrf::cli::add_plot_command(app);
   pcrf::cli::add_settings_command(app);
   try {
     app.parse(argc, argv);

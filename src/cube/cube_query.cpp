@@ -1,6 +1,8 @@
 // Post-processing of result cubes (see cube_query.hpp).
 #include "pcrf/cube/cube_query.hpp"
 
+#include "pcrf/json.hpp"
+
 #include <algorithm>
 #include <cstdio>
 #include <charconv>
@@ -133,6 +135,47 @@ void print_info(const CubeReader& cube, const std::string& heading, std::ostream
     for (const auto& h : histories) out << ' ' << h;
     out << '\n';
   }
+}
+
+void print_info_json(const CubeReader& cube, std::ostream& out) {
+  const auto& layout = cube.layout();
+  std::vector<JsonObject> dimensions, metrics, sides;
+  for (const auto& d : layout.dimensions) {
+    const Coordinate& c = coordinate(layout, d.name);
+    std::vector<std::string> labels;
+    for (std::size_t i = 0; i < c.size(); ++i) labels.push_back(c.label(i));
+    dimensions.emplace_back();
+    dimensions.back().text("name", d.name).integer("size", static_cast<long long>(d.size)).texts("values", labels);
+  }
+  for (const auto& m : layout.metrics) {
+    metrics.emplace_back();
+    metrics.back().text("name", m.name).text("units", m.units).text("long_name", m.long_name);
+  }
+  for (const auto& v : layout.side_variables) {
+    sides.emplace_back();
+    sides.back().text("name", v.name).text("units", v.units).text("long_name", v.long_name).texts("dimensions", v.dimensions);
+  }
+  std::map<std::int8_t, std::int64_t> counts;
+  for (auto s : cube.read_status()) ++counts[s];
+  JsonObject status;
+  for (const auto& [value, count] : counts) status.integer(status_text(layout, value), count);
+  JsonObject attributes;
+  for (const auto& a : layout.attributes) {
+    if (const auto* text = std::get_if<std::string>(&a.value)) attributes.text(a.name, *text);
+    else if (const auto* number = std::get_if<double>(&a.value)) attributes.number(a.name, *number);
+    else if (const auto* integer = std::get_if<std::int64_t>(&a.value)) attributes.integer(a.name, *integer);
+  }
+  JsonObject info;
+  info.text("file", cube.file().string())
+      .objects("dimensions", dimensions)
+      .texts("auxiliary_coordinates", layout.auxiliary_names())
+      .objects("metrics", metrics)
+      .objects("side_variables", sides)
+      .object("status", status)
+      .integer("cases", layout.case_count())
+      .texts("histories", cube.history_names())
+      .object("attributes", attributes);
+  out << info.str() << '\n';
 }
 
 /// A metric, or a side variable repeated over the dimensions it does not have (e.g. a

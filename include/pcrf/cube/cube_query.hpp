@@ -29,6 +29,11 @@ std::vector<bool> select_cases(const CubeLayout& layout, const std::vector<Selec
 /// what the cube holds, from the layer that made it) after the file name, when not empty.
 void print_info(const CubeReader& cube, const std::string& heading, std::ostream& out);
 
+/// The same as one JSON object, for scripts: dimensions with their values, auxiliary
+/// coordinates, metrics and side variables with units and long names, status counts,
+/// case count, history groups, global attributes.
+void print_info_json(const CubeReader& cube, std::ostream& out);
+
 /// A CSV field: the text, quoted (with doubled quotes) when it holds a comma, quote or newline.
 std::string csv_field(const std::string& text);
 

@@ -1,0 +1,104 @@
+"""``pcrf plot KIND INPUT [-w NAME=VALUE]… [-m METRIC] -o FILE.png|.pdf|.svg``.
+
+Every failure is one line on stderr and exit code 2, and then nothing is written: the
+figure is saved to a temporary file beside the output and renamed over it only when done.
+"""
+import argparse
+import importlib
+import os
+import sys
+import tempfile
+
+from pcrf_plot.errors import PlotError
+
+FORMATS = (".png", ".pdf", ".svg")
+
+
+# The one list of kinds: name → what it draws. Each is the module pcrf_plot.<name>, whose
+# draw(args) returns a matplotlib figure.
+KINDS = {
+    "history": "θ₁, θ̇₁ and ü_g against t, and the phase portrait (a cube's history group or a "
+               "pcrf run --history CSV)",
+    "sweep": "one panel per varied parameter: median and 16–84 % band across records, collapses apart",
+    "ida": "IDA curves per record, one panel per frame, with the collapse intensities' median and 16/84 %",
+    "fragility": "collapse fractions or IDA collapse points, the fitted lognormal and its 90 % interval",
+    "sensitivity": "first-order and total Sobol' indices with their 90 % intervals",
+    "status": "map of the status over two axes (--x, --y), the others selected with -w",
+    "table3": "the paper comparison (docs/paper_comparison.csv)",
+}
+
+
+class Parser(argparse.ArgumentParser):
+    def error(self, message):
+        raise PlotError(message)
+
+
+def parser():
+    p = Parser(prog="pcrf plot", description="Draw a figure of a result cube, a history or the paper comparison.",
+               formatter_class=argparse.RawDescriptionHelpFormatter,
+               epilog="kinds:\n" + "\n".join(f"  {k:12s} {v}" for k, v in KINDS.items()))
+    p.add_argument("kind", choices=list(KINDS), metavar="KIND", help="what to draw (below)")
+    p.add_argument("input", metavar="INPUT", help="result cube (.h5), history CSV, or comparison CSV")
+    p.add_argument("-w", "--where", action="append", default=[], metavar="NAME=VALUE",
+                   help="keep cases with this coordinate value (repeatable; as in pcrf cube export)")
+    p.add_argument("-m", "--metric", help="metric to draw (sweep, ida, sensitivity; default theta_max_rad)")
+    p.add_argument("-o", "--output", required=True, metavar="FILE", help="figure file: .png, .pdf or .svg")
+    p.add_argument("--overwrite", action="store_true", help="replace an existing output file")
+    p.add_argument("--group", help="history: the cube's history group (default: its only one)")
+    p.add_argument("--x", help="status: axis across (default: the first axis with several values)")
+    p.add_argument("--y", help="status: axis up (default: the second axis with several values)")
+    p.add_argument("--title", help="figure title (default: what the figure shows)")
+    return p
+
+
+def check_paths(args):
+    if not os.path.exists(args.input):
+        raise PlotError(f"{args.input}: no such file")
+    ext = os.path.splitext(args.output)[1].lower()
+    if ext not in FORMATS:
+        raise PlotError(f"{args.output}: the output must end in .png, .pdf or .svg")
+    if os.path.exists(args.output):
+        if os.path.samefile(args.output, args.input):
+            raise PlotError(f"{args.output}: the output is the input")
+        if not args.overwrite:
+            raise PlotError(f"{args.output}: exists (use --overwrite to replace it)")
+
+
+def save(figure, output):
+    """Writes beside the output, then renames: a failure leaves no partial file."""
+    folder = os.path.dirname(os.path.abspath(output))
+    ext = os.path.splitext(output)[1]
+    handle, scratch = tempfile.mkstemp(prefix=".pcrf_plot_", suffix=ext, dir=folder)
+    os.close(handle)
+    try:
+        figure.savefig(scratch, bbox_inches="tight")
+        os.replace(scratch, output)
+    except BaseException:
+        if os.path.exists(scratch):
+            os.remove(scratch)
+        raise
+
+
+def main(argv):
+    try:
+        args = parser().parse_args(argv)
+        check_paths(args)
+        try:
+            import matplotlib
+            matplotlib.use("Agg")
+            import numpy  # noqa: F401 (matplotlib needs it; named here for the message)
+        except ImportError as e:
+            package = "python3-numpy" if "numpy" in str(e) else "python3-matplotlib"
+            raise PlotError(f"{e.name or 'matplotlib'} not found: apt-get install {package}") from e
+        from pcrf_plot import style
+        style.apply()
+        figure = importlib.import_module(f"pcrf_plot.{args.kind}").draw(args)
+        save(figure, args.output)
+        print(f"pcrf plot: wrote {args.output} ({args.kind}, {len(figure.axes)} panels)")
+        return 0
+    except PlotError as e:
+        print(f"pcrf plot: error: {e}", file=sys.stderr)
+        return 2
+    except OSError as e:
+        print(f"pcrf plot: error: {e.filename or ''}: {e.strerror}", file=sys.stderr)
+        return 2

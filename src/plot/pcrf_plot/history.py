@@ -1,0 +1,80 @@
+"""`history`: θ₁, θ̇₁ and ü_g against time, and the phase portrait θ̇₁(θ₁).
+
+An impact is one row with the velocity arriving (omega1_rad_s) and leaving
+(omega1_after_rad_s): both are drawn, so the jump is a vertical step, never a smear.
+"""
+import os
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+from pcrf_plot import engine, style
+from pcrf_plot.errors import PlotError
+
+EVENT_IMPACT, EVENT_THETA_PEAK = 2, 4
+COLUMNS = ("t_s", "theta1_rad", "omega1_rad_s", "omega1_after_rad_s", "ground_accel_g", "event")
+
+
+def read(args):
+    """The history rows as arrays, and a title."""
+    if os.path.splitext(args.input)[1].lower() in (".csv", ".txt"):
+        with open(args.input, encoding="utf-8") as f:
+            rows = engine.table(f.read())
+        name = os.path.basename(args.input)
+    else:
+        cube = engine.Cube(args.input)
+        groups = cube.info["histories"]
+        if not groups:
+            raise PlotError(f"{args.input}: the cube holds no history (add [[outputs.histories]] to the study)")
+        label = args.group or (groups[0] if len(groups) == 1 else None)
+        if label is None:
+            raise PlotError(f"{args.input}: several histories ({', '.join(groups)}): choose one with --group")
+        rows = cube.history(label)
+        name = f"{os.path.basename(args.input)}: {label}"
+    if not rows:
+        raise PlotError(f"{args.input}: the history is empty")
+    missing = [c for c in COLUMNS if c not in rows[0]]
+    if missing:
+        raise PlotError(f"{args.input}: not a pcrf history (no column {', '.join(missing)}); "
+                        "write one with pcrf run --history")
+    data = {c: np.array([engine.number(r[c]) for r in rows]) for c in COLUMNS}
+    return data, name
+
+
+def with_jumps(t, before, after):
+    """Each row as (t, before) then (t, after): velocity jumps become vertical steps."""
+    return np.repeat(t, 2), np.column_stack([before, after]).ravel()
+
+
+def draw(args):
+    h, name = read(args)
+    t, theta = h["t_s"], h["theta1_rad"]
+    events = h["event"].astype(np.int64)
+    t2, omega2 = with_jumps(t, h["omega1_rad_s"], h["omega1_after_rad_s"])
+    fig, axes = plt.subplots(2, 2, figsize=(11, 7), constrained_layout=True)
+    (a_theta, a_phase), (a_omega, a_ground) = axes
+
+    a_theta.plot(t, theta, color=style.BLUE, lw=1)
+    peaks = np.flatnonzero(events & EVENT_THETA_PEAK)
+    if peaks.size:
+        k = peaks[np.argmax(np.abs(theta[peaks]))]
+        a_theta.plot(t[k], theta[k], "o", color=style.VERMILLION, ms=6,
+                     label=rf"peak $|\theta_1|$ = {abs(theta[k]):.4g} rad at {t[k]:.3f} s")
+        a_theta.legend(loc="upper right")
+    a_theta.set(xlabel="time t [s]", ylabel=r"rotation $\theta_1$ [rad]", title="(a) rotation")
+
+    a_omega.plot(t2, omega2, color=style.GREEN, lw=1)
+    a_omega.set(xlabel="time t [s]", ylabel=r"angular velocity $\dot\theta_1$ [rad/s]", title="(c) angular velocity")
+
+    a_ground.plot(t, h["ground_accel_g"], color=style.BLACK, lw=0.8)
+    a_ground.set(xlabel="time t [s]", ylabel=r"ground acceleration $\ddot u_g$ [g]", title="(d) ground motion")
+
+    theta2 = np.repeat(theta, 2)
+    a_phase.plot(theta2, omega2, color=style.PURPLE, lw=0.8)
+    a_phase.set(xlabel=r"rotation $\theta_1$ [rad]", ylabel=r"angular velocity $\dot\theta_1$ [rad/s]",
+                title="(b) phase portrait")
+    impacts = int(np.count_nonzero(events & EVENT_IMPACT))
+    if not np.any(theta):
+        a_theta.text(0.5, 0.5, "at rest throughout", transform=a_theta.transAxes, ha="center")
+    fig.suptitle(args.title or f"Time history, {name} ({impacts} impacts)")
+    return fig
