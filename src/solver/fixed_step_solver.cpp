@@ -47,11 +47,15 @@ class FixedStepRun {
     }
     result_.t_uplift_s = t;
     emit(t, y, kEventUplift);
+    const double t_start = t;
+    long k = 0;
     while (t < t_end_) {
-      const double h = std::min(h_, t_end_ - t);
+      // Step ends at t_start + k h (not a running sum, whose rounding drifts the times).
+      const double t_next = std::min(t_start + static_cast<double>(++k) * h_, t_end_);
+      const double h = t_next - t;
       State next{};
       if (!step(t, h, y, next)) return finish(CaseStatus::kSolverFailure, t, "linkage cannot close");
-      t += h;
+      t = t_next;
       ++result_.counts.steps;
       std::uint32_t events = kEventNone;
       const double omega_arriving = next.omega;
