@@ -54,12 +54,12 @@ def parser():
 def check_paths(args):
     if not os.path.exists(args.input):
         raise PlotError(f"{args.input}: no such file")
+    if os.path.exists(args.output) and os.path.samefile(args.output, args.input):
+        raise PlotError(f"{args.output}: the output is the input")
     ext = os.path.splitext(args.output)[1].lower()
     if ext not in FORMATS:
         raise PlotError(f"{args.output}: the output must end in .png, .pdf or .svg")
     if os.path.exists(args.output):
-        if os.path.samefile(args.output, args.input):
-            raise PlotError(f"{args.output}: the output is the input")
         if not args.overwrite:
             raise PlotError(f"{args.output}: exists (use --overwrite to replace it)")
 

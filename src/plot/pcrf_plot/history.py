@@ -6,6 +6,7 @@ An impact is one row with the velocity arriving (omega1_rad_s) and leaving
 import os
 
 import matplotlib.pyplot as plt
+import matplotlib.ticker as ticker
 import numpy as np
 
 from pcrf_plot import engine, style
@@ -73,6 +74,9 @@ def draw(args):
     a_phase.plot(theta2, omega2, color=style.PURPLE, lw=0.8)
     a_phase.set(xlabel=r"rotation $\theta_1$ [rad]", ylabel=r"angular velocity $\dot\theta_1$ [rad/s]",
                 title="(b) phase portrait")
+    for ax in (a_theta, a_phase, a_omega, a_ground):
+        ax.xaxis.set_major_locator(ticker.MaxNLocator(6))
+        ax.ticklabel_format(axis="both", style="sci", scilimits=(-3, 4))
     impacts = int(np.count_nonzero(events & EVENT_IMPACT))
     if not np.any(theta):
         a_theta.text(0.5, 0.5, "at rest throughout", transform=a_theta.transAxes, ha="center")

@@ -12,11 +12,22 @@ from pcrf_plot import engine, style
 from pcrf_plot.errors import PlotError
 
 
-def frames_of(rows):
-    """Frame label → its rows, in the cube's order (the IDA's `case` axis)."""
+def frame_label(cube, row):
+    """A case's frame, named as `pcrf cube fragility` names it: the frame axes with several
+    values ("kappa=1.4", or the case label of a list plan), or "all"."""
+    parts = []
+    for d in cube.dimensions:
+        if d["name"] in ("record", "ida_point") or d["size"] < 2:
+            continue
+        parts.append(row["case_label"] if d["name"] == "case" else f"{d['name']}={row[d['name']]}")
+    return ",".join(parts) or "all"
+
+
+def frames_of(cube, rows):
+    """Frame label → its rows, in the cube's order."""
     frames = {}
     for r in rows:
-        frames.setdefault(r.get("case_label") or r["case"], []).append(r)
+        frames.setdefault(frame_label(cube, r), []).append(r)
     return frames
 
 
@@ -31,7 +42,7 @@ def draw(args):
         raise PlotError(f"{args.input}: no case matches the selection")
     fits = {f["frame"]: f for f in cube.fragility(args.where)[0]}
     units = cube.variable("ida_intensity")["units"]
-    frames = frames_of(rows)
+    frames = frames_of(cube, rows)
     columns = min(3, len(frames))
     fig, axes = plt.subplots(math.ceil(len(frames) / columns), columns, figsize=(4.4 * columns, 4.2), squeeze=False,
                              sharey=True, constrained_layout=True)

@@ -1,0 +1,183 @@
+// `pcrf plot`: every kind draws a valid file with the expected number of panels (counted
+// in the SVG, one <g id="axes_N"> per panel), from small studies of synthetic records; bad
+// input fails with one line, exit code 2, and writes nothing.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+
+#include "support/test_support.hpp"
+
+namespace pcrf {
+namespace {
+
+const char* kPulse = "sine:amplitude_g=1.5,period_s=0.5,cycles=2,duration_s=3";
+const char* kPulse2 = "sine:amplitude_g=1.3,period_s=0.7,cycles=2,duration_s=3";
+const char* kNoise = "stochastic:seed=4,pga_g=1.4,duration_s=6";
+
+std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
+std::string pcrf() { return quoted(test::pcrf_executable()); }
+
+bool have_matplotlib() {
+  return test::run_command(std::string("'") + PCRF_PYTHON + "' -c 'import matplotlib, numpy'").exit_code == 0;
+}
+
+#define PCRF_REQUIRE_MATPLOTLIB() \
+  if (!have_matplotlib()) GTEST_SKIP() << PCRF_PYTHON << " has no matplotlib"
+
+std::string records_line() {
+  return std::string("[[records]]\nsynthetic = [\"") + kPulse + "\", \"" + kPulse2 + "\", \"" + kNoise + "\"]\n";
+}
+
+/// Runs a study file's text in `dir`, returns the cube's path.
+std::filesystem::path study(const std::filesystem::path& dir, const std::string& name, const std::string& text) {
+  test::write_file(dir, name + ".toml", text);
+  const auto r = test::run_command("cd " + quoted(dir) + " && " + pcrf() + " study " + name + ".toml -o " + name +
+                                   ".h5 --progress-interval 0");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return dir / (name + ".h5");
+}
+
+/// Panels of an SVG written by matplotlib.
+int panels(const std::filesystem::path& svg) {
+  std::ifstream in(svg);
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string s = text.str();
+  EXPECT_NE(s.find("<svg"), std::string::npos) << svg;
+  int count = 0;
+  const std::regex axes("<g id=\"axes_[0-9]+\">");
+  for (auto it = std::sregex_iterator(s.begin(), s.end(), axes); it != std::sregex_iterator(); ++it) ++count;
+  return count;
+}
+
+/// `pcrf plot ARGS -o OUT.svg`; the panels drawn (−1 when it failed).
+int plot(const std::filesystem::path& out, const std::string& args) {
+  const auto r = test::run_command(pcrf() + " plot " + args + " -o " + quoted(out));
+  EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.err;
+  return r.exit_code == 0 ? panels(out) : -1;
+}
+
+TEST(PlotCommand, HistoryOfARunAndOfACubeGroupHasFourPanels) {
+  PCRF_REQUIRE_MATPLOTLIB();
+  const auto dir = test::scratch_dir("plot_history");
+  const auto csv = dir / "h.csv";
+  ASSERT_EQ(test::run_command(pcrf() + " run --synthetic '" + kNoise + "' --history " + quoted(csv) +
+                              " --history-dt-s 0.002").exit_code, 0);
+  EXPECT_EQ(plot(dir / "run.svg", "history " + quoted(csv)), 4);
+  const auto cube = study(dir, "grid", records_line() + "[axes]\nkappa = [1.2, 2.4]\n[[outputs.histories]]\n"
+                                       "label = \"noise\"\nrecord = \"" + kNoise + "\"\nkappa = 2.4\ndt_s = 0.002\n");
+  EXPECT_EQ(plot(dir / "cube.svg", "history " + quoted(cube)), 4);
+  EXPECT_EQ(plot(dir / "group.svg", "history " + quoted(cube) + " --group noise"), 4);
+}
+
+TEST(PlotCommand, SweepHasOnePanelPerVariedParameterAndStatusOneMap) {
+  PCRF_REQUIRE_MATPLOTLIB();
+  const auto dir = test::scratch_dir("plot_sweep");
+  const auto cube = study(dir, "oat", records_line() + "[plan]\nkind = \"one-at-a-time\"\ninclude_base = true\n"
+                                      "[axes]\nscale = [1.0, 1.3]\nkappa = [1.2, 2.4]\nlambda = [1.8, 2.2]\n"
+                                      "tan_alpha = [0.16, 0.18, 0.22]\n");
+  EXPECT_EQ(plot(dir / "sweep.svg", "sweep " + quoted(cube) + " -w scale=1.3"), 3);
+  EXPECT_EQ(plot(dir / "impacts.svg", "sweep " + quoted(cube) + " -w scale=1.3 -m impacts"), 3);
+  EXPECT_EQ(plot(dir / "status.svg", "status " + quoted(cube) + " -w scale=1.3"), 1);
+  EXPECT_EQ(plot(dir / "status_xy.svg", "status " + quoted(cube) + " --x case --y scale -w record=" + kPulse), 1);
+}
+
+TEST(PlotCommand, IdaHasOnePanelPerFrameAndFragilityOne) {
+  PCRF_REQUIRE_MATPLOTLIB();
+  const auto dir = test::scratch_dir("plot_ida");
+  std::string records = "[[records]]\nsynthetic = [";
+  for (int seed = 1; seed <= 4; ++seed)
+    records += std::string(seed > 1 ? ", " : "") + "\"stochastic:seed=" + std::to_string(seed) + ",pga_g=1,duration_s=6\"";
+  const auto cube = study(dir, "ida", records + "]\n[axes]\nkappa = [1.4, 2.2]\n[intensity]\nmeasure = \"pga_g\"\n"
+                                      "[ida]\nstart = 0.5\nmax_intensity = 8\nmax_runs = 10\n");
+  EXPECT_EQ(plot(dir / "ida.svg", "ida " + quoted(cube)), 2);
+  EXPECT_EQ(plot(dir / "ida1.svg", "ida " + quoted(cube) + " -w kappa=1.4"), 1);
+  EXPECT_EQ(plot(dir / "fragility.svg", "fragility " + quoted(cube)), 1);
+  const auto stripes = study(dir, "stripes", records + "]\n[intensity]\nmeasure = \"pga_g\"\n"
+                                             "[axes]\nintensity = [1, 1.5, 2, 2.5, 3, 4]\n");
+  EXPECT_EQ(plot(dir / "stripes.svg", "fragility " + quoted(stripes)), 1);
+}
+
+TEST(PlotCommand, SensitivityHasOnePanelOfBars) {
+  PCRF_REQUIRE_MATPLOTLIB();
+  const auto dir = test::scratch_dir("plot_sensitivity");
+  const auto cube = study(dir, "sal", records_line() + "[plan]\nkind = \"saltelli\"\nsamples = 16\n[axes]\nscale = 1.3\n"
+                                      "kappa = {from = 1.2, to = 2.4}\ntan_alpha = {from = 0.15, to = 0.25}\n"
+                                      "lambda_h = {from = 0.15, to = 0.25}\n");
+  EXPECT_EQ(plot(dir / "sens.svg", "sensitivity " + quoted(cube) + " -m impacts"), 1);
+  // PNG and PDF: the format's signature at the start of the file.
+  for (const auto& [file, signature] : {std::pair{"sens.png", "\x89PNG"}, std::pair{"sens.pdf", "%PDF"}}) {
+    const auto r = test::run_command(pcrf() + " plot sensitivity " + quoted(cube) + " -o " + quoted(dir / file));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    std::ifstream in(dir / file, std::ios::binary);
+    std::string head(4, '\0');
+    in.read(head.data(), 4);
+    EXPECT_EQ(head, signature) << file;
+  }
+}
+
+TEST(PlotCommand, Table3DrawsTheCommittedComparisonInFourPanels) {
+  PCRF_REQUIRE_MATPLOTLIB();
+  const auto dir = test::scratch_dir("plot_table3");
+  EXPECT_EQ(plot(dir / "t3.svg", "table3 " + quoted(test::source_dir() / "docs" / "paper_comparison.csv")), 4);
+}
+
+struct BadPlot {
+  std::string args;
+  std::string message;
+};
+
+TEST(PlotCommand, BadInputFailsWithOneLineAndWritesNothing) {
+  PCRF_REQUIRE_MATPLOTLIB();
+  const auto dir = test::scratch_dir("plot_bad");
+  const auto grid = study(dir, "grid", records_line() + "[axes]\nscale = [0.9, 1.2]\nkappa = [1.2, 2.4]\n");
+  const auto existing = test::write_file(dir, "existing.svg", "keep me");
+  const std::vector<BadPlot> cases = {
+      {"history nowhere.csv -o x.svg", "nowhere.csv: no such file"},
+      {"bogus " + quoted(grid) + " -o x.svg", "argument KIND: invalid choice: 'bogus'"},
+      {"sweep " + quoted(grid) + " -o x.gif", "x.gif: the output must end in .png, .pdf or .svg"},
+      {"sweep " + quoted(grid) + " -o " + quoted(existing), "exists (use --overwrite to replace it)"},
+      {"sweep " + quoted(grid) + " -o " + quoted(grid) + " --overwrite", "the output is the input"},
+      {"ida " + quoted(grid) + " -o x.svg", "not an IDA cube"},
+      {"history " + quoted(grid) + " -o x.svg", "the cube holds no history"},
+      {"sensitivity " + quoted(grid) + " -o x.svg", "saltelli"},
+      {"status " + quoted(grid) + " -o x.svg", "kappa: several values left; select one of each, e.g. -w kappa=1.2"},
+      {"sweep " + quoted(grid) + " -m no_such_metric -o x.svg", "needs the metric no_such_metric"},
+      {"sweep " + quoted(grid) + " -w kappa=7 -o x.svg", "kappa=7: no such value"},
+  };
+  for (const auto& c : cases) {
+    const auto r = test::run_command("cd " + quoted(dir) + " && " + pcrf() + " plot " + c.args);
+    EXPECT_EQ(r.exit_code, 2) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << "\n" << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << c.args << "\n" << r.err;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.svg"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.gif"));
+  std::ifstream kept(existing);
+  std::string text;
+  std::getline(kept, text);
+  EXPECT_EQ(text, "keep me");
+  for (const auto& entry : std::filesystem::directory_iterator(dir))
+    EXPECT_EQ(entry.path().filename().string().rfind(".pcrf_plot_", 0), std::string::npos) << entry.path();
+}
+
+TEST(PlotCommand, AMissingMatplotlibIsNamedWithItsPackage) {
+  const auto dir = test::scratch_dir("plot_no_matplotlib");
+  // A matplotlib that cannot be imported shadows the real one.
+  std::filesystem::create_directories(dir / "fake" / "matplotlib");
+  test::write_file(dir / "fake" / "matplotlib", "__init__.py", "raise ImportError(\"No module named 'matplotlib'\", name='matplotlib')\n");
+  const auto csv = test::write_file(dir, "h.csv", "t_s\n0\n");
+  const auto r = test::run_command("cd " + quoted(dir) + " && PYTHONPATH=" + quoted(dir / "fake") + " " + pcrf() +
+                                   " plot history h.csv -o h.png");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("matplotlib not found: apt-get install python3-matplotlib"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "h.png"));
+}
+
+}  // namespace
+}  // namespace pcrf
