@@ -233,11 +233,11 @@ def write_markdown(path, rows, evidence, published):
         "tenth of it. A step that crosses θ₁ = 0 integrates the old side's equation beyond zero, where "
         "the step force of gravity and prestress pushes outwards, and applies the impact late; each "
         "crossing pumps energy in (README, \"Numerics audit\"). With the contact condition the motion "
-        "does not start at all (section 2). The issue that asked for this comparison measured, with its "
-        "own implementation of that scheme, a median ratio of 1.13 at 5 ms (8 of 13 within 30 %), 0.48 "
-        "at 2.5 ms and 0.095 at 1 ms, and 1 of 13 peak times within 0.1 s; the engine's numbers above "
-        "differ in detail (where the first step starts, how ü_g is sampled inside a step) and agree in "
-        "kind: the result is a property of the step size.")
+        "does not start at all (section 2). An independent implementation of the same scheme measured a "
+        "median ratio of 1.13 at 5 ms (8 of 13 within 30 %), 0.48 at 2.5 ms and 0.095 at 1 ms, and 1 of "
+        "13 peak times within 0.1 s; the engine's numbers above differ in detail (where the first step "
+        "starts, how ü_g is sampled inside a step) and agree in kind: the result is a property of the "
+        "step size.")
     add("")
     add("| record | paper θ_max [rad] | " + " | ".join(f"h = {h * 1000:g} ms" for h in STEPS_S) + " |")
     add("| --- | --- | " + " | ".join("---" for _ in STEPS_S) + " |")
