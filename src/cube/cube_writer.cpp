@@ -14,7 +14,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <set>
+#include <map>
+#include <tuple>
 
 #include "cube/hdf5_util.hpp"
 #include "pcrf/cube/chunk_grid.hpp"
@@ -91,10 +92,18 @@ struct CubeWriter::Impl {
   std::vector<h5::Handle> metric_sets;
   std::vector<h5::Handle> side_sets;  // one per layout.side_variables
   h5::Handle status_set;
-  std::vector<std::vector<double>> metrics;  // [metric][case]
-  std::set<std::size_t> touched_chunks;      // chunks holding at least one computed case
-  std::vector<std::pair<std::int64_t, std::string>> notes;  // every note: each checkpoint writes them all
-  std::vector<HistoryTable> histories;                      // every history, likewise
+  /// The values stored since the last checkpoint, per chunk: rank 0 holds only these (and
+  /// the status of every case), never the whole cube.
+  struct ChunkValues {
+    std::vector<double> values;  ///< [metric * count + k]
+    std::vector<char> stored;    ///< [k]: this case has values here
+  };
+  std::map<std::size_t, ChunkValues> pending_chunks;
+  std::size_t pending_bytes = 0;
+  std::vector<std::pair<std::int64_t, std::string>> pending_notes;  // since the last checkpoint
+  std::vector<HistoryTable> pending_histories;                      // likewise
+  bool sides_changed = true;
+  bool on_disk = false;  // `path` holds this cube's last checkpoint
   bool closed = false;
 
   Impl(std::filesystem::path p, CubeLayout l)
@@ -104,14 +113,17 @@ struct CubeWriter::Impl {
 
   void create(const std::filesystem::path& target);
   void checkpoint(const std::vector<std::int8_t>& status);
+  void write_new_file(const std::filesystem::path& target);
+  void update(const std::filesystem::path& target, const std::vector<std::int8_t>& status);
+  void check_free_space(const std::filesystem::path& target) const;
   void close_handles();
   void open_existing(std::vector<std::int8_t>& status);
   h5::Handle create_cube_variable(const std::string& name, hid_t file_type, hid_t memory_type,
                                   const void* fill);
   h5::Handle create_side_variable(const SideVariable& v);
   void write_side(std::size_t index);
-  void write_chunk(std::size_t chunk, const std::vector<std::int8_t>& status);
-  void write_notes();
+  void write_chunk(std::size_t chunk, const ChunkValues& stored, const std::vector<std::int8_t>& status);
+  void append_notes();
   void write_history(const HistoryTable& table);
 };
 
@@ -120,11 +132,11 @@ CubeWriter::CubeWriter(std::filesystem::path file, CubeLayout layout, OpenMode m
   h5::silence_library_errors();
   const auto n = static_cast<std::size_t>(impl_->layout.case_count());
   status_.assign(n, kStatusNotRun);
-  impl_->metrics.assign(impl_->layout.metrics.size(), std::vector<double>(n, kNaN));
   const bool exists = std::filesystem::exists(impl_->path);
   if (mode == OpenMode::kCreate && exists) throw CubeError(impl_->what("already exists"));
   if (mode == OpenMode::kResume && exists) {
     impl_->open_existing(status_);
+    impl_->on_disk = true;
     resumed_ = true;
   }
   flush();  // the file exists, complete, from the start (an overwritten one is replaced whole)
@@ -244,6 +256,7 @@ void CubeWriter::store_side(const std::string& name, std::vector<double> values)
       throw CubeError(impl_->what("'" + name + "' takes " + std::to_string(impl_->layout.side_size(vars[v])) +
                                   " values, got " + std::to_string(values.size())));
     vars[v].values = std::move(values);
+    impl_->sides_changed = true;
     return;
   }
   throw CubeError(impl_->what("has no side variable '" + name + "'"));
@@ -260,20 +273,28 @@ void CubeWriter::Impl::open_existing(std::vector<std::int8_t>& status) {
   if (old.shape() != layout.shape() || old.metrics.size() != layout.metrics.size())
     throw CubeError(what("has another shape or other metrics than this study"));
   status = reader.read_status();
-  for (std::size_t m = 0; m < layout.metrics.size(); ++m) metrics[m] = reader.read_metric(layout.metrics[m].name);
-  for (std::size_t i = 0; i < status.size(); ++i)
-    if (status[i] != kStatusNotRun) touched_chunks.insert(grid.chunk_of(static_cast<std::int64_t>(i)));
-  notes = reader.read_notes();
-  for (const auto& name : reader.history_names()) histories.push_back(reader.read_history(name));
+  // Values, notes and histories stay in the file: each checkpoint starts from a copy of it.
   // Side variables start from the study's values (the producer stores new ones).
 }
 
-const std::vector<double>& CubeWriter::values(const std::string& metric) const {
+std::vector<double> CubeWriter::read_values(const std::string& metric) const {
   const auto& metrics = impl_->layout.metrics;
-  for (std::size_t m = 0; m < metrics.size(); ++m)
-    if (metrics[m].name == metric) return impl_->metrics[m];
-  throw CubeError(impl_->what("has no metric '" + metric + "'"));
+  const auto m = static_cast<std::size_t>(
+      std::find_if(metrics.begin(), metrics.end(), [&](const MetricVariable& v) { return v.name == metric; }) -
+      metrics.begin());
+  if (m == metrics.size()) throw CubeError(impl_->what("has no metric '" + metric + "'"));
+  std::vector<double> values = impl_->on_disk ? CubeReader(impl_->path).read_metric(metric)
+                                              : std::vector<double>(status_.size(), kNaN);
+  for (const auto& [chunk, stored] : impl_->pending_chunks) {
+    const auto r = impl_->grid.range(chunk);
+    for (std::int64_t k = 0; k < r.count; ++k)
+      if (stored.stored[static_cast<std::size_t>(k)])
+        values[static_cast<std::size_t>(r.first + k)] = stored.values[m * static_cast<std::size_t>(r.count) + static_cast<std::size_t>(k)];
+  }
+  return values;
 }
+
+std::size_t CubeWriter::pending_bytes() const { return impl_->pending_bytes; }
 
 std::int64_t CubeWriter::done_count() const {
   return std::count_if(status_.begin(), status_.end(), [](std::int8_t s) { return s != kStatusNotRun; });
@@ -282,68 +303,108 @@ std::int64_t CubeWriter::done_count() const {
 void CubeWriter::store(std::int64_t index, std::int8_t status, const std::vector<double>& values) {
   if (index < 0 || static_cast<std::size_t>(index) >= status_.size())
     throw CubeError(impl_->what("case index " + std::to_string(index) + " is outside the cube"));
-  if (values.size() != impl_->metrics.size())
+  const std::size_t metrics = impl_->layout.metrics.size();
+  if (values.size() != metrics)
     throw CubeError(impl_->what("case " + std::to_string(index) + " has " + std::to_string(values.size()) +
-                                " values for " + std::to_string(impl_->metrics.size()) + " metrics"));
-  const auto i = static_cast<std::size_t>(index);
-  status_[i] = status;
-  for (std::size_t m = 0; m < values.size(); ++m) impl_->metrics[m][i] = values[m];
-  impl_->touched_chunks.insert(impl_->grid.chunk_of(index));
+                                " values for " + std::to_string(metrics) + " metrics"));
+  status_[static_cast<std::size_t>(index)] = status;
+  const std::size_t chunk = impl_->grid.chunk_of(index);
+  const auto r = impl_->grid.range(chunk);
+  auto [it, fresh] = impl_->pending_chunks.try_emplace(chunk);
+  auto& pending = it->second;
+  const auto count = static_cast<std::size_t>(r.count);
+  if (fresh) {
+    pending.values.assign(metrics * count, kNaN);
+    pending.stored.assign(count, 0);
+    impl_->pending_bytes += metrics * count * sizeof(double) + count;
+  }
+  const auto k = static_cast<std::size_t>(index - r.first);
+  pending.stored[k] = 1;
+  for (std::size_t m = 0; m < metrics; ++m) pending.values[m * count + k] = values[m];
 }
 
 void CubeWriter::store_note(std::int64_t index, std::string note) {
-  impl_->notes.emplace_back(index, std::move(note));
+  impl_->pending_notes.emplace_back(index, std::move(note));
 }
 
 void CubeWriter::store_history(HistoryTable table) {
-  auto& all = impl_->histories;  // a case recomputed after --resume replaces its history
+  auto& all = impl_->pending_histories;  // a case recomputed after --resume replaces its history
   std::erase_if(all, [&](const HistoryTable& t) { return t.name == table.name; });
   all.push_back(std::move(table));
 }
 
-void CubeWriter::Impl::write_chunk(std::size_t chunk, const std::vector<std::int8_t>& status) {
+/// One chunk: the values stored since the last checkpoint laid over what the file holds
+/// (a chunk may be finished over several checkpoints), and the chunk's status.
+void CubeWriter::Impl::write_chunk(std::size_t chunk, const ChunkValues& stored, const std::vector<std::int8_t>& status) {
   const auto r = grid.range(chunk);
   const auto start = to_hsize(r.start);
   const auto extent = to_hsize(r.extent);
   const auto count = static_cast<hsize_t>(r.count);
   auto memory = h5::space(H5Screate_simple(1, &count, nullptr), what("cannot make a dataspace"));
-  auto write = [&](hid_t set, hid_t memory_type, const void* data, const std::string& name) {
+  auto select = [&](hid_t set, const std::string& name) {
     auto selection = h5::space(H5Dget_space(set), what("cannot select in '" + name + "'"));
     h5::check(H5Sselect_hyperslab(selection, H5S_SELECT_SET, start.data(), nullptr, extent.data(), nullptr),
               what("cannot select in '" + name + "'"));
-    h5::check(H5Dwrite(set, memory_type, memory, selection, H5P_DEFAULT, data), what("cannot write '" + name + "'"));
+    return selection;
   };
-  const auto first = static_cast<std::size_t>(r.first);
-  for (std::size_t m = 0; m < metric_sets.size(); ++m)
-    write(metric_sets[m], H5T_NATIVE_DOUBLE, metrics[m].data() + first, layout.metrics[m].name);
-  write(status_set, H5T_NATIVE_INT8, status.data() + first, kStatusName);
+  std::vector<double> values(static_cast<std::size_t>(count));
+  for (std::size_t m = 0; m < metric_sets.size(); ++m) {
+    const auto& name = layout.metrics[m].name;
+    const auto selection = select(metric_sets[m], name);
+    h5::check(H5Dread(metric_sets[m], H5T_NATIVE_DOUBLE, memory, selection, H5P_DEFAULT, values.data()),
+              what("cannot read '" + name + "'"));
+    for (std::size_t k = 0; k < values.size(); ++k)
+      if (stored.stored[k]) values[k] = stored.values[m * values.size() + k];
+    h5::check(H5Dwrite(metric_sets[m], H5T_NATIVE_DOUBLE, memory, selection, H5P_DEFAULT, values.data()),
+              what("cannot write '" + name + "'"));
+  }
+  const auto selection = select(status_set, kStatusName);
+  h5::check(H5Dwrite(status_set, H5T_NATIVE_INT8, memory, selection, H5P_DEFAULT, status.data() + r.first),
+            what("cannot write '" + std::string(kStatusName) + "'"));
 }
 
-/// Every note, into the fresh checkpoint file (/messages/case_index and /messages/text).
-void CubeWriter::Impl::write_notes() {
-  if (notes.empty()) return;
+/// The notes stored since the last checkpoint, appended to /messages/case_index and
+/// /messages/text (extendible along their one dimension).
+void CubeWriter::Impl::append_notes() {
+  if (pending_notes.empty()) return;
   const std::string problem = what("cannot write case messages");
-  auto gcpl = ordered_plist(H5P_GROUP_CREATE);
-  auto group = h5::group(H5Gcreate2(file, kMessagesGroup, H5P_DEFAULT, gcpl, H5P_DEFAULT), problem);
-  const hsize_t n = notes.size();
-  auto s = h5::space(H5Screate_simple(1, &n, nullptr), problem);
-  auto dcpl = ordered_plist(H5P_DATASET_CREATE);
-  const hsize_t chunk = std::min(n, kNotesChunk);
-  h5::check(H5Pset_chunk(dcpl, 1, &chunk), problem);
-  auto index_set = h5::dataset(H5Dcreate2(group, "case_index", H5T_STD_I64LE, s, H5P_DEFAULT, dcpl, H5P_DEFAULT), problem);
-  h5::write_attribute(index_set, "long_name", std::string("linear index of the case"));
-  h5::check(H5DSset_scale(index_set, "case_index"), problem);
   auto t = h5::vlen_string_type();
-  auto message_set = h5::dataset(H5Dcreate2(group, "text", t, s, H5P_DEFAULT, dcpl, H5P_DEFAULT), problem);
-  h5::check(H5DSattach_scale(message_set, index_set, 0), problem);
+  h5::Handle index_set, message_set;
+  hsize_t old_size = 0;
+  if (H5Lexists(file, kMessagesGroup, H5P_DEFAULT) > 0) {
+    auto group = h5::group(H5Gopen2(file, kMessagesGroup, H5P_DEFAULT), problem);
+    index_set = h5::dataset(H5Dopen2(group, "case_index", H5P_DEFAULT), problem);
+    message_set = h5::dataset(H5Dopen2(group, "text", H5P_DEFAULT), problem);
+    auto s = h5::space(H5Dget_space(index_set), problem);
+    h5::check(H5Sget_simple_extent_dims(s, &old_size, nullptr), problem);
+  } else {
+    auto gcpl = ordered_plist(H5P_GROUP_CREATE);
+    auto group = h5::group(H5Gcreate2(file, kMessagesGroup, H5P_DEFAULT, gcpl, H5P_DEFAULT), problem);
+    const hsize_t zero = 0, unlimited = H5S_UNLIMITED;
+    auto s = h5::space(H5Screate_simple(1, &zero, &unlimited), problem);
+    auto dcpl = ordered_plist(H5P_DATASET_CREATE);
+    h5::check(H5Pset_chunk(dcpl, 1, &kNotesChunk), problem);
+    index_set = h5::dataset(H5Dcreate2(group, "case_index", H5T_STD_I64LE, s, H5P_DEFAULT, dcpl, H5P_DEFAULT), problem);
+    h5::write_attribute(index_set, "long_name", std::string("linear index of the case"));
+    h5::check(H5DSset_scale(index_set, "case_index"), problem);
+    message_set = h5::dataset(H5Dcreate2(group, "text", t, s, H5P_DEFAULT, dcpl, H5P_DEFAULT), problem);
+    h5::check(H5DSattach_scale(message_set, index_set, 0), problem);
+  }
+  const hsize_t added = pending_notes.size(), new_size = old_size + added;
   std::vector<std::int64_t> indices;
   std::vector<const char*> texts;
-  for (const auto& [index, text] : notes) {
+  for (const auto& [index, text] : pending_notes) {
     indices.push_back(index);
     texts.push_back(text.c_str());
   }
-  h5::check(H5Dwrite(index_set, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, indices.data()), problem);
-  h5::check(H5Dwrite(message_set, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, texts.data()), problem);
+  auto memory = h5::space(H5Screate_simple(1, &added, nullptr), problem);
+  for (auto [set, type, data] : {std::tuple<hid_t, hid_t, const void*>{index_set, H5T_NATIVE_INT64, indices.data()},
+                                 std::tuple<hid_t, hid_t, const void*>{message_set, t, texts.data()}}) {
+    h5::check(H5Dset_extent(set, &new_size), problem);
+    auto selection = h5::space(H5Dget_space(set), problem);
+    h5::check(H5Sselect_hyperslab(selection, H5S_SELECT_SET, &old_size, nullptr, &added, nullptr), problem);
+    h5::check(H5Dwrite(set, type, memory, selection, H5P_DEFAULT, data), problem);
+  }
 }
 
 void CubeWriter::Impl::write_history(const HistoryTable& table) {
@@ -357,6 +418,8 @@ void CubeWriter::Impl::write_history(const HistoryTable& table) {
     auto gcpl = ordered_plist(H5P_GROUP_CREATE);
     parent = h5::group(H5Gcreate2(file, kHistoriesGroup, H5P_DEFAULT, gcpl, H5P_DEFAULT), problem);
   }
+  if (H5Lexists(parent, table.name.c_str(), H5P_DEFAULT) > 0)  // recomputed after --resume
+    h5::check(H5Ldelete(parent, table.name.c_str(), H5P_DEFAULT), problem);
   auto gcpl = ordered_plist(H5P_GROUP_CREATE);
   auto group = h5::group(H5Gcreate2(parent, table.name.c_str(), H5P_DEFAULT, gcpl, H5P_DEFAULT), problem);
   for (const auto& a : table.attributes) write_global_attribute(group, a);
@@ -434,18 +497,12 @@ bool sync_path(const std::filesystem::path& p, bool directory) {
   return ok;
 }
 
-void CubeWriter::Impl::checkpoint(const std::vector<std::int8_t>& status) {
-  // A complete new file beside the cube, synced, then renamed over it: a process killed at
-  // any moment, or a disk that fills, leaves the last complete cube (and perhaps a stray
-  // .partial file, replaced by the next checkpoint).
-  const std::filesystem::path partial = path.string() + ".partial";
+/// A new cube with its coordinates, attributes and empty variables: built in memory (the
+/// core driver) and written by us, so that a full disk is a write() error of ours.
+void CubeWriter::Impl::write_new_file(const std::filesystem::path& target) {
   std::vector<char> image;
   try {
-    create(partial);
-    for (std::size_t chunk : touched_chunks) write_chunk(chunk, status);
-    write_notes();
-    for (const auto& table : histories) write_history(table);
-    for (std::size_t v = 0; v < layout.side_variables.size(); ++v) write_side(v);
+    create(target);
     h5::check(H5Fflush(file, H5F_SCOPE_GLOBAL), what("cannot flush"));
     const ssize_t size = H5Fget_file_image(file, nullptr, 0);
     if (size <= 0) throw CubeError(what("cannot take the file's image"));
@@ -456,7 +513,90 @@ void CubeWriter::Impl::checkpoint(const std::vector<std::int8_t>& status) {
     close_handles();
     throw;
   }
-  write_image(partial, image, path.string());
+  write_image(target, image, path.string());
+}
+
+/// Writes what changed since the last checkpoint into `target` (a copy of it, or a new cube).
+void CubeWriter::Impl::update(const std::filesystem::path& target, const std::vector<std::int8_t>& status) {
+  try {
+    file = h5::file(H5Fopen(target.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), what("cannot open " + target.string()));
+    for (const auto& m : layout.metrics)
+      metric_sets.push_back(h5::dataset(H5Dopen2(file, m.name.c_str(), H5P_DEFAULT), what("cannot open '" + m.name + "'")));
+    status_set = h5::dataset(H5Dopen2(file, kStatusName, H5P_DEFAULT), what("cannot open 'status'"));
+    for (const auto& [chunk, stored] : pending_chunks) write_chunk(chunk, stored, status);
+    append_notes();
+    for (const auto& table : pending_histories) write_history(table);
+    for (std::size_t v = 0; v < layout.side_variables.size(); ++v) {
+      const auto& name = layout.side_variables[v].name;
+      side_sets.push_back(h5::dataset(H5Dopen2(file, name.c_str(), H5P_DEFAULT), what("cannot open '" + name + "'")));
+      write_side(v);
+    }
+    metric_sets.clear();
+    side_sets.clear();
+    status_set.reset();
+    const hid_t id = file.release();
+    h5::check(H5Fclose(id), what("cannot write " + target.string()));
+  } catch (...) {
+    close_handles();
+    throw;
+  }
+}
+
+/// Refuses to start a checkpoint that cannot fit: the old cube's size plus every value
+/// stored since (uncompressed), and a margin. HDF5 then writes into space that exists.
+void CubeWriter::Impl::check_free_space(const std::filesystem::path& target) const {
+  std::error_code ec;
+  const auto folder = target.parent_path().empty() ? std::filesystem::path(".") : target.parent_path();
+  const auto space = std::filesystem::space(folder, ec);
+  if (ec) return;  // unknown: the writes themselves will tell
+  double needed = 0.0;
+  if (on_disk) needed += static_cast<double>(std::filesystem::file_size(path, ec));
+  needed += static_cast<double>(pending_bytes);
+  for (const auto& [index, text] : pending_notes) needed += 16.0 + static_cast<double>(text.size());
+  for (const auto& table : pending_histories)
+    for (const auto& column : table.values) needed += 8.0 * static_cast<double>(column.size());
+  needed = 1.05 * needed + 16384.0;  // HDF5's metadata for the new chunks
+  if (static_cast<double>(space.available) < needed) {
+    char text[160];
+    std::snprintf(text, sizeof text, "cannot write %s: No space left on device (a checkpoint needs about %.3g MB, "
+                  "%.3g MB are free)", target.c_str(), needed / 1e6, static_cast<double>(space.available) / 1e6);
+    throw CubeError(what(text));
+  }
+}
+
+void CubeWriter::Impl::checkpoint(const std::vector<std::int8_t>& status) {
+  // Nothing new: the cube on disk is already this state.
+  if (on_disk && pending_chunks.empty() && pending_notes.empty() && pending_histories.empty() && !sides_changed) return;
+  // A complete new file beside the cube — a copy of the last checkpoint with what changed
+  // written into it, or a new cube — synced, then renamed over it: a process killed at any
+  // moment, or a disk that fills, leaves the last complete cube (and perhaps a stray
+  // .partial file, replaced by the next checkpoint). Memory: only what changed.
+  const std::filesystem::path partial = path.string() + ".partial";
+  check_free_space(partial);
+  if (on_disk) {
+    std::error_code ec;
+    std::filesystem::copy_file(path, partial, std::filesystem::copy_options::overwrite_existing, ec);
+    if (ec) {
+      std::error_code ignored;
+      std::filesystem::remove(partial, ignored);
+      throw CubeError(what("cannot write " + partial.string() + ": " + ec.message()));
+    }
+  } else {
+    write_new_file(partial);
+  }
+  try {
+    update(partial, status);
+  } catch (...) {
+    std::error_code ignored;
+    std::filesystem::remove(partial, ignored);
+    throw;
+  }
+  if (!sync_path(partial, false)) {
+    const std::string reason = std::strerror(errno);
+    std::error_code ignored;
+    std::filesystem::remove(partial, ignored);
+    throw CubeError(what("cannot sync " + partial.string() + ": " + reason));
+  }
   if (std::rename(partial.c_str(), path.c_str()) != 0) {
     const std::string reason = std::strerror(errno);
     std::error_code ignored;
@@ -464,6 +604,12 @@ void CubeWriter::Impl::checkpoint(const std::vector<std::int8_t>& status) {
     throw CubeError(what("cannot replace the cube with its new checkpoint: " + reason));
   }
   (void)sync_path(path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path(), true);
+  on_disk = true;
+  pending_chunks.clear();
+  pending_bytes = 0;
+  pending_notes.clear();
+  pending_histories.clear();
+  sides_changed = false;
 }
 
 void CubeWriter::flush() { impl_->checkpoint(status_); }

@@ -7,11 +7,30 @@ namespace pcrf::parallel {
 
 WorkQueue::WorkQueue(std::vector<std::int64_t> shared, std::vector<std::int64_t> pinned,
                      int workers, std::size_t fixed_batch, std::size_t max_batch)
-    : shared_(shared.begin(), shared.end()),
+    : shared_left_(shared.size()),
+      shared_(shared.begin(), shared.end()),
       pinned_(pinned.begin(), pinned.end()),
       workers_(std::max(workers, 1)),
       fixed_batch_(fixed_batch),
       max_batch_(std::max<std::size_t>(max_batch, 1)) {}
+
+WorkQueue::WorkQueue(NextWindow next, std::int64_t shared_total, std::vector<std::int64_t> pinned, int workers,
+                     std::size_t fixed_batch, std::size_t max_batch)
+    : WorkQueue(std::vector<std::int64_t>{}, std::move(pinned), workers, fixed_batch, max_batch) {
+  next_window_ = std::move(next);
+  shared_left_ = static_cast<std::size_t>(std::max<std::int64_t>(shared_total, 0));
+  refill();
+}
+
+void WorkQueue::refill() {
+  while (shared_.empty() && next_window_) {
+    auto window = next_window_();
+    if (window.empty()) next_window_ = nullptr;
+    shared_.assign(window.begin(), window.end());
+  }
+}
+
+std::size_t WorkQueue::remaining() const { return std::max(shared_left_, shared_.size()) + pinned_.size(); }
 
 std::size_t WorkQueue::batch_size() const {
   if (fixed_batch_ > 0) return fixed_batch_;
@@ -31,7 +50,13 @@ WorkBatch WorkQueue::take(bool in_process_worker) {
     }
   };
   if (in_process_worker) move_from(pinned_);
-  move_from(shared_);
+  while (n > 0 && !shared_.empty()) {
+    const std::size_t before = batch.size();
+    move_from(shared_);
+    const std::size_t taken = batch.size() - before;
+    shared_left_ = shared_left_ > taken ? shared_left_ - taken : 0;
+    refill();  // whenever windows remain, shared_ is not empty: exhausted() is exact
+  }
   return batch;
 }
 

@@ -53,8 +53,9 @@ std::unique_ptr<plan::IdaPlan> make_ida_plan(const Study& study, const CaseSpace
   // Resume: each curve's stored runs, in order, up to the first one not stored (a curve has
   // at most one run in flight, so a killed run leaves no gap before its last stored point).
   const auto& status = writer.status();
-  const auto& intensity = writer.values(vocabulary::kIdaIntensity);
-  const std::vector<double>* theta = rule.theta_column() < 0 ? nullptr : &writer.values("theta_max_rad");
+  const auto intensity = writer.read_values(vocabulary::kIdaIntensity);
+  const auto theta_values = rule.theta_column() < 0 ? std::vector<double>{} : writer.read_values("theta_max_rad");
+  const std::vector<double>* theta = rule.theta_column() < 0 ? nullptr : &theta_values;
   const auto runs = static_cast<std::int64_t>(space.ida_runs());
   for (std::int64_t c = 0; c < space.curves(); ++c) {
     for (std::int64_t k = 0; k < runs; ++k) {
@@ -81,8 +82,8 @@ void store_ida_summaries(const Study& study, const plan::IdaPlan& plan, cube::Cu
   writer.store_side(vocabulary::kIdaRuns, std::move(runs));
   if (!study.solver.verdict_check) return;
   // The band of intensities whose verdicts failed the perturbation test, per curve.
-  const auto& stable = writer.values("status_stable");
-  const auto& intensity = writer.values(vocabulary::kIdaIntensity);
+  const auto stable = writer.read_values("status_stable");
+  const auto intensity = writer.read_values(vocabulary::kIdaIntensity);
   const auto points = static_cast<std::size_t>(plan.max_runs());
   std::vector<double> from(plan.curves(), std::nan("")), to(plan.curves(), std::nan(""));
   for (std::size_t c = 0; c < plan.curves(); ++c)

@@ -143,24 +143,23 @@ class ResultSink {
       failed += is_failure(status) ? 1 : 0;
     }
     meter_.add(static_cast<std::int64_t>(batch.size()), failed);
+    // Rank 0's memory stays bounded whatever the rate: results held since the last
+    // checkpoint never exceed kPendingLimitBytes.
+    if (error_.empty() && writer_.pending_bytes() > kPendingLimitBytes) checkpoint();
   }
 
   void idle() {
     take_histories();
-    const auto now = std::chrono::steady_clock::now();
-    // A checkpoint rewrites the cube: the next one comes a flush interval after this one
+    // A checkpoint copies the cube: the next one comes a flush interval after this one
     // ends, and never sooner than 9 × its duration, so checkpoints take at most a tenth of the run.
     const double period_s = std::max(flush_interval_s_, 9.0 * last_checkpoint_s_);
-    if (error_.empty() && std::chrono::duration<double>(now - last_flush_).count() >= period_s) {
-      guard([&] {
-        if (before_flush_) before_flush_();
-        writer_.flush();
-      });
-      last_flush_ = std::chrono::steady_clock::now();
-      last_checkpoint_s_ = std::chrono::duration<double>(last_flush_ - now).count();
-    }
+    const auto since = std::chrono::steady_clock::now() - last_flush_;
+    if (error_.empty() && std::chrono::duration<double>(since).count() >= period_s) checkpoint();
     meter_.tick();
   }
+
+  /// Results held in memory between checkpoints, at most [bytes].
+  static constexpr std::size_t kPendingLimitBytes = std::size_t{256} << 20;
 
   void close() {
     take_histories();
@@ -179,6 +178,16 @@ class ResultSink {
  private:
   void take_histories() {
     for (auto& table : inbox_.take()) writer_.store_history(std::move(table));
+  }
+
+  void checkpoint() {
+    const auto start = std::chrono::steady_clock::now();
+    guard([&] {
+      if (before_flush_) before_flush_();
+      writer_.flush();
+    });
+    last_flush_ = std::chrono::steady_clock::now();
+    last_checkpoint_s_ = std::chrono::duration<double>(last_flush_ - start).count();
   }
 
   /// Runs a write; a CubeError ends the run in order instead of tearing it down.
@@ -210,22 +219,39 @@ std::pair<std::int64_t, std::int64_t> shard_range(std::int64_t total, std::size_
   return {total * k / n, total * (k + 1) / n};
 }
 
+/// Cases a master hands out in one window (in storage order, so about four cube chunks of
+/// 16 384 cases), so that the chunks being computed are few and the writer holds only those.
+constexpr std::int64_t kWindowCases = 65536;
+
+/// The shard's cases not done yet, window by window in storage order (never the whole list):
+/// the chunks of a window finish together and the cube writer releases them at its next
+/// checkpoint. Inside a window the cases of a frame come together (CaseSpace::frame_major),
+/// so a worker prepares each frame once per window. Cases with a history stay on rank 0.
 parallel::WorkQueue pending_cases(const cube::CubeWriter& writer, const std::map<std::int64_t, const HistoryRequest*>& histories,
                                   const Study& study, const CaseSpace& space, const parallel::MpiSession& mpi,
                                   const StudyRunOptions& options) {
-  std::vector<std::int64_t> all(static_cast<std::size_t>(space.size()));
-  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<std::int64_t>(i);
-  all = space.frame_major(std::move(all));
   const auto [first, last] = shard_range(space.size(), options.shard_index, options.shard_count);
-  std::vector<std::int64_t> shared, pinned;
   const auto& status = writer.status();
-  for (std::int64_t p = first; p < last; ++p) {
-    const std::int64_t index = all[static_cast<std::size_t>(p)];
-    if (status[static_cast<std::size_t>(index)] != cube::kStatusNotRun) continue;
-    (histories.count(index) ? pinned : shared).push_back(index);
+  auto pending = [&status](std::int64_t i) { return status[static_cast<std::size_t>(i)] == cube::kStatusNotRun; };
+  std::vector<std::int64_t> pinned;
+  std::int64_t shared_total = 0;
+  for (std::int64_t i = first; i < last; ++i) {
+    if (!pending(i)) continue;
+    if (histories.count(i)) pinned.push_back(i);
+    else ++shared_total;
   }
-  return parallel::WorkQueue(std::move(shared), std::move(pinned), parallel::worker_count(mpi.comm()),
-                             study.run.batch_size);
+  auto next_window = [pending, &histories, &space, cursor = first, last = last]() mutable {
+    std::vector<std::int64_t> window;
+    while (window.empty() && cursor < last) {
+      const std::int64_t end = std::min(last, cursor + kWindowCases);
+      for (std::int64_t i = cursor; i < end; ++i)
+        if (pending(i) && !histories.count(i)) window.push_back(i);
+      cursor = end;
+    }
+    return space.frame_major(std::move(window));
+  };
+  return parallel::WorkQueue(std::move(next_window), shared_total, std::move(pinned),
+                             parallel::worker_count(mpi.comm()), study.run.batch_size);
 }
 
 /// A work source that runs dry when a stop signal arrives or the cube cannot be written: the

@@ -1,6 +1,8 @@
 // The cube file on its own: chunk ranges, write/flush/read back, resume, refusals, queries.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <set>
 
@@ -126,6 +128,39 @@ TEST(CubeFile, ResumeKeepsDoneCasesAndRefusesAnotherStudy) {
   }  // HDF5 cannot truncate a file this process still has open
   CubeWriter fresh(file, test_layout("f3"), OpenMode::kOverwrite);
   EXPECT_EQ(fresh.done_count(), 0);
+}
+
+// The writer holds only what came since the last checkpoint: a chunk finished over several
+// checkpoints keeps every value (each checkpoint lays the new ones over the file's), and
+// read_values() sees both.
+TEST(CubeFile, ChunksFinishedOverSeveralCheckpointsKeepEveryValue) {
+  const auto file = test::scratch_dir("cube_pending") / "c.h5";
+  CubeWriter writer(file, test_layout(), OpenMode::kCreate);
+  EXPECT_EQ(writer.pending_bytes(), 0u);
+  for (std::int64_t i = 0; i < 24; i += 2) writer.store(i, 0, {0.001 * static_cast<double>(i), 1});
+  EXPECT_GT(writer.pending_bytes(), 0u);
+  writer.flush();
+  EXPECT_EQ(writer.pending_bytes(), 0u);
+  for (std::int64_t i = 1; i < 24; i += 2) writer.store(i, 0, {0.001 * static_cast<double>(i), 2});
+  writer.store_note(3, "late");
+  const auto seen = writer.read_values("theta_max_rad");
+  for (std::size_t i = 0; i < 24; ++i) EXPECT_EQ(seen[i], 0.001 * static_cast<double>(i)) << i;
+  writer.flush();
+  writer.store_note(5, "later");
+  writer.close();
+  CubeReader reader(file);
+  const auto theta = reader.read_metric("theta_max_rad");
+  const auto impacts = reader.read_metric("impacts");
+  for (std::size_t i = 0; i < 24; ++i) {
+    EXPECT_EQ(theta[i], 0.001 * static_cast<double>(i)) << i;
+    EXPECT_EQ(impacts[i], i % 2 == 0 ? 1.0 : 2.0) << i;
+  }
+  const auto status = reader.read_status();
+  EXPECT_EQ(std::count(status.begin(), status.end(), kStatusNotRun), 0);
+  const auto notes = reader.read_notes();
+  ASSERT_EQ(notes.size(), 2u);
+  EXPECT_EQ(notes[0].second, "late");
+  EXPECT_EQ(notes[1].second, "later");
 }
 
 TEST(CubeFile, ReaderRejectsFilesThatAreNotCubes) {

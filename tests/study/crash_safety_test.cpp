@@ -61,6 +61,10 @@ TEST(CrashSafety, AFullDiskEndsTheRunCleanlyAndTheCubeResumes) {
   std::filesystem::create_directories(small);
   ::umount(small.c_str());
   if (::mount("tmpfs", small.c_str(), "tmpfs", 0, "size=192k") != 0) GTEST_SKIP() << "cannot mount a tmpfs here (needs root)";
+  struct Unmount {  // also when an assertion ends the test early
+    std::filesystem::path at;
+    ~Unmount() { ::umount(at.c_str()); }
+  } unmount{small};
   test::write_file(dir, "f.toml", kStudy);
   const auto full = test::run_command("cd " + quoted(dir) + " && " + pcrf() +
                                       " study f.toml -o small/f.h5 --flush-interval-s 0.01 --progress-interval 0");

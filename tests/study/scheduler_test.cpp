@@ -2,6 +2,8 @@
 // rank (MPI singleton) where every case must come back exactly once.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <map>
 #include <set>
@@ -47,6 +49,39 @@ TEST(WorkQueue, GuidedBatchesShrinkAndPinnedCasesStayLocal) {
   EXPECT_EQ(last, 1u);  // the tail is handed out one by one
   EXPECT_EQ(taken, 1000u);
   EXPECT_TRUE(queue.take(true).empty());
+}
+
+TEST(WorkQueue, WindowsAreHandedOutInOrderWithoutHoldingTheWholeList) {
+  // 10 windows of 100 cases (one of them empty), asked for one at a time.
+  int asked = 0;
+  auto next = [&asked, window = 0]() mutable {
+    std::vector<std::int64_t> cases;
+    while (cases.empty() && window < 10) {
+      if (window != 4)
+        for (int k = 0; k < 100; ++k) cases.push_back(window * 100 + k);
+      ++window;
+    }
+    ++asked;
+    return cases;
+  };
+  WorkQueue queue(next, 900, {7777}, 2, 0, 64);
+  EXPECT_EQ(asked, 1);  // only the first window is loaded up front
+  EXPECT_EQ(queue.remaining(), 901u);
+  std::vector<std::int64_t> order;
+  while (!queue.exhausted()) {
+    const std::size_t left = queue.remaining();
+    const auto batch = queue.take(order.empty());
+    ASSERT_FALSE(batch.empty());
+    // Guided by everything left, not by the window: 1/(4·2) of it, at most 64.
+    EXPECT_EQ(batch.size(), std::min<std::size_t>({64, (left + 7) / 8, left})) << order.size();
+    for (const auto& item : batch) order.push_back(item.case_index);
+  }
+  EXPECT_EQ(order.front(), 7777);
+  order.erase(order.begin());
+  ASSERT_EQ(order.size(), 900u);
+  EXPECT_TRUE(std::is_sorted(order.begin(), order.end()));  // window after window
+  EXPECT_EQ(std::adjacent_find(order.begin(), order.end()), order.end());
+  EXPECT_TRUE(queue.take(false).empty());
 }
 
 TEST(Scheduler, OneRankRunsEveryCaseOnceThroughTheWorkerThread) {

@@ -2,8 +2,8 @@
 /// \brief How a cube is cut into HDF5 chunks so that each chunk is one contiguous range of
 /// linear case indices: whole trailing dimensions, then part of one dimension, then 1.
 ///
-/// That makes "write the chunks that changed" a handful of contiguous copies from the
-/// in-memory cube, never a read-modify-write of a compressed chunk.
+/// That makes a chunk one contiguous run of results: the writer collects a chunk's results
+/// as they come back and writes each chunk that changed as one hyperslab.
 #pragma once
 
 #include <cstddef>

@@ -11,9 +11,11 @@
 ///   /histories/<name>/ time histories of selected cases (each its own time dimension)
 /// Variables are chunked (each chunk one contiguous range of cases) and deflated.
 ///
-/// The whole cube lives in memory; results land there and flush() writes the chunks that
-/// changed, then flushes the file. Between flushes the file is not touched, so a process
-/// killed between two flushes leaves the file as the last flush wrote it.
+/// Memory: the status of every case (1 byte each) and the values stored since the last
+/// flush, chunk by chunk; nothing else of the cube. flush() writes a checkpoint: the last
+/// one copied to <file>.partial, the chunks stored since written into it (laid over what it
+/// holds), synced, and renamed over the file. A process killed at any moment leaves the
+/// last complete checkpoint.
 #pragma once
 
 #include <cstdint>
@@ -54,9 +56,12 @@ class CubeWriter {
   /// Status of every case (kStatusNotRun where not computed yet).
   const std::vector<std::int8_t>& status() const { return status_; }
   std::int64_t done_count() const;
-  /// The values of a metric held in memory (every case, NaN where not computed).
-  /// \throws CubeError for an unknown metric.
-  const std::vector<double>& values(const std::string& metric) const;
+  /// A metric of every case (NaN where not computed): the last checkpoint's values with
+  /// those stored since laid over them. Reads the whole variable: meant for small cubes
+  /// (an IDA's). \throws CubeError for an unknown metric.
+  std::vector<double> read_values(const std::string& metric) const;
+  /// Memory held by the values stored since the last checkpoint [bytes].
+  std::size_t pending_bytes() const;
 
   /// Stores one case in memory. `values` holds one value per metric, in layout order.
   void store(std::int64_t index, std::int8_t status, const std::vector<double>& values);

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <vector>
 
 #include "pcrf/parallel/work_source.hpp"
@@ -27,16 +28,27 @@ class WorkQueue final : public WorkSource {
   WorkQueue(std::vector<std::int64_t> shared, std::vector<std::int64_t> pinned, int workers,
             std::size_t fixed_batch = 0, std::size_t max_batch = 64);
 
+  /// The shared cases one window at a time, so that the list is never held whole: `next`
+  /// returns the following window in the order to run it (empty: none left), and
+  /// `shared_total` is how many cases all windows hold together (for the guided sizes).
+  using NextWindow = std::function<std::vector<std::int64_t>()>;
+  WorkQueue(NextWindow next, std::int64_t shared_total, std::vector<std::int64_t> pinned, int workers,
+            std::size_t fixed_batch = 0, std::size_t max_batch = 64);
+
   /// Next batch for a worker; empty when nothing is left for it.
   WorkBatch take(bool in_process_worker) override;
-  bool exhausted() const override { return remaining() == 0; }
+  bool exhausted() const override { return shared_.empty() && pinned_.empty(); }
 
   /// Cases not yet handed out.
-  std::size_t remaining() const { return shared_.size() + pinned_.size(); }
+  std::size_t remaining() const;
 
  private:
   std::size_t batch_size() const;
+  /// Loads windows until there are shared cases or none is left.
+  void refill();
 
+  NextWindow next_window_;
+  std::size_t shared_left_ = 0;  ///< in shared_ and in the windows still to come
   std::deque<std::int64_t> shared_;
   std::deque<std::int64_t> pinned_;
   int workers_;
