@@ -101,6 +101,7 @@ struct CubeWriter::Impl {
   std::map<std::size_t, ChunkValues> pending_chunks;
   std::size_t pending_bytes = 0;
   std::vector<std::pair<std::int64_t, std::string>> pending_notes;  // since the last checkpoint
+  bool rewrite_notes = false;  // the file's notes are all in pending_notes: write them anew
   std::vector<HistoryTable> pending_histories;                      // likewise
   bool sides_changed = true;
   bool on_disk = false;  // `path` holds this cube's last checkpoint
@@ -273,7 +274,11 @@ void CubeWriter::Impl::open_existing(std::vector<std::int8_t>& status) {
   if (old.shape() != layout.shape() || old.metrics.size() != layout.metrics.size())
     throw CubeError(what("has another shape or other metrics than this study"));
   status = reader.read_status();
-  // Values, notes and histories stay in the file: each checkpoint starts from a copy of it.
+  // Values and histories stay in the file: each checkpoint starts from a copy of it. The
+  // notes are written once more, into extendible datasets (a cube of an earlier version has
+  // fixed-size ones that cannot take more).
+  pending_notes = reader.read_notes();
+  rewrite_notes = true;
   // Side variables start from the study's values (the producer stores new ones).
 }
 
@@ -371,6 +376,9 @@ void CubeWriter::Impl::append_notes() {
   auto t = h5::vlen_string_type();
   h5::Handle index_set, message_set;
   hsize_t old_size = 0;
+  if (rewrite_notes && H5Lexists(file, kMessagesGroup, H5P_DEFAULT) > 0)
+    h5::check(H5Ldelete(file, kMessagesGroup, H5P_DEFAULT), problem);
+  rewrite_notes = false;
   if (H5Lexists(file, kMessagesGroup, H5P_DEFAULT) > 0) {
     auto group = h5::group(H5Gopen2(file, kMessagesGroup, H5P_DEFAULT), problem);
     index_set = h5::dataset(H5Dopen2(group, "case_index", H5P_DEFAULT), problem);
