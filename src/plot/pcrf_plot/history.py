@@ -12,7 +12,7 @@ import numpy as np
 from pcrf_plot import engine, style
 from pcrf_plot.errors import PlotError
 
-EVENT_IMPACT, EVENT_THETA_PEAK = 2, 4
+EVENT_IMPACT, EVENT_STOP = 2, 32
 COLUMNS = ("t_s", "theta1_rad", "omega1_rad_s", "omega1_after_rad_s", "ground_accel_g", "event")
 
 
@@ -56,12 +56,15 @@ def draw(args):
     (a_theta, a_phase), (a_omega, a_ground) = axes
 
     a_theta.plot(t, theta, color=style.BLUE, lw=1)
-    peaks = np.flatnonzero(events & EVENT_THETA_PEAK)
-    if peaks.size:
-        k = peaks[np.argmax(np.abs(theta[peaks]))]
+    # The largest |θ₁| of the history is the result's θ_max: every extremum is a row.
+    if np.any(theta):
+        k = int(np.argmax(np.abs(theta)))
         a_theta.plot(t[k], theta[k], "o", color=style.VERMILLION, ms=6,
                      label=rf"peak $|\theta_1|$ = {abs(theta[k]):.4g} rad at {t[k]:.3f} s")
-        a_theta.legend(loc="upper right")
+    if events[-1] & EVENT_STOP:
+        a_theta.plot(t[-1], theta[-1], "X", color=style.BLACK, ms=8, label=f"fracture or overturning at {t[-1]:.3f} s")
+    if a_theta.get_legend_handles_labels()[0]:
+        a_theta.legend(loc="best")
     a_theta.set(xlabel="time t [s]", ylabel=r"rotation $\theta_1$ [rad]", title="(a) rotation")
 
     a_omega.plot(t2, omega2, color=style.GREEN, lw=1)
