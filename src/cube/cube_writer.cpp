@@ -462,13 +462,11 @@ void CubeWriter::Impl::close_handles() {
   file.reset();
 }
 
-/// Writes `image` to `target` and syncs it. \throws CubeError naming the file and the OS
-/// reason (a full disk: "No space left on device"); the partial file is then removed.
+/// Writes `image` to `target` (the checkpoint syncs it once complete). \throws CubeError
+/// naming the file and the OS reason (a full disk: "No space left on device").
 void write_image(const std::filesystem::path& target, const std::vector<char>& image, const std::string& cube) {
   auto fail = [&](const std::string& what) {
     const std::string reason = std::strerror(errno);
-    std::error_code ignored;
-    std::filesystem::remove(target, ignored);
     throw CubeError(cube + ": " + what + " " + target.string() + ": " + reason);
   };
   const int fd = ::open(target.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
@@ -485,13 +483,12 @@ void write_image(const std::filesystem::path& target, const std::vector<char>& i
     }
     done += static_cast<std::size_t>(n);
   }
-  if (::fsync(fd) != 0) {
-    const int saved = errno;
-    ::close(fd);
-    errno = saved;
-    fail("cannot sync");
-  }
   if (::close(fd) != 0) fail("cannot close");
+}
+
+/// The folder that holds a file ("." for a bare name).
+std::filesystem::path folder_of(const std::filesystem::path& file) {
+  return file.parent_path().empty() ? std::filesystem::path(".") : file.parent_path();
 }
 
 /// fsync of a file or folder; false with errno set on failure.
@@ -554,8 +551,7 @@ void CubeWriter::Impl::update(const std::filesystem::path& target, const std::ve
 /// stored since (uncompressed), and a margin. HDF5 then writes into space that exists.
 void CubeWriter::Impl::check_free_space(const std::filesystem::path& target) const {
   std::error_code ec;
-  const auto folder = target.parent_path().empty() ? std::filesystem::path(".") : target.parent_path();
-  const auto space = std::filesystem::space(folder, ec);
+  const auto space = std::filesystem::space(folder_of(target), ec);
   if (ec) return;  // unknown: the writes themselves will tell
   double needed = 0.0;
   if (on_disk) needed += static_cast<double>(std::filesystem::file_size(path, ec));
@@ -581,37 +577,29 @@ void CubeWriter::Impl::checkpoint(const std::vector<std::int8_t>& status) {
   // .partial file, replaced by the next checkpoint). Memory: only what changed.
   const std::filesystem::path partial = path.string() + ".partial";
   check_free_space(partial);
-  if (on_disk) {
-    std::error_code ec;
-    std::filesystem::copy_file(path, partial, std::filesystem::copy_options::overwrite_existing, ec);
-    if (ec) {
-      std::error_code ignored;
-      std::filesystem::remove(partial, ignored);
-      throw CubeError(what("cannot write " + partial.string() + ": " + ec.message()));
-    }
-  } else {
-    write_new_file(partial);
-  }
   try {
+    if (on_disk) {
+      std::error_code ec;
+      std::filesystem::copy_file(path, partial, std::filesystem::copy_options::overwrite_existing, ec);
+      if (ec) throw CubeError(what("cannot write " + partial.string() + ": " + ec.message()));
+    } else {
+      write_new_file(partial);
+    }
     update(partial, status);
+    if (!sync_path(partial, false)) {
+      const std::string reason = std::strerror(errno);
+      throw CubeError(what("cannot sync " + partial.string() + ": " + reason));
+    }
+    if (std::rename(partial.c_str(), path.c_str()) != 0) {
+      const std::string reason = std::strerror(errno);
+      throw CubeError(what("cannot replace the cube with its new checkpoint: " + reason));
+    }
   } catch (...) {
-    std::error_code ignored;
+    std::error_code ignored;  // the cube itself is untouched: only the new file goes
     std::filesystem::remove(partial, ignored);
     throw;
   }
-  if (!sync_path(partial, false)) {
-    const std::string reason = std::strerror(errno);
-    std::error_code ignored;
-    std::filesystem::remove(partial, ignored);
-    throw CubeError(what("cannot sync " + partial.string() + ": " + reason));
-  }
-  if (std::rename(partial.c_str(), path.c_str()) != 0) {
-    const std::string reason = std::strerror(errno);
-    std::error_code ignored;
-    std::filesystem::remove(partial, ignored);
-    throw CubeError(what("cannot replace the cube with its new checkpoint: " + reason));
-  }
-  (void)sync_path(path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path(), true);
+  (void)sync_path(folder_of(path), true);
   on_disk = true;
   pending_chunks.clear();
   pending_bytes = 0;

@@ -123,7 +123,7 @@ void HistoryRows::add(double t, double theta, double omega, int side, std::uint3
     row_.event = static_cast<double>(static_cast<std::uint32_t>(row_.event) | events);
     return;
   }
-  finish();
+  flush();
   HistorySample& s = row_;
   s.t_s = t;
   s.theta1_rad = theta;
@@ -140,7 +140,13 @@ void HistoryRows::add(double t, double theta, double omega, int side, std::uint3
   held_ = true;
 }
 
-void HistoryRows::finish() {
+void HistoryRows::end(double t, double theta, double omega, int side, std::uint32_t events) {
+  if (!sink_) return;
+  add(t, theta, omega, side, events | kEventEnd);
+  flush();
+}
+
+void HistoryRows::flush() {
   if (held_) sink_(row_);
   held_ = false;
 }

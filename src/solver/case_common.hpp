@@ -38,13 +38,17 @@ class HistoryRows {
   bool wanted() const { return static_cast<bool>(sink_); }
   /// The state (θ₁, θ̇₁) on `side` at t, with `events` (HistoryEvent bits).
   void add(double t, double theta, double omega, int side, std::uint32_t events = kEventNone);
-  /// Hands over the held row.
-  void finish();
+  /// The last row (at the case's end, with kEventEnd among `events`), then hands over
+  /// every held row.
+  void end(double t, double theta, double omega, int side, std::uint32_t events);
 
  private:
   const HistorySink& sink_;
   const EquationOfMotion& eom_;
   const GroundMotion& rec_;
+  /// Hands over the held row.
+  void flush();
+
   bool held_ = false;
   HistorySample row_{};
 };

@@ -110,10 +110,7 @@ class FixedStepRun {
   void emit(double t, State y, std::uint32_t events = kEventNone) { history_.add(t, y.theta, y.omega, side_, events); }
 
   CaseResult finish(CaseStatus status, double t, std::string message = {}) {
-    if (history_.wanted()) {
-      history_.add(t, last_.theta, last_.omega, side_, is_collapse(status) ? kEventStop | kEventEnd : kEventEnd);
-      history_.finish();
-    }
+    history_.end(t, last_.theta, last_.omega, side_, is_collapse(status) ? kEventStop : kEventNone);
     result_.status = status;
     result_.t_end_s = t;
     result_.message = std::move(message);

@@ -182,10 +182,7 @@ CaseResult CaseRun::run() {
   } catch (const detail::IntegratorError& e) {
     finish(CaseStatus::kSolverFailure, e.what());
   }
-  if (history_.wanted()) {
-    emit(result_.t_end_s, at_rest_ ? 0.0 : last_y_[0], at_rest_ ? 0.0 : last_y_[1], kEventEnd);
-    history_.finish();
-  }
+  history_.end(result_.t_end_s, at_rest_ ? 0.0 : last_y_[0], at_rest_ ? 0.0 : last_y_[1], problem_.side, kEventNone);
   result_.counts = integrator_->counts();
   detail::set_peak_strains(eom_, result_);
   return result_;

@@ -10,17 +10,16 @@
 #include <sstream>
 #include <string>
 
-#include "support/test_support.hpp"
+#include "study/study_test_support.hpp"
 
 namespace pcrf {
 namespace {
 
-const char* kPulse = "sine:amplitude_g=1.5,period_s=0.5,cycles=2,duration_s=3";
-const char* kPulse2 = "sine:amplitude_g=1.3,period_s=0.7,cycles=2,duration_s=3";
-const char* kNoise = "stochastic:seed=4,pga_g=1.4,duration_s=6";
-
-std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
-std::string pcrf() { return quoted(test::pcrf_executable()); }
+using study_test::kNoise;
+using study_test::kPulse;
+using study_test::kPulse2;
+using study_test::pcrf;
+using study_test::quoted;
 
 bool have_matplotlib() {
   return test::run_command(std::string("'") + PCRF_PYTHON + "' -c 'import matplotlib, numpy'").exit_code == 0;

@@ -4,6 +4,7 @@ import io
 import json
 import os
 import subprocess
+import tempfile
 
 from pcrf_plot.errors import PlotError
 
@@ -112,7 +113,6 @@ class Cube:
 
 
 def _scratch(name):
-    import tempfile
     handle, path = tempfile.mkstemp(prefix="pcrf_plot_", suffix="_" + name)
     os.close(handle)
     return path
