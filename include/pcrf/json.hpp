@@ -32,24 +32,10 @@ class JsonObject {
     return *this;
   }
   JsonObject& numbers(std::string_view key, const std::vector<double>& values) {
-    start(key);
-    out_ << '[';
-    for (std::size_t i = 0; i < values.size(); ++i) {
-      if (i > 0) out_ << ", ";
-      write_number(values[i]);
-    }
-    out_ << ']';
-    return *this;
+    return array(key, values, [this](double v) { write_number(v); });
   }
   JsonObject& texts(std::string_view key, const std::vector<std::string>& values) {
-    start(key);
-    out_ << '[';
-    for (std::size_t i = 0; i < values.size(); ++i) {
-      if (i > 0) out_ << ", ";
-      write_string(values[i]);
-    }
-    out_ << ']';
-    return *this;
+    return array(key, values, [this](const std::string& v) { write_string(v); });
   }
   JsonObject& object(std::string_view key, const JsonObject& value) {
     start(key);
@@ -57,15 +43,22 @@ class JsonObject {
     return *this;
   }
   JsonObject& objects(std::string_view key, const std::vector<JsonObject>& values) {
-    start(key);
-    out_ << '[';
-    for (std::size_t i = 0; i < values.size(); ++i) out_ << (i > 0 ? ", " : "") << values[i].str();
-    out_ << ']';
-    return *this;
+    return array(key, values, [this](const JsonObject& v) { out_ << v.str(); });
   }
   std::string str() const { return (first_ ? std::string("{") : out_.str()) + '}'; }
 
  private:
+  template <class Values, class Write>
+  JsonObject& array(std::string_view key, const Values& values, Write write) {
+    start(key);
+    out_ << '[';
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      if (i > 0) out_ << ", ";
+      write(values[i]);
+    }
+    out_ << ']';
+    return *this;
+  }
   void start(std::string_view key) {
     out_ << (first_ ? "{" : ", ");
     first_ = false;

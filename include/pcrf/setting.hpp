@@ -13,6 +13,7 @@
 /// into checked member values and back.
 #pragma once
 
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -283,6 +284,39 @@ Setting<Target> words_setting(std::string_view key, std::string Target::*member,
   s.get = [member](const Target& t) { return SettingValue(t.*member); };
   s.set = [member](Target& t, const SettingValue& v) { t.*member = std::get<std::string>(v); };
   return s;
+}
+
+/// One text name of an enumeration value. A table of them is the enumeration's only
+/// spelling: its text forms (name_of, parse_name) and its choices (values_of) read it.
+template <class Enum>
+struct EnumName {
+  Enum value;
+  const char* name;
+};
+
+template <class Enum, std::size_t N>
+std::string name_of(const std::array<EnumName<Enum>, N>& names, Enum value) {
+  for (const auto& n : names)
+    if (n.value == value) return n.name;
+  return "unknown";
+}
+
+/// \throws std::invalid_argument "unknown WHAT 'text' (expected a, b or c)".
+template <class Enum, std::size_t N>
+Enum parse_name(const std::array<EnumName<Enum>, N>& names, const std::string& text, std::string_view what) {
+  std::string expected;
+  for (std::size_t i = 0; i < N; ++i) {
+    if (text == names[i].name) return names[i].value;
+    expected += (i == 0 ? "" : i + 1 == N ? " or " : ", ") + std::string(names[i].name);
+  }
+  throw std::invalid_argument("unknown " + std::string(what) + " '" + text + "' (expected " + expected + ")");
+}
+
+template <class Enum, std::size_t N>
+std::vector<Enum> values_of(const std::array<EnumName<Enum>, N>& names) {
+  std::vector<Enum> values;
+  for (const auto& n : names) values.push_back(n.value);
+  return values;
 }
 
 /// An enumeration member with text forms `format(value)` and `parse(text)`.

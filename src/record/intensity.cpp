@@ -17,6 +17,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -121,21 +122,17 @@ double spectral_acceleration_g(const GroundMotion& record, double period_s, doub
   return omega * omega * peak / kGravity_m_s2;
 }
 
+namespace {
+constexpr std::array<EnumName<IntensityMeasure>, 3> kMeasureNames{{{IntensityMeasure::kPga, "pga_g"},
+                                                                   {IntensityMeasure::kPgv, "pgv_m_s"},
+                                                                   {IntensityMeasure::kSa, "sa_g"}}};
+}  // namespace
+
 IntensityMeasure parse_intensity_measure(const std::string& text) {
-  if (text == "pga_g") return IntensityMeasure::kPga;
-  if (text == "pgv_m_s") return IntensityMeasure::kPgv;
-  if (text == "sa_g") return IntensityMeasure::kSa;
-  throw std::invalid_argument("unknown intensity measure '" + text + "' (expected pga_g, pgv_m_s or sa_g)");
+  return parse_name(kMeasureNames, text, "intensity measure");
 }
 
-std::string to_string(IntensityMeasure measure) {
-  switch (measure) {
-    case IntensityMeasure::kPga: return "pga_g";
-    case IntensityMeasure::kPgv: return "pgv_m_s";
-    case IntensityMeasure::kSa: return "sa_g";
-  }
-  return "pga_g";
-}
+std::string to_string(IntensityMeasure measure) { return name_of(kMeasureNames, measure); }
 
 std::string_view intensity_units(IntensityMeasure measure) {
   return measure == IntensityMeasure::kPgv ? "m/s" : "g";
@@ -168,8 +165,7 @@ const SettingTable<IntensitySpec>& intensity_settings() {
   static const SettingTable<IntensitySpec> table = [] {
     SettingTable<IntensitySpec> t{"intensity", IntensitySpec{}, {}};
     auto& s = t.settings;
-    s.push_back(choice_setting("measure", &IntensitySpec::measure,
-                               {IntensityMeasure::kPga, IntensityMeasure::kPgv, IntensityMeasure::kSa}, &to_string,
+    s.push_back(choice_setting("measure", &IntensitySpec::measure, values_of(kMeasureNames), &to_string,
                                &parse_intensity_measure,
                                "what records are scaled to: peak ground acceleration [g], velocity [m/s] or Sa(T) [g]"));
     s.push_back(number_setting("period_s", &IntensitySpec::period_s, "s", Bound::kNonNegative,

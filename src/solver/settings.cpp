@@ -1,53 +1,41 @@
 // Text forms of the physics and solver options (command line, study files, results).
 #include "pcrf/solver/settings.hpp"
 
+#include <array>
 #include <stdexcept>
 
 namespace pcrf {
 
+namespace {
+
+constexpr std::array<EnumName<UpliftCriterion>, 3> kUpliftNames{{{UpliftCriterion::kPhysical, "physical"},
+                                                                 {UpliftCriterion::kPaper, "paper"},
+                                                                 {UpliftCriterion::kPaperProcedure, "paper-procedure"}}};
+
+constexpr std::array<EnumName<Integrator>, 5> kIntegratorNames{{{Integrator::kArkodeErk5, "arkode-erk5"},
+                                                                {Integrator::kArkodeErk8, "arkode-erk8"},
+                                                                {Integrator::kCvodeAdams, "cvode-adams"},
+                                                                {Integrator::kCvodeBdf, "cvode-bdf"},
+                                                                {Integrator::kFixedRk4SignChange, "fixed-rk4"}}};
+
+}  // namespace
+
 UpliftCriterion parse_uplift_criterion(const std::string& text) {
-  if (text == "physical") return UpliftCriterion::kPhysical;
-  if (text == "paper") return UpliftCriterion::kPaper;
-  if (text == "paper-procedure") return UpliftCriterion::kPaperProcedure;
-  throw std::invalid_argument("unknown uplift criterion '" + text + "' (expected physical, paper or paper-procedure)");
+  return parse_name(kUpliftNames, text, "uplift criterion");
 }
 
-std::string to_string(UpliftCriterion c) {
-  switch (c) {
-    case UpliftCriterion::kPhysical: return "physical";
-    case UpliftCriterion::kPaper: return "paper";
-    case UpliftCriterion::kPaperProcedure: return "paper-procedure";
-  }
-  return "unknown";
-}
+std::string to_string(UpliftCriterion c) { return name_of(kUpliftNames, c); }
 
-Integrator parse_integrator(const std::string& text) {
-  if (text == "cvode-bdf") return Integrator::kCvodeBdf;
-  if (text == "cvode-adams") return Integrator::kCvodeAdams;
-  if (text == "arkode-erk5") return Integrator::kArkodeErk5;
-  if (text == "arkode-erk8") return Integrator::kArkodeErk8;
-  if (text == "fixed-rk4") return Integrator::kFixedRk4SignChange;
-  throw std::invalid_argument("unknown integrator '" + text +
-                              "' (expected cvode-adams, cvode-bdf, arkode-erk5, arkode-erk8 or fixed-rk4)");
-}
+Integrator parse_integrator(const std::string& text) { return parse_name(kIntegratorNames, text, "integrator"); }
 
-std::string to_string(Integrator i) {
-  switch (i) {
-    case Integrator::kCvodeBdf: return "cvode-bdf";
-    case Integrator::kCvodeAdams: return "cvode-adams";
-    case Integrator::kArkodeErk5: return "arkode-erk5";
-    case Integrator::kArkodeErk8: return "arkode-erk8";
-    case Integrator::kFixedRk4SignChange: return "fixed-rk4";
-  }
-  return "unknown";
-}
+std::string to_string(Integrator i) { return name_of(kIntegratorNames, i); }
 
 const SettingTable<PhysicsOptions>& physics_settings() {
   using P = PhysicsOptions;
   static const SettingTable<PhysicsOptions> table = [] {
     SettingTable<PhysicsOptions> t{"physics", PhysicsOptions{}, {}};
     auto& s = t.settings;
-    s.push_back(choice_setting("uplift", &P::uplift, {UpliftCriterion::kPhysical, UpliftCriterion::kPaper, UpliftCriterion::kPaperProcedure},
+    s.push_back(choice_setting("uplift", &P::uplift, values_of(kUpliftNames),
                                &to_string, &parse_uplift_criterion,
                                "uplift criterion (README, \"Uplift criteria\"); paper-procedure is NON-PHYSICAL "
                                "(motion from the paper's t_RI, no contact condition; with integrator fixed-rk4)"));
@@ -84,10 +72,8 @@ const SettingTable<SolverSettings>& solver_settings() {
     preset.get = [](const S& v) { return SettingValue(v.preset); };
     preset.set = [](S& v, const SettingValue& value) { v = preset_settings(std::get<std::string>(value)); };
     s.push_back(std::move(preset));
-    s.push_back(choice_setting("integrator", &S::integrator,
-                               {Integrator::kArkodeErk5, Integrator::kArkodeErk8, Integrator::kCvodeAdams,
-                                Integrator::kCvodeBdf, Integrator::kFixedRk4SignChange},
-                               &to_string, &parse_integrator, "time integrator"));
+    s.push_back(choice_setting("integrator", &S::integrator, values_of(kIntegratorNames), &to_string, &parse_integrator,
+                               "time integrator"));
     s.push_back(number_setting("rtol", &S::rtol, "1", Bound::kPositive, "relative tolerance"));
     s.push_back(number_setting("atol_theta_rad", &S::atol_theta_rad, "rad", Bound::kPositive,
                                "absolute tolerance on θ₁"));
