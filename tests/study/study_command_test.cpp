@@ -112,27 +112,6 @@ TEST(StudyCommand, MoreRanksThanCasesIsFine) {
   EXPECT_EQ(std::count(status.begin(), status.end(), cube::kStatusNotRun), 0);
 }
 
-/// Done/total of the last progress line in a stderr file.
-std::pair<long, long> last_progress(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  std::pair<long, long> last{0, 0};
-  static const std::regex progress(R"(pcrf study: (\d+)/(\d+) cases)");
-  for (std::string line; std::getline(in, line);) {
-    std::smatch m;
-    if (std::regex_search(line, m, progress)) last = {std::stol(m[1]), std::stol(m[2])};
-  }
-  return last;
-}
-
-/// Waits (12 s at most) until the progress lines in `err` report a tenth of the cases done.
-void wait_for_a_tenth(const std::filesystem::path& err) {
-  std::pair<long, long> progress{0, 0};
-  for (int i = 0; i < 600 && !(progress.second > 0 && progress.first >= progress.second / 10); ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    progress = last_progress(err);
-  }
-}
-
 TEST(StudyCommand, KilledRunResumesToTheUninterruptedCube) {
   PCRF_REQUIRE_MPIRUN();
   const auto dir = test::scratch_dir("study_kill_resume");
