@@ -161,6 +161,10 @@ double intensity_of(const GroundMotion& record, const IntensitySpec& spec) {
   return 0.0;
 }
 
+double intensity_scale_factor(double target_intensity, double record_intensity) {
+  return target_intensity / record_intensity;
+}
+
 const SettingTable<IntensitySpec>& intensity_settings() {
   static const SettingTable<IntensitySpec> table = [] {
     SettingTable<IntensitySpec> t{"intensity", IntensitySpec{}, {}};

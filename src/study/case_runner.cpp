@@ -59,7 +59,7 @@ parallel::CaseOutcome CaseRunner::run(const parallel::WorkItem& item, const Hist
   try {
     CaseSpec spec = space_.case_at(index);
     spec.level = level_of(spec, item);
-    const double factor = scale_factor(spec);
+    const double factor = records_.scale_factor(spec.record, spec.level, study_.intensity);
     if (study_.ida) {  // the run's intensity and factor travel with it, whatever happens next
       outcome.row[metrics_.size()] = spec.level;
       outcome.row[metrics_.size() + 1] = factor;
@@ -92,11 +92,6 @@ parallel::CaseOutcome CaseRunner::run(const parallel::WorkItem& item, const Hist
     mark_failed(outcome, metrics_.size(), "unknown exception");
   }
   return outcome;
-}
-
-double CaseRunner::scale_factor(const CaseSpec& spec) const {
-  if (!study_.intensity) return spec.level;
-  return spec.level / records_.intensity(spec.record, *study_.intensity);
 }
 
 std::shared_ptr<const GroundMotion> CaseRunner::scaled_record(std::size_t record, double scale) const {

@@ -47,17 +47,6 @@ std::string utc_now() {
   return buffer;
 }
 
-/// What a record calls itself: the AT2 title line, else the file name or the synthetic text.
-std::string record_title(const RecordSource& source) {
-  if (!source.file) return source.synthetic;
-  try {
-    const auto meta = read_metadata(*source.file);
-    if (!meta.title.empty()) return meta.title;
-  } catch (const RecordError&) {  // the record itself loaded: a title is not worth failing for
-  }
-  return source.file->path.filename().string();
-}
-
 /// The record axis (names, sources, titles, and with an intensity axis each record's
 /// unscaled intensity) and the second axis, `scale` or `intensity`.
 void add_record_and_level(const Study& study, const CaseSpace& space, RecordCache& records,
@@ -65,9 +54,9 @@ void add_record_and_level(const Study& study, const CaseSpace& space, RecordCach
   auto& coords = layout.coordinates;
   coords.push_back(texts(names::kRecord, names::kRecord, "ground motion record", space.record_names()));
   std::vector<std::string> sources, titles;
-  for (const auto& r : study.records) {
-    sources.push_back(r.describe());
-    titles.push_back(record_title(r));
+  for (std::size_t r = 0; r < study.records.size(); ++r) {
+    sources.push_back(study.records[r].describe());
+    titles.push_back(records.title(r));
   }
   coords.push_back(texts(names::kRecordSource, names::kRecord, "where the record comes from", sources));
   coords.push_back(texts(names::kRecordTitle, names::kRecord, "the record's own title (AT2 header)", titles));
@@ -85,8 +74,8 @@ void add_record_and_level(const Study& study, const CaseSpace& space, RecordCach
   coords.push_back(numbers(names::kIntensity, names::kIntensity, units, long_name, space.levels()));
   cube::SideVariable factor{names::kScaleFactor, "1", "factor applied to the record's accelerations to reach the intensity",
                             {names::kRecord, names::kIntensity}, {}};
-  for (double im_r : unscaled)
-    for (double level : space.levels()) factor.values.push_back(level / im_r);
+  for (std::size_t r = 0; r < study.records.size(); ++r)
+    for (double level : space.levels()) factor.values.push_back(records.scale_factor(r, level, study.intensity));
   layout.side_variables.push_back(std::move(factor));
 }
 

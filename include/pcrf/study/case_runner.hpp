@@ -42,8 +42,6 @@ class CaseRunner {
   /// (record, level) pairs are kept: cheap cases (a frame that never lifts off) would
   /// otherwise spend their time copying records.
   std::shared_ptr<const GroundMotion> scaled_record(std::size_t record, double scale) const;
-  /// The factor a case multiplies its record by: its level, or level / IM(record).
-  double scale_factor(const CaseSpec& spec) const;
   /// The level of a case: its axis value, or in an IDA the intensity its work item carries.
   static double level_of(const CaseSpec& spec, const parallel::WorkItem& item);
 
