@@ -59,9 +59,10 @@ const PlanEntry& read_plan_kind(const Fields& top, const Fields& plan) {
   const auto& registry = detail::plan_registry();
   const auto entry = std::find_if(registry.begin(), registry.end(), [&](const PlanEntry& e) { return e.name == kind; });
   if (entry == registry.end()) {
+    const auto kinds = plan_kinds();
     std::string expected;
-    for (std::size_t i = 0; i < registry.size(); ++i)
-      expected += (i == 0 ? "" : i + 1 == registry.size() ? " or " : ", ") + ("\"" + std::string(registry[i].name) + "\"");
+    for (std::size_t i = 0; i < kinds.size(); ++i)
+      expected += (i == 0 ? "" : i + 1 == kinds.size() ? " or " : ", ") + ("\"" + std::string(kinds[i]) + "\"");
     plan.fail("kind", "expected " + expected + ", got \"" + kind + "\"");
   }
   for (const auto& other : registry)

@@ -57,6 +57,9 @@ class Plan {
   virtual void describe(std::ostream& out) const = 0;
 };
 
+/// The names of every plan kind a study file can give ([plan] kind), the default first.
+std::vector<std::string_view> plan_kinds();
+
 /// \throws StudyError "<declared_at>: outputs.histories \"<label>\": <problem>".
 [[noreturn]] void fail_history(const HistoryRequest& request, const std::string& problem);
 

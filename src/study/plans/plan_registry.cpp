@@ -24,3 +24,13 @@ const std::vector<PlanEntry>& plan_registry() {
 }
 
 }  // namespace pcrf::study::detail
+
+namespace pcrf::study {
+
+std::vector<std::string_view> plan_kinds() {
+  std::vector<std::string_view> names;
+  for (const auto& entry : detail::plan_registry()) names.push_back(entry.name);
+  return names;
+}
+
+}  // namespace pcrf::study
