@@ -8,6 +8,7 @@
 
 #include "pcrf/metrics/case_result.hpp"
 #include "pcrf/study/cube_vocabulary.hpp"
+#include "pcrf/study/result_row.hpp"
 #include "pcrf/version.hpp"
 
 namespace pcrf::study {
@@ -96,9 +97,6 @@ void add_ida_variables(const Study& study, const CaseSpace& space, cube::CubeLay
   layout.coordinates.push_back(std::move(axis));
   const IntensitySpec& im = *study.intensity;
   const std::string units(intensity_units(im.measure));
-  const std::string measure = intensity_long_name(im.measure, im.period_s, im.damping);
-  layout.metrics.push_back({names::kIdaIntensity, units, "intensity of the run: " + measure});
-  layout.metrics.push_back({names::kScaleFactor, "1", "factor applied to the record's accelerations for the run"});
   std::vector<std::string> curve_axes(space.dimension_names().begin(), space.dimension_names().end() - 1);
   layout.side_variables.push_back({names::kCollapseIntensity, units,
                                    "lowest intensity found to collapse (NaN: none up to max_intensity, right-censored)",
@@ -149,10 +147,7 @@ cube::CubeLayout make_cube_layout(const Study& study, const CaseSpace& space, Re
     layout.dimensions.push_back({space.dimension_names()[d], space.shape()[d]});
   add_record_and_level(study, space, records, layout);
   for (auto& c : space.plan().coordinates()) layout.coordinates.push_back(std::move(c));
-  for (const auto& name : study.metrics) {
-    const MetricInfo* m = find_metric(name);
-    layout.metrics.push_back({name, std::string(m->units), std::string(m->description)});
-  }
+  layout.metrics = ResultColumns(study).variables();
   if (study.ida) add_ida_variables(study, space, layout);
   for (CaseStatus status : all_final_statuses())
     layout.status_flags.push_back({static_cast<std::int8_t>(status), std::string(status_name(status))});
