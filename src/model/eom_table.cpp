@@ -59,7 +59,7 @@ EomTable::EomTable(const EquationOfMotion& eom, double cell_rad)
 bool EomTable::negative_branch(double phi, Terms& out) const {
   EomTerms t;
   if (!eom_.terms(phi, -1, t)) return false;
-  out = {t.I, t.J, t.G * kGravity_m_s2 + t.K, t.S, t.G};
+  out = {t.I, t.J, t.G * eom_.frame().gravity_m_s2 + t.K, t.S, t.G};
   return true;
 }
 
@@ -84,11 +84,12 @@ void EomTable::build(Cell& cell, int index) const {
     Terms t{};
     if (!negative_branch(-u, t)) return;
     auto close = [](double a, double b, double scale) { return std::abs(a - b) <= 1e-11 * scale; };
-    const double qs = std::abs(t.Q) + std::abs(t.S) * kGravity_m_s2;  // Q is compared with S·g
+    const double g = eom_.frame().gravity_m_s2;
+    const double qs = std::abs(t.Q) + std::abs(t.S) * g;  // Q is compared with S·g
     // G·g is compared with the same scale: it enters as G·ü_v next to Q and S·ü_h.
     if (!close(clenshaw(cell.c.I, x), t.I, std::abs(t.I)) || !close(clenshaw(cell.c.J, x), t.J, std::abs(t.I)) ||
         !close(clenshaw(cell.c.Q, x), t.Q, qs) || !close(clenshaw(cell.c.S, x), t.S, std::abs(t.S)) ||
-        !close(clenshaw(cell.c.G, x) * kGravity_m_s2, t.G * kGravity_m_s2, qs))
+        !close(clenshaw(cell.c.G, x) * g, t.G * g, qs))
       return;
   }
   cell.state = Cell::State::kTabulated;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -67,6 +68,35 @@ double first_opening(const Excitation& excitation, const EquationOfMotion& eom, 
     if (!std::isnan(best)) return best <= t_end ? best : kNaN;
   }
   return kNaN;
+}
+
+double free_fall_time(const Excitation& excitation, double gravity_m_s2, double t_end) {
+  const GroundMotion* vertical = excitation.vertical();
+  if (vertical == nullptr) return kNaN;
+  const auto& a = vertical->samples_m_s2();
+  const double level = -gravity_m_s2, dt = vertical->dt_s();
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (!(a[i] <= level)) continue;
+    const double t = i == 0 ? 0.0 : (static_cast<double>(i - 1) + (level - a[i - 1]) / (a[i] - a[i - 1])) * dt;
+    return t <= t_end ? t : kNaN;
+  }
+  return kNaN;
+}
+
+CaseEnd::CaseEnd(const Excitation& excitation, double gravity_m_s2, double tail_s)
+    : t_end_s(excitation.duration_s() + tail_s), free_fall(false) {
+  const double t_fall = free_fall_time(excitation, gravity_m_s2, t_end_s);
+  if (!std::isnan(t_fall)) t_end_s = t_fall, free_fall = true;
+}
+
+std::string CaseEnd::message() const {
+  if (!free_fall) return {};
+  char text[160];
+  std::snprintf(text, sizeof text,
+                "the ground fell faster than gravity (g + vertical acceleration <= 0) at t = %.6g s: the frame "
+                "leaves its supports, which the model does not describe",
+                t_end_s);
+  return text;
 }
 
 double paper_trigger_time(const GroundMotion& rec, double lambda_g) {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <algorithm>
+#include <string>
 
 #include "pcrf/excitation/excitation.hpp"
 #include "pcrf/metrics/case_result.hpp"
@@ -24,6 +25,23 @@ double first_exceedance(const GroundMotion& rec, double t_from, double t_end, do
 /// components; NaN when it never happens before `t_end`. Without a vertical component it is
 /// first_exceedance of the horizontal at the constant threshold.
 double first_opening(const Excitation& excitation, const EquationOfMotion& eom, double t_from, double t_end);
+
+/// First time in [0, t_end] at which g + ü_v ≤ 0, the ground falling at least as fast as
+/// gravity (docs/vertical_excitation.md), exact within the linear interpolation of the
+/// vertical component; NaN when it never does (always without a vertical component).
+double free_fall_time(const Excitation& excitation, double gravity_m_s2, double t_end);
+
+/// When and why a case's simulated time ends: the end of the record plus the tail, or the
+/// ground's free fall if that comes first.
+struct CaseEnd {
+  CaseEnd(const Excitation& excitation, double gravity_m_s2, double tail_s);
+  double t_end_s;   ///< [s]
+  bool free_fall;   ///< t_end_s is the free fall's start
+  /// The status of a case that reached t_end_s without collapsing (`reached`: at rest or
+  /// still rocking), and its message.
+  CaseStatus status(CaseStatus reached) const { return free_fall ? CaseStatus::kGroundFreeFall : reached; }
+  std::string message() const;
+};
 
 /// First sample i with |a_i| ≥ λ_g·g, as i·dt (the paper's t_RI) [s]; NaN when none.
 double paper_trigger_time(const GroundMotion& rec, double lambda_g);

@@ -26,7 +26,8 @@ class FixedStepRun {
         history_(history, eom, excitation),
         r_(restitution_momentum(eom)),
         h_(solver.fixed_step_s > 0 ? solver.fixed_step_s : excitation.dt_s()),
-        t_end_(excitation.duration_s() + physics.tail_s),
+        end_(excitation, eom.frame().gravity_m_s2, physics.tail_s),
+        t_end_(end_.t_end_s),
         stop_(stop_angles(eom, physics)) {}
 
   CaseResult run() {
@@ -40,7 +41,7 @@ class FixedStepRun {
       t = physics_.uplift == UpliftCriterion::kPaperProcedure
               ? paper_trigger_time(excitation_.horizontal(), eom_.lambda_g())
               : first_opening(excitation_, eom_, 0.0, t_end_);
-      if (std::isnan(t)) return finish(CaseStatus::kAtRest, t_end_);
+      if (std::isnan(t) || t > t_end_) return finish(end_.status(CaseStatus::kAtRest), t_end_, end_.message());
       side_ = uplift_side(excitation_.at(t).horizontal_m_s2);
     } else {
       side_ = initial_side(y.theta, y.omega);
@@ -75,7 +76,7 @@ class FixedStepRun {
         return finish(CaseStatus::kSolverFailure, t, "non-finite state");
       if (std::abs(y.theta) >= stop_.stop_rad()) return finish(stop_.status(), t, stop_.message());
     }
-    return finish(CaseStatus::kRockingAtEnd, t);
+    return finish(end_.status(CaseStatus::kRockingAtEnd), t, end_.message());
   }
 
  private:
@@ -127,6 +128,7 @@ class FixedStepRun {
   State last_{0.0, 0.0};  // the state at the last step's end
   double r_;
   double h_;
+  CaseEnd end_;
   double t_end_;
   StopAngles stop_;
   int side_ = -1;

@@ -117,7 +117,8 @@ class CaseRun {
         stop_(frame.stop_angles()),
         problem_(frame.table(), excitation_, stop_.stop_rad(), request.omega_peak),
         integrator_(detail::make_integrator(solver, problem_)),
-        t_end_(excitation.duration_s() + physics_.tail_s) {}
+        end_(excitation, frame.frame().gravity_m_s2, physics_.tail_s),
+        t_end_(end_.t_end_s) {}
 
   CaseResult run();
 
@@ -152,6 +153,7 @@ class CaseRun {
   detail::StopAngles stop_;
   FlightProblem problem_;
   std::unique_ptr<detail::OdeIntegrator> integrator_;
+  detail::CaseEnd end_;
   double t_end_;
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 
@@ -196,7 +198,7 @@ void CaseRun::rest_until_uplift() {
   if (std::isnan(t_open)) {
     emit_rest_until(t_end_);
     t_ = t_end_;
-    finish(CaseStatus::kAtRest);
+    finish(end_.status(CaseStatus::kAtRest), end_.message());
     return;
   }
   emit_rest_until(t_open);
@@ -278,7 +280,7 @@ void CaseRun::fly() {
   note_theta(t, y[0]);
   if (request_.omega_peak) note_omega(t, y[1]);
   if (t >= t_end_) {
-    finish(CaseStatus::kRockingAtEnd);
+    finish(end_.status(CaseStatus::kRockingAtEnd), end_.message());
   } else if (over_time()) {
     finish(CaseStatus::kTimeLimit, "wall-time limit reached at t = " + std::to_string(t) + " s");
   }
@@ -439,7 +441,9 @@ std::optional<CaseResult> rest_throughout(PreparedFrame& frame, const Excitation
                                           const OutputRequest& request, const HistorySink& history) {
   const PhysicsOptions& physics = frame.physics();
   if (history || frame.broken_at_rest() || physics.theta0_rad != 0.0 || physics.omega0_rad_s != 0.0) return std::nullopt;
-  const double t_end = excitation.duration_s() + physics.tail_s;
+  const detail::CaseEnd end(excitation, frame.frame().gravity_m_s2, physics.tail_s);
+  if (end.free_fall) return std::nullopt;  // the full run ends it at the free fall
+  const double t_end = end.t_end_s;
   if (!std::isnan(first_opening(excitation, frame.eom(), 0.0, t_end))) return std::nullopt;
   CaseResult result = detail::initial_result(frame.eom(), excitation, frame.restitution(), request.omega_peak);
   result.status = CaseStatus::kAtRest;
