@@ -181,7 +181,7 @@ void add_cube_command(CLI::App& app) {
   merge->callback([args] {
     guarded(args->output, [&] {
       std::vector<std::filesystem::path> parts(args->parts.begin(), args->parts.end());
-      cube::merge_cubes(parts, args->output, args->overwrite);
+      cube::merge_cubes(parts, args->output, args->overwrite, study::vocabulary::kIdaRuns);
       std::cout << "merged " << parts.size() << " parts into " << args->output << '\n';
     });
   });

@@ -51,7 +51,7 @@ double scale_factor(const RunOptions& o, const GroundMotion& motion) {
   if (const auto problem = intensity_spec_problem(spec); !problem.empty()) throw UsageError("--period-s: " + problem);
   const double im = intensity_of(motion, spec);
   if (!(im > 0.0)) throw UsageError(motion.name() + ": its " + to_string(spec.measure) + " is 0: it cannot be scaled");
-  return o.intensity / im;
+  return intensity_scale_factor(o.intensity, im);
 }
 
 GroundMotion load_motion(const RunOptions& o, double& factor) {

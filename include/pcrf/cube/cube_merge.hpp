@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 #include <vector>
 
 namespace pcrf::cube {
@@ -11,7 +12,13 @@ namespace pcrf::cube {
 /// in two of them, and that together they hold every case; then writes their union to
 /// `output` (refused when it exists, unless `overwrite`; never one of the parts). Side
 /// variables take each value from the part that has it; messages are joined.
+///
+/// `runs_variable` names a side variable that a cube of an adaptive plan carries (the
+/// caller's vocabulary, not the cube's): over every dimension but the last, how many of the
+/// row's cases along the last dimension were run, the first ones; the others are not
+/// missing. Empty, or absent from the cube: every case must be in a part.
 /// \throws CubeError naming the file and the problem (what is missing, which case is twice).
-void merge_cubes(const std::vector<std::filesystem::path>& parts, const std::filesystem::path& output, bool overwrite);
+void merge_cubes(const std::vector<std::filesystem::path>& parts, const std::filesystem::path& output, bool overwrite,
+                 const std::string& runs_variable = {});
 
 }  // namespace pcrf::cube
