@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "cli/frame_flags.hpp"
 #include "cli/record_flags.hpp"
 #include "cli/setting_flags.hpp"
 #include "pcrf/model/frame.hpp"
@@ -97,12 +98,7 @@ void run(const RunOptions& o) {
   const GroundMotion motion = load_motion(o, factor);
   const PhysicsOptions physics = o.physics->resolve();
   const SolverSettings solver = o.solver->resolve();
-  Frame frame{};
-  try {
-    frame = make_frame(o.frame);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
+  const Frame frame = frame_from_flags(o.frame);
   std::unique_ptr<CsvHistory> csv;
   HistorySink sink;
   if (!o.history_file.empty()) {
@@ -121,23 +117,6 @@ void run(const RunOptions& o) {
   json.number("scale_factor", factor);
   add_to_json(json, result);
   std::cout << json.str() << std::endl;
-}
-
-/// --kappa … --pi-e-c and --h-m, --m-c-kg (older spelling --mc), from the parameter tables.
-/// The older `--h` is gone: CLI11 2.4 refuses a one-letter long name beside `-h` (help).
-void add_frame_flags(CLI::App* cmd, FrameParameters& frame) {
-  const std::string group = "frame (default: the paper's basic model)";
-  for (const auto& info : all_parameters())
-    cmd->add_option(flag_name(info.name), frame.*info.member, std::string(info.long_name))
-        ->capture_default_str()
-        ->group(group);
-  for (const auto& info : size_parameters()) {
-    const std::string older = info.name == "m_c_kg" ? ",--mc" : "";
-    cmd->add_option(flag_name(info.name) + older, frame.*info.member,
-                    std::string(info.long_name) + " [" + std::string(info.units) + "]")
-        ->capture_default_str()
-        ->group(group);
-  }
 }
 
 }  // namespace

@@ -239,3 +239,29 @@ TEST(RecordCommand, APairPrintsBothComponentsAndTheirRotD) {
 
 }  // namespace
 }  // namespace pcrf
+
+namespace pcrf {
+namespace {
+
+TEST(FrameCommand, PrintsThePropertiesAndThePushoverCurve) {
+  const auto text = test::run_command(pcrf() + " frame --points 5");
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("uplift threshold (prestress included)"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("rad (column tendon)"), std::string::npos) << text.out;
+  const auto json = test::run_command(pcrf() + " frame --points 3 --json --kappa 2.5");
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  EXPECT_EQ(json.out.find('\n'), json.out.size() - 1);
+  for (const char* key : {"lambda_g", "uplift_threshold_g", "restitution", "frequency_parameter_rad_s",
+                          "fracture_angle_rad", "overturn_angle_rad", "capacity_g", "capacity_theta_rad"})
+    EXPECT_FALSE(std::isnan(json_number(json.out, key))) << key;
+  EXPECT_NE(json.out.find("\"pushover_theta_rad\": [0, "), std::string::npos) << json.out;
+  const auto bad = test::run_command(pcrf() + " frame --points 1");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--points must be at least 2"), std::string::npos) << bad.err;
+  const auto impossible = test::run_command(pcrf() + " frame --lambda-h 1.5");
+  EXPECT_EQ(impossible.exit_code, 2);
+  EXPECT_NE(impossible.err.find("lambda_h"), std::string::npos) << impossible.err;
+}
+
+}  // namespace
+}  // namespace pcrf
