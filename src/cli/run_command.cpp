@@ -36,6 +36,7 @@ struct RunOptions {
   std::unique_ptr<SettingFlags<SolverSettings>> solver;
   std::string history_file;
   double history_dt_s = 0.0;
+  std::optional<double> incidence_deg;  ///< the frame's plane [deg from north]; needs both horizontals
 };
 
 /// The factor the record is scaled by: --scale, or --intensity over the record's measure.
@@ -55,12 +56,16 @@ double scale_factor(const RunOptions& o, const GroundMotion& motion) {
   return intensity_scale_factor(o.intensity, im);
 }
 
-GroundMotion load_motion(const RunOptions& o, double& factor) {
-  const GroundMotion motion = o.record.load();
-  factor = scale_factor(o, motion);
+/// What the frame feels: the station's components at the frame's incidence, scaled by
+/// --scale or to --intensity of the in-plane horizontal motion.
+std::unique_ptr<FrameExcitation> load_excitation(const RunOptions& o, double& factor) {
+  std::vector<std::string> notes;
+  const StationRecord station = o.record.load_station(notes);
+  for (const auto& note : notes) std::cerr << "pcrf run: note: " << note << '\n';
   try {
-    return motion.scaled(factor);
-  } catch (const std::invalid_argument& e) {  // a scale that overflows the record
+    factor = scale_factor(o, in_plane_motion(station, o.incidence_deg));
+    return std::make_unique<FrameExcitation>(station, o.incidence_deg, factor);
+  } catch (const std::invalid_argument& e) {  // an incidence without a pair, a scale that overflows
     throw UsageError(e.what());
   }
 }
@@ -95,7 +100,7 @@ class CsvHistory {
 
 void run(const RunOptions& o) {
   double factor = 1.0;
-  const GroundMotion motion = load_motion(o, factor);
+  const auto excitation = load_excitation(o, factor);
   const PhysicsOptions physics = o.physics->resolve();
   const SolverSettings solver = o.solver->resolve();
   const Frame frame = frame_from_flags(o.frame);
@@ -109,7 +114,7 @@ void run(const RunOptions& o) {
   try {
     OutputRequest request;
     request.history_dt_s = o.history_dt_s;
-    result = solve_case(frame, motion, physics, solver, request, sink);
+    result = solve_case(frame, excitation->view(), physics, solver, request, sink);
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
@@ -125,6 +130,10 @@ void add_run_command(CLI::App& app) {
   auto o = std::make_shared<RunOptions>();
   CLI::App* cmd = app.add_subcommand("run", "Solve one case and print its result record as JSON");
   o->record.add_to(cmd, false, true);
+  o->record.add_components_to(cmd, "--record-h2", "--record-up");
+  cmd->add_option("--incidence-deg", o->incidence_deg,
+                  "azimuth of the frame's plane [deg from north]: the pair is projected on it (needs --record-h2)")
+      ->group("record");
   o->scale_flag = cmd->add_option("--scale", o->scale, "ground-motion scale factor [-]")->capture_default_str();
   o->intensity_flag = cmd->add_option("--intensity", o->intensity,
                                       "scale the record to this intensity of --measure (in its units: g or m/s)");
