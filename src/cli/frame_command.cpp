@@ -12,6 +12,7 @@
 #include "cli/frame_flags.hpp"
 #include "cli/setting_flags.hpp"
 #include "pcrf/json.hpp"
+#include "pcrf/model/equation_of_motion.hpp"
 #include "pcrf/model/frame_properties.hpp"
 #include "pcrf/solver/settings.hpp"
 

@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "pcrf/model/equation_of_motion.hpp"
+#include "pcrf/model/scene.hpp"
 
 namespace pcrf {
 
@@ -44,9 +44,9 @@ struct FrameProperties {
 
 /// The properties of `frame` whose tendons fracture at `fracture_strain`, the pushover curve
 /// sampled at `points` rotations (≥ 2) and its peak located to 1e-10 rad.
-FrameProperties frame_properties(const EquationOfMotion& eom, double fracture_strain, int points = 101);
+FrameProperties frame_properties(const Scene& eom, double fracture_strain, int points = 101);
 
 /// The pushover curve's ground acceleration at |θ₁| = theta_rad [g]; NaN past the closing limit.
-double pushover_accel_g(const EquationOfMotion& eom, double theta_rad);
+double pushover_accel_g(const Scene& eom, double theta_rad);
 
 }  // namespace pcrf
