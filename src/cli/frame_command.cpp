@@ -20,7 +20,7 @@ namespace pcrf::cli {
 namespace {
 
 struct FrameOptions {
-  FrameParameters frame;
+  SceneFlags scene;
   std::unique_ptr<SettingFlags<PhysicsOptions>> physics;
   int points = 41;
   bool json = false;
@@ -70,9 +70,8 @@ void print_text(const FrameProperties& p) {
 
 void describe(const FrameOptions& o) {
   if (o.points < 2) throw UsageError("--points must be at least 2");
-  const Frame frame = frame_from_flags(o.frame);
   const PhysicsOptions physics = o.physics->resolve();
-  const FrameProperties p = frame_properties(EquationOfMotion(frame), physics.fracture_strain, o.points);
+  const FrameProperties p = frame_properties(*o.scene.scene(), physics.fracture_strain, o.points);
   if (o.json) {
     std::cout << as_json(p).str() << std::endl;
   } else {
@@ -85,8 +84,8 @@ void describe(const FrameOptions& o) {
 void add_frame_command(CLI::App& app) {
   auto o = std::make_shared<FrameOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "frame", "A frame's properties (threshold, r, p, stop angles) and its static pushover curve");
-  add_frame_flags(cmd, o->frame);
+      "frame", "A scene's properties (threshold, r, p, stop angles) and its static pushover curve");
+  o->scene.add_to(cmd);
   o->physics = std::make_unique<SettingFlags<PhysicsOptions>>(cmd, physics_settings());
   cmd->add_option("--points", o->points, "rotations at which the pushover curve is printed")->capture_default_str();
   cmd->add_flag("--json", o->json, "one JSON object instead of text");

@@ -15,6 +15,15 @@ void check(bool ok, const char* key, const std::string& problem) {
 
 }  // namespace
 
+const std::array<RockerParameterInfo, 3>& rocker_parameters() {
+  static const std::array<RockerParameterInfo, 3> parameters{{
+      {"slenderness_rad", "slenderness alpha of the columns, tan alpha = b/h", "rad", &RockerParameters::slenderness_rad},
+      {"size_m", "half-diagonal R of the columns", "m", &RockerParameters::size_m},
+      {"beam_mass_ratio", "beam to columns mass ratio gamma (rocking-frame only)", "1", &RockerParameters::beam_mass_ratio},
+  }};
+  return parameters;
+}
+
 double RigidRocker::restitution_from_momentum(double alpha, double gamma) {
   const double s = std::sin(alpha);
   return (1.0 - 1.5 * s * s + 3.0 * gamma * std::cos(2.0 * alpha)) / (1.0 + 3.0 * gamma);
