@@ -10,6 +10,25 @@
 
 namespace pcrf {
 
+const std::vector<FramePropertyInfo>& frame_property_table() {
+  using P = FrameProperties;
+  static const std::vector<FramePropertyInfo> table = {
+      {"lambda_g", "uplift coefficient lambda_g = G/S", "1", &P::lambda_g},
+      {"uplift_threshold_g", "uplift threshold (prestress included)", "g", &P::uplift_threshold_g},
+      {"restitution", "coefficient of restitution r", "1", &P::restitution},
+      {"frequency_parameter_rad_s", "frequency parameter p", "rad/s", &P::frequency_parameter_rad_s},
+      {"equivalent_block_size_m", "equivalent block: size R", "m", &P::equivalent_block_size_m},
+      {"equivalent_block_slenderness_rad", "equivalent block: slenderness alpha", "rad",
+       &P::equivalent_block_slenderness_rad},
+      {"fracture_angle_rad", "fracture angle", "rad", &P::fracture_angle_rad},
+      {"overturn_angle_rad", "overturning angle", "rad", &P::overturn_angle_rad},
+      {"closing_limit_rad", "closing limit of the mechanism", "rad", &P::closing_limit_rad},
+      {"capacity_g", "static capacity (pushover peak)", "g", &P::capacity_g},
+      {"capacity_theta_rad", "  at rotation", "rad", &P::capacity_theta_rad},
+  };
+  return table;
+}
+
 double pushover_accel_g(const Scene& eom, double theta_rad) {
   EomTerms t;
   if (!eom.terms(-theta_rad, -1, t)) return std::numeric_limits<double>::quiet_NaN();

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "pcrf/model/scene.hpp"
@@ -41,6 +42,16 @@ struct FrameProperties {
   double capacity_g;               ///< the pushover curve's peak [g]
   double capacity_theta_rad;       ///< where it peaks [rad]
 };
+
+/// One number of FrameProperties: its key (JSON, Python), a label for people, its unit.
+struct FramePropertyInfo {
+  std::string_view key;
+  std::string_view label;
+  std::string_view units;  ///< "rad", "g", "m", "rad/s" or "1"
+  double FrameProperties::*member;
+};
+/// Every number of FrameProperties, in the order `pcrf frame` prints them.
+const std::vector<FramePropertyInfo>& frame_property_table();
 
 /// The properties of `frame` whose tendons fracture at `fracture_strain`, the pushover curve
 /// sampled at `points` rotations (≥ 2) and its peak located to 1e-10 rad.
