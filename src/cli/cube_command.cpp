@@ -1,9 +1,6 @@
 // `pcrf cube info|export|stats FILE`: looks into a result cube.
 #include <CLI/CLI.hpp>
 
-#include <cerrno>
-#include <cstring>
-#include <fstream>
 #include <functional>
 #include <iostream>
 #include <memory>
@@ -12,6 +9,7 @@
 #include "cli/commands.hpp"
 #include "pcrf/cube/cube_merge.hpp"
 #include "pcrf/cube/cube_query.hpp"
+#include "pcrf/io/output_file.hpp"
 #include "pcrf/study/cube_fragility.hpp"
 #include "pcrf/study/cube_sensitivity.hpp"
 #include "pcrf/study/cube_vocabulary.hpp"
@@ -52,14 +50,28 @@ void guarded(const std::string& file, Action action) {
   }
 }
 
-void with_output(const std::string& path, const std::function<void(std::ostream&)>& write) {
-  if (path.empty() || path == "-") {
+bool is_stdout(const std::string& path) { return path.empty() || path == "-"; }
+
+/// Refuses an output file before anything is computed (see io::check_output).
+void check_output(const std::string& path, const std::vector<std::filesystem::path>& inputs, bool overwrite) {
+  if (!is_stdout(path)) io::check_output(path, inputs, overwrite);
+}
+
+/// Writes `path` (stdout for "" or "-") by the one output rule (io::OutputFile): never one
+/// of `inputs`, an existing file replaced only with --overwrite, complete or not at all.
+void with_output(const std::string& path, const std::vector<std::filesystem::path>& inputs, bool overwrite,
+                 const std::function<void(std::ostream&)>& write) {
+  if (is_stdout(path)) {
     write(std::cout);
     return;
   }
-  std::ofstream out(path);
-  if (!out) throw UsageError(path + ": cannot create: " + std::strerror(errno));
-  write(out);
+  io::OutputFile out(path, inputs, overwrite);
+  write(out.stream());
+  out.commit();
+}
+
+void add_overwrite(CLI::App* cmd, CubeArguments& args) {
+  cmd->add_flag("--overwrite", args.overwrite, "replace existing output files (never the cube read)");
 }
 
 void add_where(CLI::App* cmd, CubeArguments& args) {
@@ -96,18 +108,22 @@ void add_cube_command(CLI::App& app) {
   exporter->add_option("-m,--metric", args->metrics, "metric to export (repeatable; default: all)");
   add_where(exporter, *args);
   exporter->add_option("-o,--output", args->output, "CSV file (default: stdout)");
+  add_overwrite(exporter, *args);
   auto* history = exporter->add_option("--history", args->history,
                                        "instead: the stored history group /histories/NAME, one row per time");
   history->excludes(exporter->get_option("--metric"))->excludes(exporter->get_option("--where"));
   exporter->callback([args] {
     guarded(args->file, [&] {
+      check_output(args->output, {args->file}, args->overwrite);
       cube::CubeReader reader(args->file);
       if (!args->history.empty()) {
-        with_output(args->output, [&](std::ostream& out) { cube::export_history_csv(reader, args->history, out); });
+        with_output(args->output, {args->file}, args->overwrite,
+                    [&](std::ostream& out) { cube::export_history_csv(reader, args->history, out); });
         return;
       }
       const auto chosen = selectors(args->where);
-      with_output(args->output, [&](std::ostream& out) { cube::export_csv(reader, args->metrics, chosen, out); });
+      with_output(args->output, {args->file}, args->overwrite,
+                  [&](std::ostream& out) { cube::export_csv(reader, args->metrics, chosen, out); });
     });
   });
 
@@ -139,17 +155,23 @@ void add_cube_command(CLI::App& app) {
   fragility->add_option("--csv", args->csv, "also write the table as CSV to this file");
   fragility->add_option("--points", args->points,
                         "also write the fitted data as CSV to this file: stripes, or IDA collapse and censored intensities");
+  add_overwrite(fragility, *args);
   fragility->callback([args] {
     guarded(args->file, [&] {
       if (args->mce && !(*args->mce > 0.0)) throw UsageError("--mce must be positive");
+      const std::vector<std::filesystem::path> csv_inputs{args->file}, points_inputs{args->file, args->csv};
+      check_output(args->csv, csv_inputs, args->overwrite);
+      check_output(args->points, is_stdout(args->csv) ? csv_inputs : points_inputs, args->overwrite);
       cube::CubeReader reader(args->file);
       const auto frames = study::cube_fragility(reader, selectors(args->where));
       const auto units = study::intensity_units(reader);
       study::print_fragility(frames, units, args->mce, false, std::cout);
       if (!args->csv.empty())
-        with_output(args->csv, [&](std::ostream& out) { study::print_fragility(frames, units, args->mce, true, out); });
+        with_output(args->csv, csv_inputs, args->overwrite,
+                    [&](std::ostream& out) { study::print_fragility(frames, units, args->mce, true, out); });
       if (!args->points.empty())
-        with_output(args->points, [&](std::ostream& out) { study::print_fragility_points(frames, out); });
+        with_output(args->points, is_stdout(args->csv) ? csv_inputs : points_inputs, args->overwrite,
+                    [&](std::ostream& out) { study::print_fragility_points(frames, out); });
     });
   });
 
@@ -160,9 +182,11 @@ void add_cube_command(CLI::App& app) {
   add_where(sensitivity, *args);
   sensitivity->add_option("--by", args->by, "`record`: one set of indices per record (default: across records)");
   sensitivity->add_option("--csv", args->csv, "also write the table as CSV to this file");
+  add_overwrite(sensitivity, *args);
   sensitivity->callback([args] {
     guarded(args->file, [&] {
       if (!args->by.empty() && args->by != "record") throw UsageError("--by takes `record` only");
+      check_output(args->csv, {args->file}, args->overwrite);
       cube::CubeReader reader(args->file);
       const auto groups = study::cube_sensitivity(reader, args->metric, selectors(args->where), args->by == "record");
       for (const auto& g : groups)
@@ -170,7 +194,9 @@ void add_cube_command(CLI::App& app) {
           std::cerr << "pcrf cube sensitivity: " << g.record << ": " << g.dropped
                     << " base samples left out (a frame without a value)\n";
       study::print_sensitivity(groups, false, std::cout);
-      if (!args->csv.empty()) with_output(args->csv, [&](std::ostream& out) { study::print_sensitivity(groups, true, out); });
+      if (!args->csv.empty())
+        with_output(args->csv, {args->file}, args->overwrite,
+                    [&](std::ostream& out) { study::print_sensitivity(groups, true, out); });
     });
   });
 

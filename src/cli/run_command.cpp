@@ -1,10 +1,7 @@
 // `pcrf run`: one case from the command line; the result record as JSON on stdout.
 #include <CLI/CLI.hpp>
 
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -13,6 +10,7 @@
 #include "cli/commands.hpp"
 #include "cli/record_flags.hpp"
 #include "cli/setting_flags.hpp"
+#include "pcrf/io/output_file.hpp"
 #include "pcrf/model/frame.hpp"
 #include "pcrf/model/parameters.hpp"
 #include "pcrf/record/intensity.hpp"
@@ -35,6 +33,7 @@ struct RunOptions {
   std::unique_ptr<SettingFlags<SolverSettings>> solver;
   std::string history_file;
   double history_dt_s = 0.0;
+  bool overwrite = false;  ///< replace an existing history file
 };
 
 /// The factor the record is scaled by: --scale, or --intensity over the record's measure.
@@ -65,11 +64,14 @@ GroundMotion load_motion(const RunOptions& o, double& factor) {
 }
 
 /// Writes the history as CSV, one row per history row, a header of column names (their
-/// units are in the names; README "pcrf run" lists them).
+/// units are in the names; README "pcrf run" lists them), by the one output rule
+/// (io::OutputFile: never the record read, complete or not at all).
 class CsvHistory {
  public:
-  explicit CsvHistory(const std::string& path) : out_(path) {
-    if (!out_) throw UsageError(path + ": cannot create the history file: " + std::strerror(errno));
+  CsvHistory(const std::string& path, const std::string& record_file, bool overwrite)
+      : file_(path, record_file.empty() ? std::vector<std::filesystem::path>{} : std::vector<std::filesystem::path>{record_file},
+              overwrite),
+        out_(file_.stream()) {
     const char* separator = "";
     for (const auto& c : history_columns()) {
       out_ << separator << c.name;
@@ -87,9 +89,11 @@ class CsvHistory {
     }
     out_ << '\n';
   }
+  void commit() { file_.commit(); }
 
  private:
-  std::ofstream out_;
+  io::OutputFile file_;
+  std::ostream& out_;
 };
 
 void run(const RunOptions& o) {
@@ -106,7 +110,7 @@ void run(const RunOptions& o) {
   std::unique_ptr<CsvHistory> csv;
   HistorySink sink;
   if (!o.history_file.empty()) {
-    csv = std::make_unique<CsvHistory>(o.history_file);
+    csv = std::make_unique<CsvHistory>(o.history_file, o.record.file, o.overwrite);
     sink = [&csv](const HistorySample& s) { (*csv)(s); };
   }
   CaseResult result;
@@ -117,6 +121,7 @@ void run(const RunOptions& o) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
+  if (csv) csv->commit();
   JsonObject json;
   json.number("scale_factor", factor);
   add_to_json(json, result);
@@ -157,6 +162,7 @@ void add_run_command(CLI::App& app) {
                   "history output interval [s] (default: the record's dt); events are always added")
       ->needs(history)
       ->check(CLI::PositiveNumber);
+  cmd->add_flag("--overwrite", o->overwrite, "replace an existing --history file")->needs(history);
   cmd->callback([o]() { run(*o); });
 }
 

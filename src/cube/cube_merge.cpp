@@ -7,17 +7,16 @@
 
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/cube/cube_writer.hpp"
+#include "pcrf/io/output_file.hpp"
 
 namespace pcrf::cube {
 
 void merge_cubes(const std::vector<std::filesystem::path>& parts, const std::filesystem::path& output, bool overwrite) {
   if (parts.empty()) throw CubeError("no cube to merge");
-  std::error_code error;
-  for (const auto& part : parts)
-    if (std::filesystem::exists(output, error) && std::filesystem::equivalent(part, output, error))
-      throw CubeError(output.string() + ": -o names one of the parts");
-  if (std::filesystem::exists(output, error) && !overwrite)
-    throw CubeError(output.string() + ": already exists; use --overwrite to replace it");
+  // Written beside the output and renamed over it when complete: a merge that fails or is
+  // killed leaves no cube at -o (and any old one intact).
+  io::OutputFile out(output, parts, overwrite);
+  if (out.temporary().empty()) throw CubeError(output.string() + ": the merged cube must be a regular file");
 
   std::vector<std::unique_ptr<CubeReader>> readers;
   for (const auto& part : parts) readers.push_back(std::make_unique<CubeReader>(part));
@@ -65,7 +64,7 @@ void merge_cubes(const std::vector<std::filesystem::path>& parts, const std::fil
         if (std::isnan(side.values[k]) && !std::isnan(values[k])) side.values[k] = values[k];
     }
   }
-  CubeWriter writer(output, layout, overwrite ? OpenMode::kOverwrite : OpenMode::kCreate);
+  CubeWriter writer(out.temporary(), layout, OpenMode::kOverwrite);
   std::vector<std::vector<std::vector<double>>> metrics(readers.size());
   for (std::size_t p = 0; p < readers.size(); ++p)
     for (const auto& m : first.metrics) metrics[p].push_back(readers[p]->read_metric(m.name));
@@ -79,6 +78,7 @@ void merge_cubes(const std::vector<std::filesystem::path>& parts, const std::fil
   for (const auto& reader : readers)
     for (auto& [index, note] : reader->read_notes()) writer.store_note(index, note);
   writer.close();
+  out.commit();
 }
 
 }  // namespace pcrf::cube

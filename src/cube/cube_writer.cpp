@@ -469,7 +469,7 @@ void write_image(const std::filesystem::path& target, const std::vector<char>& i
     const std::string reason = std::strerror(errno);
     throw CubeError(cube + ": " + what + " " + target.string() + ": " + reason);
   };
-  const int fd = ::open(target.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  const int fd = ::open(target.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0666);  // the umask decides, as for every output
   if (fd < 0) fail("cannot create");
   std::size_t done = 0;
   while (done < image.size()) {

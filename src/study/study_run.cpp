@@ -12,6 +12,7 @@
 
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/cube/cube_writer.hpp"
+#include "pcrf/io/output_file.hpp"
 #include "pcrf/parallel/scheduler.hpp"
 #include "pcrf/parallel/work_queue.hpp"
 #include "pcrf/study/case_runner.hpp"
@@ -47,17 +48,9 @@ void apply_overrides(const StudyRunOptions& options, RunOptions& run) {
   for (const auto& [setting, value] : options.run_overrides) setting->set(run, value);
 }
 
-/// True when `a` and `b` name the same file (or would: an output not made yet compares by
-/// its absolute, normalized path).
-bool same_file(const std::filesystem::path& a, const std::filesystem::path& b) {
-  std::error_code error;
-  if (std::filesystem::exists(a, error) && std::filesystem::exists(b, error))
-    return std::filesystem::equivalent(a, b, error);
-  return std::filesystem::weakly_canonical(a, error) == std::filesystem::weakly_canonical(b, error);
-}
-
 /// An output must never be one of the study's inputs, whatever --overwrite says.
 void check_output_is_not_an_input(const std::filesystem::path& output, const StudyRunOptions& options, const Study& study) {
+  using io::same_file;  // the one rule of every command's outputs (symbolic and hard links)
   if (same_file(output, options.study_file))
     throw StudyError(output.string() + ": -o names the study file itself; choose another output (--overwrite does not apply to inputs)");
   for (const auto& r : study.records)

@@ -41,7 +41,7 @@ TEST(RunCommand, FrameParametersChangeTheResult) {
 TEST(RunCommand, WritesTheHistoryCsvAtTheAskedInterval) {
   const auto dir = test::scratch_dir("run_history");
   const auto csv = dir / "h.csv";
-  const std::string base = pcrf() + " run --synthetic 'sine:amplitude_g=1.5,period_s=0.5,cycles=2,duration_s=3' --history " +
+  const std::string base = pcrf() + " run --synthetic 'sine:amplitude_g=1.5,period_s=0.5,cycles=2,duration_s=3' --overwrite --history " +
                            csv.string();
   std::string expected_header;
   for (const auto& c : history_columns()) expected_header += (expected_header.empty() ? "" : ",") + std::string(c.name);
@@ -106,7 +106,7 @@ INSTANTIATE_TEST_SUITE_P(
                       BadArgs{"--record /tmp", "/tmp: not a regular file"},
                       BadArgs{"--synthetic 'sine:amplitude_g=1' --theta0-rad 100", "theta0_rad: |θ₀| = 100 rad"},
                       BadArgs{"--synthetic 'sine:amplitude_g=1' --history /no/such/dir/h.csv",
-                              "/no/such/dir/h.csv: cannot create the history file: No such file or directory"},
+                              "/no/such/dir/h.csv: cannot create a file in /no/such/dir: No such file or directory"},
                       BadArgs{"--synthetic 'sine:amplitude_g=1' --zeno-time-s 0", "--zeno-time-s: must be positive"}));
 
 }  // namespace

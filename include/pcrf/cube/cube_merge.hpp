@@ -9,9 +9,11 @@ namespace pcrf::cube {
 
 /// Checks that `parts` are cubes of one study (same fingerprint and shape), that no case is
 /// in two of them, and that together they hold every case; then writes their union to
-/// `output` (refused when it exists, unless `overwrite`; never one of the parts). Side
-/// variables take each value from the part that has it; messages are joined.
-/// \throws CubeError naming the file and the problem (what is missing, which case is twice).
+/// `output` by the one output rule (io::OutputFile: never one of the parts, refused when it
+/// exists unless `overwrite`, renamed into place only when complete). Side variables take
+/// each value from the part that has it; messages are joined.
+/// \throws CubeError naming the file and the problem (what is missing, which case is twice);
+/// io::OutputError for an output refused or not written.
 void merge_cubes(const std::vector<std::filesystem::path>& parts, const std::filesystem::path& output, bool overwrite);
 
 }  // namespace pcrf::cube
