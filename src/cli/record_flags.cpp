@@ -17,6 +17,9 @@ void RecordFlags::add_to(CLI::App* cmd, bool file_positional, bool synthetic_all
   cmd->add_option("--dt", dt_s, "sample interval of a one-column record [s]")->group(group);
   cmd->add_option("--skip-rows", skip_rows, "text records: lines to drop at the top (headers, an added leading sample)")
       ->group(group);
+  cmd->add_option("--column", column,
+                  "one-column records: read the K-th field of every row (a file of series side by side)")
+      ->group(group);
   if (synthetic_allowed)
     cmd->add_option("--synthetic", synthetic,
                     "synthetic motion, e.g. 'sine:amplitude_g=1.5,period_s=0.5,cycles=2' or "
@@ -35,6 +38,8 @@ RecordFileSpec RecordFlags::spec() const {
   }
   spec.dt_s = dt_s;
   spec.skip_rows = skip_rows;
+  spec.column = column;
+  if (column > 0 && spec.format != RecordFormat::kOneColumn) throw UsageError("--column applies to one-column records only");
   if (spec.format == RecordFormat::kOneColumn && !(dt_s > 0)) throw UsageError("--dt is required (and > 0) for a one-column record");
   return spec;
 }

@@ -18,6 +18,7 @@ struct RecordFlags {
   std::string units = "g";
   double dt_s = 0.0;
   std::size_t skip_rows = 0;
+  std::size_t column = 0;
   std::string synthetic;
 
   /// Adds --record (unless `file_positional`, then FILE), --format, --units, --dt, --skip-rows

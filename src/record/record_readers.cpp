@@ -231,17 +231,34 @@ bool is_keyword(std::string_view token, std::string_view upper_keyword) {
   return to_upper(token) == upper_keyword;
 }
 
+/// True when `t[from…]` is a PEER filter description: groups `N POLE @ f [HZ]`, as in
+/// `NPTS=   5590, DT=   .0100 SEC,  -5 POLE @      .10000` (a -N pole is the high-pass).
+bool is_filter_description(const std::vector<std::string_view>& t, std::size_t from) {
+  double number = 0.0;
+  std::size_t i = from;
+  while (i < t.size()) {
+    if (i + 4 > t.size()) return false;
+    if (!parse_finite_double(t[i], number) || !is_keyword(t[i + 1], "POLE") || t[i + 2] != "@" ||
+        !parse_finite_double(t[i + 3], number))
+      return false;
+    i += 4;
+    if (i < t.size() && is_keyword(t[i], "HZ")) ++i;
+  }
+  return true;
+}
+
 /// Reads NPTS and DT from the fourth header line in either PEER layout,
 /// `NPTS=  7374, DT=   .0050 SEC,` or `11000  0.0050  NPTS, DT`: '=' and ',' count as blanks,
-/// keywords are matched in any case, and only a time unit ("SEC") may follow. Returns false
-/// when the line has neither layout; the caller reports it.
+/// keywords are matched in any case, and only a time unit ("SEC") may follow, itself followed
+/// at most by the filter's description (`4 POLE @ 33.0 HZ, -5 POLE @ .10000`, written by some
+/// NGA-West2 downloads). Returns false when the line has neither layout; the caller reports it.
 bool parse_npts_dt_line(std::string_view line, std::string& npts_text, std::string& dt_text) {
   std::string plain(line);
   std::replace(plain.begin(), plain.end(), '=', ' ');
   std::replace(plain.begin(), plain.end(), ',', ' ');
   std::vector<std::string_view> t;
   split_whitespace(plain, t);
-  const bool tail_ok = t.size() == 4 || (t.size() == 5 && is_seconds_word(t[4]));
+  const bool tail_ok = t.size() == 4 || (t.size() >= 5 && is_seconds_word(t[4]) && is_filter_description(t, 5));
   if (!tail_ok) return false;
   if (is_keyword(t[0], "NPTS") && is_keyword(t[2], "DT")) {  // NGA-West2
     npts_text = t[1];
@@ -459,7 +476,8 @@ GroundMotion read_two_column(const std::filesystem::path& file, AccelUnit unit, 
   return GroundMotion(record_name(file), steps.dt_s(), std::move(accel_m_s2));
 }
 
-GroundMotion read_one_column(const std::filesystem::path& file, double dt_s, AccelUnit unit, std::size_t skip_rows) {
+GroundMotion read_one_column(const std::filesystem::path& file, double dt_s, AccelUnit unit, std::size_t skip_rows,
+                             std::size_t column) {
   if (!(dt_s > 0.0) || !std::isfinite(dt_s)) {
     fail_file(file, "one-column record needs dt_s > 0, got " + std::to_string(dt_s));
   }
@@ -472,6 +490,12 @@ GroundMotion read_one_column(const std::filesystem::path& file, double dt_s, Acc
   check_skip(file, skip_rows, lines.size());
   for (std::size_t i = skip_rows; i < lines.size(); ++i) {
     split_fields(file, i + 1, lines[i], fields);
+    if (column > 0 && !fields.empty()) {
+      if (fields.size() < column)
+        fail_at(file, i + 1, "column " + std::to_string(column) + " asked for, but the row has " +
+                                 std::to_string(fields.size()) + " field" + (fields.size() == 1 ? "" : "s"));
+      fields = {fields[column - 1]};
+    }
     for (std::string_view field : fields) {
       accel_m_s2.push_back(to_m_s2_checked(file, i + 1, parse_value(file, i + 1, field), factor, field));
     }
@@ -480,18 +504,28 @@ GroundMotion read_one_column(const std::filesystem::path& file, double dt_s, Acc
     fail_at(file, std::max<std::size_t>(lines.size(), 1), "no values in file");
   }
   check_sampling(file, lines.size(), dt_s, accel_m_s2.size());
-  return GroundMotion(record_name(file), dt_s, std::move(accel_m_s2));
+  return GroundMotion(record_name(RecordFileSpec{file, RecordFormat::kOneColumn, unit, dt_s, skip_rows, column}), dt_s,
+                      std::move(accel_m_s2));
 }
 
 GroundMotion read_record(const RecordFileSpec& spec) {
   switch (spec.format) {
     case RecordFormat::kAt2:
       if (spec.skip_rows > 0) fail_file(spec.path, "skip_rows applies to text records only (.AT2 has its header)");
+      if (spec.column > 0) fail_file(spec.path, "column applies to one-column records only");
       return read_at2(spec.path);
-    case RecordFormat::kTwoColumn: return read_two_column(spec.path, spec.unit, spec.skip_rows);
-    case RecordFormat::kOneColumn: return read_one_column(spec.path, spec.dt_s, spec.unit, spec.skip_rows);
+    case RecordFormat::kTwoColumn:
+      if (spec.column > 0) fail_file(spec.path, "column applies to one-column records only");
+      return read_two_column(spec.path, spec.unit, spec.skip_rows);
+    case RecordFormat::kOneColumn:
+      return read_one_column(spec.path, spec.dt_s, spec.unit, spec.skip_rows, spec.column);
   }
   fail_file(spec.path, "invalid RecordFormat value");
+}
+
+std::string record_name(const RecordFileSpec& spec) {
+  const std::string stem = record_name(spec.path);
+  return spec.column > 0 ? stem + "_col" + std::to_string(spec.column) : stem;
 }
 
 RecordMetadata read_metadata(const RecordFileSpec& spec) {

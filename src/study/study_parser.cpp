@@ -369,7 +369,7 @@ std::vector<RecordSource> read_record_entry(const Fields& f, const Study& s) {
   if (given != 1) f.fail("file", "give exactly one of file, files or synthetic");
   std::vector<RecordSource> sources;
   if (f.has("synthetic")) {
-    for (const auto key : {"format", "units", "dt_s", "skip_rows"})
+    for (const auto key : {"format", "units", "dt_s", "skip_rows", "column"})
       if (f.has(key)) f.fail(key, "only applies to record files");
     for (const auto& text : f.texts("synthetic")) sources.push_back({text, std::nullopt, text, f.where("synthetic")});
   } else {
@@ -385,6 +385,10 @@ std::vector<RecordSource> read_record_entry(const Fields& f, const Study& s) {
       if (*skip < 0) f.fail("skip_rows", "must not be negative (got " + std::to_string(*skip) + ")");
       spec.skip_rows = static_cast<std::size_t>(*skip);
     }
+    if (const auto column = f.integer("column")) {
+      if (*column < 1) f.fail("column", "must be 1 or more (got " + std::to_string(*column) + ")");
+      spec.column = static_cast<std::size_t>(*column);
+    }
     std::optional<RecordFormat> format;
     try {
       if (f.has("format")) format = parse_record_format(*f.text("format"));
@@ -398,6 +402,8 @@ std::vector<RecordSource> read_record_entry(const Fields& f, const Study& s) {
         file_spec.format = format.value_or(guess_record_format(path));
         if (file_spec.format == RecordFormat::kAt2 && file_spec.skip_rows > 0)
           f.fail("skip_rows", "applies to text records only (.AT2 files have their own header)");
+        if (file_spec.column > 0 && file_spec.format != RecordFormat::kOneColumn)
+          f.fail("column", "applies to one-column records only");
         if (file_spec.format == RecordFormat::kOneColumn) {
           if (!f.has("dt_s")) f.fail("dt_s", "one-column records need dt_s (the sample interval)");
           file_spec.dt_s = *f.number("dt_s");
@@ -405,7 +411,7 @@ std::vector<RecordSource> read_record_entry(const Fields& f, const Study& s) {
         } else if (f.has("dt_s")) {
           f.fail("dt_s", "only applies to one-column records (the others carry their time step)");
         }
-        sources.push_back({path.stem().string(), file_spec, "", f.where(key)});
+        sources.push_back({record_name(file_spec), file_spec, "", f.where(key)});
       }
     }
   }
@@ -426,7 +432,7 @@ void read_records(const Fields& top, Study& s) {
     const std::string path = "records[" + std::to_string(i) + "]";
     const auto* table = (*array)[i].as_table();
     if (table == nullptr) Fields::fail_at(s.file, &(*array)[i], path, "expected a table ([[records]])");
-    Fields f(*table, path, s.file, {"file", "files", "synthetic", "format", "units", "dt_s", "skip_rows", "name"});
+    Fields f(*table, path, s.file, {"file", "files", "synthetic", "format", "units", "dt_s", "skip_rows", "column", "name"});
     for (auto& source : read_record_entry(f, s)) {
       if (!names.insert(source.name).second)
         f.fail(f.has("synthetic") ? "synthetic" : (f.has("file") ? "file" : "files"),

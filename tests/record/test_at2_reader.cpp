@@ -72,6 +72,20 @@ TEST(ReadAt2, NgaWest2HeaderCrlfWithTrailingCommaAndBlanks) {
   expect_values_g(g, kBodyValues_g);
 }
 
+TEST(ReadAt2, NgaWest2HeaderWithFilterDescription) {
+  // Some NGA-West2 downloads (Bolu, Rinaldi) describe the filter after DT: "-5 POLE" is the
+  // high-pass. It is read past; anything else after SEC stays an error (malformed corpus).
+  const auto dir = pcrf::test::scratch_dir("at2_west2_filter");
+  for (const std::string line : {"NPTS=      7, DT=   .0050 SEC,  -5 POLE @      .10000",
+                                 "NPTS=      7, DT=   .0050 SEC,   4 POLE @    33.00000 HZ,  -5 POLE @      .10000",
+                                 "NPTS=      7, DT=   .0050 SEC,   0 POLE @      .00000 HZ,   0 POLE @      .00000"}) {
+    SCOPED_TRACE(line);
+    const auto g = pcrf::read_at2(write_file(dir, "filtered.AT2", with_crlf(kTitle + line + "\n" + kBody)));
+    EXPECT_EQ(g.dt_s(), 0.005);
+    expect_values_g(g, kBodyValues_g);
+  }
+}
+
 TEST(ReadAt2, OlderNumbersFirstHeader) {
   const auto dir = pcrf::test::scratch_dir("at2_old");
   const auto file = write_file(dir, "old.at2",
@@ -169,6 +183,8 @@ std::vector<Malformed> malformed_corpus() {
       {"garbled_header.AT2", header("NPTS 5 DT") + "1 2 3 4 5\n", 4, "NPTS/DT"},
       {"header_junk_after.AT2", header("NPTS= 5, DT= .01 SEC, FILTERED") + "1 2 3 4 5\n", 4,
        "NPTS/DT"},
+      {"header_half_filter.AT2", header("NPTS= 5, DT= .01 SEC, 4 POLE @") + "1 2 3 4 5\n", 4, "NPTS/DT"},
+      {"header_filter_no_sec.AT2", header("NPTS= 5, DT= .01, 4 POLE @ 33.0 HZ") + "1 2 3 4 5\n", 4, "NPTS/DT"},
       {"npts_zero.AT2", header("NPTS=  0, DT= .0100 SEC"), 4, "NPTS must be positive"},
       {"npts_negative.AT2", header("NPTS= -5, DT= .0100 SEC") + "1 2 3 4 5\n", 4,
        "NPTS must be positive"},

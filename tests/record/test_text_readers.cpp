@@ -195,6 +195,30 @@ TEST(ReadOneColumn, ValuesOneOrManyPerLine) {
   }
 }
 
+TEST(ReadOneColumn, OneFieldOfSeriesSideBySide) {
+  // Two components side by side without a time column (the Erzincan file's layout): column K
+  // reads the K-th field of every row, and the name says which.
+  const auto dir = pcrf::test::scratch_dir("one_col_column");
+  const auto file = write_file(dir, "pair.txt", "% N-S and E-W, cm/s2\n% dt = 0.005 s\n1 10\n2 20\n-3 -30\n");
+  for (std::size_t column : {1u, 2u}) {
+    const pcrf::RecordFileSpec spec{file, pcrf::RecordFormat::kOneColumn, AccelUnit::kCentimeterPerSecond2, 0.005, 2,
+                                    column};
+    const auto g = pcrf::read_record(spec);
+    EXPECT_EQ(g.name(), "pair_col" + std::to_string(column));
+    EXPECT_EQ(g.name(), pcrf::record_name(spec));
+    const double scale_cm = column == 1 ? 1.0 : 10.0;
+    ASSERT_EQ(g.size(), 3u);
+    EXPECT_DOUBLE_EQ(g.samples_m_s2()[2], -3.0 * scale_cm * 0.01);
+  }
+  const std::string m = record_error(
+      [&] { return pcrf::read_one_column(file, 0.005, AccelUnit::kG, 2, 3); });
+  EXPECT_NE(m.find("pair.txt:3: column 3 asked for, but the row has 2 fields"), std::string::npos) << m;
+  const std::string at2 = record_error([&] {
+    return pcrf::read_record({file, pcrf::RecordFormat::kTwoColumn, AccelUnit::kG, 0.0, 2, 1});
+  });
+  EXPECT_NE(at2.find("column applies to one-column records only"), std::string::npos) << at2;
+}
+
 TEST(ReadOneColumn, Errors) {
   const auto dir = pcrf::test::scratch_dir("one_col_errors");
   const auto good = write_file(dir, "good.txt", "1\n2\n");

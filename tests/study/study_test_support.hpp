@@ -5,11 +5,16 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <regex>
 #include <string>
+#include <thread>
+#include <utility>
 #include <vector>
 
 #include <spawn.h>
@@ -27,6 +32,27 @@ inline pid_t spawn_shell(const std::string& command) {
   pid_t pid = 0;
   const char* argv[] = {"/bin/sh", "-c", command.c_str(), nullptr};
   return posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ) == 0 ? pid : 0;
+}
+
+/// Done/total of the last progress line in a stderr file.
+inline std::pair<long, long> last_progress(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::pair<long, long> last{0, 0};
+  static const std::regex progress(R"(pcrf study: (\d+)/(\d+) cases)");
+  for (std::string line; std::getline(in, line);) {
+    std::smatch m;
+    if (std::regex_search(line, m, progress)) last = {std::stol(m[1]), std::stol(m[2])};
+  }
+  return last;
+}
+
+/// Waits (12 s at most) until the progress lines in `err` report a tenth of the cases done.
+inline void wait_for_a_tenth(const std::filesystem::path& err) {
+  std::pair<long, long> progress{0, 0};
+  for (int i = 0; i < 600 && !(progress.second > 0 && progress.first >= progress.second / 10); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    progress = last_progress(err);
+  }
 }
 
 inline std::string pcrf() { return "'" + test::pcrf_executable().string() + "'"; }

@@ -61,8 +61,12 @@ GroundMotion read_two_column(const std::filesystem::path& file, AccelUnit unit, 
 /// One value a line (or several per line), acceleration in `unit`, sampled every dt_s.
 /// Same comment and separator rules as read_two_column. A dt_s that is not positive and
 /// finite, or a file without values, is a RecordError.
+/// `column` = 0 reads every value in reading order. `column` = k ≥ 1 reads the k-th field of
+/// every row, for a file that holds several series side by side (e.g. N-S and E-W, no time
+/// column); then every row needs at least k fields, and the record's name is the file stem
+/// followed by "_col" and k.
 GroundMotion read_one_column(const std::filesystem::path& file, double dt_s, AccelUnit unit,
-                             std::size_t skip_rows = 0);
+                             std::size_t skip_rows = 0, std::size_t column = 0);
 
 /// Where a record comes from, as a study file or the command line names it.
 struct RecordFileSpec {
@@ -71,10 +75,14 @@ struct RecordFileSpec {
   AccelUnit unit = AccelUnit::kG;  ///< ignored for .AT2 (always g)
   double dt_s = 0.0;               ///< one-column only
   std::size_t skip_rows = 0;       ///< text formats: lines dropped at the top of the file
+  std::size_t column = 0;          ///< one-column only: 0 every value, k ≥ 1 the k-th field of a row
 };
 
-/// Reads a record by its spec; the record's name is the file stem.
+/// Reads a record by its spec; its name is record_name(spec).
 GroundMotion read_record(const RecordFileSpec& spec);
+
+/// The name a record read by `spec` carries: the file stem, with "_colK" for column K.
+std::string record_name(const RecordFileSpec& spec);
 
 /// What a record file says about itself. AT2 files: `title` is header line 2 ("Imperial
 /// Valley-06, 10/15/1979, El Centro Array #11, 230"), split at its commas into event, (date,)
