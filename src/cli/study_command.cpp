@@ -43,6 +43,18 @@ void catch_stop_signals() {
   ::sigaction(SIGINT, &action, nullptr);
 }
 
+/// What to do after a write error, by its cause: only a full disk is cured by space.
+std::string advice(cube::CubeError::Cause cause) {
+  using Cause = cube::CubeError::Cause;
+  switch (cause) {
+    case Cause::kNoSpace: return "the cube keeps its last complete checkpoint: free space, then --resume";
+    case Cause::kGone: return "the results computed are lost with it: run the study again";
+    case Cause::kReplaced: return "this run's results since its last checkpoint are lost: run it again into another -o";
+    case Cause::kOther: break;
+  }
+  return "the cube keeps its last complete checkpoint: once the cause above is fixed, --resume continues it";
+}
+
 void run_study_command(StudyArguments& args) {
   args.run.run_overrides = args.run_flags->given();
   if (!args.shard.empty()) {
@@ -84,8 +96,7 @@ void run_study_command(StudyArguments& args) {
   }
   if (summary && summary->stopped_by != 0) exit_code() = 128 + summary->stopped_by;
   if (summary && !summary->error.empty()) {
-    std::cerr << "pcrf: error: " << printable(summary->error)
-              << "; the cube keeps its last complete checkpoint: free space, then --resume" << std::endl;
+    std::cerr << "pcrf: error: " << printable(summary->error) << "; " << advice(summary->error_cause) << std::endl;
     exit_code() = 2;
   }
   if (!mpi.is_master() && stop_signal.load() != 0) exit_code() = 128 + stop_signal.load();

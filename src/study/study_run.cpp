@@ -165,6 +165,7 @@ class ResultSink {
 
   /// The first write error (a full disk, an I/O error), naming the file and the reason.
   const std::string& error() const { return error_; }
+  cube::CubeError::Cause error_cause() const { return error_cause_; }
   /// Called once when a write fails, to stop the hand-out of work.
   void on_error(std::function<void()> stop) { stop_ = std::move(stop); }
 
@@ -190,6 +191,7 @@ class ResultSink {
       write();
     } catch (const cube::CubeError& e) {
       error_ = e.what();
+      error_cause_ = e.cause();
       if (stop_) stop_();
     }
   }
@@ -201,6 +203,7 @@ class ResultSink {
   std::function<void()> before_flush_;
   std::function<void()> stop_;
   std::string error_;
+  cube::CubeError::Cause error_cause_ = cube::CubeError::Cause::kOther;
   double last_checkpoint_s_ = 0.0;
   std::chrono::steady_clock::time_point last_flush_ = std::chrono::steady_clock::now();
 };
@@ -316,6 +319,7 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
   summary.failed = meter.failed();
   if (stoppable.stopped()) summary.stopped_by = stop_signal->load();
   summary.error = sink.error();
+  summary.error_cause = sink.error_cause();
   return summary;
 }
 

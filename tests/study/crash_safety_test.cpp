@@ -8,6 +8,9 @@
 #include <sys/wait.h>
 
 #include <chrono>
+#include <fstream>
+#include <functional>
+#include <sstream>
 #include <random>
 #include <thread>
 
@@ -70,7 +73,7 @@ TEST(CrashSafety, AFullDiskEndsTheRunCleanlyAndTheCubeResumes) {
                                       " study f.toml -o small/f.h5 --flush-interval-s 0.01 --progress-interval 0");
   EXPECT_EQ(full.exit_code, 2) << full.err;
   EXPECT_NE(full.err.find("No space left on device"), std::string::npos) << full.err;
-  EXPECT_NE(full.err.find("--resume"), std::string::npos) << full.err;
+  EXPECT_NE(full.err.find("free space, then --resume"), std::string::npos) << full.err;
   ASSERT_TRUE(std::filesystem::exists(small / "f.h5"));
   EXPECT_EQ(test::run_command(pcrf() + " cube info " + quoted(small / "f.h5")).exit_code, 0);
   std::filesystem::copy_file(small / "f.h5", dir / "f.h5", std::filesystem::copy_options::overwrite_existing);
@@ -79,6 +82,56 @@ TEST(CrashSafety, AFullDiskEndsTheRunCleanlyAndTheCubeResumes) {
   ASSERT_EQ(test::run_command("cd " + quoted(dir) + " && " + pcrf() + " study f.toml -o f.h5 --resume --progress-interval 0").exit_code, 0);
   ASSERT_EQ(test::run_command("cd " + quoted(dir) + " && " + pcrf() + " study f.toml -o whole.h5 --progress-interval 0").exit_code, 0);
   expect_same_cube(dir / "whole.h5", dir / "f.h5");
+}
+
+/// 1296 cases: a few seconds, long enough to act on the cube while it runs.
+const std::string kLongStudy = std::string("[[records]]\nsynthetic = [\"") + kPulse + "\", \"" + kPulse2 + "\", \"" +
+                               kNoise + "\"]\n[axes]\nscale = [0.9, 1.1, 1.3]\nkappa = {from = 1.0, to = 3.0, count = 12}\n"
+                               "tan_alpha = {from = 0.16, to = 0.24, count = 12}\n";
+
+/// Starts the long study into dir/out/l.h5, waits until it has run a while, does `act`, and
+/// returns what the run said on stderr (its exit code is expected to be 2).
+std::string interfere(const std::filesystem::path& dir, const std::function<void()>& act) {
+  test::write_file(dir, "l.toml", kLongStudy);
+  std::filesystem::create_directories(dir / "out");
+  const pid_t pid = spawn_shell("cd " + quoted(dir) + " && exec " + pcrf() +
+                                " study l.toml -o out/l.h5 --flush-interval-s 0.02 --progress-interval 0 2> err.txt");
+  EXPECT_GT(pid, 0);
+  // The first checkpoint exists from the start; a few later ones, then the interference.
+  for (int i = 0; i < 3000 && !std::filesystem::exists(dir / "out" / "l.h5"); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  act();
+  int wstatus = 0;
+  ::waitpid(pid, &wstatus, 0);
+  EXPECT_TRUE(WIFEXITED(wstatus) && WEXITSTATUS(wstatus) == 2) << "the run ended before the interference";
+  std::ifstream in(dir / "err.txt");
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+TEST(CrashSafety, AdviceMatchesTheCause) {
+  const auto gone_dir = test::scratch_dir("crash_folder_gone");
+  const std::string gone = interfere(gone_dir, [&] { std::filesystem::remove_all(gone_dir / "out"); });
+  EXPECT_NE(gone.find("out/l.h5: is gone (removed during the run, or its folder)"), std::string::npos) << gone;
+  EXPECT_NE(gone.find("run the study again"), std::string::npos) << gone;
+  EXPECT_EQ(gone.find("free space"), std::string::npos) << gone;
+
+  // Another file put in the cube's place is neither copied into nor overwritten.
+  const auto replaced_dir = test::scratch_dir("crash_cube_replaced");
+  const std::string foreign = "not this run's cube";
+  const std::string replaced = interfere(replaced_dir, [&] {
+    test::write_file(replaced_dir / "out", "other", foreign);
+    std::filesystem::rename(replaced_dir / "out" / "other", replaced_dir / "out" / "l.h5");
+  });
+  EXPECT_NE(replaced.find("out/l.h5: was replaced by another file during the run"), std::string::npos) << replaced;
+  EXPECT_NE(replaced.find("another -o"), std::string::npos) << replaced;
+  EXPECT_EQ(replaced.find("free space"), std::string::npos) << replaced;
+  std::ifstream kept(replaced_dir / "out" / "l.h5");
+  std::string text;
+  std::getline(kept, text);
+  EXPECT_EQ(text, foreign);
 }
 
 }  // namespace
