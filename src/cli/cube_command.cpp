@@ -10,6 +10,7 @@
 #include "pcrf/cube/cube_merge.hpp"
 #include "pcrf/cube/cube_query.hpp"
 #include "pcrf/io/output_file.hpp"
+#include "pcrf/io/run_lock.hpp"
 #include "pcrf/study/cube_fragility.hpp"
 #include "pcrf/study/cube_sensitivity.hpp"
 #include "pcrf/study/cube_vocabulary.hpp"
@@ -39,9 +40,18 @@ std::vector<cube::Selector> selectors(const std::vector<std::string>& texts) {
   return result;
 }
 
+/// A cube that a study run is writing is read as its last complete checkpoint (each is
+/// renamed into place whole); says so on stderr.
+void note_running(const std::string& file) {
+  const std::string who = io::RunLock::holder(file);
+  if (!who.empty())
+    std::cerr << "pcrf cube: " << file << ": a run holds it (" << who << "): read as its last complete checkpoint\n";
+}
+
 /// Runs a cube action; cube problems (missing file, unknown name) are usage errors.
 template <class Action>
 void guarded(const std::string& file, Action action) {
+  note_running(file);
   try {
     action();
   } catch (const cube::CubeError& e) {
@@ -207,6 +217,9 @@ void add_cube_command(CLI::App& app) {
   merge->callback([args] {
     guarded(args->output, [&] {
       std::vector<std::filesystem::path> parts(args->parts.begin(), args->parts.end());
+      for (const auto& part : args->parts) note_running(part);
+      if (const auto who = io::RunLock::holder(args->output); !who.empty())
+        throw UsageError(args->output + ": in use by a run (" + who + "); give another -o");
       cube::merge_cubes(parts, args->output, args->overwrite);
       std::cout << "merged " << parts.size() << " parts into " << args->output << '\n';
     });

@@ -13,6 +13,7 @@
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/cube/cube_writer.hpp"
 #include "pcrf/io/output_file.hpp"
+#include "pcrf/io/run_lock.hpp"
 #include "pcrf/parallel/scheduler.hpp"
 #include "pcrf/parallel/work_queue.hpp"
 #include "pcrf/study/case_runner.hpp"
@@ -41,6 +42,7 @@ struct Prepared {
 struct MasterSetup {
   CheckedStudy checked;
   std::filesystem::path output;
+  std::unique_ptr<io::RunLock> lock;  ///< one run per cube, for the whole run (outlives the writer)
   std::unique_ptr<cube::CubeWriter> writer;
 };
 
@@ -65,6 +67,11 @@ MasterSetup prepare_master(const StudyRunOptions& options, const Prepared& p) {
   if (options.check_only) return m;
   m.output = options.output.empty() ? default_output(options.study_file) : options.output;
   check_output_is_not_an_input(m.output, options, p.study);
+  try {  // before anything looks at the cube: a second run, even --overwrite, leaves the first alone
+    m.lock = std::make_unique<io::RunLock>(m.output);
+  } catch (const io::OutputError& e) {
+    throw StudyError(e.what());
+  }
   if (options.shard_count > 1 && !p.study.histories.empty())
     throw StudyError(p.study.file + ": outputs.histories: a sharded run cannot store histories yet; run the histories "
                                     "unsharded or leave them out");

@@ -7,6 +7,7 @@
 #include <sys/mount.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <functional>
@@ -132,6 +133,46 @@ TEST(CrashSafety, AdviceMatchesTheCause) {
   std::string text;
   std::getline(kept, text);
   EXPECT_EQ(text, foreign);
+}
+
+TEST(CrashSafety, OneRunPerCube) {
+  const auto dir = test::scratch_dir("crash_one_run");
+  test::write_file(dir, "l.toml", kLongStudy);
+  const pid_t first = spawn_shell("cd " + quoted(dir) + " && exec " + pcrf() +
+                                  " study l.toml -o l.h5 --flush-interval-s 0.05 --progress-interval 0 2>/dev/null");
+  ASSERT_GT(first, 0);
+  for (int i = 0; i < 3000 && !std::filesystem::exists(dir / "l.h5"); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  for (const std::string mode : {"", " --resume", " --overwrite"}) {
+    const auto start = std::chrono::steady_clock::now();
+    const auto second = test::run_command("cd " + quoted(dir) + " && " + pcrf() + " study l.toml -o l.h5 --progress-interval 0" + mode);
+    const double took_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_EQ(second.exit_code, 2) << mode << "\n" << second.err;
+    EXPECT_NE(second.err.find("l.h5: in use by another run (pid " + std::to_string(first) + " on host "), std::string::npos)
+        << mode << "\n" << second.err;
+    EXPECT_EQ(std::count(second.err.begin(), second.err.end(), '\n'), 1) << second.err;
+    EXPECT_LT(took_s, 2.0) << "refused at once";
+  }
+  const auto info = test::run_command(pcrf() + " cube info " + quoted(dir / "l.h5"));
+  EXPECT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_NE(info.err.find("a run holds it (pid " + std::to_string(first)), std::string::npos) << info.err;
+  int wstatus = 0;
+  ::waitpid(first, &wstatus, 0);
+  ASSERT_TRUE(WIFEXITED(wstatus) && WEXITSTATUS(wstatus) == 0) << "the first run was disturbed";
+  EXPECT_NE(test::run_command(pcrf() + " cube info " + quoted(dir / "l.h5")).out.find("(100.0 %)"), std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(dir / "l.h5.lock"));
+
+  // A run killed outright leaves its lock file; it is stale and the resume goes ahead.
+  const pid_t killed = spawn_shell("cd " + quoted(dir) + " && exec " + pcrf() +
+                                   " study l.toml -o k.h5 --flush-interval-s 0.05 --progress-interval 0 2>/dev/null");
+  for (int i = 0; i < 3000 && !std::filesystem::exists(dir / "k.h5"); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ::kill(killed, SIGKILL);
+  ::waitpid(killed, nullptr, 0);
+  EXPECT_TRUE(std::filesystem::exists(dir / "k.h5.lock"));
+  const auto resumed = test::run_command("cd " + quoted(dir) + " && " + pcrf() + " study l.toml -o k.h5 --resume --progress-interval 0");
+  EXPECT_EQ(resumed.exit_code, 0) << resumed.err;
+  expect_same_cube(dir / "l.h5", dir / "k.h5");
 }
 
 }  // namespace
