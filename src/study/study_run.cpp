@@ -64,6 +64,10 @@ void check_output_is_not_an_input(const std::filesystem::path& output, const Stu
 MasterSetup prepare_master(const StudyRunOptions& options, const Prepared& p) {
   MasterSetup m;
   m.checked = check_study(p.study, *p.space, *p.records);
+  // Here, before --check returns: --check passes nothing the run refuses.
+  if (options.shard_count > 1 && !p.study.histories.empty())
+    throw StudyError(p.study.file + ": outputs.histories: a sharded run cannot store histories yet; run the histories "
+                                    "unsharded or leave them out");
   if (options.check_only) return m;
   m.output = options.output.empty() ? default_output(options.study_file) : options.output;
   check_output_is_not_an_input(m.output, options, p.study);
@@ -72,9 +76,6 @@ MasterSetup prepare_master(const StudyRunOptions& options, const Prepared& p) {
   } catch (const io::OutputError& e) {
     throw StudyError(e.what());
   }
-  if (options.shard_count > 1 && !p.study.histories.empty())
-    throw StudyError(p.study.file + ": outputs.histories: a sharded run cannot store histories yet; run the histories "
-                                    "unsharded or leave them out");
   const std::string shard = options.shard_count > 1 ? std::to_string(options.shard_index + 1) + "/" +
                                                            std::to_string(options.shard_count) : "";
   if (options.resume && std::filesystem::exists(m.output)) {

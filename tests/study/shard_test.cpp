@@ -63,5 +63,32 @@ TEST(Shards, AnIdaShardsByCurves) {
   EXPECT_EQ(whole.read_side("ida_runs"), all.read_side("ida_runs"));
 }
 
+TEST(Shards, OnlyKOverNWithinBoundsIsAShard) {
+  const auto dir = test::scratch_dir("shards_strings");
+  test::write_file(dir, "s.toml", small_grid_study());
+  for (const std::string bad : {"", "1/-2", "18446744073709551615/18446744073709551615", " 1/2", "1/2x", "+1/2", "1/",
+                                "/2", "0/3", "4/3", "1/1000001", "1//2", "1/2/3"}) {
+    for (const std::string check : {"", " --check"}) {
+      const auto r = study_in(dir, "--shard '" + bad + "' -o x.h5" + check);
+      EXPECT_EQ(r.exit_code, 2) << "'" << bad << "'" << check << "\n" << r.err;
+      EXPECT_EQ(r.err, "pcrf: error: --shard '" + bad + "': expected K/N with 1 ≤ K ≤ N ≤ 1000000, e.g. 3/8\n");
+    }
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.h5"));
+  EXPECT_EQ(study_in(dir, "--shard 1000000/1000000 --check").exit_code, 0);
+}
+
+TEST(Shards, CheckRefusesWhatTheRunRefuses) {
+  const auto dir = test::scratch_dir("shards_check");
+  test::write_file(dir, "s.toml", small_grid_study("[[outputs.histories]]\nlabel = \"pulse\"\nrecord = \"" + std::string(kPulse) +
+                                                   "\"\nscale = 0.9\nkappa = 2.4\ntan_alpha = 0.22\n"));
+  const auto run = study_in(dir, "--shard 1/2 -o x.h5");
+  const auto check = study_in(dir, "--shard 1/2 --check");
+  EXPECT_EQ(run.exit_code, 2) << run.err;
+  EXPECT_EQ(check.exit_code, 2) << check.err;
+  EXPECT_EQ(run.err, check.err);
+  EXPECT_EQ(study_in(dir, "--check").exit_code, 0);  // unsharded, the same study is fine
+}
+
 }  // namespace
 }  // namespace pcrf::study_test

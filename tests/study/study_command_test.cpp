@@ -2,6 +2,7 @@
 // cube, a killed run resumes to the same cube, bad studies fail cleanly, outputs are protected.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <csignal>
 #include <cstdlib>
 #include <fstream>
@@ -370,4 +371,18 @@ TEST(StudyCommand, PaperStudiesFindTheirRecords) {
 }
 
 }  // namespace
+TEST(StudyCommand, AnUnusableTmpdirIsNamedBeforeMpiStarts) {
+  const auto dir = test::scratch_dir("study_tmpdir");
+  test::write_file(dir, "s.toml", small_grid_study());
+  test::write_file(dir, "a_file", "");
+  for (const std::string tmpdir : {"missing_folder", "a_file"}) {
+    const auto r = test::run_command("cd " + quoted(dir) + " && TMPDIR=" + tmpdir + " " + pcrf() + " study s.toml -o x.h5");
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(r.err.rfind("pcrf: error: TMPDIR " + tmpdir + " is not a writable folder (", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find("); Open MPI needs one"), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.h5"));
+}
+
 }  // namespace pcrf::study_test
