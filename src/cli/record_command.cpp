@@ -23,8 +23,12 @@ struct RecordArguments {
 void describe(const RecordArguments& args) {
   if (!(args.damping >= 0.0 && args.damping < 1.0)) throw UsageError("--damping must be in [0, 1)");
   for (double t : args.periods_s)
-    if (!(t > 0.0)) throw UsageError("--period must be positive, got " + std::to_string(t));
+    if (const auto problem = sa_period_problem(t, 0.0); !problem.empty()) throw UsageError("--period: " + problem);
   const GroundMotion motion = args.record.load();
+  if (const auto problem = measures_problem(motion); !problem.empty()) throw UsageError(motion.name() + ": " + problem);
+  for (double t : args.periods_s)
+    if (const auto problem = sa_period_problem(t, motion.dt_s()); !problem.empty())
+      throw UsageError("--period: " + problem + " (" + motion.name() + ")");
   RecordMetadata meta;
   try {
     meta = read_metadata(args.record.spec());

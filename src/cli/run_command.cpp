@@ -48,6 +48,10 @@ double scale_factor(const RunOptions& o, const GroundMotion& motion) {
   if (!(o.intensity > 0.0)) throw UsageError("--intensity must be positive");
   const IntensitySpec spec = o.measure->resolve();
   if (const auto problem = intensity_spec_problem(spec); !problem.empty()) throw UsageError("--period-s: " + problem);
+  if (spec.measure == IntensityMeasure::kSa)
+    if (const auto problem = sa_period_problem(spec.period_s, motion.dt_s()); !problem.empty())
+      throw UsageError("--period-s: " + problem + " (" + motion.name() + ")");
+  if (const auto problem = measures_problem(motion); !problem.empty()) throw UsageError(motion.name() + ": " + problem);
   const double im = intensity_of(motion, spec);
   if (!(im > 0.0)) throw UsageError(motion.name() + ": its " + to_string(spec.measure) + " is 0: it cannot be scaled");
   return o.intensity / im;

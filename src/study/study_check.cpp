@@ -23,7 +23,15 @@ void check_records(const Study& study, RecordCache& records) {
       throw StudyError(source.declared_at + ": records: cannot load record \"" + source.name + "\" (" +
                        source.describe() + "): " + e.what());
     }
+    if (const auto problem = measures_problem(records.get(r)); !problem.empty())
+      throw StudyError(source.declared_at + ": records: record \"" + source.name + "\": " + problem);
     if (!study.intensity) continue;
+    if (study.intensity->measure == IntensityMeasure::kSa)
+      if (const auto problem = sa_period_problem(study.intensity->period_s, records.get(r).dt_s()); !problem.empty()) {
+        const auto line = study.setting_lines.find("intensity.period_s");
+        throw StudyError((line != study.setting_lines.end() ? line->second : study.file) + ": intensity.period_s: " + problem +
+                         " (record \"" + source.name + "\")");
+      }
     const double im = records.intensity(r, *study.intensity);
     if (!(im > 0.0) || !std::isfinite(im))
       throw StudyError(source.declared_at + ": records: record \"" + source.name + "\" has " +
