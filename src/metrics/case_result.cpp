@@ -19,6 +19,7 @@ std::string_view status_name(CaseStatus status) {
     case CaseStatus::kSolverFailure: return "solver_failure";
     case CaseStatus::kTimeLimit: return "time_limit";
     case CaseStatus::kInvalidFrame: return "invalid_frame";
+    case CaseStatus::kGroundFreeFall: return "ground_free_fall";
     case CaseStatus::kNotRun: return "not_run";
   }
   return "unknown";
@@ -28,7 +29,7 @@ const std::vector<CaseStatus>& all_final_statuses() {
   static const std::vector<CaseStatus> all = {CaseStatus::kAtRest,         CaseStatus::kRockingAtEnd,
                                               CaseStatus::kTendonFracture, CaseStatus::kOverturned,
                                               CaseStatus::kSolverFailure,  CaseStatus::kTimeLimit,
-                                              CaseStatus::kInvalidFrame};
+                                              CaseStatus::kInvalidFrame,   CaseStatus::kGroundFreeFall};
   return all;
 }
 

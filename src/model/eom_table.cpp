@@ -56,13 +56,10 @@ EomTable::EomTable(const EquationOfMotion& eom, double cell_rad)
   cells_.resize(static_cast<std::size_t>(eom.closing_limit_rad() * inv_cell_) + 2);
 }
 
-bool EomTable::negative_branch(double phi, double& I, double& J, double& Q, double& S) const {
+bool EomTable::negative_branch(double phi, Terms& out) const {
   EomTerms t;
   if (!eom_.terms(phi, -1, t)) return false;
-  I = t.I;
-  J = t.J;
-  Q = t.G * kGravity_m_s2 + t.K;
-  S = t.S;
+  out = {t.I, t.J, t.G * eom_.frame().gravity_m_s2 + t.K, t.S, t.G};
   return true;
 }
 
@@ -70,24 +67,29 @@ void EomTable::build(Cell& cell, int index) const {
   ++built_;
   cell.state = Cell::State::kExact;
   const double u0 = (index - 1) * cell_rad_;  // cell spans u ∈ [u0, u0 + w]
-  std::array<double, kNodes> I{}, J{}, Q{}, S{};
+  std::array<double, kNodes> I{}, J{}, Q{}, S{}, G{};
   for (int j = 0; j < kNodes; ++j) {
     const double x = std::cos(std::numbers::pi * (j + 0.5) / kNodes);
     const double u = u0 + 0.5 * (x + 1.0) * cell_rad_;
-    if (!negative_branch(-u, I[j], J[j], Q[j], S[j])) return;
+    Terms t{};
+    if (!negative_branch(-u, t)) return;
+    I[j] = t.I, J[j] = t.J, Q[j] = t.Q, S[j] = t.S, G[j] = t.G;
   }
-  cell.c = {chebyshev_fit(I), chebyshev_fit(J), chebyshev_fit(Q), chebyshev_fit(S)};
+  cell.c = {chebyshev_fit(I), chebyshev_fit(J), chebyshev_fit(Q), chebyshev_fit(S), chebyshev_fit(G)};
   cell.dc = {chebyshev_derivative(cell.c.I), chebyshev_derivative(cell.c.J), chebyshev_derivative(cell.c.Q),
-             chebyshev_derivative(cell.c.S)};
+             chebyshev_derivative(cell.c.S), chebyshev_derivative(cell.c.G)};
   // Self-check at two points between the nodes.
   for (const double x : {0.31, -0.77}) {
     const double u = u0 + 0.5 * (x + 1.0) * cell_rad_;
-    double i = 0, jj = 0, q = 0, s = 0;
-    if (!negative_branch(-u, i, jj, q, s)) return;
+    Terms t{};
+    if (!negative_branch(-u, t)) return;
     auto close = [](double a, double b, double scale) { return std::abs(a - b) <= 1e-11 * scale; };
-    const double qs = std::abs(q) + std::abs(s) * kGravity_m_s2;  // Q is compared with S·g
-    if (!close(clenshaw(cell.c.I, x), i, std::abs(i)) || !close(clenshaw(cell.c.J, x), jj, std::abs(i)) ||
-        !close(clenshaw(cell.c.Q, x), q, qs) || !close(clenshaw(cell.c.S, x), s, std::abs(s)))
+    const double g = eom_.frame().gravity_m_s2;
+    const double qs = std::abs(t.Q) + std::abs(t.S) * g;  // Q is compared with S·g
+    // G·g is compared with the same scale: it enters as G·ü_v next to Q and S·ü_h.
+    if (!close(clenshaw(cell.c.I, x), t.I, std::abs(t.I)) || !close(clenshaw(cell.c.J, x), t.J, std::abs(t.I)) ||
+        !close(clenshaw(cell.c.Q, x), t.Q, qs) || !close(clenshaw(cell.c.S, x), t.S, std::abs(t.S)) ||
+        !close(clenshaw(cell.c.G, x) * g, t.G * g, qs))
       return;
   }
   cell.state = Cell::State::kTabulated;
@@ -105,20 +107,21 @@ const EomTable::Cell* EomTable::locate(double theta1, int side, double& x) const
   return &cell;
 }
 
-bool EomTable::acceleration(double theta1, double omega1, double ground_accel_m_s2, int side,
+bool EomTable::acceleration(double theta1, double omega1, GroundAcceleration ground, int side,
                             double& theta1_ddot) const {
   double x = 0;
   const Cell* cell = locate(theta1, side, x);
-  if (cell == nullptr) return eom_.acceleration(theta1, omega1, ground_accel_m_s2, side, theta1_ddot);
-  const double I = clenshaw(cell->c.I, x), J = clenshaw(cell->c.J, x), Q = clenshaw(cell->c.Q, x),
-               S = clenshaw(cell->c.S, x);
+  if (cell == nullptr) return eom_.acceleration(theta1, omega1, ground, side, theta1_ddot);
+  const double I = clenshaw(cell->c.I, x), J = clenshaw(cell->c.J, x), S = clenshaw(cell->c.S, x);
+  double Q = clenshaw(cell->c.Q, x);
+  if (ground.vertical_m_s2 != 0.0) Q += clenshaw(cell->c.G, x) * ground.vertical_m_s2;  // G (g + ü_v) + K
   // Side +1 is the odd mirror: J, G, K change sign, I and S do not (equation_of_motion.hpp).
   const double s = side < 0 ? 1.0 : -1.0;
-  theta1_ddot = (S * ground_accel_m_s2 - s * J * omega1 * omega1 - s * Q) / I;
+  theta1_ddot = (S * ground.horizontal_m_s2 - s * J * omega1 * omega1 - s * Q) / I;
   return true;
 }
 
-bool EomTable::acceleration_jacobian(double theta1, double omega1, double ground_accel_m_s2, int side,
+bool EomTable::acceleration_jacobian(double theta1, double omega1, GroundAcceleration ground, int side,
                                      double& theta1_ddot, double& d_theta, double& d_omega) const {
   double x = 0;
   const Cell* cell = locate(theta1, side, x);
@@ -127,9 +130,9 @@ bool EomTable::acceleration_jacobian(double theta1, double omega1, double ground
     // round-off of the exact terms, which keep the θ₁-dependence at full precision.
     const double h = 1e-7 * std::max(1.0, std::abs(theta1));
     double up = 0, down = 0;
-    if (!eom_.acceleration(theta1, omega1, ground_accel_m_s2, side, theta1_ddot) ||
-        !eom_.acceleration(theta1 + h, omega1, ground_accel_m_s2, side, up) ||
-        !eom_.acceleration(theta1 - h, omega1, ground_accel_m_s2, side, down))
+    if (!eom_.acceleration(theta1, omega1, ground, side, theta1_ddot) ||
+        !eom_.acceleration(theta1 + h, omega1, ground, side, up) ||
+        !eom_.acceleration(theta1 - h, omega1, ground, side, down))
       return false;
     d_theta = (up - down) / (2.0 * h);
     EomTerms t;
@@ -137,16 +140,19 @@ bool EomTable::acceleration_jacobian(double theta1, double omega1, double ground
     d_omega = -2.0 * t.J * omega1 / t.I;
     return true;
   }
-  const double I = clenshaw(cell->c.I, x), J = clenshaw(cell->c.J, x), Q = clenshaw(cell->c.Q, x),
-               S = clenshaw(cell->c.S, x);
+  const double I = clenshaw(cell->c.I, x), J = clenshaw(cell->c.J, x), S = clenshaw(cell->c.S, x);
+  double Q = clenshaw(cell->c.Q, x);
+  const double a_v = ground.vertical_m_s2, a_h = ground.horizontal_m_s2;
+  if (a_v != 0.0) Q += clenshaw(cell->c.G, x) * a_v;
   const double s = side < 0 ? 1.0 : -1.0;
-  const double num = S * ground_accel_m_s2 - s * J * omega1 * omega1 - s * Q;
+  const double num = S * a_h - s * J * omega1 * omega1 - s * Q;
   theta1_ddot = num / I;
   // d/du = (2/w) d/dx, and u = −θ₁ on side −1, +θ₁ on side +1.
   const double du_dx = 2.0 * inv_cell_ * (side < 0 ? -1.0 : 1.0);
-  const double dI = clenshaw(cell->dc.I, x), dJ = clenshaw(cell->dc.J, x), dQ = clenshaw(cell->dc.Q, x),
-               dS = clenshaw(cell->dc.S, x);
-  const double dnum = dS * ground_accel_m_s2 - s * dJ * omega1 * omega1 - s * dQ;
+  const double dI = clenshaw(cell->dc.I, x), dJ = clenshaw(cell->dc.J, x), dS = clenshaw(cell->dc.S, x);
+  double dQ = clenshaw(cell->dc.Q, x);
+  if (a_v != 0.0) dQ += clenshaw(cell->dc.G, x) * a_v;
+  const double dnum = dS * a_h - s * dJ * omega1 * omega1 - s * dQ;
   d_theta = du_dx * (dnum * I - num * dI) / (I * I);
   d_omega = -2.0 * s * J * omega1 / I;
   return true;

@@ -45,7 +45,17 @@ EquationOfMotion::EquationOfMotion(const Frame& frame) : frame_(frame), four_bar
     throw std::invalid_argument("impossible frame: the linkage does not close at rest");
   }
   lambda_g_ = rest_.G / rest_.S;
-  uplift_threshold_m_s2_ = (rest_.G * kGravity_m_s2 + rest_.K) / rest_.S;
+  uplift_threshold_m_s2_ = uplift_threshold_m_s2(0.0);
+}
+
+double EquationOfMotion::uplift_threshold_m_s2(double vertical_m_s2) const {
+  return (rest_.G * (frame_.gravity_m_s2 + vertical_m_s2) + rest_.K) / rest_.S;
+}
+
+bool EquationOfMotion::holds_closed(GroundAcceleration ground) const {
+  // rest_acceleration(ground, −1) < 0 opens into θ₁ < 0, rest_acceleration(ground, +1) > 0
+  // into θ₁ > 0; with S(0) < 0 both reduce to |ü_h| reaching the threshold at ü_v.
+  return std::abs(ground.horizontal_m_s2) < uplift_threshold_m_s2(ground.vertical_m_s2);
 }
 
 bool EquationOfMotion::negative_branch_terms(double phi, EomTerms& out, Configuration& c) const {
@@ -82,18 +92,21 @@ bool EquationOfMotion::terms(double theta1, int side, EomTerms& out) const {
   return true;
 }
 
-bool EquationOfMotion::acceleration(double theta1, double omega1, double ground_accel_m_s2,
+bool EquationOfMotion::acceleration(double theta1, double omega1, GroundAcceleration ground,
                                     int side, double& theta1_ddot) const {
   EomTerms t;
   if (!terms(theta1, side, t)) return false;
-  theta1_ddot = (t.S * ground_accel_m_s2 - t.J * omega1 * omega1 - t.G * kGravity_m_s2 - t.K) / t.I;
+  theta1_ddot = (t.S * ground.horizontal_m_s2 - t.J * omega1 * omega1 -
+                 t.G * (frame_.gravity_m_s2 + ground.vertical_m_s2) - t.K) /
+                t.I;
   return true;
 }
 
-double EquationOfMotion::rest_acceleration(double ground_accel_m_s2, int side) const {
+double EquationOfMotion::rest_acceleration(GroundAcceleration ground, int side) const {
   const double s = side < 0 ? -1.0 : 1.0;
   // On side +1, G and K change sign and S does not (odd dynamics).
-  return (rest_.S * ground_accel_m_s2 + s * (rest_.G * kGravity_m_s2 + rest_.K)) / rest_.I;
+  return (rest_.S * ground.horizontal_m_s2 + s * (rest_.G * (frame_.gravity_m_s2 + ground.vertical_m_s2) + rest_.K)) /
+         rest_.I;
 }
 
 double EquationOfMotion::energy(double theta1, double omega1, int side) const {
@@ -108,7 +121,7 @@ double EquationOfMotion::energy(double theta1, double omega1, int side) const {
   inertia(c.left, f.m_c, f.I_c_G);
   inertia(c.beam, f.m_b, f.I_b_G);
   inertia(c.right, f.m_c, f.I_c_G);
-  const double V_F = kGravity_m_s2 * (f.m_c * c.left.p.y + f.m_b * c.beam.p.y + f.m_c * c.right.p.y);
+  const double V_F = f.gravity_m_s2 * (f.m_c * c.left.p.y + f.m_b * c.beam.p.y + f.m_c * c.right.p.y);
   const Elongations e = elongations(f, c);
   // ½ k (e + e₀)² = ½ k e² + P₀ e + ½ P₀ e₀: the same form as K.
   auto tendon = [](double k, double P0, double e0, double ext) { return 0.5 * k * ext * ext + P0 * ext + 0.5 * P0 * e0; };

@@ -91,13 +91,21 @@ double significant_duration_s(const GroundMotion& record) {
   return time_of_level(cumulative, record.dt_s(), 0.95 * total) - time_of_level(cumulative, record.dt_s(), 0.05 * total);
 }
 
-double spectral_acceleration_g(const GroundMotion& record, double period_s, double damping) {
+namespace {
+
+/// ω = 2π/T [rad/s].
+double circular_frequency(double period_s) { return 2.0 * std::numbers::pi / period_s; }
+
+/// Displacement u [m] of the oscillator at each sample and over one period of free
+/// vibration after the record (Nigam–Jennings, see the file comment), after checking the
+/// period and damping.
+std::vector<double> oscillator_displacement_m(const GroundMotion& record, double period_s, double damping) {
   if (!(period_s > 0.0) || !std::isfinite(period_s))
     throw std::invalid_argument("spectral acceleration: the period must be positive, got " + std::to_string(period_s));
   if (!(damping >= 0.0 && damping < 1.0))
     throw std::invalid_argument("spectral acceleration: the damping ratio must be in [0, 1), got " +
                                 std::to_string(damping));
-  const double omega = 2.0 * std::numbers::pi / period_s;
+  const double omega = circular_frequency(period_s);
   const double dt = record.dt_s();
   Eigen::Matrix4d N = Eigen::Matrix4d::Zero();
   N(0, 1) = 1.0;
@@ -108,18 +116,28 @@ double spectral_acceleration_g(const GroundMotion& record, double period_s, doub
   const Eigen::Matrix4d step = (N * dt).exp();
 
   const auto& a = record.samples_m_s2();
-  double u = 0.0, v = 0.0, peak = 0.0;
+  // Free vibration after the record: the first peak comes within one period.
+  const auto tail_steps = static_cast<std::size_t>(std::ceil(period_s / dt));
+  std::vector<double> out;
+  out.reserve(a.size() + tail_steps);
+  double u = 0.0, v = 0.0;
   auto advance = [&](double a0, double a1) {
     const Eigen::Vector4d w(u, v, a0, (a1 - a0) / dt);
     const double u1 = step.row(0).dot(w);
     v = step.row(1).dot(w);
     u = u1;
-    peak = std::max(peak, std::fabs(u));
+    out.push_back(u);
   };
   for (std::size_t i = 0; i + 1 < a.size(); ++i) advance(a[i], a[i + 1]);
-  // Free vibration after the record: the first peak comes within one period.
-  const auto tail_steps = static_cast<std::size_t>(std::ceil(period_s / dt));
   for (std::size_t k = 0; k < tail_steps; ++k) advance(0.0, 0.0);
+  return out;
+}
+
+}  // namespace
+
+double spectral_acceleration_g(const GroundMotion& record, double period_s, double damping) {
+  const double peak = peak_abs(oscillator_displacement_m(record, period_s, damping));
+  const double omega = circular_frequency(period_s);
   return omega * omega * peak / kGravity_m_s2;
 }
 
@@ -160,6 +178,24 @@ double intensity_of(const GroundMotion& record, const IntensitySpec& spec) {
     case IntensityMeasure::kSa: return spectral_acceleration_g(record, spec.period_s, spec.damping);
   }
   return 0.0;
+}
+
+std::vector<double> intensity_series(const GroundMotion& record, const IntensitySpec& spec) {
+  switch (spec.measure) {
+    case IntensityMeasure::kPga: {
+      std::vector<double> a_g = record.samples_m_s2();
+      for (double& x : a_g) x /= kGravity_m_s2;
+      return a_g;
+    }
+    case IntensityMeasure::kPgv: return integrate(record.samples_m_s2(), record.dt_s());
+    case IntensityMeasure::kSa: {
+      std::vector<double> u = oscillator_displacement_m(record, spec.period_s, spec.damping);
+      const double omega = circular_frequency(spec.period_s);
+      for (double& x : u) x = omega * omega * x / kGravity_m_s2;
+      return u;
+    }
+  }
+  return {};
 }
 
 const SettingTable<IntensitySpec>& intensity_settings() {

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -37,6 +38,65 @@ double first_exceedance(const GroundMotion& rec, double t_from, double t_end, do
     if (!std::isnan(best)) return best <= t_end ? best : kNaN;
   }
   return kNaN;
+}
+
+double first_opening(const Excitation& excitation, const EquationOfMotion& eom, double t_from, double t_end) {
+  if (!excitation.has_vertical())
+    return first_exceedance(excitation.horizontal(), t_from, t_end, eom.uplift_threshold_m_s2());
+  // The margin ±ü_h − threshold(ü_v) of each sign is linear between samples (the threshold is
+  // affine in ü_v): the first sample interval where one turns positive holds the crossing.
+  auto margin = [&](GroundAcceleration a, double sign) {
+    return sign * a.horizontal_m_s2 - eom.uplift_threshold_m_s2(a.vertical_m_s2);
+  };
+  const GroundAcceleration at_from = excitation.at(t_from);
+  if (!eom.holds_closed(at_from)) return t_from;
+  const double dt = excitation.dt_s();
+  const std::size_t n = excitation.horizontal().size();
+  for (auto i = static_cast<std::size_t>(std::max(0.0, std::floor(t_from / dt))); i + 1 < n; ++i) {
+    const double t0 = std::max(static_cast<double>(i) * dt, t_from);
+    if (t0 > t_end) break;
+    const double t1 = static_cast<double>(i + 1) * dt;
+    const GroundAcceleration a0 = excitation.at(t0), a1 = excitation.at(t1);
+    double best = kNaN;
+    for (const double sign : {1.0, -1.0}) {
+      const double m0 = margin(a0, sign), m1 = margin(a1, sign);
+      if (!(m1 > 0.0)) continue;
+      const double s = m0 >= 0.0 ? 0.0 : std::clamp(m0 / (m0 - m1), 0.0, 1.0);
+      const double tc = t0 + s * (t1 - t0);
+      if (std::isnan(best) || tc < best) best = tc;
+    }
+    if (!std::isnan(best)) return best <= t_end ? best : kNaN;
+  }
+  return kNaN;
+}
+
+double free_fall_time(const Excitation& excitation, double gravity_m_s2, double t_end) {
+  const GroundMotion* vertical = excitation.vertical();
+  if (vertical == nullptr) return kNaN;
+  const auto& a = vertical->samples_m_s2();
+  const double level = -gravity_m_s2, dt = vertical->dt_s();
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (!(a[i] <= level)) continue;
+    const double t = i == 0 ? 0.0 : (static_cast<double>(i - 1) + (level - a[i - 1]) / (a[i] - a[i - 1])) * dt;
+    return t <= t_end ? t : kNaN;
+  }
+  return kNaN;
+}
+
+CaseEnd::CaseEnd(const Excitation& excitation, double gravity_m_s2, double tail_s)
+    : t_end_s(excitation.duration_s() + tail_s), free_fall(false) {
+  const double t_fall = free_fall_time(excitation, gravity_m_s2, t_end_s);
+  if (!std::isnan(t_fall)) t_end_s = t_fall, free_fall = true;
+}
+
+std::string CaseEnd::message() const {
+  if (!free_fall) return {};
+  char text[160];
+  std::snprintf(text, sizeof text,
+                "the ground fell faster than gravity (g + vertical acceleration <= 0) at t = %.6g s: the frame "
+                "leaves its supports, which the model does not describe",
+                t_end_s);
+  return text;
 }
 
 double paper_trigger_time(const GroundMotion& rec, double lambda_g) {
@@ -89,8 +149,9 @@ const char* StopAngles::message() const {
                                       : "rotation reached the mechanism's closing limit";
 }
 
-CaseResult initial_result(const EquationOfMotion& eom, const GroundMotion& rec, double restitution,
+CaseResult initial_result(const EquationOfMotion& eom, const Excitation& excitation, double restitution,
                           bool omega_peak) {
+  const GroundMotion& rec = excitation.horizontal();
   CaseResult r;
   r.lambda_g = eom.lambda_g();
   r.uplift_threshold_g = eom.uplift_threshold_m_s2() / kGravity_m_s2;
@@ -134,7 +195,7 @@ void HistoryRows::add(double t, double theta, double omega, int side, std::uint3
   s.strain_column_left = ts.strain_column_left;
   s.strain_column_right = ts.strain_column_right;
   s.strain_beam = ts.strain_beam;
-  s.ground_accel_m_s2 = rec_.accel_m_s2(t);
+  s.ground_accel_m_s2 = excitation_.at(t).horizontal_m_s2;
   s.ground_accel_g = s.ground_accel_m_s2 / kGravity_m_s2;
   s.event = static_cast<double>(events);
   held_ = true;

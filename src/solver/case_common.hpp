@@ -5,7 +5,9 @@
 #pragma once
 
 #include <algorithm>
+#include <string>
 
+#include "pcrf/excitation/excitation.hpp"
 #include "pcrf/metrics/case_result.hpp"
 #include "pcrf/model/equation_of_motion.hpp"
 #include "pcrf/record/ground_motion.hpp"
@@ -17,11 +19,36 @@ namespace pcrf::detail {
 /// interpolation of the record; NaN when it never does before `t_end`.
 double first_exceedance(const GroundMotion& rec, double t_from, double t_end, double threshold_m_s2);
 
+/// First time ≥ t_from at which the net force at rest opens the joints, i.e. the frame at
+/// rest stops being held closed (EquationOfMotion::holds_closed fails): |ü_h| exceeds the
+/// uplift threshold at that instant's ü_v. Exact within the linear interpolation of the
+/// components; NaN when it never happens before `t_end`. Without a vertical component it is
+/// first_exceedance of the horizontal at the constant threshold.
+double first_opening(const Excitation& excitation, const EquationOfMotion& eom, double t_from, double t_end);
+
+/// First time in [0, t_end] at which g + ü_v ≤ 0, the ground falling at least as fast as
+/// gravity (docs/vertical_excitation.md), exact within the linear interpolation of the
+/// vertical component; NaN when it never does (always without a vertical component).
+double free_fall_time(const Excitation& excitation, double gravity_m_s2, double t_end);
+
+/// When and why a case's simulated time ends: the end of the record plus the tail, or the
+/// ground's free fall if that comes first.
+struct CaseEnd {
+  CaseEnd(const Excitation& excitation, double gravity_m_s2, double tail_s);
+  double t_end_s;   ///< [s]
+  bool free_fall;   ///< t_end_s is the free fall's start
+  /// The status of a case that reached t_end_s without collapsing (`reached`: at rest or
+  /// still rocking), and its message.
+  CaseStatus status(CaseStatus reached) const { return free_fall ? CaseStatus::kGroundFreeFall : reached; }
+  std::string message() const;
+};
+
 /// First sample i with |a_i| ≥ λ_g·g, as i·dt (the paper's t_RI) [s]; NaN when none.
 double paper_trigger_time(const GroundMotion& rec, double lambda_g);
 
-/// A result record with the frame's properties and the at-rest values filled in.
-CaseResult initial_result(const EquationOfMotion& eom, const GroundMotion& rec, double restitution,
+/// A result record with the frame's properties and the at-rest values filled in (the
+/// paper's trigger from the horizontal component: its criterion knows no vertical).
+CaseResult initial_result(const EquationOfMotion& eom, const Excitation& excitation, double restitution,
                           bool omega_peak);
 
 /// Peak strains from the peak rotation (every |θ₁| up to it has been visited).
@@ -33,8 +60,8 @@ void set_peak_strains(const EquationOfMotion& eom, CaseResult& result);
 /// and whose events are the union. A row is held until a later one arrives or finish().
 class HistoryRows {
  public:
-  HistoryRows(const HistorySink& sink, const EquationOfMotion& eom, const GroundMotion& rec)
-      : sink_(sink), eom_(eom), rec_(rec) {}
+  HistoryRows(const HistorySink& sink, const EquationOfMotion& eom, const Excitation& excitation)
+      : sink_(sink), eom_(eom), excitation_(excitation) {}
   bool wanted() const { return static_cast<bool>(sink_); }
   /// The state (θ₁, θ̇₁) on `side` at t, with `events` (HistoryEvent bits).
   void add(double t, double theta, double omega, int side, std::uint32_t events = kEventNone);
@@ -45,7 +72,7 @@ class HistoryRows {
  private:
   const HistorySink& sink_;
   const EquationOfMotion& eom_;
-  const GroundMotion& rec_;
+  Excitation excitation_;
   /// Hands over the held row.
   void flush();
 

@@ -17,20 +17,21 @@ struct State {
 
 class FixedStepRun {
  public:
-  FixedStepRun(const EquationOfMotion& eom, const GroundMotion& rec, const PhysicsOptions& physics,
+  FixedStepRun(const EquationOfMotion& eom, const Excitation& excitation, const PhysicsOptions& physics,
                const SolverSettings& solver, const HistorySink& history)
       : eom_(eom),
-        rec_(rec),
+        excitation_(excitation),
         physics_(physics),
         solver_(solver),
-        history_(history, eom, rec),
+        history_(history, eom, excitation),
         r_(restitution_momentum(eom)),
-        h_(solver.fixed_step_s > 0 ? solver.fixed_step_s : rec.dt_s()),
-        t_end_(rec.duration_s() + physics.tail_s),
+        h_(solver.fixed_step_s > 0 ? solver.fixed_step_s : excitation.dt_s()),
+        end_(excitation, eom.frame().gravity_m_s2, physics.tail_s),
+        t_end_(end_.t_end_s),
         stop_(stop_angles(eom, physics)) {}
 
   CaseResult run() {
-    result_ = initial_result(eom_, rec_, r_, true);
+    result_ = initial_result(eom_, excitation_, r_, true);
     if (stop_.broken_at_rest()) return finish(CaseStatus::kTendonFracture, 0.0, kBrokenAtRestMessage);
     State y{physics_.theta0_rad, physics_.omega0_rad_s};
     double t = 0.0;
@@ -38,10 +39,10 @@ class FixedStepRun {
       // The paper's procedure starts the motion at its trigger t_RI, held or not by the
       // prestress; the physical criteria start it where the net force opens the joints.
       t = physics_.uplift == UpliftCriterion::kPaperProcedure
-              ? paper_trigger_time(rec_, eom_.lambda_g())
-              : first_exceedance(rec_, 0.0, t_end_, eom_.uplift_threshold_m_s2());
-      if (std::isnan(t)) return finish(CaseStatus::kAtRest, t_end_);
-      side_ = uplift_side(rec_.accel_m_s2(t));
+              ? paper_trigger_time(excitation_.horizontal(), eom_.lambda_g())
+              : first_opening(excitation_, eom_, 0.0, t_end_);
+      if (std::isnan(t) || t > t_end_) return finish(end_.status(CaseStatus::kAtRest), t_end_, end_.message());
+      side_ = uplift_side(excitation_.at(t).horizontal_m_s2);
     } else {
       side_ = initial_side(y.theta, y.omega);
     }
@@ -75,14 +76,14 @@ class FixedStepRun {
         return finish(CaseStatus::kSolverFailure, t, "non-finite state");
       if (std::abs(y.theta) >= stop_.stop_rad()) return finish(stop_.status(), t, stop_.message());
     }
-    return finish(CaseStatus::kRockingAtEnd, t);
+    return finish(end_.status(CaseStatus::kRockingAtEnd), t, end_.message());
   }
 
  private:
   bool rhs(double t, State y, State& dy) const {
     dy.theta = y.omega;
     ++evals_;
-    return eom_.acceleration(y.theta, y.omega, rec_.accel_m_s2(t), side_, dy.omega);
+    return eom_.acceleration(y.theta, y.omega, excitation_.at(t), side_, dy.omega);
   }
 
   bool step(double t, double h, State y, State& out) const {
@@ -120,13 +121,14 @@ class FixedStepRun {
   }
 
   const EquationOfMotion& eom_;
-  const GroundMotion& rec_;
+  Excitation excitation_;
   PhysicsOptions physics_;
   SolverSettings solver_;
   HistoryRows history_;
   State last_{0.0, 0.0};  // the state at the last step's end
   double r_;
   double h_;
+  CaseEnd end_;
   double t_end_;
   StopAngles stop_;
   int side_ = -1;
@@ -136,10 +138,10 @@ class FixedStepRun {
 
 }  // namespace
 
-CaseResult solve_case_fixed_step(const EquationOfMotion& eom, const GroundMotion& record,
+CaseResult solve_case_fixed_step(const EquationOfMotion& eom, const Excitation& excitation,
                                  const PhysicsOptions& physics, const SolverSettings& solver,
                                  const HistorySink& history) {
-  FixedStepRun run(eom, record, physics, solver, history);
+  FixedStepRun run(eom, excitation, physics, solver, history);
   return run.run();
 }
 

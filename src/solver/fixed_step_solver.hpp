@@ -15,12 +15,12 @@
 
 #include "pcrf/metrics/case_result.hpp"
 #include "pcrf/model/equation_of_motion.hpp"
-#include "pcrf/record/ground_motion.hpp"
+#include "pcrf/excitation/excitation.hpp"
 #include "pcrf/solver/rocking_solver.hpp"
 
 namespace pcrf::detail {
 
-CaseResult solve_case_fixed_step(const EquationOfMotion& eom, const GroundMotion& record,
+CaseResult solve_case_fixed_step(const EquationOfMotion& eom, const Excitation& excitation,
                                  const PhysicsOptions& physics, const SolverSettings& solver,
                                  const HistorySink& history);
 

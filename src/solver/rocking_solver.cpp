@@ -23,7 +23,7 @@
 namespace pcrf {
 namespace {
 
-using detail::first_exceedance;
+using detail::first_opening;
 
 
 /// Root indices.
@@ -32,8 +32,8 @@ enum Root { kImpact = 0, kThetaPeak = 1, kOmegaPeak = 2, kLimit = 3, kRootCount 
 /// The ODE of one flight (between two impacts) on a fixed side.
 class FlightProblem final : public detail::OdeProblem {
  public:
-  FlightProblem(const EomTable& table, const GroundMotion& record, double theta_stop_rad, bool omega_peak)
-      : table_(table), record_(record), theta_stop_rad_(theta_stop_rad), omega_peak_(omega_peak) {}
+  FlightProblem(const EomTable& table, const Excitation& excitation, double theta_stop_rad, bool omega_peak)
+      : table_(table), excitation_(excitation), theta_stop_rad_(theta_stop_rad), omega_peak_(omega_peak) {}
 
   int side = -1;
 
@@ -59,7 +59,7 @@ class FlightProblem final : public detail::OdeProblem {
   bool has_jacobian() const override { return true; }
   int jacobian(double t, const double* y, double* dfdy) override {
     double acc = 0, d_theta = 0, d_omega = 0;
-    if (!table_.acceleration_jacobian(y[0], y[1], record_.accel_m_s2(t), side, acc, d_theta, d_omega)) return 1;
+    if (!table_.acceleration_jacobian(y[0], y[1], excitation_.at(t), side, acc, d_theta, d_omega)) return 1;
     dfdy[0] = 0.0;
     dfdy[1] = 1.0;
     dfdy[2] = d_theta;
@@ -82,7 +82,7 @@ class FlightProblem final : public detail::OdeProblem {
       acc = last_acc_;
       return true;
     }
-    if (!table_.acceleration(y[0], y[1], record_.accel_m_s2(t), side, acc) || !std::isfinite(acc)) return false;
+    if (!table_.acceleration(y[0], y[1], excitation_.at(t), side, acc) || !std::isfinite(acc)) return false;
     last_t_ = t;
     last_y_[0] = y[0];
     last_y_[1] = y[1];
@@ -92,7 +92,7 @@ class FlightProblem final : public detail::OdeProblem {
   }
 
   const EomTable& table_;  // the prepared frame's: built once for every case of the frame
-  const GroundMotion& record_;
+  Excitation excitation_;
   double theta_stop_rad_;
   bool omega_peak_;
   double last_t_ = std::numeric_limits<double>::quiet_NaN();
@@ -104,20 +104,21 @@ class FlightProblem final : public detail::OdeProblem {
 /// The state machine of one case.
 class CaseRun {
  public:
-  CaseRun(PreparedFrame& frame, const GroundMotion& record, const SolverSettings& solver, const OutputRequest& request,
+  CaseRun(PreparedFrame& frame, const Excitation& excitation, const SolverSettings& solver, const OutputRequest& request,
           const HistorySink& history)
       : eom_(frame.eom()),
-        record_(record),
+        excitation_(excitation),
         physics_(frame.physics()),
         solver_(solver),
         request_(request),
-        history_(history, frame.eom(), record),
-        history_dt_s_(request.history_dt_s > 0.0 ? request.history_dt_s : record.dt_s()),
+        history_(history, frame.eom(), excitation),
+        history_dt_s_(request.history_dt_s > 0.0 ? request.history_dt_s : excitation.dt_s()),
         restitution_(frame.restitution()),
         stop_(frame.stop_angles()),
-        problem_(frame.table(), record_, stop_.stop_rad(), request.omega_peak),
+        problem_(frame.table(), excitation_, stop_.stop_rad(), request.omega_peak),
         integrator_(detail::make_integrator(solver, problem_)),
-        t_end_(record.duration_s() + physics_.tail_s) {}
+        end_(excitation, frame.frame().gravity_m_s2, physics_.tail_s),
+        t_end_(end_.t_end_s) {}
 
   CaseResult run();
 
@@ -142,7 +143,7 @@ class CaseRun {
   bool over_time() const;
 
   const EquationOfMotion& eom_;
-  const GroundMotion& record_;
+  Excitation excitation_;
   PhysicsOptions physics_;
   SolverSettings solver_;
   OutputRequest request_;
@@ -152,6 +153,7 @@ class CaseRun {
   detail::StopAngles stop_;
   FlightProblem problem_;
   std::unique_ptr<detail::OdeIntegrator> integrator_;
+  detail::CaseEnd end_;
   double t_end_;
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 
@@ -165,7 +167,7 @@ class CaseRun {
 };
 
 CaseResult CaseRun::run() {
-  result_ = detail::initial_result(eom_, record_, restitution_, request_.omega_peak);
+  result_ = detail::initial_result(eom_, excitation_, restitution_, request_.omega_peak);
   try {
     if (stop_.broken_at_rest()) {
       finish(CaseStatus::kTendonFracture, detail::kBrokenAtRestMessage);
@@ -192,18 +194,17 @@ void CaseRun::rest_until_uplift() {
   // Both criteria open the frame where the net force at θ₁ = 0 does (see README,
   // "Uplift criteria"): a unilateral contact pushes, it never pulls, so after the paper's
   // trigger a frame still held by its prestress stays closed.
-  const double t_open = first_exceedance(record_, t_, t_end_, eom_.uplift_threshold_m_s2());
+  const double t_open = first_opening(excitation_, eom_, t_, t_end_);
   if (std::isnan(t_open)) {
     emit_rest_until(t_end_);
     t_ = t_end_;
-    finish(CaseStatus::kAtRest);
+    finish(end_.status(CaseStatus::kAtRest), end_.message());
     return;
   }
   emit_rest_until(t_open);
   t_ = t_open;
   if (std::isnan(result_.t_uplift_s)) result_.t_uplift_s = t_open;
-  const double a = record_.accel_m_s2(t_open);
-  problem_.side = detail::uplift_side(a);
+  problem_.side = detail::uplift_side(excitation_.at(t_open).horizontal_m_s2);
   const double y0[2] = {0.0, 0.0};
   at_rest_ = false;
   start_flight(t_open, y0, kEventUplift);
@@ -228,7 +229,7 @@ void CaseRun::start_flight(double t, const double* y, std::uint32_t events) {
   // in its interpolant: start with a step that resolves the flight.
   double h0 = 0.0;
   if (y[0] == 0.0 && y[1] != 0.0) {
-    const double a = std::abs(eom_.rest_acceleration(record_.accel_m_s2(t), problem_.side));
+    const double a = std::abs(eom_.rest_acceleration(excitation_.at(t), problem_.side));
     const double flight_s = 2.0 * std::abs(y[1]) / a;
     if (std::isfinite(flight_s) && flight_s < 0.01) h0 = flight_s / 16.0;
   }
@@ -241,15 +242,15 @@ void CaseRun::fly() {
   double t = t_;
   // Advance to the next record sample (kinks of ü_g) when asked, else in chunks so that
   // wall-time limits are honoured; never beyond the next history sample.
-  const double dt = record_.dt_s();
+  const double dt = excitation_.dt_s();
   double tout = std::min(t_end_, t_ + 1.0);
-  if (solver_.stop_at_samples && t_ < record_.duration_s()) {
+  if (solver_.stop_at_samples && t_ < excitation_.duration_s()) {
     // The next sample strictly after t (a root may leave t a hair below a sample).
     double next = (std::floor(t_ / dt) + 1.0) * dt;
     if (next - t_ < 1e-9 * dt) next += dt;
     tout = std::min(tout, next);
     integrator_->set_stop_time(tout);
-  } else if (t_ >= record_.duration_s()) {
+  } else if (t_ >= excitation_.duration_s()) {
     integrator_->set_stop_time(t_end_);
   }
   // With a history, one step at a time: the rows between steps come from the step's
@@ -279,7 +280,7 @@ void CaseRun::fly() {
   note_theta(t, y[0]);
   if (request_.omega_peak) note_omega(t, y[1]);
   if (t >= t_end_) {
-    finish(CaseStatus::kRockingAtEnd);
+    finish(end_.status(CaseStatus::kRockingAtEnd), end_.message());
   } else if (over_time()) {
     finish(CaseStatus::kTimeLimit, "wall-time limit reached at t = " + std::to_string(t) + " s");
   }
@@ -342,7 +343,7 @@ void CaseRun::impact(double t, double* y) {
 //    run at that tolerance resolves it (its computed θ and θ̇ are noise).
 bool CaseRun::returns_to_rest(double t, double omega_after) const {
   if (!holds_closed(t) || restitution_ >= 1.0) return false;
-  const double a = record_.accel_m_s2(t);
+  const GroundAcceleration a = excitation_.at(t);
   const double a_min = std::min(std::abs(eom_.rest_acceleration(a, -1)), std::abs(eom_.rest_acceleration(a, +1)));
   const double v = std::abs(omega_after);
   const double remaining_s = 2.0 * v / (a_min * (1.0 - restitution_));
@@ -351,7 +352,7 @@ bool CaseRun::returns_to_rest(double t, double omega_after) const {
 }
 
 bool CaseRun::holds_closed(double t) const {
-  return std::abs(record_.accel_m_s2(t)) < eom_.uplift_threshold_m_s2();
+  return eom_.holds_closed(excitation_.at(t));
 }
 
 void CaseRun::settle(double t) {
@@ -436,13 +437,15 @@ namespace {
 /// its set-up (closing limit, fracture angle, coefficient table, integrator). nullopt when
 /// the case needs the full run (it lifts, starts displaced, is broken at rest or records a
 /// history).
-std::optional<CaseResult> rest_throughout(PreparedFrame& frame, const GroundMotion& record, const OutputRequest& request,
-                                          const HistorySink& history) {
+std::optional<CaseResult> rest_throughout(PreparedFrame& frame, const Excitation& excitation,
+                                          const OutputRequest& request, const HistorySink& history) {
   const PhysicsOptions& physics = frame.physics();
   if (history || frame.broken_at_rest() || physics.theta0_rad != 0.0 || physics.omega0_rad_s != 0.0) return std::nullopt;
-  const double t_end = record.duration_s() + physics.tail_s;
-  if (!std::isnan(first_exceedance(record, 0.0, t_end, frame.eom().uplift_threshold_m_s2()))) return std::nullopt;
-  CaseResult result = detail::initial_result(frame.eom(), record, frame.restitution(), request.omega_peak);
+  const detail::CaseEnd end(excitation, frame.frame().gravity_m_s2, physics.tail_s);
+  if (end.free_fall) return std::nullopt;  // the full run ends it at the free fall
+  const double t_end = end.t_end_s;
+  if (!std::isnan(first_opening(excitation, frame.eom(), 0.0, t_end))) return std::nullopt;
+  CaseResult result = detail::initial_result(frame.eom(), excitation, frame.restitution(), request.omega_peak);
   result.status = CaseStatus::kAtRest;
   result.t_end_s = t_end;
   return result;
@@ -462,7 +465,7 @@ constexpr double kPerturbations[] = {1e-9, -1e-9, 1e-7, -1e-7, 1e-6, -1e-6};
 /// flip: a case that collapsed, or that came within half of its stop angle (fracture or
 /// overturning). Further from collapse a 1e-6 perturbation does not double θ_max (the worst
 /// measured sensitivity is 19 % for 1e-9): the verdict is stable, and the spread not measured.
-void check_verdict(PreparedFrame& frame, const GroundMotion& record, const SolverSettings& solver,
+void check_verdict(PreparedFrame& frame, const Excitation& excitation, const SolverSettings& solver,
                    const OutputRequest& request, CaseResult& nominal) {
   const Verdict verdict = verdict_of(nominal.status);
   const bool near = is_collapse(nominal.status) || verdict == Verdict::kNone ||
@@ -477,7 +480,8 @@ void check_verdict(PreparedFrame& frame, const GroundMotion& record, const Solve
   double lo = nominal.theta_max_rad, hi = nominal.theta_max_rad, collapses = nominal.collapse_fraction;
   bool stable = true;
   for (double e : kPerturbations) {
-    const CaseResult twin = solve_case(frame, record.scaled(1.0 + e), twin_settings, request);
+    const ScaledExcitation scaled(excitation, 1.0 + e);
+    const CaseResult twin = solve_case(frame, scaled.view(), twin_settings, request);
     stable = stable && verdict_of(twin.status) == verdict;
     collapses += is_collapse(twin.status) ? 1.0 : 0.0;
     lo = std::min(lo, twin.theta_max_rad);
@@ -490,7 +494,7 @@ void check_verdict(PreparedFrame& frame, const GroundMotion& record, const Solve
 
 }  // namespace
 
-CaseResult solve_case(PreparedFrame& frame, const GroundMotion& record, const SolverSettings& solver,
+CaseResult solve_case(PreparedFrame& frame, const Excitation& excitation, const SolverSettings& solver,
                       const OutputRequest& request, const HistorySink& history) {
   detail::validate(solver, frame.physics());
   check_initial_state(frame.eom(), frame.physics());
@@ -498,23 +502,23 @@ CaseResult solve_case(PreparedFrame& frame, const GroundMotion& record, const So
   const auto start = std::chrono::steady_clock::now();
   CaseResult result;
   if (solver.integrator == Integrator::kFixedRk4SignChange) {
-    result = detail::solve_case_fixed_step(frame.eom(), record, frame.physics(), solver, history);
-  } else if (auto at_rest = rest_throughout(frame, record, request, history)) {
+    result = detail::solve_case_fixed_step(frame.eom(), excitation, frame.physics(), solver, history);
+  } else if (auto at_rest = rest_throughout(frame, excitation, request, history)) {
     result = std::move(*at_rest);
   } else {
-    CaseRun run(frame, record, solver, request, history);
+    CaseRun run(frame, excitation, solver, request, history);
     result = run.run();
   }
-  if (solver.verdict_check) check_verdict(frame, record, solver, request, result);
+  if (solver.verdict_check) check_verdict(frame, excitation, solver, request, result);
   result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
 
-CaseResult solve_case(const Frame& frame, const GroundMotion& record, const PhysicsOptions& physics,
+CaseResult solve_case(const Frame& frame, const Excitation& excitation, const PhysicsOptions& physics,
                       const SolverSettings& solver, const OutputRequest& request, const HistorySink& history) {
   detail::validate(solver, physics);  // settings first: they are the caller's, the frame may be the study's
   PreparedFrame prepared(frame, physics);
-  return solve_case(prepared, record, solver, request, history);
+  return solve_case(prepared, excitation, solver, request, history);
 }
 
 }  // namespace pcrf

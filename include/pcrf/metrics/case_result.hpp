@@ -27,6 +27,9 @@ enum class CaseStatus : std::int8_t {
   /// The frame cannot be built, or lies outside the domain where the rigid-body rocking
   /// model holds (studies/README.md, "Valid frames"); it is not simulated.
   kInvalidFrame = 6,
+  /// The ground fell faster than gravity (g + ü_v ≤ 0): the frame leaves its supports, which
+  /// the model does not describe (docs/vertical_excitation.md). The case ends there.
+  kGroundFreeFall = 7,
   kNotRun = -1,         ///< placeholder in a cube for a case not computed yet
 };
 
@@ -37,7 +40,7 @@ const std::vector<CaseStatus>& all_final_statuses();
 /// A collapse: a tendon fractured or the frame overturned.
 bool is_collapse(CaseStatus status);
 /// The case says something about the frame: it survived (at rest, still rocking) or
-/// collapsed. A solver failure, a time limit or an invalid frame does not.
+/// collapsed. A solver failure, a time limit, an invalid frame or a ground in free fall does not.
 bool has_verdict(CaseStatus status);
 /// What a case says about the frame, as verdict checks and benchmarks compare cases.
 enum class Verdict { kSurvived, kTendonFracture, kOverturned, kNone };

@@ -1,7 +1,9 @@
 /// \file eom_table.hpp
 /// \brief Lazily tabulated coefficients of Eq. (31) for the integrator's inner loop.
 ///
-/// The right-hand side needs I, J, Q = G·g + K and S at θ₁. Evaluating them exactly costs a
+/// The right-hand side needs I, J, Q = G·g + K, S and, under vertical shaking, G at θ₁ (then
+/// G(g + ü_v) + K = Q + G·ü_v: a case without a vertical component never evaluates G, and
+/// gets bit for bit what it got before G was tabulated). Evaluating them exactly costs a
 /// loop closure and ~16 transcendental functions; they are smooth in θ₁, so this class
 /// samples them once per cell of width `cell_rad` at 10 Chebyshev nodes and evaluates the
 /// degree-9 interpolant (Clenshaw) afterwards. Cells are built on first use, so a case pays
@@ -24,13 +26,13 @@ class EomTable {
   explicit EomTable(const EquationOfMotion& eom, double cell_rad = 0.02);
 
   /// θ̈₁ [rad/s²] as EquationOfMotion::acceleration, from the tabulated terms.
-  bool acceleration(double theta1, double omega1, double ground_accel_m_s2, int side, double& theta1_ddot) const;
+  bool acceleration(double theta1, double omega1, GroundAcceleration ground, int side, double& theta1_ddot) const;
 
   /// θ̈₁ and its partial derivatives ∂θ̈₁/∂θ₁ [1/s²] and ∂θ̈₁/∂θ̇₁ [1/s], for implicit
   /// integrators. The θ₁-derivative comes from differentiating the Chebyshev series
   /// (exact for the interpolant); a difference quotient of the tabulated θ̈₁ would lose
   /// the small θ₁-dependent part to round-off next to the large step force at θ₁ = 0.
-  bool acceleration_jacobian(double theta1, double omega1, double ground_accel_m_s2, int side,
+  bool acceleration_jacobian(double theta1, double omega1, GroundAcceleration ground, int side,
                              double& theta1_ddot, double& d_theta, double& d_omega) const;
 
   /// Number of cells built so far (for tests and benchmarks).
@@ -39,7 +41,7 @@ class EomTable {
  private:
   static constexpr int kNodes = 10;
   struct Coefficients {
-    std::array<double, kNodes> I, J, Q, S;
+    std::array<double, kNodes> I, J, Q, S, G;
   };
   struct Cell {
     enum class State : char { kEmpty, kTabulated, kExact } state = State::kEmpty;
@@ -51,7 +53,11 @@ class EomTable {
   /// x ∈ [−1, 1]; nullptr where the table does not apply (exact terms then).
   const Cell* locate(double theta1, int side, double& x) const;
 
-  bool negative_branch(double phi, double& I, double& J, double& Q, double& S) const;
+  /// The terms on the θ₁ ≤ 0 branch at θ₁ = φ, with Q = G·g + K.
+  struct Terms {
+    double I, J, Q, S, G;
+  };
+  bool negative_branch(double phi, Terms& out) const;
   void build(Cell& cell, int index) const;
 
   const EquationOfMotion& eom_;

@@ -1,7 +1,12 @@
 /// \file equation_of_motion.hpp
 /// \brief The rocking frame's equation of motion (31), energy and tendon strains.
 ///
-///     I(θ₁) θ̈₁ + J(θ₁) θ̇₁² + G(θ₁) g + K(θ₁) = S(θ₁) ü_g
+///     I(θ₁) θ̈₁ + J(θ₁) θ̇₁² + G(θ₁) (g + ü_v) + K(θ₁) = S(θ₁) ü_h
+///
+/// with ü_h the ground's horizontal acceleration in the frame's plane and ü_v its vertical
+/// acceleration, positive up (docs/vertical_excitation.md: in the frame that moves with the
+/// ground, the vertical acceleration adds to gravity); without vertical shaking this is the
+/// paper's Eq. (31) with ü_g = ü_h.
 ///
 /// derived from T = ½ I θ̇₁², V = V_F + V_T (MODEL.md): I = Σ m|∂p/∂θ₁|² + I^G (∂φ/∂θ₁)²,
 /// J = ½ dI/dθ₁, G = Σ m ∂y/∂θ₁ (so G g = ∂V_F/∂θ₁), K = ∂V_T/∂θ₁, S = −Σ m ∂x/∂θ₁.
@@ -15,6 +20,7 @@
 /// branch, so an integrator that overshoots θ₁ = 0 sees smooth dynamics.
 #pragma once
 
+#include "pcrf/ground_acceleration.hpp"
 #include "pcrf/model/four_bar.hpp"
 #include "pcrf/model/frame.hpp"
 
@@ -46,9 +52,9 @@ class EquationOfMotion {
   /// Terms on `side` (−1 or +1) at θ₁. Returns false where the linkage cannot close.
   bool terms(double theta1, int side, EomTerms& out) const;
 
-  /// θ̈₁ [rad/s²] for state (θ₁, θ̇₁) on `side` under ground acceleration ü_g [m/s²].
+  /// θ̈₁ [rad/s²] for state (θ₁, θ̇₁) on `side` under the ground acceleration `ground`.
   /// Returns false where the linkage cannot close.
-  bool acceleration(double theta1, double omega1, double ground_accel_m_s2, int side,
+  bool acceleration(double theta1, double omega1, GroundAcceleration ground, int side,
                     double& theta1_ddot) const;
 
   /// T + V [J] (V_F from the ground line, V_T including the initial elongations).
@@ -69,12 +75,22 @@ class EquationOfMotion {
   double lambda_g() const { return lambda_g_; }
   /// The terms of Eq. (31) at rest (θ₁ = 0⁻).
   const EomTerms& rest_terms() const { return rest_; }
-  /// Ground acceleration that opens the closed frame, prestress included [m/s²].
+  /// Horizontal ground acceleration that opens the closed frame, prestress included, without
+  /// vertical shaking [m/s²].
   double uplift_threshold_m_s2() const { return uplift_threshold_m_s2_; }
+  /// The same under a vertical ground acceleration ü_v (positive up):
+  /// (G(0)(g + ü_v) + K(0)) / S(0) [m/s²], affine in ü_v; it reaches zero where the ground
+  /// falls fast enough to unload the joints.
+  double uplift_threshold_m_s2(double vertical_m_s2) const;
 
-  /// θ̈₁ at θ₁ = 0, θ̇₁ = 0 on `side` [rad/s²]: the sign says whether the net force opens
-  /// the joints into that side (side·θ̈ > 0) or holds them closed.
-  double rest_acceleration(double ground_accel_m_s2, int side) const;
+  /// θ̈₁ at θ₁ = 0, θ̇₁ = 0 on `side` [rad/s²]: the net generalized force at rest over I(0).
+  /// Its sign says whether the force opens the joints into that side (side·θ̈ > 0) or holds
+  /// them closed. Every rest, uplift and return-to-rest decision derives from it.
+  double rest_acceleration(GroundAcceleration ground, int side) const;
+
+  /// True while the net force at rest holds the joints closed on both sides:
+  /// |ü_h| below uplift_threshold_m_s2(ü_v).
+  bool holds_closed(GroundAcceleration ground) const;
 
   /// The linkage's closing limit |θ₁| [rad] (1.6002 for the basic model).
   double closing_limit_rad() const { return -four_bar_.closing_limit_rad(); }

@@ -10,6 +10,8 @@
 
 #include <string>
 
+#include "pcrf/units.hpp"
+
 namespace pcrf {
 
 /// The eight dimensionless parameters plus the scale (h, m_c). Defaults: basic model.
@@ -55,6 +57,9 @@ struct Frame {
   double k_c, k_b;              ///< tendon stiffnesses E A / length [N/m]
   double e_c0, e_b0;            ///< initial tendon elongations P₀/k [m]; 0 when k = 0
   double len_c, len_b;          ///< tendon lengths 2h and 2L + 2b [m]
+  /// Gravity the frame stands in [m/s²]. The ground's vertical acceleration adds to it
+  /// (equation_of_motion.hpp); the Π values are always defined with the standard g.
+  double gravity_m_s2 = kGravity_m_s2;
 
   /// Dimensionless parameters of this frame.
   FrameParameters parameters() const;

@@ -64,6 +64,12 @@ struct IntensitySpec {
 /// The record's value of the measure, in its units.
 double intensity_of(const GroundMotion& record, const IntensitySpec& spec);
 
+/// The series whose largest absolute value is the measure, in its units: the acceleration
+/// [g] at the samples, the trapezoidal velocity [m/s], or ω² u [g] of the Sa oscillator at
+/// the samples and over one period of free vibration after them. The series of a linear
+/// combination of records is the same combination of their series (what RotD relies on).
+std::vector<double> intensity_series(const GroundMotion& record, const IntensitySpec& spec);
+
 /// The [intensity] table of a study (and the `pcrf run` flags --measure, --period-s,
 /// --damping). Whether period_s is needed depends on the measure: check_intensity_spec().
 const SettingTable<IntensitySpec>& intensity_settings();

@@ -1,5 +1,6 @@
 /// \file rocking_solver.hpp
-/// \brief Solves one case: a frame under a ground motion, from rest, through impacts.
+/// \brief Solves one case: a frame under an excitation (its in-plane horizontal and vertical
+/// ground acceleration; a single record converts to one), from rest, through impacts.
 ///
 /// State y = (θ₁, θ̇₁). Between impacts the equation of motion (31) is integrated on the
 /// branch of the current sway direction (θ₁ ≤ 0 or the mirrored θ₁ ≥ 0) with SUNDIALS
@@ -17,13 +18,13 @@
 
 #include <functional>
 
-#include "pcrf/metrics/case_result.hpp"
-#include "pcrf/model/frame.hpp"
-#include "pcrf/record/ground_motion.hpp"
-#include "pcrf/solver/history.hpp"
-
 #include <memory>
 #include <stdexcept>
+
+#include "pcrf/excitation/excitation.hpp"
+#include "pcrf/metrics/case_result.hpp"
+#include "pcrf/model/frame.hpp"
+#include "pcrf/solver/history.hpp"
 #include "pcrf/solver/settings.hpp"
 
 namespace pcrf {
@@ -63,11 +64,11 @@ std::shared_ptr<PreparedFrame> prepare_frame(const Frame& frame, const PhysicsOp
 /// Solves one case. Never throws for a physical or numerical failure: the result's
 /// status says what happened (message gives detail). Throws std::invalid_argument only
 /// for invalid settings (a value outside its description, an impossible initial state).
-CaseResult solve_case(PreparedFrame& frame, const GroundMotion& record, const SolverSettings& solver,
+CaseResult solve_case(PreparedFrame& frame, const Excitation& excitation, const SolverSettings& solver,
                       const OutputRequest& request = {}, const HistorySink& history = {});
 
 /// The same for a frame used once. \throws InvalidFrame as prepare_frame().
-CaseResult solve_case(const Frame& frame, const GroundMotion& record,
+CaseResult solve_case(const Frame& frame, const Excitation& excitation,
                       const PhysicsOptions& physics, const SolverSettings& solver,
                       const OutputRequest& request = {}, const HistorySink& history = {});
 

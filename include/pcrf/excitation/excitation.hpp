@@ -1,0 +1,69 @@
+/// \file excitation.hpp
+/// \brief What one case is shaken by: the in-plane horizontal ground acceleration and,
+/// optionally, the vertical one, as functions of time.
+///
+/// An Excitation is a view: it refers to records that the caller owns and keeps alive while
+/// the view is used (the records a study or `pcrf run` loaded, scaled and combined). Its
+/// components share one time axis, t = i·dt from 0: the same dt and the same number of
+/// samples (components of different lengths are padded with zeros where they are put
+/// together). After the last sample every component is zero (the free-vibration tail).
+///
+/// The solver evaluates it once per right-hand-side evaluation (at()) and hands the value
+/// to the model; it never reads a record itself.
+#pragma once
+
+#include <optional>
+
+#include "pcrf/ground_acceleration.hpp"
+#include "pcrf/record/ground_motion.hpp"
+
+namespace pcrf {
+
+class Excitation {
+ public:
+  /// A horizontal motion alone (in the frame's plane). Implicit: every place that solved a
+  /// case under one record keeps doing so.
+  Excitation(const GroundMotion& horizontal)  // NOLINT: implicit by design
+      : horizontal_(&horizontal) {}
+
+  /// A horizontal and a vertical (positive up) motion; `vertical` may be null.
+  /// \throws std::invalid_argument when the two differ in dt or in number of samples.
+  Excitation(const GroundMotion& horizontal, const GroundMotion* vertical);
+
+  /// The ground acceleration at t [m/s²]; each component exactly as GroundMotion::accel_m_s2.
+  GroundAcceleration at(double t_s) const {
+    return {horizontal_->accel_m_s2(t_s), vertical_ != nullptr ? vertical_->accel_m_s2(t_s) : 0.0};
+  }
+
+  const GroundMotion& horizontal() const { return *horizontal_; }
+  /// The vertical component, or null when there is none.
+  const GroundMotion* vertical() const { return vertical_; }
+  bool has_vertical() const { return vertical_ != nullptr; }
+
+  /// The common sample interval [s].
+  double dt_s() const { return horizontal_->dt_s(); }
+  /// Time of the last sample [s].
+  double duration_s() const { return horizontal_->duration_s(); }
+
+ private:
+  const GroundMotion* horizontal_;
+  const GroundMotion* vertical_ = nullptr;
+};
+
+/// Owns copies of an excitation's components, every one multiplied by `factor` (the
+/// perturbed twins of the verdict check scale the whole ground motion).
+class ScaledExcitation {
+ public:
+  /// \throws std::invalid_argument as GroundMotion::scaled.
+  ScaledExcitation(const Excitation& of, double factor);
+  ScaledExcitation(const ScaledExcitation&) = delete;  // the view points into this object
+  ScaledExcitation& operator=(const ScaledExcitation&) = delete;
+
+  Excitation view() const { return {horizontal_, vertical_ ? &*vertical_ : nullptr}; }
+
+ private:
+  GroundMotion horizontal_;
+  std::optional<GroundMotion> vertical_;
+};
+
+}  // namespace pcrf
