@@ -22,9 +22,16 @@
 #include "pcrf/study/study_check.hpp"
 #include "pcrf/study/study_cube.hpp"
 #include "pcrf/study/study_parser.hpp"
+#include "pcrf/study/study_size.hpp"
 
 namespace pcrf::study {
 namespace {
+
+/// The case space, once the study is known to fit (a plan is drawn whole when made).
+std::unique_ptr<CaseSpace> sized_space(const Study& study) {
+  check_study_size(study);
+  return std::make_unique<CaseSpace>(study);
+}
 
 /// What every rank needs to compute cases.
 struct Prepared {
@@ -34,7 +41,7 @@ struct Prepared {
 
   explicit Prepared(Study s)
       : study(std::move(s)),
-        space(std::make_unique<CaseSpace>(study)),
+        space(sized_space(study)),
         records(std::make_unique<RecordCache>(study.records)) {}
 };
 
@@ -160,7 +167,7 @@ class ResultSink {
   }
 
   /// Results held in memory between checkpoints, at most [bytes].
-  static constexpr std::size_t kPendingLimitBytes = std::size_t{256} << 20;
+  static constexpr std::size_t kPendingLimitBytes = kPendingResultsBytes;
 
   void close() {
     take_histories();
