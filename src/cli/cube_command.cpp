@@ -220,7 +220,7 @@ void add_cube_command(CLI::App& app) {
       for (const auto& part : args->parts) note_running(part);
       if (const auto who = io::RunLock::holder(args->output); !who.empty())
         throw UsageError(args->output + ": in use by a run (" + who + "); give another -o");
-      cube::merge_cubes(parts, args->output, args->overwrite);
+      cube::merge_cubes(parts, args->output, args->overwrite, study::vocabulary::kIdaRuns);
       std::cout << "merged " << parts.size() << " parts into " << args->output << '\n';
     });
   });

@@ -54,7 +54,7 @@ double scale_factor(const RunOptions& o, const GroundMotion& motion) {
   if (const auto problem = measures_problem(motion); !problem.empty()) throw UsageError(motion.name() + ": " + problem);
   const double im = intensity_of(motion, spec);
   if (!(im > 0.0)) throw UsageError(motion.name() + ": its " + to_string(spec.measure) + " is 0: it cannot be scaled");
-  return o.intensity / im;
+  return intensity_scale_factor(o.intensity, im);
 }
 
 GroundMotion load_motion(const RunOptions& o, double& factor) {
@@ -132,7 +132,8 @@ void run(const RunOptions& o) {
   std::cout << json.str() << std::endl;
 }
 
-/// --kappa … --pi-e-c and --h-m, --m-c-kg (older spellings --h, --mc), from the parameter tables.
+/// --kappa … --pi-e-c and --h-m, --m-c-kg (older spelling --mc), from the parameter tables.
+/// The older `--h` is gone: CLI11 2.4 refuses a one-letter long name beside `-h` (help).
 void add_frame_flags(CLI::App* cmd, FrameParameters& frame) {
   const std::string group = "frame (default: the paper's basic model)";
   for (const auto& info : all_parameters())
@@ -140,7 +141,7 @@ void add_frame_flags(CLI::App* cmd, FrameParameters& frame) {
         ->capture_default_str()
         ->group(group);
   for (const auto& info : size_parameters()) {
-    const std::string older = info.name == "h_m" ? ",--h" : ",--mc";
+    const std::string older = info.name == "m_c_kg" ? ",--mc" : "";
     cmd->add_option(flag_name(info.name) + older, frame.*info.member,
                     std::string(info.long_name) + " [" + std::string(info.units) + "]")
         ->capture_default_str()

@@ -11,7 +11,8 @@
 
 namespace pcrf::cube {
 
-void merge_cubes(const std::vector<std::filesystem::path>& parts, const std::filesystem::path& output, bool overwrite) {
+void merge_cubes(const std::vector<std::filesystem::path>& parts, const std::filesystem::path& output, bool overwrite,
+                 const std::string& runs_variable) {
   if (parts.empty()) throw CubeError("no cube to merge");
   // Written beside the output and renamed over it when complete: a merge that fails or is
   // killed leaves no cube at -o (and any old one intact).
@@ -45,15 +46,6 @@ void merge_cubes(const std::vector<std::filesystem::path>& parts, const std::fil
       owner[i] = static_cast<int>(p);
     }
   }
-  std::size_t missing = 0, first_missing = n;
-  for (std::size_t i = 0; i < n; ++i)
-    if (owner[i] < 0 && ++missing == 1) first_missing = i;
-  // An IDA leaves the points after a curve's end not run in every part: those are not missing.
-  const bool ida = first.find_side_variable("ida_runs") != nullptr;
-  if (missing > 0 && !ida)
-    throw CubeError(std::to_string(missing) + " of " + std::to_string(n) + " cases are in no part (the first: case " +
-                    std::to_string(first_missing) + "); run the missing shards, then merge again");
-
   CubeLayout layout = first;
   std::erase_if(layout.attributes, [](const Attribute& a) { return a.name == kShardName; });
   for (auto& side : layout.side_variables) {  // each value from the part that has it
@@ -64,6 +56,21 @@ void merge_cubes(const std::vector<std::filesystem::path>& parts, const std::fil
         if (std::isnan(side.values[k]) && !std::isnan(values[k])) side.values[k] = values[k];
     }
   }
+  // A case in no part is missing unless the runs variable says its row stopped before it.
+  const SideVariable* runs = runs_variable.empty() ? nullptr : layout.find_side_variable(runs_variable);
+  const std::size_t row_length = layout.dimensions.empty() ? 1 : layout.dimensions.back().size;
+  if (runs != nullptr && layout.side_size(*runs) * row_length != n)
+    throw CubeError(parts.front().string() + ": " + runs_variable + " does not span every dimension but the last");
+  auto expected = [&](std::size_t i) {  // a row no part ran (NaN) is missing whole
+    return runs == nullptr || !(static_cast<double>(i % row_length) >= runs->values[i / row_length]);
+  };
+  std::size_t missing = 0, first_missing = n;
+  for (std::size_t i = 0; i < n; ++i)
+    if (owner[i] < 0 && expected(i) && ++missing == 1) first_missing = i;
+  if (missing > 0)
+    throw CubeError(std::to_string(missing) + " of " + std::to_string(n) + " cases are in no part (the first: case " +
+                    std::to_string(first_missing) + "); run the missing shards, then merge again");
+
   CubeWriter writer(out.temporary(), layout, OpenMode::kOverwrite);
   std::vector<std::vector<std::vector<double>>> metrics(readers.size());
   for (std::size_t p = 0; p < readers.size(); ++p)

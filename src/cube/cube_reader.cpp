@@ -124,10 +124,7 @@ CubeReader::CubeReader(const std::filesystem::path& file) : file_(file), impl_(s
   // Metrics: float variables with the rank of `status` that are not coordinates.
   for (const auto& name : link_names(impl_->file)) {
     if (name == kStatusName || layout_.find_coordinate(name) != nullptr) continue;
-    H5O_info_t info;
-    if (H5Oget_info_by_name2(impl_->file, name.c_str(), &info, H5O_INFO_BASIC, H5P_DEFAULT) < 0 ||
-        info.type != H5O_TYPE_DATASET)
-      continue;
+    if (!h5::is_dataset(impl_->file, name)) continue;
     auto d = impl_->open(name);
     auto t = h5::type(H5Dget_type(d), impl_->what("cannot read '" + name + "'"));
     auto ds = h5::space(H5Dget_space(d), impl_->what("cannot read '" + name + "'"));

@@ -40,6 +40,19 @@ hid_t check(hid_t id, const std::string& what) {
   throw CubeError(reason.empty() ? what : what + " (" + reason + ")");
 }
 
+bool is_dataset(hid_t location, const std::string& name) {
+  // HDF5 1.12 changed the object-information call (H5O_info2_t, with tokens for addresses):
+  // the one place that tells the releases apart.
+#if H5_VERSION_GE(1, 12, 0)
+  H5O_info2_t info;
+  const herr_t status = H5Oget_info_by_name3(location, name.c_str(), &info, H5O_INFO_BASIC, H5P_DEFAULT);
+#else
+  H5O_info_t info;
+  const herr_t status = H5Oget_info_by_name2(location, name.c_str(), &info, H5O_INFO_BASIC, H5P_DEFAULT);
+#endif
+  return status >= 0 && info.type == H5O_TYPE_DATASET;
+}
+
 Handle vlen_string_type() {
   auto t = type(H5Tcopy(H5T_C_S1), "cannot make a string type");
   check(H5Tset_size(t, H5T_VARIABLE), "cannot make a string type");

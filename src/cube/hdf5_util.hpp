@@ -64,6 +64,9 @@ inline Handle type(hid_t id, const std::string& what) { return {check(id, what),
 inline Handle plist(hid_t id, const std::string& what) { return {check(id, what), H5Pclose}; }
 inline Handle attribute(hid_t id, const std::string& what) { return {check(id, what), H5Aclose}; }
 
+/// Whether the link `name` of `location` leads to a dataset; false when it cannot be read.
+bool is_dataset(hid_t location, const std::string& name);
+
 /// Variable-length UTF-8 string type (what netCDF-4 calls NC_STRING).
 Handle vlen_string_type();
 

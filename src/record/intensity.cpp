@@ -198,6 +198,10 @@ std::vector<double> intensity_series(const GroundMotion& record, const Intensity
   return {};
 }
 
+double intensity_scale_factor(double target_intensity, double record_intensity) {
+  return target_intensity / record_intensity;
+}
+
 const SettingTable<IntensitySpec>& intensity_settings() {
   static const SettingTable<IntensitySpec> table = [] {
     SettingTable<IntensitySpec> t{"intensity", IntensitySpec{}, {}};

@@ -413,8 +413,10 @@ RecordFormat guess_record_format(const std::filesystem::path& file) {
 
 // ---- readers ------------------------------------------------------------------------------------
 
-GroundMotion read_at2(const std::filesystem::path& file) {
-  const std::string text = read_text(file);
+namespace {
+
+/// An AT2 record from its file's text (read_at2, read_record_file).
+GroundMotion at2_from_text(const std::filesystem::path& file, const std::string& text) {
   const std::vector<std::string_view> lines = split_lines(text);
   const At2Header header = parse_at2_header(file, lines);
   const auto npts = static_cast<std::size_t>(header.npts);
@@ -446,6 +448,38 @@ GroundMotion read_at2(const std::filesystem::path& file) {
   check_sampling(file, 4, header.dt_s, accel_m_s2.size());
   return GroundMotion(record_name(file), header.dt_s, std::move(accel_m_s2));
 }
+
+/// What a file says about itself, from its text (AT2) or its name.
+RecordMetadata metadata_from_text(const RecordFileSpec& spec, const std::string& text) {
+  RecordMetadata meta;
+  meta.rsn = rsn_of(spec.path);
+  if (spec.format != RecordFormat::kAt2) return meta;
+  const auto lines = split_lines(text);
+  if (lines.size() < 2) return meta;
+  meta.title = printable(trim(lines[1]));
+  // "Event, date, station, component" (NGA-West2) or "Event, year, station, component (note)".
+  std::vector<std::string> parts;
+  std::string_view rest = lines[1];
+  for (int k = 0; k < 3; ++k) {
+    const auto comma = rest.find(',');
+    if (comma == std::string_view::npos) break;
+    parts.emplace_back(trim(rest.substr(0, comma)));
+    rest = rest.substr(comma + 1);
+  }
+  parts.emplace_back(trim(rest));
+  if (parts.size() >= 3) {
+    meta.event = printable(parts.front());
+    meta.station = printable(parts[parts.size() - 2]);
+    std::vector<std::string_view> words;
+    split_whitespace(parts.back(), words);  // the component is the last field's first word
+    if (!words.empty()) meta.component = printable(words.front());
+  }
+  return meta;
+}
+
+}  // namespace
+
+GroundMotion read_at2(const std::filesystem::path& file) { return at2_from_text(file, read_text(file)); }
 
 GroundMotion read_two_column(const std::filesystem::path& file, AccelUnit unit, std::size_t skip_rows) {
   const std::string text = read_text(file);
@@ -529,31 +563,15 @@ std::string record_name(const RecordFileSpec& spec) {
 }
 
 RecordMetadata read_metadata(const RecordFileSpec& spec) {
-  RecordMetadata meta;
-  meta.rsn = rsn_of(spec.path);
-  if (spec.format != RecordFormat::kAt2) return meta;
-  const std::string text = read_text(spec.path);
-  const auto lines = split_lines(text);
-  if (lines.size() < 2) return meta;
-  meta.title = printable(trim(lines[1]));
-  // "Event, date, station, component" (NGA-West2) or "Event, year, station, component (note)".
-  std::vector<std::string> parts;
-  std::string_view rest = lines[1];
-  for (int k = 0; k < 3; ++k) {
-    const auto comma = rest.find(',');
-    if (comma == std::string_view::npos) break;
-    parts.emplace_back(trim(rest.substr(0, comma)));
-    rest = rest.substr(comma + 1);
-  }
-  parts.emplace_back(trim(rest));
-  if (parts.size() >= 3) {
-    meta.event = printable(parts.front());
-    meta.station = printable(parts[parts.size() - 2]);
-    std::vector<std::string_view> words;
-    split_whitespace(parts.back(), words);  // the component is the last field's first word
-    if (!words.empty()) meta.component = printable(words.front());
-  }
-  return meta;
+  if (spec.format != RecordFormat::kAt2) return metadata_from_text(spec, {});
+  return metadata_from_text(spec, read_text(spec.path));
+}
+
+RecordFile read_record_file(const RecordFileSpec& spec) {
+  if (spec.format != RecordFormat::kAt2) return {read_record(spec), metadata_from_text(spec, {})};
+  if (spec.skip_rows > 0) fail_file(spec.path, "skip_rows applies to text records only (.AT2 has its header)");
+  const std::string text = read_text(spec.path);  // once, for both
+  return {at2_from_text(spec.path, text), metadata_from_text(spec, text)};
 }
 
 }  // namespace pcrf

@@ -1,7 +1,6 @@
 // SUNDIALS adapters for the rocking ODE: CVODE (Adams / BDF) and ARKODE ERKStep.
 #include "integrators.hpp"
 
-#include <arkode/arkode_erkstep.h>
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
@@ -9,27 +8,68 @@
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 
+#include <memory>
 #include <string>
+#include <type_traits>
+
+#include "sundials_compat.hpp"
 
 namespace pcrf::detail {
 namespace {
 
+using sun::Real;
+
+/// The one check of every SUNDIALS call's flag: a negative flag is a failure.
 void check_flag(int flag, const char* call) {
   if (flag < 0) throw IntegratorError(std::string(call) + " failed with flag " + std::to_string(flag));
 }
+template <class F, class... Args>
+void call(sun::Named<F> f, Args... args) {
+  check_flag(f.fn(args...), f.name);
+}
+/// The check of a constructor: NULL is a failure.
 template <class T>
-T* check_ptr(T* p, const char* call) {
+T check_ptr(T p, const char* call) {
   if (p == nullptr) throw IntegratorError(std::string(call) + " returned NULL");
   return p;
 }
 
-int rhs_thunk(realtype t, N_Vector y, N_Vector ydot, void* user) {
+// ---- one owner per SUNDIALS object (destroyed before the context they were made in) ----
+template <class Handle, void (*Free)(Handle)>
+struct Freer {
+  void operator()(Handle h) const { Free(h); }
+};
+template <class Handle, void (*Free)(Handle)>
+using Owned = std::unique_ptr<std::remove_pointer_t<Handle>, Freer<Handle, Free>>;
+
+void free_context(SUNContext c) { SUNContext_Free(&c); }
+void free_linear_solver(SUNLinearSolver s) { SUNLinSolFree(s); }
+void free_nonlinear_solver(SUNNonlinearSolver s) { SUNNonlinSolFree(s); }
+void free_cvode(void* memory) { CVodeFree(&memory); }
+void free_erk(void* memory) { sun::erk::free_memory.fn(&memory); }
+
+using Context = Owned<SUNContext, free_context>;
+using Vector = Owned<N_Vector, N_VDestroy>;
+using Matrix = Owned<SUNMatrix, SUNMatDestroy>;
+using LinearSolver = Owned<SUNLinearSolver, free_linear_solver>;
+using NonlinearSolver = Owned<SUNNonlinearSolver, free_nonlinear_solver>;
+using CvodeMemory = Owned<void*, free_cvode>;
+using ErkMemory = Owned<void*, free_erk>;
+
+Context make_context() {
+  SUNContext c = nullptr;
+  check_flag(sun::create_context(&c), "SUNContext_Create");
+  return Context(check_ptr(c, "SUNContext_Create"));
+}
+Vector make_vector(SUNContext c) { return Vector(check_ptr(N_VNew_Serial(2, c), "N_VNew_Serial")); }
+
+int rhs_thunk(Real t, N_Vector y, N_Vector ydot, void* user) {
   return static_cast<OdeProblem*>(user)->rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
 }
-int root_thunk(realtype t, N_Vector y, realtype* g, void* user) {
+int root_thunk(Real t, N_Vector y, Real* g, void* user) {
   return static_cast<OdeProblem*>(user)->roots(t, N_VGetArrayPointer(y), g);
 }
-int jac_thunk(realtype t, N_Vector y, N_Vector /*fy*/, SUNMatrix J, void* user, N_Vector, N_Vector, N_Vector) {
+int jac_thunk(Real t, N_Vector y, N_Vector /*fy*/, SUNMatrix J, void* user, N_Vector, N_Vector, N_Vector) {
   double dfdy[4];
   const int flag = static_cast<OdeProblem*>(user)->jacobian(t, N_VGetArrayPointer(y), dfdy);
   SM_ELEMENT_D(J, 0, 0) = dfdy[0];
@@ -38,40 +78,30 @@ int jac_thunk(realtype t, N_Vector y, N_Vector /*fy*/, SUNMatrix J, void* user, 
   SM_ELEMENT_D(J, 1, 1) = dfdy[3];
   return flag;
 }
-// SUNDIALS reports errors through this handler instead of printing to stderr: a study
-// of thousands of cases must not flood the terminal; the message lands in the result.
-void error_thunk(int code, const char* module, const char* function, char* msg, void* data) {
-  *static_cast<std::string*>(data) =
-      std::string(module) + "::" + function + " (flag " + std::to_string(code) + "): " + msg;
-}
 
-/// Owns the SUNDIALS context and the state vector shared by both adapters.
+/// Owns the SUNDIALS context and the state vectors shared by both adapters.
 class SundialsBase : public OdeIntegrator {
  protected:
-  SundialsBase(const SolverSettings& s, OdeProblem& p) : settings_(s), problem_(p) {
-    check_flag(SUNContext_Create(nullptr, &ctx_), "SUNContext_Create");
-    y_ = check_ptr(N_VNew_Serial(2, ctx_), "N_VNew_Serial");
-    atol_ = check_ptr(N_VNew_Serial(2, ctx_), "N_VNew_Serial");
-    dky_ = check_ptr(N_VNew_Serial(2, ctx_), "N_VNew_Serial");
-    N_VGetArrayPointer(atol_)[0] = s.atol_theta_rad;
-    N_VGetArrayPointer(atol_)[1] = s.atol_omega_rad_s;
-    N_VConst(0.0, y_);
-  }
-  ~SundialsBase() override {
-    N_VDestroy(dky_);
-    N_VDestroy(atol_);
-    N_VDestroy(y_);
-    SUNContext_Free(&ctx_);
+  SundialsBase(const SolverSettings& s, OdeProblem& p, const char* package)
+      : settings_(s), problem_(p), errors_{package, {}} {
+    sun::route_context_errors(ctx_.get(), errors_, check_flag);
+    N_VGetArrayPointer(atol_.get())[0] = s.atol_theta_rad;
+    N_VGetArrayPointer(atol_.get())[1] = s.atol_omega_rad_s;
+    N_VConst(0.0, y_.get());
   }
   void load(const double* y0) {
-    N_VGetArrayPointer(y_)[0] = y0[0];
-    N_VGetArrayPointer(y_)[1] = y0[1];
+    N_VGetArrayPointer(y_.get())[0] = y0[0];
+    N_VGetArrayPointer(y_.get())[1] = y0[1];
   }
   void store(double* y) const {
-    y[0] = N_VGetArrayPointer(y_)[0];
-    y[1] = N_VGetArrayPointer(y_)[1];
+    y[0] = N_VGetArrayPointer(y_.get())[0];
+    y[1] = N_VGetArrayPointer(y_.get())[1];
   }
-  const std::string& last_error() const override { return error_; }
+  void store_dense(double* y) const {
+    y[0] = N_VGetArrayPointer(dky_.get())[0];
+    y[1] = N_VGetArrayPointer(dky_.get())[1];
+  }
+  const std::string& last_error() const override { return errors_.text; }
 
   /// Counters of the current segment (since the last ReInit).
   virtual SolverCounts segment() = 0;
@@ -100,61 +130,62 @@ class SundialsBase : public OdeIntegrator {
 
   SolverSettings settings_;
   OdeProblem& problem_;
-  SUNContext ctx_ = nullptr;
-  N_Vector y_ = nullptr;
-  N_Vector atol_ = nullptr;
-  N_Vector dky_ = nullptr;  ///< dense output
+  // Declared first: destroyed last, after every object made in it.
+  Context ctx_ = make_context();
+  Vector y_ = make_vector(ctx_.get());
+  Vector atol_ = make_vector(ctx_.get());
+  Vector dky_ = make_vector(ctx_.get());  ///< dense output
   SolverCounts done_;  ///< counts of finished segments
-  std::string error_;
+  sun::ErrorSink errors_;
   bool started_ = false;
 };
 
 class CvodeIntegrator final : public SundialsBase {
  public:
-  CvodeIntegrator(const SolverSettings& s, OdeProblem& p, bool bdf) : SundialsBase(s, p) {
-    mem_ = check_ptr(CVodeCreate(bdf ? CV_BDF : CV_ADAMS, ctx_), "CVodeCreate");
-    check_flag(CVodeInit(mem_, rhs_thunk, 0.0, y_), "CVodeInit");
-    check_flag(CVodeSetUserData(mem_, &problem_), "CVodeSetUserData");
-    check_flag(CVodeSVtolerances(mem_, s.rtol, atol_), "CVodeSVtolerances");
-    check_flag(CVodeSetErrHandlerFn(mem_, error_thunk, &error_), "CVodeSetErrHandlerFn");
-    check_flag(CVodeSetMaxNumSteps(mem_, s.max_steps), "CVodeSetMaxNumSteps");
-    check_flag(CVodeSetMaxErrTestFails(mem_, 50), "CVodeSetMaxErrTestFails");
-    if (s.max_step_s > 0) check_flag(CVodeSetMaxStep(mem_, s.max_step_s), "CVodeSetMaxStep");
-    check_flag(CVodeRootInit(mem_, p.root_count(), root_thunk), "CVodeRootInit");
-    check_flag(CVodeSetNoInactiveRootWarn(mem_), "CVodeSetNoInactiveRootWarn");
+  CvodeIntegrator(const SolverSettings& s, OdeProblem& p, bool bdf) : SundialsBase(s, p, "CVODE") {
+    mem_.reset(check_ptr(CVodeCreate(bdf ? CV_BDF : CV_ADAMS, ctx_.get()), "CVodeCreate"));
+    void* mem = mem_.get();
+    sun::route_integrator_errors(mem, sun::Package::kCvode, errors_, check_flag);
+    check_flag(CVodeInit(mem, rhs_thunk, 0.0, y_.get()), "CVodeInit");
+    check_flag(CVodeSetUserData(mem, &problem_), "CVodeSetUserData");
+    check_flag(CVodeSVtolerances(mem, s.rtol, atol_.get()), "CVodeSVtolerances");
+    check_flag(CVodeSetMaxNumSteps(mem, s.max_steps), "CVodeSetMaxNumSteps");
+    check_flag(CVodeSetMaxErrTestFails(mem, 50), "CVodeSetMaxErrTestFails");
+    // No "t + h = t" warnings: SUNDIALS 7 prints them on stdout.
+    check_flag(CVodeSetMaxHnilWarns(mem, -1), "CVodeSetMaxHnilWarns");
+    if (s.max_step_s > 0) check_flag(CVodeSetMaxStep(mem, s.max_step_s), "CVodeSetMaxStep");
+    check_flag(CVodeRootInit(mem, p.root_count(), root_thunk), "CVodeRootInit");
+    check_flag(CVodeSetNoInactiveRootWarn(mem), "CVodeSetNoInactiveRootWarn");
     if (bdf) {
-      A_ = check_ptr(SUNDenseMatrix(2, 2, ctx_), "SUNDenseMatrix");
-      LS_ = check_ptr(SUNLinSol_Dense(y_, A_, ctx_), "SUNLinSol_Dense");
-      check_flag(CVodeSetLinearSolver(mem_, LS_, A_), "CVodeSetLinearSolver");
-      if (p.has_jacobian()) check_flag(CVodeSetJacFn(mem_, jac_thunk), "CVodeSetJacFn");
+      A_.reset(check_ptr(SUNDenseMatrix(2, 2, ctx_.get()), "SUNDenseMatrix"));
+      LS_.reset(check_ptr(SUNLinSol_Dense(y_.get(), A_.get(), ctx_.get()), "SUNLinSol_Dense"));
+      check_flag(CVodeSetLinearSolver(mem, LS_.get(), A_.get()), "CVodeSetLinearSolver");
+      if (p.has_jacobian()) check_flag(CVodeSetJacFn(mem, jac_thunk), "CVodeSetJacFn");
     } else {
-      NLS_ = check_ptr(SUNNonlinSol_FixedPoint(y_, 0, ctx_), "SUNNonlinSol_FixedPoint");
-      check_flag(CVodeSetNonlinearSolver(mem_, NLS_), "CVodeSetNonlinearSolver");
+      NLS_.reset(check_ptr(SUNNonlinSol_FixedPoint(y_.get(), 0, ctx_.get()), "SUNNonlinSol_FixedPoint"));
+      check_flag(CVodeSetNonlinearSolver(mem, NLS_.get()), "CVodeSetNonlinearSolver");
     }
-  }
-  ~CvodeIntegrator() override {
-    CVodeFree(&mem_);
-    if (LS_) SUNLinSolFree(LS_);
-    if (A_) SUNMatDestroy(A_);
-    if (NLS_) SUNNonlinSolFree(NLS_);
   }
 
   void restart(double t0, const double* y0, const int* root_dirs, double t_stop, double h0) override {
     accumulate();
     load(y0);
-    check_flag(CVodeReInit(mem_, t0, y_), "CVodeReInit");
-    check_flag(CVodeSetInitStep(mem_, h0), "CVodeSetInitStep");
-    check_flag(CVodeSetStopTime(mem_, t_stop), "CVodeSetStopTime");
-    check_flag(CVodeSetRootDirection(mem_, const_cast<int*>(root_dirs)), "CVodeSetRootDirection");
+    check_flag(CVodeReInit(mem_.get(), t0, y_.get()), "CVodeReInit");
+    check_flag(CVodeSetInitStep(mem_.get(), h0), "CVodeSetInitStep");
+    check_flag(CVodeSetStopTime(mem_.get(), t_stop), "CVodeSetStopTime");
+    check_flag(CVodeSetRootDirection(mem_.get(), const_cast<int*>(root_dirs)), "CVodeSetRootDirection");
     done_.reinits += started_ ? 1 : 0;
     started_ = true;
   }
 
-  void set_stop_time(double t_stop) override { check_flag(CVodeSetStopTime(mem_, t_stop), "CVodeSetStopTime"); }
+  void set_stop_time(double t_stop) override {
+    check_flag(CVodeSetStopTime(mem_.get(), t_stop), "CVodeSetStopTime");
+  }
 
   Outcome advance(double tout, double& t, double* y, bool one_step) override {
-    realtype tret = t;
-    const int flag = CVode(mem_, tout, y_, &tret, one_step ? CV_ONE_STEP : CV_NORMAL);
+    Real tret = t;
+    // The flag is the outcome, not a set-up failure: a failure's text is in last_error().
+    const int flag = CVode(mem_.get(), tout, y_.get(), &tret, one_step ? CV_ONE_STEP : CV_NORMAL);
     t = tret;
     store(y);
     if (flag == CV_ROOT_RETURN) return Outcome::kRoot;
@@ -162,69 +193,70 @@ class CvodeIntegrator final : public SundialsBase {
     return Outcome::kReachedTime;
   }
 
-  void root_info(int* found) override { check_flag(CVodeGetRootInfo(mem_, found), "CVodeGetRootInfo"); }
+  void root_info(int* found) override { check_flag(CVodeGetRootInfo(mem_.get(), found), "CVodeGetRootInfo"); }
 
   void interpolate(double t, double* y) override {
-    check_flag(CVodeGetDky(mem_, t, 0, dky_), "CVodeGetDky");
-    y[0] = N_VGetArrayPointer(dky_)[0];
-    y[1] = N_VGetArrayPointer(dky_)[1];
+    check_flag(CVodeGetDky(mem_.get(), t, 0, dky_.get()), "CVodeGetDky");
+    store_dense(y);
   }
 
  private:
   SolverCounts segment() override {
     SolverCounts c;
     long nfe_ls = 0;
-    CVodeGetNumSteps(mem_, &c.steps);
-    CVodeGetNumRhsEvals(mem_, &c.rhs_evals);
-    if (LS_) CVodeGetNumLinRhsEvals(mem_, &nfe_ls);
+    check_flag(CVodeGetNumSteps(mem_.get(), &c.steps), "CVodeGetNumSteps");
+    check_flag(CVodeGetNumRhsEvals(mem_.get(), &c.rhs_evals), "CVodeGetNumRhsEvals");
+    if (LS_) check_flag(CVodeGetNumLinRhsEvals(mem_.get(), &nfe_ls), "CVodeGetNumLinRhsEvals");
     c.rhs_evals += nfe_ls;
-    CVodeGetNumGEvals(mem_, &c.root_evals);
+    check_flag(CVodeGetNumGEvals(mem_.get(), &c.root_evals), "CVodeGetNumGEvals");
     return settled(c);
   }
 
-  void* mem_ = nullptr;
-  SUNMatrix A_ = nullptr;
-  SUNLinearSolver LS_ = nullptr;
-  SUNNonlinearSolver NLS_ = nullptr;
+  // Solvers before the memory that uses them: the memory is freed first.
+  Matrix A_;
+  LinearSolver LS_;
+  NonlinearSolver NLS_;
+  CvodeMemory mem_;
 };
 
 class ErkIntegrator final : public SundialsBase {
  public:
-  ErkIntegrator(const SolverSettings& s, OdeProblem& p, ARKODE_ERKTableID table) : SundialsBase(s, p) {
-    mem_ = check_ptr(ERKStepCreate(rhs_thunk, 0.0, y_, ctx_), "ERKStepCreate");
-    check_flag(ERKStepSetTableNum(mem_, table), "ERKStepSetTableNum");
-    check_flag(ERKStepSetUserData(mem_, &problem_), "ERKStepSetUserData");
-    check_flag(ERKStepSVtolerances(mem_, s.rtol, atol_), "ERKStepSVtolerances");
-    check_flag(ERKStepSetErrHandlerFn(mem_, error_thunk, &error_), "ERKStepSetErrHandlerFn");
-    check_flag(ERKStepSetMaxNumSteps(mem_, s.max_steps), "ERKStepSetMaxNumSteps");
+  ErkIntegrator(const SolverSettings& s, OdeProblem& p, ARKODE_ERKTableID table) : SundialsBase(s, p, "ARKODE") {
+    mem_.reset(check_ptr(ERKStepCreate(rhs_thunk, 0.0, y_.get(), ctx_.get()), "ERKStepCreate"));
+    void* mem = mem_.get();
+    sun::route_integrator_errors(mem, sun::Package::kArkodeErk, errors_, check_flag);
+    check_flag(ERKStepSetTableNum(mem, table), "ERKStepSetTableNum");
+    call(sun::erk::set_user_data, mem, static_cast<void*>(&problem_));
+    call(sun::erk::sv_tolerances, mem, s.rtol, atol_.get());
+    call(sun::erk::set_max_num_steps, mem, s.max_steps);
     // A step across a record sample meets a kink in ü_g (linear interpolation): the
     // error test may fail many times before the step is small enough; the default of
     // 7 failures (each cutting h by at most 0.3) gives up too early for 8th order.
-    check_flag(ERKStepSetMaxErrTestFails(mem_, 50), "ERKStepSetMaxErrTestFails");
-    if (s.max_step_s > 0) check_flag(ERKStepSetMaxStep(mem_, s.max_step_s), "ERKStepSetMaxStep");
-    check_flag(ERKStepRootInit(mem_, p.root_count(), root_thunk), "ERKStepRootInit");
-    check_flag(ERKStepSetNoInactiveRootWarn(mem_), "ERKStepSetNoInactiveRootWarn");
+    call(sun::erk::set_max_err_test_fails, mem, 50);
+    // No "t + h = t" warnings: SUNDIALS 7 prints them on stdout.
+    call(sun::erk::set_max_hnil_warns, mem, -1);
+    if (s.max_step_s > 0) call(sun::erk::set_max_step, mem, s.max_step_s);
+    call(sun::erk::root_init, mem, p.root_count(), root_thunk);
+    call(sun::erk::set_no_inactive_root_warn, mem);
   }
-  ~ErkIntegrator() override { ERKStepFree(&mem_); }
 
   void restart(double t0, const double* y0, const int* root_dirs, double t_stop, double h0) override {
     accumulate();
     load(y0);
-    check_flag(ERKStepReInit(mem_, rhs_thunk, t0, y_), "ERKStepReInit");
-    check_flag(ERKStepSetInitStep(mem_, h0), "ERKStepSetInitStep");
-    check_flag(ERKStepSetStopTime(mem_, t_stop), "ERKStepSetStopTime");
-    check_flag(ERKStepSetRootDirection(mem_, const_cast<int*>(root_dirs)), "ERKStepSetRootDirection");
+    check_flag(ERKStepReInit(mem_.get(), rhs_thunk, t0, y_.get()), "ERKStepReInit");
+    call(sun::erk::set_init_step, mem_.get(), h0);
+    call(sun::erk::set_stop_time, mem_.get(), t_stop);
+    call(sun::erk::set_root_direction, mem_.get(), const_cast<int*>(root_dirs));
     done_.reinits += started_ ? 1 : 0;
     started_ = true;
   }
 
-  void set_stop_time(double t_stop) override {
-    check_flag(ERKStepSetStopTime(mem_, t_stop), "ERKStepSetStopTime");
-  }
+  void set_stop_time(double t_stop) override { call(sun::erk::set_stop_time, mem_.get(), t_stop); }
 
   Outcome advance(double tout, double& t, double* y, bool one_step) override {
-    realtype tret = t;
-    const int flag = ERKStepEvolve(mem_, tout, y_, &tret, one_step ? ARK_ONE_STEP : ARK_NORMAL);
+    Real tret = t;
+    // The flag is the outcome, not a set-up failure: a failure's text is in last_error().
+    const int flag = sun::erk::evolve.fn(mem_.get(), tout, y_.get(), &tret, one_step ? ARK_ONE_STEP : ARK_NORMAL);
     t = tret;
     store(y);
     if (flag == ARK_ROOT_RETURN) return Outcome::kRoot;
@@ -232,24 +264,23 @@ class ErkIntegrator final : public SundialsBase {
     return Outcome::kReachedTime;
   }
 
-  void root_info(int* found) override { check_flag(ERKStepGetRootInfo(mem_, found), "ERKStepGetRootInfo"); }
+  void root_info(int* found) override { call(sun::erk::get_root_info, mem_.get(), found); }
 
   void interpolate(double t, double* y) override {
-    check_flag(ERKStepGetDky(mem_, t, 0, dky_), "ERKStepGetDky");
-    y[0] = N_VGetArrayPointer(dky_)[0];
-    y[1] = N_VGetArrayPointer(dky_)[1];
+    call(sun::erk::get_dky, mem_.get(), t, 0, dky_.get());
+    store_dense(y);
   }
 
  private:
   SolverCounts segment() override {
     SolverCounts c;
-    ERKStepGetNumSteps(mem_, &c.steps);
-    ERKStepGetNumRhsEvals(mem_, &c.rhs_evals);
-    ERKStepGetNumGEvals(mem_, &c.root_evals);
+    call(sun::erk::get_num_steps, mem_.get(), &c.steps);
+    call(sun::erk::get_num_rhs_evals, mem_.get(), &c.rhs_evals);
+    call(sun::erk::get_num_g_evals, mem_.get(), &c.root_evals);
     return settled(c);
   }
 
-  void* mem_ = nullptr;
+  ErkMemory mem_;
 };
 
 }  // namespace

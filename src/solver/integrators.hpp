@@ -3,8 +3,10 @@
 /// the two-state rocking ODE with root finding. Private to the solver.
 ///
 /// Every SUNDIALS call is checked through one helper (check_flag), which throws
-/// IntegratorError naming the call and the flag. Work counters are summed across
-/// re-initializations (SUNDIALS resets its own at each ReInit).
+/// IntegratorError naming the call and the flag; every SUNDIALS object has one owner, so a
+/// throw frees what was made. Work counters are summed across re-initializations (SUNDIALS
+/// resets its own at each ReInit). What differs between SUNDIALS 6 and 7 is in
+/// sundials_compat.hpp.
 #pragma once
 
 #include <memory>

@@ -8,11 +8,9 @@
 namespace pcrf::study {
 namespace {
 
-const double kNaN = std::numeric_limits<double>::quiet_NaN();
-
 /// A failed case: its metrics NaN (an IDA's intensity and factor columns stay).
-void mark_failed(parallel::CaseOutcome& outcome, std::size_t metric_count, const std::string& message) {
-  std::fill(outcome.row.begin(), outcome.row.begin() + static_cast<std::ptrdiff_t>(metric_count), kNaN);
+void mark_failed(parallel::CaseOutcome& outcome, const ResultColumns& columns, const std::string& message) {
+  columns.clear_metrics(outcome.row);
   outcome.status = static_cast<std::int8_t>(CaseStatus::kSolverFailure);
   outcome.note = message;
 }
@@ -20,11 +18,10 @@ void mark_failed(parallel::CaseOutcome& outcome, std::size_t metric_count, const
 }  // namespace
 
 CaseRunner::CaseRunner(const Study& study, const CaseSpace& space, RecordCache& records)
-    : study_(study), space_(space), records_(records) {
-  for (const auto& name : study.metrics) metrics_.push_back(find_metric(name));
+    : study_(study), space_(space), records_(records), columns_(study) {
   // Compute only what is asked: the exact angular-velocity peak costs an extra root.
   request_.omega_peak = false;
-  for (const auto* m : metrics_)
+  for (const auto* m : columns_.metrics())
     if (m->name == "omega_max_rad_s" || m->name == "t_omega_max_s") request_.omega_peak = true;
 }
 
@@ -55,14 +52,14 @@ parallel::CaseOutcome CaseRunner::run(const parallel::WorkItem& item, const Hist
                                       double history_dt_s) const noexcept {
   const std::int64_t index = item.case_index;
   parallel::CaseOutcome outcome{index, static_cast<std::int8_t>(CaseStatus::kSolverFailure),
-                                std::vector<double>(row_width(), kNaN), {}};
+                                columns_.empty_row(), {}};
   try {
     CaseSpec spec = space_.case_at(index);
     spec.level = level_of(spec, item);
-    const double factor = scale_factor(spec);
+    const double factor = records_.scale_factor(spec.record, spec.level, study_.intensity);
     if (study_.ida) {  // the run's intensity and factor travel with it, whatever happens next
-      outcome.row[metrics_.size()] = spec.level;
-      outcome.row[metrics_.size() + 1] = factor;
+      outcome.row[columns_.ida_intensity_column()] = spec.level;
+      outcome.row[columns_.scale_factor_column()] = factor;
     }
     PreparedFrame* frame = nullptr;
     try {
@@ -77,26 +74,22 @@ parallel::CaseOutcome CaseRunner::run(const parallel::WorkItem& item, const Hist
     request.history_dt_s = history_dt_s;
     const CaseResult result = solve_case(*frame, *motion, study_.solver, request, history);
     outcome.status = static_cast<std::int8_t>(result.status);
-    for (std::size_t m = 0; m < metrics_.size(); ++m) {
-      const double value = metrics_[m]->get(result);
+    const auto& metrics = columns_.metrics();
+    for (std::size_t m = 0; m < metrics.size(); ++m) {
+      const double value = metrics[m]->get(result);
       if (std::isinf(value)) {
-        mark_failed(outcome, metrics_.size(), "case " + std::to_string(index) + ": non-finite " + std::string(metrics_[m]->name));
+        mark_failed(outcome, columns_, "case " + std::to_string(index) + ": non-finite " + std::string(metrics[m]->name));
         return outcome;
       }
       outcome.row[m] = value;
     }
     outcome.note = result.message;
   } catch (const std::exception& e) {
-    mark_failed(outcome, metrics_.size(), e.what());
+    mark_failed(outcome, columns_, e.what());
   } catch (...) {
-    mark_failed(outcome, metrics_.size(), "unknown exception");
+    mark_failed(outcome, columns_, "unknown exception");
   }
   return outcome;
-}
-
-double CaseRunner::scale_factor(const CaseSpec& spec) const {
-  if (!study_.intensity) return spec.level;
-  return spec.level / records_.intensity(spec.record, *study_.intensity);
 }
 
 std::shared_ptr<const GroundMotion> CaseRunner::scaled_record(std::size_t record, double scale) const {

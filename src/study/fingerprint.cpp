@@ -4,6 +4,9 @@
 #include <cstdio>
 #include <sstream>
 
+#include "pcrf/study/plan.hpp"
+#include "study/plans/plan_support.hpp"
+
 namespace pcrf::study {
 namespace {
 
@@ -17,11 +20,6 @@ std::string samples_hash(const GroundMotion& motion) {
   const auto& samples = motion.samples_m_s2();
   return hex(fnv1a(std::string_view(reinterpret_cast<const char*>(samples.data()),
                                     samples.size() * sizeof(double))));
-}
-
-void describe_parameters(std::ostream& out, const FrameParameters& p) {
-  for (const auto& info : all_parameters()) out << ' ' << info.name << '=' << p.*info.member;
-  out << " h_m=" << p.h_m << " m_c_kg=" << p.m_c_kg;
 }
 
 /// "<table> key=value …" over the settings that determine results, in description order.
@@ -46,7 +44,7 @@ std::uint64_t fnv1a(std::string_view bytes, std::uint64_t hash) {
 std::string canonical_description(const Study& study, const CaseSpace& space, RecordCache& records) {
   std::ostringstream out;
   out.precision(17);
-  out << "plan " << plan_name(study.plan) << " include_base=" << study.include_base << '\n';
+  out << "plan " << study.plan->name() << ' ' << study.plan->canonical_heading() << '\n';
   for (std::size_t r = 0; r < study.records.size(); ++r) {
     const auto& motion = records.get(r);
     out << "record " << study.records[r].name << " dt_s=" << motion.dt_s() << " n=" << motion.size()
@@ -57,25 +55,9 @@ std::string canonical_description(const Study& study, const CaseSpace& space, Re
   out << (study.intensity ? "intensity" : "scale");
   for (double s : study.levels) out << ' ' << s;
   out << "\nbase";
-  describe_parameters(out, study.base);
+  detail::describe_parameters(out, study.base);
   out << '\n';
-  for (std::size_t p = 0; p < kParameterCount; ++p) {
-    out << "axis " << all_parameters()[p].name;
-    for (double v : study.axes[p]) out << ' ' << v;
-    out << '\n';
-  }
-  if (is_sampled(study.plan)) {
-    out << "sampled samples=" << study.samples << " seed=" << study.seed << " scramble=" << study.scramble;
-    for (std::size_t p = 0; p < kParameterCount; ++p)
-      if (const auto& r = study.ranges[p])
-        out << ' ' << all_parameters()[p].name << '=' << r->from << ':' << r->to << (r->log ? ":log" : "");
-    out << '\n';
-  }
-  for (const auto& c : study.cases) {
-    out << "case " << c.label;
-    describe_parameters(out, c.parameters);
-    out << '\n';
-  }
+  study.plan->describe(out);
   describe_settings(out, physics_settings(), study.physics);
   describe_settings(out, solver_settings(), study.solver);
   out << "metrics";

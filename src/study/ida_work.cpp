@@ -8,6 +8,7 @@
 #include "pcrf/metrics/case_result.hpp"
 #include "pcrf/study/case_runner.hpp"
 #include "pcrf/study/cube_vocabulary.hpp"
+#include "pcrf/study/result_row.hpp"
 
 namespace pcrf::study {
 namespace {
@@ -22,8 +23,8 @@ class CollapseRule {
     for (std::string word; std::getline(words, word, ',');)
       for (CaseStatus s : all_final_statuses())
         if (status_name(s) == word) statuses_.push_back(static_cast<std::int8_t>(s));
-    const auto it = std::find(study.metrics.begin(), study.metrics.end(), "theta_max_rad");
-    theta_column_ = it == study.metrics.end() ? -1 : static_cast<int>(it - study.metrics.begin());
+    const std::size_t column = ResultColumns(study).metric_column("theta_max_rad");
+    theta_column_ = column == ResultColumns::npos ? -1 : static_cast<int>(column);
   }
 
   bool operator()(std::int8_t status, double theta_max_rad) const {

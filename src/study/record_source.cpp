@@ -10,21 +10,27 @@ std::string RecordSource::describe() const {
   return "synthetic " + synthetic;
 }
 
-GroundMotion load_record(const RecordSource& source) {
-  if (source.file) return read_record(*source.file);
-  return make_synthetic(source.synthetic);
+LoadedRecord load_record(const RecordSource& source) {
+  if (!source.file) return {make_synthetic(source.synthetic), source.synthetic};
+  RecordFile file = read_record_file(*source.file);
+  std::string title = file.metadata.title.empty() ? source.file->path.filename().string() : std::move(file.metadata.title);
+  return {std::move(file.motion), std::move(title)};
 }
 
 RecordCache::RecordCache(std::vector<RecordSource> sources)
     : sources_(std::move(sources)), loaded_(sources_.size()), intensities_(sources_.size()) {}
 
-const GroundMotion& RecordCache::get(std::size_t index) {
+const LoadedRecord& RecordCache::loaded(std::size_t index) {
   std::lock_guard lock(mutex_);
   auto& slot = loaded_.at(index);
   // Loading under the lock is fine: each record loads once, and only rank 0 has two threads.
-  if (!slot) slot = std::make_unique<GroundMotion>(load_record(sources_.at(index)));
+  if (!slot) slot = std::make_unique<LoadedRecord>(load_record(sources_.at(index)));
   return *slot;
 }
+
+const GroundMotion& RecordCache::get(std::size_t index) { return loaded(index).motion; }
+
+const std::string& RecordCache::title(std::size_t index) { return loaded(index).title; }
 
 double RecordCache::intensity(std::size_t index, const IntensitySpec& spec) {
   const GroundMotion& motion = get(index);
@@ -34,9 +40,9 @@ double RecordCache::intensity(std::size_t index, const IntensitySpec& spec) {
   return *value;
 }
 
-void RecordCache::put(std::size_t index, GroundMotion motion) {
-  std::lock_guard lock(mutex_);
-  loaded_.at(index) = std::make_unique<GroundMotion>(std::move(motion));
+double RecordCache::scale_factor(std::size_t index, double level, const std::optional<IntensitySpec>& intensity) {
+  if (!intensity) return level;
+  return intensity_scale_factor(level, this->intensity(index, *intensity));
 }
 
 }  // namespace pcrf::study

@@ -18,7 +18,7 @@ void check_records(const Study& study, RecordCache& records) {
   for (std::size_t r = 0; r < study.records.size(); ++r) {
     const auto& source = study.records[r];
     try {
-      records.put(r, load_record(source));
+      records.get(r);  // loaded once, here, so that a bad record fails up front
     } catch (const std::exception& e) {
       throw StudyError(source.declared_at + ": records: cannot load record \"" + source.name + "\" (" +
                        source.describe() + "): " + e.what());

@@ -8,6 +8,7 @@
 
 #include "pcrf/metrics/case_result.hpp"
 #include "pcrf/study/cube_vocabulary.hpp"
+#include "pcrf/study/result_row.hpp"
 #include "pcrf/version.hpp"
 
 namespace pcrf::study {
@@ -19,23 +20,11 @@ namespace names = vocabulary;
 
 Coordinate numbers(std::string name, std::string dimension, std::string units, std::string long_name,
                    std::vector<double> values) {
-  Coordinate c;
-  c.name = std::move(name);
-  c.dimension = std::move(dimension);
-  c.units = std::move(units);
-  c.long_name = std::move(long_name);
-  c.numbers = std::move(values);
-  return c;
+  return number_coordinate(std::move(name), std::move(dimension), std::move(units), std::move(long_name), std::move(values));
 }
 
 Coordinate texts(std::string name, std::string dimension, std::string long_name, std::vector<std::string> values) {
-  Coordinate c;
-  c.name = std::move(name);
-  c.dimension = std::move(dimension);
-  c.long_name = std::move(long_name);
-  c.strings = std::move(values);
-  c.is_text = true;
-  return c;
+  return text_coordinate(std::move(name), std::move(dimension), std::move(long_name), std::move(values));
 }
 
 std::string utc_now() {
@@ -47,17 +36,6 @@ std::string utc_now() {
   return buffer;
 }
 
-/// What a record calls itself: the AT2 title line, else the file name or the synthetic text.
-std::string record_title(const RecordSource& source) {
-  if (!source.file) return source.synthetic;
-  try {
-    const auto meta = read_metadata(*source.file);
-    if (!meta.title.empty()) return meta.title;
-  } catch (const RecordError&) {  // the record itself loaded: a title is not worth failing for
-  }
-  return source.file->path.filename().string();
-}
-
 /// The record axis (names, sources, titles, and with an intensity axis each record's
 /// unscaled intensity) and the second axis, `scale` or `intensity`.
 void add_record_and_level(const Study& study, const CaseSpace& space, RecordCache& records,
@@ -65,9 +43,9 @@ void add_record_and_level(const Study& study, const CaseSpace& space, RecordCach
   auto& coords = layout.coordinates;
   coords.push_back(texts(names::kRecord, names::kRecord, "ground motion record", space.record_names()));
   std::vector<std::string> sources, titles;
-  for (const auto& r : study.records) {
-    sources.push_back(r.describe());
-    titles.push_back(record_title(r));
+  for (std::size_t r = 0; r < study.records.size(); ++r) {
+    sources.push_back(study.records[r].describe());
+    titles.push_back(records.title(r));
   }
   coords.push_back(texts(names::kRecordSource, names::kRecord, "where the record comes from", sources));
   coords.push_back(texts(names::kRecordTitle, names::kRecord, "the record's own title (AT2 header)", titles));
@@ -85,41 +63,9 @@ void add_record_and_level(const Study& study, const CaseSpace& space, RecordCach
   coords.push_back(numbers(names::kIntensity, names::kIntensity, units, long_name, space.levels()));
   cube::SideVariable factor{names::kScaleFactor, "1", "factor applied to the record's accelerations to reach the intensity",
                             {names::kRecord, names::kIntensity}, {}};
-  for (double im_r : unscaled)
-    for (double level : space.levels()) factor.values.push_back(level / im_r);
+  for (std::size_t r = 0; r < study.records.size(); ++r)
+    for (double level : space.levels()) factor.values.push_back(records.scale_factor(r, level, study.intensity));
   layout.side_variables.push_back(std::move(factor));
-}
-
-void add_case_axis(const CaseSpace& space, std::vector<Coordinate>& coords) {
-  const auto& points = space.points();
-  std::vector<double> index(points.size());
-  std::vector<std::string> labels, varied;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    index[i] = static_cast<double>(i);
-    labels.push_back(points[i].label);
-    varied.push_back(points[i].varied);
-  }
-  Coordinate axis = numbers(names::kCase, names::kCase, "", "frame number", index);
-  axis.is_index = true;
-  coords.push_back(std::move(axis));
-  coords.push_back(texts(names::kCaseLabel, names::kCase, "frame label", labels));
-  if (space.plan() == PlanKind::kOneAtATime)
-    coords.push_back(texts(names::kVariedParameter, names::kCase, "parameter varied from the base point (none: the base point)", varied));
-  if (space.plan() == PlanKind::kSaltelli) {
-    std::vector<std::string> blocks;
-    std::vector<double> samples;
-    for (const auto& p : points) {
-      blocks.push_back(p.block);
-      samples.push_back(static_cast<double>(p.sample));
-    }
-    coords.push_back(texts(names::kSaltelliBlock, names::kCase, "Saltelli design block: A, B or AB_<parameter>", blocks));
-    coords.push_back(numbers(names::kSaltelliSample, names::kCase, "1", "Saltelli base sample the frame belongs to", samples));
-  }
-  for (const auto& info : all_parameters()) {
-    std::vector<double> values;
-    for (const auto& p : points) values.push_back(p.parameters.*info.member);
-    coords.push_back(numbers(std::string(info.name), names::kCase, "1", std::string(info.long_name), values));
-  }
 }
 
 /// One attribute "<table>_<key>" per setting: numbers as float64, integers and flags as
@@ -151,9 +97,6 @@ void add_ida_variables(const Study& study, const CaseSpace& space, cube::CubeLay
   layout.coordinates.push_back(std::move(axis));
   const IntensitySpec& im = *study.intensity;
   const std::string units(intensity_units(im.measure));
-  const std::string measure = intensity_long_name(im.measure, im.period_s, im.damping);
-  layout.metrics.push_back({names::kIdaIntensity, units, "intensity of the run: " + measure});
-  layout.metrics.push_back({names::kScaleFactor, "1", "factor applied to the record's accelerations for the run"});
   std::vector<std::string> curve_axes(space.dimension_names().begin(), space.dimension_names().end() - 1);
   layout.side_variables.push_back({names::kCollapseIntensity, units,
                                    "lowest intensity found to collapse (NaN: none up to max_intensity, right-censored)",
@@ -182,7 +125,7 @@ std::vector<Attribute> global_attributes(const Study& study, const std::string& 
       {"study_file", study.file},
       {"study_text", study.text},
       {cube::kFingerprintName, fingerprint},
-      {names::kPlan, std::string(plan_name(study.plan))},
+      {names::kPlan, std::string(study.plan->name())},
   };
   if (study.intensity) add_settings(a, intensity_settings(), *study.intensity);
   if (study.ida) add_settings(a, ida_settings(), *study.ida);
@@ -203,19 +146,8 @@ cube::CubeLayout make_cube_layout(const Study& study, const CaseSpace& space, Re
   for (std::size_t d = 0; d < space.shape().size(); ++d)
     layout.dimensions.push_back({space.dimension_names()[d], space.shape()[d]});
   add_record_and_level(study, space, records, layout);
-  if (space.plan() == PlanKind::kGrid) {
-    for (std::size_t p = 0; p < kParameterCount; ++p) {
-      const auto& info = all_parameters()[p];
-      layout.coordinates.push_back(
-          numbers(std::string(info.name), std::string(info.name), "1", std::string(info.long_name), space.grid_values(p)));
-    }
-  } else {
-    add_case_axis(space, layout.coordinates);
-  }
-  for (const auto& name : study.metrics) {
-    const MetricInfo* m = find_metric(name);
-    layout.metrics.push_back({name, std::string(m->units), std::string(m->description)});
-  }
+  for (auto& c : space.plan().coordinates()) layout.coordinates.push_back(std::move(c));
+  layout.metrics = ResultColumns(study).variables();
   if (study.ida) add_ida_variables(study, space, layout);
   for (CaseStatus status : all_final_statuses())
     layout.status_flags.push_back({static_cast<std::int8_t>(status), std::string(status_name(status))});

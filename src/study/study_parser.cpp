@@ -13,143 +13,23 @@
 #include <sstream>
 
 #include "pcrf/metrics/case_result.hpp"
+#include "pcrf/study/plan.hpp"
+#include "study/axis_fields.hpp"
+#include "study/plans/plan_support.hpp"
 #include "study/toml_fields.hpp"
 
 namespace pcrf::study {
 
-std::string_view plan_name(PlanKind plan) {
-  switch (plan) {
-    case PlanKind::kGrid: return "grid";
-    case PlanKind::kOneAtATime: return "one-at-a-time";
-    case PlanKind::kList: return "list";
-    case PlanKind::kLhs: return "lhs";
-    case PlanKind::kSobol: return "sobol";
-    case PlanKind::kSaltelli: return "saltelli";
-  }
-  return "grid";
-}
-
 namespace {
 
 using detail::Fields;
-
-std::string number_text(double value) {
-  std::ostringstream out;
-  out.precision(17);
-  out << value;
-  return out.str();
-}
-
-/// The keys of every frame parameter, for tables that take them all.
-std::vector<std::string_view> parameter_keys() {
-  std::vector<std::string_view> keys;
-  for (const auto& info : all_parameters()) keys.push_back(info.name);
-  return keys;
-}
-
-/// `keys` followed by the eight parameter keys.
-std::vector<std::string_view> with_parameter_keys(std::vector<std::string_view> keys) {
-  for (auto key : parameter_keys()) keys.push_back(key);
-  return keys;
-}
-
-// ---- axis values: a number, a list of numbers, or a range table -------------------------
-
-std::vector<double> read_range(const toml::table& table, const std::string& path, const std::string& file) {
-  Fields range(table, path, file, {"from", "to", "count", "spacing"});
-  for (auto key : {"from", "to", "count"})
-    if (!range.has(key)) range.fail(key, "a range needs from, to and count");
-  const double from = *range.number("from");
-  const double to = *range.number("to");
-  const auto count = *range.integer("count");
-  const std::string spacing = range.text("spacing").value_or("linear");
-  if (count < 1) range.fail("count", "must be at least 1 (got " + std::to_string(count) + ")");
-  // The values are made here: a count no axis needs is refused before it is allocated.
-  constexpr std::int64_t kMaxAxisValues = 10000000;
-  if (count > kMaxAxisValues)
-    range.fail("count", "at most " + std::to_string(kMaxAxisValues) + " values on one axis (got " + std::to_string(count) + ")");
-  if (to < from) range.fail("to", "the range runs backwards (to " + number_text(to) + " < from " + number_text(from) + ")");
-  if (count == 1 && to != from) range.fail("count", "a range from " + number_text(from) + " to " + number_text(to) + " needs at least 2 values");
-  if (count > 1 && to == from) range.fail("count", "an empty range (from = to) has one value: use count = 1");
-  if (spacing != "linear" && spacing != "log") range.fail("spacing", "expected \"linear\" or \"log\", got \"" + spacing + "\"");
-  if (spacing == "log" && from <= 0.0) range.fail("from", "a log range must start above 0");
-  std::vector<double> values(static_cast<std::size_t>(count));
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    const double t = count == 1 ? 0.0 : static_cast<double>(i) / static_cast<double>(count - 1);
-    values[i] = spacing == "log" ? from * std::pow(to / from, t) : from + t * (to - from);
-  }
-  values.front() = from;  // exact ends, whatever the rounding in between
-  values.back() = to;
-  return values;
-}
-
-std::vector<double> read_values(const Fields& fields, std::string_view key) {
-  const toml::node& node = *fields.node(key);
-  const std::string path = fields.path(key);
-  if (node.is_number()) return {Fields::number_at(fields.file(), node, path)};
-  if (const auto* table = node.as_table()) return read_range(*table, path, fields.file());
-  const auto* array = node.as_array();
-  if (array == nullptr)
-    fields.fail(key, "expected a number, a list of numbers or a range {from, to, count}, got " +
-                         Fields::type_name(node));
-  if (array->empty()) fields.fail(key, "empty list");
-  std::vector<double> values;
-  for (std::size_t i = 0; i < array->size(); ++i)
-    values.push_back(Fields::number_at(fields.file(), (*array)[i], path + "[" + std::to_string(i) + "]"));
-  return values;
-}
-
-/// A sampled plan's range: {from, to} (and spacing), every value inside the parameter's
-/// domain; a list, a single number or a count is an error.
-SampledRange read_sampled_range(const Fields& fields, std::size_t parameter) {
-  const auto& info = all_parameters()[parameter];
-  const toml::node& node = *fields.node(info.name);
-  const auto* table = node.as_table();
-  if (table == nullptr)
-    fields.fail(info.name, "a sampled plan draws from a range: give {from = A, to = B}, not " + Fields::type_name(node));
-  const std::string path = fields.path(info.name);
-  Fields range(*table, path, fields.file(), {"from", "to", "spacing", "count"});
-  if (range.has("count")) range.fail("count", "a sampled plan draws `samples` values: no count");
-  for (auto key : {"from", "to"})
-    if (!range.has(key)) range.fail(key, "a range needs from and to");
-  SampledRange r{*range.number("from"), *range.number("to"), false};
-  const std::string spacing = range.text("spacing").value_or("linear");
-  if (spacing != "linear" && spacing != "log") range.fail("spacing", "expected \"linear\" or \"log\", got \"" + spacing + "\"");
-  r.log = spacing == "log";
-  if (!(r.to > r.from)) range.fail("to", "must be above from (" + number_text(r.from) + ")");
-  if (r.log && !(r.from > 0.0)) range.fail("from", "a log range must start above 0");
-  for (auto [key, value] : {std::pair{"from", r.from}, std::pair{"to", r.to}})
-    if (const auto problem = parameter_problem(info, value); !problem.empty())
-      range.fail(key, "value " + number_text(value) + " " + problem);
-  return r;
-}
-
-/// Axis values must be distinct (they label a dimension) and each valid alone.
-void check_axis(const Fields& fields, std::string_view key, const std::vector<double>& values,
-                std::size_t parameter /* kParameterCount: the scale axis */) {
-  std::vector<double> sorted = values;
-  std::sort(sorted.begin(), sorted.end());
-  if (auto dup = std::adjacent_find(sorted.begin(), sorted.end()); dup != sorted.end())
-    fields.fail(key, "value " + number_text(*dup) + " appears twice");
-  for (double v : values) {
-    const std::string problem = parameter < kParameterCount ? parameter_problem(all_parameters()[parameter], v)
-                                : (v > 0.0 ? "" : "must be positive");
-    if (!problem.empty()) fields.fail(key, "value " + number_text(v) + " " + problem);
-  }
-}
-
-/// Reads every parameter of `parameters` that `fields` gives into `frame` (in [base] and
-/// [[cases]]), checking each value against its domain.
-template <std::size_t N>
-void read_parameters(const Fields& fields, const std::array<ParameterInfo, N>& parameters, FrameParameters& frame) {
-  for (const auto& info : parameters) {
-    if (!fields.has(info.name)) continue;
-    const double value = *fields.number(info.name);
-    if (const auto problem = parameter_problem(info, value); !problem.empty())
-      fields.fail(info.name, "value " + number_text(value) + " " + problem);
-    frame.*info.member = value;
-  }
-}
+using detail::PlanEntry;
+using detail::check_axis;
+using detail::number_text;
+using detail::parameter_keys;
+using detail::read_parameters;
+using detail::read_values;
+using detail::with_parameter_keys;
 
 // ---- sections ----------------------------------------------------------------------------
 
@@ -162,35 +42,52 @@ void read_study_section(const Fields& top, Study& s) {
   s.description = f.text("description").value_or("");
 }
 
-void read_plan(const Fields& top, Study& s) {
-  const auto* table = top.subtable("plan");
-  if (table == nullptr) return;
-  Fields f(*table, "plan", s.file, {"kind", "include_base", "samples", "seed", "scramble"});
-  const std::string kind = f.text("kind").value_or("grid");
-  bool known = false;
-  for (PlanKind p : {PlanKind::kGrid, PlanKind::kOneAtATime, PlanKind::kList, PlanKind::kLhs, PlanKind::kSobol,
-                     PlanKind::kSaltelli})
-    if (plan_name(p) == kind) s.plan = p, known = true;
-  if (!known)
-    f.fail("kind", "expected \"grid\", \"one-at-a-time\", \"list\", \"lhs\", \"sobol\" or \"saltelli\", got \"" + kind + "\"");
-  if (f.has("include_base") && s.plan != PlanKind::kOneAtATime)
-    f.fail("include_base", "only applies to plan \"one-at-a-time\"");
-  s.include_base = f.flag("include_base").value_or(true);
-  for (const char* key : {"samples", "seed"})
-    if (f.has(key) && !is_sampled(s.plan)) f.fail(key, "only applies to the sampled plans (lhs, sobol, saltelli)");
-  if (f.has("scramble") && s.plan != PlanKind::kSobol && s.plan != PlanKind::kSaltelli)
-    f.fail("scramble", "only applies to plans \"sobol\" and \"saltelli\"");
-  if (is_sampled(s.plan)) {
-    if (!f.has("samples")) f.fail("samples", "required: how many points to draw");
-    const auto n = *f.integer("samples");
-    if (n < 2) f.fail("samples", "must be at least 2 (got " + std::to_string(n) + ")");
-    s.samples = static_cast<std::size_t>(n);
-    s.setting_lines["plan.samples"] = f.where("samples");
-    const auto seed = f.integer("seed").value_or(0);
-    if (seed < 0) f.fail("seed", "must not be negative");
-    s.seed = static_cast<std::uint64_t>(seed);
-    s.scramble = f.flag("scramble").value_or(false);
+/// "plan \"list\"" or "plans \"sobol\" and \"saltelli\"": the plans that take a key.
+std::string plans_taking(std::string_view key, std::vector<std::string_view> PlanEntry::*keys) {
+  std::vector<std::string> names;
+  for (const auto& entry : detail::plan_registry())
+    if (std::find((entry.*keys).begin(), (entry.*keys).end(), key) != (entry.*keys).end())
+      names.push_back("\"" + std::string(entry.name) + "\"");
+  std::string text = names.size() == 1 ? "plan " : "plans ";
+  for (std::size_t i = 0; i < names.size(); ++i) text += (i == 0 ? "" : i + 1 == names.size() ? " and " : ", ") + names[i];
+  return text;
+}
+
+/// The plan kind [plan] names; a [plan] key or a top-level table of another plan is an error.
+const PlanEntry& read_plan_kind(const Fields& top, const Fields& plan) {
+  const std::string kind = plan.text("kind").value_or(std::string(detail::plan_registry().front().name));
+  const auto& registry = detail::plan_registry();
+  const auto entry = std::find_if(registry.begin(), registry.end(), [&](const PlanEntry& e) { return e.name == kind; });
+  if (entry == registry.end()) {
+    const auto kinds = plan_kinds();
+    std::string expected;
+    for (std::size_t i = 0; i < kinds.size(); ++i)
+      expected += (i == 0 ? "" : i + 1 == kinds.size() ? " or " : ", ") + ("\"" + std::string(kinds[i]) + "\"");
+    plan.fail("kind", "expected " + expected + ", got \"" + kind + "\"");
   }
+  for (const auto& other : registry)
+    for (auto key : other.plan_keys)
+      if (plan.has(key) && std::find(entry->plan_keys.begin(), entry->plan_keys.end(), key) == entry->plan_keys.end())
+        plan.fail(key, "only applies to " + plans_taking(key, &PlanEntry::plan_keys));
+  for (const auto& other : registry)
+    for (auto key : other.file_keys)
+      if (top.has(key) && std::find(entry->file_keys.begin(), entry->file_keys.end(), key) == entry->file_keys.end())
+        top.fail(key, "only applies to " + plans_taking(key, &PlanEntry::file_keys));
+  return *entry;
+}
+
+/// [plan] and what the plan reads of [axes] and the file (after [base]: frames start there).
+void read_plan(const Fields& top, const Fields* axes, Study& s) {
+  static const toml::table kNoTable;
+  std::vector<std::string_view> keys{"kind"};
+  for (const auto& entry : detail::plan_registry())
+    for (auto key : entry.plan_keys)
+      if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
+  const auto* table = top.subtable("plan");
+  const Fields plan(table != nullptr ? *table : kNoTable, "plan", s.file, keys);
+  const PlanEntry& entry = read_plan_kind(top, plan);
+  s.plan = entry.read({plan, axes, top, s.base});
+  if (plan.has("samples")) s.setting_lines["plan.samples"] = plan.where("samples");  // for study_size's message
 }
 
 void read_base(const Fields& top, Study& s) {
@@ -244,6 +141,7 @@ void read_ida(const Fields& top, Study& s) {
   s.ida = ida;
 }
 
+/// [axes]: the level axis (scale or intensity) here, the parameter keys by the plan.
 void read_axes(const Fields& top, Study& s) {
   const auto* table = top.subtable("axes");
   if (table != nullptr) s.setting_lines["axes"] = top.where("axes");
@@ -255,8 +153,10 @@ void read_axes(const Fields& top, Study& s) {
   if (s.intensity && !s.ida && !has_intensity_axis)
     top.fail("intensity", "an [intensity] table needs [axes] intensity = [...] (values in " +
                               std::string(intensity_units(s.intensity->measure)) + ")");
+  std::optional<Fields> axes;
   if (table != nullptr) {
-    Fields f(*table, "axes", s.file, with_parameter_keys({"scale", "intensity"}));
+    axes.emplace(*table, "axes", s.file, with_parameter_keys({"scale", "intensity"}));
+    const Fields& f = *axes;
     if (f.has("scale") && f.has("intensity"))
       f.fail("intensity", "give either scale (one factor for every record) or intensity (each record scaled to it), not both");
     if (f.has("intensity") && !s.intensity)
@@ -266,50 +166,8 @@ void read_axes(const Fields& top, Study& s) {
       s.levels = read_values(f, key);
       check_axis(f, key, s.levels, kParameterCount);
     }
-    for (std::size_t p = 0; p < kParameterCount; ++p) {
-      const auto key = all_parameters()[p].name;
-      if (!f.has(key)) continue;
-      if (s.plan == PlanKind::kList)
-        f.fail(key, "plan \"list\" takes its parameters from [[cases]], not from [axes]");
-      if (is_sampled(s.plan)) {
-        s.ranges[p] = read_sampled_range(f, p);
-        continue;
-      }
-      s.axes[p] = read_values(f, key);
-      check_axis(f, key, s.axes[p], p);
-    }
   }
-  if (is_sampled(s.plan)) {
-    const auto varied = std::count_if(s.ranges.begin(), s.ranges.end(), [](const auto& r) { return r.has_value(); });
-    if (varied == 0) top.fail("axes", "a sampled plan needs at least one parameter range {from, to} in [axes]");
-    if (s.plan == PlanKind::kSaltelli && varied < 2)
-      top.fail("axes", "plan \"saltelli\" needs at least two varied parameters (sensitivity apportions variance among them)");
-  }
-  const bool swept = std::any_of(s.axes.begin(), s.axes.end(), [](const auto& v) { return !v.empty(); });
-  if (s.plan == PlanKind::kOneAtATime && !swept)
-    top.fail("axes", "plan \"one-at-a-time\" needs at least one parameter to sweep in [axes]");
-}
-
-void read_cases(const Fields& top, Study& s) {
-  const auto* array = top.array("cases");
-  if (array == nullptr) {
-    if (s.plan == PlanKind::kList) top.fail("cases", "plan \"list\" needs at least one [[cases]] table");
-    return;
-  }
-  if (s.plan != PlanKind::kList) top.fail("cases", "[[cases]] only applies to plan \"list\"");
-  if (array->empty()) top.fail("cases", "empty list");
-  std::set<std::string> labels;
-  for (std::size_t i = 0; i < array->size(); ++i) {
-    const std::string path = "cases[" + std::to_string(i) + "]";
-    const auto* table = (*array)[i].as_table();
-    if (table == nullptr) Fields::fail_at(s.file, &(*array)[i], path, "expected a table");
-    Fields f(*table, path, s.file, with_parameter_keys({"label"}));
-    ListedCase c{f.text("label").value_or("case" + std::to_string(i)), s.base};
-    if (c.label.empty()) f.fail("label", "must not be empty");
-    if (!labels.insert(c.label).second) f.fail("label", "\"" + c.label + "\" is used by another case");
-    read_parameters(f, all_parameters(), c.parameters);
-    s.cases.push_back(std::move(c));
-  }
+  read_plan(top, axes ? &*axes : nullptr, s);
 }
 
 // ---- records -----------------------------------------------------------------------------
@@ -507,13 +365,11 @@ void read_histories(const Fields& outputs, Study& s) {
       if (!(*dt > 0.0)) f.fail("dt_s", "the output interval must be a positive number of seconds");
       request.dt_s = *dt;
     }
+    for (auto key : with_parameter_keys({"case"}))
+      if (f.has(key))
+        if (const auto problem = s.plan->history_key_problem(key); !problem.empty()) f.fail(key, problem);
     request.case_label = f.text("case");
-    if (request.case_label && s.plan == PlanKind::kGrid) f.fail("case", "plan \"grid\" selects cases by parameter values");
-    for (std::size_t p = 0; p < kParameterCount; ++p) {
-      if (!f.has(all_parameters()[p].name)) continue;
-      if (s.plan != PlanKind::kGrid) f.fail(all_parameters()[p].name, "plans other than \"grid\" select cases by `case` label");
-      request.parameters[p] = f.number(all_parameters()[p].name);
-    }
+    for (std::size_t p = 0; p < kParameterCount; ++p) request.parameters[p] = f.number(all_parameters()[p].name);
     s.histories.push_back(std::move(request));
   }
 }
@@ -545,12 +401,10 @@ Study parse_study(const std::string& text, const std::string& file, const std::f
              {"study", "plan", "records", "axes", "base", "cases", intensity_settings().name, ida_settings().name,
               physics_settings().name, solver_settings().name, "outputs", run_settings().name});
   read_study_section(top, s);
-  read_plan(top, s);
-  read_base(top, s);  // before axes and cases: they start from the base point
+  read_base(top, s);  // before the plan: its frames start from the base point
   read_intensity(top, s);  // before axes: it decides what the second axis is
   read_ida(top, s);
-  read_axes(top, s);
-  read_cases(top, s);
+  read_axes(top, s);  // and the plan
   read_records(top, s);
   detail::read_setting_table(top, physics_settings(), s.physics, s.setting_lines);
   detail::read_setting_table(top, solver_settings(), s.solver, s.setting_lines);

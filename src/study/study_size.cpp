@@ -5,6 +5,7 @@
 
 #include <cstdio>
 
+#include "pcrf/study/plan.hpp"
 #include "pcrf/study/study_error.hpp"
 
 namespace pcrf::study {
@@ -17,25 +18,13 @@ constexpr double kFrameBytes = 512.0;
 constexpr long kMaxIdaRuns = 1000000;
 
 double frames_of(const Study& study) {
-  switch (study.plan) {
-    case PlanKind::kList: return static_cast<double>(study.cases.size());
-    case PlanKind::kLhs:
-    case PlanKind::kSobol: return static_cast<double>(study.samples);
-    case PlanKind::kSaltelli: {
-      double varied = 0.0;
-      for (const auto& r : study.ranges) varied += r ? 1.0 : 0.0;
-      return static_cast<double>(study.samples) * (varied + 2.0);
-    }
-    case PlanKind::kOneAtATime: {
-      double frames = study.include_base ? 1.0 : 0.0;
-      for (const auto& axis : study.axes) frames += static_cast<double>(axis.size());
-      return frames;
-    }
-    case PlanKind::kGrid: break;
-  }
   double frames = 1.0;
-  for (const auto& axis : study.axes) frames *= axis.empty() ? 1.0 : static_cast<double>(axis.size());
+  for (const auto& d : study.plan->dimensions()) frames *= static_cast<double>(d.size);
   return frames;
+}
+
+double memory_bytes() {
+  return static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGE_SIZE));
 }
 
 std::string line_of(const Study& study, const std::string& key) {
@@ -59,10 +48,11 @@ void check_study_size(const Study& study) {
                      " runs per curve, got " + std::to_string(study.ida->max_runs));
   const StudySize size = study_size(study);
   const double needed = kFrameBytes * size.frames + 1.0 * size.cases + static_cast<double>(kPendingResultsBytes);
-  const double memory = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGE_SIZE));
+  const double memory = memory_bytes();
   if (needed <= 0.8 * memory) return;
-  // The key to change: the sample count of a sampled plan, else an IDA's runs, else the axes.
-  const std::string key = is_sampled(study.plan) ? "plan.samples" : study.ida ? "ida.max_runs" : "axes";
+  // The key to change: an IDA's runs, else the plan's size (the axes, or the samples).
+  const bool sampled = study.setting_lines.count("plan.samples") > 0;
+  const std::string key = study.ida ? "ida.max_runs" : sampled ? "plan.samples" : "axes";
   char text[400];
   std::snprintf(text, sizeof text,
                 ": %s: %.4g frames and %.4g cases need about %.3g GB on rank 0 (%.0f bytes a frame, one byte a case, "
@@ -70,6 +60,18 @@ void check_study_size(const Study& study) {
                 "holds them all); make the study smaller",
                 key.c_str(), size.frames, size.cases, needed / 1e9, kFrameBytes, memory / 1e9);
   throw StudyError(line_of(study, key) + text);
+}
+
+void check_frame_count(double frames, const std::string& where, const std::string& key) {
+  const double needed = kFrameBytes * frames + static_cast<double>(kPendingResultsBytes);
+  const double memory = memory_bytes();
+  if (needed <= 0.8 * memory) return;
+  char text[300];
+  std::snprintf(text, sizeof text,
+                ": %s: %.4g frames need about %.3g GB on rank 0 (%.0f bytes a frame), more than 80 %% of this machine's "
+                "%.3g GB; make the study smaller",
+                key.c_str(), frames, needed / 1e9, kFrameBytes, memory / 1e9);
+  throw StudyError(where + text);
 }
 
 }  // namespace pcrf::study

@@ -208,3 +208,51 @@ TEST(RecordCommand, PrintsTheIntensityMeasuresAsJson) {
 
 }  // namespace
 }  // namespace pcrf
+
+namespace pcrf {
+namespace {
+
+/// A four-sample AT2 file whose header names its component.
+std::filesystem::path at2_component(const std::filesystem::path& dir, const std::string& name,
+                                    const std::string& component, const std::string& values) {
+  return test::write_file(dir, name,
+                          "PEER NGA STRONG MOTION DATABASE RECORD\nSome Event, 1/2/2000, Some Station, " + component +
+                              "\nACCELERATION TIME SERIES IN UNITS OF G\nNPTS=   4, DT=   .0100 SEC\n" + values + "\n");
+}
+
+/// The number after `"key": ` in a JSON text.
+double json_number(const std::string& json, const std::string& key) {
+  const auto at = json.find("\"" + key + "\": ");
+  EXPECT_NE(at, std::string::npos) << key << " in " << json;
+  return at == std::string::npos ? NAN : std::stod(json.substr(at + key.size() + 4));
+}
+
+TEST(RecordCommand, APairPrintsBothComponentsAndTheirRotD) {
+  // All the motion on the 90° component: RotD100 is its PGA, RotD50 its PGA·cos 45°.
+  const auto dir = test::scratch_dir("record_pair");
+  const auto east = at2_component(dir, "RSN9_E.AT2", "90", "0.1 -0.4 0.2 0.0");
+  const auto north = at2_component(dir, "RSN9_N.AT2", "0", "0.0 0.0 0.0 0.0");
+  const auto r = test::run_command(pcrf() + " record " + east.string() + " --pair " + north.string() + " --period 0.5");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("\"azimuths_deg\": [90, 0]"), std::string::npos) << r.out;
+  EXPECT_NEAR(json_number(r.out, "pga_rotd100_g"), 0.4, 1e-12);
+  EXPECT_NEAR(json_number(r.out, "pga_rotd50_g"), 0.4 * std::sqrt(0.5), 1e-12);
+  EXPECT_NE(r.out.find("\"pair\": {\"name\": \"RSN9_N\""), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"sa_rotd50_g\": ["), std::string::npos) << r.out;
+
+  // A component whose header states no azimuth needs one given; parallel components are refused.
+  const auto longitudinal = at2_component(dir, "RSN9_L.AT2", "CLW-LN", "0.1 0.2 0.3 0.1");
+  const auto missing = test::run_command(pcrf() + " record " + longitudinal.string() + " --pair " + north.string());
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("give --azimuth-deg"), std::string::npos) << missing.err;
+  const auto given = test::run_command(pcrf() + " record " + longitudinal.string() + " --pair " + north.string() +
+                                       " --azimuth-deg 90");
+  EXPECT_EQ(given.exit_code, 0) << given.err;
+  const auto parallel = test::run_command(pcrf() + " record " + east.string() + " --pair " + north.string() +
+                                          " --pair-azimuth-deg 270");
+  EXPECT_EQ(parallel.exit_code, 2);
+  EXPECT_NE(parallel.err.find("are parallel"), std::string::npos) << parallel.err;
+}
+
+}  // namespace
+}  // namespace pcrf

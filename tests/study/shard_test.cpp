@@ -56,6 +56,10 @@ TEST(Shards, AnIdaShardsByCurves) {
   ASSERT_EQ(study_in(dir, "-o whole.h5").exit_code, 0);
   ASSERT_EQ(study_in(dir, "--shard 1/2 -o a.h5").exit_code, 0);
   ASSERT_EQ(study_in(dir, "--shard 2/2 -o b.h5").exit_code, 0);
+  // The points after a curve's end are in no part and not missing; a curve in no part is.
+  const auto half = merge_in(dir, "a.h5 -o half.h5");
+  EXPECT_EQ(half.exit_code, 2);
+  EXPECT_NE(half.err.find("cases are in no part"), std::string::npos) << half.err;
   ASSERT_EQ(merge_in(dir, "a.h5 b.h5 -o all.h5").exit_code, 0);
   expect_same_cube(dir / "whole.h5", dir / "all.h5");
   cube::CubeReader whole(dir / "whole.h5"), all(dir / "all.h5");

@@ -63,6 +63,10 @@ struct IntensitySpec {
 };
 /// The record's value of the measure, in its units.
 double intensity_of(const GroundMotion& record, const IntensitySpec& spec);
+/// The factor that brings a record whose measure is `record_intensity` to `target_intensity`:
+/// every measure here is linear in the accelerations, so the ratio (infinite or NaN when
+/// the record's measure is 0: callers check that first).
+double intensity_scale_factor(double target_intensity, double record_intensity);
 
 /// The series whose largest absolute value is the measure, in its units: the acceleration
 /// [g] at the samples, the trapezoidal velocity [m/s], or ω² u [g] of the Sa oscillator at

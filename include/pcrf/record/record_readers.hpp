@@ -97,6 +97,14 @@ struct RecordMetadata {
 /// \throws RecordError when an AT2 file cannot be read.
 RecordMetadata read_metadata(const RecordFileSpec& spec);
 
+/// A record file read once: its motion (read_record) and what it says about itself
+/// (read_metadata). \throws RecordError as read_record.
+struct RecordFile {
+  GroundMotion motion;
+  RecordMetadata metadata;
+};
+RecordFile read_record_file(const RecordFileSpec& spec);
+
 /// Guesses the format from the extension: ".at2" (any case) → AT2, else two-column.
 RecordFormat guess_record_format(const std::filesystem::path& file);
 

@@ -2,8 +2,7 @@
 /// \brief Runs one case of a study: builds the frame, scales the record, calls solve_case
 /// and packs the stored metrics into a result row. Knows nothing of MPI or HDF5.
 ///
-/// An outcome's status is the CaseStatus; its row holds the metrics of Study::metrics in order,
-/// then, in an IDA, the run's intensity and scale factor (ida_columns()).
+/// An outcome's status is the CaseStatus; its row's columns are the study's ResultColumns.
 #pragma once
 
 #include <cstdint>
@@ -17,6 +16,7 @@
 #include "pcrf/solver/rocking_solver.hpp"
 #include "pcrf/study/case_space.hpp"
 #include "pcrf/study/record_source.hpp"
+#include "pcrf/study/result_row.hpp"
 #include "pcrf/study/study.hpp"
 
 namespace pcrf::study {
@@ -26,8 +26,7 @@ class CaseRunner {
   /// Keeps references: the study, the space and the cache must outlive the runner.
   CaseRunner(const Study& study, const CaseSpace& space, RecordCache& records);
 
-  std::size_t row_width() const { return metrics_.size() + (study_.ida ? 2 : 0); }
-  const std::vector<const MetricInfo*>& metrics() const { return metrics_; }
+  std::size_t row_width() const { return columns_.width(); }
 
   /// Runs case `item.case_index` (in an IDA, at the intensity `item.argument`). Never throws:
   /// a failure becomes status solver_failure with NaN metrics and the message as the
@@ -42,15 +41,13 @@ class CaseRunner {
   /// (record, level) pairs are kept: cheap cases (a frame that never lifts off) would
   /// otherwise spend their time copying records.
   std::shared_ptr<const GroundMotion> scaled_record(std::size_t record, double scale) const;
-  /// The factor a case multiplies its record by: its level, or level / IM(record).
-  double scale_factor(const CaseSpec& spec) const;
   /// The level of a case: its axis value, or in an IDA the intensity its work item carries.
   static double level_of(const CaseSpec& spec, const parallel::WorkItem& item);
 
   const Study& study_;
   const CaseSpace& space_;
   RecordCache& records_;
-  std::vector<const MetricInfo*> metrics_;
+  ResultColumns columns_;
   OutputRequest request_;
   struct LastScaled {
     std::size_t record = static_cast<std::size_t>(-1);

@@ -27,8 +27,15 @@ struct RecordSource {
   std::string describe() const;
 };
 
+/// A record as loaded: its motion, and what it calls itself (the AT2 title line, else the
+/// file name, or the synthetic text), both from one read of its file.
+struct LoadedRecord {
+  GroundMotion motion;
+  std::string title;
+};
+
 /// Reads or generates the motion. \throws RecordError or std::invalid_argument.
-GroundMotion load_record(const RecordSource& source);
+LoadedRecord load_record(const RecordSource& source);
 
 /// Loads each record at most once per process (records are read by every rank that needs
 /// them, then scaled per case). Thread-safe.
@@ -36,20 +43,26 @@ class RecordCache {
  public:
   explicit RecordCache(std::vector<RecordSource> sources);
 
-  /// The unscaled motion of record `index`, loading it on first use.
+  /// The unscaled motion of record `index`, loading it on first use. \throws as load_record.
   const GroundMotion& get(std::size_t index);
+
+  /// The title of record `index` (LoadedRecord::title), loading it on first use.
+  const std::string& title(std::size_t index);
 
   /// The unscaled record's value of an intensity measure, computed once per record.
   double intensity(std::size_t index, const IntensitySpec& spec);
 
-  /// Stores a motion already loaded elsewhere (e.g. during validation).
-  void put(std::size_t index, GroundMotion motion);
+  /// The factor record `index` is multiplied by for a value of the study's second axis: the
+  /// value itself on a scale axis (no `intensity`), else intensity_scale_factor(level, IM).
+  double scale_factor(std::size_t index, double level, const std::optional<IntensitySpec>& intensity);
 
   std::size_t size() const { return sources_.size(); }
 
  private:
   std::vector<RecordSource> sources_;
-  std::vector<std::unique_ptr<GroundMotion>> loaded_;
+  const LoadedRecord& loaded(std::size_t index);
+
+  std::vector<std::unique_ptr<LoadedRecord>> loaded_;
   std::vector<std::optional<double>> intensities_;  // of the one measure a study uses
   std::mutex mutex_;
 };

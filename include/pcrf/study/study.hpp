@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -27,35 +28,7 @@
 
 namespace pcrf::study {
 
-/// How the frame parameters are combined.
-enum class PlanKind {
-  kGrid,        ///< every combination of the parameter axes (the full cube)
-  kOneAtATime,  ///< each swept parameter alone, the others at the base point
-  kList,        ///< explicitly listed cases
-  kLhs,         ///< a Latin hypercube over the [axes] ranges
-  kSobol,       ///< Sobol' low-discrepancy points over the [axes] ranges
-  kSaltelli,    ///< the A, B, A_B^(i) design for Sobol' sensitivity indices
-};
-/// True for the plans that sample the [axes] ranges (lhs, sobol, saltelli).
-inline bool is_sampled(PlanKind plan) {
-  return plan == PlanKind::kLhs || plan == PlanKind::kSobol || plan == PlanKind::kSaltelli;
-}
-
-/// The interval a sampled plan draws a parameter from: uniformly, or log-uniformly.
-struct SampledRange {
-  double from = 0.0;
-  double to = 0.0;
-  bool log = false;
-  /// The value at unit coordinate u ∈ [0, 1).
-  double at(double u) const { return log ? from * std::pow(to / from, u) : from + u * (to - from); }
-};
-std::string_view plan_name(PlanKind plan);  ///< "grid", "one-at-a-time", "list", "lhs", "sobol", "saltelli"
-
-/// A frame of the list plan.
-struct ListedCase {
-  std::string label;
-  FrameParameters parameters;
-};
+class Plan;  // plan.hpp: how the frames are laid out
 
 /// A case whose time history is wanted. Each given selector must match an axis value;
 /// every axis with more than one value must be given, so that exactly one case matches.
@@ -63,8 +36,8 @@ struct HistoryRequest {
   std::string label;                      ///< group name under /histories
   std::optional<std::string> record;      ///< record axis value (its name)
   std::optional<double> scale;
-  std::optional<std::string> case_label;  ///< one-at-a-time and list plans
-  std::array<std::optional<double>, kParameterCount> parameters;  ///< grid plan
+  std::optional<std::string> case_label;  ///< plans with a `case` dimension
+  std::array<std::optional<double>, kParameterCount> parameters;  ///< plans with parameter dimensions (grid)
   double dt_s = 0.0;                      ///< output interval [s]; 0: the record's dt
   std::string declared_at;                ///< "study.toml:40", for messages
 };
@@ -104,8 +77,9 @@ struct Study {
   std::filesystem::path base_dir;   ///< relative record paths resolve against this
   std::string text;                 ///< the study file's text (stored in the cube)
 
-  PlanKind plan = PlanKind::kGrid;
-  bool include_base = true;         ///< one-at-a-time: the base point is a case of its own
+  /// The frames and how they are laid out ([plan], the parameter keys of [axes], [[cases]]);
+  /// parse_study always sets it.
+  std::shared_ptr<const Plan> plan;
 
   std::vector<RecordSource> records;
   /// The values of the second axis: scale factors of the records (`scale`), or, when
@@ -116,17 +90,6 @@ struct Study {
   /// The [ida] table, when given: the intensity axis becomes a search, `levels` is unused.
   std::optional<IdaOptions> ida;
   FrameParameters base;             ///< the base point; h_m and m_c_kg of every case
-  /// Grid: the values of each parameter axis (empty: the base value only).
-  /// One-at-a-time: the values each parameter is swept over (empty: not swept).
-  std::array<std::vector<double>, kParameterCount> axes;
-  std::vector<ListedCase> cases;    ///< list plan
-  /// Sampled plans: each varied parameter's range (unset: the parameter stays at `base`),
-  /// the number of samples (saltelli: base samples N, N(d + 2) frames), the seed, and
-  /// whether Sobol' points are Owen-scrambled.
-  std::array<std::optional<SampledRange>, kParameterCount> ranges;
-  std::size_t samples = 0;
-  std::uint64_t seed = 0;
-  bool scramble = false;
 
   PhysicsOptions physics;
   SolverSettings solver = preset_settings("balanced");

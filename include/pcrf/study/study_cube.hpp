@@ -16,8 +16,8 @@
 namespace pcrf::study {
 
 /// The cube of a study. Dimensions as CaseSpace; `record` a text coordinate (with the
-/// auxiliary `record_source`); one-at-a-time and list plans add `case` with the auxiliary
-/// coordinates `case_label`, `varied_parameter` (one-at-a-time) and the eight parameters.
+/// auxiliary `record_source` and `record_title`); the plan's coordinates along its frame
+/// dimensions (Plan::coordinates); the metric variables in ResultColumns order.
 /// With an intensity axis, `intensity` replaces `scale`, each record carries its unscaled
 /// intensity (`record_<measure>`), and `scale_factor(record, intensity)` holds the factors.
 cube::CubeLayout make_cube_layout(const Study& study, const CaseSpace& space, RecordCache& records,

@@ -1,0 +1,77 @@
+// What the plans share (not part of the public interface): what a plan reads from a study
+// file, the registry of plans, the canonical text of axes and frames, and PointPlan, the
+// plans whose frames are the values of a single `case` dimension.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <memory>
+#include <ostream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "pcrf/study/plan.hpp"
+#include "study/toml_fields.hpp"
+
+namespace pcrf::study::detail {
+
+/// What a plan reads: its own [plan] keys, the parameter keys of [axes], and the study file's
+/// top-level tables it claims ([[cases]]). The parser has checked that no other plan's key
+/// is given.
+struct PlanInput {
+  const Fields& plan;          ///< [plan] (an empty table when the file has none)
+  const Fields* axes;          ///< [axes], or nullptr; its scale and intensity keys are not the plan's
+  const Fields& top;           ///< the whole file
+  const FrameParameters& base; ///< [base]: every frame starts from it
+};
+
+/// A plan kind: its name, the [plan] keys (besides `kind`) and top-level tables it takes,
+/// and how it is read. One line per kind in plan_registry.cpp.
+struct PlanEntry {
+  std::string_view name;
+  std::vector<std::string_view> plan_keys;
+  std::vector<std::string_view> file_keys;
+  std::shared_ptr<const Plan> (*read)(const PlanInput& input);
+};
+
+/// Every plan kind, the default (grid) first.
+const std::vector<PlanEntry>& plan_registry();
+
+/// The value lists [axes] gives the parameters (empty: not given), each checked by check_axis.
+std::array<std::vector<double>, kParameterCount> read_parameter_axes(const PlanInput& input);
+
+/// "axis <parameter> v1 v2 …" for each parameter (no values: not an axis of the plan).
+void describe_axes(std::ostream& out, const std::array<std::vector<double>, kParameterCount>& axes);
+/// " kappa=… … pi_e_c=… h_m=… m_c_kg=…" (no newline).
+void describe_parameters(std::ostream& out, const FrameParameters& frame);
+
+/// A plan whose frames are listed along one dimension, `case`: its coordinates are the case
+/// number, `case_label`, the plan's own (extra_coordinates) and the eight parameters; a
+/// history names its frame by `case` label.
+class PointPlan : public Plan {
+ public:
+  struct Point {
+    std::string label;
+    FrameParameters parameters;
+  };
+
+  const std::vector<cube::Dimension>& dimensions() const override { return dimensions_; }
+  FrameParameters frame_at(std::span<const std::size_t> coordinates) const override;
+  std::vector<FrameParameters> frames() const override;
+  std::vector<cube::Coordinate> coordinates() const override;
+  std::vector<std::size_t> locate(const HistoryRequest& request) const override;
+  std::string history_key_problem(std::string_view key) const override;
+
+ protected:
+  explicit PointPlan(std::vector<Point> points);
+  /// Auxiliary coordinates along `case` between case_label and the parameters.
+  virtual std::vector<cube::Coordinate> extra_coordinates() const { return {}; }
+  const std::vector<Point>& points() const { return points_; }
+
+ private:
+  std::vector<Point> points_;
+  std::vector<cube::Dimension> dimensions_;
+};
+
+}  // namespace pcrf::study::detail

@@ -1,0 +1,174 @@
+// The sampled plans: points of the unit hypercube (plan/sampling.hpp) mapped onto the
+// [axes] ranges of the varied parameters, the others at the base point. lhs and sobol label
+// their frames "s0", "s1", …; saltelli groups them by base sample j ("s<j>:A", "s<j>:B",
+// "s<j>:AB_<parameter>") and stores each frame's block and sample.
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <optional>
+
+#include "pcrf/plan/sampling.hpp"
+#include "pcrf/study/cube_vocabulary.hpp"
+#include "pcrf/study/study_size.hpp"
+#include "study/axis_fields.hpp"
+#include "study/plans/plan_support.hpp"
+
+namespace pcrf::study::detail {
+namespace {
+
+/// The interval a parameter is drawn from: uniformly, or log-uniformly.
+struct SampledRange {
+  double from = 0.0;
+  double to = 0.0;
+  bool log = false;
+  /// The value at unit coordinate u ∈ [0, 1).
+  double at(double u) const { return log ? from * std::pow(to / from, u) : from + u * (to - from); }
+};
+
+/// What every sampled plan reads: the number of samples (saltelli: base samples N, N(d + 2)
+/// frames), the seed, whether Sobol' points are Owen-scrambled, and each varied parameter's range.
+struct Sampling {
+  std::size_t samples = 0;
+  std::uint64_t seed = 0;
+  bool scramble = false;
+  std::array<std::optional<SampledRange>, kParameterCount> ranges;
+  std::vector<std::size_t> varied() const {
+    std::vector<std::size_t> v;
+    for (std::size_t p = 0; p < kParameterCount; ++p)
+      if (ranges[p]) v.push_back(p);
+    return v;
+  }
+};
+
+/// A sampled plan's range: {from, to} (and spacing), every value inside the parameter's
+/// domain; a list, a single number or a count is an error.
+SampledRange read_sampled_range(const Fields& fields, std::size_t parameter) {
+  const auto& info = all_parameters()[parameter];
+  const toml::node& node = *fields.node(info.name);
+  const auto* table = node.as_table();
+  if (table == nullptr)
+    fields.fail(info.name, "a sampled plan draws from a range: give {from = A, to = B}, not " + Fields::type_name(node));
+  const std::string path = fields.path(info.name);
+  Fields range(*table, path, fields.file(), {"from", "to", "spacing", "count"});
+  if (range.has("count")) range.fail("count", "a sampled plan draws `samples` values: no count");
+  for (auto key : {"from", "to"})
+    if (!range.has(key)) range.fail(key, "a range needs from and to");
+  SampledRange r{*range.number("from"), *range.number("to"), false};
+  const std::string spacing = range.text("spacing").value_or("linear");
+  if (spacing != "linear" && spacing != "log") range.fail("spacing", "expected \"linear\" or \"log\", got \"" + spacing + "\"");
+  r.log = spacing == "log";
+  if (!(r.to > r.from)) range.fail("to", "must be above from (" + number_text(r.from) + ")");
+  if (r.log && !(r.from > 0.0)) range.fail("from", "a log range must start above 0");
+  for (auto [key, value] : {std::pair{"from", r.from}, std::pair{"to", r.to}})
+    if (const auto problem = parameter_problem(info, value); !problem.empty())
+      range.fail(key, "value " + number_text(value) + " " + problem);
+  return r;
+}
+
+Sampling read_sampling(const PlanInput& input) {
+  Sampling s;
+  if (!input.plan.has("samples")) input.plan.fail("samples", "required: how many points to draw");
+  const auto n = *input.plan.integer("samples");
+  if (n < 2) input.plan.fail("samples", "must be at least 2 (got " + std::to_string(n) + ")");
+  s.samples = static_cast<std::size_t>(n);
+  const auto seed = input.plan.integer("seed").value_or(0);
+  if (seed < 0) input.plan.fail("seed", "must not be negative");
+  s.seed = static_cast<std::uint64_t>(seed);
+  s.scramble = input.plan.flag("scramble").value_or(false);
+  for (std::size_t p = 0; p < kParameterCount && input.axes != nullptr; ++p)
+    if (input.axes->has(all_parameters()[p].name)) s.ranges[p] = read_sampled_range(*input.axes, p);
+  if (s.varied().empty()) input.top.fail("axes", "a sampled plan needs at least one parameter range {from, to} in [axes]");
+  return s;
+}
+
+/// Refuses a plan too large to draw, before it is drawn (`frames_per_sample`: saltelli d + 2).
+void check_drawable(const PlanInput& input, const Sampling& s, double frames_per_sample) {
+  check_frame_count(static_cast<double>(s.samples) * frames_per_sample, input.plan.where("samples"), "plan.samples");
+}
+
+/// Unit points (row-major, one row per frame) mapped onto the ranges; labels "s<row>".
+std::vector<PointPlan::Point> map_points(const plan::UnitPoints& unit, const Sampling& s, const FrameParameters& base) {
+  const auto varied = s.varied();
+  const std::size_t d = varied.size();
+  std::vector<PointPlan::Point> points(unit.size() / d);
+  for (std::size_t row = 0; row < points.size(); ++row) {
+    points[row].label = "s" + std::to_string(row);
+    points[row].parameters = base;
+    for (std::size_t k = 0; k < d; ++k)
+      points[row].parameters.*all_parameters()[varied[k]].member = s.ranges[varied[k]]->at(unit[row * d + k]);
+  }
+  return points;
+}
+
+class SampledPlan : public PointPlan {
+ public:
+  SampledPlan(std::string_view name, std::vector<Point> points, Sampling sampling)
+      : PointPlan(std::move(points)), name_(name), sampling_(std::move(sampling)) {}
+
+  std::string_view name() const override { return name_; }
+  void describe(std::ostream& out) const override {
+    describe_axes(out, {});
+    out << "sampled samples=" << sampling_.samples << " seed=" << sampling_.seed << " scramble=" << sampling_.scramble;
+    for (std::size_t p = 0; p < kParameterCount; ++p)
+      if (const auto& r = sampling_.ranges[p])
+        out << ' ' << all_parameters()[p].name << '=' << r->from << ':' << r->to << (r->log ? ":log" : "");
+    out << '\n';
+  }
+
+ private:
+  std::string_view name_;
+  Sampling sampling_;
+};
+
+class SaltelliPlan final : public SampledPlan {
+ public:
+  SaltelliPlan(std::vector<Point> points, Sampling sampling, std::vector<std::string> blocks, std::vector<double> samples)
+      : SampledPlan("saltelli", std::move(points), std::move(sampling)), blocks_(std::move(blocks)), samples_(std::move(samples)) {}
+
+ protected:
+  std::vector<cube::Coordinate> extra_coordinates() const override {
+    return {text_coordinate(vocabulary::kSaltelliBlock, vocabulary::kCase, "Saltelli design block: A, B or AB_<parameter>", blocks_),
+            number_coordinate(vocabulary::kSaltelliSample, vocabulary::kCase, "1", "Saltelli base sample the frame belongs to", samples_)};
+  }
+
+ private:
+  std::vector<std::string> blocks_;  ///< per frame: "A", "B" or "AB_<parameter>"
+  std::vector<double> samples_;      ///< per frame: the base sample j
+};
+
+}  // namespace
+
+std::shared_ptr<const Plan> read_lhs_plan(const PlanInput& input) {
+  const Sampling s = read_sampling(input);
+  check_drawable(input, s, 1.0);
+  auto points = map_points(plan::latin_hypercube(s.samples, s.varied().size(), s.seed), s, input.base);
+  return std::make_shared<SampledPlan>("lhs", std::move(points), s);
+}
+
+std::shared_ptr<const Plan> read_sobol_plan(const PlanInput& input) {
+  const Sampling s = read_sampling(input);
+  check_drawable(input, s, 1.0);
+  auto points = map_points(plan::sobol_points(s.samples, s.varied().size(), s.scramble, s.seed), s, input.base);
+  return std::make_shared<SampledPlan>("sobol", std::move(points), s);
+}
+
+std::shared_ptr<const Plan> read_saltelli_plan(const PlanInput& input) {
+  const Sampling s = read_sampling(input);
+  const auto varied = s.varied();
+  const std::size_t d = varied.size();
+  if (d < 2) input.top.fail("axes", "plan \"saltelli\" needs at least two varied parameters (sensitivity apportions variance among them)");
+  check_drawable(input, s, static_cast<double>(d + 2));
+  auto points = map_points(plan::saltelli_design(s.samples, d, s.scramble, s.seed).points, s, input.base);
+  std::vector<std::string> blocks;
+  std::vector<double> samples;
+  for (std::size_t row = 0; row < points.size(); ++row) {
+    const std::size_t block = plan::SaltelliDesign::block(row, d);
+    const std::size_t sample = plan::SaltelliDesign::sample(row, d);
+    blocks.push_back(block == 0 ? "A" : block == 1 ? "B" : "AB_" + std::string(all_parameters()[varied[block - 2]].name));
+    samples.push_back(static_cast<double>(sample));
+    points[row].label = "s" + std::to_string(sample) + ":" + blocks.back();
+  }
+  return std::make_shared<SaltelliPlan>(std::move(points), s, std::move(blocks), std::move(samples));
+}
+
+}  // namespace pcrf::study::detail

@@ -1,0 +1,108 @@
+// Every plan kind keeps the Plan contract: its dimensions count its frames, frame_at and
+// frames() agree in storage order, each dimension has its coordinate variable and every
+// coordinate spans its dimension, and its canonical text tells two plans apart.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <sstream>
+
+#include "pcrf/row_major.hpp"
+#include "pcrf/study/plan.hpp"
+#include "pcrf/study/study_parser.hpp"
+#include "study/study_test_support.hpp"
+
+namespace pcrf::study {
+namespace {
+
+const std::string kRecords = "[[records]]\nsynthetic = \"sine:amplitude_g=1.5\"\n";
+
+/// Two studies of each kind that differ in one value of the plan.
+const std::map<std::string, std::pair<std::string, std::string>> kStudies = {
+    {"grid", {"[axes]\nkappa = [1.5, 2]\npi_e_c = [2000, 3000, 4000]\n", "[axes]\nkappa = [1.5, 2.5]\npi_e_c = [2000, 3000, 4000]\n"}},
+    {"one-at-a-time",
+     {"[plan]\nkind = \"one-at-a-time\"\n[axes]\nkappa = [1.5, 2]\ntan_alpha = [0.2]\n",
+      "[plan]\nkind = \"one-at-a-time\"\ninclude_base = false\n[axes]\nkappa = [1.5, 2]\ntan_alpha = [0.2]\n"}},
+    {"list", {"[plan]\nkind = \"list\"\n[[cases]]\nkappa = 1.5\n[[cases]]\nlabel = \"b\"\ntan_alpha = 0.2\n",
+              "[plan]\nkind = \"list\"\n[[cases]]\nkappa = 1.5\n[[cases]]\nlabel = \"b\"\ntan_alpha = 0.25\n"}},
+    {"lhs", {"[plan]\nkind = \"lhs\"\nsamples = 5\n[axes]\nkappa = {from = 1.2, to = 2.4}\n",
+             "[plan]\nkind = \"lhs\"\nsamples = 5\nseed = 1\n[axes]\nkappa = {from = 1.2, to = 2.4}\n"}},
+    {"sobol", {"[plan]\nkind = \"sobol\"\nsamples = 4\n[axes]\nkappa = {from = 1.2, to = 2.4}\nlambda = {from = 1, to = 3}\n",
+               "[plan]\nkind = \"sobol\"\nsamples = 4\nscramble = true\n[axes]\nkappa = {from = 1.2, to = 2.4}\nlambda = {from = 1, to = 3}\n"}},
+    {"saltelli",
+     {"[plan]\nkind = \"saltelli\"\nsamples = 2\n[axes]\nkappa = {from = 1.2, to = 2.4}\nlambda = {from = 1, to = 3}\n",
+      "[plan]\nkind = \"saltelli\"\nsamples = 2\n[axes]\nkappa = {from = 1.2, to = 2.4}\nlambda = {from = 1, to = 3, spacing = \"log\"}\n"}},
+};
+
+Study parse(const std::string& text) { return parse_study(kRecords + text, "t.toml", test::source_dir()); }
+
+std::string canonical(const Plan& plan) {
+  std::ostringstream out;
+  out.precision(17);
+  out << plan.canonical_heading() << '\n';
+  plan.describe(out);
+  return out.str();
+}
+
+bool same_frame(const FrameParameters& a, const FrameParameters& b) {
+  for (const auto& info : all_parameters())
+    if (a.*info.member != b.*info.member) return false;
+  return a.h_m == b.h_m && a.m_c_kg == b.m_c_kg;
+}
+
+TEST(Plan, EveryKindIsTestedHere) {
+  for (auto kind : plan_kinds()) EXPECT_EQ(kStudies.count(std::string(kind)), 1u) << kind;
+  EXPECT_EQ(plan_kinds().front(), "grid");  // the default
+}
+
+TEST(Plan, EveryKindKeepsTheContract) {
+  for (const auto& [kind, texts] : kStudies) {
+    SCOPED_TRACE(kind);
+    const Study study = parse(texts.first);
+    const Plan& plan = *study.plan;
+    EXPECT_EQ(plan.name(), kind);
+    std::vector<std::size_t> shape;
+    for (const auto& d : plan.dimensions()) shape.push_back(d.size);
+    const auto frames = plan.frames();
+    std::size_t count = 1;
+    for (auto n : shape) count *= n;
+    ASSERT_EQ(frames.size(), count);
+    ASSERT_GT(count, 1u);
+    for (std::size_t i = 0; i < count; ++i) {
+      const auto coordinates = unravel(static_cast<std::int64_t>(i), shape);
+      EXPECT_TRUE(same_frame(plan.frame_at(coordinates), frames[i])) << "frame " << i;
+    }
+    const auto coordinates = plan.coordinates();
+    for (const auto& d : plan.dimensions())
+      EXPECT_TRUE(std::any_of(coordinates.begin(), coordinates.end(), [&](const auto& c) { return c.name == d.name; }))
+          << "no coordinate variable for dimension " << d.name;
+    for (const auto& c : coordinates) {
+      const auto d = std::find_if(plan.dimensions().begin(), plan.dimensions().end(), [&](const auto& dim) { return dim.name == c.dimension; });
+      ASSERT_NE(d, plan.dimensions().end()) << c.name << " is along " << c.dimension << ", not a dimension of the plan";
+      EXPECT_EQ(c.size(), d->size) << c.name;
+    }
+    const std::string text = canonical(plan);
+    EXPECT_EQ(text, canonical(*parse(texts.first).plan)) << "the same study, the same text";
+    EXPECT_NE(text, canonical(*parse(texts.second).plan)) << "another plan, another text";
+    EXPECT_EQ(text.back(), '\n');
+  }
+}
+
+TEST(Plan, AKeyOfAnotherPlanNamesThePlansThatTakeIt) {
+  try {
+    parse("[plan]\nkind = \"lhs\"\nsamples = 4\nscramble = true\n[axes]\nkappa = {from = 1, to = 2}\n");
+    FAIL() << "scramble accepted by lhs";
+  } catch (const StudyError& e) {
+    EXPECT_NE(std::string(e.what()).find("t.toml:6: plan.scramble: only applies to plans \"sobol\" and \"saltelli\""), std::string::npos)
+        << e.what();
+  }
+  try {
+    parse("[[cases]]\nkappa = 2\n");
+    FAIL() << "[[cases]] accepted by grid";
+  } catch (const StudyError& e) {
+    EXPECT_NE(std::string(e.what()).find("cases: only applies to plan \"list\""), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace pcrf::study
