@@ -22,6 +22,7 @@ struct CubeArguments {
   std::string file;
   std::vector<std::string> parts;
   bool overwrite = false;
+  bool allow_missing = false;
   std::optional<double> mce;
   std::string csv;
   std::vector<std::string> metrics;
@@ -46,6 +47,15 @@ void note_running(const std::string& file) {
   const std::string who = io::RunLock::holder(file);
   if (!who.empty())
     std::cerr << "pcrf cube: " << file << ": a run holds it (" << who << "): read as its last complete checkpoint\n";
+}
+
+/// A cube with cases never run (stopped early, merged from some shards): says how many on
+/// stderr, since what is printed covers the cases run only.
+void note_partial(const std::string& command, const std::string& file, const cube::CubeReader& reader) {
+  const auto missing = study::vocabulary::not_run(reader);
+  if (missing.count > 0)
+    std::cerr << "pcrf cube " << command << ": " << file << ": " << missing.count << " of " << missing.total << " "
+              << missing.unit << " not run (a partial cube): left out\n";
 }
 
 /// Runs a cube action; cube problems (missing file, unknown name) are usage errors.
@@ -101,6 +111,7 @@ void add_cube_command(CLI::App& app) {
   info->callback([args] {
     guarded(args->file, [&] {
       const cube::CubeReader reader(args->file);
+      note_partial("info", args->file, reader);
       if (args->json) cube::print_info_json(reader, std::cout);
       else cube::print_info(reader, study::vocabulary::info_heading(reader.layout()), std::cout);
       // Vouch for nothing unread: a variable whose chunks no longer decompress is damage.
@@ -147,6 +158,7 @@ void add_cube_command(CLI::App& app) {
   stats->callback([args] {
     guarded(args->file, [&] {
       cube::CubeReader reader(args->file);
+      note_partial("stats", args->file, reader);
       std::vector<std::string> pooled;
       const auto chosen = study::vocabulary::stats_selectors(reader.layout(), args->by, selectors(args->where));
       const auto result = cube::group_stats(reader, args->by, args->metric, chosen,
@@ -173,6 +185,7 @@ void add_cube_command(CLI::App& app) {
       check_output(args->csv, csv_inputs, args->overwrite);
       check_output(args->points, is_stdout(args->csv) ? csv_inputs : points_inputs, args->overwrite);
       cube::CubeReader reader(args->file);
+      note_partial("fragility", args->file, reader);
       const auto frames = study::cube_fragility(reader, selectors(args->where));
       const auto units = study::intensity_units(reader);
       study::print_fragility(frames, units, args->mce, false, std::cout);
@@ -198,6 +211,7 @@ void add_cube_command(CLI::App& app) {
       if (!args->by.empty() && args->by != "record") throw UsageError("--by takes `record` only");
       check_output(args->csv, {args->file}, args->overwrite);
       cube::CubeReader reader(args->file);
+      note_partial("sensitivity", args->file, reader);
       const auto groups = study::cube_sensitivity(reader, args->metric, selectors(args->where), args->by == "record");
       for (const auto& g : groups)
         if (g.dropped > 0)
@@ -214,13 +228,19 @@ void add_cube_command(CLI::App& app) {
   merge->add_option("PARTS", args->parts, "the shards' cubes")->required();
   merge->add_option("-o,--output", args->output, "the merged cube")->required();
   merge->add_flag("--overwrite", args->overwrite, "replace an existing output");
+  merge->add_flag("--allow-missing", args->allow_missing,
+                  "merge even when cases are in no part (shards not run): the merged cube says how many");
   merge->callback([args] {
     guarded(args->output, [&] {
       std::vector<std::filesystem::path> parts(args->parts.begin(), args->parts.end());
       for (const auto& part : args->parts) note_running(part);
       if (const auto who = io::RunLock::holder(args->output); !who.empty())
         throw UsageError(args->output + ": in use by a run (" + who + "); give another -o");
-      cube::merge_cubes(parts, args->output, args->overwrite, study::vocabulary::kIdaRuns);
+      const auto merged = cube::merge_cubes(parts, args->output, args->overwrite, study::vocabulary::kIdaRuns,
+                                            args->allow_missing);
+      if (merged.missing > 0)
+        std::cerr << "pcrf cube merge: " << args->output << ": " << merged.missing << " of " << merged.total
+                  << " cases are in no part: the merged cube is partial (attribute " << cube::kMissingCasesName << ")\n";
       std::cout << "merged " << parts.size() << " parts into " << args->output << '\n';
     });
   });

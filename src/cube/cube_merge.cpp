@@ -11,8 +11,8 @@
 
 namespace pcrf::cube {
 
-void merge_cubes(const std::vector<std::filesystem::path>& parts, const std::filesystem::path& output, bool overwrite,
-                 const std::string& runs_variable) {
+MergeResult merge_cubes(const std::vector<std::filesystem::path>& parts, const std::filesystem::path& output, bool overwrite,
+                        const std::string& runs_variable, bool allow_missing) {
   if (parts.empty()) throw CubeError("no cube to merge");
   // Written beside the output and renamed over it when complete: a merge that fails or is
   // killed leaves no cube at -o (and any old one intact).
@@ -67,9 +67,12 @@ void merge_cubes(const std::vector<std::filesystem::path>& parts, const std::fil
   std::size_t missing = 0, first_missing = n;
   for (std::size_t i = 0; i < n; ++i)
     if (owner[i] < 0 && expected(i) && ++missing == 1) first_missing = i;
-  if (missing > 0)
+  if (missing > 0 && !allow_missing)
     throw CubeError(std::to_string(missing) + " of " + std::to_string(n) + " cases are in no part (the first: case " +
-                    std::to_string(first_missing) + "); run the missing shards, then merge again");
+                    std::to_string(first_missing) + "); run the missing shards, then merge again (or merge what there is "
+                    "with --allow-missing)");
+  // The merged cube says it is partial; its status says which cases (not run).
+  if (missing > 0) layout.attributes.push_back({kMissingCasesName, static_cast<std::int64_t>(missing)});
 
   CubeWriter writer(out.temporary(), layout, OpenMode::kOverwrite);
   std::vector<std::vector<std::vector<double>>> metrics(readers.size());
@@ -86,6 +89,7 @@ void merge_cubes(const std::vector<std::filesystem::path>& parts, const std::fil
     for (auto& [index, note] : reader->read_notes()) writer.store_note(index, note);
   writer.close();
   out.commit();
+  return {missing, n};
 }
 
 }  // namespace pcrf::cube

@@ -126,6 +126,18 @@ TEST(PlotCommand, Table3DrawsTheCommittedComparisonInFourPanels) {
   EXPECT_EQ(plot(dir / "t3.svg", "table3 " + quoted(test::source_dir() / "docs" / "paper_comparison.csv")), 4);
 }
 
+TEST(PlotCommand, APartialCubeIsNamed) {
+  PCRF_REQUIRE_MATPLOTLIB();
+  const auto dir = test::scratch_dir("plot_partial");
+  test::write_file(dir, "p.toml", records_line() + "[axes]\nscale = [0.9, 1.2]\nkappa = [1.2, 2.4]\n");
+  ASSERT_EQ(test::run_command("cd " + quoted(dir) + " && " + pcrf() + " study p.toml -o p.h5 --shard 1/2 --progress-interval 0")
+                .exit_code, 0);
+  const auto r = test::run_command(pcrf() + " plot sweep " + quoted(dir / "p.h5") + " -o " + quoted(dir / "p.svg"));
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("pcrf plot: " + (dir / "p.h5").string() + ": 6 of 12 cases not run (a partial cube)"), std::string::npos)
+      << r.err;
+}
+
 struct BadPlot {
   std::string args;
   std::string message;

@@ -18,9 +18,19 @@ namespace pcrf::cube {
 /// caller's vocabulary, not the cube's): over every dimension but the last, how many of the
 /// row's cases along the last dimension were run, the first ones; the others are not
 /// missing. Empty, or absent from the cube: every case must be in a part.
-/// 	hrows CubeError naming the file and the problem (what is missing, which case is twice);
+///
+/// Missing cases are an error unless `allow_missing`: then the merged cube keeps them not
+/// run and says how many in its attribute kMissingCasesName.
+/// \throws CubeError naming the file and the problem (what is missing, which case is twice);
 /// io::OutputError for an output refused or not written.
-void merge_cubes(const std::vector<std::filesystem::path>& parts, const std::filesystem::path& output, bool overwrite,
-                 const std::string& runs_variable = {});
+struct MergeResult {
+  std::size_t missing = 0;  ///< cases in no part (allowed by `allow_missing`)
+  std::size_t total = 0;    ///< cases of the cube
+};
+MergeResult merge_cubes(const std::vector<std::filesystem::path>& parts, const std::filesystem::path& output, bool overwrite,
+                        const std::string& runs_variable = {}, bool allow_missing = false);
+
+/// Attribute of a merged cube that lacks cases (merge_cubes with `allow_missing`).
+inline constexpr const char* kMissingCasesName = "merge_missing_cases";
 
 }  // namespace pcrf::cube

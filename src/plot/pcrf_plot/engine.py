@@ -4,6 +4,7 @@ import io
 import json
 import os
 import subprocess
+import sys
 import tempfile
 
 from pcrf_plot.errors import PlotError
@@ -48,8 +49,12 @@ class Cube:
 
     def __init__(self, path):
         self.path = str(path)
-        out, _ = run("cube", "info", "--json", self.path)
+        out, err = run("cube", "info", "--json", self.path)
         self.info = json.loads(out)
+        # A partial cube (cases never run): the figure shows the cases run; say how many not.
+        for line in err.splitlines():
+            if "not run (a partial cube)" in line:
+                print(line.replace("pcrf cube info:", "pcrf plot:"), file=sys.stderr)
 
     @property
     def dimensions(self):
