@@ -2,6 +2,7 @@
 #include "pcrf/cube/cube_merge.hpp"
 
 #include <cmath>
+#include <map>
 #include <memory>
 #include <string>
 
@@ -87,6 +88,15 @@ MergeResult merge_cubes(const std::vector<std::filesystem::path>& parts, const s
   }
   for (const auto& reader : readers)
     for (auto& [index, note] : reader->read_notes()) writer.store_note(index, note);
+  // Each shard stored the histories of its own cases: join them, each from the one part that has it.
+  std::map<std::string, std::size_t> history_part;
+  for (std::size_t p = 0; p < readers.size(); ++p)
+    for (const auto& name : readers[p]->history_names()) {
+      if (const auto [it, fresh] = history_part.emplace(name, p); !fresh)
+        throw CubeError(parts[p].string() + ": history " + name + " is also in " + parts[it->second].string() +
+                        ": the parts overlap");
+      writer.store_history(readers[p]->read_history(name));
+    }
   writer.close();
   out.commit();
   return {missing, n};

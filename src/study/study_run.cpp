@@ -71,10 +71,6 @@ void check_output_is_not_an_input(const std::filesystem::path& output, const Stu
 MasterSetup prepare_master(const StudyRunOptions& options, const Prepared& p) {
   MasterSetup m;
   m.checked = check_study(p.study, *p.space, *p.records);
-  // Here, before --check returns: --check passes nothing the run refuses.
-  if (options.shard_count > 1 && !p.study.histories.empty())
-    throw StudyError(p.study.file + ": outputs.histories: a sharded run cannot store histories yet; run the histories "
-                                    "unsharded or leave them out");
   if (options.check_only) return m;
   m.output = options.output.empty() ? default_output(options.study_file) : options.output;
   check_output_is_not_an_input(m.output, options, p.study);

@@ -114,16 +114,34 @@ TEST(Shards, OnlyKOverNWithinBoundsIsAShard) {
   EXPECT_EQ(study_in(dir, "--shard 1000000/1000000 --check").exit_code, 0);
 }
 
-TEST(Shards, CheckRefusesWhatTheRunRefuses) {
-  const auto dir = test::scratch_dir("shards_check");
-  test::write_file(dir, "s.toml", small_grid_study("[[outputs.histories]]\nlabel = \"pulse\"\nrecord = \"" + std::string(kPulse) +
-                                                   "\"\nscale = 0.9\nkappa = 2.4\ntan_alpha = 0.22\n"));
-  const auto run = study_in(dir, "--shard 1/2 -o x.h5");
-  const auto check = study_in(dir, "--shard 1/2 --check");
-  EXPECT_EQ(run.exit_code, 2) << run.err;
-  EXPECT_EQ(check.exit_code, 2) << check.err;
-  EXPECT_EQ(run.err, check.err);
-  EXPECT_EQ(study_in(dir, "--check").exit_code, 0);  // unsharded, the same study is fine
+TEST(Shards, EachShardStoresItsHistoriesAndTheMergeJoinsThem) {
+  const auto dir = test::scratch_dir("shards_histories");
+  // Two histories: the first case (shard 1 of 2) and the last (shard 2 of 2).
+  test::write_file(dir, "s.toml", small_grid_study(
+      "[[outputs.histories]]\nlabel = \"first\"\nrecord = \"" + std::string(kPulse) +
+      "\"\nscale = 0.9\nkappa = 1.2\ntan_alpha = 0.18\n"
+      "[[outputs.histories]]\nlabel = \"last\"\nrecord = \"" + std::string(kNoise) +
+      "\"\nscale = 1.2\nkappa = 2.4\ntan_alpha = 0.22\n"));
+  EXPECT_EQ(study_in(dir, "--shard 1/2 --check").exit_code, 0);  // --check and the run agree
+  ASSERT_EQ(study_in(dir, "-o whole.h5").exit_code, 0);
+  ASSERT_EQ(study_in(dir, "--shard 1/2 -o a.h5").exit_code, 0);
+  ASSERT_EQ(study_in(dir, "--shard 2/2 -o b.h5").exit_code, 0);
+  EXPECT_EQ(cube::CubeReader(dir / "a.h5").history_names(), std::vector<std::string>{"first"});
+  EXPECT_EQ(cube::CubeReader(dir / "b.h5").history_names(), std::vector<std::string>{"last"});
+  ASSERT_EQ(merge_in(dir, "a.h5 b.h5 -o all.h5").exit_code, 0);
+  expect_same_cube(dir / "whole.h5", dir / "all.h5");
+  const cube::CubeReader whole(dir / "whole.h5"), all(dir / "all.h5");
+  ASSERT_EQ(all.history_names(), whole.history_names());
+  for (const auto& name : whole.history_names()) {
+    const auto w = whole.read_history(name), m = all.read_history(name);
+    EXPECT_EQ(w.values, m.values) << name;
+    ASSERT_EQ(w.columns.size(), m.columns.size());
+  }
+  // A history in two parts is an overlap.
+  std::filesystem::copy_file(dir / "a.h5", dir / "a2.h5");
+  const auto twice = merge_in(dir, "a.h5 a2.h5 b.h5 -o x.h5");
+  EXPECT_EQ(twice.exit_code, 2);
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.h5"));
 }
 
 TEST(Shards, PartialResultsAreNamed) {
