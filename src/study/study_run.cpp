@@ -121,10 +121,12 @@ class HistoryInbox {
   std::vector<cube::HistoryTable> tables_;
 };
 
-parallel::ScheduleOptions schedule_options(const Study& study, const CaseRunner& runner) {
+/// `stop_signal`: a signal stops the workers between two cases, reporting the ones done.
+parallel::ScheduleOptions schedule_options(const Study& study, const CaseRunner& runner, const std::atomic<int>* stop_signal) {
   parallel::ScheduleOptions options;
   options.row_width = runner.row_width();
   options.fixed_batch = study.run.batch_size;
+  options.interrupt = stop_signal;
   return options;
 }
 
@@ -147,6 +149,12 @@ class ResultSink {
       failed += is_failure(status) ? 1 : 0;
     }
     meter_.add(static_cast<std::int64_t>(batch.size()), failed);
+    // Stopping on a signal: each batch that comes back goes to disk at once (the launcher's
+    // SIGKILL may follow within a second).
+    if (error_.empty() && stop_flushed_) {
+      checkpoint();
+      return;
+    }
     // Rank 0's memory stays bounded whatever the rate: results held since the last
     // checkpoint never exceed kPendingLimitBytes.
     if (error_.empty() && writer_.pending_bytes() > kPendingLimitBytes) checkpoint();
@@ -154,6 +162,14 @@ class ResultSink {
 
   void idle() {
     take_histories();
+    // A stop signal: checkpoint at once, before the cases in flight come back. Under mpirun
+    // the signal came from Open MPI, which SIGKILLs every rank about a second later
+    // (odls_base_sigkill_timeout): what is computed must be on disk by then. close() adds
+    // the cases that return in the time left.
+    if (stop_signal_ != nullptr && stop_signal_->load() != 0 && !stop_flushed_) {
+      stop_flushed_ = true;
+      if (error_.empty()) checkpoint();
+    }
     // A checkpoint copies the cube: the next one comes a flush interval after this one
     // ends, and never sooner than 9 × its duration, so checkpoints take at most a tenth of the run.
     const double period_s = std::max(flush_interval_s_, 9.0 * last_checkpoint_s_);
@@ -161,6 +177,9 @@ class ResultSink {
     if (error_.empty() && std::chrono::duration<double>(since).count() >= period_s) checkpoint();
     meter_.tick();
   }
+
+  /// The signal that stops the run (null: none): its arrival is checkpointed at once.
+  void flush_on(const std::atomic<int>* stop_signal) { stop_signal_ = stop_signal; }
 
   /// Results held in memory between checkpoints, at most [bytes].
   static constexpr std::size_t kPendingLimitBytes = kPendingResultsBytes;
@@ -213,6 +232,8 @@ class ResultSink {
   double flush_interval_s_;
   std::function<void()> before_flush_;
   std::function<void()> stop_;
+  const std::atomic<int>* stop_signal_ = nullptr;
+  bool stop_flushed_ = false;
   std::string error_;
   cube::CubeError::Cause error_cause_ = cube::CubeError::Cause::kOther;
   double last_checkpoint_s_ = 0.0;
@@ -308,6 +329,7 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
     work = std::make_unique<parallel::WorkQueue>(pending_cases(*m.writer, history_requests, p.study, *p.space, mpi, options));
   }
   ResultSink sink(*m.writer, meter, inbox, p.study.run.flush_interval_s, before_flush);
+  sink.flush_on(stop_signal);
 
   // Runs in rank 0's worker thread; the only place where histories are recorded.
   auto evaluate = [&](const parallel::WorkItem& item) {
@@ -321,7 +343,7 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
   };
   StopOnSignal stoppable(*work, stop_signal);
   sink.on_error([&stoppable] { stoppable.fail(); });
-  parallel::run_master(mpi.comm(), stoppable, schedule_options(p.study, runner),
+  parallel::run_master(mpi.comm(), stoppable, schedule_options(p.study, runner, stop_signal),
                        evaluate, [&sink](parallel::ResultBatch&& batch) { sink.store(std::move(batch)); },
                        [&sink] { sink.idle(); });
   sink.close();
@@ -334,9 +356,9 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
   return summary;
 }
 
-void run_worker_rank(const Prepared& p, const parallel::MpiSession& mpi) {
+void run_worker_rank(const Prepared& p, const parallel::MpiSession& mpi, const std::atomic<int>* stop_signal) {
   CaseRunner runner(p.study, *p.space, *p.records);
-  parallel::run_worker(mpi.comm(), schedule_options(p.study, runner),
+  parallel::run_worker(mpi.comm(), schedule_options(p.study, runner, stop_signal),
                        [&runner](const parallel::WorkItem& item) { return runner.run(item); });
 }
 
@@ -390,7 +412,7 @@ std::optional<StudySummary> run_study(const StudyRunOptions& options, const para
   if (mpi.is_master())
     summary = run_master_rank(*prepared, setup, mpi, options.progress ? *options.progress : nowhere, options);
   else
-    run_worker_rank(*prepared, mpi);
+    run_worker_rank(*prepared, mpi, options.stop_signal);
   mpi.quiet_barrier();
   return summary ? summary : StudySummary{};
 }
