@@ -61,6 +61,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", pcrf::kVersion);
   app.require_subcommand(1);
   pcrf::cli::add_run_command(app);
+  pcrf::cli::add_frame_command(app);
   pcrf::cli::add_record_command(app);
   pcrf::cli::add_study_command(app);
   pcrf::cli::add_cube_command(app);

@@ -19,12 +19,9 @@ namespace pcrf::cli {
 namespace {
 
 struct RecordArguments {
-  RecordFlags record;
+  RecordFlags record;  ///< with the station's other components (--pair, --up)
   std::vector<double> periods_s;
   double damping = 0.05;
-  std::string pair_file;            ///< the second horizontal component, for RotD
-  std::optional<double> az1_deg;    ///< azimuths, when the headers do not state them
-  std::optional<double> az2_deg;
 };
 
 RecordMetadata metadata_of(const RecordFileSpec& spec) {
@@ -66,15 +63,6 @@ JsonObject measures(const GroundMotion& motion, const RecordMetadata& meta, cons
   return json;
 }
 
-/// A component's azimuth: given, or stated by its header's component name.
-double azimuth(const std::optional<double>& given, const RecordMetadata& meta, const GroundMotion& motion,
-               const char* flag) {
-  if (given) return *given;
-  if (const auto stated = azimuth_of_component(meta.component)) return *stated;
-  throw UsageError("the azimuth of '" + motion.name() + "' is not stated by its header (component '" + meta.component +
-                   "'): give " + flag);
-}
-
 /// RotD50 and RotD100 of PGA, PGV and Sa at each period, added to `json` with the
 /// measure names a study uses ("pga_rotd50_g", …) and the azimuths used.
 void add_rotd(JsonObject& json, const HorizontalPair& pair, const RecordArguments& args) {
@@ -95,29 +83,35 @@ void add_rotd(JsonObject& json, const HorizontalPair& pair, const RecordArgument
       .numbers("sa_rotd100_g", sa100);
 }
 
+/// The metadata of a component file (its header's title, component, …); none for a synthetic.
+RecordMetadata metadata_of_file(const RecordFlags& flags, const std::string& file) {
+  if (file.empty()) return {};
+  RecordFlags component = flags;
+  component.file = file;
+  return metadata_of(component.spec());
+}
+
 void describe(const RecordArguments& args) {
   if (!(args.damping >= 0.0 && args.damping < 1.0)) throw UsageError("--damping must be in [0, 1)");
   for (double t : args.periods_s)
     if (const auto problem = sa_period_problem(t, 0.0); !problem.empty()) throw UsageError("--period: " + problem);
-  if (args.pair_file.empty() && (args.az1_deg || args.az2_deg))
-    throw UsageError("--azimuth-deg and --pair-azimuth-deg go with --pair");
-  const GroundMotion motion = args.record.load();
-  const RecordMetadata meta = metadata_of(args.record.spec());
-  JsonObject json = measures(motion, meta, args);
-  if (!args.pair_file.empty()) {
-    RecordFlags second = args.record;
-    second.file = args.pair_file;
-    const GroundMotion other = second.load();
-    const RecordMetadata other_meta = metadata_of(second.spec());
-    const HorizontalPair pair{motion, azimuth(args.az1_deg, meta, motion, "--azimuth-deg"), other,
-                              azimuth(args.az2_deg, other_meta, other, "--pair-azimuth-deg")};
+  std::vector<std::string> notes;
+  const StationRecord station = args.record.load_station(notes);
+  for (const auto& note : notes) std::cerr << "pcrf record: note: " << note << '\n';
+  const RecordFlags& flags = args.record;
+  JsonObject json = measures(station.h1, metadata_of_file(flags, flags.file), args);
+  if (station.h2) {
+    if (!station.az1_deg || !station.az2_deg)
+      throw UsageError("the azimuth of '" + (station.az1_deg ? station.h2->name() : station.h1.name()) +
+                       "' is not stated by its header: give " + (station.az1_deg ? "--h2-azimuth-deg" : "--azimuth-deg"));
     try {
-      add_rotd(json, pair, args);
+      add_rotd(json, HorizontalPair{station.h1, *station.az1_deg, *station.h2, *station.az2_deg}, args);
     } catch (const std::invalid_argument& e) {
       throw UsageError(e.what());
     }
-    json.object("pair", measures(other, other_meta, args));
+    json.object("pair", measures(*station.h2, metadata_of_file(flags, flags.file_h2), args));
   }
+  if (station.up) json.object("up", measures(*station.up, metadata_of_file(flags, flags.file_up), args));
   std::cout << json.str() << std::endl;
 }
 
@@ -129,11 +123,8 @@ void add_record_command(CLI::App& app) {
   args->record.add_to(cmd, true, false);
   cmd->add_option("--period", args->periods_s, "oscillator period for Sa [s] (repeatable)");
   cmd->add_option("--damping", args->damping, "damping ratio of the oscillator [-]")->capture_default_str();
-  cmd->add_option("--pair", args->pair_file,
-                  "the station's other horizontal component: adds its measures and RotD50/RotD100 of PGA, PGV and Sa");
-  cmd->add_option("--azimuth-deg", args->az1_deg, "azimuth of FILE's component [deg from north] (default: its header)");
-  cmd->add_option("--pair-azimuth-deg", args->az2_deg,
-                  "azimuth of the --pair component [deg from north] (default: its header)");
+  // --pair adds the second horizontal's measures and RotD50/RotD100 of PGA, PGV and Sa.
+  args->record.add_components_to(cmd, "--pair", "--up");
   cmd->callback([args] { describe(*args); });
 }
 

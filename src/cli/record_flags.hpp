@@ -5,8 +5,11 @@
 
 #include <CLI/CLI.hpp>
 
+#include <optional>
 #include <string>
+#include <vector>
 
+#include "pcrf/excitation/station_record.hpp"
 #include "pcrf/record/ground_motion.hpp"
 #include "pcrf/record/record_readers.hpp"
 
@@ -28,6 +31,19 @@ struct RecordFlags {
   RecordFileSpec spec() const;
   /// The motion, unscaled. \throws UsageError with the reader's message.
   GroundMotion load() const;
+
+  // The station's other components (files read like the first one).
+  std::string file_h2;
+  std::string file_up;
+  std::optional<double> az1_deg;
+  std::optional<double> az2_deg;
+  /// Adds `h2_flag` (e.g. "--record-h2"), `up_flag` ("--record-up"), --azimuth-deg and
+  /// --h2-azimuth-deg.
+  void add_components_to(CLI::App* cmd, const std::string& h2_flag, const std::string& up_flag);
+  /// Every component given, aligned (the notes of padding in `notes`), the azimuths given or
+  /// read from the AT2 headers' component names. \throws UsageError: different dt, a
+  /// vertical given as a horizontal or the other way round.
+  StationRecord load_station(std::vector<std::string>& notes) const;
 };
 
 }  // namespace pcrf::cli

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "cli/frame_flags.hpp"
 #include "cli/record_flags.hpp"
 #include "cli/setting_flags.hpp"
 #include "pcrf/io/output_file.hpp"
@@ -34,6 +35,7 @@ struct RunOptions {
   std::string history_file;
   double history_dt_s = 0.0;
   bool overwrite = false;  ///< replace an existing history file
+  std::optional<double> incidence_deg;  ///< the frame's plane [deg from north]; needs both horizontals
 };
 
 /// The factor the record is scaled by: --scale, or --intensity over the record's measure.
@@ -57,12 +59,16 @@ double scale_factor(const RunOptions& o, const GroundMotion& motion) {
   return intensity_scale_factor(o.intensity, im);
 }
 
-GroundMotion load_motion(const RunOptions& o, double& factor) {
-  const GroundMotion motion = o.record.load();
-  factor = scale_factor(o, motion);
+/// What the frame feels: the station's components at the frame's incidence, scaled by
+/// --scale or to --intensity of the in-plane horizontal motion.
+std::unique_ptr<FrameExcitation> load_excitation(const RunOptions& o, double& factor) {
+  std::vector<std::string> notes;
+  const StationRecord station = o.record.load_station(notes);
+  for (const auto& note : notes) std::cerr << "pcrf run: note: " << note << '\n';
   try {
-    return motion.scaled(factor);
-  } catch (const std::invalid_argument& e) {  // a scale that overflows the record
+    factor = scale_factor(o, in_plane_motion(station, o.incidence_deg));
+    return std::make_unique<FrameExcitation>(station, o.incidence_deg, factor);
+  } catch (const std::invalid_argument& e) {  // an incidence without a pair, a scale that overflows
     throw UsageError(e.what());
   }
 }
@@ -72,9 +78,8 @@ GroundMotion load_motion(const RunOptions& o, double& factor) {
 /// (io::OutputFile: never the record read, complete or not at all).
 class CsvHistory {
  public:
-  CsvHistory(const std::string& path, const std::string& record_file, bool overwrite)
-      : file_(path, record_file.empty() ? std::vector<std::filesystem::path>{} : std::vector<std::filesystem::path>{record_file},
-              overwrite),
+  CsvHistory(const std::string& path, const std::vector<std::filesystem::path>& records, bool overwrite)
+      : file_(path, records, overwrite),
         out_(file_.stream()) {
     const char* separator = "";
     for (const auto& c : history_columns()) {
@@ -102,26 +107,24 @@ class CsvHistory {
 
 void run(const RunOptions& o) {
   double factor = 1.0;
-  const GroundMotion motion = load_motion(o, factor);
+  const auto excitation = load_excitation(o, factor);
   const PhysicsOptions physics = o.physics->resolve();
   const SolverSettings solver = o.solver->resolve();
-  Frame frame{};
-  try {
-    frame = make_frame(o.frame);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
+  const Frame frame = frame_from_flags(o.frame);
   std::unique_ptr<CsvHistory> csv;
   HistorySink sink;
   if (!o.history_file.empty()) {
-    csv = std::make_unique<CsvHistory>(o.history_file, o.record.file, o.overwrite);
+    std::vector<std::filesystem::path> records;  // the files read: every component's
+    for (const std::string* file : {&o.record.file, &o.record.file_h2, &o.record.file_up})
+      if (!file->empty()) records.emplace_back(*file);
+    csv = std::make_unique<CsvHistory>(o.history_file, records, o.overwrite);
     sink = [&csv](const HistorySample& s) { (*csv)(s); };
   }
   CaseResult result;
   try {
     OutputRequest request;
     request.history_dt_s = o.history_dt_s;
-    result = solve_case(frame, motion, physics, solver, request, sink);
+    result = solve_case(frame, excitation->view(), physics, solver, request, sink);
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
@@ -132,29 +135,16 @@ void run(const RunOptions& o) {
   std::cout << json.str() << std::endl;
 }
 
-/// --kappa … --pi-e-c and --h-m, --m-c-kg (older spelling --mc), from the parameter tables.
-/// The older `--h` is gone: CLI11 2.4 refuses a one-letter long name beside `-h` (help).
-void add_frame_flags(CLI::App* cmd, FrameParameters& frame) {
-  const std::string group = "frame (default: the paper's basic model)";
-  for (const auto& info : all_parameters())
-    cmd->add_option(flag_name(info.name), frame.*info.member, std::string(info.long_name))
-        ->capture_default_str()
-        ->group(group);
-  for (const auto& info : size_parameters()) {
-    const std::string older = info.name == "m_c_kg" ? ",--mc" : "";
-    cmd->add_option(flag_name(info.name) + older, frame.*info.member,
-                    std::string(info.long_name) + " [" + std::string(info.units) + "]")
-        ->capture_default_str()
-        ->group(group);
-  }
-}
-
 }  // namespace
 
 void add_run_command(CLI::App& app) {
   auto o = std::make_shared<RunOptions>();
   CLI::App* cmd = app.add_subcommand("run", "Solve one case and print its result record as JSON");
   o->record.add_to(cmd, false, true);
+  o->record.add_components_to(cmd, "--record-h2", "--record-up");
+  cmd->add_option("--incidence-deg", o->incidence_deg,
+                  "azimuth of the frame's plane [deg from north]: the pair is projected on it (needs --record-h2)")
+      ->group("record");
   o->scale_flag = cmd->add_option("--scale", o->scale, "ground-motion scale factor [-]")->capture_default_str();
   o->intensity_flag = cmd->add_option("--intensity", o->intensity,
                                       "scale the record to this intensity of --measure (in its units: g or m/s)");

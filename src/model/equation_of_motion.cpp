@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "pcrf/model/impact.hpp"
 #include "pcrf/units.hpp"
 
 namespace pcrf {
@@ -35,27 +36,9 @@ Elongations elongations(const Frame& f, const Configuration& c) {
 
 }  // namespace
 
-double TendonState::strain_column_max() const {
-  return std::max(strain_column_left, strain_column_right);
-}
-
 EquationOfMotion::EquationOfMotion(const Frame& frame) : frame_(frame), four_bar_(frame) {
-  Configuration c;
-  if (!negative_branch_terms(0.0, rest_, c)) {
-    throw std::invalid_argument("impossible frame: the linkage does not close at rest");
-  }
-  lambda_g_ = rest_.G / rest_.S;
-  uplift_threshold_m_s2_ = uplift_threshold_m_s2(0.0);
-}
-
-double EquationOfMotion::uplift_threshold_m_s2(double vertical_m_s2) const {
-  return (rest_.G * (frame_.gravity_m_s2 + vertical_m_s2) + rest_.K) / rest_.S;
-}
-
-bool EquationOfMotion::holds_closed(GroundAcceleration ground) const {
-  // rest_acceleration(ground, −1) < 0 opens into θ₁ < 0, rest_acceleration(ground, +1) > 0
-  // into θ₁ > 0; with S(0) < 0 both reduce to |ü_h| reaching the threshold at ü_v.
-  return std::abs(ground.horizontal_m_s2) < uplift_threshold_m_s2(ground.vertical_m_s2);
+  settle_rest();
+  restitution_ = restitution_momentum(*this);
 }
 
 bool EquationOfMotion::negative_branch_terms(double phi, EomTerms& out, Configuration& c) const {
@@ -90,23 +73,6 @@ bool EquationOfMotion::terms(double theta1, int side, EomTerms& out) const {
   out.G = -out.G;
   out.K = -out.K;
   return true;
-}
-
-bool EquationOfMotion::acceleration(double theta1, double omega1, GroundAcceleration ground,
-                                    int side, double& theta1_ddot) const {
-  EomTerms t;
-  if (!terms(theta1, side, t)) return false;
-  theta1_ddot = (t.S * ground.horizontal_m_s2 - t.J * omega1 * omega1 -
-                 t.G * (frame_.gravity_m_s2 + ground.vertical_m_s2) - t.K) /
-                t.I;
-  return true;
-}
-
-double EquationOfMotion::rest_acceleration(GroundAcceleration ground, int side) const {
-  const double s = side < 0 ? -1.0 : 1.0;
-  // On side +1, G and K change sign and S does not (odd dynamics).
-  return (rest_.S * ground.horizontal_m_s2 + s * (rest_.G * (frame_.gravity_m_s2 + ground.vertical_m_s2) + rest_.K)) /
-         rest_.I;
 }
 
 double EquationOfMotion::energy(double theta1, double omega1, int side) const {

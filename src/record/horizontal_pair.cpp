@@ -30,25 +30,43 @@ bool ends_with(const std::string& text, const std::string& tail) {
 
 }  // namespace
 
+namespace {
+
+/// The weights for a pair given with wrapped(az1) < wrapped(az2).
+ProjectionWeights ordered_weights(double az1_deg, double az2_deg, double phi_deg) {
+  const double span = std::sin(radians(az2_deg - az1_deg));
+  // Measured from az₁ and reduced to [0°, 180°), with the sign of the half turn applied
+  // afterwards: φ + 180° gives exactly the negated weights, φ = az₁ exactly (1, 0) and
+  // φ = az₂ exactly (0, 1).
+  double from_az1 = wrapped(phi_deg - az1_deg);
+  double sign = 1.0;
+  if (from_az1 >= 180.0) from_az1 -= 180.0, sign = -1.0;
+  if (from_az1 == 0.0) return {sign, sign * 0.0};
+  const double from_az2 = wrapped(phi_deg - az2_deg);
+  if (from_az2 == 0.0 || from_az2 == 180.0) return {0.0, from_az2 == 0.0 ? 1.0 : -1.0};
+  const double along = az1_deg + from_az1;
+  return {sign * std::sin(radians(az2_deg - along)) / span, sign * std::sin(radians(along - az1_deg)) / span};
+}
+
+}  // namespace
+
 ProjectionWeights projection_weights(double az1_deg, double az2_deg, double phi_deg) {
   if (!std::isfinite(az1_deg) || !std::isfinite(az2_deg) || !std::isfinite(phi_deg))
     throw std::invalid_argument("azimuths must be finite numbers of degrees");
-  const double span = std::sin(radians(az2_deg - az1_deg));
-  if (std::abs(span) < std::sin(radians(1.0))) {
+  if (std::abs(std::sin(radians(az2_deg - az1_deg))) < std::sin(radians(1.0))) {
     char text[160];
     std::snprintf(text, sizeof text,
                   "components recorded along %g° and %g° are parallel: they do not give the horizontal motion",
                   az1_deg, az2_deg);
     throw std::invalid_argument(text);
   }
-  // Measured from az₁ and reduced to [0°, 180°), with the sign of the half turn applied
-  // afterwards: φ + 180° gives exactly the negated weights, φ = az₁ exactly (1, 0).
-  double from_az1 = wrapped(phi_deg - az1_deg);
-  double sign = 1.0;
-  if (from_az1 >= 180.0) from_az1 -= 180.0, sign = -1.0;
-  if (from_az1 == 0.0) return {sign, sign * 0.0};
-  const double along = az1_deg + from_az1;
-  return {sign * std::sin(radians(az2_deg - along)) / span, sign * std::sin(radians(along - az1_deg)) / span};
+  // The same arithmetic whichever component comes first, so that the projection (w₁ a₁ + w₂ a₂,
+  // an addition that commutes exactly) does not depend on the order the pair is given in.
+  if (wrapped(az1_deg) > wrapped(az2_deg)) {
+    const ProjectionWeights w = ordered_weights(wrapped(az2_deg), wrapped(az1_deg), phi_deg);
+    return {w.w2, w.w1};
+  }
+  return ordered_weights(wrapped(az1_deg), wrapped(az2_deg), phi_deg);
 }
 
 GroundMotion padded(const GroundMotion& record, std::size_t samples) {

@@ -9,6 +9,8 @@
 
 #include "pcrf/record/synthetic.hpp"
 
+#include "pcrf/record/pulses.hpp"
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -324,6 +326,23 @@ const std::vector<Field<StochasticSpec>>& stochastic_fields() {
   return fields;
 }
 
+/// The keys of a pulse kind: those every pulse has, and its own.
+std::vector<Field<PulseSpec>> pulse_fields(PulseShape shape) {
+  std::vector<Field<PulseSpec>> fields = {field("period_s", &PulseSpec::period_s),
+                                          field("amplitude_g", &PulseSpec::amplitude_g),
+                                          field("duration_s", &PulseSpec::duration_s), field("dt_s", &PulseSpec::dt_s)};
+  if (shape == PulseShape::kCycles) fields.push_back(field("cycles", &PulseSpec::cycles));
+  if (shape == PulseShape::kMavroeidis) {
+    fields.push_back(field("gamma", &PulseSpec::gamma));
+    fields.push_back(field("nu_deg", &PulseSpec::nu_deg));
+  }
+  return fields;
+}
+
+constexpr PulseShape kPulseShapes[] = {PulseShape::kSine,   PulseShape::kCosine,
+                                       PulseShape::kCycles, PulseShape::kRicker,
+                                       PulseShape::kRickerAntisymmetric, PulseShape::kMavroeidis};
+
 /// Same record under another name (the text the caller gave).
 GroundMotion renamed(const GroundMotion& g, const std::string& name) {
   return GroundMotion(name, g.dt_s(), g.samples_m_s2());
@@ -381,8 +400,17 @@ GroundMotion make_synthetic(const std::string& text) {
     apply_assignments(text, kind, list, stochastic_fields(), spec);
     return with_text([&] { return make_stochastic(spec); });
   }
-  throw std::invalid_argument("synthetic record '" + text + "': unknown kind '" +
-                              std::string(kind) + "' (expected sine or stochastic)");
+  for (const PulseShape shape : kPulseShapes) {
+    if (kind != pulse_kind(shape)) continue;
+    PulseSpec spec;
+    spec.shape = shape;
+    apply_assignments(text, kind, list, pulse_fields(shape), spec);
+    return with_text([&] { return make_pulse(spec); });
+  }
+  std::string kinds = "sine, stochastic";
+  for (const PulseShape shape : kPulseShapes) kinds += ", " + pulse_kind(shape);
+  throw std::invalid_argument("synthetic record '" + text + "': unknown kind '" + std::string(kind) + "' (expected " +
+                              kinds + ")");
 }
 
 }  // namespace pcrf

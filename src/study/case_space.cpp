@@ -10,26 +10,23 @@
 
 namespace pcrf::study {
 
-CaseSpace::CaseSpace(const Study& study) : plan_(study.plan), levels_(study.levels) {
+CaseSpace::CaseSpace(const Study& study)
+    : plan_(study.plan), level_axis_(make_level_axis(study)), levels_(level_axis_->levels()) {
   for (const auto& r : study.records) record_names_.push_back(r.name);
   names_ = {vocabulary::kRecord};
   shape_ = {record_names_.size()};
-  if (study.ida) {
-    ida_runs_ = static_cast<std::size_t>(study.ida->max_runs);
-    levels_.clear();  // each run's intensity comes with it (WorkItem::argument)
-  } else {
-    names_.emplace_back(study.intensity ? vocabulary::kIntensity : vocabulary::kScale);
-    shape_.push_back(levels_.size());
-  }
+  auto add = [&](const std::vector<cube::Dimension>& dimensions) {
+    for (const auto& d : dimensions) {
+      names_.push_back(d.name);
+      shape_.push_back(d.size);
+    }
+  };
+  add(level_axis_->leading_dimensions());
   frame_dim_ = shape_.size();
-  for (const auto& d : plan_->dimensions()) {
-    names_.push_back(d.name);
-    shape_.push_back(d.size);
-  }
-  if (ida_runs_ > 0) {
-    names_.emplace_back(vocabulary::kIdaPoint);
-    shape_.push_back(ida_runs_);
-  }
+  add(plan_->dimensions());
+  const auto trailing = level_axis_->trailing_dimensions();
+  add(trailing);
+  if (!trailing.empty()) ida_runs_ = trailing.back().size;
   for (auto n : shape_) size_ *= static_cast<std::int64_t>(n);
 }
 

@@ -52,8 +52,7 @@ std::string canonical_description(const Study& study, const CaseSpace& space, Re
   }
   if (study.intensity) describe_settings(out, intensity_settings(), *study.intensity);
   if (study.ida) describe_settings(out, ida_settings(), *study.ida);
-  out << (study.intensity ? "intensity" : "scale");
-  for (double s : study.levels) out << ' ' << s;
+  space.level_axis().describe(out);
   out << "\nbase";
   detail::describe_parameters(out, study.base);
   out << '\n';

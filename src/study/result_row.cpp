@@ -4,26 +4,28 @@
 #include <algorithm>
 #include <limits>
 
-#include "pcrf/study/cube_vocabulary.hpp"
+#include "pcrf/study/level_axis.hpp"
 
 namespace pcrf::study {
 
-ResultColumns::ResultColumns(const Study& study) : ida_(study.ida.has_value()) {
+ResultColumns::ResultColumns(const Study& study) {
   for (const auto& name : study.metrics) {
     const MetricInfo* m = find_metric(name);
     metrics_.push_back(m);
     variables_.push_back({name, std::string(m->units), std::string(m->description)});
   }
-  if (!ida_) return;
-  const IntensitySpec& im = *study.intensity;  // the parser requires it with [ida]
-  const std::string measure = intensity_long_name(im.measure, im.period_s, im.damping);
-  variables_.push_back({vocabulary::kIdaIntensity, std::string(intensity_units(im.measure)), "intensity of the run: " + measure});
-  variables_.push_back({vocabulary::kScaleFactor, "1", "factor applied to the record's accelerations for the run"});
+  for (auto& v : make_level_axis(study)->row_variables()) variables_.push_back(std::move(v));
 }
 
 std::size_t ResultColumns::metric_column(std::string_view name) const {
   const auto it = std::find_if(metrics_.begin(), metrics_.end(), [&](const MetricInfo* m) { return m->name == name; });
   return it == metrics_.end() ? npos : static_cast<std::size_t>(it - metrics_.begin());
+}
+
+std::size_t ResultColumns::column_of(std::string_view name, std::size_t from) const {
+  for (std::size_t c = from; c < variables_.size(); ++c)
+    if (variables_[c].name == name) return c;
+  return npos;
 }
 
 std::vector<double> ResultColumns::empty_row() const {

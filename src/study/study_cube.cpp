@@ -15,17 +15,7 @@ namespace pcrf::study {
 namespace {
 
 using cube::Attribute;
-using cube::Coordinate;
 namespace names = vocabulary;
-
-Coordinate numbers(std::string name, std::string dimension, std::string units, std::string long_name,
-                   std::vector<double> values) {
-  return number_coordinate(std::move(name), std::move(dimension), std::move(units), std::move(long_name), std::move(values));
-}
-
-Coordinate texts(std::string name, std::string dimension, std::string long_name, std::vector<std::string> values) {
-  return text_coordinate(std::move(name), std::move(dimension), std::move(long_name), std::move(values));
-}
 
 std::string utc_now() {
   const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
@@ -36,36 +26,20 @@ std::string utc_now() {
   return buffer;
 }
 
-/// The record axis (names, sources, titles, and with an intensity axis each record's
-/// unscaled intensity) and the second axis, `scale` or `intensity`.
+/// The record axis (names, sources, titles), then the level axis' coordinates along it and
+/// along its own dimensions (level_axis.hpp).
 void add_record_and_level(const Study& study, const CaseSpace& space, RecordCache& records,
                           cube::CubeLayout& layout) {
   auto& coords = layout.coordinates;
-  coords.push_back(texts(names::kRecord, names::kRecord, "ground motion record", space.record_names()));
+  coords.push_back(text_coordinate(names::kRecord, names::kRecord, "ground motion record", space.record_names()));
   std::vector<std::string> sources, titles;
   for (std::size_t r = 0; r < study.records.size(); ++r) {
     sources.push_back(study.records[r].describe());
     titles.push_back(records.title(r));
   }
-  coords.push_back(texts(names::kRecordSource, names::kRecord, "where the record comes from", sources));
-  coords.push_back(texts(names::kRecordTitle, names::kRecord, "the record's own title (AT2 header)", titles));
-  if (!study.intensity) {
-    coords.push_back(numbers(names::kScale, names::kScale, "1", "factor applied to the record's accelerations", space.levels()));
-    return;
-  }
-  const IntensitySpec& im = *study.intensity;
-  const std::string units(intensity_units(im.measure));
-  const std::string long_name = intensity_long_name(im.measure, im.period_s, im.damping);
-  std::vector<double> unscaled;
-  for (std::size_t r = 0; r < study.records.size(); ++r) unscaled.push_back(records.intensity(r, im));
-  coords.push_back(numbers("record_" + to_string(im.measure), names::kRecord, units, "unscaled record's " + long_name, unscaled));
-  if (study.ida) return;  // the intensities are the runs' own (ida_intensity)
-  coords.push_back(numbers(names::kIntensity, names::kIntensity, units, long_name, space.levels()));
-  cube::SideVariable factor{names::kScaleFactor, "1", "factor applied to the record's accelerations to reach the intensity",
-                            {names::kRecord, names::kIntensity}, {}};
-  for (std::size_t r = 0; r < study.records.size(); ++r)
-    for (double level : space.levels()) factor.values.push_back(records.scale_factor(r, level, study.intensity));
-  layout.side_variables.push_back(std::move(factor));
+  coords.push_back(text_coordinate(names::kRecordSource, names::kRecord, "where the record comes from", sources));
+  coords.push_back(text_coordinate(names::kRecordTitle, names::kRecord, "the record's own title (AT2 header)", titles));
+  space.level_axis().add_leading(layout, records);
 }
 
 /// One attribute "<table>_<key>" per setting: numbers as float64, integers and flags as
@@ -83,33 +57,6 @@ void add_settings(std::vector<Attribute>& attributes, const SettingTable<Target>
             attributes.push_back({name, v});
         },
         setting.get(values));
-  }
-}
-
-/// An IDA's extra axis and variables: `ida_point` (the runs of a curve, in the order run),
-/// each run's intensity and scale factor, and per curve (every axis but ida_point) the
-/// collapse intensity, the last safe intensity and the number of runs.
-void add_ida_variables(const Study& study, const CaseSpace& space, cube::CubeLayout& layout) {
-  std::vector<double> points(space.ida_runs());
-  for (std::size_t k = 0; k < points.size(); ++k) points[k] = static_cast<double>(k);
-  Coordinate axis = numbers(names::kIdaPoint, names::kIdaPoint, "", "run of the IDA curve, in the order run", points);
-  axis.is_index = true;
-  layout.coordinates.push_back(std::move(axis));
-  const IntensitySpec& im = *study.intensity;
-  const std::string units(intensity_units(im.measure));
-  std::vector<std::string> curve_axes(space.dimension_names().begin(), space.dimension_names().end() - 1);
-  layout.side_variables.push_back({names::kCollapseIntensity, units,
-                                   "lowest intensity found to collapse (NaN: none up to max_intensity, right-censored)",
-                                   curve_axes, {}});
-  layout.side_variables.push_back({names::kLastSafeIntensity, units, "highest safe intensity below the collapse", curve_axes, {}});
-  layout.side_variables.push_back({names::kIdaRuns, "1", "runs of the curve so far", curve_axes, {}});
-  if (study.solver.verdict_check) {
-    layout.side_variables.push_back({names::kUnstableFrom, units,
-                                     "lowest intensity of the curve whose verdict failed the perturbation test (NaN: none)",
-                                     curve_axes, {}});
-    layout.side_variables.push_back({names::kUnstableTo, units,
-                                     "highest intensity of the curve whose verdict failed the perturbation test (NaN: none)",
-                                     curve_axes, {}});
   }
 }
 
@@ -148,7 +95,9 @@ cube::CubeLayout make_cube_layout(const Study& study, const CaseSpace& space, Re
   add_record_and_level(study, space, records, layout);
   for (auto& c : space.plan().coordinates()) layout.coordinates.push_back(std::move(c));
   layout.metrics = ResultColumns(study).variables();
-  if (study.ida) add_ida_variables(study, space, layout);
+  const auto& names = space.dimension_names();
+  const auto trailing = static_cast<std::ptrdiff_t>(space.level_axis().trailing_dimensions().size());
+  space.level_axis().add_trailing(layout, {names.begin(), names.end() - trailing});
   for (CaseStatus status : all_final_statuses())
     layout.status_flags.push_back({static_cast<std::int8_t>(status), std::string(status_name(status))});
   layout.attributes = global_attributes(study, fingerprint);

@@ -249,9 +249,80 @@ TEST(RecordCommand, APairPrintsBothComponentsAndTheirRotD) {
                                        " --azimuth-deg 90");
   EXPECT_EQ(given.exit_code, 0) << given.err;
   const auto parallel = test::run_command(pcrf() + " record " + east.string() + " --pair " + north.string() +
-                                          " --pair-azimuth-deg 270");
+                                          " --h2-azimuth-deg 270");
   EXPECT_EQ(parallel.exit_code, 2);
   EXPECT_NE(parallel.err.find("are parallel"), std::string::npos) << parallel.err;
+}
+
+}  // namespace
+}  // namespace pcrf
+
+namespace pcrf {
+namespace {
+
+TEST(FrameCommand, PrintsThePropertiesAndThePushoverCurve) {
+  const auto text = test::run_command(pcrf() + " frame --points 5");
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("uplift threshold (prestress included)"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("rad (column tendon)"), std::string::npos) << text.out;
+  const auto json = test::run_command(pcrf() + " frame --points 3 --json --kappa 2.5");
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  EXPECT_EQ(json.out.find('\n'), json.out.size() - 1);
+  for (const char* key : {"lambda_g", "uplift_threshold_g", "restitution", "frequency_parameter_rad_s",
+                          "fracture_angle_rad", "overturn_angle_rad", "capacity_g", "capacity_theta_rad"})
+    EXPECT_FALSE(std::isnan(json_number(json.out, key))) << key;
+  EXPECT_NE(json.out.find("\"pushover_theta_rad\": [0, "), std::string::npos) << json.out;
+  const auto bad = test::run_command(pcrf() + " frame --points 1");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--points must be at least 2"), std::string::npos) << bad.err;
+  const auto impossible = test::run_command(pcrf() + " frame --lambda-h 1.5");
+  EXPECT_EQ(impossible.exit_code, 2);
+  EXPECT_NE(impossible.err.find("lambda_h"), std::string::npos) << impossible.err;
+}
+
+}  // namespace
+}  // namespace pcrf
+
+namespace pcrf {
+namespace {
+
+TEST(RunCommand, TakesTheStationsComponentsAndAnIncidence) {
+  // h1 along 90°, h2 along 0°, a vertical: at the incidence of h1 without the vertical the
+  // result is h1's alone; with a vertical or another incidence it changes.
+  const auto dir = test::scratch_dir("run_components");
+  const std::string values = "0.0 0.9 1.4 -1.3 0.6 0.2 -0.1 0.0";
+  auto at2 = [&](const std::string& name, const std::string& component, const std::string& v) {
+    return test::write_file(dir, name,
+                            "PEER NGA STRONG MOTION DATABASE RECORD\nSome Event, 1/2/2000, Some Station, " + component +
+                                "\nACCELERATION TIME SERIES IN UNITS OF G\nNPTS=   8, DT=   .0500 SEC\n" + v + "\n");
+  };
+  const auto h1 = at2("RSN9_E.AT2", "90", values), h2 = at2("RSN9_N.AT2", "0", "0.0 0.3 -0.5 0.8 -0.2 0.1 0.0 0.0");
+  const auto up = at2("RSN9_UP.AT2", "UP", "0.0 0.2 -0.4 0.3 0.1 0.0 0.0 0.0");
+  const std::string base = pcrf() + " run --scale 1.5 --record " + h1.string();
+  const auto alone = test::run_command(base);
+  const auto along = test::run_command(base + " --record-h2 " + h2.string() + " --incidence-deg 90");
+  const auto turned = test::run_command(base + " --record-h2 " + h2.string() + " --incidence-deg 60");
+  const auto shaken = test::run_command(base + " --record-up " + up.string());
+  for (const auto* r : {&alone, &along, &turned, &shaken}) ASSERT_EQ(r->exit_code, 0) << r->err;
+  ASSERT_GT(json_number(alone.out, "theta_max_rad"), 0.0);
+  EXPECT_EQ(json_number(along.out, "theta_max_rad"), json_number(alone.out, "theta_max_rad"));
+  EXPECT_NE(json_number(turned.out, "theta_max_rad"), json_number(alone.out, "theta_max_rad"));
+  EXPECT_NE(json_number(shaken.out, "theta_max_rad"), json_number(alone.out, "theta_max_rad"));
+  // Components that do not fit: a horizontal as the vertical, a vertical as the second
+  // horizontal, an incidence without a pair, different sample intervals.
+  const auto coarse = test::write_file(dir, "RSN9_C.AT2",
+                                       "PEER NGA STRONG MOTION DATABASE RECORD\nSome Event, 1/2/2000, Some Station, 0"
+                                       "\nACCELERATION TIME SERIES IN UNITS OF G\nNPTS=   2, DT=   .0100 SEC\n0 0\n");
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {" --record-up " + h2.string(), "names a horizontal component ('0'), given as the vertical"},
+      {" --record-h2 " + up.string(), "names a vertical component ('UP'), given as the second horizontal"},
+      {" --incidence-deg 30", "has no second component"},
+      {" --record-h2 " + coarse.string(), "sampled at different intervals"}};
+  for (const auto& [flags, message] : bad) {
+    const auto r = test::run_command(base + flags);
+    EXPECT_EQ(r.exit_code, 2) << flags;
+    EXPECT_NE(r.err.find(message), std::string::npos) << flags << ": " << r.err;
+  }
 }
 
 }  // namespace

@@ -103,6 +103,32 @@ TEST(RecordMetadata, FromTheAt2HeaderAndTheFileName) {
   EXPECT_EQ(meta.rsn, "174");
 }
 
+TEST(RecordMetadata, ReadOnceWithTheMotionAsEachAlone) {
+  const auto dir = test::scratch_dir("record_file");
+  const auto at2 = test::write_file(dir, "RSN174_A.AT2",
+                                    "PEER NGA STRONG MOTION DATABASE RECORD\n"
+                                    "Imperial Valley-06, 10/15/1979, El Centro Array #11, 230\n"
+                                    "ACCELERATION TIME SERIES IN UNITS OF G\nNPTS=   3, DT=   .0050 SEC,\n 0.1 0.2 -0.3\n");
+  const auto text = test::write_file(dir, "RSN9_B.txt", "0 0.1\n0.01 0.2\n");
+  for (const RecordFileSpec& spec : {RecordFileSpec{at2}, RecordFileSpec{text, RecordFormat::kTwoColumn}}) {
+    SCOPED_TRACE(spec.path.string());
+    const RecordFile file = read_record_file(spec);
+    const GroundMotion alone = read_record(spec);
+    EXPECT_EQ(file.motion.name(), alone.name());
+    EXPECT_EQ(file.motion.dt_s(), alone.dt_s());
+    EXPECT_EQ(file.motion.samples_m_s2(), alone.samples_m_s2());
+    const RecordMetadata meta = read_metadata(spec);
+    EXPECT_EQ(file.metadata.title, meta.title);
+    EXPECT_EQ(file.metadata.event, meta.event);
+    EXPECT_EQ(file.metadata.component, meta.component);
+    EXPECT_EQ(file.metadata.rsn, meta.rsn);
+  }
+  EXPECT_EQ(read_record_file(RecordFileSpec{at2}).metadata.station, "El Centro Array #11");
+  // A bad record fails as read_record does.
+  const auto bad = test::write_file(dir, "bad.AT2", "a\nb\nc\nNPTS=   3, DT=   .0050 SEC,\n 0.1 0.2\n");
+  EXPECT_THROW(read_record_file(RecordFileSpec{bad}), RecordError);
+}
+
 TEST(RecordHandling, SkipRowsDropsTheFemaFilesAddedLeadingSample) {
   PCRF_REQUIRE_RECORDS(records);
   // paper/ER4 is SortedEQFile_(120622).txt with its added leading zero removed, values unchanged.

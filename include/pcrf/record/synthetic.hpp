@@ -56,7 +56,9 @@ GroundMotion make_stochastic(const StochasticSpec& spec);
 
 /// A record named in text form, as the CLI and study files accept it:
 /// "sine:amplitude_g=0.5,period_s=0.5,cycles=2,duration_s=5,dt_s=0.005" or
-/// "stochastic:seed=3,pga_g=0.4,duration_s=20,dt_s=0.01" (any subset of the fields above,
+/// "stochastic:seed=3,pga_g=0.4,duration_s=20,dt_s=0.01", or a pulse of pulses.hpp by its kind:
+/// "pulse-sine:period_s=0.5,amplitude_g=0.3", "pulse-cosine:…", "pulse-cycles:…,cycles=2",
+/// "ricker:…", "ricker-antisymmetric:…", "mavroeidis:…,gamma=2,nu_deg=90" (any subset of the fields above,
 /// the rest take their defaults; "sine" alone is all defaults). Blanks around keys and values
 /// are ignored; a key given twice, an empty item or a value that is not a whole number
 /// (cycles, seed) or a finite number (the rest) is an error. The record's name is the text

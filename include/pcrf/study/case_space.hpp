@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "pcrf/study/level_axis.hpp"
 #include "pcrf/study/plan.hpp"
 #include "pcrf/study/study.hpp"
 
@@ -30,6 +31,7 @@ class CaseSpace {
   explicit CaseSpace(const Study& study);
 
   const Plan& plan() const { return *plan_; }
+  const LevelAxis& level_axis() const { return *level_axis_; }
   std::int64_t size() const { return size_; }
   const std::vector<std::string>& dimension_names() const { return names_; }
   const std::vector<std::size_t>& shape() const { return shape_; }
@@ -58,6 +60,7 @@ class CaseSpace {
 
  private:
   std::shared_ptr<const Plan> plan_;
+  std::shared_ptr<const LevelAxis> level_axis_;
   std::vector<std::string> names_;
   std::vector<std::size_t> shape_;
   std::int64_t size_ = 1;

@@ -14,6 +14,7 @@
 
 #include "pcrf/cube/cube_layout.hpp"
 #include "pcrf/metrics/case_result.hpp"
+#include "pcrf/study/cube_vocabulary.hpp"
 #include "pcrf/study/study.hpp"
 
 namespace pcrf::study {
@@ -30,9 +31,10 @@ class ResultColumns {
   const std::vector<const MetricInfo*>& metrics() const { return metrics_; }
   /// Column of stored metric `name`; npos when the study does not store it.
   std::size_t metric_column(std::string_view name) const;
-  /// Columns of an IDA run's intensity and scale factor; npos outside an IDA.
-  std::size_t ida_intensity_column() const { return ida_ ? metrics_.size() : npos; }
-  std::size_t scale_factor_column() const { return ida_ ? metrics_.size() + 1 : npos; }
+  /// Columns of an IDA run's intensity and scale factor (the level axis' row variables);
+  /// npos outside an IDA.
+  std::size_t ida_intensity_column() const { return column_of(vocabulary::kIdaIntensity, metrics_.size()); }
+  std::size_t scale_factor_column() const { return column_of(vocabulary::kScaleFactor, metrics_.size()); }
   /// The cube's variable of each column, in column order.
   const std::vector<cube::MetricVariable>& variables() const { return variables_; }
 
@@ -43,8 +45,10 @@ class ResultColumns {
   void clear_metrics(std::vector<double>& row) const;
 
  private:
+  /// Column of variable `name` at or after column `from`, or npos.
+  std::size_t column_of(std::string_view name, std::size_t from) const;
+
   std::vector<const MetricInfo*> metrics_;
-  bool ida_ = false;
   std::vector<cube::MetricVariable> variables_;
 };
 

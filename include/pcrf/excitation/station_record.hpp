@@ -1,0 +1,56 @@
+/// \file station_record.hpp
+/// \brief The components a station recorded, put together for a frame: the in-plane
+/// horizontal at the frame's incidence, and the vertical.
+///
+/// A frame stands in a vertical plane whose azimuth (degrees clockwise from north) is its
+/// incidence φ. It feels the ground's horizontal acceleration projected on that plane
+/// (horizontal_pair.hpp: exact also for pairs that are not orthogonal) and the vertical
+/// acceleration. Without an incidence the frame lies along the first component (φ = az₁),
+/// whose motion it then feels bit for bit as if the second did not exist; φ + 180° is the
+/// mirrored frame.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "pcrf/excitation/excitation.hpp"
+#include "pcrf/record/ground_motion.hpp"
+
+namespace pcrf {
+
+struct StationRecord {
+  GroundMotion h1;
+  std::optional<double> az1_deg;   ///< where h1 was recorded along; needed with an incidence
+  std::optional<GroundMotion> h2;  ///< the other horizontal component
+  std::optional<double> az2_deg;
+  std::optional<GroundMotion> up;  ///< vertical, positive up
+
+  /// Brings the components to one time axis: the shorter ones are padded with zeros to the
+  /// longest (a note for each, naming it and both lengths).
+  /// \throws std::invalid_argument naming the components when their dt differ.
+  std::vector<std::string> align();
+};
+
+/// What a frame at `incidence_deg` feels from `record` scaled by `factor`; owns its series.
+class FrameExcitation {
+ public:
+  /// \throws std::invalid_argument when an incidence is given without both horizontal
+  /// components and their azimuths, or the components are not aligned (StationRecord::align).
+  FrameExcitation(const StationRecord& record, std::optional<double> incidence_deg, double factor);
+  FrameExcitation(const FrameExcitation&) = delete;  // the view points into this object
+  FrameExcitation& operator=(const FrameExcitation&) = delete;
+
+  Excitation view() const { return {horizontal_, vertical_ ? &*vertical_ : nullptr}; }
+  const GroundMotion& horizontal() const { return horizontal_; }
+
+ private:
+  GroundMotion horizontal_;
+  std::optional<GroundMotion> vertical_;
+};
+
+/// The in-plane horizontal motion of a frame at `incidence_deg` (unscaled), for intensity
+/// measures of what the frame feels. \throws as FrameExcitation.
+GroundMotion in_plane_motion(const StationRecord& record, std::optional<double> incidence_deg);
+
+}  // namespace pcrf

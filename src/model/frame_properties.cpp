@@ -1,0 +1,74 @@
+// A frame's properties and its static pushover curve (see frame_properties.hpp).
+#include "pcrf/model/frame_properties.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "pcrf/model/impact.hpp"
+#include "pcrf/units.hpp"
+
+namespace pcrf {
+
+double pushover_accel_g(const EquationOfMotion& eom, double theta_rad) {
+  EomTerms t;
+  if (!eom.terms(-theta_rad, -1, t)) return std::numeric_limits<double>::quiet_NaN();
+  return (t.G * eom.frame().gravity_m_s2 + t.K) / t.S / kGravity_m_s2;
+}
+
+namespace {
+
+/// The pushover curve's peak in [lo, hi], by golden-section search.
+PushoverPoint refine_peak(const EquationOfMotion& eom, double lo, double hi) {
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  while (hi - lo > 1e-10) {
+    const double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
+    if (pushover_accel_g(eom, a) > pushover_accel_g(eom, b)) {
+      hi = b;
+    } else {
+      lo = a;
+    }
+  }
+  const double theta = 0.5 * (lo + hi);
+  return {theta, pushover_accel_g(eom, theta)};
+}
+
+}  // namespace
+
+FrameProperties frame_properties(const EquationOfMotion& eom, double fracture_strain, int points) {
+  FrameProperties p{};
+  EomTerms rest;
+  eom.terms(0.0, -1, rest);
+  const double g = eom.frame().gravity_m_s2;
+  p.lambda_g = eom.lambda_g();
+  p.uplift_threshold_g = eom.uplift_threshold_m_s2() / kGravity_m_s2;
+  p.restitution = restitution_momentum(eom);
+  const double p2 = g * std::hypot(rest.G, rest.S) / rest.I;
+  p.frequency_parameter_rad_s = std::sqrt(p2);
+  p.equivalent_block_size_m = 3.0 * g / (4.0 * p2);
+  p.equivalent_block_slenderness_rad = std::atan(p.lambda_g);
+  p.fracture_angle_rad = eom.fracture_angle_rad(fracture_strain);
+  if (std::isfinite(p.fracture_angle_rad)) {
+    const TendonState at = eom.tendons(-p.fracture_angle_rad, -1);
+    p.fracture_tendon = at.strain_beam > at.strain_column_max() ? "beam" : "column";
+  }
+  p.overturn_angle_rad = eom.overturn_angle_rad();
+  p.closing_limit_rad = eom.closing_limit_rad();
+  const double end = std::min(p.fracture_angle_rad, p.overturn_angle_rad);
+  const int n = std::max(points, 2);
+  int best = 0;
+  for (int i = 0; i < n; ++i) {
+    const double theta = end * i / (n - 1);
+    p.pushover.push_back({theta, pushover_accel_g(eom, theta)});
+    if (p.pushover.back().accel_g > p.pushover[static_cast<std::size_t>(best)].accel_g) best = i;
+  }
+  const double lo = end * std::max(0, best - 1) / (n - 1), hi = end * std::min(n - 1, best + 1) / (n - 1);
+  // At an end of the range (a falling curve, or one rising to the fracture) the sample is the peak.
+  const bool at_end = best == 0 || best == n - 1;
+  const PushoverPoint peak = at_end ? p.pushover[static_cast<std::size_t>(best)] : refine_peak(eom, lo, hi);
+  p.capacity_g = peak.accel_g;
+  p.capacity_theta_rad = peak.theta_rad;
+  return p;
+}
+
+}  // namespace pcrf

@@ -1,0 +1,134 @@
+// The three second axes of a study (see level_axis.hpp).
+#include "pcrf/study/level_axis.hpp"
+
+#include "pcrf/study/cube_vocabulary.hpp"
+#include "pcrf/study/plan.hpp"
+
+namespace pcrf::study {
+namespace {
+
+namespace names = vocabulary;
+
+class ScaleAxis final : public LevelAxis {
+ public:
+  explicit ScaleAxis(std::vector<double> factors) : factors_(std::move(factors)) {}
+
+  std::vector<cube::Dimension> leading_dimensions() const override { return {{names::kScale, factors_.size()}}; }
+  const std::vector<double>& levels() const override { return factors_; }
+  void add_leading(cube::CubeLayout& layout, RecordCache& /*records*/) const override {
+    layout.coordinates.push_back(
+        number_coordinate(names::kScale, names::kScale, "1", "factor applied to the record's accelerations", factors_));
+  }
+  void describe(std::ostream& out) const override {
+    out << "scale";
+    for (double s : factors_) out << ' ' << s;
+  }
+
+ private:
+  std::vector<double> factors_;
+};
+
+/// What both intensity axes share: the measure, and each record's unscaled intensity along `record`.
+class MeasuredAxis : public LevelAxis {
+ public:
+  explicit MeasuredAxis(const IntensitySpec& measure)
+      : measure_(measure), units_(intensity_units(measure.measure)),
+        long_name_(intensity_long_name(measure.measure, measure.period_s, measure.damping)) {}
+
+ protected:
+  void add_unscaled(cube::CubeLayout& layout, RecordCache& records) const {
+    std::vector<double> unscaled;
+    for (std::size_t r = 0; r < records.size(); ++r) unscaled.push_back(records.intensity(r, measure_));
+    layout.coordinates.push_back(number_coordinate("record_" + to_string(measure_.measure), names::kRecord, units_,
+                                                   "unscaled record's " + long_name_, unscaled));
+  }
+
+  IntensitySpec measure_;
+  std::string units_;
+  std::string long_name_;
+};
+
+class IntensityStripes final : public MeasuredAxis {
+ public:
+  IntensityStripes(const IntensitySpec& measure, std::vector<double> intensities)
+      : MeasuredAxis(measure), intensities_(std::move(intensities)) {}
+
+  std::vector<cube::Dimension> leading_dimensions() const override { return {{names::kIntensity, intensities_.size()}}; }
+  const std::vector<double>& levels() const override { return intensities_; }
+  void add_leading(cube::CubeLayout& layout, RecordCache& records) const override {
+    add_unscaled(layout, records);
+    layout.coordinates.push_back(number_coordinate(names::kIntensity, names::kIntensity, units_, long_name_, intensities_));
+    cube::SideVariable factor{names::kScaleFactor, "1", "factor applied to the record's accelerations to reach the intensity",
+                              {names::kRecord, names::kIntensity}, {}};
+    for (std::size_t r = 0; r < records.size(); ++r)
+      for (double level : intensities_) factor.values.push_back(records.scale_factor(r, level, measure_));
+    layout.side_variables.push_back(std::move(factor));
+  }
+  void describe(std::ostream& out) const override {
+    out << "intensity";
+    for (double s : intensities_) out << ' ' << s;
+  }
+
+ private:
+  std::vector<double> intensities_;
+};
+
+class IdaAxis final : public MeasuredAxis {
+ public:
+  IdaAxis(const IntensitySpec& measure, std::size_t runs, bool verdict_check, std::vector<double> unused_levels)
+      : MeasuredAxis(measure), runs_(runs), verdict_check_(verdict_check), unused_levels_(std::move(unused_levels)) {}
+
+  std::vector<cube::Dimension> leading_dimensions() const override { return {}; }
+  std::vector<cube::Dimension> trailing_dimensions() const override { return {{names::kIdaPoint, runs_}}; }
+  const std::vector<double>& levels() const override { return none_; }
+  /// The intensities are the runs' own (row_variables): only the records' own here.
+  void add_leading(cube::CubeLayout& layout, RecordCache& records) const override { add_unscaled(layout, records); }
+
+  /// `ida_point` (the runs of a curve, in the order run) and per curve the collapse
+  /// intensity, the last safe intensity, the number of runs, and with verdict checks the band
+  /// of intensities whose verdicts were unstable.
+  void add_trailing(cube::CubeLayout& layout, const std::vector<std::string>& curves) const override {
+    std::vector<double> points(runs_);
+    for (std::size_t k = 0; k < points.size(); ++k) points[k] = static_cast<double>(k);
+    cube::Coordinate axis = number_coordinate(names::kIdaPoint, names::kIdaPoint, "", "run of the IDA curve, in the order run", points);
+    axis.is_index = true;
+    layout.coordinates.push_back(std::move(axis));
+    auto& side = layout.side_variables;
+    side.push_back({names::kCollapseIntensity, units_,
+                    "lowest intensity found to collapse (NaN: none up to max_intensity, right-censored)", curves, {}});
+    side.push_back({names::kLastSafeIntensity, units_, "highest safe intensity below the collapse", curves, {}});
+    side.push_back({names::kIdaRuns, "1", "runs of the curve so far", curves, {}});
+    if (!verdict_check_) return;
+    side.push_back({names::kUnstableFrom, units_,
+                    "lowest intensity of the curve whose verdict failed the perturbation test (NaN: none)", curves, {}});
+    side.push_back({names::kUnstableTo, units_,
+                    "highest intensity of the curve whose verdict failed the perturbation test (NaN: none)", curves, {}});
+  }
+
+  std::vector<cube::MetricVariable> row_variables() const override {
+    return {{names::kIdaIntensity, units_, "intensity of the run: " + long_name_},
+            {names::kScaleFactor, "1", "factor applied to the record's accelerations for the run"}};
+  }
+  void describe(std::ostream& out) const override {
+    out << "intensity";  // and Study::levels, unused (the default 1), as every IDA fingerprint has it
+    for (double s : unused_levels_) out << ' ' << s;
+  }
+
+ private:
+  std::size_t runs_;
+  bool verdict_check_;
+  std::vector<double> unused_levels_;
+  std::vector<double> none_;
+};
+
+}  // namespace
+
+std::shared_ptr<const LevelAxis> make_level_axis(const Study& study) {
+  if (study.ida)
+    return std::make_shared<IdaAxis>(*study.intensity, static_cast<std::size_t>(study.ida->max_runs), study.solver.verdict_check,
+                                     study.levels);
+  if (study.intensity) return std::make_shared<IntensityStripes>(*study.intensity, study.levels);
+  return std::make_shared<ScaleAxis>(study.levels);
+}
+
+}  // namespace pcrf::study
