@@ -77,6 +77,8 @@ std::string advice(cube::CubeError::Cause cause) {
     case Cause::kNoSpace: return "the cube keeps its last complete checkpoint: free space, then --resume";
     case Cause::kGone: return "the results computed are lost with it: run the study again";
     case Cause::kReplaced: return "this run's results since its last checkpoint are lost: run it again into another -o";
+    case Cause::kLostLock:
+      return "the cube keeps its last complete checkpoint; make sure no other run writes it, then --resume";
     case Cause::kOther: break;
   }
   return "the cube keeps its last complete checkpoint: once the cause above is fixed, --resume continues it";

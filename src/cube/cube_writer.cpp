@@ -606,6 +606,7 @@ void CubeWriter::Impl::checkpoint(const std::vector<std::int8_t>& status) {
       std::error_code ec;
       std::filesystem::copy_file(path, partial, std::filesystem::copy_options::overwrite_existing, ec);
       if (ec) throw CubeError(what("cannot write " + partial.string() + ": " + ec.message()), CubeError::cause_of(ec.value()));
+      check_identity();  // what was copied is this writer's cube, not a file put there meanwhile
     } else {
       write_new_file(partial);
     }
@@ -614,6 +615,7 @@ void CubeWriter::Impl::checkpoint(const std::vector<std::int8_t>& status) {
       const int error = errno;
       throw CubeError(what("cannot sync " + partial.string() + ": " + std::strerror(error)), CubeError::cause_of(error));
     }
+    if (on_disk) check_identity();  // the checkpoint took time: nothing took the cube's place since
     if (std::rename(partial.c_str(), path.c_str()) != 0) {
       const int error = errno;
       throw CubeError(what("cannot replace the cube with its new checkpoint: " + std::string(std::strerror(error))),

@@ -80,6 +80,8 @@ RunLock::RunLock(const std::filesystem::path& file) : path_(lock_path(file)) {
   }
 }
 
+bool RunLock::held() const { return is_current(fd_, path_); }
+
 RunLock::~RunLock() {
   ::unlink(path_.c_str());  // while still held: nobody can take the lock of a removed file
   ::close(fd_);

@@ -178,6 +178,12 @@ class ResultSink {
     meter_.tick();
   }
 
+  /// The run's lock on the cube: each checkpoint first checks it is still held.
+  void guard_with(const io::RunLock* lock, std::string cube) {
+    lock_ = lock;
+    cube_ = std::move(cube);
+  }
+
   /// The signal that stops the run (null: none): its arrival is checkpointed at once.
   void flush_on(const std::atomic<int>* stop_signal) { stop_signal_ = stop_signal; }
 
@@ -188,6 +194,7 @@ class ResultSink {
     take_histories();
     if (!error_.empty()) return;  // the last complete checkpoint stays as it is
     guard([&] {
+      check_lock();
       if (before_flush_) before_flush_();
       writer_.close();
     });
@@ -204,9 +211,20 @@ class ResultSink {
     for (auto& table : inbox_.take()) writer_.store_history(std::move(table));
   }
 
+  /// A lock file removed during the run no longer keeps another run off the cube: stop
+  /// before writing into a cube that may no longer be this run's alone.
+  void check_lock() const {
+    // A cube gone with its folder (and the lock with it) is the writer's to report.
+    if (lock_ != nullptr && !lock_->held() && std::filesystem::exists(cube_))
+      throw cube::CubeError(cube_ + ": its lock " + io::RunLock::lock_path(cube_).string() +
+                                " was removed during the run, so another run may write the cube",
+                            cube::CubeError::Cause::kLostLock);
+  }
+
   void checkpoint() {
     const auto start = std::chrono::steady_clock::now();
     guard([&] {
+      check_lock();
       if (before_flush_) before_flush_();
       writer_.flush();
     });
@@ -234,6 +252,8 @@ class ResultSink {
   std::function<void()> stop_;
   const std::atomic<int>* stop_signal_ = nullptr;
   bool stop_flushed_ = false;
+  const io::RunLock* lock_ = nullptr;
+  std::string cube_;
   std::string error_;
   cube::CubeError::Cause error_cause_ = cube::CubeError::Cause::kOther;
   double last_checkpoint_s_ = 0.0;
@@ -330,6 +350,7 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
   }
   ResultSink sink(*m.writer, meter, inbox, p.study.run.flush_interval_s, before_flush);
   sink.flush_on(stop_signal);
+  sink.guard_with(m.lock.get(), m.output.string());
 
   // Runs in rank 0's worker thread; the only place where histories are recorded.
   auto evaluate = [&](const parallel::WorkItem& item) {

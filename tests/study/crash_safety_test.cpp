@@ -85,10 +85,10 @@ TEST(CrashSafety, AFullDiskEndsTheRunCleanlyAndTheCubeResumes) {
   expect_same_cube(dir / "whole.h5", dir / "f.h5");
 }
 
-/// 1296 cases: a few seconds, long enough to act on the cube while it runs.
+/// 3600 cases: several seconds, long enough to act on the cube while it runs.
 const std::string kLongStudy = std::string("[[records]]\nsynthetic = [\"") + kPulse + "\", \"" + kPulse2 + "\", \"" +
-                               kNoise + "\"]\n[axes]\nscale = [0.9, 1.1, 1.3]\nkappa = {from = 1.0, to = 3.0, count = 12}\n"
-                               "tan_alpha = {from = 0.16, to = 0.24, count = 12}\n";
+                               kNoise + "\"]\n[axes]\nscale = [0.9, 1.1, 1.3]\nkappa = {from = 1.0, to = 3.0, count = 20}\n"
+                               "tan_alpha = {from = 0.16, to = 0.24, count = 20}\n";
 
 /// Starts the long study into dir/out/l.h5, waits until it has run a while, does `act`, and
 /// returns what the run said on stderr (its exit code is expected to be 2).
@@ -96,7 +96,7 @@ std::string interfere(const std::filesystem::path& dir, const std::function<void
   test::write_file(dir, "l.toml", kLongStudy);
   std::filesystem::create_directories(dir / "out");
   const pid_t pid = spawn_shell("cd " + quoted(dir) + " && exec " + pcrf() +
-                                " study l.toml -o out/l.h5 --flush-interval-s 0.02 --progress-interval 0 2> err.txt");
+                                " study l.toml -o out/l.h5 --flush-interval-s 0.3 --progress-interval 0 2> err.txt");
   EXPECT_GT(pid, 0);
   // The first checkpoint exists from the start; a few later ones, then the interference.
   for (int i = 0; i < 3000 && !std::filesystem::exists(dir / "out" / "l.h5"); ++i)
@@ -115,7 +115,9 @@ std::string interfere(const std::filesystem::path& dir, const std::function<void
 TEST(CrashSafety, AdviceMatchesTheCause) {
   const auto gone_dir = test::scratch_dir("crash_folder_gone");
   const std::string gone = interfere(gone_dir, [&] { std::filesystem::remove_all(gone_dir / "out"); });
-  EXPECT_NE(gone.find("out/l.h5: is gone (removed during the run, or its folder)"), std::string::npos) << gone;
+  // Noticed before a checkpoint ("is gone") or during one (its .partial file cannot be written).
+  EXPECT_NE(gone.find("pcrf: error: out/l.h5: "), std::string::npos) << gone;
+  EXPECT_NE(gone.find("No such file or directory"), std::string::npos) << gone;
   EXPECT_NE(gone.find("run the study again"), std::string::npos) << gone;
   EXPECT_EQ(gone.find("free space"), std::string::npos) << gone;
 
@@ -129,6 +131,14 @@ TEST(CrashSafety, AdviceMatchesTheCause) {
   EXPECT_NE(replaced.find("out/l.h5: was replaced by another file during the run"), std::string::npos) << replaced;
   EXPECT_NE(replaced.find("another -o"), std::string::npos) << replaced;
   EXPECT_EQ(replaced.find("free space"), std::string::npos) << replaced;
+  // A lock file removed: the run stops before writing again, saying why.
+  const auto lock_dir = test::scratch_dir("crash_lock_removed");
+  const std::string unlocked = interfere(lock_dir, [&] { std::filesystem::remove(lock_dir / "out" / "l.h5.lock"); });
+  EXPECT_NE(unlocked.find("out/l.h5: its lock out/l.h5.lock was removed during the run"), std::string::npos) << unlocked;
+  EXPECT_NE(unlocked.find("make sure no other run writes it, then --resume"), std::string::npos) << unlocked;
+  EXPECT_EQ(unlocked.find("free space"), std::string::npos) << unlocked;
+  EXPECT_EQ(test::run_command(pcrf() + " cube info " + quoted(lock_dir / "out" / "l.h5")).exit_code, 0);
+
   std::ifstream kept(replaced_dir / "out" / "l.h5");
   std::string text;
   std::getline(kept, text);

@@ -27,6 +27,7 @@ class CubeError : public std::runtime_error {
     kNoSpace,   ///< a full disk or quota (ENOSPC, EDQUOT): free space, then resume
     kGone,      ///< the cube or its folder was removed while being written
     kReplaced,  ///< another file took the cube's path while it was being written
+    kLostLock,  ///< the lock that keeps other runs off the cube was removed during the run
   };
   explicit CubeError(const std::string& what, Cause cause = Cause::kOther) : std::runtime_error(what), cause_(cause) {}
   /// The cause an operating-system error number stands for.

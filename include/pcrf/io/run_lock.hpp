@@ -26,6 +26,10 @@ class RunLock {
   RunLock(const RunLock&) = delete;
   RunLock& operator=(const RunLock&) = delete;
 
+  /// False when the lock file was removed or replaced since the lock was taken: another run
+  /// could then take a lock of its own on the same file.
+  bool held() const;
+
   /// `<file>.lock`.
   static std::filesystem::path lock_path(const std::filesystem::path& file);
   /// Who holds the lock of `file` ("pid 12 on host a, started 2026-01-01T00:00:00Z"); empty

@@ -51,10 +51,11 @@ class Cube:
         self.path = str(path)
         out, err = run("cube", "info", "--json", self.path)
         self.info = json.loads(out)
-        # A partial cube (cases never run): the figure shows the cases run; say how many not.
+        # A partial cube (cases never run), or one a run is writing: the figure shows the
+        # cases run so far; say so.
         for line in err.splitlines():
-            if "not run (a partial cube)" in line:
-                print(line.replace("pcrf cube info:", "pcrf plot:"), file=sys.stderr)
+            if "not run (a partial cube)" in line or "a run holds it" in line:
+                print("pcrf plot:" + line.split(":", 1)[1], file=sys.stderr)
 
     @property
     def dimensions(self):
