@@ -12,6 +12,7 @@
 #include "cli/frame_flags.hpp"
 #include "cli/setting_flags.hpp"
 #include "pcrf/json.hpp"
+#include "pcrf/model/equation_of_motion.hpp"
 #include "pcrf/model/frame_properties.hpp"
 #include "pcrf/solver/settings.hpp"
 
@@ -19,7 +20,7 @@ namespace pcrf::cli {
 namespace {
 
 struct FrameOptions {
-  FrameParameters frame;
+  SceneFlags scene;
   std::unique_ptr<SettingFlags<PhysicsOptions>> physics;
   int points = 41;
   bool json = false;
@@ -29,39 +30,18 @@ JsonObject as_json(const FrameProperties& p) {
   std::vector<double> theta, accel;
   for (const auto& point : p.pushover) theta.push_back(point.theta_rad), accel.push_back(point.accel_g);
   JsonObject json;
-  json.number("lambda_g", p.lambda_g)
-      .number("uplift_threshold_g", p.uplift_threshold_g)
-      .number("restitution", p.restitution)
-      .number("frequency_parameter_rad_s", p.frequency_parameter_rad_s)
-      .number("equivalent_block_size_m", p.equivalent_block_size_m)
-      .number("equivalent_block_slenderness_rad", p.equivalent_block_slenderness_rad)
-      .number("fracture_angle_rad", p.fracture_angle_rad)
-      .text("fracture_tendon", p.fracture_tendon)
-      .number("overturn_angle_rad", p.overturn_angle_rad)
-      .number("closing_limit_rad", p.closing_limit_rad)
-      .number("capacity_g", p.capacity_g)
-      .number("capacity_theta_rad", p.capacity_theta_rad)
-      .numbers("pushover_theta_rad", theta)
-      .numbers("pushover_accel_g", accel);
+  for (const auto& info : frame_property_table()) json.number(info.key, p.*info.member);
+  json.text("fracture_tendon", p.fracture_tendon).numbers("pushover_theta_rad", theta).numbers("pushover_accel_g", accel);
   return json;
 }
 
 void print_text(const FrameProperties& p) {
-  auto line = [](const char* what, double value, const char* unit) {
-    std::printf("%-38s %12.6g %s\n", what, value, unit);
-  };
-  line("uplift coefficient lambda_g = G/S", p.lambda_g, "");
-  line("uplift threshold (prestress included)", p.uplift_threshold_g, "g");
-  line("coefficient of restitution r", p.restitution, "");
-  line("frequency parameter p", p.frequency_parameter_rad_s, "rad/s");
-  line("equivalent block: size R", p.equivalent_block_size_m, "m");
-  line("equivalent block: slenderness alpha", p.equivalent_block_slenderness_rad, "rad");
-  line("fracture angle", p.fracture_angle_rad, p.fracture_tendon.empty() ? "rad (no tendon fractures)"
-                                                                         : ("rad (" + p.fracture_tendon + " tendon)").c_str());
-  line("overturning angle", p.overturn_angle_rad, "rad");
-  line("closing limit of the linkage", p.closing_limit_rad, "rad");
-  line("static capacity (pushover peak)", p.capacity_g, "g");
-  line("  at rotation", p.capacity_theta_rad, "rad");
+  for (const auto& info : frame_property_table()) {
+    std::string unit(info.units == "1" ? "" : info.units);
+    if (info.member == &FrameProperties::fracture_angle_rad)
+      unit += p.fracture_tendon.empty() ? " (no tendon fractures)" : " (" + p.fracture_tendon + " tendon)";
+    std::printf("%-38s %12.6g %s\n", std::string(info.label).c_str(), p.*info.member, unit.c_str());
+  }
   std::printf("\nstatic pushover: ground acceleration that holds the frame at theta1\n%14s %14s\n", "theta1 [rad]",
               "accel [g]");
   for (const auto& point : p.pushover) std::printf("%14.6g %14.6g\n", point.theta_rad, point.accel_g);
@@ -69,9 +49,8 @@ void print_text(const FrameProperties& p) {
 
 void describe(const FrameOptions& o) {
   if (o.points < 2) throw UsageError("--points must be at least 2");
-  const Frame frame = frame_from_flags(o.frame);
   const PhysicsOptions physics = o.physics->resolve();
-  const FrameProperties p = frame_properties(EquationOfMotion(frame), physics.fracture_strain, o.points);
+  const FrameProperties p = frame_properties(*o.scene.scene(), physics.fracture_strain, o.points);
   if (o.json) {
     std::cout << as_json(p).str() << std::endl;
   } else {
@@ -84,8 +63,8 @@ void describe(const FrameOptions& o) {
 void add_frame_command(CLI::App& app) {
   auto o = std::make_shared<FrameOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "frame", "A frame's properties (threshold, r, p, stop angles) and its static pushover curve");
-  add_frame_flags(cmd, o->frame);
+      "frame", "A scene's properties (threshold, r, p, stop angles) and its static pushover curve");
+  o->scene.add_to(cmd);
   o->physics = std::make_unique<SettingFlags<PhysicsOptions>>(cmd, physics_settings());
   cmd->add_option("--points", o->points, "rotations at which the pushover curve is printed")->capture_default_str();
   cmd->add_flag("--json", o->json, "one JSON object instead of text");

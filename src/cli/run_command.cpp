@@ -29,7 +29,7 @@ struct RunOptions {
   double intensity = 0.0;  ///< with --measure: the target intensity, in the measure's units
   CLI::Option* intensity_flag = nullptr;
   std::unique_ptr<SettingFlags<IntensitySpec>> measure;
-  FrameParameters frame;
+  SceneFlags scene;
   std::unique_ptr<SettingFlags<PhysicsOptions>> physics;
   std::unique_ptr<SettingFlags<SolverSettings>> solver;
   std::string history_file;
@@ -110,7 +110,7 @@ void run(const RunOptions& o) {
   const auto excitation = load_excitation(o, factor);
   const PhysicsOptions physics = o.physics->resolve();
   const SolverSettings solver = o.solver->resolve();
-  const Frame frame = frame_from_flags(o.frame);
+  std::unique_ptr<Scene> scene = o.scene.scene();
   std::unique_ptr<CsvHistory> csv;
   HistorySink sink;
   if (!o.history_file.empty()) {
@@ -124,7 +124,8 @@ void run(const RunOptions& o) {
   try {
     OutputRequest request;
     request.history_dt_s = o.history_dt_s;
-    result = solve_case(frame, excitation->view(), physics, solver, request, sink);
+    const auto prepared = prepare_scene(std::move(scene), physics);
+    result = solve_case(*prepared, excitation->view(), solver, request, sink);
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
@@ -149,7 +150,7 @@ void add_run_command(CLI::App& app) {
   o->intensity_flag = cmd->add_option("--intensity", o->intensity,
                                       "scale the record to this intensity of --measure (in its units: g or m/s)");
   o->measure = std::make_unique<SettingFlags<IntensitySpec>>(cmd, intensity_settings());
-  add_frame_flags(cmd, o->frame);
+  o->scene.add_to(cmd);
   o->physics = std::make_unique<SettingFlags<PhysicsOptions>>(cmd, physics_settings());
   o->solver = std::make_unique<SettingFlags<SolverSettings>>(cmd, solver_settings());
   auto* history = cmd->add_option("--history", o->history_file, "write the time history to this CSV file");

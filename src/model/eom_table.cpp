@@ -50,16 +50,17 @@ double clenshaw(const std::array<double, N>& c, double x) {
 
 }  // namespace
 
-EomTable::EomTable(const EquationOfMotion& eom, double cell_rad)
-    : eom_(eom), cell_rad_(cell_rad), inv_cell_(1.0 / cell_rad) {
+EomTable::EomTable(const Scene& scene, double cell_rad)
+    : eom_(scene), cell_rad_(cell_rad), inv_cell_(1.0 / cell_rad) {
   // Cell k ≥ 1 covers u = −φ ∈ [(k−1)w, k·w); cell 0 covers a small overshoot φ ∈ (0, w].
-  cells_.resize(static_cast<std::size_t>(eom.closing_limit_rad() * inv_cell_) + 2);
+  // No cells for a scene whose exact terms are cheap: locate() then finds none.
+  if (scene.worth_tabulating()) cells_.resize(static_cast<std::size_t>(scene.closing_limit_rad() * inv_cell_) + 2);
 }
 
 bool EomTable::negative_branch(double phi, Terms& out) const {
   EomTerms t;
   if (!eom_.terms(phi, -1, t)) return false;
-  out = {t.I, t.J, t.G * eom_.frame().gravity_m_s2 + t.K, t.S, t.G};
+  out = {t.I, t.J, t.G * eom_.gravity_m_s2() + t.K, t.S, t.G};
   return true;
 }
 
@@ -84,7 +85,7 @@ void EomTable::build(Cell& cell, int index) const {
     Terms t{};
     if (!negative_branch(-u, t)) return;
     auto close = [](double a, double b, double scale) { return std::abs(a - b) <= 1e-11 * scale; };
-    const double g = eom_.frame().gravity_m_s2;
+    const double g = eom_.gravity_m_s2();
     const double qs = std::abs(t.Q) + std::abs(t.S) * g;  // Q is compared with S·g
     // G·g is compared with the same scale: it enters as G·ü_v next to Q and S·ü_h.
     if (!close(clenshaw(cell.c.I, x), t.I, std::abs(t.I)) || !close(clenshaw(cell.c.J, x), t.J, std::abs(t.I)) ||

@@ -5,21 +5,40 @@
 #include <cmath>
 #include <limits>
 
-#include "pcrf/model/impact.hpp"
+
 #include "pcrf/units.hpp"
 
 namespace pcrf {
 
-double pushover_accel_g(const EquationOfMotion& eom, double theta_rad) {
+const std::vector<FramePropertyInfo>& frame_property_table() {
+  using P = FrameProperties;
+  static const std::vector<FramePropertyInfo> table = {
+      {"lambda_g", "uplift coefficient lambda_g = G/S", "1", &P::lambda_g},
+      {"uplift_threshold_g", "uplift threshold (prestress included)", "g", &P::uplift_threshold_g},
+      {"restitution", "coefficient of restitution r", "1", &P::restitution},
+      {"frequency_parameter_rad_s", "frequency parameter p", "rad/s", &P::frequency_parameter_rad_s},
+      {"equivalent_block_size_m", "equivalent block: size R", "m", &P::equivalent_block_size_m},
+      {"equivalent_block_slenderness_rad", "equivalent block: slenderness alpha", "rad",
+       &P::equivalent_block_slenderness_rad},
+      {"fracture_angle_rad", "fracture angle", "rad", &P::fracture_angle_rad},
+      {"overturn_angle_rad", "overturning angle", "rad", &P::overturn_angle_rad},
+      {"closing_limit_rad", "closing limit of the mechanism", "rad", &P::closing_limit_rad},
+      {"capacity_g", "static capacity (pushover peak)", "g", &P::capacity_g},
+      {"capacity_theta_rad", "  at rotation", "rad", &P::capacity_theta_rad},
+  };
+  return table;
+}
+
+double pushover_accel_g(const Scene& eom, double theta_rad) {
   EomTerms t;
   if (!eom.terms(-theta_rad, -1, t)) return std::numeric_limits<double>::quiet_NaN();
-  return (t.G * eom.frame().gravity_m_s2 + t.K) / t.S / kGravity_m_s2;
+  return (t.G * eom.gravity_m_s2() + t.K) / t.S / kGravity_m_s2;
 }
 
 namespace {
 
 /// The pushover curve's peak in [lo, hi], by golden-section search.
-PushoverPoint refine_peak(const EquationOfMotion& eom, double lo, double hi) {
+PushoverPoint refine_peak(const Scene& eom, double lo, double hi) {
   const double g = 0.5 * (std::sqrt(5.0) - 1.0);
   while (hi - lo > 1e-10) {
     const double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
@@ -35,14 +54,14 @@ PushoverPoint refine_peak(const EquationOfMotion& eom, double lo, double hi) {
 
 }  // namespace
 
-FrameProperties frame_properties(const EquationOfMotion& eom, double fracture_strain, int points) {
+FrameProperties frame_properties(const Scene& eom, double fracture_strain, int points) {
   FrameProperties p{};
   EomTerms rest;
   eom.terms(0.0, -1, rest);
-  const double g = eom.frame().gravity_m_s2;
+  const double g = eom.gravity_m_s2();
   p.lambda_g = eom.lambda_g();
   p.uplift_threshold_g = eom.uplift_threshold_m_s2() / kGravity_m_s2;
-  p.restitution = restitution_momentum(eom);
+  p.restitution = eom.restitution();
   const double p2 = g * std::hypot(rest.G, rest.S) / rest.I;
   p.frequency_parameter_rad_s = std::sqrt(p2);
   p.equivalent_block_size_m = 3.0 * g / (4.0 * p2);

@@ -40,16 +40,16 @@ double first_exceedance(const GroundMotion& rec, double t_from, double t_end, do
   return kNaN;
 }
 
-double first_opening(const Excitation& excitation, const EquationOfMotion& eom, double t_from, double t_end) {
+double first_opening(const Excitation& excitation, const Scene& scene, double t_from, double t_end) {
   if (!excitation.has_vertical())
-    return first_exceedance(excitation.horizontal(), t_from, t_end, eom.uplift_threshold_m_s2());
+    return first_exceedance(excitation.horizontal(), t_from, t_end, scene.uplift_threshold_m_s2());
   // The margin ±ü_h − threshold(ü_v) of each sign is linear between samples (the threshold is
   // affine in ü_v): the first sample interval where one turns positive holds the crossing.
   auto margin = [&](GroundAcceleration a, double sign) {
-    return sign * a.horizontal_m_s2 - eom.uplift_threshold_m_s2(a.vertical_m_s2);
+    return sign * a.horizontal_m_s2 - scene.uplift_threshold_m_s2(a.vertical_m_s2);
   };
   const GroundAcceleration at_from = excitation.at(t_from);
-  if (!eom.holds_closed(at_from)) return t_from;
+  if (!scene.holds_closed(at_from)) return t_from;
   const double dt = excitation.dt_s();
   const std::size_t n = excitation.horizontal().size();
   for (auto i = static_cast<std::size_t>(std::max(0.0, std::floor(t_from / dt))); i + 1 < n; ++i) {
@@ -136,8 +136,8 @@ void validate(const SolverSettings& s, const PhysicsOptions& p) {
   last_valid.emplace(s, p);
 }
 
-StopAngles stop_angles(const EquationOfMotion& eom, const PhysicsOptions& physics) {
-  return {eom.fracture_angle_rad(physics.fracture_strain), eom.overturn_angle_rad()};
+StopAngles stop_angles(const Scene& scene, const PhysicsOptions& physics) {
+  return {scene.fracture_angle_rad(physics.fracture_strain), scene.overturn_angle_rad()};
 }
 
 CaseStatus StopAngles::status() const {
@@ -149,30 +149,30 @@ const char* StopAngles::message() const {
                                       : "rotation reached the mechanism's closing limit";
 }
 
-CaseResult initial_result(const EquationOfMotion& eom, const Excitation& excitation, double restitution,
+CaseResult initial_result(const Scene& scene, const Excitation& excitation, double restitution,
                           bool omega_peak) {
   const GroundMotion& rec = excitation.horizontal();
   CaseResult r;
-  r.lambda_g = eom.lambda_g();
-  r.uplift_threshold_g = eom.uplift_threshold_m_s2() / kGravity_m_s2;
+  r.lambda_g = scene.lambda_g();
+  r.uplift_threshold_g = scene.uplift_threshold_m_s2() / kGravity_m_s2;
   r.restitution = restitution;
-  r.t_trigger_paper_s = paper_trigger_time(rec, eom.lambda_g());
+  r.t_trigger_paper_s = paper_trigger_time(rec, scene.lambda_g());
   r.t_uplift_s = kNaN;
   r.t_theta_max_s = kNaN;
   r.t_omega_max_s = kNaN;
   r.theta_max_rad = 0.0;
   r.omega_max_rad_s = omega_peak ? 0.0 : kNaN;
-  const TendonState rest = eom.tendons(0.0, -1);
+  const TendonState rest = scene.tendons(0.0, -1);
   r.strain_column_max = rest.strain_column_max();
   r.strain_beam_max = rest.strain_beam;
   return r;
 }
 
-void set_peak_strains(const EquationOfMotion& eom, CaseResult& result) {
+void set_peak_strains(const Scene& scene, CaseResult& result) {
   // The trajectory starts at θ₁ = 0 and is continuous, so it has visited every |θ₁| up
   // to the peak: peak strains are the maxima over that range.
   if (!(result.theta_max_rad > 0.0)) return;
-  const TendonState peak = eom.peak_tendon_strains(result.theta_max_rad);
+  const TendonState peak = scene.peak_tendon_strains(result.theta_max_rad);
   result.strain_column_max = peak.strain_column_max();
   result.strain_beam_max = peak.strain_beam;
 }
@@ -190,8 +190,8 @@ void HistoryRows::add(double t, double theta, double omega, int side, std::uint3
   s.theta1_rad = theta;
   s.omega1_rad_s = omega;
   s.omega1_after_rad_s = omega;
-  eom_.configuration(theta, side, s.theta2_rad, s.theta3_rad);
-  const TendonState ts = eom_.tendons(theta, side);
+  scene_.configuration(theta, side, s.theta2_rad, s.theta3_rad);
+  const TendonState ts = scene_.tendons(theta, side);
   s.strain_column_left = ts.strain_column_left;
   s.strain_column_right = ts.strain_column_right;
   s.strain_beam = ts.strain_beam;

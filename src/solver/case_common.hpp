@@ -9,7 +9,7 @@
 
 #include "pcrf/excitation/excitation.hpp"
 #include "pcrf/metrics/case_result.hpp"
-#include "pcrf/model/equation_of_motion.hpp"
+#include "pcrf/model/scene.hpp"
 #include "pcrf/record/ground_motion.hpp"
 #include "pcrf/solver/rocking_solver.hpp"
 
@@ -20,11 +20,11 @@ namespace pcrf::detail {
 double first_exceedance(const GroundMotion& rec, double t_from, double t_end, double threshold_m_s2);
 
 /// First time ≥ t_from at which the net force at rest opens the joints, i.e. the frame at
-/// rest stops being held closed (EquationOfMotion::holds_closed fails): |ü_h| exceeds the
+/// rest stops being held closed (Scene::holds_closed fails): |ü_h| exceeds the
 /// uplift threshold at that instant's ü_v. Exact within the linear interpolation of the
 /// components; NaN when it never happens before `t_end`. Without a vertical component it is
 /// first_exceedance of the horizontal at the constant threshold.
-double first_opening(const Excitation& excitation, const EquationOfMotion& eom, double t_from, double t_end);
+double first_opening(const Excitation& excitation, const Scene& scene, double t_from, double t_end);
 
 /// First time in [0, t_end] at which g + ü_v ≤ 0, the ground falling at least as fast as
 /// gravity (docs/vertical_excitation.md), exact within the linear interpolation of the
@@ -48,11 +48,11 @@ double paper_trigger_time(const GroundMotion& rec, double lambda_g);
 
 /// A result record with the frame's properties and the at-rest values filled in (the
 /// paper's trigger from the horizontal component: its criterion knows no vertical).
-CaseResult initial_result(const EquationOfMotion& eom, const Excitation& excitation, double restitution,
+CaseResult initial_result(const Scene& scene, const Excitation& excitation, double restitution,
                           bool omega_peak);
 
 /// Peak strains from the peak rotation (every |θ₁| up to it has been visited).
-void set_peak_strains(const EquationOfMotion& eom, CaseResult& result);
+void set_peak_strains(const Scene& scene, CaseResult& result);
 
 /// Builds a case's history rows and hands them to the sink in strictly increasing time:
 /// rows added at the same instant (an impact and the restart after it, an impact and the
@@ -60,8 +60,8 @@ void set_peak_strains(const EquationOfMotion& eom, CaseResult& result);
 /// and whose events are the union. A row is held until a later one arrives or finish().
 class HistoryRows {
  public:
-  HistoryRows(const HistorySink& sink, const EquationOfMotion& eom, const Excitation& excitation)
-      : sink_(sink), eom_(eom), excitation_(excitation) {}
+  HistoryRows(const HistorySink& sink, const Scene& scene, const Excitation& excitation)
+      : sink_(sink), scene_(scene), excitation_(excitation) {}
   bool wanted() const { return static_cast<bool>(sink_); }
   /// The state (θ₁, θ̇₁) on `side` at t, with `events` (HistoryEvent bits).
   void add(double t, double theta, double omega, int side, std::uint32_t events = kEventNone);
@@ -71,7 +71,7 @@ class HistoryRows {
 
  private:
   const HistorySink& sink_;
-  const EquationOfMotion& eom_;
+  const Scene& scene_;
   Excitation excitation_;
   /// Hands over the held row.
   void flush();
@@ -92,7 +92,7 @@ struct StopAngles {
   CaseStatus status() const;
   const char* message() const;
 };
-StopAngles stop_angles(const EquationOfMotion& eom, const PhysicsOptions& physics);
+StopAngles stop_angles(const Scene& scene, const PhysicsOptions& physics);
 inline constexpr const char* kBrokenAtRestMessage = "the initial tendon strain already reaches the fracture strain";
 
 /// Branch a frame leaving rest enters: ü_g > 0 pushes it into θ₁ < 0.

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "case_common.hpp"
-#include "pcrf/model/impact.hpp"
+
 
 namespace pcrf::detail {
 namespace {
@@ -17,21 +17,21 @@ struct State {
 
 class FixedStepRun {
  public:
-  FixedStepRun(const EquationOfMotion& eom, const Excitation& excitation, const PhysicsOptions& physics,
+  FixedStepRun(const Scene& scene, const Excitation& excitation, const PhysicsOptions& physics,
                const SolverSettings& solver, const HistorySink& history)
-      : eom_(eom),
+      : scene_(scene),
         excitation_(excitation),
         physics_(physics),
         solver_(solver),
-        history_(history, eom, excitation),
-        r_(restitution_momentum(eom)),
+        history_(history, scene, excitation),
+        r_(scene.restitution()),
         h_(solver.fixed_step_s > 0 ? solver.fixed_step_s : excitation.dt_s()),
-        end_(excitation, eom.frame().gravity_m_s2, physics.tail_s),
+        end_(excitation, scene.gravity_m_s2(), physics.tail_s),
         t_end_(end_.t_end_s),
-        stop_(stop_angles(eom, physics)) {}
+        stop_(stop_angles(scene, physics)) {}
 
   CaseResult run() {
-    result_ = initial_result(eom_, excitation_, r_, true);
+    result_ = initial_result(scene_, excitation_, r_, true);
     if (stop_.broken_at_rest()) return finish(CaseStatus::kTendonFracture, 0.0, kBrokenAtRestMessage);
     State y{physics_.theta0_rad, physics_.omega0_rad_s};
     double t = 0.0;
@@ -39,8 +39,8 @@ class FixedStepRun {
       // The paper's procedure starts the motion at its trigger t_RI, held or not by the
       // prestress; the physical criteria start it where the net force opens the joints.
       t = physics_.uplift == UpliftCriterion::kPaperProcedure
-              ? paper_trigger_time(excitation_.horizontal(), eom_.lambda_g())
-              : first_opening(excitation_, eom_, 0.0, t_end_);
+              ? paper_trigger_time(excitation_.horizontal(), scene_.lambda_g())
+              : first_opening(excitation_, scene_, 0.0, t_end_);
       if (std::isnan(t) || t > t_end_) return finish(end_.status(CaseStatus::kAtRest), t_end_, end_.message());
       side_ = uplift_side(excitation_.at(t).horizontal_m_s2);
     } else {
@@ -83,7 +83,7 @@ class FixedStepRun {
   bool rhs(double t, State y, State& dy) const {
     dy.theta = y.omega;
     ++evals_;
-    return eom_.acceleration(y.theta, y.omega, excitation_.at(t), side_, dy.omega);
+    return scene_.acceleration(y.theta, y.omega, excitation_.at(t), side_, dy.omega);
   }
 
   bool step(double t, double h, State y, State& out) const {
@@ -116,11 +116,11 @@ class FixedStepRun {
     result_.t_end_s = t;
     result_.message = std::move(message);
     result_.counts.rhs_evals = evals_;
-    set_peak_strains(eom_, result_);
+    set_peak_strains(scene_, result_);
     return result_;
   }
 
-  const EquationOfMotion& eom_;
+  const Scene& scene_;
   Excitation excitation_;
   PhysicsOptions physics_;
   SolverSettings solver_;
@@ -138,10 +138,10 @@ class FixedStepRun {
 
 }  // namespace
 
-CaseResult solve_case_fixed_step(const EquationOfMotion& eom, const Excitation& excitation,
+CaseResult solve_case_fixed_step(const Scene& scene, const Excitation& excitation,
                                  const PhysicsOptions& physics, const SolverSettings& solver,
                                  const HistorySink& history) {
-  FixedStepRun run(eom, excitation, physics, solver, history);
+  FixedStepRun run(scene, excitation, physics, solver, history);
   return run.run();
 }
 

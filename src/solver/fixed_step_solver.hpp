@@ -14,13 +14,13 @@
 #pragma once
 
 #include "pcrf/metrics/case_result.hpp"
-#include "pcrf/model/equation_of_motion.hpp"
+#include "pcrf/model/scene.hpp"
 #include "pcrf/excitation/excitation.hpp"
 #include "pcrf/solver/rocking_solver.hpp"
 
 namespace pcrf::detail {
 
-CaseResult solve_case_fixed_step(const EquationOfMotion& eom, const Excitation& excitation,
+CaseResult solve_case_fixed_step(const Scene& scene, const Excitation& excitation,
                                  const PhysicsOptions& physics, const SolverSettings& solver,
                                  const HistorySink& history);
 

@@ -19,7 +19,7 @@ namespace {
 ///  - an impact dissipates and sends the frame on to the other side, 0 ≤ r ≤ 1: r < 0 would
 ///    send it back (a rebound the momentum balance of rocking impacts does not have), r > 1
 ///    would create energy.
-void check_domain(const EquationOfMotion& eom, double restitution) {
+void check_domain(const Scene& eom, double restitution) {
   char text[240];
   if (!(eom.lambda_g() > 0.0)) {
     std::snprintf(text, sizeof text,
@@ -42,9 +42,9 @@ void check_domain(const EquationOfMotion& eom, double restitution) {
   }
 }
 
-EquationOfMotion equation_of(const Frame& frame) {
+std::unique_ptr<Scene> equation_of(const Frame& frame) {
   try {
-    return EquationOfMotion(frame);
+    return std::make_unique<EquationOfMotion>(frame);
   } catch (const std::invalid_argument& e) {
     throw InvalidFrame(e.what());
   }
@@ -53,26 +53,32 @@ EquationOfMotion equation_of(const Frame& frame) {
 }  // namespace
 
 PreparedFrame::PreparedFrame(const Frame& frame, const PhysicsOptions& physics)
-    : frame_(frame),
-      physics_(physics),
-      eom_(equation_of(frame)),
-      restitution_(restitution_momentum(eom_)),
-      broken_at_rest_(eom_.broken_at_rest(physics.fracture_strain)) {
-  check_domain(eom_, restitution_);
+    : PreparedFrame(equation_of(frame), physics) {}
+
+PreparedFrame::PreparedFrame(std::unique_ptr<Scene> scene, const PhysicsOptions& physics)
+    : physics_(physics),
+      scene_(std::move(scene)),
+      restitution_(scene_->restitution()),
+      broken_at_rest_(scene_->broken_at_rest(physics.fracture_strain)) {
+  check_domain(*scene_, restitution_);
 }
 
 const detail::StopAngles& PreparedFrame::stop_angles() {
-  if (!stop_) stop_ = detail::stop_angles(eom_, physics_);
+  if (!stop_) stop_ = detail::stop_angles(*scene_, physics_);
   return *stop_;
 }
 
 const EomTable& PreparedFrame::table() {
-  if (!table_) table_ = std::make_unique<EomTable>(eom_);
+  if (!table_) table_ = std::make_unique<EomTable>(*scene_);
   return *table_;
 }
 
 std::shared_ptr<PreparedFrame> prepare_frame(const Frame& frame, const PhysicsOptions& physics) {
   return std::make_shared<PreparedFrame>(frame, physics);
+}
+
+std::shared_ptr<PreparedFrame> prepare_scene(std::unique_ptr<Scene> scene, const PhysicsOptions& physics) {
+  return std::make_shared<PreparedFrame>(std::move(scene), physics);
 }
 
 }  // namespace pcrf

@@ -13,22 +13,24 @@ namespace pcrf {
 
 class PreparedFrame {
  public:
+  /// The prestressed rocking frame. \throws InvalidFrame.
   PreparedFrame(const Frame& frame, const PhysicsOptions& physics);
+  /// Any scene. \throws InvalidFrame when it lies outside the model's domain.
+  PreparedFrame(std::unique_ptr<Scene> scene, const PhysicsOptions& physics);
 
-  const Frame& frame() const { return frame_; }
   const PhysicsOptions& physics() const { return physics_; }
-  const EquationOfMotion& eom() const { return eom_; }
+  const Scene& scene() const { return *scene_; }
   double restitution() const { return restitution_; }
   bool broken_at_rest() const { return broken_at_rest_; }
   /// Fracture and overturning angles (the closing limit and a strain scan, on first use).
   const detail::StopAngles& stop_angles();
-  /// The tabulated coefficients of Eq. (31) (cells built as flights visit them).
+  /// The coefficients of Eq. (31') for the integrator: tabulated (cells built as flights
+  /// visit them) for a scene worth it, else its exact terms.
   const EomTable& table();
 
  private:
-  Frame frame_;
   PhysicsOptions physics_;
-  EquationOfMotion eom_;
+  std::unique_ptr<Scene> scene_;
   double restitution_;
   bool broken_at_rest_;
   std::optional<detail::StopAngles> stop_;

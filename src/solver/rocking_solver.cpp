@@ -106,18 +106,18 @@ class CaseRun {
  public:
   CaseRun(PreparedFrame& frame, const Excitation& excitation, const SolverSettings& solver, const OutputRequest& request,
           const HistorySink& history)
-      : eom_(frame.eom()),
+      : scene_(frame.scene()),
         excitation_(excitation),
         physics_(frame.physics()),
         solver_(solver),
         request_(request),
-        history_(history, frame.eom(), excitation),
+        history_(history, frame.scene(), excitation),
         history_dt_s_(request.history_dt_s > 0.0 ? request.history_dt_s : excitation.dt_s()),
         restitution_(frame.restitution()),
         stop_(frame.stop_angles()),
         problem_(frame.table(), excitation_, stop_.stop_rad(), request.omega_peak),
         integrator_(detail::make_integrator(solver, problem_)),
-        end_(excitation, frame.frame().gravity_m_s2, physics_.tail_s),
+        end_(excitation, frame.scene().gravity_m_s2(), physics_.tail_s),
         t_end_(end_.t_end_s) {}
 
   CaseResult run();
@@ -142,7 +142,7 @@ class CaseRun {
   void finish(CaseStatus status, std::string message = {});
   bool over_time() const;
 
-  const EquationOfMotion& eom_;
+  const Scene& scene_;
   Excitation excitation_;
   PhysicsOptions physics_;
   SolverSettings solver_;
@@ -167,7 +167,7 @@ class CaseRun {
 };
 
 CaseResult CaseRun::run() {
-  result_ = detail::initial_result(eom_, excitation_, restitution_, request_.omega_peak);
+  result_ = detail::initial_result(scene_, excitation_, restitution_, request_.omega_peak);
   try {
     if (stop_.broken_at_rest()) {
       finish(CaseStatus::kTendonFracture, detail::kBrokenAtRestMessage);
@@ -186,7 +186,7 @@ CaseResult CaseRun::run() {
   }
   history_.end(result_.t_end_s, at_rest_ ? 0.0 : last_y_[0], at_rest_ ? 0.0 : last_y_[1], problem_.side, kEventNone);
   result_.counts = integrator_->counts();
-  detail::set_peak_strains(eom_, result_);
+  detail::set_peak_strains(scene_, result_);
   return result_;
 }
 
@@ -194,7 +194,7 @@ void CaseRun::rest_until_uplift() {
   // Both criteria open the frame where the net force at θ₁ = 0 does (see README,
   // "Uplift criteria"): a unilateral contact pushes, it never pulls, so after the paper's
   // trigger a frame still held by its prestress stays closed.
-  const double t_open = first_opening(excitation_, eom_, t_, t_end_);
+  const double t_open = first_opening(excitation_, scene_, t_, t_end_);
   if (std::isnan(t_open)) {
     emit_rest_until(t_end_);
     t_ = t_end_;
@@ -229,7 +229,7 @@ void CaseRun::start_flight(double t, const double* y, std::uint32_t events) {
   // in its interpolant: start with a step that resolves the flight.
   double h0 = 0.0;
   if (y[0] == 0.0 && y[1] != 0.0) {
-    const double a = std::abs(eom_.rest_acceleration(excitation_.at(t), problem_.side));
+    const double a = std::abs(scene_.rest_acceleration(excitation_.at(t), problem_.side));
     const double flight_s = 2.0 * std::abs(y[1]) / a;
     if (std::isfinite(flight_s) && flight_s < 0.01) h0 = flight_s / 16.0;
   }
@@ -344,7 +344,7 @@ void CaseRun::impact(double t, double* y) {
 bool CaseRun::returns_to_rest(double t, double omega_after) const {
   if (!holds_closed(t) || restitution_ >= 1.0) return false;
   const GroundAcceleration a = excitation_.at(t);
-  const double a_min = std::min(std::abs(eom_.rest_acceleration(a, -1)), std::abs(eom_.rest_acceleration(a, +1)));
+  const double a_min = std::min(std::abs(scene_.rest_acceleration(a, -1)), std::abs(scene_.rest_acceleration(a, +1)));
   const double v = std::abs(omega_after);
   const double remaining_s = 2.0 * v / (a_min * (1.0 - restitution_));
   const double rise_rad = v * v / (2.0 * a_min);
@@ -352,7 +352,7 @@ bool CaseRun::returns_to_rest(double t, double omega_after) const {
 }
 
 bool CaseRun::holds_closed(double t) const {
-  return eom_.holds_closed(excitation_.at(t));
+  return scene_.holds_closed(excitation_.at(t));
 }
 
 void CaseRun::settle(double t) {
@@ -413,7 +413,7 @@ bool CaseRun::over_time() const {
 
 namespace {
 
-void check_initial_state(const EquationOfMotion& eom, const PhysicsOptions& physics) {
+void check_initial_state(const Scene& eom, const PhysicsOptions& physics) {
   if (physics.theta0_rad == 0.0) return;
   if (!(std::fabs(physics.theta0_rad) < eom.overturn_angle_rad())) {
     char text[256];
@@ -441,11 +441,11 @@ std::optional<CaseResult> rest_throughout(PreparedFrame& frame, const Excitation
                                           const OutputRequest& request, const HistorySink& history) {
   const PhysicsOptions& physics = frame.physics();
   if (history || frame.broken_at_rest() || physics.theta0_rad != 0.0 || physics.omega0_rad_s != 0.0) return std::nullopt;
-  const detail::CaseEnd end(excitation, frame.frame().gravity_m_s2, physics.tail_s);
+  const detail::CaseEnd end(excitation, frame.scene().gravity_m_s2(), physics.tail_s);
   if (end.free_fall) return std::nullopt;  // the full run ends it at the free fall
   const double t_end = end.t_end_s;
-  if (!std::isnan(first_opening(excitation, frame.eom(), 0.0, t_end))) return std::nullopt;
-  CaseResult result = detail::initial_result(frame.eom(), excitation, frame.restitution(), request.omega_peak);
+  if (!std::isnan(first_opening(excitation, frame.scene(), 0.0, t_end))) return std::nullopt;
+  CaseResult result = detail::initial_result(frame.scene(), excitation, frame.restitution(), request.omega_peak);
   result.status = CaseStatus::kAtRest;
   result.t_end_s = t_end;
   return result;
@@ -497,12 +497,12 @@ void check_verdict(PreparedFrame& frame, const Excitation& excitation, const Sol
 CaseResult solve_case(PreparedFrame& frame, const Excitation& excitation, const SolverSettings& solver,
                       const OutputRequest& request, const HistorySink& history) {
   detail::validate(solver, frame.physics());
-  check_initial_state(frame.eom(), frame.physics());
+  check_initial_state(frame.scene(), frame.physics());
   // Timed here, so that the per-case set-up (linkage limits, fracture angle, r) counts.
   const auto start = std::chrono::steady_clock::now();
   CaseResult result;
   if (solver.integrator == Integrator::kFixedRk4SignChange) {
-    result = detail::solve_case_fixed_step(frame.eom(), excitation, frame.physics(), solver, history);
+    result = detail::solve_case_fixed_step(frame.scene(), excitation, frame.physics(), solver, history);
   } else if (auto at_rest = rest_throughout(frame, excitation, request, history)) {
     result = std::move(*at_rest);
   } else {

@@ -224,7 +224,8 @@ std::filesystem::path at2_component(const std::filesystem::path& dir, const std:
 double json_number(const std::string& json, const std::string& key) {
   const auto at = json.find("\"" + key + "\": ");
   EXPECT_NE(at, std::string::npos) << key << " in " << json;
-  return at == std::string::npos ? NAN : std::stod(json.substr(at + key.size() + 4));
+  if (at == std::string::npos || json.compare(at + key.size() + 4, 4, "null") == 0) return NAN;
+  return std::stod(json.substr(at + key.size() + 4));
 }
 
 TEST(RecordCommand, APairPrintsBothComponentsAndTheirRotD) {
@@ -320,6 +321,42 @@ TEST(RunCommand, TakesTheStationsComponentsAndAnIncidence) {
       {" --record-h2 " + coarse.string(), "sampled at different intervals"}};
   for (const auto& [flags, message] : bad) {
     const auto r = test::run_command(base + flags);
+    EXPECT_EQ(r.exit_code, 2) << flags;
+    EXPECT_NE(r.err.find(message), std::string::npos) << flags << ": " << r.err;
+  }
+}
+
+}  // namespace
+}  // namespace pcrf
+
+namespace pcrf {
+namespace {
+
+TEST(RunCommand, SolvesTheCanonicalScenes) {
+  const std::string pulse = " --synthetic 'pulse-sine:period_s=0.4,amplitude_g=0.6,duration_s=8'";
+  const auto block = test::run_command(pcrf() + " run" + pulse + " --model block --slenderness-rad 0.2 --size-m 1.25");
+  ASSERT_EQ(block.exit_code, 0) << block.err;
+  EXPECT_NEAR(json_number(block.out, "uplift_threshold_g"), std::tan(0.2), 1e-15);
+  EXPECT_NEAR(json_number(block.out, "restitution"), 1.0 - 1.5 * std::pow(std::sin(0.2), 2), 1e-15);
+  EXPECT_TRUE(std::isnan(json_number(block.out, "strain_column_max"))) << "a block has no tendons: " << block.out;
+  // The rocking frame with γ = 0.5 and R = 1 m is the block of R̂ = 1.25 m with the frame's r.
+  const auto frame = test::run_command(pcrf() + " run" + pulse +
+                                       " --model rocking-frame --slenderness-rad 0.2 --size-m 1 --beam-mass-ratio 0.5");
+  const auto as_block = test::run_command(pcrf() + " run" + pulse + " --model block --slenderness-rad 0.2 --size-m 1.25" +
+                                          " --restitution " + std::to_string(json_number(frame.out, "restitution")));
+  ASSERT_EQ(frame.exit_code, 0) << frame.err;
+  ASSERT_EQ(as_block.exit_code, 0) << as_block.err;
+  EXPECT_NEAR(json_number(frame.out, "theta_max_rad"), json_number(as_block.out, "theta_max_rad"),
+              1e-5 * json_number(frame.out, "theta_max_rad"));  // r passes through 6 printed digits
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {" --model block --kappa 2", "--kappa does not apply to --model block"},
+      {" --size-m 2", "--size-m does not apply to --model pcrf"},
+      {" --model block --slenderness-rad 1.6", "slenderness_rad: must lie between 0 and pi/2"},
+      {" --model block --beam-mass-ratio 1", "--beam-mass-ratio applies to --model rocking-frame"},
+      {" --model block --restitution 1.5", "restitution: must lie in [0, 1]"},
+      {" --model cylinder", "unknown scene 'cylinder'"}};
+  for (const auto& [flags, message] : bad) {
+    const auto r = test::run_command(pcrf() + " run" + pulse + flags);
     EXPECT_EQ(r.exit_code, 2) << flags;
     EXPECT_NE(r.err.find(message), std::string::npos) << flags << ": " << r.err;
   }

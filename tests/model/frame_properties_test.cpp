@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "pcrf/model/equation_of_motion.hpp"
 #include "pcrf/model/frame_properties.hpp"
 #include "pcrf/model/impact.hpp"
 

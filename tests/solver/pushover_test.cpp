@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "pcrf/model/equation_of_motion.hpp"
 #include "pcrf/model/frame_properties.hpp"
 #include "solver_test_support.hpp"
 

@@ -17,13 +17,14 @@
 #include <array>
 #include <vector>
 
-#include "pcrf/model/equation_of_motion.hpp"
+#include "pcrf/model/scene.hpp"
 
 namespace pcrf {
 
 class EomTable {
  public:
-  explicit EomTable(const EquationOfMotion& eom, double cell_rad = 0.02);
+  /// A scene not worth tabulating (Scene::worth_tabulating) is evaluated exactly throughout.
+  explicit EomTable(const Scene& scene, double cell_rad = 0.02);
 
   /// θ̈₁ [rad/s²] as EquationOfMotion::acceleration, from the tabulated terms.
   bool acceleration(double theta1, double omega1, GroundAcceleration ground, int side, double& theta1_ddot) const;
@@ -60,7 +61,7 @@ class EomTable {
   bool negative_branch(double phi, Terms& out) const;
   void build(Cell& cell, int index) const;
 
-  const EquationOfMotion& eom_;
+  const Scene& eom_;
   double cell_rad_;
   double inv_cell_;
   mutable std::vector<Cell> cells_;

@@ -15,9 +15,10 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
-#include "pcrf/model/equation_of_motion.hpp"
+#include "pcrf/model/scene.hpp"
 
 namespace pcrf {
 
@@ -42,11 +43,21 @@ struct FrameProperties {
   double capacity_theta_rad;       ///< where it peaks [rad]
 };
 
+/// One number of FrameProperties: its key (JSON, Python), a label for people, its unit.
+struct FramePropertyInfo {
+  std::string_view key;
+  std::string_view label;
+  std::string_view units;  ///< "rad", "g", "m", "rad/s" or "1"
+  double FrameProperties::*member;
+};
+/// Every number of FrameProperties, in the order `pcrf frame` prints them.
+const std::vector<FramePropertyInfo>& frame_property_table();
+
 /// The properties of `frame` whose tendons fracture at `fracture_strain`, the pushover curve
 /// sampled at `points` rotations (≥ 2) and its peak located to 1e-10 rad.
-FrameProperties frame_properties(const EquationOfMotion& eom, double fracture_strain, int points = 101);
+FrameProperties frame_properties(const Scene& eom, double fracture_strain, int points = 101);
 
 /// The pushover curve's ground acceleration at |θ₁| = theta_rad [g]; NaN past the closing limit.
-double pushover_accel_g(const EquationOfMotion& eom, double theta_rad);
+double pushover_accel_g(const Scene& eom, double theta_rad);
 
 }  // namespace pcrf

@@ -24,6 +24,7 @@
 #include "pcrf/excitation/excitation.hpp"
 #include "pcrf/metrics/case_result.hpp"
 #include "pcrf/model/frame.hpp"
+#include "pcrf/model/scene.hpp"
 #include "pcrf/solver/history.hpp"
 #include "pcrf/solver/settings.hpp"
 
@@ -60,6 +61,10 @@ class PreparedFrame;
 
 /// \throws InvalidFrame naming the failed condition.
 std::shared_ptr<PreparedFrame> prepare_frame(const Frame& frame, const PhysicsOptions& physics);
+
+/// The same for any rocking scene (scene.hpp: the rigid block, the Makris–Vassiliou frame).
+/// \throws InvalidFrame naming the failed condition.
+std::shared_ptr<PreparedFrame> prepare_scene(std::unique_ptr<Scene> scene, const PhysicsOptions& physics);
 
 /// Solves one case. Never throws for a physical or numerical failure: the result's
 /// status says what happened (message gives detail). Throws std::invalid_argument only

@@ -1,0 +1,79 @@
+/// \file rigid_rocker.hpp
+/// \brief The canonical rocking scenes: Housner's rigid block (1963) and the free-standing
+/// rocking frame of Makris & Vassiliou (2013), columns capped by a freely supported beam.
+///
+/// Rectangular columns of slenderness α (tan α = b/h) and half-diagonal R rock on their
+/// corners; the beam, γ times the columns' mass, translates with the columns' top corners
+/// (at 2R from the pivot along the diagonal). With one column of mass m (the mass cancels from
+/// the motion: the scene uses m = 1 kg), on the branch θ ≤ 0:
+///
+///     I = m R² (4/3 + 4γ),  J = 0,  G = −m R (1 + 2γ) sin(α + θ),  K = 0,
+///     S = −m R (1 + 2γ) cos(α + θ),
+///
+/// i.e. θ̈ = (p̂²/g) [(g + ü_v) sin(α + θ) − ü_h cos(α + θ)] with p̂² = (3g/4R)(1 + 2γ)/(1 + 3γ):
+/// the frame rocks like a block of size R̂ = R(1 + 3γ)/(1 + 2γ).
+/// γ = 0 is Housner's block, p² = 3g/(4R), uplift at |ü_h| = g tan α.
+///
+/// The coefficient of restitution, from angular momentum about the new pivots with the
+/// beam's impulse at the columns' tops (docs/rocking_canon.md), is
+///
+///     r = [1 − (3/2) sin²α + 3γ cos 2α] / (1 + 3γ),
+///
+/// Housner's 1 − (3/2) sin²α for the block; a value may be given instead.
+///
+/// Passing |θ| = α does not overturn a block: the ground can still bring it back. A case ends
+/// as overturned when the block has fallen over, |θ| = π/2.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string_view>
+
+#include "pcrf/model/scene.hpp"
+#include "pcrf/units.hpp"
+
+namespace pcrf {
+
+struct RockerParameters {
+  double slenderness_rad = 0.25;       ///< α, in (0, π/2) [rad]
+  double size_m = 1.0;                 ///< R, the columns' half-diagonal [m]
+  double beam_mass_ratio = 0.0;        ///< γ ≥ 0: beam mass over the columns' (0: the block)
+  std::optional<double> restitution;   ///< r in [0, 1]; empty: from momentum (see above)
+  double gravity_m_s2 = kGravity_m_s2; ///< the gravity it stands in [m/s²]
+};
+
+/// A rocker parameter by name: the keys of `pcrf run --model block` flags (and study keys).
+struct RockerParameterInfo {
+  std::string_view name;       ///< e.g. "size_m"
+  std::string_view long_name;  ///< e.g. "half-diagonal R of the columns"
+  std::string_view units;      ///< UDUNITS
+  double RockerParameters::*member;
+};
+/// slenderness_rad, size_m, beam_mass_ratio (the restitution is optional: its own key).
+const std::array<RockerParameterInfo, 3>& rocker_parameters();
+
+class RigidRocker final : public Scene {
+ public:
+  /// \throws std::invalid_argument naming the parameter: α outside (0, π/2), R ≤ 0, γ < 0,
+  /// a restitution outside [0, 1], a gravity ≤ 0.
+  explicit RigidRocker(const RockerParameters& parameters);
+
+  const RockerParameters& parameters() const { return p_; }
+
+  bool terms(double theta1, int side, EomTerms& out) const override;
+  double gravity_m_s2() const override { return p_.gravity_m_s2; }
+  double restitution() const override { return restitution_; }
+  /// π/2: fallen on its side.
+  double overturn_angle_rad() const override;
+  double closing_limit_rad() const override;
+  double energy(double theta1, double omega1, int side) const override;
+
+  /// The momentum formula above, whatever `restitution` was given.
+  static double restitution_from_momentum(double slenderness_rad, double beam_mass_ratio);
+
+ private:
+  RockerParameters p_;
+  double restitution_;
+};
+
+}  // namespace pcrf

@@ -1,0 +1,71 @@
+// Housner's block and the Makris–Vassiliou rocking frame (see rigid_rocker.hpp).
+#include "pcrf/model/rigid_rocker.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+namespace pcrf {
+namespace {
+
+void check(bool ok, const char* key, const std::string& problem) {
+  if (!ok) throw std::invalid_argument(std::string(key) + ": " + problem);
+}
+
+}  // namespace
+
+const std::array<RockerParameterInfo, 3>& rocker_parameters() {
+  static const std::array<RockerParameterInfo, 3> parameters{{
+      {"slenderness_rad", "slenderness alpha of the columns, tan alpha = b/h", "rad", &RockerParameters::slenderness_rad},
+      {"size_m", "half-diagonal R of the columns", "m", &RockerParameters::size_m},
+      {"beam_mass_ratio", "beam to columns mass ratio gamma (rocking-frame only)", "1", &RockerParameters::beam_mass_ratio},
+  }};
+  return parameters;
+}
+
+double RigidRocker::restitution_from_momentum(double alpha, double gamma) {
+  const double s = std::sin(alpha);
+  return (1.0 - 1.5 * s * s + 3.0 * gamma * std::cos(2.0 * alpha)) / (1.0 + 3.0 * gamma);
+}
+
+RigidRocker::RigidRocker(const RockerParameters& p) : p_(p) {
+  check(p.slenderness_rad > 0.0 && p.slenderness_rad < 0.5 * std::numbers::pi, "slenderness_rad",
+        "must lie between 0 and pi/2 (a column wider than tall is not a rocking column), got " +
+            std::to_string(p.slenderness_rad));
+  check(p.size_m > 0.0 && std::isfinite(p.size_m), "size_m", "must be positive, got " + std::to_string(p.size_m));
+  check(p.beam_mass_ratio >= 0.0 && std::isfinite(p.beam_mass_ratio), "beam_mass_ratio",
+        "must not be negative, got " + std::to_string(p.beam_mass_ratio));
+  check(p.gravity_m_s2 > 0.0, "gravity_m_s2", "must be positive");
+  restitution_ = p.restitution ? *p.restitution : restitution_from_momentum(p.slenderness_rad, p.beam_mass_ratio);
+  check(restitution_ >= 0.0 && restitution_ <= 1.0, "restitution",
+        "must lie in [0, 1], got " + std::to_string(restitution_));
+  settle_rest();
+}
+
+bool RigidRocker::terms(double theta1, int side, EomTerms& out) const {
+  // The branch θ ≤ 0 at φ = θ (side −1) or φ = −θ (side +1), then the odd mirror.
+  const double phi = side < 0 ? theta1 : -theta1;
+  const double c = 1.0 + 2.0 * p_.beam_mass_ratio, R = p_.size_m;
+  out.I = R * R * (4.0 / 3.0 + 4.0 * p_.beam_mass_ratio);
+  out.J = 0.0;
+  out.K = 0.0;
+  out.G = -c * R * std::sin(p_.slenderness_rad + phi);
+  out.S = -c * R * std::cos(p_.slenderness_rad + phi);
+  if (side > 0) out.G = -out.G;
+  return true;
+}
+
+double RigidRocker::overturn_angle_rad() const { return 0.5 * std::numbers::pi; }
+
+double RigidRocker::closing_limit_rad() const { return 0.5 * std::numbers::pi; }
+
+double RigidRocker::energy(double theta1, double omega1, int side) const {
+  EomTerms t;
+  terms(theta1, side, t);
+  const double phi = side < 0 ? theta1 : -theta1;
+  const double height = (1.0 + 2.0 * p_.beam_mass_ratio) * p_.size_m * std::cos(p_.slenderness_rad + phi);
+  return 0.5 * t.I * omega1 * omega1 + p_.gravity_m_s2 * height;
+}
+
+}  // namespace pcrf

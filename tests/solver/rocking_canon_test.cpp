@@ -1,0 +1,154 @@
+// The engine's event machinery (uplift, impacts, rest, overturning) against the closed forms
+// of the rocking canon: Housner's block (1963) and the Makris–Vassiliou frame (2013).
+#include <gtest/gtest.h>
+
+#include <boost/math/quadrature/gauss_kronrod.hpp>
+
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include "pcrf/model/rigid_rocker.hpp"
+#include "pcrf/record/pulses.hpp"
+#include "solver_test_support.hpp"
+
+namespace pcrf {
+namespace {
+
+std::shared_ptr<PreparedFrame> rocker(double alpha, double R, double gamma = 0.0, std::optional<double> r = {},
+                                      const PhysicsOptions& physics = {}) {
+  RockerParameters p;
+  p.slenderness_rad = alpha;
+  p.size_m = R;
+  p.beam_mass_ratio = gamma;
+  p.restitution = r;
+  return prepare_scene(std::make_unique<RigidRocker>(p), physics);
+}
+
+double p_of(double R) { return std::sqrt(3.0 * kGravity_m_s2 / (4.0 * R)); }
+
+/// Time a block released at rest from θ₀ < 0 takes to reach θ = 0, from the nonlinear
+/// equation θ̈ = p² sin(α + θ): ∫ dθ / √(2p² (cos(α + θ₀) − cos(α + θ))). With θ = θ₀ + s² the
+/// integrand is smooth (cos A − cos B = 2 sin((A + B)/2) sin((B − A)/2), no cancellation).
+double first_impact_exact_s(double alpha, double p, double theta0) {
+  const auto integrand = [&](double s) {
+    const double theta = theta0 + s * s;
+    const double drop = 2.0 * std::sin(alpha + 0.5 * (theta0 + theta)) * std::sin(0.5 * s * s);
+    return s == 0.0 ? 2.0 / std::sqrt(2.0 * p * p * std::sin(alpha + theta0)) : 2.0 * s / std::sqrt(2.0 * p * p * drop);
+  };
+  return boost::math::quadrature::gauss_kronrod<double, 61>::integrate(integrand, 0.0, std::sqrt(-theta0), 15, 1e-14);
+}
+
+/// Free rocking from θ₀ = −θ0_over_alpha · α: its history.
+test::Trace release(double alpha, double R, double theta0_over_alpha, double seconds, CaseResult& result) {
+  PhysicsOptions physics;
+  physics.theta0_rad = -theta0_over_alpha * alpha;
+  test::Trace trace;
+  result = solve_case(*rocker(alpha, R, 0.0, {}, physics), test::quiet_record(seconds, 0.001), test::tight(), {},
+                      trace.sink());
+  return trace;
+}
+
+double first_impact_s(const test::Trace& trace) {
+  for (const auto& row : trace.samples)
+    if (static_cast<std::uint32_t>(row.event) & kEventImpact) return row.t_s;
+  return NAN;
+}
+
+TEST(RockingCanon, FreeRockingReachesItsFirstImpactAtTheExactTime) {
+  for (const double alpha : {0.05, 0.25}) {
+    CaseResult r;
+    const auto trace = release(alpha, 2.0, 0.5, 4.0, r);
+    ASSERT_GT(r.impacts, 0);
+    const double exact = first_impact_exact_s(alpha, p_of(2.0), -0.5 * alpha);
+    EXPECT_NEAR(first_impact_s(trace), exact, 1e-9 * exact) << alpha;
+  }
+}
+
+TEST(RockingCanon, SlenderBlocksApproachHousnersLinearisedPeriod) {
+  // T/4 = (1/p) cosh⁻¹(1/(1 − θ₀/α)) holds in the slender limit: the error falls like α².
+  double previous = 0.0;
+  for (const double alpha : {0.2, 0.1, 0.05}) {
+    CaseResult r;
+    const auto trace = release(alpha, 2.0, 0.5, 4.0, r);
+    const double linear = std::acosh(1.0 / (1.0 - 0.5)) / p_of(2.0);
+    const double error = std::abs(first_impact_s(trace) - linear) / linear;
+    EXPECT_LT(error, 0.5 * alpha * alpha) << alpha;
+    if (previous > 0.0) {
+      EXPECT_NEAR(previous / error, 4.0, 0.3) << "second order in alpha at " << alpha;
+    }
+    previous = error;
+  }
+}
+
+TEST(RockingCanon, AmplitudesDecayAsHousnersRestitutionSays) {
+  // Energy before and after each impact: cos(α − θₙ₊₁) = cos α + r² (cos(α − θₙ) − cos α).
+  const double alpha = 0.2;
+  CaseResult r;
+  const auto trace = release(alpha, 1.0, 0.8, 6.0, r);
+  std::vector<double> peaks = {0.8 * alpha};
+  for (const auto& row : trace.samples)
+    if ((static_cast<std::uint32_t>(row.event) & kEventThetaPeak) && row.t_s > 0.0) peaks.push_back(std::abs(row.theta1_rad));
+  ASSERT_GE(peaks.size(), 6u);
+  const double r2 = r.restitution * r.restitution;
+  for (std::size_t n = 0; n + 1 < 6; ++n) {
+    const double next = alpha - std::acos(std::cos(alpha) + r2 * (std::cos(alpha - peaks[n]) - std::cos(alpha)));
+    EXPECT_NEAR(peaks[n + 1], next, 1e-9) << "peak " << n + 1;
+  }
+  EXPECT_NEAR(r.restitution, 1.0 - 1.5 * std::sin(alpha) * std::sin(alpha), 1e-15);
+}
+
+TEST(RockingCanon, TheBlockLiftsExactlyWhenTheGroundExceedsGTanAlpha) {
+  const double alpha = 0.15, k = 0.5 * kGravity_m_s2;  // a ramp of 0.5 g/s
+  std::vector<double> a;
+  for (int i = 0; i <= 100; ++i) a.push_back(k * 0.01 * i);
+  const CaseResult r = solve_case(*rocker(alpha, 1.0), GroundMotion("ramp", 0.01, a), {}, {});
+  EXPECT_NEAR(r.t_uplift_s, kGravity_m_s2 * std::tan(alpha) / k, 1e-12);
+}
+
+TEST(RockingCanon, TheRockingFrameRespondsAsTheBlockOfSizeRHat) {
+  // Makris & Vassiliou (2013): the same response as the block R̂ = R(1 + 3γ)/(1 + 2γ) when both
+  // have the same restitution (the frame's own is given to the block).
+  const double alpha = 0.2, R = 1.0;
+  // A 0.4 s one-sine pulse of 0.6 g rocks the frame through many impacts; a 0.8 s one
+  // overturns it after one.
+  for (const double period_s : {0.4, 0.8}) {
+    PulseSpec pulse;
+    pulse.shape = PulseShape::kSine;
+    pulse.period_s = period_s;
+    pulse.amplitude_g = 0.6;
+    pulse.duration_s = 8.0;
+    const GroundMotion g = make_pulse(pulse);
+    for (const double gamma : {0.5, 2.0}) {
+      SCOPED_TRACE("Tp " + std::to_string(period_s) + " gamma " + std::to_string(gamma));
+      const double r = RigidRocker::restitution_from_momentum(alpha, gamma);
+      const CaseResult frame = solve_case(*rocker(alpha, R, gamma), g, test::tight(), {});
+      const CaseResult block =
+          solve_case(*rocker(alpha, R * (1 + 3 * gamma) / (1 + 2 * gamma), 0.0, r), g, test::tight(), {});
+      ASSERT_GT(frame.impacts, 0);
+      EXPECT_EQ(frame.impacts, block.impacts);
+      EXPECT_EQ(frame.status, block.status);
+      EXPECT_NEAR(frame.theta_max_rad, block.theta_max_rad, 1e-9 * block.theta_max_rad);
+      EXPECT_NEAR(frame.t_theta_max_s, block.t_theta_max_s, 1e-9 * block.t_theta_max_s);
+      EXPECT_NEAR(frame.omega_max_rad_s, block.omega_max_rad_s, 1e-9 * block.omega_max_rad_s);
+      EXPECT_NEAR(frame.t_end_s, block.t_end_s, 1e-9 * block.t_end_s);
+    }
+  }
+}
+
+TEST(RockingCanon, ABlockOverturnsOnlyWhenItFalls) {
+  // Past θ = α the ground can still bring a block back; a case ends as overturned at π/2.
+  const double alpha = 0.25;
+  PhysicsOptions physics;
+  physics.theta0_rad = -1.05 * alpha;  // released just past its static limit: it falls
+  const CaseResult fallen = solve_case(*rocker(alpha, 1.0, 0.0, {}, physics), test::quiet_record(5.0), {}, {});
+  EXPECT_EQ(fallen.status, CaseStatus::kOverturned);
+  EXPECT_NEAR(fallen.theta_max_rad, 0.5 * M_PI, 1e-6);
+  physics.theta0_rad = -0.95 * alpha;  // just inside: it rocks back
+  const CaseResult back = solve_case(*rocker(alpha, 1.0, 0.0, {}, physics), test::quiet_record(5.0), {}, {});
+  EXPECT_NE(back.status, CaseStatus::kOverturned);
+  EXPECT_GT(back.impacts, 0);
+}
+
+}  // namespace
+}  // namespace pcrf
