@@ -1,9 +1,6 @@
 // `pcrf cube info|export|stats FILE`: looks into a result cube.
 #include <CLI/CLI.hpp>
 
-#include <cerrno>
-#include <cstring>
-#include <fstream>
 #include <functional>
 #include <iostream>
 #include <memory>
@@ -12,6 +9,8 @@
 #include "cli/commands.hpp"
 #include "pcrf/cube/cube_merge.hpp"
 #include "pcrf/cube/cube_query.hpp"
+#include "pcrf/io/output_file.hpp"
+#include "pcrf/io/run_lock.hpp"
 #include "pcrf/study/cube_fragility.hpp"
 #include "pcrf/study/cube_sensitivity.hpp"
 #include "pcrf/study/cube_vocabulary.hpp"
@@ -23,6 +22,7 @@ struct CubeArguments {
   std::string file;
   std::vector<std::string> parts;
   bool overwrite = false;
+  bool allow_missing = false;
   std::optional<double> mce;
   std::string csv;
   std::vector<std::string> metrics;
@@ -41,9 +41,27 @@ std::vector<cube::Selector> selectors(const std::vector<std::string>& texts) {
   return result;
 }
 
+/// A cube that a study run is writing is read as its last complete checkpoint (each is
+/// renamed into place whole); says so on stderr.
+void note_running(const std::string& file) {
+  const std::string who = io::RunLock::holder(file);
+  if (!who.empty())
+    std::cerr << "pcrf cube: " << file << ": a run holds it (" << who << "): read as its last complete checkpoint\n";
+}
+
+/// A cube with cases never run (stopped early, merged from some shards): says how many on
+/// stderr, since what is printed covers the cases run only.
+void note_partial(const std::string& command, const std::string& file, const cube::CubeReader& reader) {
+  const auto missing = study::vocabulary::not_run(reader);
+  if (missing.count > 0)
+    std::cerr << "pcrf cube " << command << ": " << file << ": " << missing.count << " of " << missing.total << " "
+              << missing.unit << " not run (a partial cube): left out\n";
+}
+
 /// Runs a cube action; cube problems (missing file, unknown name) are usage errors.
 template <class Action>
 void guarded(const std::string& file, Action action) {
+  note_running(file);
   try {
     action();
   } catch (const cube::CubeError& e) {
@@ -52,14 +70,28 @@ void guarded(const std::string& file, Action action) {
   }
 }
 
-void with_output(const std::string& path, const std::function<void(std::ostream&)>& write) {
-  if (path.empty() || path == "-") {
+bool is_stdout(const std::string& path) { return path.empty() || path == "-"; }
+
+/// Refuses an output file before anything is computed (see io::check_output).
+void check_output(const std::string& path, const std::vector<std::filesystem::path>& inputs, bool overwrite) {
+  if (!is_stdout(path)) io::check_output(path, inputs, overwrite);
+}
+
+/// Writes `path` (stdout for "" or "-") by the one output rule (io::OutputFile): never one
+/// of `inputs`, an existing file replaced only with --overwrite, complete or not at all.
+void with_output(const std::string& path, const std::vector<std::filesystem::path>& inputs, bool overwrite,
+                 const std::function<void(std::ostream&)>& write) {
+  if (is_stdout(path)) {
     write(std::cout);
     return;
   }
-  std::ofstream out(path);
-  if (!out) throw UsageError(path + ": cannot create: " + std::strerror(errno));
-  write(out);
+  io::OutputFile out(path, inputs, overwrite);
+  write(out.stream());
+  out.commit();
+}
+
+void add_overwrite(CLI::App* cmd, CubeArguments& args) {
+  cmd->add_flag("--overwrite", args.overwrite, "replace existing output files (never the cube read)");
 }
 
 void add_where(CLI::App* cmd, CubeArguments& args) {
@@ -79,6 +111,7 @@ void add_cube_command(CLI::App& app) {
   info->callback([args] {
     guarded(args->file, [&] {
       const cube::CubeReader reader(args->file);
+      note_partial("info", args->file, reader);
       if (args->json) cube::print_info_json(reader, std::cout);
       else cube::print_info(reader, study::vocabulary::info_heading(reader.layout()), std::cout);
       // Vouch for nothing unread: a variable whose chunks no longer decompress is damage.
@@ -96,18 +129,22 @@ void add_cube_command(CLI::App& app) {
   exporter->add_option("-m,--metric", args->metrics, "metric to export (repeatable; default: all)");
   add_where(exporter, *args);
   exporter->add_option("-o,--output", args->output, "CSV file (default: stdout)");
+  add_overwrite(exporter, *args);
   auto* history = exporter->add_option("--history", args->history,
                                        "instead: the stored history group /histories/NAME, one row per time");
   history->excludes(exporter->get_option("--metric"))->excludes(exporter->get_option("--where"));
   exporter->callback([args] {
     guarded(args->file, [&] {
+      check_output(args->output, {args->file}, args->overwrite);
       cube::CubeReader reader(args->file);
       if (!args->history.empty()) {
-        with_output(args->output, [&](std::ostream& out) { cube::export_history_csv(reader, args->history, out); });
+        with_output(args->output, {args->file}, args->overwrite,
+                    [&](std::ostream& out) { cube::export_history_csv(reader, args->history, out); });
         return;
       }
       const auto chosen = selectors(args->where);
-      with_output(args->output, [&](std::ostream& out) { cube::export_csv(reader, args->metrics, chosen, out); });
+      with_output(args->output, {args->file}, args->overwrite,
+                  [&](std::ostream& out) { cube::export_csv(reader, args->metrics, chosen, out); });
     });
   });
 
@@ -121,6 +158,7 @@ void add_cube_command(CLI::App& app) {
   stats->callback([args] {
     guarded(args->file, [&] {
       cube::CubeReader reader(args->file);
+      note_partial("stats", args->file, reader);
       std::vector<std::string> pooled;
       const auto chosen = study::vocabulary::stats_selectors(reader.layout(), args->by, selectors(args->where));
       const auto result = cube::group_stats(reader, args->by, args->metric, chosen,
@@ -139,17 +177,24 @@ void add_cube_command(CLI::App& app) {
   fragility->add_option("--csv", args->csv, "also write the table as CSV to this file");
   fragility->add_option("--points", args->points,
                         "also write the fitted data as CSV to this file: stripes, or IDA collapse and censored intensities");
+  add_overwrite(fragility, *args);
   fragility->callback([args] {
     guarded(args->file, [&] {
       if (args->mce && !(*args->mce > 0.0)) throw UsageError("--mce must be positive");
+      const std::vector<std::filesystem::path> csv_inputs{args->file}, points_inputs{args->file, args->csv};
+      check_output(args->csv, csv_inputs, args->overwrite);
+      check_output(args->points, is_stdout(args->csv) ? csv_inputs : points_inputs, args->overwrite);
       cube::CubeReader reader(args->file);
+      note_partial("fragility", args->file, reader);
       const auto frames = study::cube_fragility(reader, selectors(args->where));
       const auto units = study::intensity_units(reader);
       study::print_fragility(frames, units, args->mce, false, std::cout);
       if (!args->csv.empty())
-        with_output(args->csv, [&](std::ostream& out) { study::print_fragility(frames, units, args->mce, true, out); });
+        with_output(args->csv, csv_inputs, args->overwrite,
+                    [&](std::ostream& out) { study::print_fragility(frames, units, args->mce, true, out); });
       if (!args->points.empty())
-        with_output(args->points, [&](std::ostream& out) { study::print_fragility_points(frames, out); });
+        with_output(args->points, is_stdout(args->csv) ? csv_inputs : points_inputs, args->overwrite,
+                    [&](std::ostream& out) { study::print_fragility_points(frames, out); });
     });
   });
 
@@ -160,17 +205,22 @@ void add_cube_command(CLI::App& app) {
   add_where(sensitivity, *args);
   sensitivity->add_option("--by", args->by, "`record`: one set of indices per record (default: across records)");
   sensitivity->add_option("--csv", args->csv, "also write the table as CSV to this file");
+  add_overwrite(sensitivity, *args);
   sensitivity->callback([args] {
     guarded(args->file, [&] {
       if (!args->by.empty() && args->by != "record") throw UsageError("--by takes `record` only");
+      check_output(args->csv, {args->file}, args->overwrite);
       cube::CubeReader reader(args->file);
+      note_partial("sensitivity", args->file, reader);
       const auto groups = study::cube_sensitivity(reader, args->metric, selectors(args->where), args->by == "record");
       for (const auto& g : groups)
         if (g.dropped > 0)
           std::cerr << "pcrf cube sensitivity: " << g.record << ": " << g.dropped
                     << " base samples left out (a frame without a value)\n";
       study::print_sensitivity(groups, false, std::cout);
-      if (!args->csv.empty()) with_output(args->csv, [&](std::ostream& out) { study::print_sensitivity(groups, true, out); });
+      if (!args->csv.empty())
+        with_output(args->csv, {args->file}, args->overwrite,
+                    [&](std::ostream& out) { study::print_sensitivity(groups, true, out); });
     });
   });
 
@@ -178,10 +228,19 @@ void add_cube_command(CLI::App& app) {
   merge->add_option("PARTS", args->parts, "the shards' cubes")->required();
   merge->add_option("-o,--output", args->output, "the merged cube")->required();
   merge->add_flag("--overwrite", args->overwrite, "replace an existing output");
+  merge->add_flag("--allow-missing", args->allow_missing,
+                  "merge even when cases are in no part (shards not run): the merged cube says how many");
   merge->callback([args] {
     guarded(args->output, [&] {
       std::vector<std::filesystem::path> parts(args->parts.begin(), args->parts.end());
-      cube::merge_cubes(parts, args->output, args->overwrite, study::vocabulary::kIdaRuns);
+      for (const auto& part : args->parts) note_running(part);
+      if (const auto who = io::RunLock::holder(args->output); !who.empty())
+        throw UsageError(args->output + ": in use by a run (" + who + "); give another -o");
+      const auto merged = cube::merge_cubes(parts, args->output, args->overwrite, study::vocabulary::kIdaRuns,
+                                            args->allow_missing);
+      if (merged.missing > 0)
+        std::cerr << "pcrf cube merge: " << args->output << ": " << merged.missing << " of " << merged.total
+                  << " cases are in no part: the merged cube is partial (attribute " << cube::kMissingCasesName << ")\n";
       std::cout << "merged " << parts.size() << " parts into " << args->output << '\n';
     });
   });

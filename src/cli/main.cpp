@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "cli/commands.hpp"
+#include "pcrf/io/checked_stream.hpp"
 #include "pcrf/printable.hpp"
 #include "pcrf/version.hpp"
 
@@ -14,6 +15,46 @@ int& exit_code() {
   return code;
 }
 }  // namespace pcrf::cli
+
+namespace {
+
+/// Runs the command line; every write to stdout is checked (OutputError), and what is
+/// buffered is written before an error line so that the two keep their order.
+int run(CLI::App& app, int argc, char** argv, pcrf::io::CheckedStdout& out) {
+  auto fail = [&out](const std::string& line, int code) {
+    try {
+      out.finish();
+    } catch (const pcrf::io::OutputError&) {  // the error line says what went wrong first
+    }
+    std::cerr << line << "\n";
+    return code;
+  };
+  auto shown = [&out](int code) {  // help or version: an OutputError goes to main()
+    out.finish();
+    return code;
+  };
+  try {
+    app.parse(argc, argv);
+    out.finish();
+  } catch (const CLI::CallForHelp& e) {
+    return shown(app.exit(e));
+  } catch (const CLI::CallForAllHelp& e) {
+    return shown(app.exit(e));
+  } catch (const CLI::CallForVersion& e) {
+    return shown(app.exit(e));
+  } catch (const CLI::ParseError& e) {
+    return fail("pcrf: error: " + pcrf::printable(e.what()) + " (see pcrf --help)", 2);
+  } catch (const pcrf::cli::UsageError& e) {
+    return fail("pcrf: error: " + pcrf::printable(e.what()), 2);
+  } catch (const pcrf::io::OutputError& e) {
+    return fail("pcrf: error: " + pcrf::printable(e.what()), 2);
+  } catch (const std::exception& e) {
+    return fail("pcrf: internal error: " + pcrf::printable(e.what()), 1);
+  }
+  return pcrf::cli::exit_code();
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"pcrf: seismic response of prestressed concrete rocking frames"};
@@ -26,23 +67,11 @@ int main(int argc, char** argv) {
   pcrf::cli::add_cube_command(app);
   pcrf::cli::add_plot_command(app);
   pcrf::cli::add_settings_command(app);
+  pcrf::io::CheckedStdout out;
   try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::cerr << "pcrf: error: " << pcrf::printable(e.what()) << " (see pcrf --help)\n";
-    return 2;
-  } catch (const pcrf::cli::UsageError& e) {
+    return run(app, argc, argv, out);
+  } catch (const pcrf::io::OutputError& e) {  // help or version could not be written
     std::cerr << "pcrf: error: " << pcrf::printable(e.what()) << "\n";
     return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "pcrf: internal error: " << pcrf::printable(e.what()) << "\n";
-    return 1;
   }
-  return pcrf::cli::exit_code();
 }

@@ -7,10 +7,13 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <iostream>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "pcrf/io/output_file.hpp"
 
 namespace pcrf::cli {
 namespace {
@@ -42,9 +45,41 @@ std::string configured(const char* variable, const char* fallback) {
                    " (apt-get install python3 python3-matplotlib, or set PCRF_PYTHON)");
 }
 
+struct OutputArguments {
+  std::string file;
+  std::vector<std::string> inputs;
+  bool overwrite = false;
+};
+
+/// `pcrf output check|write FILE --input INPUT… [--overwrite]`, hidden: how the figure
+/// package writes its figure by the one output rule (io::OutputFile) instead of its own:
+/// `check` before drawing, `write` with the figure's bytes on stdin.
+void add_output_command(CLI::App& app) {
+  auto args = std::make_shared<OutputArguments>();
+  auto* cmd = app.add_subcommand("output", "Write stdin to FILE by the rule of every output (for pcrf plot)");
+  cmd->group("");  // not listed: an interface between pcrf and its figure package
+  cmd->require_subcommand(1);
+  for (const bool write : {false, true}) {
+    auto* sub = cmd->add_subcommand(write ? "write" : "check", write ? "write stdin to FILE" : "refuse FILE now, if at all");
+    sub->add_option("FILE", args->file, "the output")->required();
+    sub->add_option("--input", args->inputs, "an input the output must not be (repeatable)");
+    sub->add_flag("--overwrite", args->overwrite, "replace an existing FILE");
+    sub->callback([args, write] {
+      const std::vector<std::filesystem::path> inputs(args->inputs.begin(), args->inputs.end());
+      if (!write) return io::check_output(args->file, inputs, args->overwrite);
+      io::OutputFile out(args->file, inputs, args->overwrite);
+      std::vector<char> block(1 << 16);
+      while (std::cin.read(block.data(), static_cast<std::streamsize>(block.size())) || std::cin.gcount() > 0)
+        out.stream().write(block.data(), std::cin.gcount());
+      out.commit();
+    });
+  }
+}
+
 }  // namespace
 
 void add_plot_command(CLI::App& app) {
+  add_output_command(app);
   auto* cmd = app.add_subcommand("plot",
                                  "Draw a figure: pcrf plot KIND INPUT [-w NAME=VALUE]... [-m METRIC] -o FILE.png|.pdf|.svg "
                                  "(kinds: history, sweep, ida, fragility, sensitivity, status, table3; pcrf plot --help)");

@@ -33,7 +33,12 @@ RecordMetadata metadata_of(const RecordFileSpec& spec) {
 }
 
 /// The measures of one component, and what its file says about itself.
+/// \throws UsageError for values that overflow the measures or a period below 2·dt.
 JsonObject measures(const GroundMotion& motion, const RecordMetadata& meta, const RecordArguments& args) {
+  if (const auto problem = measures_problem(motion); !problem.empty()) throw UsageError(motion.name() + ": " + problem);
+  for (double t : args.periods_s)
+    if (const auto problem = sa_period_problem(t, motion.dt_s()); !problem.empty())
+      throw UsageError("--period: " + problem + " (" + motion.name() + ")");
   const auto peak = peak_acceleration(motion);
   std::vector<double> sa_g;
   for (double t : args.periods_s) sa_g.push_back(spectral_acceleration_g(motion, t, args.damping));
@@ -89,7 +94,7 @@ RecordMetadata metadata_of_file(const RecordFlags& flags, const std::string& fil
 void describe(const RecordArguments& args) {
   if (!(args.damping >= 0.0 && args.damping < 1.0)) throw UsageError("--damping must be in [0, 1)");
   for (double t : args.periods_s)
-    if (!(t > 0.0)) throw UsageError("--period must be positive, got " + std::to_string(t));
+    if (const auto problem = sa_period_problem(t, 0.0); !problem.empty()) throw UsageError("--period: " + problem);
   std::vector<std::string> notes;
   const StationRecord station = args.record.load_station(notes);
   for (const auto& note : notes) std::cerr << "pcrf record: note: " << note << '\n';

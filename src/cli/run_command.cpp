@@ -1,10 +1,7 @@
 // `pcrf run`: one case from the command line; the result record as JSON on stdout.
 #include <CLI/CLI.hpp>
 
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -14,6 +11,7 @@
 #include "cli/frame_flags.hpp"
 #include "cli/record_flags.hpp"
 #include "cli/setting_flags.hpp"
+#include "pcrf/io/output_file.hpp"
 #include "pcrf/model/frame.hpp"
 #include "pcrf/model/parameters.hpp"
 #include "pcrf/record/intensity.hpp"
@@ -36,6 +34,7 @@ struct RunOptions {
   std::unique_ptr<SettingFlags<SolverSettings>> solver;
   std::string history_file;
   double history_dt_s = 0.0;
+  bool overwrite = false;  ///< replace an existing history file
   std::optional<double> incidence_deg;  ///< the frame's plane [deg from north]; needs both horizontals
 };
 
@@ -51,6 +50,10 @@ double scale_factor(const RunOptions& o, const GroundMotion& motion) {
   if (!(o.intensity > 0.0)) throw UsageError("--intensity must be positive");
   const IntensitySpec spec = o.measure->resolve();
   if (const auto problem = intensity_spec_problem(spec); !problem.empty()) throw UsageError("--period-s: " + problem);
+  if (spec.measure == IntensityMeasure::kSa)
+    if (const auto problem = sa_period_problem(spec.period_s, motion.dt_s()); !problem.empty())
+      throw UsageError("--period-s: " + problem + " (" + motion.name() + ")");
+  if (const auto problem = measures_problem(motion); !problem.empty()) throw UsageError(motion.name() + ": " + problem);
   const double im = intensity_of(motion, spec);
   if (!(im > 0.0)) throw UsageError(motion.name() + ": its " + to_string(spec.measure) + " is 0: it cannot be scaled");
   return intensity_scale_factor(o.intensity, im);
@@ -71,11 +74,13 @@ std::unique_ptr<FrameExcitation> load_excitation(const RunOptions& o, double& fa
 }
 
 /// Writes the history as CSV, one row per history row, a header of column names (their
-/// units are in the names; README "pcrf run" lists them).
+/// units are in the names; README "pcrf run" lists them), by the one output rule
+/// (io::OutputFile: never the record read, complete or not at all).
 class CsvHistory {
  public:
-  explicit CsvHistory(const std::string& path) : out_(path) {
-    if (!out_) throw UsageError(path + ": cannot create the history file: " + std::strerror(errno));
+  CsvHistory(const std::string& path, const std::vector<std::filesystem::path>& records, bool overwrite)
+      : file_(path, records, overwrite),
+        out_(file_.stream()) {
     const char* separator = "";
     for (const auto& c : history_columns()) {
       out_ << separator << c.name;
@@ -93,9 +98,11 @@ class CsvHistory {
     }
     out_ << '\n';
   }
+  void commit() { file_.commit(); }
 
  private:
-  std::ofstream out_;
+  io::OutputFile file_;
+  std::ostream& out_;
 };
 
 void run(const RunOptions& o) {
@@ -107,7 +114,10 @@ void run(const RunOptions& o) {
   std::unique_ptr<CsvHistory> csv;
   HistorySink sink;
   if (!o.history_file.empty()) {
-    csv = std::make_unique<CsvHistory>(o.history_file);
+    std::vector<std::filesystem::path> records;  // the files read: every component's
+    for (const std::string* file : {&o.record.file, &o.record.file_h2, &o.record.file_up})
+      if (!file->empty()) records.emplace_back(*file);
+    csv = std::make_unique<CsvHistory>(o.history_file, records, o.overwrite);
     sink = [&csv](const HistorySample& s) { (*csv)(s); };
   }
   CaseResult result;
@@ -119,6 +129,7 @@ void run(const RunOptions& o) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
+  if (csv) csv->commit();
   JsonObject json;
   json.number("scale_factor", factor);
   add_to_json(json, result);
@@ -147,6 +158,7 @@ void add_run_command(CLI::App& app) {
                   "history output interval [s] (default: the record's dt); events are always added")
       ->needs(history)
       ->check(CLI::PositiveNumber);
+  cmd->add_flag("--overwrite", o->overwrite, "replace an existing --history file")->needs(history);
   cmd->callback([o]() { run(*o); });
 }
 

@@ -1,11 +1,14 @@
 // `pcrf study FILE`: runs a parametric study, on one rank or under mpirun.
 #include <CLI/CLI.hpp>
 
+#include <charconv>
 #include <csignal>
 #include <cstdio>
 #include <iostream>
 #include <atomic>
 #include <memory>
+#include <string_view>
+#include <utility>
 
 #include "cli/commands.hpp"
 #include "cli/setting_flags.hpp"
@@ -20,7 +23,8 @@ namespace {
 /// Command-line values; the [run] flags override the study file's table.
 struct StudyArguments {
   study::StudyRunOptions run;
-  std::string shard;  ///< "K/N", or empty
+  std::string shard;  ///< "K/N"
+  CLI::Option* shard_flag = nullptr;
   std::unique_ptr<SettingFlags<study::RunOptions>> run_flags;
 };
 
@@ -30,6 +34,29 @@ std::atomic<int> stop_signal{0};
 static_assert(std::atomic<int>::is_always_lock_free, "set from a signal handler");
 
 extern "C" void on_stop_signal(int number) { stop_signal.store(number); }
+
+/// Shards a study may be split into, at most: more than any job array needs, few enough
+/// that a typo (a pasted size, a negative number read as a huge one) is caught.
+constexpr std::size_t kMaxShards = 1000000;
+
+/// "K/N" with digits only and 1 ≤ K ≤ N ≤ kMaxShards. \throws UsageError otherwise.
+std::pair<std::size_t, std::size_t> parse_shard(const std::string& text) {
+  auto fail = [&text]() -> UsageError {
+    return UsageError("--shard '" + text + "': expected K/N with 1 ≤ K ≤ N ≤ " + std::to_string(kMaxShards) + ", e.g. 3/8");
+  };
+  const auto slash = text.find('/');
+  if (slash == std::string::npos) throw fail();
+  auto number = [&](std::string_view digits) {
+    std::size_t value = 0;
+    const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+    if (digits.empty() || error != std::errc() || end != digits.data() + digits.size()) throw fail();
+    return value;
+  };
+  const std::string_view all(text);
+  const std::size_t k = number(all.substr(0, slash)), n = number(all.substr(slash + 1));
+  if (k < 1 || k > n || n > kMaxShards) throw fail();
+  return {k, n};
+}
 
 /// Every rank catches SIGTERM and SIGINT: rank 0 stops handing out work and flushes, the
 /// others finish the batch they hold and are then told to stop. A second signal is not
@@ -43,19 +70,31 @@ void catch_stop_signals() {
   ::sigaction(SIGINT, &action, nullptr);
 }
 
+/// What to do after a write error, by its cause: only a full disk is cured by space.
+std::string advice(cube::CubeError::Cause cause) {
+  using Cause = cube::CubeError::Cause;
+  switch (cause) {
+    case Cause::kNoSpace: return "the cube keeps its last complete checkpoint: free space, then --resume";
+    case Cause::kGone: return "the results computed are lost with it: run the study again";
+    case Cause::kReplaced: return "this run's results since its last checkpoint are lost: run it again into another -o";
+    case Cause::kLostLock:
+      return "the cube keeps its last complete checkpoint; make sure no other run writes it, then --resume";
+    case Cause::kOther: break;
+  }
+  return "the cube keeps its last complete checkpoint: once the cause above is fixed, --resume continues it";
+}
+
 void run_study_command(StudyArguments& args) {
   args.run.run_overrides = args.run_flags->given();
-  if (!args.shard.empty()) {
-    unsigned long k = 0, n = 0;
-    char extra = 0;
-    if (std::sscanf(args.shard.c_str(), "%lu/%lu%c", &k, &n, &extra) != 2 || n < 1 || k < 1 || k > n)
-      throw UsageError("--shard " + args.shard + ": expected K/N with 1 ≤ K ≤ N, e.g. 3/8");
+  if (args.shard_flag->count() > 0) {
+    const auto [k, n] = parse_shard(args.shard);
     args.run.shard_index = k - 1;
     args.run.shard_count = n;
   }
   args.run.progress = &std::cerr;
   args.run.stop_signal = &stop_signal;
 
+  if (const auto problem = parallel::MpiSession::startup_problem(); !problem.empty()) throw UsageError(problem);
   parallel::MpiSession mpi;
   catch_stop_signals();
   std::optional<study::StudySummary> summary;
@@ -84,8 +123,7 @@ void run_study_command(StudyArguments& args) {
   }
   if (summary && summary->stopped_by != 0) exit_code() = 128 + summary->stopped_by;
   if (summary && !summary->error.empty()) {
-    std::cerr << "pcrf: error: " << printable(summary->error)
-              << "; the cube keeps its last complete checkpoint: free space, then --resume" << std::endl;
+    std::cerr << "pcrf: error: " << printable(summary->error) << "; " << advice(summary->error_cause) << std::endl;
     exit_code() = 2;
   }
   if (!mpi.is_master() && stop_signal.load() != 0) exit_code() = 128 + stop_signal.load();
@@ -111,7 +149,7 @@ void add_study_command(CLI::App& app) {
   resume->excludes(overwrite);
   cmd->add_flag("--check", args->run.check_only, "check the study (records, geometry) and print its size; compute nothing");
   args->run_flags = std::make_unique<SettingFlags<study::RunOptions>>(cmd, study::run_settings());
-  cmd->add_option("--shard", args->shard,
+  args->shard_flag = cmd->add_option("--shard", args->shard,
                   "compute shard K of N (K/N): a deterministic 1/N of the cases; join the parts with pcrf cube merge");
   cmd->callback([args] { run_study_command(*args); });
 }

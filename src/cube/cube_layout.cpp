@@ -1,9 +1,17 @@
 // Helpers of CubeLayout (see cube_layout.hpp).
 #include "pcrf/cube/cube_layout.hpp"
 
+#include <cerrno>
 #include <charconv>
 
 namespace pcrf::cube {
+
+CubeError::Cause CubeError::cause_of(int os_error) {
+  if (os_error == ENOSPC || os_error == EDQUOT) return Cause::kNoSpace;
+  if (os_error == ENOENT) return Cause::kGone;
+  return Cause::kOther;
+}
+
 
 std::string Coordinate::label(std::size_t i) const {
   if (is_text) return strings.at(i);

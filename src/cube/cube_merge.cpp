@@ -2,23 +2,23 @@
 #include "pcrf/cube/cube_merge.hpp"
 
 #include <cmath>
+#include <map>
 #include <memory>
 #include <string>
 
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/cube/cube_writer.hpp"
+#include "pcrf/io/output_file.hpp"
 
 namespace pcrf::cube {
 
-void merge_cubes(const std::vector<std::filesystem::path>& parts, const std::filesystem::path& output, bool overwrite,
-                 const std::string& runs_variable) {
+MergeResult merge_cubes(const std::vector<std::filesystem::path>& parts, const std::filesystem::path& output, bool overwrite,
+                        const std::string& runs_variable, bool allow_missing) {
   if (parts.empty()) throw CubeError("no cube to merge");
-  std::error_code error;
-  for (const auto& part : parts)
-    if (std::filesystem::exists(output, error) && std::filesystem::equivalent(part, output, error))
-      throw CubeError(output.string() + ": -o names one of the parts");
-  if (std::filesystem::exists(output, error) && !overwrite)
-    throw CubeError(output.string() + ": already exists; use --overwrite to replace it");
+  // Written beside the output and renamed over it when complete: a merge that fails or is
+  // killed leaves no cube at -o (and any old one intact).
+  io::OutputFile out(output, parts, overwrite);
+  if (out.temporary().empty()) throw CubeError(output.string() + ": the merged cube must be a regular file");
 
   std::vector<std::unique_ptr<CubeReader>> readers;
   for (const auto& part : parts) readers.push_back(std::make_unique<CubeReader>(part));
@@ -68,11 +68,14 @@ void merge_cubes(const std::vector<std::filesystem::path>& parts, const std::fil
   std::size_t missing = 0, first_missing = n;
   for (std::size_t i = 0; i < n; ++i)
     if (owner[i] < 0 && expected(i) && ++missing == 1) first_missing = i;
-  if (missing > 0)
+  if (missing > 0 && !allow_missing)
     throw CubeError(std::to_string(missing) + " of " + std::to_string(n) + " cases are in no part (the first: case " +
-                    std::to_string(first_missing) + "); run the missing shards, then merge again");
+                    std::to_string(first_missing) + "); run the missing shards, then merge again (or merge what there is "
+                    "with --allow-missing)");
+  // The merged cube says it is partial; its status says which cases (not run).
+  if (missing > 0) layout.attributes.push_back({kMissingCasesName, static_cast<std::int64_t>(missing)});
 
-  CubeWriter writer(output, layout, overwrite ? OpenMode::kOverwrite : OpenMode::kCreate);
+  CubeWriter writer(out.temporary(), layout, OpenMode::kOverwrite);
   std::vector<std::vector<std::vector<double>>> metrics(readers.size());
   for (std::size_t p = 0; p < readers.size(); ++p)
     for (const auto& m : first.metrics) metrics[p].push_back(readers[p]->read_metric(m.name));
@@ -85,7 +88,18 @@ void merge_cubes(const std::vector<std::filesystem::path>& parts, const std::fil
   }
   for (const auto& reader : readers)
     for (auto& [index, note] : reader->read_notes()) writer.store_note(index, note);
+  // Each shard stored the histories of its own cases: join them, each from the one part that has it.
+  std::map<std::string, std::size_t> history_part;
+  for (std::size_t p = 0; p < readers.size(); ++p)
+    for (const auto& name : readers[p]->history_names()) {
+      if (const auto [it, fresh] = history_part.emplace(name, p); !fresh)
+        throw CubeError(parts[p].string() + ": history " + name + " is also in " + parts[it->second].string() +
+                        ": the parts overlap");
+      writer.store_history(readers[p]->read_history(name));
+    }
   writer.close();
+  out.commit();
+  return {missing, n};
 }
 
 }  // namespace pcrf::cube

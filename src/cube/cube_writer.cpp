@@ -3,6 +3,7 @@
 #include "pcrf/cube/cube_writer.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -106,6 +107,7 @@ struct CubeWriter::Impl {
   bool sides_changed = true;
   bool on_disk = false;  // `path` holds this cube's last checkpoint
   bool closed = false;
+  struct stat identity {};  // of the file at `path` this writer made or opened (when on_disk)
 
   Impl(std::filesystem::path p, CubeLayout l)
       : path(std::move(p)), layout(std::move(l)), grid(layout.shape()) {}
@@ -117,6 +119,8 @@ struct CubeWriter::Impl {
   void write_new_file(const std::filesystem::path& target);
   void update(const std::filesystem::path& target, const std::vector<std::int8_t>& status);
   void check_free_space(const std::filesystem::path& target) const;
+  void remember_identity();
+  void check_identity() const;
   void close_handles();
   void open_existing(std::vector<std::int8_t>& status);
   h5::Handle create_cube_variable(const std::string& name, hid_t file_type, hid_t memory_type,
@@ -138,6 +142,7 @@ CubeWriter::CubeWriter(std::filesystem::path file, CubeLayout layout, OpenMode m
   if (mode == OpenMode::kResume && exists) {
     impl_->open_existing(status_);
     impl_->on_disk = true;
+    impl_->remember_identity();
     resumed_ = true;
   }
   flush();  // the file exists, complete, from the start (an overwritten one is replaced whole)
@@ -466,10 +471,10 @@ void CubeWriter::Impl::close_handles() {
 /// naming the file and the OS reason (a full disk: "No space left on device").
 void write_image(const std::filesystem::path& target, const std::vector<char>& image, const std::string& cube) {
   auto fail = [&](const std::string& what) {
-    const std::string reason = std::strerror(errno);
-    throw CubeError(cube + ": " + what + " " + target.string() + ": " + reason);
+    const int error = errno;
+    throw CubeError(cube + ": " + what + " " + target.string() + ": " + std::strerror(error), CubeError::cause_of(error));
   };
-  const int fd = ::open(target.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  const int fd = ::open(target.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0666);  // the umask decides, as for every output
   if (fd < 0) fail("cannot create");
   std::size_t done = 0;
   while (done < image.size()) {
@@ -564,8 +569,26 @@ void CubeWriter::Impl::check_free_space(const std::filesystem::path& target) con
     char text[160];
     std::snprintf(text, sizeof text, "cannot write %s: No space left on device (a checkpoint needs about %.3g MB, "
                   "%.3g MB are free)", target.c_str(), needed / 1e6, static_cast<double>(space.available) / 1e6);
-    throw CubeError(what(text));
+    throw CubeError(what(text), CubeError::Cause::kNoSpace);
   }
+}
+
+void CubeWriter::Impl::remember_identity() {
+  if (::stat(path.c_str(), &identity) != 0) identity = {};
+}
+
+/// The file at `path` is still the one this writer put there: not removed (with its folder)
+/// nor replaced by another file, whose content a checkpoint would otherwise copy and overwrite.
+void CubeWriter::Impl::check_identity() const {
+  struct stat now {};
+  if (::stat(path.c_str(), &now) != 0) {
+    const int error = errno;
+    throw CubeError(what("is gone (removed during the run, or its folder): " + std::string(std::strerror(error))),
+                    error == ENOENT ? CubeError::Cause::kGone : CubeError::cause_of(error));
+  }
+  if (now.st_dev != identity.st_dev || now.st_ino != identity.st_ino)
+    throw CubeError(what("was replaced by another file during the run; that file is left as it is"),
+                    CubeError::Cause::kReplaced);
 }
 
 void CubeWriter::Impl::checkpoint(const std::vector<std::int8_t>& status) {
@@ -576,23 +599,27 @@ void CubeWriter::Impl::checkpoint(const std::vector<std::int8_t>& status) {
   // moment, or a disk that fills, leaves the last complete cube (and perhaps a stray
   // .partial file, replaced by the next checkpoint). Memory: only what changed.
   const std::filesystem::path partial = path.string() + ".partial";
+  if (on_disk) check_identity();
   check_free_space(partial);
   try {
     if (on_disk) {
       std::error_code ec;
       std::filesystem::copy_file(path, partial, std::filesystem::copy_options::overwrite_existing, ec);
-      if (ec) throw CubeError(what("cannot write " + partial.string() + ": " + ec.message()));
+      if (ec) throw CubeError(what("cannot write " + partial.string() + ": " + ec.message()), CubeError::cause_of(ec.value()));
+      check_identity();  // what was copied is this writer's cube, not a file put there meanwhile
     } else {
       write_new_file(partial);
     }
     update(partial, status);
     if (!sync_path(partial, false)) {
-      const std::string reason = std::strerror(errno);
-      throw CubeError(what("cannot sync " + partial.string() + ": " + reason));
+      const int error = errno;
+      throw CubeError(what("cannot sync " + partial.string() + ": " + std::strerror(error)), CubeError::cause_of(error));
     }
+    if (on_disk) check_identity();  // the checkpoint took time: nothing took the cube's place since
     if (std::rename(partial.c_str(), path.c_str()) != 0) {
-      const std::string reason = std::strerror(errno);
-      throw CubeError(what("cannot replace the cube with its new checkpoint: " + reason));
+      const int error = errno;
+      throw CubeError(what("cannot replace the cube with its new checkpoint: " + std::string(std::strerror(error))),
+                      CubeError::cause_of(error));
     }
   } catch (...) {
     std::error_code ignored;  // the cube itself is untouched: only the new file goes
@@ -601,6 +628,7 @@ void CubeWriter::Impl::checkpoint(const std::vector<std::int8_t>& status) {
   }
   (void)sync_path(folder_of(path), true);
   on_disk = true;
+  remember_identity();
   pending_chunks.clear();
   pending_bytes = 0;
   pending_notes.clear();

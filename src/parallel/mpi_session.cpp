@@ -1,7 +1,9 @@
 // MPI lifetime for one `pcrf study` run (see mpi_session.hpp).
 #include "pcrf/parallel/mpi_session.hpp"
 
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <cstdlib>
 #include <stdexcept>
 #include <thread>
@@ -28,6 +30,19 @@ void die_with_launcher() {
 }
 
 }  // namespace
+
+std::string MpiSession::startup_problem() {
+  const char* tmpdir = std::getenv("TMPDIR");
+  if (tmpdir == nullptr || *tmpdir == '\0') return "";
+  // A folder made and removed: the only test that a read-only mount, a file or a missing path fails.
+  std::string probe = std::string(tmpdir) + "/pcrf_probe_XXXXXX";
+  if (::mkdtemp(probe.data()) != nullptr) {
+    ::rmdir(probe.c_str());
+    return "";
+  }
+  return std::string("TMPDIR ") + tmpdir + " is not a writable folder (" + std::strerror(errno) +
+         "); Open MPI needs one: set TMPDIR to one, e.g. TMPDIR=/tmp";
+}
 
 MpiSession::MpiSession() {
   int initialized = 0;

@@ -133,7 +133,7 @@ class Master {
   void run(const CaseEvaluator& evaluate, const OutcomeHandler& on_outcomes,
            const IdleHandler& on_idle) {
     std::thread local_worker([&] {
-      detail::worker_loop(local_, evaluate, options_.row_width, local_.stop_flag());
+      detail::worker_loop(local_, evaluate, options_.row_width, local_.stop_flag(), options_.interrupt);
     });
     try {
       loop(on_outcomes, on_idle);
@@ -224,7 +224,7 @@ void run_master(MPI_Comm comm, WorkSource& work, const ScheduleOptions& options,
 
 void run_worker(MPI_Comm comm, const ScheduleOptions& options, const CaseEvaluator& evaluate) {
   MpiMasterLink link(comm, options.row_width);
-  detail::worker_loop(link, evaluate, options.row_width);
+  detail::worker_loop(link, evaluate, options.row_width, nullptr, options.interrupt);
 }
 
 }  // namespace pcrf::parallel

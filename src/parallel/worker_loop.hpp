@@ -48,10 +48,13 @@ inline CaseOutcome evaluate_guarded(const CaseEvaluator& evaluate, const WorkIte
 /// is on its way while the current one is computed. When the master has nothing ready it
 /// answers "wait": the worker then reports what it computed (an adaptive plan may need it to
 /// make new work) and asks again. `stop` (optional) abandons the work between two cases
-/// without reporting (the master is failing).
+/// without reporting (the master is failing). `interrupt` (optional) ends the loop between
+/// two cases too, but reports the cases done: a run stopped by a signal keeps them even when
+/// the rest of the batch would outlast the time the launcher gives before SIGKILL.
 inline void worker_loop(MasterLink& link, const CaseEvaluator& evaluate, std::size_t row_width,
-                        const std::atomic<bool>* stop = nullptr) {
+                        const std::atomic<bool>* stop = nullptr, const std::atomic<int>* interrupt = nullptr) {
   auto stopping = [stop] { return stop != nullptr && stop->load(); };
+  auto interrupted = [interrupt] { return interrupt != nullptr && interrupt->load() != 0; };
   link.request({});
   WorkBatch batch = link.receive_batch();
   ResultBatch finished;
@@ -61,6 +64,11 @@ inline void worker_loop(MasterLink& link, const CaseEvaluator& evaluate, std::si
     if (!is_wait(batch)) {
       for (const WorkItem& item : batch) {
         if (stopping()) return;
+        if (interrupted()) {
+          (void)link.receive_batch();  // the prefetched answer: its cases stay not run
+          link.finish(std::move(finished));
+          return;
+        }
         finished.push_back(evaluate_guarded(evaluate, item, row_width));
       }
     }

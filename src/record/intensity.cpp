@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <stdexcept>
 
@@ -209,7 +210,7 @@ const SettingTable<IntensitySpec>& intensity_settings() {
                                &parse_intensity_measure,
                                "what records are scaled to: peak ground acceleration [g], velocity [m/s] or Sa(T) [g]"));
     s.push_back(number_setting("period_s", &IntensitySpec::period_s, "s", Bound::kNonNegative,
-                               "oscillator period of sa_g (required for it, > 0)"));
+                               "oscillator period of sa_g (required for it, at least 2·dt of every record, at most 100 s; no other measure takes one)"));
     s.back().aliases = {"--period"};
     s.push_back(number_setting("damping", &IntensitySpec::damping, "1", Bound::kFraction,
                                "damping ratio of the sa_g oscillator"));
@@ -219,9 +220,33 @@ const SettingTable<IntensitySpec>& intensity_settings() {
 }
 
 std::string intensity_spec_problem(const IntensitySpec& spec) {
-  if (spec.measure == IntensityMeasure::kSa && !(spec.period_s > 0.0))
-    return "sa_g needs an oscillator period above 0 s";
+  if (spec.measure != IntensityMeasure::kSa)
+    return spec.period_s != 0.0 ? to_string(spec.measure) + " has no oscillator: period_s belongs to sa_g" : "";
+  if (!(spec.period_s > 0.0)) return "sa_g needs an oscillator period above 0 s";
+  return sa_period_problem(spec.period_s, 0.0);
+}
+
+std::string sa_period_problem(double period_s, double dt_s) {
+  char text[200];
+  if (!(period_s > 0.0) || !std::isfinite(period_s) || period_s > kMaxSaPeriod_s) {
+    std::snprintf(text, sizeof text, "the oscillator period must be above 0 s and at most %g s, got %g s", kMaxSaPeriod_s,
+                  period_s);
+    return text;
+  }
+  if (dt_s > 0.0 && period_s < 2.0 * dt_s) {
+    std::snprintf(text, sizeof text, "an oscillator period of %g s is below 2·dt = %g s of the record: its Sa is not resolved",
+                  period_s, 2.0 * dt_s);
+    return text;
+  }
   return "";
+}
+
+std::string measures_problem(const GroundMotion& record) {
+  const double arias = arias_intensity_m_s(record), pgv = peak_velocity_m_s(record), pgd = peak_displacement_m(record);
+  if (std::isfinite(arias) && std::isfinite(pgv) && std::isfinite(pgd)) return "";
+  char text[160];
+  std::snprintf(text, sizeof text, "its accelerations (PGA %g g) overflow the intensity measures", peak_acceleration(record).pga_g);
+  return text;
 }
 
 }  // namespace pcrf

@@ -17,6 +17,10 @@ std::vector<double> read_range(const toml::table& table, const std::string& path
   const auto count = *range.integer("count");
   const std::string spacing = range.text("spacing").value_or("linear");
   if (count < 1) range.fail("count", "must be at least 1 (got " + std::to_string(count) + ")");
+  // The values are made here: a count no axis needs is refused before it is allocated.
+  constexpr std::int64_t kMaxAxisValues = 10000000;
+  if (count > kMaxAxisValues)
+    range.fail("count", "at most " + std::to_string(kMaxAxisValues) + " values on one axis (got " + std::to_string(count) + ")");
   if (to < from) range.fail("to", "the range runs backwards (to " + number_text(to) + " < from " + number_text(from) + ")");
   if (count == 1 && to != from) range.fail("count", "a range from " + number_text(from) + " to " + number_text(to) + " needs at least 2 values");
   if (count > 1 && to == from) range.fail("count", "an empty range (from = to) has one value: use count = 1");

@@ -58,11 +58,13 @@ std::vector<FrameFragility> ida_fragility(const cube::CubeReader& cube, const st
   const std::size_t runs = layout.dimensions[point_dim].size;
   const auto collapse = cube.read_side(vocabulary::kCollapseIntensity);
   const auto safe = cube.read_side(vocabulary::kLastSafeIntensity);
+  const auto runs_of = cube.read_side(vocabulary::kIdaRuns);
   const auto selected = cube::select_cases(layout, selectors);
   std::vector<std::size_t> curve_shape(layout.shape());
   curve_shape.pop_back();  // ida_point is the last axis
 
-  std::map<std::string, std::vector<std::size_t>> curves_of;  // frame label → its curves, by record
+  std::map<std::string, std::vector<std::size_t>> curves_of;  // frame label → its curves run, by record
+  std::map<std::string, std::size_t> not_run_of;
   std::vector<std::string> order;
   for (std::size_t curve = 0; curve < collapse.size(); ++curve) {
     if (!selected[curve * runs]) continue;
@@ -71,7 +73,8 @@ std::vector<FrameFragility> ida_fragility(const cube::CubeReader& cube, const st
     const std::string label = frame_label(layout, coords, record_dim, point_dim);
     auto [it, inserted] = curves_of.try_emplace(label);
     if (inserted) order.push_back(label);
-    it->second.push_back(curve);
+    if (runs_of[curve] > 0.0) it->second.push_back(curve);
+    else ++not_run_of[label];  // NaN: no part ran it (a partial merge): left out of the fit
   }
   std::vector<FrameFragility> result;
   for (const auto& label : order) {
@@ -94,6 +97,7 @@ std::vector<FrameFragility> ida_fragility(const cube::CubeReader& cube, const st
     }
     out.cases = out.collapse_intensities.size() + out.censored_intensities.size();
     out.collapses = static_cast<double>(out.collapse_intensities.size());
+    out.not_run = not_run_of[label];
     out.failed = curves.size() - out.cases;
     std::vector<std::size_t> all(curves.size());
     for (std::size_t k = 0; k < all.size(); ++k) all[k] = k;
@@ -165,7 +169,9 @@ std::vector<FrameFragility> cube_fragility(const cube::CubeReader& cube, const s
       out.cases += static_cast<std::size_t>(s.trials);
       out.collapses += s.collapses;
     }
-    out.failed = records * levels.size() - out.cases;
+    for (const auto& by_level : f.status)
+      for (std::int8_t s : by_level) out.not_run += s == cube::kStatusNotRun ? 1 : 0;
+    out.failed = records * levels.size() - out.cases - out.not_run;
     out.fit = analysis::fit_stripes(out.stripes);
     if (out.fit)
       out.interval = analysis::bootstrap(records, [&](const std::vector<std::size_t>& sample) {

@@ -32,4 +32,22 @@ std::vector<std::int8_t> collapse_statuses() {
   return codes;
 }
 
+NotRun not_run(const cube::CubeReader& cube) {
+  NotRun result;
+  if (cube.layout().find_side_variable(kIdaRuns) != nullptr) {
+    result.unit = "curves";
+    for (double runs : cube.read_side(kIdaRuns)) {
+      ++result.total;
+      result.count += runs > 0.0 ? 0 : 1;  // NaN: no part ran it
+    }
+    return result;
+  }
+  result.unit = "cases";
+  for (auto s : cube.read_status()) {
+    ++result.total;
+    result.count += s == cube::kStatusNotRun ? 1 : 0;
+  }
+  return result;
+}
+
 }  // namespace pcrf::study::vocabulary

@@ -23,7 +23,15 @@ void check_records(const Study& study, RecordCache& records) {
       throw StudyError(source.declared_at + ": records: cannot load record \"" + source.name + "\" (" +
                        source.describe() + "): " + e.what());
     }
+    if (const auto problem = measures_problem(records.get(r)); !problem.empty())
+      throw StudyError(source.declared_at + ": records: record \"" + source.name + "\": " + problem);
     if (!study.intensity) continue;
+    if (study.intensity->measure == IntensityMeasure::kSa)
+      if (const auto problem = sa_period_problem(study.intensity->period_s, records.get(r).dt_s()); !problem.empty()) {
+        const auto line = study.setting_lines.find("intensity.period_s");
+        throw StudyError((line != study.setting_lines.end() ? line->second : study.file) + ": intensity.period_s: " + problem +
+                         " (record \"" + source.name + "\")");
+      }
     const double im = records.intensity(r, *study.intensity);
     if (!(im > 0.0) || !std::isfinite(im))
       throw StudyError(source.declared_at + ": records: record \"" + source.name + "\" has " +
@@ -64,27 +72,7 @@ void check_frames(const Study& study, const CaseSpace& space, CheckedStudy& chec
 
 }  // namespace
 
-/// Rank 0 holds the status of every case (one byte) and the results of at most 256 MiB
-/// between checkpoints (study_run.cpp, kPendingLimitBytes); a study whose status alone
-/// exceeds the machine would die in an allocation after --check said it was fine.
-void check_size(const Study& study, const CaseSpace& space) {
-  const double bytes_per_case = 1.0;
-  const double needed = bytes_per_case * static_cast<double>(space.size()) + 268435456.0;
-  const double memory = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGE_SIZE));
-  if (needed > 0.8 * memory) {
-    char text[320];
-    std::snprintf(text, sizeof text,
-                  ": axes: %.4g cases need about %.3g GB on rank 0 (the status of every case, one byte each, and "
-                  "0.27 GB of results between checkpoints), more than 80 %% of this machine's %.3g GB; split the "
-                  "study (--shard K/N runs)",
-                  static_cast<double>(space.size()), needed / 1e9, memory / 1e9);
-    const auto line = study.setting_lines.find("axes");
-    throw StudyError((line != study.setting_lines.end() ? line->second : study.file) + text);
-  }
-}
-
 CheckedStudy check_study(const Study& study, const CaseSpace& space, RecordCache& records) {
-  check_size(study, space);
   check_records(study, records);
   CheckedStudy checked;
   check_frames(study, space, checked);

@@ -87,6 +87,7 @@ void read_plan(const Fields& top, const Fields* axes, Study& s) {
   const Fields plan(table != nullptr ? *table : kNoTable, "plan", s.file, keys);
   const PlanEntry& entry = read_plan_kind(top, plan);
   s.plan = entry.read({plan, axes, top, s.base});
+  if (plan.has("samples")) s.setting_lines["plan.samples"] = plan.where("samples");  // for study_size's message
 }
 
 void read_base(const Fields& top, Study& s) {

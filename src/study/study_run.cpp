@@ -12,6 +12,8 @@
 
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/cube/cube_writer.hpp"
+#include "pcrf/io/output_file.hpp"
+#include "pcrf/io/run_lock.hpp"
 #include "pcrf/parallel/scheduler.hpp"
 #include "pcrf/parallel/work_queue.hpp"
 #include "pcrf/study/case_runner.hpp"
@@ -20,9 +22,16 @@
 #include "pcrf/study/study_check.hpp"
 #include "pcrf/study/study_cube.hpp"
 #include "pcrf/study/study_parser.hpp"
+#include "pcrf/study/study_size.hpp"
 
 namespace pcrf::study {
 namespace {
+
+/// The case space, once the study is known to fit (a plan is drawn whole when made).
+std::unique_ptr<CaseSpace> sized_space(const Study& study) {
+  check_study_size(study);
+  return std::make_unique<CaseSpace>(study);
+}
 
 /// What every rank needs to compute cases.
 struct Prepared {
@@ -32,7 +41,7 @@ struct Prepared {
 
   explicit Prepared(Study s)
       : study(std::move(s)),
-        space(std::make_unique<CaseSpace>(study)),
+        space(sized_space(study)),
         records(std::make_unique<RecordCache>(study.records)) {}
 };
 
@@ -40,6 +49,7 @@ struct Prepared {
 struct MasterSetup {
   CheckedStudy checked;
   std::filesystem::path output;
+  std::unique_ptr<io::RunLock> lock;  ///< one run per cube, for the whole run (outlives the writer)
   std::unique_ptr<cube::CubeWriter> writer;
 };
 
@@ -47,17 +57,9 @@ void apply_overrides(const StudyRunOptions& options, RunOptions& run) {
   for (const auto& [setting, value] : options.run_overrides) setting->set(run, value);
 }
 
-/// True when `a` and `b` name the same file (or would: an output not made yet compares by
-/// its absolute, normalized path).
-bool same_file(const std::filesystem::path& a, const std::filesystem::path& b) {
-  std::error_code error;
-  if (std::filesystem::exists(a, error) && std::filesystem::exists(b, error))
-    return std::filesystem::equivalent(a, b, error);
-  return std::filesystem::weakly_canonical(a, error) == std::filesystem::weakly_canonical(b, error);
-}
-
 /// An output must never be one of the study's inputs, whatever --overwrite says.
 void check_output_is_not_an_input(const std::filesystem::path& output, const StudyRunOptions& options, const Study& study) {
+  using io::same_file;  // the one rule of every command's outputs (symbolic and hard links)
   if (same_file(output, options.study_file))
     throw StudyError(output.string() + ": -o names the study file itself; choose another output (--overwrite does not apply to inputs)");
   for (const auto& r : study.records)
@@ -72,9 +74,11 @@ MasterSetup prepare_master(const StudyRunOptions& options, const Prepared& p) {
   if (options.check_only) return m;
   m.output = options.output.empty() ? default_output(options.study_file) : options.output;
   check_output_is_not_an_input(m.output, options, p.study);
-  if (options.shard_count > 1 && !p.study.histories.empty())
-    throw StudyError(p.study.file + ": outputs.histories: a sharded run cannot store histories yet; run the histories "
-                                    "unsharded or leave them out");
+  try {  // before anything looks at the cube: a second run, even --overwrite, leaves the first alone
+    m.lock = std::make_unique<io::RunLock>(m.output);
+  } catch (const io::OutputError& e) {
+    throw StudyError(e.what());
+  }
   const std::string shard = options.shard_count > 1 ? std::to_string(options.shard_index + 1) + "/" +
                                                            std::to_string(options.shard_count) : "";
   if (options.resume && std::filesystem::exists(m.output)) {
@@ -117,10 +121,12 @@ class HistoryInbox {
   std::vector<cube::HistoryTable> tables_;
 };
 
-parallel::ScheduleOptions schedule_options(const Study& study, const CaseRunner& runner) {
+/// `stop_signal`: a signal stops the workers between two cases, reporting the ones done.
+parallel::ScheduleOptions schedule_options(const Study& study, const CaseRunner& runner, const std::atomic<int>* stop_signal) {
   parallel::ScheduleOptions options;
   options.row_width = runner.row_width();
   options.fixed_batch = study.run.batch_size;
+  options.interrupt = stop_signal;
   return options;
 }
 
@@ -143,6 +149,12 @@ class ResultSink {
       failed += is_failure(status) ? 1 : 0;
     }
     meter_.add(static_cast<std::int64_t>(batch.size()), failed);
+    // Stopping on a signal: each batch that comes back goes to disk at once (the launcher's
+    // SIGKILL may follow within a second).
+    if (error_.empty() && stop_flushed_) {
+      checkpoint();
+      return;
+    }
     // Rank 0's memory stays bounded whatever the rate: results held since the last
     // checkpoint never exceed kPendingLimitBytes.
     if (error_.empty() && writer_.pending_bytes() > kPendingLimitBytes) checkpoint();
@@ -150,6 +162,14 @@ class ResultSink {
 
   void idle() {
     take_histories();
+    // A stop signal: checkpoint at once, before the cases in flight come back. Under mpirun
+    // the signal came from Open MPI, which SIGKILLs every rank about a second later
+    // (odls_base_sigkill_timeout): what is computed must be on disk by then. close() adds
+    // the cases that return in the time left.
+    if (stop_signal_ != nullptr && stop_signal_->load() != 0 && !stop_flushed_) {
+      stop_flushed_ = true;
+      if (error_.empty()) checkpoint();
+    }
     // A checkpoint copies the cube: the next one comes a flush interval after this one
     // ends, and never sooner than 9 × its duration, so checkpoints take at most a tenth of the run.
     const double period_s = std::max(flush_interval_s_, 9.0 * last_checkpoint_s_);
@@ -158,13 +178,23 @@ class ResultSink {
     meter_.tick();
   }
 
+  /// The run's lock on the cube: each checkpoint first checks it is still held.
+  void guard_with(const io::RunLock* lock, std::string cube) {
+    lock_ = lock;
+    cube_ = std::move(cube);
+  }
+
+  /// The signal that stops the run (null: none): its arrival is checkpointed at once.
+  void flush_on(const std::atomic<int>* stop_signal) { stop_signal_ = stop_signal; }
+
   /// Results held in memory between checkpoints, at most [bytes].
-  static constexpr std::size_t kPendingLimitBytes = std::size_t{256} << 20;
+  static constexpr std::size_t kPendingLimitBytes = kPendingResultsBytes;
 
   void close() {
     take_histories();
     if (!error_.empty()) return;  // the last complete checkpoint stays as it is
     guard([&] {
+      check_lock();
       if (before_flush_) before_flush_();
       writer_.close();
     });
@@ -172,6 +202,7 @@ class ResultSink {
 
   /// The first write error (a full disk, an I/O error), naming the file and the reason.
   const std::string& error() const { return error_; }
+  cube::CubeError::Cause error_cause() const { return error_cause_; }
   /// Called once when a write fails, to stop the hand-out of work.
   void on_error(std::function<void()> stop) { stop_ = std::move(stop); }
 
@@ -180,9 +211,20 @@ class ResultSink {
     for (auto& table : inbox_.take()) writer_.store_history(std::move(table));
   }
 
+  /// A lock file removed during the run no longer keeps another run off the cube: stop
+  /// before writing into a cube that may no longer be this run's alone.
+  void check_lock() const {
+    // A cube gone with its folder (and the lock with it) is the writer's to report.
+    if (lock_ != nullptr && !lock_->held() && std::filesystem::exists(cube_))
+      throw cube::CubeError(cube_ + ": its lock " + io::RunLock::lock_path(cube_).string() +
+                                " was removed during the run, so another run may write the cube",
+                            cube::CubeError::Cause::kLostLock);
+  }
+
   void checkpoint() {
     const auto start = std::chrono::steady_clock::now();
     guard([&] {
+      check_lock();
       if (before_flush_) before_flush_();
       writer_.flush();
     });
@@ -197,6 +239,7 @@ class ResultSink {
       write();
     } catch (const cube::CubeError& e) {
       error_ = e.what();
+      error_cause_ = e.cause();
       if (stop_) stop_();
     }
   }
@@ -207,7 +250,12 @@ class ResultSink {
   double flush_interval_s_;
   std::function<void()> before_flush_;
   std::function<void()> stop_;
+  const std::atomic<int>* stop_signal_ = nullptr;
+  bool stop_flushed_ = false;
+  const io::RunLock* lock_ = nullptr;
+  std::string cube_;
   std::string error_;
+  cube::CubeError::Cause error_cause_ = cube::CubeError::Cause::kOther;
   double last_checkpoint_s_ = 0.0;
   std::chrono::steady_clock::time_point last_flush_ = std::chrono::steady_clock::now();
 };
@@ -301,6 +349,8 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
     work = std::make_unique<parallel::WorkQueue>(pending_cases(*m.writer, history_requests, p.study, *p.space, mpi, options));
   }
   ResultSink sink(*m.writer, meter, inbox, p.study.run.flush_interval_s, before_flush);
+  sink.flush_on(stop_signal);
+  sink.guard_with(m.lock.get(), m.output.string());
 
   // Runs in rank 0's worker thread; the only place where histories are recorded.
   auto evaluate = [&](const parallel::WorkItem& item) {
@@ -314,7 +364,7 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
   };
   StopOnSignal stoppable(*work, stop_signal);
   sink.on_error([&stoppable] { stoppable.fail(); });
-  parallel::run_master(mpi.comm(), stoppable, schedule_options(p.study, runner),
+  parallel::run_master(mpi.comm(), stoppable, schedule_options(p.study, runner, stop_signal),
                        evaluate, [&sink](parallel::ResultBatch&& batch) { sink.store(std::move(batch)); },
                        [&sink] { sink.idle(); });
   sink.close();
@@ -323,12 +373,13 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
   summary.failed = meter.failed();
   if (stoppable.stopped()) summary.stopped_by = stop_signal->load();
   summary.error = sink.error();
+  summary.error_cause = sink.error_cause();
   return summary;
 }
 
-void run_worker_rank(const Prepared& p, const parallel::MpiSession& mpi) {
+void run_worker_rank(const Prepared& p, const parallel::MpiSession& mpi, const std::atomic<int>* stop_signal) {
   CaseRunner runner(p.study, *p.space, *p.records);
-  parallel::run_worker(mpi.comm(), schedule_options(p.study, runner),
+  parallel::run_worker(mpi.comm(), schedule_options(p.study, runner, stop_signal),
                        [&runner](const parallel::WorkItem& item) { return runner.run(item); });
 }
 
@@ -382,7 +433,7 @@ std::optional<StudySummary> run_study(const StudyRunOptions& options, const para
   if (mpi.is_master())
     summary = run_master_rank(*prepared, setup, mpi, options.progress ? *options.progress : nowhere, options);
   else
-    run_worker_rank(*prepared, mpi);
+    run_worker_rank(*prepared, mpi, options.stop_signal);
   mpi.quiet_barrier();
   return summary ? summary : StudySummary{};
 }

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <fstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "pcrf/solver/history.hpp"
 #include "pcrf/solver/settings.hpp"
@@ -41,7 +43,7 @@ TEST(RunCommand, FrameParametersChangeTheResult) {
 TEST(RunCommand, WritesTheHistoryCsvAtTheAskedInterval) {
   const auto dir = test::scratch_dir("run_history");
   const auto csv = dir / "h.csv";
-  const std::string base = pcrf() + " run --synthetic 'sine:amplitude_g=1.5,period_s=0.5,cycles=2,duration_s=3' --history " +
+  const std::string base = pcrf() + " run --synthetic 'sine:amplitude_g=1.5,period_s=0.5,cycles=2,duration_s=3' --overwrite --history " +
                            csv.string();
   std::string expected_header;
   for (const auto& c : history_columns()) expected_header += (expected_header.empty() ? "" : ",") + std::string(c.name);
@@ -106,8 +108,12 @@ INSTANTIATE_TEST_SUITE_P(
                       BadArgs{"--record /tmp", "/tmp: not a regular file"},
                       BadArgs{"--synthetic 'sine:amplitude_g=1' --theta0-rad 100", "theta0_rad: |θ₀| = 100 rad"},
                       BadArgs{"--synthetic 'sine:amplitude_g=1' --history /no/such/dir/h.csv",
-                              "/no/such/dir/h.csv: cannot create the history file: No such file or directory"},
-                      BadArgs{"--synthetic 'sine:amplitude_g=1' --zeno-time-s 0", "--zeno-time-s: must be positive"}));
+                              "/no/such/dir/h.csv: cannot create a file in /no/such/dir: No such file or directory"},
+                      BadArgs{"--synthetic 'sine:amplitude_g=1' --zeno-time-s 0", "--zeno-time-s: must be positive"},
+                      BadArgs{"--synthetic 'sine:amplitude_g=1' --intensity 1 --measure pga_g --period-s 1",
+                              "--period-s: pga_g has no oscillator: period_s belongs to sa_g"},
+                      BadArgs{"--synthetic 'sine:amplitude_g=1' --intensity 1 --measure sa_g --period-s 0.001",
+                              "--period-s: an oscillator period of 0.001 s is below 2·dt"}));
 
 }  // namespace
 }  // namespace pcrf
@@ -184,9 +190,20 @@ TEST(RecordCommand, PrintsTheIntensityMeasuresAsJson) {
   ASSERT_EQ(skipped.exit_code, 0) << skipped.err;
   EXPECT_NE(skipped.out.find("\"t_pga_s\": 0.02"), std::string::npos) << skipped.out;
   EXPECT_NE(skipped.out.find("\"npts\": 3"), std::string::npos) << skipped.out;
-  const auto bad = test::run_command(pcrf() + " record " + file.string() + " --period 0");
-  EXPECT_EQ(bad.exit_code, 2);
-  EXPECT_NE(bad.err.find("--period must be positive"), std::string::npos) << bad.err;
+  for (const auto& [period, says] : std::vector<std::pair<std::string, std::string>>{
+           {"0", "--period: the oscillator period must be above 0 s and at most 100 s, got 0 s"},
+           {"inf", "--period: the oscillator period must be above 0 s and at most 100 s, got inf s"},
+           {"1e300", "at most 100 s, got 1e+300 s"},
+           {"1e-9", "--period: an oscillator period of 1e-09 s is below 2·dt = 0.02 s of the record"}}) {
+    const auto bad = test::run_command(pcrf() + " record " + file.string() + " --period " + period);
+    EXPECT_EQ(bad.exit_code, 2) << period << "\n" << bad.err;
+    EXPECT_NE(bad.err.find(says), std::string::npos) << bad.err;
+  }
+  const auto huge = test::write_file(dir, "huge.txt", "0 1e300\n0.01 -1e300\n0.02 1e300\n");
+  const auto overflow = test::run_command(pcrf() + " record " + huge.string());
+  EXPECT_EQ(overflow.exit_code, 2) << overflow.out;
+  EXPECT_NE(overflow.err.find("huge: its accelerations (PGA 1e+300 g) overflow the intensity measures"), std::string::npos)
+      << overflow.err;
 }
 
 }  // namespace

@@ -126,6 +126,18 @@ TEST(PlotCommand, Table3DrawsTheCommittedComparisonInFourPanels) {
   EXPECT_EQ(plot(dir / "t3.svg", "table3 " + quoted(test::source_dir() / "docs" / "paper_comparison.csv")), 4);
 }
 
+TEST(PlotCommand, APartialCubeIsNamed) {
+  PCRF_REQUIRE_MATPLOTLIB();
+  const auto dir = test::scratch_dir("plot_partial");
+  test::write_file(dir, "p.toml", records_line() + "[axes]\nscale = [0.9, 1.2]\nkappa = [1.2, 2.4]\n");
+  ASSERT_EQ(test::run_command("cd " + quoted(dir) + " && " + pcrf() + " study p.toml -o p.h5 --shard 1/2 --progress-interval 0")
+                .exit_code, 0);
+  const auto r = test::run_command(pcrf() + " plot sweep " + quoted(dir / "p.h5") + " -o " + quoted(dir / "p.svg"));
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("pcrf plot: " + (dir / "p.h5").string() + ": 6 of 12 cases not run (a partial cube)"), std::string::npos)
+      << r.err;
+}
+
 struct BadPlot {
   std::string args;
   std::string message;
@@ -136,12 +148,13 @@ TEST(PlotCommand, BadInputFailsWithOneLineAndWritesNothing) {
   const auto dir = test::scratch_dir("plot_bad");
   const auto grid = study(dir, "grid", records_line() + "[axes]\nscale = [0.9, 1.2]\nkappa = [1.2, 2.4]\n");
   const auto existing = test::write_file(dir, "existing.svg", "keep me");
+  std::filesystem::create_symlink(grid, dir / "grid_link.svg");  // the input under a figure's name
   const std::vector<BadPlot> cases = {
       {"history nowhere.csv -o x.svg", "nowhere.csv: no such file"},
       {"bogus " + quoted(grid) + " -o x.svg", "argument KIND: invalid choice: 'bogus'"},
       {"sweep " + quoted(grid) + " -o x.gif", "x.gif: the output must end in .png, .pdf or .svg"},
-      {"sweep " + quoted(grid) + " -o " + quoted(existing), "exists (use --overwrite to replace it)"},
-      {"sweep " + quoted(grid) + " -o " + quoted(grid) + " --overwrite", "the output is the input"},
+      {"sweep " + quoted(grid) + " -o " + quoted(existing), "existing.svg: already exists; use --overwrite to replace it"},
+      {"sweep " + quoted(grid) + " -o grid_link.svg --overwrite", "grid_link.svg: resolves to the input"},
       {"ida " + quoted(grid) + " -o x.svg", "not an IDA cube"},
       {"history " + quoted(grid) + " -o x.svg", "the cube holds no history"},
       {"sensitivity " + quoted(grid) + " -o x.svg", "saltelli"},
@@ -162,7 +175,8 @@ TEST(PlotCommand, BadInputFailsWithOneLineAndWritesNothing) {
   std::getline(kept, text);
   EXPECT_EQ(text, "keep me");
   for (const auto& entry : std::filesystem::directory_iterator(dir))
-    EXPECT_EQ(entry.path().filename().string().rfind(".pcrf_plot_", 0), std::string::npos) << entry.path();
+    EXPECT_NE(entry.path().filename().string().front(), '.') << entry.path();  // no temporary left
+  EXPECT_TRUE(std::filesystem::is_symlink(dir / "grid_link.svg"));
 }
 
 TEST(PlotCommand, AMissingMatplotlibIsNamedWithItsPackage) {

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <vector>
 
@@ -140,6 +141,21 @@ TEST(RecordHandling, SkipRowsDropsTheFemaFilesAddedLeadingSample) {
   EXPECT_EQ(shifted.size(), at2.size() + 1);
   EXPECT_NEAR(peak_acceleration(skipped).t_pga_s, peak_acceleration(at2).t_pga_s, 1e-9);
   EXPECT_NEAR(peak_acceleration(shifted).t_pga_s - peak_acceleration(at2).t_pga_s, at2.dt_s(), 1e-9);
+}
+
+TEST(Intensity, PeriodsAndRecordsThatCannotBeMeasuredAreNamed) {
+  EXPECT_EQ(sa_period_problem(1.0, 0.01), "");
+  EXPECT_EQ(sa_period_problem(0.02, 0.01), "");
+  EXPECT_EQ(sa_period_problem(0.019, 0.01),
+            "an oscillator period of 0.019 s is below 2·dt = 0.02 s of the record: its Sa is not resolved");
+  for (double bad : {0.0, -1.0, std::nan(""), std::numeric_limits<double>::infinity(), 100.5, 1e300})
+    EXPECT_NE(sa_period_problem(bad, 0.0).find("must be above 0 s and at most 100 s"), std::string::npos) << bad;
+  EXPECT_EQ(intensity_spec_problem({IntensityMeasure::kPgv, 1.0, 0.05}), "pgv_m_s has no oscillator: period_s belongs to sa_g");
+  EXPECT_EQ(intensity_spec_problem({IntensityMeasure::kPga, 0.0, 0.05}), "");
+  EXPECT_NE(intensity_spec_problem({IntensityMeasure::kSa, std::numeric_limits<double>::infinity(), 0.05}), "");
+  EXPECT_EQ(measures_problem(GroundMotion("ok", 0.01, std::vector<double>(100, 1.0))), "");
+  std::vector<double> huge(100, 1e300);
+  EXPECT_NE(measures_problem(GroundMotion("huge", 0.01, huge)).find("overflow the intensity measures"), std::string::npos);
 }
 
 }  // namespace

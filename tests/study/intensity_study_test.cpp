@@ -61,6 +61,7 @@ TEST(IntensityStudy, EachRecordIsScaledToTheIntensity) {
 TEST(IntensityStudy, BadIntensityStudiesAreRejected) {
   const auto dir = test::scratch_dir("intensity_bad");
   test::write_file(dir, "zero.txt", "0 0\n0.01 0\n0.02 0\n");
+  test::write_file(dir, "huge.txt", "0 1e300\n0.01 -1e300\n0.02 1e300\n");
   const std::map<std::string, std::string> corpus = {
       {kTwoPulses + "[intensity]\nmeasure = \"pga_g\"\n[axes]\nscale = [1]\nintensity = [1]\n", "not both"},
       {kTwoPulses + "[axes]\nintensity = [1]\n", "an intensity axis needs an [intensity] table"},
@@ -72,12 +73,24 @@ TEST(IntensityStudy, BadIntensityStudiesAreRejected) {
       {kTwoPulses + "[intensity]\nmeasure = \"pga_g\"\n", "an [intensity] table needs [axes] intensity"},
       {"[[records]]\nfile = \"zero.txt\"\n[intensity]\nmeasure = \"pga_g\"\n[axes]\nintensity = [1]\n",
        "im.toml:2: records: record \"zero\" has pga_g = 0.000000: it cannot be scaled to an intensity"},
+      {kTwoPulses + "[intensity]\nmeasure = \"pga_g\"\nperiod_s = 1.0\n[axes]\nintensity = [1]\n",
+       "im.toml:5: intensity.period_s: pga_g has no oscillator: period_s belongs to sa_g"},
+      {kTwoPulses + "[intensity]\nmeasure = \"sa_g\"\nperiod_s = 1e-9\n[axes]\nintensity = [1]\n",
+       "im.toml:5: intensity.period_s: an oscillator period of 1e-09 s is below 2·dt"},
+      {kTwoPulses + "[intensity]\nmeasure = \"sa_g\"\nperiod_s = 1e300\n[axes]\nintensity = [1]\n",
+       "im.toml:5: intensity.period_s: the oscillator period must be above 0 s and at most 100 s, got 1e+300 s"},
+      {kTwoPulses + "[intensity]\nmeasure = \"sa_g\"\nperiod_s = inf\n[axes]\nintensity = [1]\n", "intensity.period_s"},
+      {"[[records]]\nfile = \"huge.txt\"\n[axes]\nscale = [1]\n",
+       "im.toml:2: records: record \"huge\": its accelerations (PGA 1e+300 g) overflow the intensity measures"},
   };
   for (const auto& [text, message] : corpus) {
     const auto r = run_in(dir, text, "-o bad.h5");
     EXPECT_EQ(r.exit_code, 2) << text;
     EXPECT_NE(r.err.find(message), std::string::npos) << "got: " << r.err << "\nfor:\n" << text;
     EXPECT_FALSE(std::filesystem::exists(dir / "bad.h5"));
+    const auto check = run_in(dir, text, "--check");  // --check refuses what the run refuses
+    EXPECT_EQ(check.exit_code, 2) << text;
+    EXPECT_EQ(check.err, r.err) << text;
   }
   const auto both = test::run_command(pcrf() + " run --synthetic '" + kPulse + "' --scale 2 --intensity 1");
   EXPECT_EQ(both.exit_code, 2);

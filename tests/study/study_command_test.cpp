@@ -2,6 +2,7 @@
 // cube, a killed run resumes to the same cube, bad studies fail cleanly, outputs are protected.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <csignal>
 #include <cstdlib>
 #include <fstream>
@@ -152,6 +153,36 @@ TEST(StudyCommand, KilledRunResumesToTheUninterruptedCube) {
   expect_same_cube(dir / "whole.h5", dir / "killed.h5");
 }
 
+TEST(StudyCommand, ASignalToMpirunKeepsTheComputedCases) {
+  PCRF_REQUIRE_MPIRUN();
+  // Open MPI forwards SIGINT and SIGTERM to the ranks as SIGTERM and SIGKILLs them about a
+  // second later (odls_base_sigkill_timeout). Batches of 400 cases (~1.5 s each) outlast
+  // that: the ranks must report the cases done and rank 0 write them at once.
+  const auto dir = test::scratch_dir("study_mpirun_signal");
+  const auto study = test::write_file(dir, "sig.toml",
+                                      "[[records]]\nsynthetic = [\"stochastic:seed=4,pga_g=1.4,duration_s=60\", "
+                                      "\"stochastic:seed=5,pga_g=1.2,duration_s=60\"]\n[axes]\nscale = [0.9, 1.1, 1.3]\n"
+                                      "kappa = {from = 1.0, to = 3.0, count = 30}\ntan_alpha = {from = 0.16, to = 0.24, count = 10}\n");
+  const auto err = dir / "sig.err";
+  for (const int signal : {SIGINT, SIGTERM}) {
+    std::filesystem::remove(dir / "sig.h5");
+    const pid_t pid = spawn_shell("cd " + quoted(dir) + " && exec " + mpirun(2) + pcrf() + " study " + quoted(study) +
+                                  " -o sig.h5 --flush-interval-s 1000 --batch-size 400 --progress-interval-s 0.05 2>" +
+                                  quoted(err));
+    ASSERT_GT(pid, 0);
+    wait_for_a_tenth(err);  // the first batch is back (400 of 1800)
+    ASSERT_EQ(::kill(pid, signal), 0);
+    ::waitpid(pid, nullptr, 0);
+    const long reported = last_progress(err).first;  // cases rank 0 had received when it last said
+    ASSERT_TRUE(std::filesystem::exists(dir / "sig.h5"));
+    const auto status = cube::CubeReader(dir / "sig.h5").read_status();
+    const long saved = static_cast<long>(std::count_if(status.begin(), status.end(), [](std::int8_t s) { return s != cube::kStatusNotRun; }));
+    EXPECT_GE(saved, reported) << "signal " << signal << ": cases computed were lost";
+    EXPECT_GT(saved, 0);
+    EXPECT_LT(saved, 1800) << "the study finished before the signal: make it longer";
+  }
+}
+
 struct BadStudy {
   std::string name;
   std::string text;
@@ -253,7 +284,7 @@ TEST(StudyCommand, AnOutputIsNeverOneOfTheInputs) {
                               "lambda = {from = 1.5, to = 2.5, count = 1000}\ntan_alpha = {from = 0.1, to = 0.2, count = 1000}\n",
                               "--check");
   EXPECT_EQ(huge.exit_code, 2);
-  EXPECT_NE(huge.err.find("huge.toml:3: axes: 1e+12 cases need about"), std::string::npos) << huge.err;
+  EXPECT_NE(huge.err.find("huge.toml:3: axes: 1e+09 frames and 1e+12 cases need about"), std::string::npos) << huge.err;
 }
 
 TEST(StudyCommand, SigtermFlushesAndSaysHowToResume) {
@@ -370,4 +401,18 @@ TEST(StudyCommand, PaperStudiesFindTheirRecords) {
 }
 
 }  // namespace
+TEST(StudyCommand, AnUnusableTmpdirIsNamedBeforeMpiStarts) {
+  const auto dir = test::scratch_dir("study_tmpdir");
+  test::write_file(dir, "s.toml", small_grid_study());
+  test::write_file(dir, "a_file", "");
+  for (const std::string tmpdir : {"missing_folder", "a_file"}) {
+    const auto r = test::run_command("cd " + quoted(dir) + " && TMPDIR=" + tmpdir + " " + pcrf() + " study s.toml -o x.h5");
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(r.err.rfind("pcrf: error: TMPDIR " + tmpdir + " is not a writable folder (", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find("); Open MPI needs one"), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.h5"));
+}
+
 }  // namespace pcrf::study_test

@@ -18,10 +18,24 @@
 
 namespace pcrf::cube {
 
-/// A cube file cannot be made, read or continued; what() names the file and the problem.
+/// A cube file cannot be made, read or continued; what() names the file and the problem,
+/// cause() what a user can do about it.
 class CubeError : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  enum class Cause {
+    kOther,
+    kNoSpace,   ///< a full disk or quota (ENOSPC, EDQUOT): free space, then resume
+    kGone,      ///< the cube or its folder was removed while being written
+    kReplaced,  ///< another file took the cube's path while it was being written
+    kLostLock,  ///< the lock that keeps other runs off the cube was removed during the run
+  };
+  explicit CubeError(const std::string& what, Cause cause = Cause::kOther) : std::runtime_error(what), cause_(cause) {}
+  /// The cause an operating-system error number stands for.
+  static Cause cause_of(int os_error);
+  Cause cause() const { return cause_; }
+
+ private:
+  Cause cause_;
 };
 
 /// A cube axis.

@@ -17,6 +17,11 @@ namespace pcrf::parallel {
 /// writing the output file.
 class MpiSession {
  public:
+  /// Why MPI cannot start here, found before MPI_Init prints dozens of lines about it: a
+  /// TMPDIR that is not a writable folder (Open MPI keeps its session files there). Empty
+  /// when none is known.
+  static std::string startup_problem();
+
   MpiSession();
   ~MpiSession();
   MpiSession(const MpiSession&) = delete;

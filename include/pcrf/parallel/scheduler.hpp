@@ -13,6 +13,7 @@
 
 #include <mpi.h>
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -38,6 +39,9 @@ struct ScheduleOptions {
   std::size_t fixed_batch = 0;      ///< 0: guided batch sizes (see WorkQueue)
   std::size_t max_batch = 64;       ///< cap of guided batches
   double poll_interval_s = 0.002;   ///< master's sleep when nothing arrives
+  /// Set (nonzero) when the run is being stopped (a signal): every worker then reports the
+  /// cases of its batch done so far at once, leaves the rest, and stops. Null: never.
+  const std::atomic<int>* interrupt = nullptr;
 };
 
 /// Rank 0. Returns when `work` is exhausted, every case handed out has come back and every

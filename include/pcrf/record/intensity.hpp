@@ -77,8 +77,20 @@ std::vector<double> intensity_series(const GroundMotion& record, const Intensity
 /// The [intensity] table of a study (and the `pcrf run` flags --measure, --period-s,
 /// --damping). Whether period_s is needed depends on the measure: check_intensity_spec().
 const SettingTable<IntensitySpec>& intensity_settings();
-/// Why a spec cannot be used (the only one: sa_g without a period, a problem of period_s);
-/// empty when it can.
+/// Why a spec cannot be used (a problem of period_s: sa_g without a usable period, or a
+/// period given to a measure that has no oscillator); empty when it can.
 std::string intensity_spec_problem(const IntensitySpec& spec);
+
+/// Longest oscillator period accepted [s]: beyond any design spectrum, and the free-vibration
+/// tail of the Sa computation grows with it.
+inline constexpr double kMaxSaPeriod_s = 100.0;
+/// Why Sa at `period_s` cannot be computed for a record sampled every `dt_s` (not a positive
+/// finite period up to kMaxSaPeriod_s, or below 2·dt, where the oscillator is not resolved);
+/// empty when it can. `dt_s` ≤ 0: the record is not known yet.
+std::string sa_period_problem(double period_s, double dt_s);
+
+/// Why a record's values cannot be measured (they overflow the measures: Arias intensity or
+/// the integrated velocity and displacement are not finite); empty when they can.
+std::string measures_problem(const GroundMotion& record);
 
 }  // namespace pcrf

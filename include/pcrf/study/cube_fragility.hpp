@@ -27,7 +27,8 @@ struct FrameFragility {
   std::size_t records = 0;        ///< records on the cube's record axis
   std::size_t cases = 0;          ///< cases that ended with a verdict (IDA: curves)
   double collapses = 0.0;         ///< of which collapsed
-  std::size_t failed = 0;         ///< cases with no verdict (solver failure, time limit, not run)
+  std::size_t failed = 0;         ///< cases with no verdict (solver failure, time limit; IDA: curves with no value)
+  std::size_t not_run = 0;        ///< cases (IDA: curves) never run: neither fitted nor counted as failed
   std::optional<analysis::Lognormal> fit;
   analysis::BootstrapResult interval;
   /// What was fitted: the stripes (grid cube), or each curve's collapse intensity and the

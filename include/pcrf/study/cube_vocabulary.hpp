@@ -10,6 +10,7 @@
 
 #include "pcrf/cube/cube_layout.hpp"
 #include "pcrf/cube/cube_query.hpp"
+#include "pcrf/cube/cube_reader.hpp"
 
 namespace pcrf::study::vocabulary {
 
@@ -52,6 +53,17 @@ std::vector<std::string> expected_pooling();
 /// The statuses that are collapses (tendon fracture, overturned): their metrics stop at the
 /// collapse, so statistics count them apart (`collapses`) rather than mixing them in.
 std::vector<std::int8_t> collapse_statuses();
+
+/// What of a cube was never run (a run stopped early, a merge of some shards only): cases
+/// with no status, or in an IDA cube curves with no run (the points after a curve's end are
+/// not run by design and not counted).
+struct NotRun {
+  std::int64_t count = 0;
+  std::int64_t total = 0;
+  std::string unit;  ///< "cases" or "curves"
+};
+/// \throws cube::CubeError when the cube cannot be read.
+NotRun not_run(const cube::CubeReader& cube);
 inline constexpr const char* kCollapses = "collapses";
 
 }  // namespace pcrf::study::vocabulary

@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "pcrf/cube/cube_layout.hpp"
 #include "pcrf/parallel/mpi_session.hpp"
 #include "pcrf/study/study.hpp"
 
@@ -51,6 +52,8 @@ struct StudySummary {
   int stopped_by = 0;              ///< the signal that stopped the run early; 0: it ran to the end
   /// A write error that ended the run early (the cube keeps its last complete checkpoint).
   std::string error;
+  /// What a user can do about `error` (free space, or the cube was removed or replaced).
+  cube::CubeError::Cause error_cause = cube::CubeError::Cause::kOther;
 };
 
 /// Default output of a study file.

@@ -1,14 +1,17 @@
 """``pcrf plot KIND INPUT [-w NAME=VALUE]… [-m METRIC] -o FILE.png|.pdf|.svg``.
 
-Every failure is one line on stderr and exit code 2, and then nothing is written: the
-figure is saved to a temporary file beside the output and renamed over it only when done.
+Every failure is one line on stderr and exit code 2, and then nothing is written. The
+output is pcrf's to write, by the rule of every pcrf output (never the input, replaced only
+with --overwrite, written beside it and renamed into place when complete): ``pcrf output
+check`` before drawing, ``pcrf output write`` with the figure's bytes.
 """
 import argparse
 import importlib
+import io
 import os
 import sys
-import tempfile
 
+from pcrf_plot import engine
 from pcrf_plot.errors import PlotError
 
 FORMATS = (".png", ".pdf", ".svg")
@@ -51,32 +54,24 @@ def parser():
     return p
 
 
+def output_args(args):
+    return [args.output, "--input", args.input] + (["--overwrite"] if args.overwrite else [])
+
+
 def check_paths(args):
     if not os.path.exists(args.input):
         raise PlotError(f"{args.input}: no such file")
-    if os.path.exists(args.output) and os.path.samefile(args.output, args.input):
-        raise PlotError(f"{args.output}: the output is the input")
     ext = os.path.splitext(args.output)[1].lower()
     if ext not in FORMATS:
         raise PlotError(f"{args.output}: the output must end in .png, .pdf or .svg")
-    if os.path.exists(args.output):
-        if not args.overwrite:
-            raise PlotError(f"{args.output}: exists (use --overwrite to replace it)")
+    engine.run("output", "check", *output_args(args))
 
 
-def save(figure, output):
-    """Writes beside the output, then renames: a failure leaves no partial file."""
-    folder = os.path.dirname(os.path.abspath(output))
-    ext = os.path.splitext(output)[1]
-    handle, scratch = tempfile.mkstemp(prefix=".pcrf_plot_", suffix=ext, dir=folder)
-    os.close(handle)
-    try:
-        figure.savefig(scratch, bbox_inches="tight")
-        os.replace(scratch, output)
-    except BaseException:
-        if os.path.exists(scratch):
-            os.remove(scratch)
-        raise
+def save(figure, args):
+    """The figure's bytes, written by pcrf: complete or not at all."""
+    image = io.BytesIO()
+    figure.savefig(image, format=os.path.splitext(args.output)[1].lower()[1:], bbox_inches="tight")
+    engine.run("output", "write", *output_args(args), stdin=image.getvalue())
 
 
 def main(argv):
@@ -93,7 +88,7 @@ def main(argv):
         from pcrf_plot import style
         style.apply()
         figure = importlib.import_module(f"pcrf_plot.{args.kind}").draw(args)
-        save(figure, args.output)
+        save(figure, args)
         print(f"pcrf plot: wrote {args.output} ({args.kind}, {len(figure.axes)} panels)")
         return 0
     except PlotError as e:

@@ -4,6 +4,7 @@ import io
 import json
 import os
 import subprocess
+import sys
 import tempfile
 
 from pcrf_plot.errors import PlotError
@@ -15,18 +16,19 @@ def executable():
     return path
 
 
-def run(*args):
-    """Runs ``pcrf ARGS`` and returns (stdout, stderr); a failure becomes a PlotError
-    carrying pcrf's own one-line message."""
+def run(*args, stdin=None):
+    """Runs ``pcrf ARGS`` (with the bytes `stdin` as its input) and returns (stdout, stderr);
+    a failure becomes a PlotError carrying pcrf's own one-line message."""
     try:
-        done = subprocess.run([executable(), *args], capture_output=True, text=True)
+        done = subprocess.run([executable(), *args], capture_output=True, input=stdin)
     except OSError as e:
         raise PlotError(f"cannot run {executable()}: {e.strerror}") from e
+    stdout, stderr = done.stdout.decode(errors="replace"), done.stderr.decode(errors="replace")
     if done.returncode != 0:
-        lines = [line for line in done.stderr.splitlines() if line.strip()]
+        lines = [line for line in stderr.splitlines() if line.strip()]
         message = lines[-1] if lines else f"pcrf {' '.join(args)} failed with exit code {done.returncode}"
         raise PlotError(message.removeprefix("pcrf: error: ").removeprefix("pcrf: "))
-    return done.stdout, done.stderr
+    return stdout, stderr
 
 
 def where_args(where):
@@ -47,8 +49,13 @@ class Cube:
 
     def __init__(self, path):
         self.path = str(path)
-        out, _ = run("cube", "info", "--json", self.path)
+        out, err = run("cube", "info", "--json", self.path)
         self.info = json.loads(out)
+        # A partial cube (cases never run), or one a run is writing: the figure shows the
+        # cases run so far; say so.
+        for line in err.splitlines():
+            if "not run (a partial cube)" in line or "a run holds it" in line:
+                print("pcrf plot:" + line.split(":", 1)[1], file=sys.stderr)
 
     @property
     def dimensions(self):
@@ -91,17 +98,13 @@ class Cube:
 
     def fragility(self, where):
         """The fitted lognormal of each frame (table) and the fitted data (points)."""
-        fit, points = _scratch("fit.csv"), _scratch("points.csv")
-        try:
+        with tempfile.TemporaryDirectory(prefix="pcrf_plot_") as folder:
+            fit, points = os.path.join(folder, "fit.csv"), os.path.join(folder, "points.csv")
             run("cube", "fragility", self.path, *where_args(where), "--csv", fit, "--points", points)
             with open(fit, encoding="utf-8") as f:
                 fits = table(f.read())
             with open(points, encoding="utf-8") as f:
                 data = table(f.read())
-        finally:
-            for p in (fit, points):
-                if os.path.exists(p):
-                    os.remove(p)
         return fits, data
 
     def sensitivity(self, metric, where):
@@ -111,8 +114,3 @@ class Cube:
         start = max(i for i, line in enumerate(lines) if line.startswith("record,"))
         return table("\n".join(lines[start:]) + "\n")
 
-
-def _scratch(name):
-    handle, path = tempfile.mkstemp(prefix="pcrf_plot_", suffix="_" + name)
-    os.close(handle)
-    return path

@@ -9,6 +9,7 @@
 
 #include "pcrf/plan/sampling.hpp"
 #include "pcrf/study/cube_vocabulary.hpp"
+#include "pcrf/study/study_size.hpp"
 #include "study/axis_fields.hpp"
 #include "study/plans/plan_support.hpp"
 
@@ -80,6 +81,11 @@ Sampling read_sampling(const PlanInput& input) {
   return s;
 }
 
+/// Refuses a plan too large to draw, before it is drawn (`frames_per_sample`: saltelli d + 2).
+void check_drawable(const PlanInput& input, const Sampling& s, double frames_per_sample) {
+  check_frame_count(static_cast<double>(s.samples) * frames_per_sample, input.plan.where("samples"), "plan.samples");
+}
+
 /// Unit points (row-major, one row per frame) mapped onto the ranges; labels "s<row>".
 std::vector<PointPlan::Point> map_points(const plan::UnitPoints& unit, const Sampling& s, const FrameParameters& base) {
   const auto varied = s.varied();
@@ -134,12 +140,14 @@ class SaltelliPlan final : public SampledPlan {
 
 std::shared_ptr<const Plan> read_lhs_plan(const PlanInput& input) {
   const Sampling s = read_sampling(input);
+  check_drawable(input, s, 1.0);
   auto points = map_points(plan::latin_hypercube(s.samples, s.varied().size(), s.seed), s, input.base);
   return std::make_shared<SampledPlan>("lhs", std::move(points), s);
 }
 
 std::shared_ptr<const Plan> read_sobol_plan(const PlanInput& input) {
   const Sampling s = read_sampling(input);
+  check_drawable(input, s, 1.0);
   auto points = map_points(plan::sobol_points(s.samples, s.varied().size(), s.scramble, s.seed), s, input.base);
   return std::make_shared<SampledPlan>("sobol", std::move(points), s);
 }
@@ -149,6 +157,7 @@ std::shared_ptr<const Plan> read_saltelli_plan(const PlanInput& input) {
   const auto varied = s.varied();
   const std::size_t d = varied.size();
   if (d < 2) input.top.fail("axes", "plan \"saltelli\" needs at least two varied parameters (sensitivity apportions variance among them)");
+  check_drawable(input, s, static_cast<double>(d + 2));
   auto points = map_points(plan::saltelli_design(s.samples, d, s.scramble, s.seed).points, s, input.base);
   std::vector<std::string> blocks;
   std::vector<double> samples;

@@ -1,0 +1,37 @@
+/// \file study_size.hpp
+/// \brief How big a study is, counted from the study file alone, before any plan is drawn or
+/// any case list is made: a study too large for rank 0 is refused with one line naming the
+/// key that makes it so, never by an allocation failing later.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include "pcrf/study/study.hpp"
+
+namespace pcrf::study {
+
+/// Results rank 0 holds between checkpoints at most [bytes]: one is written when they reach it.
+inline constexpr std::size_t kPendingResultsBytes = std::size_t{256} << 20;
+
+/// Counts in double: a product of axes or a sample count can exceed any integer type.
+struct StudySize {
+  double frames = 0.0;  ///< parameter points (grid combinations, listed cases, samples, …)
+  double cases = 0.0;   ///< frames × records × levels (IDA: × max_runs)
+};
+
+StudySize study_size(const Study& study);
+
+/// Refuses `frames` frames before a plan draws them, when they alone would not fit rank 0.
+/// \throws StudyError "<where>: <key>: …" (`where`: "FILE:LINE" of the key).
+void check_frame_count(double frames, const std::string& where, const std::string& key);
+
+/// The plan's frames are counted from its dimensions (a sampled plan checks its own size
+/// before it draws: check_frame_count). Rank 0 holds every frame (kFrameBytes each, with its coordinates in the cube), the status
+/// of every case (one byte) and at most 256 MiB of results between checkpoints.
+/// \throws StudyError "FILE:LINE: key: …" naming the key that makes the study too large
+/// (plan.samples, ida.max_runs or axes) and the memory it would need, when that exceeds 80 %
+/// of this machine's.
+void check_study_size(const Study& study);
+
+}  // namespace pcrf::study

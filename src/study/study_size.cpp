@@ -1,0 +1,77 @@
+// How big a study is (see study_size.hpp).
+#include "pcrf/study/study_size.hpp"
+
+#include <unistd.h>
+
+#include <cstdio>
+
+#include "pcrf/study/plan.hpp"
+#include "pcrf/study/study_error.hpp"
+
+namespace pcrf::study {
+namespace {
+
+/// A frame on rank 0: its parameters, labels and the plan's unit point, and its coordinates
+/// in the cube's case axis [bytes] (an upper estimate).
+constexpr double kFrameBytes = 512.0;
+/// More runs per curve than any IDA needs; the search counts them in an int.
+constexpr long kMaxIdaRuns = 1000000;
+
+double frames_of(const Study& study) {
+  double frames = 1.0;
+  for (const auto& d : study.plan->dimensions()) frames *= static_cast<double>(d.size);
+  return frames;
+}
+
+double memory_bytes() {
+  return static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGE_SIZE));
+}
+
+std::string line_of(const Study& study, const std::string& key) {
+  const auto line = study.setting_lines.find(key);
+  return line != study.setting_lines.end() ? line->second : study.file;
+}
+
+}  // namespace
+
+StudySize study_size(const Study& study) {
+  StudySize size;
+  size.frames = frames_of(study);
+  const double levels = study.ida ? static_cast<double>(study.ida->max_runs) : static_cast<double>(study.levels.size());
+  size.cases = size.frames * static_cast<double>(study.records.size()) * levels;
+  return size;
+}
+
+void check_study_size(const Study& study) {
+  if (study.ida && study.ida->max_runs > kMaxIdaRuns)
+    throw StudyError(line_of(study, "ida.max_runs") + ": ida.max_runs: at most " + std::to_string(kMaxIdaRuns) +
+                     " runs per curve, got " + std::to_string(study.ida->max_runs));
+  const StudySize size = study_size(study);
+  const double needed = kFrameBytes * size.frames + 1.0 * size.cases + static_cast<double>(kPendingResultsBytes);
+  const double memory = memory_bytes();
+  if (needed <= 0.8 * memory) return;
+  // The key to change: an IDA's runs, else the plan's size (the axes, or the samples).
+  const bool sampled = study.setting_lines.count("plan.samples") > 0;
+  const std::string key = study.ida ? "ida.max_runs" : sampled ? "plan.samples" : "axes";
+  char text[400];
+  std::snprintf(text, sizeof text,
+                ": %s: %.4g frames and %.4g cases need about %.3g GB on rank 0 (%.0f bytes a frame, one byte a case, "
+                "and 0.27 GB of results between checkpoints), more than 80 %% of this machine's %.3g GB (every shard "
+                "holds them all); make the study smaller",
+                key.c_str(), size.frames, size.cases, needed / 1e9, kFrameBytes, memory / 1e9);
+  throw StudyError(line_of(study, key) + text);
+}
+
+void check_frame_count(double frames, const std::string& where, const std::string& key) {
+  const double needed = kFrameBytes * frames + static_cast<double>(kPendingResultsBytes);
+  const double memory = memory_bytes();
+  if (needed <= 0.8 * memory) return;
+  char text[300];
+  std::snprintf(text, sizeof text,
+                ": %s: %.4g frames need about %.3g GB on rank 0 (%.0f bytes a frame), more than 80 %% of this machine's "
+                "%.3g GB; make the study smaller",
+                key.c_str(), frames, needed / 1e9, kFrameBytes, memory / 1e9);
+  throw StudyError(where + text);
+}
+
+}  // namespace pcrf::study
