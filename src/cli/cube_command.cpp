@@ -11,8 +11,8 @@
 #include "pcrf/cube/cube_query.hpp"
 #include "pcrf/io/output_file.hpp"
 #include "pcrf/io/run_lock.hpp"
-#include "pcrf/study/cube_fragility.hpp"
-#include "pcrf/study/cube_sensitivity.hpp"
+#include "pcrf/post/cube_fragility.hpp"
+#include "pcrf/post/cube_sensitivity.hpp"
 #include "pcrf/study/cube_vocabulary.hpp"
 
 namespace pcrf::cli {
@@ -186,15 +186,15 @@ void add_cube_command(CLI::App& app) {
       check_output(args->points, is_stdout(args->csv) ? csv_inputs : points_inputs, args->overwrite);
       cube::CubeReader reader(args->file);
       note_partial("fragility", args->file, reader);
-      const auto frames = study::cube_fragility(reader, selectors(args->where));
-      const auto units = study::intensity_units(reader);
-      study::print_fragility(frames, units, args->mce, false, std::cout);
+      const auto frames = post::cube_fragility(reader, selectors(args->where));
+      const auto units = post::intensity_units(reader);
+      post::print_fragility(frames, units, args->mce, false, std::cout);
       if (!args->csv.empty())
         with_output(args->csv, csv_inputs, args->overwrite,
-                    [&](std::ostream& out) { study::print_fragility(frames, units, args->mce, true, out); });
+                    [&](std::ostream& out) { post::print_fragility(frames, units, args->mce, true, out); });
       if (!args->points.empty())
         with_output(args->points, is_stdout(args->csv) ? csv_inputs : points_inputs, args->overwrite,
-                    [&](std::ostream& out) { study::print_fragility_points(frames, out); });
+                    [&](std::ostream& out) { post::print_fragility_points(frames, out); });
     });
   });
 
@@ -212,15 +212,15 @@ void add_cube_command(CLI::App& app) {
       check_output(args->csv, {args->file}, args->overwrite);
       cube::CubeReader reader(args->file);
       note_partial("sensitivity", args->file, reader);
-      const auto groups = study::cube_sensitivity(reader, args->metric, selectors(args->where), args->by == "record");
+      const auto groups = post::cube_sensitivity(reader, args->metric, selectors(args->where), args->by == "record");
       for (const auto& g : groups)
         if (g.dropped > 0)
           std::cerr << "pcrf cube sensitivity: " << g.record << ": " << g.dropped
                     << " base samples left out (a frame without a value)\n";
-      study::print_sensitivity(groups, false, std::cout);
+      post::print_sensitivity(groups, false, std::cout);
       if (!args->csv.empty())
         with_output(args->csv, {args->file}, args->overwrite,
-                    [&](std::ostream& out) { study::print_sensitivity(groups, true, out); });
+                    [&](std::ostream& out) { post::print_sensitivity(groups, true, out); });
     });
   });
 

@@ -1,5 +1,5 @@
 // Sobol' indices of a saltelli cube (see cube_sensitivity.hpp).
-#include "pcrf/study/cube_sensitivity.hpp"
+#include "pcrf/post/cube_sensitivity.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,7 +11,9 @@
 #include "pcrf/row_major.hpp"
 #include "pcrf/study/cube_vocabulary.hpp"
 
-namespace pcrf::study {
+namespace pcrf::post {
+
+namespace vocabulary = study::vocabulary;
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -120,4 +122,4 @@ void print_sensitivity(const std::vector<SensitivityGroup>& groups, bool csv, st
   cube::print_table(rows, csv, out);
 }
 
-}  // namespace pcrf::study
+}  // namespace pcrf::post

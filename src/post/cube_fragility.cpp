@@ -1,5 +1,5 @@
 // Collapse fragility of a cube's frames (see cube_fragility.hpp).
-#include "pcrf/study/cube_fragility.hpp"
+#include "pcrf/post/cube_fragility.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -9,7 +9,9 @@
 #include "pcrf/row_major.hpp"
 #include "pcrf/study/cube_vocabulary.hpp"
 
-namespace pcrf::study {
+namespace pcrf::post {
+
+namespace vocabulary = study::vocabulary;
 namespace {
 
 
@@ -232,4 +234,4 @@ void print_fragility_points(const std::vector<FrameFragility>& frames, std::ostr
   }
 }
 
-}  // namespace pcrf::study
+}  // namespace pcrf::post

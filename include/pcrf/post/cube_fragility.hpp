@@ -20,7 +20,7 @@
 #include "pcrf/cube/cube_query.hpp"
 #include "pcrf/cube/cube_reader.hpp"
 
-namespace pcrf::study {
+namespace pcrf::post {
 
 struct FrameFragility {
   std::string frame;              ///< "kappa=1.8,lambda=2" (the frame axes with several values), or "all"
@@ -54,4 +54,4 @@ void print_fragility(const std::vector<FrameFragility>& frames, const std::strin
 /// curve's collapse intensity) or `censored` (a curve safe up to that intensity).
 void print_fragility_points(const std::vector<FrameFragility>& frames, std::ostream& out);
 
-}  // namespace pcrf::study
+}  // namespace pcrf::post

@@ -16,7 +16,7 @@
 #include "pcrf/cube/cube_query.hpp"
 #include "pcrf/cube/cube_reader.hpp"
 
-namespace pcrf::study {
+namespace pcrf::post {
 
 struct SensitivityGroup {
   std::string record;                       ///< "all" across records, else the record's name
@@ -34,4 +34,4 @@ std::vector<SensitivityGroup> cube_sensitivity(const cube::CubeReader& cube, con
 /// parameter,S1,S1_5%,S1_95%,ST,ST_5%,ST_95% (with a record column when by record).
 void print_sensitivity(const std::vector<SensitivityGroup>& groups, bool csv, std::ostream& out);
 
-}  // namespace pcrf::study
+}  // namespace pcrf::post
