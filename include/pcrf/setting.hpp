@@ -221,14 +221,6 @@ SettingValue parse_setting_text(const Setting<Target>& s, const std::string& tex
   return text;
 }
 
-/// Checks and stores one value. \throws std::invalid_argument "key: problem".
-template <class Target>
-void apply_setting(const Setting<Target>& s, Target& target, SettingValue value) {
-  if (const auto problem = check_setting(s, value); !problem.empty())
-    throw std::invalid_argument(std::string(s.key) + ": " + problem);
-  s.set(target, value);
-}
-
 // ---- building descriptions -------------------------------------------------------------------
 
 /// A real-valued member.

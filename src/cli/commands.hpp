@@ -25,7 +25,7 @@ void add_run_command(CLI::App& app);    ///< `pcrf run`: one case, JSON on stdou
 void add_frame_command(CLI::App& app);  ///< `pcrf frame`: a frame's properties and pushover curve
 void add_record_command(CLI::App& app); ///< `pcrf record FILE`: intensity measures, JSON on stdout
 void add_study_command(CLI::App& app);  ///< `pcrf study FILE`: a parametric study (MPI)
-void add_cube_command(CLI::App& app);   ///< `pcrf cube info|export|stats FILE`
+void add_cube_command(CLI::App& app);   ///< `pcrf cube info|export|stats|fragility|sensitivity|merge`
 void add_plot_command(CLI::App& app);   ///< `pcrf plot KIND INPUT -o FILE`: figures (src/plot, matplotlib)
 void add_settings_command(CLI::App& app);  ///< `pcrf settings`: every setting, as Markdown
 

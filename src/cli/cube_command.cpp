@@ -1,4 +1,4 @@
-// `pcrf cube info|export|stats FILE`: looks into a result cube.
+// `pcrf cube info|export|stats|fragility|sensitivity|merge`: looks into result cubes.
 #include <CLI/CLI.hpp>
 
 #include <functional>

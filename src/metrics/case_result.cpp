@@ -51,6 +51,26 @@ Verdict verdict_of(CaseStatus status) {
   }
 }
 
+namespace {
+// The names other layers act on by meaning (metric:: handles); every other name is written
+// only in the table below.
+constexpr std::string_view kThetaMax = "theta_max_rad";
+constexpr std::string_view kOmegaMax = "omega_max_rad_s";
+constexpr std::string_view kTOmegaMax = "t_omega_max_s";
+constexpr std::string_view kStatusStable = "status_stable";
+constexpr std::string_view kCollapseFraction = "collapse_fraction";
+
+const MetricInfo& handle(std::string_view name) { return *find_metric(name); }
+}  // namespace
+
+namespace metric {
+const MetricInfo& theta_max() { return handle(kThetaMax); }
+const MetricInfo& omega_max() { return handle(kOmegaMax); }
+const MetricInfo& t_omega_max() { return handle(kTOmegaMax); }
+const MetricInfo& status_stable() { return handle(kStatusStable); }
+const MetricInfo& collapse_fraction() { return handle(kCollapseFraction); }
+}  // namespace metric
+
 const std::vector<MetricInfo>& all_metrics() {
   static const std::vector<MetricInfo> metrics = {
       {"lambda_g", "1", "paper's uplift coefficient G(0)/S(0), in units of g",
@@ -62,10 +82,10 @@ const std::vector<MetricInfo>& all_metrics() {
       {"t_trigger_paper_s", "s", "first sample with |ug''| >= lambda_g g (paper's t_RI)",
        [](const CaseResult& r) { return r.t_trigger_paper_s; }},
       {"t_uplift_s", "s", "first lift-off", [](const CaseResult& r) { return r.t_uplift_s; }},
-      {"theta_max_rad", "rad", "peak |theta1|", [](const CaseResult& r) { return r.theta_max_rad; }},
+      {kThetaMax, "rad", "peak |theta1|", [](const CaseResult& r) { return r.theta_max_rad; }},
       {"t_theta_max_s", "s", "time of peak |theta1|", [](const CaseResult& r) { return r.t_theta_max_s; }},
-      {"omega_max_rad_s", "rad s-1", "peak |dtheta1/dt|", [](const CaseResult& r) { return r.omega_max_rad_s; }},
-      {"t_omega_max_s", "s", "time of peak |dtheta1/dt|", [](const CaseResult& r) { return r.t_omega_max_s; }},
+      {kOmegaMax, "rad s-1", "peak |dtheta1/dt|", [](const CaseResult& r) { return r.omega_max_rad_s; }},
+      {kTOmegaMax, "s", "time of peak |dtheta1/dt|", [](const CaseResult& r) { return r.t_omega_max_s; }},
       {"strain_column_max", "1", "peak column tendon strain, initial strain included",
        [](const CaseResult& r) { return r.strain_column_max; }},
       {"strain_beam_max", "1", "peak beam tendon strain, initial strain included",
@@ -78,11 +98,11 @@ const std::vector<MetricInfo>& all_metrics() {
       {"root_evals", "1", "root-function evaluations",
        [](const CaseResult& r) { return static_cast<double>(r.counts.root_evals); }, true},
       {"wall_time_s", "s", "wall-clock time of the case", [](const CaseResult& r) { return r.wall_time_s; }},
-      {"status_stable", "1", "1 when the verdict survives the perturbation test (record x (1 +- 1e-9, 1e-7, 1e-6)), else 0",
+      {kStatusStable, "1", "1 when the verdict survives the perturbation test (record x (1 +- 1e-9, 1e-7, 1e-6)), else 0",
        [](const CaseResult& r) { return r.status_stable; }, false, true},
       {"theta_max_spread", "1", "relative spread (max - min)/theta_max of peak |theta1| across the perturbation test",
        [](const CaseResult& r) { return r.theta_max_spread; }, false, true},
-      {"collapse_fraction", "1", "share of the perturbation test's runs (the case and its six twins) that collapse",
+      {kCollapseFraction, "1", "share of the perturbation test's runs (the case and its six twins) that collapse",
        [](const CaseResult& r) { return r.collapse_fraction; }, false, true},
   };
   return metrics;
@@ -93,12 +113,6 @@ const MetricInfo* find_metric(std::string_view name) {
     if (m.name == name) return &m;
   }
   return nullptr;
-}
-
-std::string to_json(const CaseResult& r) {
-  JsonObject json;
-  add_to_json(json, r);
-  return json.str();
 }
 
 void add_to_json(JsonObject& json, const CaseResult& r) {

@@ -28,13 +28,6 @@ const std::array<ParameterInfo, 2>& size_parameters() {
   return parameters;
 }
 
-std::size_t parameter_index(std::string_view name) {
-  const auto& parameters = all_parameters();
-  for (std::size_t i = 0; i < parameters.size(); ++i)
-    if (parameters[i].name == name) return i;
-  return kParameterCount;
-}
-
 std::string parameter_problem(const ParameterInfo& parameter, double value) {
   if (!std::isfinite(value)) return "must be a finite number";
   switch (parameter.domain) {

@@ -125,7 +125,7 @@ std::vector<FrameFragility> cube_fragility(const cube::CubeReader& cube, const s
   // With verdict checks, a case counts by the share of its perturbed runs that collapsed.
   std::vector<double> fraction;
   for (const auto& m : layout.metrics)
-    if (m.name == "collapse_fraction") fraction = cube.read_metric(m.name);
+    if (m.name == metric::collapse_fraction().name) fraction = cube.read_metric(m.name);
 
   std::map<std::string, FrameCases> frames;  // by label, in label order
   std::vector<std::string> order;

@@ -57,7 +57,7 @@ void set_peak_strains(const Scene& scene, CaseResult& result);
 /// Builds a case's history rows and hands them to the sink in strictly increasing time:
 /// rows added at the same instant (an impact and the restart after it, an impact and the
 /// return to rest) become one row, whose `omega1_after_rad_s` is the last velocity given
-/// and whose events are the union. A row is held until a later one arrives or finish().
+/// and whose events are the union. A row is held until a later one arrives or end().
 class HistoryRows {
  public:
   HistoryRows(const HistorySink& sink, const Scene& scene, const Excitation& excitation)

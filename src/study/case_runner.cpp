@@ -22,7 +22,7 @@ CaseRunner::CaseRunner(const Study& study, const CaseSpace& space, RecordCache& 
   // Compute only what is asked: the exact angular-velocity peak costs an extra root.
   request_.omega_peak = false;
   for (const auto* m : columns_.metrics())
-    if (m->name == "omega_max_rad_s" || m->name == "t_omega_max_s") request_.omega_peak = true;
+    if (m == &metric::omega_max() || m == &metric::t_omega_max()) request_.omega_peak = true;
 }
 
 PreparedFrame& CaseRunner::prepared(const FrameParameters& parameters) const {

@@ -23,7 +23,7 @@ class CollapseRule {
     for (std::string word; std::getline(words, word, ',');)
       for (CaseStatus s : all_final_statuses())
         if (status_name(s) == word) statuses_.push_back(static_cast<std::int8_t>(s));
-    const std::size_t column = ResultColumns(study).metric_column("theta_max_rad");
+    const std::size_t column = ResultColumns(study).metric_column(metric::theta_max().name);
     theta_column_ = column == ResultColumns::npos ? -1 : static_cast<int>(column);
   }
 
@@ -55,7 +55,7 @@ std::unique_ptr<plan::IdaPlan> make_ida_plan(const Study& study, const CaseSpace
   // at most one run in flight, so a killed run leaves no gap before its last stored point).
   const auto& status = writer.status();
   const auto intensity = writer.read_values(vocabulary::kIdaIntensity);
-  const auto theta_values = rule.theta_column() < 0 ? std::vector<double>{} : writer.read_values("theta_max_rad");
+  const auto theta_values = rule.theta_column() < 0 ? std::vector<double>{} : writer.read_values(std::string(metric::theta_max().name));
   const std::vector<double>* theta = rule.theta_column() < 0 ? nullptr : &theta_values;
   const auto runs = static_cast<std::int64_t>(space.ida_runs());
   for (std::int64_t c = 0; c < space.curves(); ++c) {
@@ -83,7 +83,7 @@ void store_ida_summaries(const Study& study, const plan::IdaPlan& plan, cube::Cu
   writer.store_side(vocabulary::kIdaRuns, std::move(runs));
   if (!study.solver.verdict_check) return;
   // The band of intensities whose verdicts failed the perturbation test, per curve.
-  const auto stable = writer.read_values("status_stable");
+  const auto stable = writer.read_values(std::string(metric::status_stable().name));
   const auto intensity = writer.read_values(vocabulary::kIdaIntensity);
   const auto points = static_cast<std::size_t>(plan.max_runs());
   std::vector<double> from(plan.curves(), std::nan("")), to(plan.curves(), std::nan(""));

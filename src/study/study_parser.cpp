@@ -106,7 +106,7 @@ void check_ida_outputs(const Fields& top, const Study& s) {
   if (!s.ida) return;
   if (!s.histories.empty())
     Fields::fail_at(s.file, nullptr, "outputs.histories", "an IDA chooses its cases as it runs: histories are not available");
-  const bool theta_stored = std::find(s.metrics.begin(), s.metrics.end(), "theta_max_rad") != s.metrics.end();
+  const bool theta_stored = std::find(s.metrics.begin(), s.metrics.end(), metric::theta_max().name) != s.metrics.end();
   if (s.ida->theta_limit_rad > 0.0 && !theta_stored) {
     const auto line = s.setting_lines.find("ida.theta_limit_rad");
     throw StudyError((line != s.setting_lines.end() ? line->second : top.where("ida")) +

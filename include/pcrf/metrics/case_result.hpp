@@ -97,9 +97,19 @@ const std::vector<MetricInfo>& all_metrics();
 /// Looks a metric up by name; nullptr when unknown.
 const MetricInfo* find_metric(std::string_view name);
 
-/// The record as one JSON object (keys as the field names above, NaN as null).
-std::string to_json(const CaseResult& result);
-/// The same keys, added to an object the caller is building (e.g. with the scale factor).
+/// Handles to the metrics other layers act on by meaning (the IDA's angle limit, the
+/// verdict check, the optional ω peak): each is the table's own entry, so its name is
+/// written once, in all_metrics().
+namespace metric {
+const MetricInfo& theta_max();        ///< peak |θ₁|
+const MetricInfo& omega_max();        ///< peak |θ̇₁|
+const MetricInfo& t_omega_max();      ///< its time
+const MetricInfo& status_stable();    ///< verdict check: the verdict survives perturbation
+const MetricInfo& collapse_fraction();///< verdict check: share of twins that collapse
+}  // namespace metric
+
+/// The record's keys (the metrics' names, status, reinits, message; NaN as null), added to
+/// an object the caller is building (e.g. with the scale factor).
 void add_to_json(JsonObject& json, const CaseResult& result);
 
 }  // namespace pcrf

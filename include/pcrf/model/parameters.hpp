@@ -39,8 +39,6 @@ const std::array<ParameterInfo, kParameterCount>& all_parameters();
 /// every case; they are not axes.
 const std::array<ParameterInfo, 2>& size_parameters();
 
-/// Index of a parameter in all_parameters(), or kParameterCount when unknown.
-std::size_t parameter_index(std::string_view name);
 
 /// Why `value` is outside the parameter's domain ("must be positive"); empty when inside.
 std::string parameter_problem(const ParameterInfo& parameter, double value);

@@ -75,7 +75,7 @@ double intensity_scale_factor(double target_intensity, double record_intensity);
 std::vector<double> intensity_series(const GroundMotion& record, const IntensitySpec& spec);
 
 /// The [intensity] table of a study (and the `pcrf run` flags --measure, --period-s,
-/// --damping). Whether period_s is needed depends on the measure: check_intensity_spec().
+/// --damping). Whether period_s is needed depends on the measure: intensity_spec_problem().
 const SettingTable<IntensitySpec>& intensity_settings();
 /// Why a spec cannot be used (a problem of period_s: sa_g without a usable period, or a
 /// period given to a measure that has no oscillator); empty when it can.
