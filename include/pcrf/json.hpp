@@ -4,6 +4,8 @@
 /// double, NaN and infinities as null, strings escaped.
 #pragma once
 
+#include "pcrf/number_text.hpp"
+
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -70,9 +72,7 @@ class JsonObject {
       out_ << "null";
       return;
     }
-    char buffer[32];
-    const auto end = std::to_chars(buffer, buffer + sizeof buffer, v).ptr;
-    out_ << std::string_view(buffer, static_cast<std::size_t>(end - buffer));
+    out_ << number_text(v);
   }
   void write_string(std::string_view s) {
     out_ << '"';

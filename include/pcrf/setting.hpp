@@ -13,6 +13,8 @@
 /// into checked member values and back.
 #pragma once
 
+#include "pcrf/number_text.hpp"
+
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -102,11 +104,7 @@ inline std::string setting_text(const SettingValue& value) {
 /// number, words as they are.
 inline std::string setting_display(const SettingValue& value) {
   if (const bool* b = std::get_if<bool>(&value)) return *b ? "true" : "false";
-  if (const double* d = std::get_if<double>(&value)) {
-    char buffer[32];
-    const auto end = std::to_chars(buffer, buffer + sizeof buffer, *d).ptr;
-    return std::string(buffer, end);
-  }
+  if (const double* d = std::get_if<double>(&value)) return number_text(*d);
   return setting_text(value);
 }
 

@@ -14,6 +14,7 @@
 #include "pcrf/io/output_file.hpp"
 #include "pcrf/model/frame.hpp"
 #include "pcrf/model/parameters.hpp"
+#include "pcrf/number_text.hpp"
 #include "pcrf/record/intensity.hpp"
 #include "pcrf/record/record_readers.hpp"
 #include "pcrf/record/synthetic.hpp"
@@ -89,11 +90,9 @@ class CsvHistory {
     out_ << '\n';
   }
   void operator()(const HistorySample& s) {
-    char value[32];
     const char* separator = "";
     for (const auto& c : history_columns()) {
-      std::snprintf(value, sizeof value, "%.17g", s.*c.member);
-      out_ << separator << value;
+      out_ << separator << number_text(s.*c.member);
       separator = ",";
     }
     out_ << '\n';

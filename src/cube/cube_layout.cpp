@@ -1,6 +1,8 @@
 // Helpers of CubeLayout (see cube_layout.hpp).
 #include "pcrf/cube/cube_layout.hpp"
 
+#include "pcrf/number_text.hpp"
+
 #include <cerrno>
 #include <charconv>
 
@@ -15,9 +17,7 @@ CubeError::Cause CubeError::cause_of(int os_error) {
 
 std::string Coordinate::label(std::size_t i) const {
   if (is_text) return strings.at(i);
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, numbers.at(i));
-  return std::string(buffer, result.ptr);
+  return number_text(numbers.at(i));
 }
 
 std::int64_t CubeLayout::case_count() const {

@@ -1,6 +1,9 @@
 // Post-processing of result cubes (see cube_query.hpp).
 #include "pcrf/cube/cube_query.hpp"
 
+#include "pcrf/analysis/percentile.hpp"
+#include "pcrf/number_text.hpp"
+
 #include "pcrf/json.hpp"
 
 #include <algorithm>
@@ -24,12 +27,8 @@ const Coordinate& coordinate(const CubeLayout& layout, const std::string& name) 
   throw CubeError("no coordinate '" + name + "' (coordinates: " + known + ")");
 }
 
-std::string number_text(double value) {
-  if (std::isnan(value)) return "";
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return std::string(buffer, result.ptr);
-}
+/// A CSV field: the number's shortest text, empty for NaN.
+std::string csv_number(double value) { return std::isnan(value) ? std::string() : pcrf::number_text(value); }
 
 /// Positions along the coordinate's dimension whose value matches `text`.
 std::vector<bool> matching_positions(const Coordinate& c, const std::string& text) {
@@ -228,12 +227,8 @@ void export_history_csv(const CubeReader& cube, const std::string& name, std::os
   for (std::size_t c = 0; c < table.columns.size(); ++c) out << (c ? "," : "") << csv_field(table.columns[c].name);
   out << '\n';
   const std::size_t rows = table.values.empty() ? 0 : table.values.front().size();
-  char value[32];
   for (std::size_t r = 0; r < rows; ++r) {
-    for (std::size_t c = 0; c < table.columns.size(); ++c) {
-      std::snprintf(value, sizeof value, "%.17g", table.values[c][r]);
-      out << (c ? "," : "") << value;
-    }
+    for (std::size_t c = 0; c < table.columns.size(); ++c) out << (c ? "," : "") << pcrf::number_text(table.values[c][r]);
     out << '\n';
   }
 }
@@ -266,17 +261,9 @@ void export_csv(const CubeReader& cube, const std::vector<std::string>& metrics,
     for (std::size_t c = 0; c < layout.coordinates.size(); ++c)
       out << csv_field(layout.coordinates[c].label(coords[coordinate_dims[c]])) << ',';
     out << status_text(layout, status[k]);
-    for (const auto& v : values) out << ',' << number_text(v[k]);
+    for (const auto& v : values) out << ',' << csv_number(v[k]);
     out << '\n';
   }
-}
-
-double percentile(const std::vector<double>& sorted, double q) {
-  if (sorted.empty()) return std::nan("");
-  const double h = (static_cast<double>(sorted.size()) - 1.0) * q / 100.0;
-  const auto lo = static_cast<std::size_t>(std::floor(h));
-  const std::size_t hi = std::min(lo + 1, sorted.size() - 1);
-  return sorted[lo] + (h - static_cast<double>(lo)) * (sorted[hi] - sorted[lo]);
 }
 
 std::vector<GroupStats> group_stats(const CubeReader& cube, const std::string& by, const std::string& metric,
@@ -333,9 +320,9 @@ std::vector<GroupStats> group_stats(const CubeReader& cube, const std::string& b
   for (std::size_t s = 0; s < stats.size(); ++s) {
     std::sort(merged[s].begin(), merged[s].end());
     stats[s].values = merged[s].size();
-    stats[s].median = percentile(merged[s], 50.0);
-    stats[s].p16 = percentile(merged[s], 16.0);
-    stats[s].p84 = percentile(merged[s], 84.0);
+    stats[s].median = analysis::percentile_sorted(merged[s], 0.50);
+    stats[s].p16 = analysis::percentile_sorted(merged[s], 0.16);
+    stats[s].p84 = analysis::percentile_sorted(merged[s], 0.84);
   }
   return stats;
 }
@@ -344,8 +331,8 @@ void print_stats(const std::string& by, const std::string& set_apart_name, const
                  std::ostream& out) {
   out << csv_field(by) << ",cases," << set_apart_name << ",values,median,p16,p84\n";
   for (const auto& s : stats)
-    out << csv_field(s.value) << ',' << s.cases << ',' << s.set_apart << ',' << s.values << ',' << number_text(s.median) << ','
-        << number_text(s.p16) << ',' << number_text(s.p84) << '\n';
+    out << csv_field(s.value) << ',' << s.cases << ',' << s.set_apart << ',' << s.values << ',' << csv_number(s.median) << ','
+        << csv_number(s.p16) << ',' << csv_number(s.p84) << '\n';
 }
 
 }  // namespace pcrf::cube

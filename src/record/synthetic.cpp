@@ -9,6 +9,7 @@
 
 #include "pcrf/record/synthetic.hpp"
 
+#include "pcrf/number_text.hpp"
 #include "pcrf/record/pulses.hpp"
 
 #include <algorithm>
@@ -32,17 +33,11 @@ constexpr double kTwoPi = 6.283185307179586476925286766559;
 /// than a real need, and the allocation would fail less helpfully.
 constexpr double kMaxSamples = 1e8;
 
-/// Shortest text that reads back as the same double ("0.005", not "0.005000000000000000104").
-std::string format_number(double v) {
-  char buffer[32];
-  const auto [ptr, ec] = std::to_chars(buffer, buffer + sizeof buffer, v);
-  return ec == std::errc() ? std::string(buffer, ptr) : std::to_string(v);
-}
 
 [[noreturn]] void bad_field(const char* spec, const char* field, const std::string& requirement,
                             double value) {
   throw std::invalid_argument(std::string(spec) + "." + field + " " + requirement + ", got " +
-                              format_number(value));
+                              number_text(value));
 }
 
 void require_positive(const char* spec, const char* field, double value) {
@@ -58,7 +53,7 @@ void require_non_negative(const char* spec, const char* field, double value) {
 std::size_t sample_count(const char* spec, double duration_s, double dt_s) {
   const double steps = duration_s / dt_s;
   if (steps > kMaxSamples) {
-    bad_field(spec, "duration_s", "gives more than 1e8 samples at dt_s = " + format_number(dt_s),
+    bad_field(spec, "duration_s", "gives more than 1e8 samples at dt_s = " + number_text(dt_s),
               duration_s);
   }
   const double nearest = std::nearbyint(steps);
@@ -78,19 +73,19 @@ void validate(const SinePulseSpec& s) {
   // Fewer than 4 samples a period and the sampled train no longer looks like a sine
   // (at 2 samples a period every sample is zero).
   if (s.period_s < 4.0 * s.dt_s) {
-    bad_field(kSpec, "period_s", "must be at least 4·dt_s = " + format_number(4.0 * s.dt_s), s.period_s);
+    bad_field(kSpec, "period_s", "must be at least 4·dt_s = " + number_text(4.0 * s.dt_s), s.period_s);
   }
   const double pulses_s = s.cycles * s.period_s;
   if (!std::isfinite(s.duration_s) || s.duration_s < pulses_s * (1.0 - 1e-12)) {
-    bad_field(kSpec, "duration_s", "must be at least cycles·period_s = " + format_number(pulses_s),
+    bad_field(kSpec, "duration_s", "must be at least cycles·period_s = " + number_text(pulses_s),
               s.duration_s);
   }
 }
 
 std::string sine_name(const SinePulseSpec& s) {
-  return "sine:amplitude_g=" + format_number(s.amplitude_g) + ",period_s=" +
-         format_number(s.period_s) + ",cycles=" + std::to_string(s.cycles) +
-         ",duration_s=" + format_number(s.duration_s) + ",dt_s=" + format_number(s.dt_s);
+  return "sine:amplitude_g=" + number_text(s.amplitude_g) + ",period_s=" +
+         number_text(s.period_s) + ",cycles=" + std::to_string(s.cycles) +
+         ",duration_s=" + number_text(s.duration_s) + ",dt_s=" + number_text(s.dt_s);
 }
 
 // ---- stochastic record ----------------------------------------------------------------------
@@ -102,12 +97,12 @@ void validate(const StochasticSpec& s) {
   require_positive(kSpec, "duration_s", s.duration_s);
   // At least two samples: the first is always zero (the filter starts at rest).
   if (s.duration_s < s.dt_s) {
-    bad_field(kSpec, "duration_s", "must be at least dt_s = " + format_number(s.dt_s), s.duration_s);
+    bad_field(kSpec, "duration_s", "must be at least dt_s = " + number_text(s.dt_s), s.duration_s);
   }
   require_positive(kSpec, "ground_freq_hz", s.ground_freq_hz);
   if (s.ground_freq_hz >= 0.5 / s.dt_s) {
     bad_field(kSpec, "ground_freq_hz", "must be below the Nyquist frequency 0.5/dt_s = " +
-                                           format_number(0.5 / s.dt_s), s.ground_freq_hz);
+                                           number_text(0.5 / s.dt_s), s.ground_freq_hz);
   }
   require_positive(kSpec, "ground_damping", s.ground_damping);
   require_non_negative(kSpec, "rise_s", s.rise_s);
@@ -116,12 +111,12 @@ void validate(const StochasticSpec& s) {
 }
 
 std::string stochastic_name(const StochasticSpec& s) {
-  return "stochastic:seed=" + std::to_string(s.seed) + ",pga_g=" + format_number(s.pga_g) +
-         ",duration_s=" + format_number(s.duration_s) + ",dt_s=" + format_number(s.dt_s) +
-         ",ground_freq_hz=" + format_number(s.ground_freq_hz) +
-         ",ground_damping=" + format_number(s.ground_damping) + ",rise_s=" +
-         format_number(s.rise_s) + ",strong_s=" + format_number(s.strong_s) +
-         ",decay_per_s=" + format_number(s.decay_per_s);
+  return "stochastic:seed=" + std::to_string(s.seed) + ",pga_g=" + number_text(s.pga_g) +
+         ",duration_s=" + number_text(s.duration_s) + ",dt_s=" + number_text(s.dt_s) +
+         ",ground_freq_hz=" + number_text(s.ground_freq_hz) +
+         ",ground_damping=" + number_text(s.ground_damping) + ",rise_s=" +
+         number_text(s.rise_s) + ",strong_s=" + number_text(s.strong_s) +
+         ",decay_per_s=" + number_text(s.decay_per_s);
 }
 
 /// Standard normal numbers from mt19937_64 by the Box–Muller transform, written out here

@@ -38,13 +38,6 @@ std::vector<double> read_range(const toml::table& table, const std::string& path
 
 }  // namespace
 
-std::string number_text(double value) {
-  std::ostringstream out;
-  out.precision(17);
-  out << value;
-  return out.str();
-}
-
 std::vector<std::string_view> parameter_keys() {
   std::vector<std::string_view> keys;
   for (const auto& info : all_parameters()) keys.push_back(info.name);

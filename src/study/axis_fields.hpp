@@ -2,6 +2,8 @@
 // the parser and the plans: "FILE:LINE: dotted.key: problem" errors as toml_fields.hpp.
 #pragma once
 
+#include "pcrf/number_text.hpp"
+
 #include <array>
 #include <cstddef>
 #include <string>
@@ -13,8 +15,7 @@
 
 namespace pcrf::study::detail {
 
-/// A number as the parser's messages write it (17 significant digits).
-std::string number_text(double value);
+using pcrf::number_text;
 
 /// The keys of the eight frame parameters.
 std::vector<std::string_view> parameter_keys();

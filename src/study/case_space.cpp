@@ -66,7 +66,7 @@ std::int64_t CaseSpace::resolve(const HistoryRequest& request) const {
   if (request.scale) {
     coords[1] = find_value(levels_, *request.scale);
     if (coords[1] == std::string::npos)
-      fail_history(request, names_[1] + " " + shortest(*request.scale) + " is not on the " + names_[1] + " axis");
+      fail_history(request, names_[1] + " " + number_text(*request.scale) + " is not on the " + names_[1] + " axis");
   } else {
     coords[1] = pick_single(request, levels_.size(), names_[1]);
   }

@@ -170,15 +170,6 @@ TEST(CubeFile, ReaderRejectsFilesThatAreNotCubes) {
   EXPECT_THROW(CubeReader(dir / "missing.h5"), CubeError);
 }
 
-TEST(CubeQuery, PercentilesInterpolateLikeNumpy) {
-  const std::vector<double> v = {1, 2, 3, 4, 10};
-  EXPECT_DOUBLE_EQ(percentile(v, 50), 3.0);
-  EXPECT_DOUBLE_EQ(percentile(v, 16), 1.64);   // numpy.percentile([1,2,3,4,10], 16)
-  EXPECT_DOUBLE_EQ(percentile(v, 84), 6.16);   // numpy.percentile([1,2,3,4,10], 84)
-  EXPECT_DOUBLE_EQ(percentile({7.0}, 84), 7.0);
-  EXPECT_TRUE(std::isnan(percentile({}, 50)));
-}
-
 TEST(CubeQuery, SelectorsMatchDimensionAndAuxiliaryCoordinates) {
   const CubeLayout l = test_layout();
   const auto by_scale = select_cases(l, {parse_selector("scale=1")});

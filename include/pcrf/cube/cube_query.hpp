@@ -77,8 +77,4 @@ std::vector<GroupStats> group_stats(const CubeReader& cube, const std::string& b
 void print_stats(const std::string& by, const std::string& set_apart_name, const std::vector<GroupStats>& stats,
                  std::ostream& out);
 
-/// Percentile q ∈ [0, 100] of sorted values with linear interpolation between order
-/// statistics (numpy's default). NaN when there are no values.
-double percentile(const std::vector<double>& sorted, double q);
-
 }  // namespace pcrf::cube

@@ -18,6 +18,7 @@
 
 #include "pcrf/cube/cube_layout.hpp"
 #include "pcrf/model/parameters.hpp"
+#include "pcrf/number_text.hpp"
 #include "pcrf/study/study.hpp"
 
 namespace pcrf::study {
@@ -69,8 +70,6 @@ std::size_t pick_single(const HistoryRequest& request, std::size_t size, const s
 /// Position of `value` on an axis (relative tolerance 1e-12), or std::string::npos.
 std::size_t find_value(const std::vector<double>& axis, double value);
 
-/// The shortest text that reads back as `value` ("1.2", "3000").
-std::string shortest(double value);
 
 /// A numeric coordinate variable along `dimension`.
 cube::Coordinate number_coordinate(std::string name, std::string dimension, std::string units, std::string long_name,

@@ -62,7 +62,7 @@ class GridPlan final : public Plan {
         continue;
       }
       coords[p] = find_value(values_[p], *value);
-      if (coords[p] == std::string::npos) fail_history(request, key + " " + shortest(*value) + " is not on the " + key + " axis");
+      if (coords[p] == std::string::npos) fail_history(request, key + " " + number_text(*value) + " is not on the " + key + " axis");
     }
     return coords;
   }

@@ -47,7 +47,7 @@ std::shared_ptr<const Plan> read_one_at_a_time_plan(const PlanInput& input) {
   for (std::size_t p = 0; p < kParameterCount; ++p) {
     const auto& info = all_parameters()[p];
     for (double v : sweeps[p]) {
-      points.push_back({std::string(info.name) + "=" + shortest(v), input.base});
+      points.push_back({std::string(info.name) + "=" + number_text(v), input.base});
       points.back().parameters.*info.member = v;
       varied.emplace_back(info.name);
     }

@@ -30,12 +30,6 @@ std::size_t find_value(const std::vector<double>& axis, double value) {
   return std::string::npos;
 }
 
-std::string shortest(double value) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return std::string(buffer, result.ptr);
-}
-
 cube::Coordinate number_coordinate(std::string name, std::string dimension, std::string units, std::string long_name,
                                    std::vector<double> values) {
   cube::Coordinate c;
