@@ -1,6 +1,10 @@
 // Per-case result record: metric table, status names, JSON.
 #include "pcrf/metrics/case_result.hpp"
 
+#include <array>
+
+#include "pcrf/setting.hpp"
+
 #include "pcrf/json.hpp"
 
 #include <charconv>
@@ -10,26 +14,33 @@
 
 namespace pcrf {
 
+namespace {
+/// Every status's only spelling: the final ones in flag order, then the placeholder.
+constexpr std::array<EnumName<CaseStatus>, 9> kStatusNames{{{CaseStatus::kAtRest, "at_rest"},
+                                                           {CaseStatus::kRockingAtEnd, "rocking_at_end"},
+                                                           {CaseStatus::kTendonFracture, "tendon_fracture"},
+                                                           {CaseStatus::kOverturned, "overturned"},
+                                                           {CaseStatus::kSolverFailure, "solver_failure"},
+                                                           {CaseStatus::kTimeLimit, "time_limit"},
+                                                           {CaseStatus::kInvalidFrame, "invalid_frame"},
+                                                           {CaseStatus::kGroundFreeFall, "ground_free_fall"},
+                                                           {CaseStatus::kNotRun, "not_run"}}};
+}  // namespace
+
 std::string_view status_name(CaseStatus status) {
-  switch (status) {
-    case CaseStatus::kAtRest: return "at_rest";
-    case CaseStatus::kRockingAtEnd: return "rocking_at_end";
-    case CaseStatus::kTendonFracture: return "tendon_fracture";
-    case CaseStatus::kOverturned: return "overturned";
-    case CaseStatus::kSolverFailure: return "solver_failure";
-    case CaseStatus::kTimeLimit: return "time_limit";
-    case CaseStatus::kInvalidFrame: return "invalid_frame";
-    case CaseStatus::kGroundFreeFall: return "ground_free_fall";
-    case CaseStatus::kNotRun: return "not_run";
-  }
+  for (const auto& n : kStatusNames)
+    if (n.value == status) return n.name;
   return "unknown";
 }
 
+CaseStatus parse_status(const std::string& text) { return parse_name(kStatusNames, text, "status"); }
+
 const std::vector<CaseStatus>& all_final_statuses() {
-  static const std::vector<CaseStatus> all = {CaseStatus::kAtRest,         CaseStatus::kRockingAtEnd,
-                                              CaseStatus::kTendonFracture, CaseStatus::kOverturned,
-                                              CaseStatus::kSolverFailure,  CaseStatus::kTimeLimit,
-                                              CaseStatus::kInvalidFrame,   CaseStatus::kGroundFreeFall};
+  static const std::vector<CaseStatus> all = [] {
+    std::vector<CaseStatus> statuses = values_of(kStatusNames);
+    std::erase(statuses, CaseStatus::kNotRun);
+    return statuses;
+  }();
   return all;
 }
 

@@ -2,6 +2,7 @@
 #include "pcrf/record/pulses.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <numbers>
@@ -9,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "pcrf/setting.hpp"
 #include "pcrf/units.hpp"
 
 namespace pcrf {
@@ -119,17 +121,18 @@ UnitPulse unit_pulse(const PulseSpec& p) {
 
 }  // namespace
 
-std::string pulse_kind(PulseShape shape) {
-  switch (shape) {
-    case PulseShape::kSine: return "pulse-sine";
-    case PulseShape::kCosine: return "pulse-cosine";
-    case PulseShape::kCycles: return "pulse-cycles";
-    case PulseShape::kRicker: return "ricker";
-    case PulseShape::kRickerAntisymmetric: return "ricker-antisymmetric";
-    case PulseShape::kMavroeidis: return "mavroeidis";
-  }
-  return "";
-}
+namespace {
+constexpr std::array<EnumName<PulseShape>, 6> kPulseNames{{{PulseShape::kSine, "pulse-sine"},
+                                                          {PulseShape::kCosine, "pulse-cosine"},
+                                                          {PulseShape::kCycles, "pulse-cycles"},
+                                                          {PulseShape::kRicker, "ricker"},
+                                                          {PulseShape::kRickerAntisymmetric, "ricker-antisymmetric"},
+                                                          {PulseShape::kMavroeidis, "mavroeidis"}}};
+}  // namespace
+
+std::string pulse_kind(PulseShape shape) { return name_of(kPulseNames, shape); }
+
+std::vector<PulseShape> pulse_shapes() { return values_of(kPulseNames); }
 
 double cycles_pulse_phase_rad(int cycles) {
   if (cycles < 1) throw std::invalid_argument("PulseSpec.cycles must be at least 1");

@@ -7,6 +7,10 @@
 
 #include "pcrf/record/record_readers.hpp"
 
+#include <array>
+
+#include "pcrf/setting.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -397,13 +401,13 @@ double to_m_s2(AccelUnit unit) {
   throw std::invalid_argument("invalid AccelUnit value");
 }
 
+namespace {
+constexpr std::array<EnumName<RecordFormat>, 3> kFormatNames{
+    {{RecordFormat::kAt2, "at2"}, {RecordFormat::kTwoColumn, "two-column"}, {RecordFormat::kOneColumn, "one-column"}}};
+}  // namespace
+
 RecordFormat parse_record_format(const std::string& text) {
-  const std::string key = to_lower(trim(text));
-  if (key == "at2") return RecordFormat::kAt2;
-  if (key == "two-column") return RecordFormat::kTwoColumn;
-  if (key == "one-column") return RecordFormat::kOneColumn;
-  throw std::invalid_argument("unknown record format " + quote_token(text) +
-                              " (expected at2, two-column or one-column)");
+  return parse_name(kFormatNames, to_lower(std::string(trim(text))), "record format");
 }
 
 RecordFormat guess_record_format(const std::filesystem::path& file) {

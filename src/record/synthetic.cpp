@@ -334,10 +334,6 @@ std::vector<Field<PulseSpec>> pulse_fields(PulseShape shape) {
   return fields;
 }
 
-constexpr PulseShape kPulseShapes[] = {PulseShape::kSine,   PulseShape::kCosine,
-                                       PulseShape::kCycles, PulseShape::kRicker,
-                                       PulseShape::kRickerAntisymmetric, PulseShape::kMavroeidis};
-
 /// Same record under another name (the text the caller gave).
 GroundMotion renamed(const GroundMotion& g, const std::string& name) {
   return GroundMotion(name, g.dt_s(), g.samples_m_s2());
@@ -395,7 +391,7 @@ GroundMotion make_synthetic(const std::string& text) {
     apply_assignments(text, kind, list, stochastic_fields(), spec);
     return with_text([&] { return make_stochastic(spec); });
   }
-  for (const PulseShape shape : kPulseShapes) {
+  for (const PulseShape shape : pulse_shapes()) {
     if (kind != pulse_kind(shape)) continue;
     PulseSpec spec;
     spec.shape = shape;
@@ -403,7 +399,7 @@ GroundMotion make_synthetic(const std::string& text) {
     return with_text([&] { return make_pulse(spec); });
   }
   std::string kinds = "sine, stochastic";
-  for (const PulseShape shape : kPulseShapes) kinds += ", " + pulse_kind(shape);
+  for (const PulseShape shape : pulse_shapes()) kinds += ", " + pulse_kind(shape);
   throw std::invalid_argument("synthetic record '" + text + "': unknown kind '" + std::string(kind) + "' (expected " +
                               kinds + ")");
 }

@@ -20,9 +20,8 @@ class CollapseRule {
  public:
   explicit CollapseRule(const Study& study) : limit_rad_(study.ida->theta_limit_rad) {
     std::stringstream words(study.ida->collapse);
-    for (std::string word; std::getline(words, word, ',');)
-      for (CaseStatus s : all_final_statuses())
-        if (status_name(s) == word) statuses_.push_back(static_cast<std::int8_t>(s));
+    // The parser checked every word ([ida] collapse): each is a status's name.
+    for (std::string word; std::getline(words, word, ',');) statuses_.push_back(static_cast<std::int8_t>(parse_status(word)));
     const std::size_t column = ResultColumns(study).metric_column(metric::theta_max().name);
     theta_column_ = column == ResultColumns::npos ? -1 : static_cast<int>(column);
   }

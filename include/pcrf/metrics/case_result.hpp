@@ -35,6 +35,8 @@ enum class CaseStatus : std::int8_t {
 
 /// Stable text name of a status ("at_rest", "rocking_at_end", ...).
 std::string_view status_name(CaseStatus status);
+/// The status a name spells. \throws std::invalid_argument "unknown status 'x' (expected …)".
+CaseStatus parse_status(const std::string& text);
 /// All statuses that a case can end with, in flag order (kNotRun excluded).
 const std::vector<CaseStatus>& all_final_statuses();
 /// A collapse: a tendon fractured or the frame overturned.

@@ -34,6 +34,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "pcrf/record/ground_motion.hpp"
 
@@ -54,6 +55,8 @@ struct PulseSpec {
 
 /// The pulse's kind as written in a synthetic record's text ("pulse-sine", …, "mavroeidis").
 std::string pulse_kind(PulseShape shape);
+/// Every shape, in the order above.
+std::vector<PulseShape> pulse_shapes();
 
 /// The record of a pulse.
 /// \throws std::invalid_argument naming the field (period_s ≤ 0 or below 4 dt, a non-positive
