@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include <fcntl.h>
 #include <spawn.h>
 
 #include "pcrf/cube/cube_reader.hpp"
@@ -27,11 +28,20 @@ extern char** environ;
 namespace pcrf::study_test {
 
 /// Starts `/bin/sh -c command` in the background (for tests that signal or kill a run);
-/// its pid, or 0 when it could not be started.
+/// its pid, or 0 when it could not be started. Its standard output and error go to
+/// /dev/null unless the command redirects them itself: a killed run can leave an Open MPI
+/// helper (a singleton's orted) behind, and one holding the test's own output pipe kept
+/// ctest waiting for a quarter of an hour.
 inline pid_t spawn_shell(const std::string& command) {
   pid_t pid = 0;
+  posix_spawn_file_actions_t files;
+  posix_spawn_file_actions_init(&files);
+  posix_spawn_file_actions_addopen(&files, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&files, 2, "/dev/null", O_WRONLY, 0);
   const char* argv[] = {"/bin/sh", "-c", command.c_str(), nullptr};
-  return posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ) == 0 ? pid : 0;
+  const int failed = posix_spawn(&pid, "/bin/sh", &files, nullptr, const_cast<char**>(argv), environ);
+  posix_spawn_file_actions_destroy(&files);
+  return failed == 0 ? pid : 0;
 }
 
 /// Done/total of the last progress line in a stderr file.
