@@ -59,28 +59,31 @@ struct SolverCounts {
 /// The result record of one case (one frame, one ground motion).
 struct CaseResult {
   // Properties of the frame (independent of the record).
-  double lambda_g = 0.0;            ///< paper's uplift coefficient G(0)/S(0) [-] (×g)
-  double uplift_threshold_g = 0.0;  ///< physical uplift acceleration incl. prestress [g]
-  double restitution = 0.0;         ///< coefficient of restitution r [-]
+  // Every quantity starts as NaN, "does not exist": a solver path sets each one it computes
+  // (tests/solver/result_contract_test.cpp checks that every path sets every metric it claims).
+  double lambda_g = kNone;            ///< paper's uplift coefficient G(0)/S(0) [-] (×g)
+  double uplift_threshold_g = kNone;  ///< physical uplift acceleration incl. prestress [g]
+  double restitution = kNone;         ///< coefficient of restitution r [-]
   // Response.
-  double t_trigger_paper_s = 0.0;   ///< first sample with |ü_g| ≥ λ_g·g (paper's t_RI) [s]; NaN if none
-  double t_uplift_s = 0.0;          ///< first lift-off [s]; NaN if none
-  double theta_max_rad = 0.0;       ///< max |θ₁| [rad]
-  double t_theta_max_s = 0.0;       ///< time of theta_max_rad [s]; NaN if no uplift
-  double omega_max_rad_s = 0.0;     ///< max |θ̇₁| [rad/s]
-  double t_omega_max_s = 0.0;       ///< time of omega_max_rad_s [s]; NaN if no uplift
-  double strain_column_max = 0.0;   ///< max column tendon strain, initial strain included [-]
-  double strain_beam_max = 0.0;     ///< max beam tendon strain, initial strain included [-]
+  double t_trigger_paper_s = kNone;   ///< first sample with |ü_g| ≥ λ_g·g (paper's t_RI) [s]; NaN if none
+  double t_uplift_s = kNone;          ///< first lift-off [s]; NaN if none
+  double theta_max_rad = kNone;       ///< max |θ₁| [rad] (0 for a frame that never lifts)
+  double t_theta_max_s = kNone;       ///< time of theta_max_rad [s]; NaN if no uplift
+  double omega_max_rad_s = kNone;     ///< max |θ̇₁| [rad/s]; NaN when not requested
+  double t_omega_max_s = kNone;       ///< time of omega_max_rad_s [s]; NaN if no uplift or not requested
+  double strain_column_max = kNone;   ///< max column tendon strain, initial strain included [-]; NaN without tendons
+  double strain_beam_max = kNone;     ///< max beam tendon strain, initial strain included [-]; NaN without tendons
   long impacts = 0;                 ///< number of impacts (θ₁ crossing zero)
   CaseStatus status = CaseStatus::kNotRun;
-  double t_end_s = 0.0;             ///< time at which the case ended [s]
+  double t_end_s = kNone;           ///< time at which the case ended [s]
   SolverCounts counts;
-  double wall_time_s = 0.0;         ///< wall-clock time of the case [s]
+  double wall_time_s = kNone;       ///< wall-clock time of the case [s]
   // Verdict check (SolverSettings::verdict_check); NaN when not checked.
   double status_stable = kNotChecked;     ///< 1: every perturbed twin reached the same verdict; 0: not
   double theta_max_spread = kNotChecked;  ///< (max − min)/θ_max over the case and its twins [-]
   double collapse_fraction = kNotChecked; ///< share of the case and its twins that collapsed [-]
   static constexpr double kNotChecked = std::numeric_limits<double>::quiet_NaN();
+  static constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
   std::string message;              ///< failure detail; empty when none
 };
 
