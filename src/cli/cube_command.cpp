@@ -12,6 +12,7 @@
 #include "pcrf/io/output_file.hpp"
 #include "pcrf/io/run_lock.hpp"
 #include "pcrf/post/cube_fragility.hpp"
+#include "pcrf/post/cube_p695.hpp"
 #include "pcrf/post/cube_sensitivity.hpp"
 #include "pcrf/study/cube_vocabulary.hpp"
 
@@ -33,6 +34,11 @@ struct CubeArguments {
   std::string history;
   std::string points;
   bool json = false;
+  // cube p695
+  std::string sdc = "Dmax";
+  double period_s = 0.0;
+  double mu_t = 3.0;
+  std::string ratings = "B,B,B";
 };
 
 std::vector<cube::Selector> selectors(const std::vector<std::string>& texts) {
@@ -221,6 +227,47 @@ void add_cube_command(CLI::App& app) {
       if (!args->csv.empty())
         with_output(args->csv, {args->file}, args->overwrite,
                     [&](std::ostream& out) { post::print_sensitivity(groups, true, out); });
+    });
+  });
+
+  auto* p695_cmd = cube_cmd->add_subcommand(
+      "p695", "FEMA P-695 from an IDA or stripe cube: CMR, SSF, ACMR, beta_TOT, ACMR10%/20%, P(collapse|MCE), verdicts");
+  p695_cmd->add_option("FILE", args->file, "result cube with an intensity axis (Sa(T) for P-695's own numbers)")->required();
+  add_where(p695_cmd, *args);
+  p695_cmd->add_option("--sdc", args->sdc, "seismic design category: Dmax, Dmin, Cmax, Cmin, Bmax or Bmin (Table 5-1)")
+      ->capture_default_str();
+  p695_cmd->add_option("--period-s", args->period_s, "the archetype's period T [s]: max(C_u T_a, 0.25 s)")->required();
+  p695_cmd->add_option("--mu-t", args->mu_t, "period-based ductility mu_T (SSF and beta_RTR)")->capture_default_str();
+  p695_cmd->add_option("--ratings", args->ratings,
+                       "quality ratings A-D of design requirements, test data and modelling, e.g. B,B,C")
+      ->capture_default_str();
+  p695_cmd->add_flag("--json", args->json, "one JSON object on stdout");
+  p695_cmd->callback([args] {
+    guarded(args->file, [&] {
+      post::P695Inputs in;
+      std::string r = args->ratings;
+      std::erase(r, ',');
+      if (r.size() != 3) throw UsageError("--ratings: give three letters A-D, e.g. B,B,C (got '" + args->ratings + "')");
+      try {
+        in.sdc = p695::parse_sdc(args->sdc);
+        for (const char c : r) (void)p695::rating_beta(c);
+        if (!(args->mu_t >= 1.0)) throw std::invalid_argument("--mu-t must be at least 1");
+      } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+      }
+      in.period_s = p695::archetype_period_s(args->period_s);
+      in.mu_t = args->mu_t;
+      in.design_rating = r[0], in.test_rating = r[1], in.model_rating = r[2];
+      cube::CubeReader reader(args->file);
+      note_partial("p695", args->file, reader);
+      post::P695Report report;
+      try {
+        report = post::cube_p695(reader, selectors(args->where), in);
+      } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+      }
+      if (!report.measure_problem.empty()) std::cerr << "pcrf cube p695: warning: " << report.measure_problem << '\n';
+      post::print_p695(report, in, args->json, std::cout);
     });
   });
 

@@ -12,6 +12,7 @@
 #include <thread>
 
 #include <fstream>
+#include <regex>
 #include <sstream>
 
 #include "pcrf/analysis/fragility.hpp"
@@ -238,6 +239,46 @@ TEST(IdaStudy, BadIdaStudiesAreRejected) {
     EXPECT_NE(r.err.find(message), std::string::npos) << "got: " << r.err << "\nfor:\n" << text;
     EXPECT_FALSE(std::filesystem::exists(dir / "bad.h5"));
   }
+}
+
+}  // namespace
+}  // namespace pcrf::study_test
+
+namespace pcrf::study_test {
+namespace {
+
+TEST(IdaStudy, P695CarriesTheCollapseIntensityToItsVerdict) {
+  // An IDA at Sa(0.5 s): cube p695 at that period gives the methodology's numbers, derived
+  // here independently from the fragility's median; at another period it says why not.
+  const auto dir = test::scratch_dir("ida_p695");
+  std::string text = ida_study(6, 12);
+  text.replace(text.find("measure = \"pga_g\""), std::string("measure = \"pga_g\"").size(),
+               "measure = \"sa_g\"\nperiod_s = 0.5");
+  ASSERT_EQ(run_ida(dir, text, "sa.h5").exit_code, 0);
+  const auto cube = quoted(dir / "sa.h5");
+  const auto json = test::run_command(pcrf() + " cube p695 " + cube + " --period-s 0.5 --sdc Dmax --mu-t 3 --json");
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  EXPECT_EQ(json.err.find("warning"), std::string::npos) << json.err;
+  for (const char* key : {"\"s_ct_g\": ", "\"s_mt_g\": 1.5", "\"ssf\": ", "\"beta_total\": 0.525", "\"acmr10\": ",
+                          "\"p_collapse_mce\": ", "\"group\": "})
+    EXPECT_NE(json.out.find(key), std::string::npos) << key << " in " << json.out;
+  // Ŝ_CT is the fragility's median (4 digits in its CSV); CMR = Ŝ_CT / S_MT(0.5 s) = Ŝ_CT / 1.5 g.
+  const auto fragility = test::run_command(pcrf() + " cube fragility " + cube + " --csv -");
+  ASSERT_EQ(fragility.exit_code, 0) << fragility.err;
+  const std::regex row(R"(kappa=1\.4,\d+,\d+,\d+,\d+,([0-9.]+),)");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(fragility.out, m, row)) << fragility.out;
+  const double median_g = std::stod(m[1].str());
+  const std::regex s_ct(R"(\{"frame": "kappa=1\.4", "s_ct_g": ([0-9.e+-]+), "s_mt_g": 1\.5, "cmr": ([0-9.e+-]+))");
+  ASSERT_TRUE(std::regex_search(json.out, m, s_ct)) << json.out;
+  EXPECT_NEAR(std::stod(m[1].str()), median_g, 5e-4 * median_g);
+  EXPECT_NEAR(std::stod(m[2].str()), std::stod(m[1].str()) / 1.5, 1e-12);
+  const auto other = test::run_command(pcrf() + " cube p695 " + cube + " --period-s 1.0");
+  EXPECT_EQ(other.exit_code, 0) << other.err;
+  EXPECT_NE(other.err.find("not at the --period-s 1 s"), std::string::npos) << other.err;
+  const auto bad = test::run_command(pcrf() + " cube p695 " + cube + " --period-s 0.5 --ratings B,E,B");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("unknown quality rating 'E'"), std::string::npos) << bad.err;
 }
 
 }  // namespace
