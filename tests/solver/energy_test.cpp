@@ -62,11 +62,7 @@ TEST_P(FreeRocking, KineticEnergyRatioAcrossImpactIsRSquared) {
 INSTANTIATE_TEST_SUITE_P(Integrators, FreeRocking,
                          ::testing::Values(Integrator::kCvodeAdams, Integrator::kCvodeBdf, Integrator::kArkodeErk5,
                                            Integrator::kArkodeErk8),
-                         [](const auto& param_info) {
-                           std::string n = to_string(param_info.param);
-                           for (auto& c : n) c = c == '-' ? '_' : c;
-                           return n;
-                         });
+                         test::integrator_test_name);
 
 }  // namespace
 }  // namespace pcrf

@@ -128,11 +128,7 @@ TEST_P(ResultContract, AScenewithoutTendonsHasNoStrains) {
 INSTANTIATE_TEST_SUITE_P(Integrators, ResultContract,
                          ::testing::Values(Integrator::kCvodeAdams, Integrator::kCvodeBdf, Integrator::kArkodeErk5,
                                            Integrator::kArkodeErk8, Integrator::kFixedRk4SignChange),
-                         [](const auto& param_info) {
-                           std::string n = to_string(param_info.param);
-                           for (auto& c : n) c = c == '-' ? '_' : c;
-                           return n;
-                         });
+                         test::integrator_test_name);
 
 }  // namespace
 }  // namespace pcrf

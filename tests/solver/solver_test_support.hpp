@@ -2,6 +2,10 @@
 /// \brief Records and settings shared by the solver tests.
 #pragma once
 
+#include <gtest/gtest.h>
+
+#include <string>
+
 #include <vector>
 
 #include "pcrf/record/ground_motion.hpp"
@@ -32,6 +36,13 @@ inline SolverSettings tight(Integrator i = Integrator::kCvodeAdams) {
   s.atol_theta_rad = 1e-15;
   s.atol_omega_rad_s = 1e-13;
   return s;
+}
+
+/// A parameterised test's name for an integrator ("cvode_adams"): gtest names take no '-'.
+inline std::string integrator_test_name(const ::testing::TestParamInfo<Integrator>& info) {
+  std::string n = to_string(info.param);
+  for (auto& c : n) c = c == '-' ? '_' : c;
+  return n;
 }
 
 struct Trace {
