@@ -5,7 +5,6 @@
 // overturning and tendon fracture must be reported as such.
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -52,11 +51,10 @@ CaseResult check_case(const FrameParameters& p, const GroundMotion& rec, const S
   const EquationOfMotion eom(frame);
   SolverSettings s = solver;
   s.wall_time_limit_s = 10.0;
-  const auto t0 = std::chrono::steady_clock::now();
+  // The wall-time limit is a guard against a stalled integration, not a speed claim: a case
+  // that ends as time_limit is not finished(). Speed is measured by the benchmarks.
   const CaseResult r = solve_case(frame, rec, PhysicsOptions{}, s);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   EXPECT_TRUE(finished(r.status)) << "status " << status_name(r.status) << ": " << r.message;
-  EXPECT_LT(wall, 5.0);
   // Frame properties.
   EXPECT_TRUE(std::isfinite(r.lambda_g));
   EXPECT_TRUE(std::isfinite(r.uplift_threshold_g));

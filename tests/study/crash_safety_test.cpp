@@ -154,14 +154,14 @@ TEST(CrashSafety, OneRunPerCube) {
   for (int i = 0; i < 3000 && !std::filesystem::exists(dir / "l.h5"); ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   for (const std::string mode : {"", " --resume", " --overwrite"}) {
-    const auto start = std::chrono::steady_clock::now();
     const auto second = test::run_command("cd " + quoted(dir) + " && " + pcrf() + " study l.toml -o l.h5 --progress-interval 0" + mode);
-    const double took_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     EXPECT_EQ(second.exit_code, 2) << mode << "\n" << second.err;
     EXPECT_NE(second.err.find("l.h5: in use by another run (pid " + std::to_string(first) + " on host "), std::string::npos)
         << mode << "\n" << second.err;
     EXPECT_EQ(std::count(second.err.begin(), second.err.end(), '\n'), 1) << second.err;
-    EXPECT_LT(took_s, 2.0) << "refused at once";
+    // Refused at once, not after waiting for the lock: the first run is still going. (No wall
+    // time is asserted; a loaded machine makes any bound flaky.)
+    EXPECT_EQ(::waitpid(first, nullptr, WNOHANG), 0) << mode << ": the second run waited for the first to end";
   }
   const auto info = test::run_command(pcrf() + " cube info " + quoted(dir / "l.h5"));
   EXPECT_EQ(info.exit_code, 0) << info.err;
