@@ -22,10 +22,12 @@ using study_test::quoted;
 namespace fs = std::filesystem;
 
 /// The small grid (3 records × scale 0.9, 1.2 × κ 1.2, 2.4 × tan α 0.18, 0.22) and an
-/// intensity-stripe cube of stochastic records, made once.
+/// intensity-stripe cube of stochastic records, made once per test process (ctest runs the
+/// tests in parallel processes: each in its own folder).
 const fs::path& cubes() {
   static const fs::path dir = [] {
-    const auto d = test::scratch_dir("cube_outputs");
+    const auto d = test::scratch_dir(std::string("cube_outputs_") +
+                                     ::testing::UnitTest::GetInstance()->current_test_info()->name());
     test::write_file(d, "g.toml", study_test::small_grid_study());
     std::string records = "[[records]]\nsynthetic = [";
     for (int seed = 1; seed <= 6; ++seed)

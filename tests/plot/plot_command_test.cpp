@@ -161,6 +161,7 @@ TEST(PlotCommand, BadInputFailsWithOneLineAndWritesNothing) {
       {"status " + quoted(grid) + " -o x.svg", "kappa: several values left; select one of each, e.g. -w kappa=1.2"},
       {"sweep " + quoted(grid) + " -m no_such_metric -o x.svg", "needs the metric no_such_metric"},
       {"sweep " + quoted(grid) + " -w kappa=7 -o x.svg", "kappa=7: no such value"},
+      {"sweep " + quoted(grid) + " -o x.svg --metrik impacts", "unrecognized arguments: --metrik impacts (did you mean --metric?)"},
   };
   for (const auto& c : cases) {
     const auto r = test::run_command("cd " + quoted(dir) + " && " + pcrf() + " plot " + c.args);

@@ -7,6 +7,7 @@ with --overwrite, written beside it and renamed into place when complete): ``pcr
 check`` before drawing, ``pcrf output write`` with the figure's bytes.
 """
 import argparse
+import difflib
 import importlib
 import io
 import os
@@ -34,7 +35,18 @@ KINDS = {
 
 class Parser(argparse.ArgumentParser):
     def error(self, message):
-        raise PlotError(message)
+        raise PlotError(message + self.flag_meant(message))
+
+    def flag_meant(self, message):
+        """" (did you mean --where?)" for an unknown flag, as the engine's commands say it:
+        its own spelling with dashes for underscores, else the closest flag."""
+        if not message.startswith("unrecognized arguments: "):
+            return ""
+        word = message.split(": ", 1)[1].split()[0].split("=")[0]
+        known = [o for action in self._actions for o in action.option_strings]
+        dashed = "--" + word.lstrip("-").replace("_", "-")
+        meant = dashed if dashed in known else next(iter(difflib.get_close_matches(word, known, n=1)), None)
+        return f" (did you mean {meant}?)" if meant else ""
 
 
 def parser():
