@@ -30,6 +30,8 @@ struct CubeArguments {
   std::string metric;
   std::vector<std::string> where;
   std::string by;
+  std::string reduce_over;      ///< stats: a dimension the metric is reduced over first (incidence_deg)
+  std::string reduce_how = "max";  ///< stats: max, min or median over it
   std::string output;
   std::string history;
   std::string points;
@@ -159,7 +161,11 @@ void add_cube_command(CLI::App& app) {
                "cases (tendon fracture, overturned) are counted apart, not in the percentiles");
   stats->add_option("FILE", args->file, "result cube")->required();
   stats->add_option("--by", args->by, "coordinate to group by (e.g. kappa, scale)")->required();
-  stats->add_option("-m,--metric", args->metric, "metric to summarize")->required();
+  stats->add_option("-m,--metric", args->metric, "metric to summarize (or an IDA's collapse_intensity with --reduce-over)")->required();
+  stats->add_option("--reduce-over", args->reduce_over,
+                    "first reduce the metric over this dimension (e.g. incidence_deg: each record and frame's worst "
+                    "orientation with --reduce max, RotD100; the median, RotD50)");
+  stats->add_option("--reduce", args->reduce_how, "how --reduce-over reduces: max, min or median")->capture_default_str();
   add_where(stats, *args);
   stats->callback([args] {
     guarded(args->file, [&] {
@@ -167,9 +173,13 @@ void add_cube_command(CLI::App& app) {
       note_partial("stats", args->file, reader);
       std::vector<std::string> pooled;
       const auto chosen = study::vocabulary::stats_selectors(reader.layout(), args->by, selectors(args->where));
-      const auto result = cube::group_stats(reader, args->by, args->metric, chosen,
-                                            {study::vocabulary::expected_pooling(), &pooled,
-                                             study::vocabulary::collapse_statuses()});
+      const cube::PoolReport pool{study::vocabulary::expected_pooling(), &pooled, study::vocabulary::collapse_statuses()};
+      if (args->reduce_over.empty() && args->reduce_how != "max")
+        throw UsageError("--reduce goes with --reduce-over DIMENSION");
+      const auto result =
+          args->reduce_over.empty()
+              ? cube::group_stats(reader, args->by, args->metric, chosen, pool)
+              : cube::group_stats_reduced(reader, args->by, args->metric, chosen, {args->reduce_over, args->reduce_how}, pool);
       for (const auto& p : pooled) std::cerr << "pcrf cube stats: also pooled over " << p << '\n';
       cube::print_stats(args->by, study::vocabulary::kCollapses, result, std::cout);
     });
