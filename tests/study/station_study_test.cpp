@@ -174,6 +174,37 @@ TEST(StationStudy, StatsReduceOverTheIncidence) {
   EXPECT_NE(bad.err.find("cannot group by 'incidence_deg' and reduce over its dimension"), std::string::npos) << bad.err;
 }
 
+TEST(StationStudy, AnIdasCollapseIntensityReducesOverTheIncidence) {
+  const auto dir = station_files("station_ida");
+  const auto r = study(dir, "ida",
+                       "[[records]]\nh1 = \"h1.txt\"\nh2 = \"h2.txt\"\nunits = \"m/s2\"\naz1_deg = 0\naz2_deg = 90\nstrike_deg = 20\n"
+                       "[intensity]\nmeasure = \"pga_rotd50_g\"\n[ida]\nstart = 1.0\nstep = 1.0\nmax_intensity = 12\nmax_runs = 8\n"
+                       "[axes]\nincidence = \"fault-normal\"\nincidence_deg = [0, 40, 80, 120]\n");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  cube::CubeReader cube(dir / "ida.h5");
+  const auto* azimuth = cube.layout().find_side_variable("frame_azimuth_deg");
+  ASSERT_NE(azimuth, nullptr);
+  EXPECT_EQ(cube.read_side("frame_azimuth_deg"), (std::vector<double>{110.0, 150.0, 190.0, 230.0}));
+  const auto ci = cube.read_side("collapse_intensity");
+  ASSERT_EQ(ci.size(), 4u);
+  std::vector<double> found;
+  for (double c : ci)
+    if (std::isfinite(c)) found.push_back(c);
+  ASSERT_FALSE(found.empty());
+  for (const std::string how : {"min", "max"}) {
+    const auto out = test::run_command(pcrf() + " cube stats " + quoted(dir / "ida.h5") +
+                                       " --by kappa -m collapse_intensity --reduce-over incidence_deg --reduce " + how);
+    ASSERT_EQ(out.exit_code, 0) << out.err;
+    const auto line = out.out.find('\n');
+    unsigned cases = 0, apart = 0, values = 0;
+    double median = 0.0;
+    ASSERT_EQ(std::sscanf(out.out.c_str() + line + 1, "%*[^,],%u,%u,%u,%lf", &cases, &apart, &values, &median), 4) << out.out;
+    EXPECT_EQ(cases, 1u);
+    EXPECT_EQ(values, 1u);
+    EXPECT_EQ(median, how == "min" ? *std::min_element(found.begin(), found.end()) : *std::max_element(found.begin(), found.end()));
+  }
+}
+
 TEST(StationStudy, BadStationsAreRefusedWithTheirLine) {
   const auto dir = station_files("station_bad");
   test::write_file(dir, "h090.AT2",
