@@ -34,6 +34,8 @@ struct CubeArguments {
   std::vector<std::string> where;
   std::vector<std::string> by;
   bool no_record_text = false;
+  std::string reduce_over;         ///< stats: a dimension the metric is reduced over first (incidence_deg)
+  std::string reduce_how = "max";  ///< stats: max, min or median over it
   std::string output;
   std::string history;
   std::string points;
@@ -203,7 +205,11 @@ void add_stats(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
                "Default output: CSV on stdout");
   stats->add_option("FILE", args->file, "result cube")->required();
   stats->add_option("--by", args->by, "coordinate to group by (e.g. kappa, scale); repeat for combinations")->required();
-  stats->add_option("-m,--metric", args->metric, "metric to summarize")->required();
+  stats->add_option("-m,--metric", args->metric, "metric to summarize (or an IDA's collapse_intensity with --reduce-over)")->required();
+  stats->add_option("--reduce-over", args->reduce_over,
+                    "first reduce the metric over this dimension (e.g. incidence_deg: each record and frame's worst "
+                    "orientation with --reduce max, RotD100; the median, RotD50); one --by");
+  stats->add_option("--reduce", args->reduce_how, "how --reduce-over reduces: max, min or median")->capture_default_str();
   add_where(stats, *args);
   add_report_outputs(stats, *args, schema("file, metric, metric_units, by (comma-separated)",
                                           {{"groups", post::stats_columns()}}));
@@ -212,7 +218,10 @@ void add_stats(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
       check_report_outputs(*args);
       cube::CubeReader reader(args->file);
       note_partial("stats", args->file, reader);
-      const auto report = post::stats_report(reader, {args->by, args->metric, selectors(args->where)});
+      if (args->reduce_over.empty() && args->reduce_how != "max")
+        throw UsageError("--reduce goes with --reduce-over DIMENSION");
+      const auto report =
+          post::stats_report(reader, {args->by, args->metric, selectors(args->where), {args->reduce_over, args->reduce_how}});
       // The text of stats is its CSV (as it always was): --csv FILE adds a copy.
       write_report(report, "groups", *args, "",
                    [&](std::ostream& out) { post::write_csv(report.table("groups"), out); });

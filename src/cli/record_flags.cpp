@@ -2,7 +2,6 @@
 #include "cli/record_flags.hpp"
 
 #include "cli/commands.hpp"
-#include "pcrf/record/horizontal_pair.hpp"
 #include "pcrf/record/synthetic.hpp"
 
 namespace pcrf::cli {
@@ -82,38 +81,24 @@ std::string component_of(const RecordFileSpec& spec) {
 }  // namespace
 
 StationRecord RecordFlags::load_station(std::vector<std::string>& notes) const {
-  StationRecord station{load(), az1_deg, std::nullopt, az2_deg, std::nullopt};
   auto other = [this](const std::string& path) {
     RecordFlags flags = *this;
     flags.file = path;
     flags.synthetic.clear();
     return flags;
   };
-  auto stated_azimuth = [](const RecordFileSpec& spec, const char* role) -> std::optional<double> {
-    const std::string component = component_of(spec);
-    if (is_vertical_component(component))
-      throw UsageError(spec.path.string() + ": its header names a vertical component ('" + component + "'), given as " + role);
-    return azimuth_of_component(component);
+  auto part = [](const RecordFlags& flags) {
+    const std::string component = flags.file.empty() ? std::string() : component_of(flags.spec());
+    return StationComponent{flags.load(), component, flags.file.empty() ? flags.synthetic : flags.file};
   };
-  if (!file.empty() && !station.az1_deg) station.az1_deg = stated_azimuth(spec(), "the first horizontal");
-  if (!file_h2.empty()) {
-    const RecordFlags h2 = other(file_h2);
-    station.h2 = h2.load();
-    if (!station.az2_deg) station.az2_deg = stated_azimuth(h2.spec(), "the second horizontal");
-  }
-  if (!file_up.empty()) {
-    const RecordFlags up = other(file_up);
-    const std::string component = component_of(up.spec());
-    if (!component.empty() && azimuth_of_component(component))
-      throw UsageError(file_up + ": its header names a horizontal component ('" + component + "'), given as the vertical");
-    station.up = up.load();
-  }
+  std::optional<StationComponent> h2, up;
+  if (!file_h2.empty()) h2 = part(other(file_h2));
+  if (!file_up.empty()) up = part(other(file_up));
   try {
-    notes = station.align();
+    return make_station(part(*this), az1_deg, std::move(h2), az2_deg, std::move(up), notes);
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
-  return station;
 }
 
 }  // namespace pcrf::cli

@@ -40,7 +40,8 @@ struct RunOptions {
 };
 
 /// The factor the record is scaled by: --scale, or --intensity over the record's measure.
-double scale_factor(const RunOptions& o, const GroundMotion& motion) {
+double scale_factor(const RunOptions& o, const StationRecord& station) {
+  const GroundMotion& motion = station.h1;
   const auto measure_flags = o.measure->given();
   const bool by_intensity = o.intensity_flag->count() > 0;
   if (!by_intensity) {
@@ -51,11 +52,11 @@ double scale_factor(const RunOptions& o, const GroundMotion& motion) {
   if (!(o.intensity > 0.0)) throw UsageError("--intensity must be positive");
   const IntensitySpec spec = o.measure->resolve();
   if (const auto problem = intensity_spec_problem(spec); !problem.empty()) throw UsageError("--period-s: " + problem);
-  if (spec.measure == IntensityMeasure::kSa)
+  if (component_measure(spec.measure) == IntensityMeasure::kSa)
     if (const auto problem = sa_period_problem(spec.period_s, motion.dt_s()); !problem.empty())
       throw UsageError("--period-s: " + problem + " (" + motion.name() + ")");
   if (const auto problem = measures_problem(motion); !problem.empty()) throw UsageError(motion.name() + ": " + problem);
-  const double im = intensity_of(motion, spec);
+  const double im = station_intensity(station, o.incidence_deg, spec);
   if (!(im > 0.0)) throw UsageError(motion.name() + ": its " + to_string(spec.measure) + " is 0: it cannot be scaled");
   return intensity_scale_factor(o.intensity, im);
 }
@@ -67,7 +68,7 @@ std::unique_ptr<FrameExcitation> load_excitation(const RunOptions& o, double& fa
   const StationRecord station = o.record.load_station(notes);
   for (const auto& note : notes) std::cerr << "pcrf run: note: " << note << '\n';
   try {
-    factor = scale_factor(o, in_plane_motion(station, o.incidence_deg));
+    factor = scale_factor(o, station);
     return std::make_unique<FrameExcitation>(station, o.incidence_deg, factor);
   } catch (const std::invalid_argument& e) {  // an incidence without a pair, a scale that overflows
     throw UsageError(e.what());

@@ -5,6 +5,7 @@
 #include "pcrf/number_text.hpp"
 
 #include "pcrf/json.hpp"
+#include "pcrf/row_major.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -335,6 +336,123 @@ std::vector<GroupStats> group_stats(const CubeReader& cube, const std::vector<st
     stats[s].median = analysis::percentile_sorted(merged[s], 0.50);
     stats[s].p16 = analysis::percentile_sorted(merged[s], 0.16);
     stats[s].p84 = analysis::percentile_sorted(merged[s], 0.84);
+  }
+  return stats;
+}
+
+namespace {
+
+/// The value of a reduction over `values` (finite ones; NaN when none).
+double reduce(std::vector<double> values, const std::string& how) {
+  if (values.empty()) return std::nan("");
+  std::sort(values.begin(), values.end());
+  if (how == "max") return values.back();
+  if (how == "min") return values.front();
+  return analysis::percentile_sorted(values, 0.50);
+}
+
+/// Whether a combination of `members` cases of which `apart` are set apart is set apart.
+bool reduced_apart(std::size_t apart, std::size_t members, const std::string& how) {
+  if (how == "max") return apart > 0;
+  if (how == "min") return apart == members;
+  return 2 * apart > members;
+}
+
+}  // namespace
+
+std::vector<GroupStats> group_stats_reduced(const CubeReader& cube, const std::vector<std::string>& by_list, const std::string& metric,
+                                            const std::vector<Selector>& selectors, const Reduction& reduction,
+                                            const PoolReport& pool) {
+  if (reduction.how != "max" && reduction.how != "min" && reduction.how != "median")
+    throw CubeError("reduce with max, min or median, not '" + reduction.how + "'");
+  if (by_list.size() != 1) throw CubeError("a reduction over '" + reduction.dimension + "' groups by one coordinate");
+  const std::string& by = by_list.front();
+  const auto& layout = cube.layout();
+  const Coordinate& group_by = coordinate(layout, by);
+  if (group_by.dimension == reduction.dimension) throw CubeError("cannot group by '" + by + "' and reduce over its dimension");
+  // The variable's own dimensions: every one for a metric, its own for a side variable.
+  std::vector<std::size_t> dims;
+  std::vector<double> values;
+  const SideVariable* side = layout.find_side_variable(metric);
+  if (side != nullptr) {
+    for (const auto& name : side->dimensions) dims.push_back(dimension_index(layout, name));
+    values = cube.read_side(metric);
+  } else {
+    for (std::size_t d = 0; d < layout.dimensions.size(); ++d) dims.push_back(d);
+    values = cube.read_metric(metric);
+  }
+  const auto shape = layout.shape();
+  std::vector<std::size_t> var_shape;
+  for (auto d : dims) var_shape.push_back(shape[d]);
+  const auto position = [&](std::size_t dim) -> std::size_t {
+    const auto it = std::find(dims.begin(), dims.end(), dim);
+    if (it == dims.end()) throw CubeError("'" + metric + "' does not run over '" + layout.dimensions[dim].name + "'");
+    return static_cast<std::size_t>(it - dims.begin());
+  };
+  const std::size_t reduce_pos = position(dimension_index(layout, reduction.dimension));
+  const std::size_t by_pos = position(dimension_index(layout, group_by.dimension));
+
+  const auto selected = select_cases(layout, selectors);
+  const auto status = pool.set_apart.empty() || side != nullptr ? std::vector<std::int8_t>{} : cube.read_status();
+  std::vector<char> chosen(values.size(), 0), apart(values.size(), 0);
+  std::vector<std::size_t> var_coords(dims.size());
+  for (std::int64_t i = 0; i < layout.case_count(); ++i) {
+    if (!selected[static_cast<std::size_t>(i)]) continue;
+    const auto coords = unravel(i, shape);
+    for (std::size_t p = 0; p < dims.size(); ++p) var_coords[p] = coords[dims[p]];
+    const auto v = static_cast<std::size_t>(ravel(var_coords, var_shape));
+    chosen[v] = 1;
+    if (!status.empty() && std::find(pool.set_apart.begin(), pool.set_apart.end(), status[static_cast<std::size_t>(i)]) !=
+                               pool.set_apart.end())
+      apart[v] = 1;
+  }
+  // Combinations: the variable's coordinates with the reduced one at 0.
+  struct Combination {
+    std::vector<double> values;
+    std::size_t members = 0, apart = 0;
+  };
+  std::map<std::int64_t, Combination> combinations;
+  for (std::size_t v = 0; v < values.size(); ++v) {
+    if (!chosen[v]) continue;
+    auto c = unravel(static_cast<std::int64_t>(v), var_shape);
+    c[reduce_pos] = 0;
+    Combination& combination = combinations[ravel(c, var_shape)];
+    ++combination.members;
+    if (apart[v]) ++combination.apart;
+    else if (std::isfinite(values[v])) combination.values.push_back(values[v]);
+  }
+  std::vector<GroupStats> stats;
+  std::map<std::string, std::size_t> group_of;
+  std::vector<std::vector<double>> samples;
+  for (const auto& [key, combination] : combinations) {
+    const std::size_t g = unravel(key, var_shape)[by_pos];
+    auto [it, inserted] = group_of.emplace(group_by.label(g), stats.size());
+    if (inserted) {
+      stats.push_back({{group_by.label(g)}, 0, 0, 0, 0, 0, 0});
+      samples.emplace_back();
+    }
+    GroupStats& group = stats[it->second];
+    ++group.cases;
+    if (reduced_apart(combination.apart, combination.members, reduction.how)) {
+      ++group.set_apart;
+      continue;
+    }
+    const double value = reduce(combination.values, reduction.how);
+    if (std::isfinite(value)) samples[it->second].push_back(value);
+  }
+  if (pool.pooled != nullptr)
+    for (std::size_t p = 0; p < dims.size(); ++p) {
+      const auto& name = layout.dimensions[dims[p]].name;
+      const bool expected = std::find(pool.expected.begin(), pool.expected.end(), name) != pool.expected.end();
+      if (p != by_pos && p != reduce_pos && !expected && var_shape[p] > 1)
+        pool.pooled->push_back(name + " (" + std::to_string(var_shape[p]) + " values)");
+    }
+  for (std::size_t s = 0; s < stats.size(); ++s) {
+    std::sort(samples[s].begin(), samples[s].end());
+    stats[s].values = samples[s].size();
+    stats[s].median = analysis::percentile_sorted(samples[s], 0.50);
+    stats[s].p16 = analysis::percentile_sorted(samples[s], 0.16);
+    stats[s].p84 = analysis::percentile_sorted(samples[s], 0.84);
   }
   return stats;
 }

@@ -2,9 +2,11 @@
 #include "pcrf/excitation/station_record.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <stdexcept>
 
 #include "pcrf/record/horizontal_pair.hpp"
+#include "pcrf/record/rotd.hpp"
 
 namespace pcrf {
 
@@ -29,6 +31,49 @@ std::vector<std::string> StationRecord::align() {
   return notes;
 }
 
+bool is_downward_component(const std::string& component) {
+  if (component.size() < 3) return false;
+  std::string tail = component.substr(component.size() - 3);
+  for (char& c : tail) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return tail == "DWN";
+}
+
+namespace {
+
+std::optional<double> stated_azimuth(const StationComponent& part, const char* role) {
+  if (is_vertical_component(part.component))
+    throw std::invalid_argument(part.label + ": its header names a vertical component ('" + part.component + "'), given as " +
+                                role);
+  return azimuth_of_component(part.component);
+}
+
+}  // namespace
+
+StationRecord make_station(StationComponent h1, std::optional<double> az1_deg, std::optional<StationComponent> h2,
+                           std::optional<double> az2_deg, std::optional<StationComponent> up,
+                           std::vector<std::string>& notes) {
+  if (!az1_deg) az1_deg = stated_azimuth(h1, "the first horizontal");
+  StationRecord station{std::move(h1.motion), az1_deg, std::nullopt, az2_deg, std::nullopt};
+  if (h2) {
+    if (!station.az2_deg) station.az2_deg = stated_azimuth(*h2, "the second horizontal");
+    station.h2 = std::move(h2->motion);
+  }
+  if (up) {
+    if (!up->component.empty() && azimuth_of_component(up->component))
+      throw std::invalid_argument(up->label + ": its header names a horizontal component ('" + up->component +
+                                  "'), given as the vertical");
+    if (is_downward_component(up->component)) {
+      notes.push_back("vertical component '" + up->component + "' (" + up->label +
+                      ") is positive down: negated to positive up");
+      station.up = up->motion.scaled(-1.0);
+    } else {
+      station.up = std::move(up->motion);
+    }
+  }
+  for (auto& note : station.align()) notes.push_back(std::move(note));
+  return station;
+}
+
 GroundMotion in_plane_motion(const StationRecord& record, std::optional<double> incidence_deg) {
   if (!incidence_deg) return record.h1;
   if (!record.h2 || !record.az1_deg || !record.az2_deg)
@@ -47,6 +92,16 @@ FrameExcitation::FrameExcitation(const StationRecord& record, std::optional<doub
                                   record.h1.name() + "'");
     vertical_.emplace(record.up->scaled(factor));
   }
+}
+
+double station_intensity(const StationRecord& record, std::optional<double> incidence_deg, const IntensitySpec& spec) {
+  const int percentile = rotd_percentile(spec.measure);
+  if (percentile == 0) return intensity_of(in_plane_motion(record, incidence_deg), spec);
+  if (!record.h2 || !record.az1_deg || !record.az2_deg)
+    throw std::invalid_argument(to_string(spec.measure) + " needs both horizontal components and their azimuths ('" +
+                                record.h1.name() + "' " + (record.h2 ? "has no azimuth" : "has no second component") + ")");
+  const RotD both = rotd(HorizontalPair{record.h1, *record.az1_deg, *record.h2, *record.az2_deg}, spec);
+  return percentile == 50 ? both.rotd50 : both.rotd100;
 }
 
 }  // namespace pcrf

@@ -165,8 +165,10 @@ Report stats_report(const cube::CubeReader& cube, const StatsRequest& request) {
   auto where = request.where;
   for (const auto& by : request.by) where = vocabulary::stats_selectors(layout, by, where);
   std::vector<std::string> pooled;
-  const auto groups = cube::group_stats(cube, request.by, request.metric, where,
-                                        {vocabulary::expected_pooling(), &pooled, vocabulary::collapse_statuses()});
+  const cube::PoolReport pool{vocabulary::expected_pooling(), &pooled, vocabulary::collapse_statuses()};
+  const auto groups = request.reduction.dimension.empty()
+                          ? cube::group_stats(cube, request.by, request.metric, where, pool)
+                          : cube::group_stats_reduced(cube, request.by, request.metric, where, request.reduction, pool);
   Report report;
   report.command = "stats";
   std::string by_text, units;
@@ -174,6 +176,10 @@ Report stats_report(const cube::CubeReader& cube, const StatsRequest& request) {
   for (const auto& m : layout.metrics)
     if (m.name == request.metric) units = m.units;
   report.fields = {{"file", cube.file().string()}, {"metric", request.metric}, {"metric_units", units}, {"by", by_text}};
+  if (!request.reduction.dimension.empty()) {
+    report.fields.emplace_back("reduced_over", request.reduction.dimension);
+    report.fields.emplace_back("reduction", request.reduction.how);
+  }
   for (const auto& p : pooled) report.warnings.push_back("also pooled over " + p);
   std::vector<bool> numeric;
   for (const auto& b : request.by) numeric.push_back(!layout.find_coordinate(b)->is_text);

@@ -121,7 +121,7 @@ std::optional<double> azimuth_of_component(const std::string& component) {
   if (digits < c.size() && digits > 3) digits = 3;  // a station number before the angle
   if (digits == c.size() && digits > 3) return std::nullopt;
   const double azimuth = std::stod(c.substr(c.size() - digits));
-  return azimuth < 360.0 ? std::optional<double>(azimuth) : std::nullopt;
+  return azimuth <= 360.0 ? std::optional<double>(azimuth) : std::nullopt;  // "SYL360": north
 }
 
 }  // namespace pcrf

@@ -142,10 +142,40 @@ double spectral_acceleration_g(const GroundMotion& record, double period_s, doub
 }
 
 namespace {
-constexpr std::array<EnumName<IntensityMeasure>, 3> kMeasureNames{{{IntensityMeasure::kPga, "pga_g"},
+constexpr std::array<EnumName<IntensityMeasure>, 9> kMeasureNames{{{IntensityMeasure::kPga, "pga_g"},
                                                                    {IntensityMeasure::kPgv, "pgv_m_s"},
-                                                                   {IntensityMeasure::kSa, "sa_g"}}};
+                                                                   {IntensityMeasure::kSa, "sa_g"},
+                                                                   {IntensityMeasure::kPgaRotD50, "pga_rotd50_g"},
+                                                                   {IntensityMeasure::kPgaRotD100, "pga_rotd100_g"},
+                                                                   {IntensityMeasure::kPgvRotD50, "pgv_rotd50_m_s"},
+                                                                   {IntensityMeasure::kPgvRotD100, "pgv_rotd100_m_s"},
+                                                                   {IntensityMeasure::kSaRotD50, "sa_rotd50_g"},
+                                                                   {IntensityMeasure::kSaRotD100, "sa_rotd100_g"}}};
 }  // namespace
+
+IntensityMeasure component_measure(IntensityMeasure measure) {
+  switch (measure) {
+    case IntensityMeasure::kPgaRotD50:
+    case IntensityMeasure::kPgaRotD100: return IntensityMeasure::kPga;
+    case IntensityMeasure::kPgvRotD50:
+    case IntensityMeasure::kPgvRotD100: return IntensityMeasure::kPgv;
+    case IntensityMeasure::kSaRotD50:
+    case IntensityMeasure::kSaRotD100: return IntensityMeasure::kSa;
+    default: return measure;
+  }
+}
+
+int rotd_percentile(IntensityMeasure measure) {
+  switch (measure) {
+    case IntensityMeasure::kPgaRotD50:
+    case IntensityMeasure::kPgvRotD50:
+    case IntensityMeasure::kSaRotD50: return 50;
+    case IntensityMeasure::kPgaRotD100:
+    case IntensityMeasure::kPgvRotD100:
+    case IntensityMeasure::kSaRotD100: return 100;
+    default: return 0;
+  }
+}
 
 IntensityMeasure parse_intensity_measure(const std::string& text) {
   return parse_name(kMeasureNames, text, "intensity measure");
@@ -154,10 +184,13 @@ IntensityMeasure parse_intensity_measure(const std::string& text) {
 std::string to_string(IntensityMeasure measure) { return name_of(kMeasureNames, measure); }
 
 std::string_view intensity_units(IntensityMeasure measure) {
-  return measure == IntensityMeasure::kPgv ? "m/s" : "g";
+  return component_measure(measure) == IntensityMeasure::kPgv ? "m/s" : "g";
 }
 
 std::string intensity_long_name(IntensityMeasure measure, double period_s, double damping) {
+  if (const int percentile = rotd_percentile(measure); percentile > 0)
+    return "RotD" + std::to_string(percentile) + " of the " +
+           intensity_long_name(component_measure(measure), period_s, damping) + " (Boore 2010)";
   switch (measure) {
     case IntensityMeasure::kPga: return "peak ground acceleration";
     case IntensityMeasure::kPgv: return "peak ground velocity";
@@ -167,6 +200,7 @@ std::string intensity_long_name(IntensityMeasure measure, double period_s, doubl
                     100.0 * damping);
       return text;
     }
+    default: break;
   }
   return "";
 }
@@ -176,12 +210,14 @@ double intensity_of(const GroundMotion& record, const IntensitySpec& spec) {
     case IntensityMeasure::kPga: return peak_acceleration(record).pga_g;
     case IntensityMeasure::kPgv: return peak_velocity_m_s(record);
     case IntensityMeasure::kSa: return spectral_acceleration_g(record, spec.period_s, spec.damping);
+    default: break;
   }
-  return 0.0;
+  throw std::invalid_argument(to_string(spec.measure) + " is a measure of a horizontal pair: '" + record.name() +
+                              "' needs its second horizontal component");
 }
 
 std::vector<double> intensity_series(const GroundMotion& record, const IntensitySpec& spec) {
-  switch (spec.measure) {
+  switch (component_measure(spec.measure)) {
     case IntensityMeasure::kPga: {
       std::vector<double> a_g = record.samples_m_s2();
       for (double& x : a_g) x /= kGravity_m_s2;
@@ -194,6 +230,7 @@ std::vector<double> intensity_series(const GroundMotion& record, const Intensity
       for (double& x : u) x = omega * omega * x / kGravity_m_s2;
       return u;
     }
+    default: break;
   }
   return {};
 }
@@ -208,19 +245,19 @@ const SettingTable<IntensitySpec>& intensity_settings() {
     auto& s = t.settings;
     s.push_back(choice_setting("measure", &IntensitySpec::measure, values_of(kMeasureNames), &to_string,
                                &parse_intensity_measure,
-                               "what records are scaled to: peak ground acceleration [g], velocity [m/s] or Sa(T) [g]"));
+                               "what records are scaled to: peak ground acceleration [g], velocity [m/s] or Sa(T) [g] of the record, or their RotD50/RotD100 over the orientations of a record's horizontal pair (h1, h2)"));
     s.push_back(number_setting("period_s", &IntensitySpec::period_s, "s", Bound::kNonNegative,
-                               "oscillator period of sa_g (required for it, at least 2·dt of every record, at most 100 s; no other measure takes one)"));
+                               "oscillator period of sa_g and sa_rotd*_g (required for them, at least 2·dt of every record, at most 100 s; no other measure takes one)"));
     s.back().aliases = {"--period"};
     s.push_back(number_setting("damping", &IntensitySpec::damping, "1", Bound::kFraction,
-                               "damping ratio of the sa_g oscillator"));
+                               "damping ratio of the sa_g (sa_rotd*_g) oscillator"));
     return t;
   }();
   return table;
 }
 
 std::string intensity_spec_problem(const IntensitySpec& spec) {
-  if (spec.measure != IntensityMeasure::kSa)
+  if (component_measure(spec.measure) != IntensityMeasure::kSa)
     return spec.period_s != 0.0 ? to_string(spec.measure) + " has no oscillator: period_s belongs to sa_g" : "";
   if (!(spec.period_s > 0.0)) return "sa_g needs an oscillator period above 0 s";
   return sa_period_problem(spec.period_s, 0.0);

@@ -69,10 +69,10 @@ parallel::CaseOutcome CaseRunner::run(const parallel::WorkItem& item, const Hist
       outcome.note = std::string("invalid frame: ") + e.what();
       return outcome;
     }
-    const auto motion = scaled_record(spec.record, factor);
+    const auto motion = excitation(spec.record, spec.incidence_deg, factor);
     OutputRequest request = request_;
     request.history_dt_s = history_dt_s;
-    const CaseResult result = solve_case(*frame, *motion, study_.solver, request, history);
+    const CaseResult result = solve_case(*frame, motion->view(), study_.solver, request, history);
     outcome.status = static_cast<std::int8_t>(result.status);
     const auto& metrics = columns_.metrics();
     for (std::size_t m = 0; m < metrics.size(); ++m) {
@@ -92,13 +92,16 @@ parallel::CaseOutcome CaseRunner::run(const parallel::WorkItem& item, const Hist
   return outcome;
 }
 
-std::shared_ptr<const GroundMotion> CaseRunner::scaled_record(std::size_t record, double scale) const {
+std::shared_ptr<const FrameExcitation> CaseRunner::excitation(std::size_t record, std::optional<double> incidence_deg,
+                                                              double scale) const {
   std::lock_guard lock(last_mutex_);
-  auto it = std::find_if(scaled_.begin(), scaled_.end(),
-                         [&](const LastScaled& s) { return s.record == record && s.scale == scale; });
+  auto it = std::find_if(scaled_.begin(), scaled_.end(), [&](const LastScaled& s) {
+    return s.record == record && s.incidence_deg == incidence_deg && s.scale == scale;
+  });
   if (it == scaled_.end()) {
     if (scaled_.size() >= kScaledRecords) scaled_.pop_back();
-    scaled_.insert(scaled_.begin(), {record, scale, std::make_shared<const GroundMotion>(records_.get(record).scaled(scale))});
+    scaled_.insert(scaled_.begin(),
+                   {record, incidence_deg, scale, std::make_shared<const FrameExcitation>(records_.station(record), incidence_deg, scale)});
     it = scaled_.begin();
   }
   return it->motion;

@@ -11,8 +11,15 @@
 namespace pcrf::study {
 
 CaseSpace::CaseSpace(const Study& study)
-    : plan_(study.plan), level_axis_(make_level_axis(study)), levels_(level_axis_->levels()) {
-  for (const auto& r : study.records) record_names_.push_back(r.name);
+    : plan_(study.plan), level_axis_(make_level_axis(study)), levels_(level_axis_->levels()),
+      incidences_(study.incidence_deg) {
+  for (const auto& r : study.records) {
+    record_names_.push_back(r.name);
+    const double strike = r.strike_deg.value_or(0.0);  // the parser requires it where it is used
+    incidence_origin_deg_.push_back(study.incidence_reference == "fault-normal"     ? strike + 90.0
+                                    : study.incidence_reference == "fault-parallel" ? strike
+                                                                                    : 0.0);
+  }
   names_ = {vocabulary::kRecord};
   shape_ = {record_names_.size()};
   auto add = [&](const std::vector<cube::Dimension>& dimensions) {
@@ -22,6 +29,10 @@ CaseSpace::CaseSpace(const Study& study)
     }
   };
   add(level_axis_->leading_dimensions());
+  if (!incidences_.empty()) {
+    incidence_dim_ = shape_.size();
+    add({{vocabulary::kIncidenceDeg, incidences_.size()}});
+  }
   frame_dim_ = shape_.size();
   add(plan_->dimensions());
   const auto trailing = level_axis_->trailing_dimensions();
@@ -39,7 +50,9 @@ std::int64_t CaseSpace::index(const std::vector<std::size_t>& coordinates) const
 CaseSpec CaseSpace::case_at(std::int64_t index) const {
   const auto c = coordinates(index);
   const std::span<const std::size_t> frame(c.data() + frame_dim_, plan_->dimensions().size());
-  return {c[0], levels_.empty() ? std::nan("") : levels_[c[1]], plan_->frame_at(frame)};
+  CaseSpec spec{c[0], levels_.empty() ? std::nan("") : levels_[c[1]], plan_->frame_at(frame), std::nullopt};
+  if (incidence_dim_ > 0) spec.incidence_deg = frame_azimuth_deg(c[0], incidences_[c[incidence_dim_]]);
+  return spec;
 }
 
 std::vector<std::int64_t> CaseSpace::frame_major(std::vector<std::int64_t> indices) const {
@@ -69,6 +82,17 @@ std::int64_t CaseSpace::resolve(const HistoryRequest& request) const {
       fail_history(request, names_[1] + " " + number_text(*request.scale) + " is not on the " + names_[1] + " axis");
   } else {
     coords[1] = pick_single(request, levels_.size(), names_[1]);
+  }
+  if (incidence_dim_ > 0) {
+    if (request.incidence_deg) {
+      coords[incidence_dim_] = find_value(incidences_, *request.incidence_deg);
+      if (coords[incidence_dim_] == std::string::npos)
+        fail_history(request, "incidence_deg " + number_text(*request.incidence_deg) + " is not on the incidence_deg axis");
+    } else {
+      coords[incidence_dim_] = pick_single(request, incidences_.size(), vocabulary::kIncidenceDeg);
+    }
+  } else if (request.incidence_deg) {
+    fail_history(request, "the study has no incidence axis");
   }
   const auto frame = plan_->locate(request);
   std::copy(frame.begin(), frame.end(), coords.begin() + static_cast<std::ptrdiff_t>(frame_dim_));

@@ -1,6 +1,7 @@
 // Study fingerprint for --resume (see fingerprint.hpp).
 #include "pcrf/study/fingerprint.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -48,11 +49,24 @@ std::string canonical_description(const Study& study, const CaseSpace& space, Re
   for (std::size_t r = 0; r < study.records.size(); ++r) {
     const auto& motion = records.get(r);
     out << "record " << study.records[r].name << " dt_s=" << motion.dt_s() << " n=" << motion.size()
-        << " samples=" << samples_hash(motion) << '\n';
+        << " samples=" << samples_hash(motion);
+    const auto& source = study.records[r];
+    if (source.has_components() || source.az1_deg || source.strike_deg) {  // studies of single records: as they were
+      const StationRecord& station = records.station(r);
+      if (station.h2) out << " h2=" << samples_hash(*station.h2);
+      if (station.up) out << " up=" << samples_hash(*station.up);
+      out << " az1_deg=" << station.az1_deg.value_or(std::nan("")) << " az2_deg=" << station.az2_deg.value_or(std::nan(""))
+          << " strike_deg=" << source.strike_deg.value_or(std::nan(""));
+    }
+    out << '\n';
   }
   if (study.intensity) describe_settings(out, intensity_settings(), *study.intensity);
   if (study.ida) describe_settings(out, ida_settings(), *study.ida);
   space.level_axis().describe(out);
+  if (!study.incidence_deg.empty()) {
+    out << "\nincidence " << study.incidence_reference;
+    for (double v : study.incidence_deg) out << ' ' << v;
+  }
   out << "\nbase";
   detail::describe_parameters(out, study.base);
   out << '\n';

@@ -6,15 +6,29 @@
 namespace pcrf::study {
 
 std::string RecordSource::describe() const {
-  if (file) return "file " + file->path.string();
-  return "synthetic " + synthetic;
+  if (!file) return "synthetic " + synthetic;
+  std::string text = "file " + file->path.string();
+  if (h2) text += "; h2 " + h2->path.string();
+  if (up) text += "; up " + up->path.string();
+  return text;
 }
 
 LoadedRecord load_record(const RecordSource& source) {
-  if (!source.file) return {make_synthetic(source.synthetic), source.synthetic};
+  if (!source.file) return {StationRecord{make_synthetic(source.synthetic), {}, {}, {}, {}}, source.synthetic, {}};
   RecordFile file = read_record_file(*source.file);
   std::string title = file.metadata.title.empty() ? source.file->path.filename().string() : std::move(file.metadata.title);
-  return {std::move(file.motion), std::move(title)};
+  if (!source.has_components() && !source.az1_deg)  // a record alone, read as it always was
+    return {StationRecord{std::move(file.motion), {}, {}, {}, {}}, std::move(title), {}};
+  auto component = [](RecordFile&& read, const RecordFileSpec& spec) {
+    return StationComponent{std::move(read.motion), std::move(read.metadata.component), spec.path.string()};
+  };
+  std::optional<StationComponent> h2, up;
+  if (source.h2) h2 = component(read_record_file(*source.h2), *source.h2);
+  if (source.up) up = component(read_record_file(*source.up), *source.up);
+  std::vector<std::string> notes;
+  StationRecord station = make_station(component(std::move(file), *source.file), source.az1_deg, std::move(h2),
+                                       source.az2_deg, std::move(up), notes);
+  return {std::move(station), std::move(title), std::move(notes)};
 }
 
 RecordCache::RecordCache(std::vector<RecordSource> sources)
@@ -28,15 +42,19 @@ const LoadedRecord& RecordCache::loaded(std::size_t index) {
   return *slot;
 }
 
-const GroundMotion& RecordCache::get(std::size_t index) { return loaded(index).motion; }
+const GroundMotion& RecordCache::get(std::size_t index) { return loaded(index).station.h1; }
+
+const StationRecord& RecordCache::station(std::size_t index) { return loaded(index).station; }
+
+const std::vector<std::string>& RecordCache::notes(std::size_t index) { return loaded(index).notes; }
 
 const std::string& RecordCache::title(std::size_t index) { return loaded(index).title; }
 
 double RecordCache::intensity(std::size_t index, const IntensitySpec& spec) {
-  const GroundMotion& motion = get(index);
+  const StationRecord& record = station(index);
   std::lock_guard lock(mutex_);
   auto& value = intensities_.at(index);
-  if (!value) value = intensity_of(motion, spec);
+  if (!value) value = station_intensity(record, std::nullopt, spec);
   return *value;
 }
 

@@ -14,11 +14,12 @@
 namespace pcrf::study {
 namespace {
 
-void check_records(const Study& study, RecordCache& records) {
+void check_records(const Study& study, RecordCache& records, std::vector<std::string>& notes) {
   for (std::size_t r = 0; r < study.records.size(); ++r) {
     const auto& source = study.records[r];
     try {
       records.get(r);  // loaded once, here, so that a bad record fails up front
+      for (const auto& note : records.notes(r)) notes.push_back("record \"" + source.name + "\": " + note);
     } catch (const std::exception& e) {
       throw StudyError(source.declared_at + ": records: cannot load record \"" + source.name + "\" (" +
                        source.describe() + "): " + e.what());
@@ -26,13 +27,18 @@ void check_records(const Study& study, RecordCache& records) {
     if (const auto problem = measures_problem(records.get(r)); !problem.empty())
       throw StudyError(source.declared_at + ": records: record \"" + source.name + "\": " + problem);
     if (!study.intensity) continue;
-    if (study.intensity->measure == IntensityMeasure::kSa)
+    if (component_measure(study.intensity->measure) == IntensityMeasure::kSa)
       if (const auto problem = sa_period_problem(study.intensity->period_s, records.get(r).dt_s()); !problem.empty()) {
         const auto line = study.setting_lines.find("intensity.period_s");
         throw StudyError((line != study.setting_lines.end() ? line->second : study.file) + ": intensity.period_s: " + problem +
                          " (record \"" + source.name + "\")");
       }
-    const double im = records.intensity(r, *study.intensity);
+    double im = 0.0;
+    try {
+      im = records.intensity(r, *study.intensity);
+    } catch (const std::invalid_argument& e) {
+      throw StudyError(source.declared_at + ": records: record \"" + source.name + "\": " + e.what());
+    }
     if (!(im > 0.0) || !std::isfinite(im))
       throw StudyError(source.declared_at + ": records: record \"" + source.name + "\" has " +
                        to_string(study.intensity->measure) + " = " + std::to_string(im) +
@@ -73,8 +79,8 @@ void check_frames(const Study& study, const CaseSpace& space, CheckedStudy& chec
 }  // namespace
 
 CheckedStudy check_study(const Study& study, const CaseSpace& space, RecordCache& records) {
-  check_records(study, records);
   CheckedStudy checked;
+  check_records(study, records, checked.notes);
   check_frames(study, space, checked);
   for (const auto& h : study.histories) {
     const std::int64_t index = space.resolve(h);

@@ -1,7 +1,9 @@
 // Mapping of a study onto its result cube (see study_cube.hpp).
 #include "pcrf/study/study_cube.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <ctime>
 #include <type_traits>
 #include <variant>
@@ -26,6 +28,8 @@ std::string utc_now() {
   return buffer;
 }
 
+void add_components(const Study& study, RecordCache& records, cube::CubeLayout& layout);
+
 /// The record axis (names, sources, titles), then the level axis' coordinates along it and
 /// along its own dimensions (level_axis.hpp).
 void add_record_and_level(const Study& study, const CaseSpace& space, RecordCache& records,
@@ -39,7 +43,49 @@ void add_record_and_level(const Study& study, const CaseSpace& space, RecordCach
   }
   coords.push_back(text_coordinate(names::kRecordSource, names::kRecord, "where the record comes from", sources));
   coords.push_back(text_coordinate(names::kRecordTitle, names::kRecord, "the record's own title (AT2 header)", titles));
+  add_components(study, records, layout);
   space.level_axis().add_leading(layout, records);
+}
+
+/// Records with components: the azimuths each horizontal was recorded along (from its
+/// header or given) and the fault's strike, NaN where there is none; the component files are
+/// in record_source. Nothing for studies of single records (their cubes as they were).
+void add_components(const Study& study, RecordCache& records, cube::CubeLayout& layout) {
+  const bool components = std::any_of(study.records.begin(), study.records.end(),
+                                      [](const RecordSource& r) { return r.has_components() || r.strike_deg; });
+  if (!components) return;
+  const double none = std::nan("");
+  std::vector<double> az1, az2, strike;
+  for (std::size_t r = 0; r < study.records.size(); ++r) {
+    const StationRecord& station = records.station(r);
+    az1.push_back(station.az1_deg.value_or(none));
+    az2.push_back(station.az2_deg.value_or(none));
+    strike.push_back(study.records[r].strike_deg.value_or(none));
+  }
+  auto& coords = layout.coordinates;
+  coords.push_back(number_coordinate("record_azimuth_h1_deg", names::kRecord, "degree",
+                                     "azimuth of the first horizontal component, clockwise from north", az1));
+  coords.push_back(number_coordinate("record_azimuth_h2_deg", names::kRecord, "degree",
+                                     "azimuth of the second horizontal component, clockwise from north", az2));
+  coords.push_back(number_coordinate("record_strike_deg", names::kRecord, "degree", "strike of the fault, clockwise from north", strike));
+}
+
+/// The incidence axis: its values as the study gives them, and where they count from
+/// another direction than north, each record's frame azimuth.
+void add_incidence(const Study& study, const CaseSpace& space, cube::CubeLayout& layout) {
+  if (space.incidences().empty()) return;
+  const bool north = study.incidence_reference == "north";
+  layout.coordinates.push_back(number_coordinate(
+      names::kIncidenceDeg, names::kIncidenceDeg, "degree",
+      north ? "azimuth of the frame's plane, clockwise from north"
+            : "angle of the frame's plane from the record's " + study.incidence_reference + " direction, clockwise",
+      space.incidences()));
+  if (north) return;
+  cube::SideVariable azimuth{names::kFrameAzimuthDeg, "degree", "azimuth of the frame's plane, clockwise from north",
+                             {names::kRecord, names::kIncidenceDeg}, {}};
+  for (std::size_t r = 0; r < space.record_names().size(); ++r)
+    for (double incidence : space.incidences()) azimuth.values.push_back(space.frame_azimuth_deg(r, incidence));
+  layout.side_variables.push_back(std::move(azimuth));
 }
 
 /// One attribute "<table>_<key>" per setting: numbers as float64, integers and flags as
@@ -93,6 +139,7 @@ cube::CubeLayout make_cube_layout(const Study& study, const CaseSpace& space, Re
   for (std::size_t d = 0; d < space.shape().size(); ++d)
     layout.dimensions.push_back({space.dimension_names()[d], space.shape()[d]});
   add_record_and_level(study, space, records, layout);
+  add_incidence(study, space, layout);
   for (auto& c : space.plan().coordinates()) layout.coordinates.push_back(std::move(c));
   layout.metrics = ResultColumns(study).variables();
   const auto& names = space.dimension_names();

@@ -141,6 +141,29 @@ void read_ida(const Fields& top, Study& s) {
   s.ida = ida;
 }
 
+/// [axes] incidence_deg and incidence: the frames' orientation (Study::incidence_deg).
+void read_incidence(const Fields& f, Study& s) {
+  if (f.has("incidence")) {
+    const std::string reference = *f.text("incidence");
+    if (reference != "north" && reference != "fault-normal" && reference != "fault-parallel")
+      f.fail("incidence", "expected \"north\", \"fault-normal\" or \"fault-parallel\", got \"" + reference + "\"");
+    s.incidence_reference = reference;
+    s.incidence_deg = {0.0};  // the reference direction itself, unless incidence_deg adds offsets
+  }
+  if (!f.has("incidence_deg")) return;
+  s.incidence_deg = read_values(f, "incidence_deg");
+  std::vector<double> sorted = s.incidence_deg;
+  std::sort(sorted.begin(), sorted.end());
+  if (auto dup = std::adjacent_find(sorted.begin(), sorted.end()); dup != sorted.end())
+    f.fail("incidence_deg", "value " + number_text(*dup) + " appears twice");
+  for (double v : s.incidence_deg)
+    if (!(std::fabs(v) <= 360.0)) f.fail("incidence_deg", "value " + number_text(v) + " is not an angle in [-360, 360] degrees");
+  if (s.intensity && rotd_percentile(s.intensity->measure) == 0)
+    f.fail("incidence_deg", "the records are scaled by their " + to_string(s.intensity->measure) +
+                                ", which depends on the frame's orientation: scale pairs by a RotD measure (" +
+                                to_string(IntensityMeasure::kPgaRotD50) + ", " + to_string(IntensityMeasure::kSaRotD50) + ", …)");
+}
+
 /// [axes]: the level axis (scale or intensity) here, the parameter keys by the plan.
 void read_axes(const Fields& top, Study& s) {
   const auto* table = top.subtable("axes");
@@ -155,8 +178,9 @@ void read_axes(const Fields& top, Study& s) {
                               std::string(intensity_units(s.intensity->measure)) + ")");
   std::optional<Fields> axes;
   if (table != nullptr) {
-    axes.emplace(*table, "axes", s.file, with_parameter_keys({"scale", "intensity"}));
+    axes.emplace(*table, "axes", s.file, with_parameter_keys({"scale", "intensity", "incidence_deg", "incidence"}));
     const Fields& f = *axes;
+    read_incidence(f, s);
     if (f.has("scale") && f.has("intensity"))
       f.fail("intensity", "give either scale (one factor for every record) or intensity (each record scaled to it), not both");
     if (f.has("intensity") && !s.intensity)
@@ -227,17 +251,58 @@ std::vector<std::filesystem::path> resolve_files(const Fields& f, std::string_vi
   return matches;
 }
 
+/// The file specs an entry's `key` names (a path, a glob or a list), each read as `spec` says.
+std::vector<RecordFileSpec> read_file_specs(const Fields& f, std::string_view key, const RecordFileSpec& spec,
+                                            const std::optional<RecordFormat>& format, const Study& s) {
+  if (key == "file" && !f.node("file")->is_string()) f.fail("file", "expected a string (use `files` for a list)");
+  std::vector<RecordFileSpec> specs;
+  for (const auto& entry : f.texts(key)) {
+    for (const auto& path : resolve_files(f, key, entry, s.base_dir)) {
+      RecordFileSpec file_spec = spec;
+      file_spec.path = path;
+      file_spec.format = format.value_or(guess_record_format(path));
+      if (file_spec.format == RecordFormat::kAt2 && file_spec.skip_rows > 0)
+        f.fail("skip_rows", "applies to text records only (.AT2 files have their own header)");
+      if (file_spec.column > 0 && file_spec.format != RecordFormat::kOneColumn)
+        f.fail("column", "applies to one-column records only");
+      if (file_spec.format == RecordFormat::kOneColumn) {
+        if (!f.has("dt_s")) f.fail("dt_s", "one-column records need dt_s (the sample interval)");
+        file_spec.dt_s = *f.number("dt_s");
+        if (file_spec.dt_s <= 0.0) f.fail("dt_s", "must be positive");
+      } else if (f.has("dt_s")) {
+        f.fail("dt_s", "only applies to one-column records (the others carry their time step)");
+      }
+      specs.push_back(std::move(file_spec));
+    }
+  }
+  return specs;
+}
+
+/// A component's azimuth key (az1_deg, az2_deg, strike_deg): an angle in degrees.
+std::optional<double> read_angle(const Fields& f, std::string_view key) {
+  const auto value = f.number(key);
+  if (value && !(std::fabs(*value) <= 360.0))
+    f.fail(key, "expected an angle in [-360, 360] degrees, got " + number_text(*value));
+  return value;
+}
+
 std::vector<RecordSource> read_record_entry(const Fields& f, const Study& s) {
-  const int given = int(f.has("file")) + int(f.has("files")) + int(f.has("synthetic"));
-  if (given != 1) f.fail("file", "give exactly one of file, files or synthetic");
+  const int given = int(f.has("file")) + int(f.has("files")) + int(f.has("synthetic")) + int(f.has("h1"));
+  if (given != 1) f.fail(f.has("h1") ? "h1" : "file", "give exactly one of file, files, h1 or synthetic");
+  for (const auto key : {"h2", "up", "az1_deg", "az2_deg"})
+    if (f.has(key) && !f.has("h1")) f.fail(key, "a station's components are h1 (the first horizontal), h2 and up: give h1");
   std::vector<RecordSource> sources;
   if (f.has("synthetic")) {
     for (const auto key : {"format", "units", "dt_s", "skip_rows", "column"})
       if (f.has(key)) f.fail(key, "only applies to record files");
-    for (const auto& text : f.texts("synthetic")) sources.push_back({text, std::nullopt, text, f.where("synthetic")});
+    for (const auto& text : f.texts("synthetic")) {
+      RecordSource source;
+      source.name = source.synthetic = text;
+      source.declared_at = f.where("synthetic");
+      sources.push_back(std::move(source));
+    }
   } else {
-    const std::string_view key = f.has("file") ? "file" : "files";
-    if (key == "file" && !f.node("file")->is_string()) f.fail("file", "expected a string (use `files` for a list)");
+    const std::string_view key = f.has("file") ? "file" : f.has("h1") ? "h1" : "files";
     RecordFileSpec spec;
     try {
       if (f.has("units")) spec.unit = parse_accel_unit(*f.text("units"));
@@ -258,26 +323,30 @@ std::vector<RecordSource> read_record_entry(const Fields& f, const Study& s) {
     } catch (const std::exception& e) {
       f.fail("format", e.what());
     }
-    for (const auto& entry : f.texts(key)) {
-      for (const auto& path : resolve_files(f, key, entry, s.base_dir)) {
-        RecordFileSpec file_spec = spec;
-        file_spec.path = path;
-        file_spec.format = format.value_or(guess_record_format(path));
-        if (file_spec.format == RecordFormat::kAt2 && file_spec.skip_rows > 0)
-          f.fail("skip_rows", "applies to text records only (.AT2 files have their own header)");
-        if (file_spec.column > 0 && file_spec.format != RecordFormat::kOneColumn)
-          f.fail("column", "applies to one-column records only");
-        if (file_spec.format == RecordFormat::kOneColumn) {
-          if (!f.has("dt_s")) f.fail("dt_s", "one-column records need dt_s (the sample interval)");
-          file_spec.dt_s = *f.number("dt_s");
-          if (file_spec.dt_s <= 0.0) f.fail("dt_s", "must be positive");
-        } else if (f.has("dt_s")) {
-          f.fail("dt_s", "only applies to one-column records (the others carry their time step)");
-        }
-        sources.push_back({record_name(file_spec), file_spec, "", f.where(key)});
-      }
+    const auto firsts = read_file_specs(f, key, spec, format, s);
+    // The other components pair with the first ones in the order their names sort.
+    std::vector<RecordFileSpec> seconds, verticals;
+    for (const auto& [other, list] : {std::pair{"h2", &seconds}, std::pair{"up", &verticals}}) {
+      if (!f.has(other)) continue;
+      *list = read_file_specs(f, other, spec, format, s);
+      if (list->size() != firsts.size())
+        f.fail(other, std::to_string(list->size()) + " files for " + std::to_string(firsts.size()) +
+                          " first components (h1): each station needs one of each");
+    }
+    for (std::size_t i = 0; i < firsts.size(); ++i) {
+      RecordSource source;
+      source.name = record_name(firsts[i]);
+      source.file = firsts[i];
+      source.declared_at = f.where(key);
+      if (!seconds.empty()) source.h2 = seconds[i];
+      if (!verticals.empty()) source.up = verticals[i];
+      source.az1_deg = read_angle(f, "az1_deg");
+      source.az2_deg = read_angle(f, "az2_deg");
+      source.strike_deg = read_angle(f, "strike_deg");
+      sources.push_back(std::move(source));
     }
   }
+  if (f.has("strike_deg") && f.has("synthetic")) f.fail("strike_deg", "only applies to record files");
   if (f.has("name")) {
     if (sources.size() != 1) f.fail("name", "only an entry that gives exactly one record can name it");
     sources.front().name = *f.text("name");
@@ -286,20 +355,37 @@ std::vector<RecordSource> read_record_entry(const Fields& f, const Study& s) {
   return sources;
 }
 
+/// What the study's incidence axis and measure ask of a record entry's stations.
+void check_station_needs(const Fields& f, const Study& s, const RecordSource& source) {
+  const char* first = f.has("h1") ? "h1" : f.has("file") ? "file" : f.has("files") ? "files" : "synthetic";
+  if (!s.incidence_deg.empty() && !source.h2)
+    f.fail(f.has("h1") ? "h2" : first, "the study has an incidence axis: record \"" + source.name +
+                                           "\" needs its second horizontal component (h1 and h2)");
+  if (s.incidence_reference != "north" && !source.strike_deg)
+    f.fail(f.has("h1") ? "h1" : first, "incidence = \"" + s.incidence_reference + "\" needs the fault's strike: record \"" +
+                                           source.name + "\" has no strike_deg");
+  if (s.intensity && rotd_percentile(s.intensity->measure) > 0 && !source.h2)
+    f.fail(f.has("h1") ? "h1" : first, "intensity measure " + to_string(s.intensity->measure) + " is a measure of a pair: record \"" +
+                                           source.name + "\" needs its second horizontal component (h1 and h2)");
+}
+
 void read_records(const Fields& top, Study& s) {
   const auto* array = top.array("records");
   if (array == nullptr || array->empty())
-    top.fail("records", "a study needs at least one [[records]] table (file, files or synthetic)");
+    top.fail("records", "a study needs at least one [[records]] table (file, files, h1 or synthetic)");
   std::set<std::string> names;
   for (std::size_t i = 0; i < array->size(); ++i) {
     const std::string path = "records[" + std::to_string(i) + "]";
     const auto* table = (*array)[i].as_table();
     if (table == nullptr) Fields::fail_at(s.file, &(*array)[i], path, "expected a table ([[records]])");
-    Fields f(*table, path, s.file, {"file", "files", "synthetic", "format", "units", "dt_s", "skip_rows", "column", "name"});
+    Fields f(*table, path, s.file,
+             {"file", "files", "synthetic", "format", "units", "dt_s", "skip_rows", "column", "name", "h1", "h2", "up",
+              "az1_deg", "az2_deg", "strike_deg"});
     for (auto& source : read_record_entry(f, s)) {
       if (!names.insert(source.name).second)
-        f.fail(f.has("synthetic") ? "synthetic" : (f.has("file") ? "file" : "files"),
+        f.fail(f.has("synthetic") ? "synthetic" : (f.has("file") ? "file" : f.has("h1") ? "h1" : "files"),
                "two records are named \"" + source.name + "\" (give one a `name`)");
+      check_station_needs(f, s, source);
       s.records.push_back(std::move(source));
     }
   }
@@ -348,7 +434,7 @@ void read_histories(const Fields& outputs, Study& s) {
     const std::string path = "outputs.histories[" + std::to_string(i) + "]";
     const auto* table = (*array)[i].as_table();
     if (table == nullptr) Fields::fail_at(s.file, &(*array)[i], path, "expected a table ([[outputs.histories]])");
-    Fields f(*table, path, s.file, with_parameter_keys({"label", "record", "scale", "intensity", "case", "dt_s"}));
+    Fields f(*table, path, s.file, with_parameter_keys({"label", "record", "scale", "intensity", "case", "dt_s", "incidence_deg"}));
     HistoryRequest request;
     request.declared_at = f.where("label");
     if (!f.has("label")) f.fail("label", "a history needs a label (its group name)");
@@ -361,6 +447,7 @@ void read_histories(const Fields& outputs, Study& s) {
       if (f.has(key) && std::string_view(key) != level_key)
         f.fail(key, std::string("this study's second axis is `") + level_key + "`");
     request.scale = f.number(level_key);
+    request.incidence_deg = f.number("incidence_deg");
     if (const auto dt = f.number("dt_s")) {
       if (!(*dt > 0.0)) f.fail("dt_s", "the output interval must be a positive number of seconds");
       request.dt_s = *dt;

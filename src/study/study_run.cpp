@@ -63,14 +63,16 @@ void check_output_is_not_an_input(const std::filesystem::path& output, const Stu
   if (same_file(output, options.study_file))
     throw StudyError(output.string() + ": -o names the study file itself; choose another output (--overwrite does not apply to inputs)");
   for (const auto& r : study.records)
-    if (r.file && same_file(output, r.file->path))
-      throw StudyError(output.string() + ": -o names the record file of \"" + r.name +
-                       "\"; choose another output (--overwrite does not apply to inputs)");
+    for (const auto* file : {&r.file, &r.h2, &r.up})
+      if (*file && same_file(output, (*file)->path))
+        throw StudyError(output.string() + ": -o names the record file of \"" + r.name +
+                         "\"; choose another output (--overwrite does not apply to inputs)");
 }
 
 MasterSetup prepare_master(const StudyRunOptions& options, const Prepared& p) {
   MasterSetup m;
   m.checked = check_study(p.study, *p.space, *p.records);
+  for (const auto& note : m.checked.notes) std::cerr << "pcrf study: note: " << note << '\n';
   if (options.check_only) return m;
   m.output = options.output.empty() ? default_output(options.study_file) : options.output;
   check_output_is_not_an_input(m.output, options, p.study);

@@ -91,6 +91,7 @@ TEST(HorizontalPair, ComponentNamesStateTheirAzimuth) {
   EXPECT_EQ(pcrf::azimuth_of_component("H-E07140"), 140.0);
   EXPECT_EQ(pcrf::azimuth_of_component("LCN345"), 345.0);
   EXPECT_EQ(pcrf::azimuth_of_component("MUL009"), 9.0);
+  EXPECT_EQ(pcrf::azimuth_of_component("SYL360"), 360.0);  // north, as PEER names it (RIO360, NWH360)
   EXPECT_EQ(pcrf::azimuth_of_component("CHY101-N"), 0.0);
   EXPECT_EQ(pcrf::azimuth_of_component("TCU045-E"), 90.0);
   EXPECT_EQ(pcrf::azimuth_of_component("CLW-LN"), std::nullopt);

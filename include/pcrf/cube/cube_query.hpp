@@ -76,4 +76,23 @@ struct PoolReport {
 std::vector<GroupStats> group_stats(const CubeReader& cube, const std::vector<std::string>& by, const std::string& metric,
                                     const std::vector<Selector>& selectors, const PoolReport& pool = {});
 
+/// A metric reduced over one dimension before the statistics: every combination of the
+/// other coordinates gives one value, the largest, smallest or median of its values along
+/// `dimension` (e.g. over `incidence_deg`: the response of the worst orientation, max, is a
+/// RotD100 and the median a RotD50, as Boore 2010 defines them for ground motions). A
+/// combination counts as set apart (a collapse) when its reduced value would be one: any
+/// member for max, every member for min, more than half for median.
+struct Reduction {
+  std::string dimension;
+  std::string how;  ///< "max", "min" or "median"
+};
+
+/// group_stats() of `metric` reduced over `reduction.dimension` first (one coordinate in `by`). `metric` may also be a
+/// side variable over that dimension (an IDA's collapse_intensity); `cases` then counts its
+/// combinations. \throws CubeError when `by` is the reduced dimension, the variable does not
+/// run over it, or `how` is not max, min or median.
+std::vector<GroupStats> group_stats_reduced(const CubeReader& cube, const std::vector<std::string>& by, const std::string& metric,
+                                            const std::vector<Selector>& selectors, const Reduction& reduction,
+                                            const PoolReport& pool = {});
+
 }  // namespace pcrf::cube

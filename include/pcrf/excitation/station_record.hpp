@@ -16,6 +16,7 @@
 
 #include "pcrf/excitation/excitation.hpp"
 #include "pcrf/record/ground_motion.hpp"
+#include "pcrf/record/intensity.hpp"
 
 namespace pcrf {
 
@@ -31,6 +32,29 @@ struct StationRecord {
   /// \throws std::invalid_argument naming the components when their dt differ.
   std::vector<std::string> align();
 };
+
+/// One component file as read: its motion and the component name its header states ("230",
+/// "UP", "H-DLTDWN"; empty when the file states none), and what to call it in messages.
+struct StationComponent {
+  GroundMotion motion;
+  std::string component;
+  std::string label;  ///< the file, for messages
+};
+
+/// True for a vertical channel that PEER names `DWN` (e.g. "H-DLTDWN", "AREDWN"): its
+/// positive direction is down, as a horizontal's name states the azimuth its positive
+/// values point to (docs/vertical_excitation.md, "Records").
+bool is_downward_component(const std::string& component);
+
+/// A station put together from its component files, the one way `pcrf run`, `pcrf record`
+/// and studies do it: each horizontal's azimuth from its header's component name unless
+/// given, a vertical channel given as a horizontal (or a horizontal as the vertical)
+/// refused, a `DWN` vertical negated to positive up (with a note), the components aligned
+/// (align(); its notes appended to `notes`).
+/// \throws std::invalid_argument naming the file and the problem.
+StationRecord make_station(StationComponent h1, std::optional<double> az1_deg, std::optional<StationComponent> h2,
+                           std::optional<double> az2_deg, std::optional<StationComponent> up,
+                           std::vector<std::string>& notes);
 
 /// What a frame at `incidence_deg` feels from `record` scaled by `factor`; owns its series.
 class FrameExcitation {
@@ -52,5 +76,11 @@ class FrameExcitation {
 /// The in-plane horizontal motion of a frame at `incidence_deg` (unscaled), for intensity
 /// measures of what the frame feels. \throws as FrameExcitation.
 GroundMotion in_plane_motion(const StationRecord& record, std::optional<double> incidence_deg);
+
+/// The station's value of an intensity measure: for a RotD measure of its horizontal pair
+/// (rotd.hpp: the frame's orientation plays no part), else of the in-plane motion at
+/// `incidence_deg` (in_plane_motion). \throws std::invalid_argument when a RotD measure
+/// has no pair or no azimuths, or as in_plane_motion.
+double station_intensity(const StationRecord& record, std::optional<double> incidence_deg, const IntensitySpec& spec);
 
 }  // namespace pcrf

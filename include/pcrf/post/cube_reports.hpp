@@ -27,6 +27,9 @@ struct StatsRequest {
   std::vector<std::string> by;  ///< coordinates to group by (at least one)
   std::string metric;
   std::vector<cube::Selector> where;
+  /// When `reduction.dimension` is set, the metric is first reduced over it (group_stats_reduced:
+  /// e.g. the worst incidence); `by` then names one coordinate.
+  cube::Reduction reduction;
 };
 /// Median and 16th/84th percentiles of the metric across records per group; collapses are
 /// counted apart. Warnings: the axes pooled over besides the records ("also pooled over …").

@@ -46,8 +46,14 @@ double significant_duration_s(const GroundMotion& record);
 /// \throws std::invalid_argument when period_s ≤ 0 or damping is not in [0, 1).
 double spectral_acceleration_g(const GroundMotion& record, double period_s, double damping = 0.05);
 
-/// A measure a study can scale records to: "pga_g", "pgv_m_s" or "sa_g".
-enum class IntensityMeasure { kPga, kPgv, kSa };
+/// A measure a study can scale records to: "pga_g", "pgv_m_s" or "sa_g" of one component,
+/// or RotD50 / RotD100 (rotd.hpp) of a station's horizontal pair: "pga_rotd50_g",
+/// "pga_rotd100_g", "pgv_rotd50_m_s", "pgv_rotd100_m_s", "sa_rotd50_g", "sa_rotd100_g".
+enum class IntensityMeasure { kPga, kPgv, kSa, kPgaRotD50, kPgaRotD100, kPgvRotD50, kPgvRotD100, kSaRotD50, kSaRotD100 };
+/// The measure of one component behind a RotD measure (kPga for kPgaRotD50); itself otherwise.
+IntensityMeasure component_measure(IntensityMeasure measure);
+/// 50 or 100 for a RotD measure, 0 for a measure of one component.
+int rotd_percentile(IntensityMeasure measure);
 IntensityMeasure parse_intensity_measure(const std::string& text);  ///< \throws std::invalid_argument
 std::string to_string(IntensityMeasure measure);
 /// UDUNITS of a measure's values: "g" ("9.81 m s-2" is spelled out in cube attributes), "m/s".
@@ -62,6 +68,7 @@ struct IntensitySpec {
   double damping = 0.05;   ///< Sa only
 };
 /// The record's value of the measure, in its units.
+/// \throws std::invalid_argument for a RotD measure (it needs a pair: station_intensity()).
 double intensity_of(const GroundMotion& record, const IntensitySpec& spec);
 /// The factor that brings a record whose measure is `record_intensity` to `target_intensity`:
 /// every measure here is linear in the accelerations, so the ratio (infinite or NaN when

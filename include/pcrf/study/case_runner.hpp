@@ -17,6 +17,7 @@
 #include "pcrf/study/case_space.hpp"
 #include "pcrf/study/record_source.hpp"
 #include "pcrf/study/result_row.hpp"
+#include "pcrf/excitation/station_record.hpp"
 #include "pcrf/study/study.hpp"
 
 namespace pcrf::study {
@@ -36,11 +37,13 @@ class CaseRunner {
                             double history_dt_s = 0.0) const noexcept;
 
  private:
-  /// The record scaled for a case. The cases of a frame come together (CaseSpace::
-  /// frame_major), one per record and level, so the scaled records of the last few dozen
-  /// (record, level) pairs are kept: cheap cases (a frame that never lifts off) would
+  /// What a case's frame feels: the record's components at the case's incidence, scaled
+  /// (FrameExcitation, as `pcrf run` makes it). The cases of a frame come together
+  /// (CaseSpace::frame_major), one per record, incidence and level, so the excitations of
+  /// the last few dozen are kept: cheap cases (a frame that never lifts off) would
   /// otherwise spend their time copying records.
-  std::shared_ptr<const GroundMotion> scaled_record(std::size_t record, double scale) const;
+  std::shared_ptr<const FrameExcitation> excitation(std::size_t record, std::optional<double> incidence_deg,
+                                                    double scale) const;
   /// The level of a case: its axis value, or in an IDA the intensity its work item carries.
   static double level_of(const CaseSpec& spec, const parallel::WorkItem& item);
 
@@ -51,8 +54,9 @@ class CaseRunner {
   OutputRequest request_;
   struct LastScaled {
     std::size_t record = static_cast<std::size_t>(-1);
+    std::optional<double> incidence_deg;
     double scale = 0.0;
-    std::shared_ptr<const GroundMotion> motion;
+    std::shared_ptr<const FrameExcitation> motion;
   };
   mutable std::mutex last_mutex_;
   mutable std::vector<LastScaled> scaled_;  ///< most recent first

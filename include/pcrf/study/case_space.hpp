@@ -2,14 +2,15 @@
 /// \brief The cases of a study as a row-major cube: linear index ↔ coordinates ↔ the case
 /// itself (record, scale factor, frame parameters).
 ///
-/// Dimensions: record × the level axis (scale or intensity; none in an IDA) × the plan's
-/// frame dimensions (plan.hpp: grid, one per parameter; the others, `case`) × in an IDA
+/// Dimensions: record × the level axis (scale or intensity; none in an IDA) × with an
+/// incidence axis `incidence_deg` × the plan's frame dimensions (plan.hpp: grid, one per parameter; the others, `case`) × in an IDA
 /// `ida_point`, the runs of each curve.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,9 @@ struct CaseSpec {
   std::size_t record = 0;  ///< index into Study::records
   double level = 1.0;  ///< the record's scale factor, or (intensity axis) its target intensity
   FrameParameters parameters;
+  /// The azimuth of the frame's plane [deg from north] (its incidence resolved for this
+  /// record); none without an incidence axis (the frame lies along the first component).
+  std::optional<double> incidence_deg;
 };
 
 class CaseSpace {
@@ -49,6 +53,11 @@ class CaseSpace {
   /// Distinct frames of the study (every parameter combination), for up-front checks.
   std::vector<FrameParameters> frames() const;
 
+  /// The incidence axis' values as the study gives them (empty: no such axis).
+  const std::vector<double>& incidences() const { return incidences_; }
+  /// The frame's azimuth [deg from north] for record `record` at incidence value `incidence`.
+  double frame_azimuth_deg(std::size_t record, double incidence) const { return incidence_origin_deg_[record] + incidence; }
+
   /// IDA: runs per curve (the last axis, ida_point); 0 otherwise. Curve c's k-th run is case
   /// c · ida_runs() + k, the curves being the records × frames in row-major order.
   std::size_t ida_runs() const { return ida_runs_; }
@@ -67,6 +76,9 @@ class CaseSpace {
   std::vector<std::string> record_names_;
   std::vector<double> levels_;
   std::size_t frame_dim_ = 2;  ///< first frame axis (after record and the level axis, if any)
+  std::vector<double> incidences_;
+  std::vector<double> incidence_origin_deg_;  ///< per record: what the incidence counts from
+  std::size_t incidence_dim_ = 0;             ///< 0: no incidence axis
   std::size_t ida_runs_ = 0;
 };
 

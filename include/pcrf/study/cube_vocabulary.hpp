@@ -33,6 +33,8 @@ inline constexpr const char* kCaseLabel = "case_label";
 inline constexpr const char* kVariedParameter = "varied_parameter";
 inline constexpr const char* kSaltelliBlock = "saltelli_block";
 inline constexpr const char* kSaltelliSample = "saltelli_sample";
+inline constexpr const char* kIncidenceDeg = "incidence_deg";
+inline constexpr const char* kFrameAzimuthDeg = "frame_azimuth_deg";
 // Global attributes.
 inline constexpr const char* kStudyName = "study_name";
 inline constexpr const char* kPlan = "plan";

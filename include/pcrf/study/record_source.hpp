@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "pcrf/excitation/station_record.hpp"
 #include "pcrf/record/ground_motion.hpp"
 #include "pcrf/record/intensity.hpp"
 #include "pcrf/record/record_readers.hpp"
@@ -22,6 +23,15 @@ struct RecordSource {
   std::optional<RecordFileSpec> file;  ///< a file (path already resolved), or
   std::string synthetic;               ///< a synthetic motion, make_synthetic() text
   std::string declared_at;             ///< "study.toml:12", for messages
+  /// A station's other components ([[records]] h2, up), read like `file` (the first, h1).
+  // (Initialised, so that sources written as {name, file, synthetic, where} stay complete.)
+  std::optional<RecordFileSpec> h2 = std::nullopt;
+  std::optional<RecordFileSpec> up = std::nullopt;
+  std::optional<double> az1_deg = std::nullopt;  ///< given azimuths [deg from north]; else from the headers
+  std::optional<double> az2_deg = std::nullopt;
+  std::optional<double> strike_deg = std::nullopt;  ///< the fault's strike [deg from north], for fault-normal incidence
+
+  bool has_components() const { return h2 || up; }
 
   /// "file ER1.AT2" or "synthetic sine:...", for messages.
   std::string describe() const;
@@ -30,8 +40,9 @@ struct RecordSource {
 /// A record as loaded: its motion, and what it calls itself (the AT2 title line, else the
 /// file name, or the synthetic text), both from one read of its file.
 struct LoadedRecord {
-  GroundMotion motion;
+  StationRecord station;  ///< station.h1 is the record itself
   std::string title;
+  std::vector<std::string> notes;  ///< alignment and sign notes (make_station)
 };
 
 /// Reads or generates the motion. \throws RecordError or std::invalid_argument.
@@ -45,11 +56,16 @@ class RecordCache {
 
   /// The unscaled motion of record `index`, loading it on first use. \throws as load_record.
   const GroundMotion& get(std::size_t index);
+  /// Every component of record `index` (aligned), loading it on first use.
+  const StationRecord& station(std::size_t index);
+  /// The notes made when record `index` was put together (padding, a DWN vertical).
+  const std::vector<std::string>& notes(std::size_t index);
 
   /// The title of record `index` (LoadedRecord::title), loading it on first use.
   const std::string& title(std::size_t index);
 
-  /// The unscaled record's value of an intensity measure, computed once per record.
+  /// The unscaled record's value of an intensity measure, computed once per record: of its
+  /// first component, or for a RotD measure of its horizontal pair (station_intensity).
   double intensity(std::size_t index, const IntensitySpec& spec);
 
   /// The factor record `index` is multiplied by for a value of the study's second axis: the

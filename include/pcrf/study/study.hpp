@@ -36,6 +36,7 @@ struct HistoryRequest {
   std::string label;                      ///< group name under /histories
   std::optional<std::string> record;      ///< record axis value (its name)
   std::optional<double> scale;
+  std::optional<double> incidence_deg;    ///< incidence axis value (as the study gives it)
   std::optional<std::string> case_label;  ///< plans with a `case` dimension
   std::array<std::optional<double>, kParameterCount> parameters;  ///< plans with parameter dimensions (grid)
   double dt_s = 0.0;                      ///< output interval [s]; 0: the record's dt
@@ -90,6 +91,13 @@ struct Study {
   /// The [ida] table, when given: the intensity axis becomes a search, `levels` is unused.
   std::optional<IdaOptions> ida;
   FrameParameters base;             ///< the base point; h_m and m_c_kg of every case
+  /// [axes] incidence_deg: the azimuths of the frames' plane [deg], a dimension of its own
+  /// after the level axis; empty: no such axis, every frame lies along its record's first
+  /// component (and feels it bit for bit as if the others did not exist).
+  std::vector<double> incidence_deg;
+  /// What incidence_deg counts from ([axes] incidence): north (the values are azimuths),
+  /// or each record's fault-normal (strike + 90°) or fault-parallel (strike) direction.
+  std::string incidence_reference = "north";
 
   PhysicsOptions physics;
   SolverSettings solver = preset_settings("balanced");

@@ -19,6 +19,7 @@ struct CheckedStudy {
   std::int64_t invalid_frames = 0;          ///< frames the model cannot represent
   std::int64_t invalid_cases = 0;           ///< their cases (they end as invalid_frame)
   std::string first_invalid;                ///< "kappa=…, …: why", for the --check report
+  std::vector<std::string> notes;           ///< "record \"R\": …" for each record's alignment and sign notes
 };
 
 /// Loads every record into `records` (so they are read once), builds every distinct frame
