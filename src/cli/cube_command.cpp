@@ -120,6 +120,9 @@ void add_cube_command(CLI::App& app) {
       note_partial("info", args->file, reader);
       if (args->json) cube::print_info_json(reader, std::cout);
       else cube::print_info(reader, study::vocabulary::info_heading(reader.layout()), std::cout);
+      if (const auto states = study::vocabulary::curve_states_text(study::vocabulary::curve_states(reader));
+          !states.empty())
+        (args->json ? std::cerr : std::cout) << states << '\n';
       // Vouch for nothing unread: a variable whose chunks no longer decompress is damage.
       const auto damage = reader.damage();
       if (!damage.empty()) {
@@ -193,6 +196,8 @@ void add_cube_command(CLI::App& app) {
       cube::CubeReader reader(args->file);
       note_partial("fragility", args->file, reader);
       const auto frames = post::cube_fragility(reader, selectors(args->where));
+      for (const auto& line : post::unbracketed_warnings(frames))
+        std::cerr << "pcrf cube fragility: " << args->file << ": warning: " << line << '\n';
       const auto units = post::intensity_units(reader);
       post::print_fragility(frames, units, args->mce, false, std::cout);
       if (!args->csv.empty())

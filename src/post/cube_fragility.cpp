@@ -6,6 +6,7 @@
 #include <map>
 
 #include "pcrf/metrics/case_result.hpp"
+#include "pcrf/plan/ida_search.hpp"
 #include "pcrf/row_major.hpp"
 #include "pcrf/study/cube_vocabulary.hpp"
 
@@ -61,6 +62,12 @@ std::vector<FrameFragility> ida_fragility(const cube::CubeReader& cube, const st
   const auto collapse = cube.read_side(vocabulary::kCollapseIntensity);
   const auto safe = cube.read_side(vocabulary::kLastSafeIntensity);
   const auto runs_of = cube.read_side(vocabulary::kIdaRuns);
+  // Cubes from before curve_state have none: every curve is then taken as it was.
+  const bool has_states = layout.find_side_variable(vocabulary::kCurveState) != nullptr;
+  const auto state = has_states ? cube.read_side(vocabulary::kCurveState) : std::vector<double>(collapse.size(), std::nan(""));
+  const auto unbracketed = [&state](std::size_t curve) {
+    return state[curve] == static_cast<double>(plan::CurveState::kUnbracketed);
+  };
   const auto selected = cube::select_cases(layout, selectors);
   std::vector<std::size_t> curve_shape(layout.shape());
   curve_shape.pop_back();  // ida_point is the last axis
@@ -88,13 +95,15 @@ std::vector<FrameFragility> ida_fragility(const cube::CubeReader& cube, const st
       std::vector<double> observed, censored;
       for (std::size_t k : sample) {
         const std::size_t curve = curves[k];
-        if (std::isfinite(collapse[curve])) observed.push_back(collapse[curve]);
+        if (std::isfinite(collapse[curve]) && !unbracketed(curve)) observed.push_back(collapse[curve]);
         else if (std::isfinite(safe[curve])) censored.push_back(safe[curve]);
       }
       return analysis::fit_censored(observed, censored);
     };
+    out.unbracketed = 0;
     for (std::size_t curve : curves) {
-      if (std::isfinite(collapse[curve])) out.collapse_intensities.push_back(collapse[curve]);
+      if (unbracketed(curve)) ++*out.unbracketed;
+      if (std::isfinite(collapse[curve]) && !unbracketed(curve)) out.collapse_intensities.push_back(collapse[curve]);
       else if (std::isfinite(safe[curve])) out.censored_intensities.push_back(safe[curve]);
     }
     out.cases = out.collapse_intensities.size() + out.censored_intensities.size();
@@ -205,14 +214,26 @@ void print_fragility(const std::vector<FrameFragility>& frames, const std::strin
                                  number(fit ? fit->beta : nan), number(fit ? f.interval.beta.low : nan),
                                  number(fit ? f.interval.beta.high : nan)};
     if (mce) row.push_back(number(fit ? fit->median / *mce : nan));
+    if (f.unbracketed) row.push_back(std::to_string(*f.unbracketed));
     rows.push_back(std::move(row));
   }
   auto columns = header;
   if (mce) columns.push_back("CMR");
+  if (!frames.empty() && frames.front().unbracketed) columns.push_back("unbracketed");
   rows.insert(rows.begin(), columns);
   cube::print_table(rows, csv, out);
 }
 
+
+std::vector<std::string> unbracketed_warnings(const std::vector<FrameFragility>& frames) {
+  std::vector<std::string> lines;
+  for (const auto& f : frames)
+    if (f.unbracketed && *f.unbracketed > 0)
+      lines.push_back("frame " + f.frame + ": " + std::to_string(*f.unbracketed) +
+                      " unbracketed curves (max_runs ran out before the resolution or max_intensity) censored at "
+                      "their last safe intensity; raise [ida] max_runs or step_factor");
+  return lines;
+}
 
 void print_fragility_points(const std::vector<FrameFragility>& frames, std::ostream& out) {
   out << "frame,kind,intensity,trials,collapses\n";

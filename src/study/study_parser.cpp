@@ -130,7 +130,7 @@ void read_ida(const Fields& top, Study& s) {
   if (table == nullptr) return;
   IdaOptions ida;
   detail::read_setting_table(top, ida_settings(), ida, s.setting_lines);
-  const Fields f(*table, "ida", s.file, {"start", "step", "resolution", "max_intensity", "max_runs", "collapse", "theta_limit_rad"});
+  const Fields f(*table, "ida", s.file, {"start", "step", "step_factor", "resolution", "max_intensity", "max_runs", "collapse", "theta_limit_rad"});
   if (!s.intensity)
     top.fail("ida", "an IDA needs an intensity measure: add an [intensity] table (measure = \"pga_g\", \"pgv_m_s\" or \"sa_g\")");
   if (!f.has("start")) f.fail("start", "required: the first intensity of every curve");

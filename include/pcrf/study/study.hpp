@@ -58,6 +58,7 @@ const SettingTable<RunOptions>& run_settings();
 struct IdaOptions {
   double start = 0.0;
   double step = 0.0;
+  double step_factor = plan::kDefaultStepFactor;
   double resolution = 0.02;
   double max_intensity = 0.0;
   long max_runs = 16;
@@ -65,7 +66,7 @@ struct IdaOptions {
   double theta_limit_rad = 0.0;
 
   plan::IdaSearchSettings search() const {
-    return {start, step, resolution, max_intensity, static_cast<int>(max_runs)};
+    return {start, step, step_factor, resolution, max_intensity, static_cast<int>(max_runs)};
   }
 };
 const SettingTable<IdaOptions>& ida_settings();

@@ -2,7 +2,9 @@
 (intensity against a response metric) are joined in order of intensity; its collapse
 intensity is a flat line to the panel's edge (the usual IDA flatline);
 runs above it that did not collapse (the curve "resurrects") are open circles. Horizontal lines: the
-median and 16/84 % collapse intensities of the lognormal that `pcrf cube fragility` fits."""
+median and 16/84 % collapse intensities of the lognormal that `pcrf cube fragility` fits.
+A curve whose runs ran out before it was bracketed (``curve_state`` unbracketed) gets no
+flatline: a triangle at its last safe run says only that it survived there."""
 import math
 
 import matplotlib.pyplot as plt
@@ -10,6 +12,8 @@ import numpy as np
 
 from pcrf_plot import engine, style
 from pcrf_plot.errors import PlotError
+
+UNBRACKETED = 2  # curve_state: max_runs ran out (plan::CurveState, the cube's long_name)
 
 
 def frame_label(cube, row):
@@ -37,7 +41,9 @@ def draw(args):
         raise PlotError(f"{args.input}: not an IDA cube (no collapse_intensity): run a study with an [ida] table")
     metric = args.metric or "theta_max_rad"
     cube.require_metric(metric, "ida")
-    rows = cube.export([metric, "ida_intensity", "collapse_intensity"], args.where)
+    has_states = cube.variable("curve_state") is not None  # cubes from before it have none
+    rows = cube.export([metric, "ida_intensity", "collapse_intensity"] + (["curve_state"] if has_states else []),
+                       args.where)
     if not rows:
         raise PlotError(f"{args.input}: no case matches the selection")
     fits = {f["frame"]: f for f in cube.fragility(args.where)[0]}
@@ -47,7 +53,7 @@ def draw(args):
     fig, axes = plt.subplots(math.ceil(len(frames) / columns), columns, figsize=(4.4 * columns, 4.2), squeeze=False,
                              sharey=True, constrained_layout=True)
     for ax, (frame, frame_rows) in zip(axes.flat, frames.items()):
-        records, resurrected = {}, False
+        records, resurrected, unbracketed = {}, False, 0
         for r in frame_rows:
             records.setdefault(r["record"], []).append(r)
         edge = max(engine.number(r[metric]) for r in frame_rows if r["status"] not in style.COLLAPSE_STATUSES
@@ -56,6 +62,13 @@ def draw(args):
             safe = sorted((engine.number(r["ida_intensity"]), engine.number(r[metric])) for r in record_rows
                           if r["status"] not in style.COLLAPSE_STATUSES and r["ida_intensity"] != "" and r[metric] != "")
             collapse = engine.number(record_rows[0]["collapse_intensity"])
+            if has_states and engine.number(record_rows[0]["curve_state"]) == UNBRACKETED:
+                unbracketed += 1
+                if safe:
+                    im, edp = zip(*safe)
+                    ax.plot(edp, im, "--", color=style.GREY, lw=0.8, alpha=0.8)
+                    ax.plot(safe[-1][1], safe[-1][0], "^", color=style.PURPLE, ms=6)
+                continue
             below = [p for p in safe if not p[0] > collapse]  # NaN (censored): every run
             above = [p for p in safe if p[0] > collapse]
             if below:
@@ -77,9 +90,12 @@ def draw(args):
                                        (median * math.exp(beta), "--", None)):
                 ax.axhline(value, color=style.BLUE, ls=line, lw=1.5, label=label)
         ax.plot([], [], "x", color=style.VERMILLION, label="collapse")
+        if unbracketed:
+            ax.plot([], [], "^", color=style.PURPLE, ms=6, label="unbracketed (max_runs ran out): last safe run")
         if resurrected:
             ax.plot([], [], "o", mfc="none", color=style.ORANGE, ms=4, label="safe above its collapse intensity")
-        ax.set(xlim=(0, edge * 1.03), title=f"{frame} ({len(records)} records)",
+        counted = f"{len(records)} records" + (f", {unbracketed} unbracketed" if unbracketed else "")
+        ax.set(xlim=(0, edge * 1.03), title=f"{frame} ({counted})",
                xlabel=style.metric_label(metric, cube.variable(metric)))
     for ax in axes.flat[len(frames):]:
         ax.remove()
