@@ -54,8 +54,9 @@ std::string canonical_description(const Study& study, const CaseSpace& space, Re
   if (study.ida) describe_settings(out, ida_settings(), *study.ida);
   space.level_axis().describe(out);
   out << "\nbase";
-  detail::describe_parameters(out, study.base);
+  detail::describe_parameters(out, *study.model, study.base);
   out << '\n';
+  if (study.model->name != "pcrf") out << "scene " << study.model->name << '\n';  // the frame's fingerprints unchanged
   study.plan->describe(out);
   describe_settings(out, physics_settings(), study.physics);
   describe_settings(out, solver_settings(), study.solver);

@@ -23,7 +23,7 @@ namespace pcrf::study {
 struct CaseSpec {
   std::size_t record = 0;  ///< index into Study::records
   double level = 1.0;  ///< the record's scale factor, or (intensity axis) its target intensity
-  FrameParameters parameters;
+  ScenePoint parameters;  ///< the scene's values (Study::model's table)
 };
 
 class CaseSpace {
@@ -47,7 +47,7 @@ class CaseSpace {
   /// adjacent, frames in storage order: a worker then prepares each frame once.
   std::vector<std::int64_t> frame_major(std::vector<std::int64_t> indices) const;
   /// Distinct frames of the study (every parameter combination), for up-front checks.
-  std::vector<FrameParameters> frames() const;
+  std::vector<ScenePoint> frames() const;
 
   /// IDA: runs per curve (the last axis, ida_point); 0 otherwise. Curve c's k-th run is case
   /// c · ida_runs() + k, the curves being the records × frames in row-major order.

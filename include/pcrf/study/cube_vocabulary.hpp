@@ -29,6 +29,11 @@ inline constexpr const char* kIdaRuns = "ida_runs";
 inline constexpr const char* kCurveState = "curve_state";
 inline constexpr const char* kUnstableFrom = "unstable_from_intensity";
 inline constexpr const char* kUnstableTo = "unstable_to_intensity";
+inline constexpr const char* kPulseShape = "pulse_shape";
+inline constexpr const char* kPulsePeriod = "pulse_period_s";
+inline constexpr const char* kFrequencyParameter = "frame_frequency_parameter_rad_s";
+inline constexpr const char* kUpliftThreshold = "frame_uplift_threshold_g";
+inline constexpr const char* kOmegaOverP = "omega_p_over_p";
 inline constexpr const char* kCase = "case";
 inline constexpr const char* kCaseLabel = "case_label";
 inline constexpr const char* kVariedParameter = "varied_parameter";
@@ -79,6 +84,5 @@ CurveStates curve_states(const cube::CubeReader& cube);
 /// "132 IDA curves: 120 bracketed to the resolution, 10 right-censored at max_intensity,
 /// 2 unbracketed (max_runs ran out)"; empty when the cube has no curve states.
 std::string curve_states_text(const CurveStates& states);
-
 
 }  // namespace pcrf::study::vocabulary

@@ -22,6 +22,10 @@ struct RecordSource {
   std::optional<RecordFileSpec> file;  ///< a file (path already resolved), or
   std::string synthetic;               ///< a synthetic motion, make_synthetic() text
   std::string declared_at;             ///< "study.toml:12", for messages
+  /// A pulse of a [[records]] pulse entry: its shape ("ricker") and the values of its [axes]
+  /// pulse_* keys by key ("pulse_period_s"), the cube's coordinates along `record`.
+  std::string pulse_shape;
+  std::vector<std::pair<std::string, double>> pulse_values;
 
   /// "file ER1.AT2" or "synthetic sine:...", for messages.
   std::string describe() const;

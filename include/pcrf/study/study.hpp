@@ -1,6 +1,6 @@
 /// \file study.hpp
 /// \brief A parametric study as a study file defines it: the record and scale axes, the
-/// plan over the eight frame parameters, physics and solver settings, and what to keep.
+/// scene and the plan over its parameters, physics and solver settings, and what to keep.
 ///
 /// A Study is plain data; study_parser.hpp makes one from TOML and checks every value that
 /// can be checked alone. studies/README.md documents every key.
@@ -20,6 +20,7 @@
 
 #include "pcrf/model/frame.hpp"
 #include "pcrf/model/parameters.hpp"
+#include "pcrf/model/scene_catalog.hpp"
 #include "pcrf/plan/ida_search.hpp"
 #include "pcrf/record/intensity.hpp"
 #include "pcrf/setting.hpp"
@@ -37,7 +38,7 @@ struct HistoryRequest {
   std::optional<std::string> record;      ///< record axis value (its name)
   std::optional<double> scale;
   std::optional<std::string> case_label;  ///< plans with a `case` dimension
-  std::array<std::optional<double>, kParameterCount> parameters;  ///< plans with parameter dimensions (grid)
+  std::vector<std::optional<double>> parameters;  ///< plans with parameter dimensions (grid), by the scene's table
   double dt_s = 0.0;                      ///< output interval [s]; 0: the record's dt
   std::string declared_at;                ///< "study.toml:40", for messages
 };
@@ -83,6 +84,14 @@ struct Study {
   std::shared_ptr<const Plan> plan;
 
   std::vector<RecordSource> records;
+  /// [axes] pulse_period_s, pulse_amplitude_g, …: each [[records]] pulse entry becomes one
+  /// record per combination of these values (in this order, the last varying fastest).
+  struct PulseAxis {
+    std::string key;             ///< "pulse_period_s"
+    std::vector<double> values;
+    std::string declared_at;     ///< "study.toml:7"
+  };
+  std::vector<PulseAxis> pulse_axes;
   /// The values of the second axis: scale factors of the records (`scale`), or, when
   /// `intensity` is set, intensities in the measure's units (each record gets its own factor
   /// intensity / IM(record)).
@@ -90,7 +99,10 @@ struct Study {
   std::optional<IntensitySpec> intensity;  ///< the [intensity] table, when given
   /// The [ida] table, when given: the intensity axis becomes a search, `levels` is unused.
   std::optional<IdaOptions> ida;
-  FrameParameters base;             ///< the base point; h_m and m_c_kg of every case
+  /// The scene ([frame] model; the prestressed frame by default) and its base point (the
+  /// [frame] or [base] values, every other parameter at its default): every frame starts there.
+  const SceneModel* model = &scene_model("pcrf");
+  ScenePoint base = scene_model("pcrf").defaults();
 
   PhysicsOptions physics;
   SolverSettings solver = preset_settings("balanced");
