@@ -46,7 +46,7 @@ enum class Bound {
   kAny,          ///< any finite value
   kPositive,     ///< > 0
   kNonNegative,  ///< ≥ 0
-  kAtLeastOne,   ///< ≥ 1 (integers)
+  kAtLeastOne,   ///< ≥ 1
   kFraction,     ///< in [0, 1)
   kOpenUnit,     ///< in (0, 1)
 };

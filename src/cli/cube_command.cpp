@@ -158,6 +158,9 @@ void add_info(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
       note_partial("info", args->file, reader);
       if (args->json) cube::print_info_json(reader, std::cout);
       else cube::print_info(reader, study::vocabulary::info_heading(reader.layout()), std::cout);
+      if (const auto states = study::vocabulary::curve_states_text(study::vocabulary::curve_states(reader));
+          !states.empty())
+        (args->json ? std::cerr : std::cout) << states << '\n';
       // Vouch for nothing unread: a variable whose chunks no longer decompress is damage.
       const auto damage = reader.damage();
       if (!damage.empty()) {

@@ -1,6 +1,8 @@
 // The flags that choose and describe a scene (see frame_flags.hpp).
 #include "cli/frame_flags.hpp"
 
+#include <algorithm>
+#include <map>
 #include <stdexcept>
 #include <string>
 
@@ -8,6 +10,7 @@
 #include "cli/setting_flags.hpp"
 #include "pcrf/model/equation_of_motion.hpp"
 #include "pcrf/model/parameters.hpp"
+#include "pcrf/model/scene_catalog.hpp"
 
 namespace pcrf::cli {
 
@@ -51,25 +54,38 @@ void SceneFlags::add_to(CLI::App* cmd) {
 }
 
 std::unique_ptr<Scene> SceneFlags::scene() const {
-  const bool pcrf = model == "pcrf", block = model == "block", frame_model = model == "rocking-frame";
-  if (!pcrf && !block && !frame_model)
-    throw UsageError("--model: unknown scene '" + model + "' (expected pcrf, block or rocking-frame)");
-  for (const auto& [flag, option] : pcrf ? rocker_options_ : frame_options_)
-    if (option->count() > 0) throw UsageError(flag + " does not apply to --model " + model);
+  // The model layer checks everything (scene_catalog.hpp); here only the flags' spelling.
+  const SceneModel* chosen = nullptr;
   try {
-    if (pcrf) return std::make_unique<EquationOfMotion>(make_frame(frame));
-    RockerParameters p = rocker;
-    if (block && p.beam_mass_ratio != 0.0) throw UsageError("--beam-mass-ratio applies to --model rocking-frame");
-    if (restitution_option_->count() > 0) p.restitution = restitution;
-    if (frequency_option_->count() > 0) {
-      if (size_option_->count() > 0) throw UsageError("give either --size-m or --frequency-parameter-rad-s, not both");
-      if (!(frequency_parameter_rad_s > 0.0)) throw UsageError("--frequency-parameter-rad-s must be positive");
-      // p̂² = (3g/4R)(1 + 2γ)/(1 + 3γ).
-      const double gamma = p.beam_mass_ratio;
-      p.size_m = 3.0 * p.gravity_m_s2 * (1.0 + 2.0 * gamma) /
-                 (4.0 * frequency_parameter_rad_s * frequency_parameter_rad_s * (1.0 + 3.0 * gamma));
+    chosen = &scene_model(model);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--model: ") + e.what());
+  }
+  std::map<std::string, double, std::less<>> values;
+  auto take = [&](const std::string& flag, CLI::Option* option, double value, std::string name = "") {
+    if (option->count() == 0) return;
+    if (name.empty()) name = flag.substr(2);
+    std::replace(name.begin(), name.end(), '-', '_');
+    if (chosen->index(name) == std::string::npos) {
+      auto owners = models_taking(name);
+      std::erase(owners, '"');
+      throw UsageError(flag + " does not apply to --model " + model +
+                       (owners.empty() ? "" : " (it applies to --" + owners + ")"));
     }
-    return std::make_unique<RigidRocker>(p);
+    values[name] = value;
+  };
+  for (std::size_t k = 0; k < frame_options_.size(); ++k) {
+    const bool size = k >= all_parameters().size();
+    const auto& info = size ? size_parameters()[k - all_parameters().size()] : all_parameters()[k];
+    take(frame_options_[k].first, frame_options_[k].second, frame.*info.member);
+  }
+  for (const auto& info : rocker_parameters())
+    for (const auto& [flag, option] : rocker_options_)
+      if (flag == flag_name(info.name)) take(flag, option, rocker.*info.member);
+  take("--frequency-parameter-rad-s", frequency_option_, frequency_parameter_rad_s);
+  take("--restitution", restitution_option_, restitution, "given_restitution");
+  try {
+    return make_scene(model, values);
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }

@@ -82,7 +82,7 @@ void add_plot_command(CLI::App& app) {
   add_output_command(app);
   auto* cmd = app.add_subcommand("plot",
                                  "Draw a figure: pcrf plot KIND INPUT [-w NAME=VALUE]... [-m METRIC] -o FILE.png|.pdf|.svg "
-                                 "(kinds: history, sweep, ida, fragility, sensitivity, status, table3; pcrf plot --help)");
+                                 "(kinds: history, sweep, ida, spectrum, fragility, sensitivity, status, table3; pcrf plot --help)");
   // Every argument, --help included, belongs to the figure package: it owns the kinds.
   cmd->prefix_command();
   cmd->set_help_flag();

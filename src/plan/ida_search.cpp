@@ -14,6 +14,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 IdaSearch::IdaSearch(const IdaSearchSettings& settings) : settings_(settings) {
   if (!(settings_.start > 0.0)) throw std::invalid_argument("IDA start must be positive");
   if (settings_.step <= 0.0) settings_.step = settings_.start;
+  if (!(settings_.step_factor >= 1.0)) throw std::invalid_argument("IDA step_factor must be at least 1");
   if (!(settings_.resolution > 0.0 && settings_.resolution < 1.0))
     throw std::invalid_argument("IDA resolution must be in (0, 1)");
   if (!(settings_.max_intensity >= settings_.start)) throw std::invalid_argument("IDA max_intensity must be ≥ start");
@@ -37,18 +38,22 @@ double IdaSearch::last_safe_intensity() const {
   return s;
 }
 
-bool IdaSearch::bracketed() const {
+bool IdaSearch::bracketed() const { return state() != CurveState::kUnbracketed; }
+
+CurveState IdaSearch::state() const {
   const double c = collapse_intensity(), s = last_safe_intensity();
-  if (std::isnan(c)) return !std::isnan(s) && s >= settings_.max_intensity;  // censored at the cap
-  return !std::isnan(s) && c / s - 1.0 <= settings_.resolution;
+  if (std::isnan(c)) return !std::isnan(s) && s >= settings_.max_intensity ? CurveState::kCensored : CurveState::kUnbracketed;
+  return !std::isnan(s) && c / s - 1.0 <= settings_.resolution ? CurveState::kBracketed : CurveState::kUnbracketed;
 }
 
 std::optional<double> IdaSearch::hunt() const {
   if (runs_.empty()) return settings_.start;
   const double last = runs_.back().intensity;
   if (last >= settings_.max_intensity) return std::nullopt;  // safe at the cap: censored
+  // The k-th step (k runs made): step · f^(k−1), geometric so that wide ranges are bracketed
+  // within the run budget.
   const double k = static_cast<double>(runs_.size());
-  return std::min(last + settings_.step * k, settings_.max_intensity);
+  return std::min(last + settings_.step * std::pow(settings_.step_factor, k - 1.0), settings_.max_intensity);
 }
 
 std::optional<double> IdaSearch::fill() const {

@@ -5,6 +5,7 @@
 #include <map>
 
 #include "pcrf/metrics/case_result.hpp"
+#include "pcrf/plan/ida_search.hpp"
 #include "pcrf/row_major.hpp"
 #include "pcrf/study/cube_vocabulary.hpp"
 
@@ -72,6 +73,12 @@ std::vector<FrameFragility> ida_fragility(const cube::CubeReader& cube, const st
   const auto collapse = cube.read_side(vocabulary::kCollapseIntensity);
   const auto safe = cube.read_side(vocabulary::kLastSafeIntensity);
   const auto runs_of = cube.read_side(vocabulary::kIdaRuns);
+  // Cubes from before curve_state have none: every curve is then taken as it was.
+  const bool has_states = layout.find_side_variable(vocabulary::kCurveState) != nullptr;
+  const auto state = has_states ? cube.read_side(vocabulary::kCurveState) : std::vector<double>(collapse.size(), std::nan(""));
+  const auto unbracketed = [&state](std::size_t curve) {
+    return state[curve] == static_cast<double>(plan::CurveState::kUnbracketed);
+  };
   const auto selected = cube::select_cases(layout, selectors);
   std::vector<std::size_t> curve_shape(layout.shape());
   curve_shape.pop_back();  // ida_point is the last axis
@@ -104,13 +111,15 @@ std::vector<FrameFragility> ida_fragility(const cube::CubeReader& cube, const st
       std::vector<double> observed, censored;
       for (std::size_t k : sample) {
         const std::size_t curve = curves[k];
-        if (std::isfinite(collapse[curve])) observed.push_back(collapse[curve]);
+        if (std::isfinite(collapse[curve]) && !unbracketed(curve)) observed.push_back(collapse[curve]);
         else if (std::isfinite(safe[curve])) censored.push_back(safe[curve]);
       }
       return analysis::fit_censored(observed, censored);
     };
+    out.unbracketed = 0;
     for (std::size_t curve : curves) {
-      if (std::isfinite(collapse[curve])) out.collapse_intensities.push_back(collapse[curve]);
+      if (unbracketed(curve)) ++*out.unbracketed;
+      if (std::isfinite(collapse[curve]) && !unbracketed(curve)) out.collapse_intensities.push_back(collapse[curve]);
       else if (std::isfinite(safe[curve])) out.censored_intensities.push_back(safe[curve]);
     }
     out.cases = out.collapse_intensities.size() + out.censored_intensities.size();
@@ -200,6 +209,16 @@ std::vector<FrameFragility> cube_fragility(const cube::CubeReader& cube, const s
     result.push_back(std::move(out));
   }
   return result;
+}
+
+std::vector<std::string> unbracketed_warnings(const std::vector<FrameFragility>& frames) {
+  std::vector<std::string> lines;
+  for (const auto& f : frames)
+    if (f.unbracketed && *f.unbracketed > 0)
+      lines.push_back("frame " + f.frame + ": " + std::to_string(*f.unbracketed) +
+                      " unbracketed curves (max_runs ran out before the resolution or max_intensity) censored at "
+                      "their last safe intensity; raise [ida] max_runs or step_factor");
+  return lines;
 }
 
 }  // namespace pcrf::post

@@ -48,7 +48,8 @@ std::vector<ColumnOf<cube::GroupStats>> stats_spec(const std::vector<std::string
   return spec;
 }
 
-std::vector<ColumnOf<FrameFragility>> fragility_spec(const std::string& units, std::optional<double> mce) {
+std::vector<ColumnOf<FrameFragility>> fragility_spec(const std::string& units, std::optional<double> mce,
+                                                     bool unbracketed = false) {
   using F = FrameFragility;
   auto fitted = [](double (*get)(const F&)) {
     return [get](const F& f) { return f.fit ? number_or_missing(get(f)) : Cell{}; };
@@ -75,6 +76,9 @@ std::vector<ColumnOf<FrameFragility>> fragility_spec(const std::string& units, s
   if (mce)
     spec.push_back({{"CMR", "", "collapse margin ratio: median / MCE intensity (--mce)"},
                     [m = *mce](const F& f) { return f.fit ? number_or_missing(f.fit->median / m) : Cell{}; }});
+  if (unbracketed)
+    spec.push_back({{"unbracketed", "", "IDA curves whose max_runs ran out before a bracket (censored at their last safe intensity)"},
+                    [](const F& f) { return f.unbracketed ? count(*f.unbracketed) : Cell{}; }});
   spec.push_back({{"selection", "", "the frame as -w selectors, comma-separated (empty: all)", "%s", true},
                   [](const F& f) { return Cell{f.selection}; }});
   return spec;
@@ -194,7 +198,9 @@ Report fragility_report(const cube::CubeReader& cube, const FragilityRequest& re
   report.command = "fragility";
   report.fields = {{"file", cube.file().string()}, {"intensity_units", units},
                    {"mce", request.mce ? Cell{*request.mce} : Cell{}}};
-  report.tables.emplace_back("frames", make_table(fragility_spec(units, request.mce), frames));
+  report.warnings = unbracketed_warnings(frames);
+  const bool ida = !frames.empty() && frames.front().unbracketed.has_value();
+  report.tables.emplace_back("frames", make_table(fragility_spec(units, request.mce, ida), frames));
   report.tables.emplace_back("points", make_table(fragility_point_spec(), fragility_points(frames)));
   return report;
 }

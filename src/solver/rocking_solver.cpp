@@ -411,8 +411,6 @@ bool CaseRun::over_time() const {
 
 }  // namespace
 
-namespace {
-
 void check_initial_state(const Scene& eom, const PhysicsOptions& physics) {
   if (physics.theta0_rad == 0.0) return;
   if (!(std::fabs(physics.theta0_rad) < eom.overturn_angle_rad())) {
@@ -424,8 +422,6 @@ void check_initial_state(const Scene& eom, const PhysicsOptions& physics) {
     throw std::invalid_argument(text);
   }
 }
-
-}  // namespace
 
 void check_initial_state(const Frame& frame, const PhysicsOptions& physics) {
   if (physics.theta0_rad != 0.0) check_initial_state(EquationOfMotion(frame), physics);

@@ -38,10 +38,41 @@ std::vector<double> read_range(const toml::table& table, const std::string& path
 
 }  // namespace
 
-std::vector<std::string_view> parameter_keys() {
+namespace {
+std::vector<std::string_view> scene_keys(bool axis_only) {
   std::vector<std::string_view> keys;
-  for (const auto& info : all_parameters()) keys.push_back(info.name);
+  for (const auto& model : scene_models())
+    for (const auto& p : model.parameters)
+      if ((p.axis || !axis_only) && std::find(keys.begin(), keys.end(), p.name) == keys.end()) keys.push_back(p.name);
   return keys;
+}
+}  // namespace
+
+std::vector<std::string_view> parameter_keys() { return scene_keys(true); }
+std::vector<std::string_view> all_scene_keys() { return scene_keys(false); }
+
+void refuse_other_scenes(const Fields& fields, const SceneModel& model) {
+  for (auto key : all_scene_keys())
+    if (fields.has(key) && model.index(key) == std::string::npos)
+      fields.fail(key, "does not apply to model \"" + std::string(model.name) + "\" (it is a parameter of " +
+                           models_taking(key) + "; this scene's: " + model.keys_text() + ")");
+}
+
+void read_parameters(const Fields& fields, const SceneModel& model, ScenePoint& point, bool axis_only) {
+  refuse_other_scenes(fields, model);
+  for (std::size_t k = 0; k < model.parameters.size(); ++k) {
+    const auto& p = model.parameters[k];
+    if (!fields.has(p.name)) continue;
+    if (axis_only && !p.axis) fields.fail(p.name, "is set once for every case, in [frame] or [base]");
+    const double value = *fields.number(p.name);
+    if (const auto problem = p.problem(value); !problem.empty()) fields.fail(p.name, "value " + number_text(value) + " " + problem);
+    point[k] = value;
+  }
+  std::vector<std::string_view> given;
+  for (auto key : model.exclusive)
+    if (fields.has(key)) given.push_back(key);
+  if (given.size() > 1)
+    fields.fail(given.back(), "give either " + std::string(given.front()) + " or " + std::string(given.back()) + ", not both");
 }
 
 std::vector<std::string_view> with_parameter_keys(std::vector<std::string_view> keys) {
@@ -66,14 +97,13 @@ std::vector<double> read_values(const Fields& fields, std::string_view key) {
 }
 
 void check_axis(const Fields& fields, std::string_view key, const std::vector<double>& values,
-                std::size_t parameter) {
+                const SceneParameter* parameter) {
   std::vector<double> sorted = values;
   std::sort(sorted.begin(), sorted.end());
   if (auto dup = std::adjacent_find(sorted.begin(), sorted.end()); dup != sorted.end())
     fields.fail(key, "value " + number_text(*dup) + " appears twice");
   for (double v : values) {
-    const std::string problem = parameter < kParameterCount ? parameter_problem(all_parameters()[parameter], v)
-                                : (v > 0.0 ? "" : "must be positive");
+    const std::string problem = parameter != nullptr ? parameter->problem(v) : (v > 0.0 ? "" : "must be positive");
     if (!problem.empty()) fields.fail(key, "value " + number_text(v) + " " + problem);
   }
 }

@@ -11,35 +11,36 @@
 #include <vector>
 
 #include "pcrf/model/parameters.hpp"
+#include "pcrf/model/scene_catalog.hpp"
 #include "study/toml_fields.hpp"
 
 namespace pcrf::study::detail {
 
 using pcrf::number_text;
 
-/// The keys of the eight frame parameters.
+/// The keys of every scene's axis parameters (the prestressed frame's eight first), so that a
+/// key of another scene is named as such rather than as unknown.
 std::vector<std::string_view> parameter_keys();
-/// `keys` followed by the eight parameter keys.
+/// `keys` followed by parameter_keys().
 std::vector<std::string_view> with_parameter_keys(std::vector<std::string_view> keys);
+/// Every key of every scene (axis or not).
+std::vector<std::string_view> all_scene_keys();
+
+/// A key `fields` gives that belongs to another scene than `model`: "FILE:LINE: t.kappa: does
+/// not apply to model "block" (it is a parameter of model "pcrf")".
+void refuse_other_scenes(const Fields& fields, const SceneModel& model);
 
 /// An axis' values: a number, a list of numbers, or a range table {from, to, count, spacing}.
 std::vector<double> read_values(const Fields& fields, std::string_view key);
 
 /// Axis values must be distinct (they label a dimension) and each valid alone: in the domain
-/// of parameter `parameter`, or positive (kParameterCount: the scale or intensity axis).
-void check_axis(const Fields& fields, std::string_view key, const std::vector<double>& values, std::size_t parameter);
+/// of `parameter`, or positive (nullptr: the scale or intensity axis).
+void check_axis(const Fields& fields, std::string_view key, const std::vector<double>& values,
+                const SceneParameter* parameter);
 
-/// Reads every parameter of `parameters` that `fields` gives into `frame` ([base], a listed
-/// case), checking each value against its domain.
-template <std::size_t N>
-void read_parameters(const Fields& fields, const std::array<ParameterInfo, N>& parameters, FrameParameters& frame) {
-  for (const auto& info : parameters) {
-    if (!fields.has(info.name)) continue;
-    const double value = *fields.number(info.name);
-    if (const auto problem = parameter_problem(info, value); !problem.empty())
-      fields.fail(info.name, "value " + number_text(value) + " " + problem);
-    frame.*info.member = value;
-  }
-}
+/// Reads every parameter of `model` that `fields` gives into `point` ([frame] or [base]: all;
+/// a listed case: the axis parameters only), checking each value against its domain and
+/// refusing a key of another scene. Of the model's exclusive keys, at most one may be given.
+void read_parameters(const Fields& fields, const SceneModel& model, ScenePoint& point, bool axis_only);
 
 }  // namespace pcrf::study::detail

@@ -25,19 +25,13 @@ CaseRunner::CaseRunner(const Study& study, const CaseSpace& space, RecordCache& 
     if (m == &metric::omega_max() || m == &metric::t_omega_max()) request_.omega_peak = true;
 }
 
-PreparedFrame& CaseRunner::prepared(const FrameParameters& parameters) const {
+PreparedFrame& CaseRunner::prepared(const ScenePoint& parameters) const {
   std::lock_guard lock(last_mutex_);
-  auto same = [&](const Prepared& p) {
-    for (const auto& info : all_parameters())
-      if (p.parameters.*info.member != parameters.*info.member) return false;
-    for (const auto& info : size_parameters())
-      if (p.parameters.*info.member != parameters.*info.member) return false;
-    return true;
-  };
+  auto same = [&](const Prepared& p) { return same_point(p.parameters, parameters); };
   auto it = std::find_if(prepared_.begin(), prepared_.end(), same);
   if (it == prepared_.end()) {
     if (prepared_.size() >= kPreparedFrames) prepared_.pop_back();
-    prepared_.insert(prepared_.begin(), {parameters, prepare_frame(make_frame(parameters), study_.physics)});
+    prepared_.insert(prepared_.begin(), {parameters, prepare_scene(study_.model->make(parameters), study_.physics)});
   } else if (it != prepared_.begin()) {
     std::rotate(prepared_.begin(), it, it + 1);  // most recent first
   }

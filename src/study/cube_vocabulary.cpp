@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "pcrf/metrics/case_result.hpp"
+#include "pcrf/plan/ida_search.hpp"
 
 namespace pcrf::study::vocabulary {
 
@@ -50,6 +51,29 @@ NotRun not_run(const cube::CubeReader& cube) {
     result.count += s == cube::kStatusNotRun ? 1 : 0;
   }
   return result;
+}
+
+CurveStates curve_states(const cube::CubeReader& cube) {
+  CurveStates states;
+  if (cube.layout().find_side_variable(kCurveState) == nullptr) return states;
+  for (double code : cube.read_side(kCurveState)) {
+    ++states.total;
+    if (code == static_cast<double>(plan::CurveState::kBracketed)) ++states.bracketed;
+    else if (code == static_cast<double>(plan::CurveState::kCensored)) ++states.censored;
+    else if (code == static_cast<double>(plan::CurveState::kUnbracketed)) ++states.unbracketed;
+    else ++states.unfinished;  // NaN
+  }
+  return states;
+}
+
+std::string curve_states_text(const CurveStates& states) {
+  if (states.total == 0) return "";
+  std::string text = std::to_string(states.total) + " IDA curves: " + std::to_string(states.bracketed) +
+                     " bracketed to the resolution, " + std::to_string(states.censored) +
+                     " right-censored at max_intensity, " + std::to_string(states.unbracketed) +
+                     " unbracketed (max_runs ran out)";
+  if (states.unfinished > 0) text += ", " + std::to_string(states.unfinished) + " not finished";
+  return text;
 }
 
 }  // namespace pcrf::study::vocabulary

@@ -12,7 +12,9 @@ const SettingTable<IdaOptions>& ida_settings() {
     s.push_back(number_setting("start", &I::start, "", Bound::kPositive,
                                "first intensity of every curve (the measure's units); required"));
     s.push_back(number_setting("step", &I::step, "", Bound::kNonNegative,
-                               "hunt: the step grows by this much after each safe run; 0: `start`"));
+                               "hunt: the first step up after a safe run; 0: `start`"));
+    s.push_back(number_setting("step_factor", &I::step_factor, "1", Bound::kAtLeastOne,
+                               "hunt: each step is this times the one before (geometric; 1: equal steps)"));
     s.push_back(number_setting("resolution", &I::resolution, "1", Bound::kOpenUnit,
                                "bisect until collapse / last safe − 1 is at most this"));
     s.push_back(number_setting("max_intensity", &I::max_intensity, "", Bound::kPositive,

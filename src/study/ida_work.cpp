@@ -69,17 +69,21 @@ std::unique_ptr<plan::IdaPlan> make_ida_plan(const Study& study, const CaseSpace
 }
 
 void store_ida_summaries(const Study& study, const plan::IdaPlan& plan, cube::CubeWriter& writer) {
-  std::vector<double> collapse, safe, runs;
+  std::vector<double> collapse, safe, runs, state;
   const double none = std::nan("");  // a curve another shard computes: nothing known here
   for (std::size_t c = 0; c < plan.curves(); ++c) {
     const bool here = !plan.skipped(c);
-    collapse.push_back(here ? plan.curve(c).collapse_intensity() : none);
-    safe.push_back(here ? plan.curve(c).last_safe_intensity() : none);
-    runs.push_back(here ? static_cast<double>(plan.curve(c).runs()) : none);
+    const auto& curve = plan.curve(c);
+    collapse.push_back(here ? curve.collapse_intensity() : none);
+    safe.push_back(here ? curve.last_safe_intensity() : none);
+    runs.push_back(here ? static_cast<double>(curve.runs()) : none);
+    // A state only once the curve is done: a curve still running is neither.
+    state.push_back(here && curve.done() ? static_cast<double>(curve.state()) : none);
   }
   writer.store_side(vocabulary::kCollapseIntensity, std::move(collapse));
   writer.store_side(vocabulary::kLastSafeIntensity, std::move(safe));
   writer.store_side(vocabulary::kIdaRuns, std::move(runs));
+  writer.store_side(vocabulary::kCurveState, std::move(state));
   if (!study.solver.verdict_check) return;
   // The band of intensities whose verdicts failed the perturbation test, per curve.
   const auto stable = writer.read_values(std::string(metric::status_stable().name));

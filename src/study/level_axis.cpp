@@ -2,12 +2,23 @@
 #include "pcrf/study/level_axis.hpp"
 
 #include "pcrf/study/cube_vocabulary.hpp"
+#include "pcrf/plan/ida_search.hpp"
 #include "pcrf/study/plan.hpp"
 
 namespace pcrf::study {
 namespace {
 
 namespace names = vocabulary;
+
+/// "how the curve ended: 0 bracketed (…), 1 censored (…), 2 unbracketed (…); NaN: not finished".
+std::string curve_state_long_name() {
+  static const char* const kMeaning[] = {"bracketed to the resolution", "safe at max_intensity: right-censored",
+                                         "max_runs ran out before either"};
+  std::string text = "how the curve ended:";
+  for (const auto& n : plan::kCurveStateNames)
+    text += " " + std::to_string(static_cast<int>(n.value)) + " " + n.name + " (" + kMeaning[static_cast<int>(n.value)] + "),";
+  return text + " NaN not finished";
+}
 
 class ScaleAxis final : public LevelAxis {
  public:
@@ -98,6 +109,7 @@ class IdaAxis final : public MeasuredAxis {
                     "lowest intensity found to collapse (NaN: none up to max_intensity, right-censored)", curves, {}});
     side.push_back({names::kLastSafeIntensity, units_, "highest safe intensity below the collapse", curves, {}});
     side.push_back({names::kIdaRuns, "1", "runs of the curve so far", curves, {}});
+    side.push_back({names::kCurveState, "1", curve_state_long_name(), curves, {}});
     if (!verdict_check_) return;
     side.push_back({names::kUnstableFrom, units_,
                     "lowest intensity of the curve whose verdict failed the perturbation test (NaN: none)", curves, {}});

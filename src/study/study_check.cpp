@@ -46,9 +46,10 @@ void check_records(const Study& study, RecordCache& records, std::vector<std::st
   }
 }
 
-std::string describe(const FrameParameters& p) {
+std::string describe(const SceneModel& model, const ScenePoint& p) {
   std::ostringstream out;
-  for (const auto& info : all_parameters()) out << (info.name == "kappa" ? "" : ", ") << info.name << '=' << p.*info.member;
+  for (std::size_t k = 0; k < model.parameters.size(); ++k)
+    if (model.parameters[k].axis) out << (out.tellp() == 0 ? "" : ", ") << model.parameters[k].name << '=' << p[k];
   return out.str();
 }
 
@@ -57,21 +58,21 @@ void check_frames(const Study& study, const CaseSpace& space, CheckedStudy& chec
   const auto frames = space.frames();
   const std::int64_t cases_per_frame = space.size() / static_cast<std::int64_t>(frames.size());
   for (const auto& parameters : frames) {
-    Frame frame{};
+    std::unique_ptr<Scene> frame;
     try {
-      frame = make_frame(parameters);
-      (void)prepare_frame(frame, study.physics);
+      frame = study.model->make(parameters);
+      (void)prepare_scene(study.model->make(parameters), study.physics);
     } catch (const std::invalid_argument& e) {  // impossible geometry, or InvalidFrame
-      if (checked.invalid_frames++ == 0) checked.first_invalid = describe(parameters) + ": " + e.what();
+      if (checked.invalid_frames++ == 0) checked.first_invalid = describe(*study.model, parameters) + ": " + e.what();
       checked.invalid_cases += cases_per_frame;
       continue;
     }
     try {
-      check_initial_state(frame, study.physics);
+      check_initial_state(*frame, study.physics);
     } catch (const std::invalid_argument& e) {
       const auto line = study.setting_lines.find("physics.theta0_rad");
       throw StudyError((line != study.setting_lines.end() ? line->second : study.file) + ": physics." + e.what() +
-                       " (frame " + describe(parameters) + ")");
+                       " (frame " + describe(*study.model, parameters) + ")");
     }
   }
 }

@@ -4,11 +4,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <numbers>
 #include <ctime>
 #include <type_traits>
 #include <variant>
 
 #include "pcrf/metrics/case_result.hpp"
+#include "pcrf/model/frame_properties.hpp"
 #include "pcrf/study/cube_vocabulary.hpp"
 #include "pcrf/study/result_row.hpp"
 #include "pcrf/version.hpp"
@@ -88,6 +90,62 @@ void add_incidence(const Study& study, const CaseSpace& space, cube::CubeLayout&
   layout.side_variables.push_back(std::move(azimuth));
 }
 
+/// Pulse records ([[records]] pulse): their shape and [axes] pulse values along `record` (""
+/// and NaN for other records); each frame's frequency parameter p and uplift threshold over
+/// the frame dimensions, and ω_p/p = 2π/(T_p p) over record and frame, so that spectra of
+/// different frames share axes (a_p over the uplift threshold: the intensity over
+/// uplift_threshold_g).
+void add_pulse_coordinates(const Study& study, const CaseSpace& space, cube::CubeLayout& layout) {
+  if (study.pulse_axes.empty() && std::none_of(study.records.begin(), study.records.end(),
+                                               [](const RecordSource& r) { return !r.pulse_shape.empty(); }))
+    return;
+  std::vector<std::string> shapes;
+  for (const auto& r : study.records) shapes.push_back(r.pulse_shape);
+  layout.coordinates.push_back(text_coordinate(names::kPulseShape, names::kRecord, "pulse of the record (empty: not a pulse)", shapes));
+  std::vector<double> periods;
+  for (const auto& axis : study.pulse_axes) {
+    std::vector<double> values;
+    for (const auto& r : study.records) {
+      const auto it = std::find_if(r.pulse_values.begin(), r.pulse_values.end(), [&](const auto& kv) { return kv.first == axis.key; });
+      values.push_back(it == r.pulse_values.end() ? std::nan("") : it->second);
+    }
+    const auto units = axis.key.substr(axis.key.rfind('_') + 1);
+    layout.coordinates.push_back(number_coordinate(axis.key, names::kRecord,
+                                                   units == "s" ? "s" : units == "g" ? "g" : units == "deg" ? "degree" : "1",
+                                                   "pulse parameter " + axis.key.substr(6) + " (record/pulses.hpp)", values));
+    if (axis.key == names::kPulsePeriod) periods = values;
+  }
+  std::vector<std::string> frame_dimensions;
+  for (const auto& d : space.plan().dimensions()) frame_dimensions.push_back(d.name);
+  cube::SideVariable p{names::kFrequencyParameter, "rad/s", "frequency parameter p of the frame (docs/frequency_parameter.md)",
+                       frame_dimensions, {}};
+  cube::SideVariable threshold{names::kUpliftThreshold, "g", "ground acceleration that uplifts the frame at rest",
+                               frame_dimensions, {}};
+  for (const auto& point : space.frames()) {
+    double p_rad_s = std::nan(""), threshold_g = std::nan("");
+    try {
+      const auto scene = study.model->make(point);
+      const auto properties = frame_properties(*scene, study.physics.fracture_strain, 2);
+      p_rad_s = properties.frequency_parameter_rad_s;
+      threshold_g = properties.uplift_threshold_g;
+    } catch (const std::invalid_argument&) {  // an invalid frame: its cases say so
+    }
+    p.values.push_back(p_rad_s);
+    threshold.values.push_back(threshold_g);
+  }
+  if (!periods.empty()) {
+    std::vector<std::string> dimensions{names::kRecord};
+    dimensions.insert(dimensions.end(), frame_dimensions.begin(), frame_dimensions.end());
+    cube::SideVariable ratio{names::kOmegaOverP, "1", "pulse frequency over the frame's frequency parameter, 2 pi / (T_p p)",
+                             dimensions, {}};
+    for (double t : periods)
+      for (double frame_p : p.values) ratio.values.push_back(2.0 * std::numbers::pi / (t * frame_p));
+    layout.side_variables.push_back(std::move(ratio));
+  }
+  layout.side_variables.push_back(std::move(p));
+  layout.side_variables.push_back(std::move(threshold));
+}
+
 /// One attribute "<table>_<key>" per setting: numbers as float64, integers and flags as
 /// int64 (flags 0/1), choices as text.
 template <class Target>
@@ -124,10 +182,13 @@ std::vector<Attribute> global_attributes(const Study& study, const std::string& 
   if (study.ida) add_settings(a, ida_settings(), *study.ida);
   add_settings(a, physics_settings(), study.physics);
   add_settings(a, solver_settings(), study.solver);
-  a.push_back({"frame_h_m", study.base.h_m});
-  a.push_back({"frame_m_c_kg", study.base.m_c_kg});
+  const auto& parameters = study.model->parameters;
+  if (study.model->name != "pcrf") a.push_back({"scene_model", std::string(study.model->name)});
+  for (std::size_t k = 0; k < parameters.size(); ++k)  // set once for every case: h_m, m_c_kg
+    if (!parameters[k].axis) a.push_back({"frame_" + std::string(parameters[k].name), study.base[k]});
   a.push_back({"gravity_m_s2", kGravity_m_s2});
-  for (const auto& info : all_parameters()) a.push_back({"base_" + std::string(info.name), study.base.*info.member});
+  for (std::size_t k = 0; k < parameters.size(); ++k)
+    if (parameters[k].axis) a.push_back({"base_" + std::string(parameters[k].name), study.base[k]});
   return a;
 }
 
@@ -140,6 +201,7 @@ cube::CubeLayout make_cube_layout(const Study& study, const CaseSpace& space, Re
     layout.dimensions.push_back({space.dimension_names()[d], space.shape()[d]});
   add_record_and_level(study, space, records, layout);
   add_incidence(study, space, layout);
+  add_pulse_coordinates(study, space, layout);
   for (auto& c : space.plan().coordinates()) layout.coordinates.push_back(std::move(c));
   layout.metrics = ResultColumns(study).variables();
   const auto& names = space.dimension_names();
@@ -166,7 +228,9 @@ cube::HistoryTable make_history_table(const std::string& label, std::int64_t cas
   table.attributes = {{"case_index", static_cast<std::int64_t>(case_index)},
                       {names::kRecord, study.records[spec.record].name},
                       {space.dimension_names()[1], spec.level}};
-  for (const auto& info : all_parameters()) table.attributes.push_back({std::string(info.name), spec.parameters.*info.member});
+  for (std::size_t k = 0; k < study.model->parameters.size(); ++k)
+    if (study.model->parameters[k].axis)
+      table.attributes.push_back({std::string(study.model->parameters[k].name), spec.parameters[k]});
   return table;
 }
 

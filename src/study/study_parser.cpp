@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "pcrf/metrics/case_result.hpp"
+#include "pcrf/record/pulses.hpp"
 #include "pcrf/study/plan.hpp"
 #include "study/axis_fields.hpp"
 #include "study/plans/plan_support.hpp"
@@ -26,10 +27,105 @@ using detail::Fields;
 using detail::PlanEntry;
 using detail::check_axis;
 using detail::number_text;
-using detail::parameter_keys;
 using detail::read_parameters;
 using detail::read_values;
 using detail::with_parameter_keys;
+
+// ---- pulses ------------------------------------------------------------------------------
+
+/// The [axes] keys of pulse parameters, "pulse_" + the pulse's own key, and which shapes take
+/// each (empty: every shape; record/pulses.hpp).
+struct PulseKey {
+  std::string_view axis_key;
+  std::string_view pulse_key;
+  std::vector<PulseShape> only;
+};
+const std::vector<PulseKey>& pulse_keys() {
+  static const std::vector<PulseKey> keys{{"pulse_period_s", "period_s", {}},
+                                          {"pulse_amplitude_g", "amplitude_g", {}},
+                                          {"pulse_cycles", "cycles", {PulseShape::kCycles}},
+                                          {"pulse_gamma", "gamma", {PulseShape::kMavroeidis}},
+                                          {"pulse_nu_deg", "nu_deg", {PulseShape::kMavroeidis}}};
+  return keys;
+}
+
+std::vector<std::string_view> axes_keys() {
+  std::vector<std::string_view> keys{"scale", "intensity", "incidence_deg", "incidence"};
+  for (const auto& k : pulse_keys()) keys.push_back(k.axis_key);
+  return with_parameter_keys(keys);
+}
+
+void read_pulse_axes(const Fields& f, Study& s) {
+  for (const auto& k : pulse_keys()) {
+    if (!f.has(k.axis_key)) continue;
+    auto values = read_values(f, k.axis_key);
+    if (k.axis_key != "pulse_nu_deg") check_axis(f, k.axis_key, values, nullptr);  // ν may be any phase
+    s.pulse_axes.push_back({std::string(k.axis_key), std::move(values), f.where(k.axis_key)});
+  }
+}
+
+/// A [[records]] pulse entry: one record per shape and combination of the [axes] pulse values,
+/// each named by its synthetic text (so that `pcrf run --synthetic NAME` reruns it).
+std::vector<RecordSource> read_pulse_entry(const Fields& f, const Study& s) {
+  std::vector<PulseShape> shapes;
+  for (const auto& name : f.texts("pulse")) {
+    const auto all = pulse_shapes();
+    const auto it = std::find_if(all.begin(), all.end(), [&](PulseShape p) { return pulse_kind(p) == name; });
+    if (it == all.end()) {
+      std::string expected;
+      for (std::size_t i = 0; i < all.size(); ++i) expected += (i == 0 ? "" : ", ") + pulse_kind(all[i]);
+      f.fail("pulse", "unknown pulse \"" + name + "\" (expected " + expected + ")");
+    }
+    shapes.push_back(*it);
+  }
+  const double dt_s = f.number("dt_s").value_or(PulseSpec{}.dt_s);
+  if (!(dt_s > 0.0)) f.fail("dt_s", "must be positive");
+  std::vector<std::string> tail;  // the entry's own keys, after the axes'
+  if (f.has("dt_s")) tail.push_back("dt_s=" + number_text(dt_s));
+  if (const auto duration = f.number("duration_s")) tail.push_back("duration_s=" + number_text(*duration));
+  for (const auto& axis : s.pulse_axes)
+    if (axis.key == "pulse_period_s")
+      for (double t : axis.values)
+        if (t < 4.0 * dt_s)
+          throw StudyError(axis.declared_at + ": axes.pulse_period_s: value " + number_text(t) + " is below 4 dt = " +
+                           number_text(4.0 * dt_s) + " s of the pulse records (" + f.where("pulse") + ")");
+  std::vector<RecordSource> sources;
+  for (PulseShape shape : shapes) {
+    std::vector<const Study::PulseAxis*> axes;
+    for (const auto& axis : s.pulse_axes) {
+      const auto& key = *std::find_if(pulse_keys().begin(), pulse_keys().end(),
+                                      [&](const PulseKey& k) { return k.axis_key == axis.key; });
+      if (key.only.empty() || std::find(key.only.begin(), key.only.end(), shape) != key.only.end()) axes.push_back(&axis);
+    }
+    std::vector<std::size_t> at(axes.size(), 0);
+    for (bool more = true; more;) {
+      RecordSource source;
+      source.pulse_shape = pulse_kind(shape);
+      std::vector<std::string> assignments;
+      for (std::size_t a = 0; a < axes.size(); ++a) {
+        const double v = axes[a]->values[at[a]];
+        source.pulse_values.emplace_back(axes[a]->key, v);
+        assignments.push_back(axes[a]->key.substr(6) + "=" + number_text(v));  // without "pulse_"
+      }
+      assignments.insert(assignments.end(), tail.begin(), tail.end());
+      std::string text = pulse_kind(shape);
+      for (std::size_t a = 0; a < assignments.size(); ++a) text += (a == 0 ? ":" : ",") + assignments[a];
+      source.synthetic = text;
+      source.name = source.synthetic;
+      source.declared_at = f.where("pulse");
+      sources.push_back(std::move(source));
+      more = false;  // the next combination, the last axis fastest
+      for (std::size_t a = axes.size(); a-- > 0;) {
+        if (++at[a] < axes[a]->values.size()) {
+          more = true;
+          break;
+        }
+        at[a] = 0;
+      }
+    }
+  }
+  return sources;
+}
 
 // ---- sections ----------------------------------------------------------------------------
 
@@ -86,18 +182,38 @@ void read_plan(const Fields& top, const Fields* axes, Study& s) {
   const auto* table = top.subtable("plan");
   const Fields plan(table != nullptr ? *table : kNoTable, "plan", s.file, keys);
   const PlanEntry& entry = read_plan_kind(top, plan);
-  s.plan = entry.read({plan, axes, top, s.base});
+  s.plan = entry.read({plan, axes, top, *s.model, s.base});
   if (plan.has("samples")) s.setting_lines["plan.samples"] = plan.where("samples");  // for study_size's message
 }
 
+/// [frame]: the scene (model) and its base point; [base], the older table, takes the same
+/// parameters (one key in only one of them).
 void read_base(const Fields& top, Study& s) {
-  const auto* table = top.subtable("base");
-  if (table == nullptr) return;
-  std::vector<std::string_view> keys = parameter_keys();
-  for (const auto& info : size_parameters()) keys.push_back(info.name);
-  Fields f(*table, "base", s.file, keys);
-  read_parameters(f, all_parameters(), s.base);
-  read_parameters(f, size_parameters(), s.base);
+  const auto* frame_table = top.subtable("frame");
+  const auto* base_table = top.subtable("base");
+  std::vector<std::string_view> keys = detail::all_scene_keys();
+  if (frame_table != nullptr) {
+    std::vector<std::string_view> frame_keys = keys;
+    frame_keys.insert(frame_keys.begin(), "model");
+    const Fields f(*frame_table, "frame", s.file, frame_keys);
+    if (const auto model = f.text("model")) {
+      try {
+        s.model = &scene_model(*model);
+      } catch (const std::invalid_argument& e) {
+        f.fail("model", e.what());
+      }
+      s.base = s.model->defaults();
+      if (s.model->name != "pcrf") s.setting_lines["frame.model"] = f.where("model");
+    }
+    read_parameters(f, *s.model, s.base, false);
+  }
+  if (base_table != nullptr) {
+    const Fields f(*base_table, "base", s.file, keys);
+    if (frame_table != nullptr)
+      for (auto key : keys)
+        if (f.has(key) && frame_table->contains(key)) f.fail(key, "is also given in [frame]: give it once");
+    read_parameters(f, *s.model, s.base, false);
+  }
 }
 
 /// What an IDA needs of the outputs: no histories (its cases are chosen as it runs), and
@@ -130,7 +246,7 @@ void read_ida(const Fields& top, Study& s) {
   if (table == nullptr) return;
   IdaOptions ida;
   detail::read_setting_table(top, ida_settings(), ida, s.setting_lines);
-  const Fields f(*table, "ida", s.file, {"start", "step", "resolution", "max_intensity", "max_runs", "collapse", "theta_limit_rad"});
+  const Fields f(*table, "ida", s.file, {"start", "step", "step_factor", "resolution", "max_intensity", "max_runs", "collapse", "theta_limit_rad"});
   if (!s.intensity)
     top.fail("ida", "an IDA needs an intensity measure: add an [intensity] table (measure = \"pga_g\", \"pgv_m_s\" or \"sa_g\")");
   if (!f.has("start")) f.fail("start", "required: the first intensity of every curve");
@@ -170,7 +286,7 @@ void read_axes(const Fields& top, Study& s) {
   if (table != nullptr) s.setting_lines["axes"] = top.where("axes");
   const bool has_intensity_axis = table != nullptr && table->contains("intensity");
   if (s.ida && table != nullptr && (table->contains("intensity") || table->contains("scale")))
-    Fields(*table, "axes", s.file, with_parameter_keys({"scale", "intensity"}))
+    Fields(*table, "axes", s.file, axes_keys())
         .fail(table->contains("intensity") ? "intensity" : "scale",
               "with [ida] the search chooses the intensities: give no intensity or scale axis");
   if (s.intensity && !s.ida && !has_intensity_axis)
@@ -178,9 +294,10 @@ void read_axes(const Fields& top, Study& s) {
                               std::string(intensity_units(s.intensity->measure)) + ")");
   std::optional<Fields> axes;
   if (table != nullptr) {
-    axes.emplace(*table, "axes", s.file, with_parameter_keys({"scale", "intensity", "incidence_deg", "incidence"}));
+    axes.emplace(*table, "axes", s.file, axes_keys());
     const Fields& f = *axes;
     read_incidence(f, s);
+    read_pulse_axes(f, s);
     if (f.has("scale") && f.has("intensity"))
       f.fail("intensity", "give either scale (one factor for every record) or intensity (each record scaled to it), not both");
     if (f.has("intensity") && !s.intensity)
@@ -188,7 +305,7 @@ void read_axes(const Fields& top, Study& s) {
     for (const char* key : {"scale", "intensity"}) {
       if (!f.has(key)) continue;
       s.levels = read_values(f, key);
-      check_axis(f, key, s.levels, kParameterCount);
+      check_axis(f, key, s.levels, nullptr);
     }
   }
   read_plan(top, axes ? &*axes : nullptr, s);
@@ -287,10 +404,17 @@ std::optional<double> read_angle(const Fields& f, std::string_view key) {
 }
 
 std::vector<RecordSource> read_record_entry(const Fields& f, const Study& s) {
-  const int given = int(f.has("file")) + int(f.has("files")) + int(f.has("synthetic")) + int(f.has("h1"));
-  if (given != 1) f.fail(f.has("h1") ? "h1" : "file", "give exactly one of file, files, h1 or synthetic");
+  const int given =
+      int(f.has("file")) + int(f.has("files")) + int(f.has("synthetic")) + int(f.has("h1")) + int(f.has("pulse"));
+  if (given != 1) f.fail(f.has("h1") ? "h1" : "file", "give exactly one of file, files, h1, synthetic or pulse");
   for (const auto key : {"h2", "up", "az1_deg", "az2_deg"})
     if (f.has(key) && !f.has("h1")) f.fail(key, "a station's components are h1 (the first horizontal), h2 and up: give h1");
+  if (f.has("pulse")) {
+    for (const auto key : {"format", "units", "skip_rows", "column", "name", "strike_deg"})
+      if (f.has(key)) f.fail(key, "does not apply to pulse records (each is named by its text)");
+    return read_pulse_entry(f, s);
+  }
+  if (f.has("duration_s")) f.fail("duration_s", "only applies to pulse records");
   std::vector<RecordSource> sources;
   if (f.has("synthetic")) {
     for (const auto key : {"format", "units", "dt_s", "skip_rows", "column"})
@@ -369,6 +493,13 @@ void check_station_needs(const Fields& f, const Study& s, const RecordSource& so
                                            source.name + "\" needs its second horizontal component (h1 and h2)");
 }
 
+void check_pulse_axes_used(const Study& s) {
+  const bool pulses = std::any_of(s.records.begin(), s.records.end(), [](const RecordSource& r) { return !r.pulse_shape.empty(); });
+  if (!pulses && !s.pulse_axes.empty())
+    throw StudyError(s.pulse_axes.front().declared_at + ": axes." + s.pulse_axes.front().key +
+                     ": needs a [[records]] pulse entry (pulse = \"ricker\", …) to vary");
+}
+
 void read_records(const Fields& top, Study& s) {
   const auto* array = top.array("records");
   if (array == nullptr || array->empty())
@@ -379,8 +510,8 @@ void read_records(const Fields& top, Study& s) {
     const auto* table = (*array)[i].as_table();
     if (table == nullptr) Fields::fail_at(s.file, &(*array)[i], path, "expected a table ([[records]])");
     Fields f(*table, path, s.file,
-             {"file", "files", "synthetic", "format", "units", "dt_s", "skip_rows", "column", "name", "h1", "h2", "up",
-              "az1_deg", "az2_deg", "strike_deg"});
+             {"file", "files", "synthetic", "pulse", "format", "units", "dt_s", "duration_s", "skip_rows", "column", "name",
+              "h1", "h2", "up", "az1_deg", "az2_deg", "strike_deg"});
     for (auto& source : read_record_entry(f, s)) {
       if (!names.insert(source.name).second)
         f.fail(f.has("synthetic") ? "synthetic" : (f.has("file") ? "file" : f.has("h1") ? "h1" : "files"),
@@ -456,7 +587,8 @@ void read_histories(const Fields& outputs, Study& s) {
       if (f.has(key))
         if (const auto problem = s.plan->history_key_problem(key); !problem.empty()) f.fail(key, problem);
     request.case_label = f.text("case");
-    for (std::size_t p = 0; p < kParameterCount; ++p) request.parameters[p] = f.number(all_parameters()[p].name);
+    detail::refuse_other_scenes(f, *s.model);
+    for (const auto& parameter : s.model->parameters) request.parameters.push_back(f.number(parameter.name));
     s.histories.push_back(std::move(request));
   }
 }
@@ -485,7 +617,7 @@ Study parse_study(const std::string& text, const std::string& file, const std::f
   s.base_dir = base_dir;
   s.text = text;
   Fields top(root, "", file,
-             {"study", "plan", "records", "axes", "base", "cases", intensity_settings().name, ida_settings().name,
+             {"study", "plan", "records", "axes", "frame", "base", "cases", intensity_settings().name, ida_settings().name,
               physics_settings().name, solver_settings().name, "outputs", run_settings().name});
   read_study_section(top, s);
   read_base(top, s);  // before the plan: its frames start from the base point
@@ -493,6 +625,7 @@ Study parse_study(const std::string& text, const std::string& file, const std::f
   read_ida(top, s);
   read_axes(top, s);  // and the plan
   read_records(top, s);
+  check_pulse_axes_used(s);
   detail::read_setting_table(top, physics_settings(), s.physics, s.setting_lines);
   detail::read_setting_table(top, solver_settings(), s.solver, s.setting_lines);
   read_outputs(top, s);

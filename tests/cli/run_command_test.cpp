@@ -352,7 +352,7 @@ TEST(RunCommand, SolvesTheCanonicalScenes) {
       {" --model block --kappa 2", "--kappa does not apply to --model block"},
       {" --size-m 2", "--size-m does not apply to --model pcrf"},
       {" --model block --slenderness-rad 1.6", "slenderness_rad: must lie between 0 and pi/2"},
-      {" --model block --beam-mass-ratio 1", "--beam-mass-ratio applies to --model rocking-frame"},
+      {" --model block --beam-mass-ratio 1", "--beam-mass-ratio does not apply to --model block (it applies to --model rocking-frame)"},
       {" --model block --restitution 1.5", "restitution: must lie in [0, 1]"},
       {" --model cylinder", "unknown scene 'cylinder'"}};
   for (const auto& [flags, message] : bad) {

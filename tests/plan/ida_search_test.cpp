@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <functional>
+#include <vector>
 
 #include "pcrf/plan/ida_search.hpp"
 
@@ -26,13 +27,69 @@ IdaSearch trace(const IdaSearchSettings& settings, const std::function<bool(doub
   return search;
 }
 
-TEST(IdaSearch, HuntStepsGrowAndStopAtTheCap) {
-  const auto s = trace(defaults(), [](double) { return false; });
-  // 0.5, 1, 2, 3.5, 5.5, 8, 11, 12 (capped), then censored
-  EXPECT_EQ(s.runs(), 8);
-  EXPECT_TRUE(std::isnan(s.collapse_intensity()));
-  EXPECT_EQ(s.last_safe_intensity(), 12.0);
-  EXPECT_TRUE(s.bracketed());
+std::vector<double> hunt_of(const IdaSearchSettings& settings) {
+  IdaSearch search(settings);
+  std::vector<double> runs;
+  while (const auto x = search.next()) {
+    runs.push_back(*x);
+    search.add(*x, false);
+  }
+  return runs;
+}
+
+TEST(IdaSearch, HuntStepsGrowGeometricallyAndStopAtTheCap) {
+  // step = start, factor 2: the intensity doubles; the cap ends it, censored.
+  EXPECT_EQ(hunt_of(defaults()), (std::vector<double>{0.5, 1, 2, 4, 8, 12}));
+  auto s = defaults();
+  s.step = 1.0;
+  s.step_factor = 1.5;  // steps 1, 1.5, 2.25, 3.375, …
+  EXPECT_EQ(hunt_of(s), (std::vector<double>{0.5, 1.5, 3.0, 5.25, 8.625, 12}));
+  s.step_factor = 1.0;  // equal steps
+  EXPECT_EQ(hunt_of(s), (std::vector<double>{0.5, 1.5, 2.5, 3.5, 4.5, 5.5, 6.5, 7.5, 8.5, 9.5, 10.5, 11.5, 12}));
+  const auto censored = trace(defaults(), [](double) { return false; });
+  EXPECT_TRUE(std::isnan(censored.collapse_intensity()));
+  EXPECT_EQ(censored.last_safe_intensity(), 12.0);
+  EXPECT_EQ(censored.state(), CurveState::kCensored);
+  EXPECT_TRUE(censored.bracketed());
+}
+
+TEST(IdaSearch, EveryCurveEndsBracketedCensoredOrUnbracketed) {
+  auto s = defaults();
+  EXPECT_EQ(trace(s, [](double x) { return x >= 3.3; }).state(), CurveState::kBracketed);
+  s.max_runs = 5;  // the hunt alone needs 6 to reach the cap: runs out safe at 8
+  const auto short_of_cap = trace(s, [](double) { return false; });
+  EXPECT_EQ(short_of_cap.state(), CurveState::kUnbracketed);
+  EXPECT_FALSE(short_of_cap.bracketed());
+  EXPECT_EQ(short_of_cap.last_safe_intensity(), 8.0);
+  s.max_runs = 7;  // collapses at 4 after a safe 2: one bisection is not 2 %
+  const auto wide = trace(s, [](double x) { return x >= 3.3; });
+  EXPECT_EQ(wide.state(), CurveState::kUnbracketed);
+  EXPECT_EQ(wide.runs(), 7);
+  EXPECT_GT(wide.collapse_intensity() / wide.last_safe_intensity() - 1.0, 0.02);
+  EXPECT_EQ(curve_state_name(CurveState::kUnbracketed), "unbracketed");
+}
+
+TEST(IdaSearch, AHundredfoldRangeIsBracketedToOnePercentWithin16Runs) {
+  // Rocking spectra: collapse amplitudes anywhere in 1–100 g, found from 1 g at 1 %.
+  IdaSearchSettings s;
+  s.start = 1.0;
+  s.resolution = 0.01;
+  s.max_intensity = 100.0;
+  s.max_runs = 16;
+  int worst = 0;
+  for (double x_c = 1.01; x_c < 100.0; x_c *= 1.017) {
+    IdaSearch search(s);
+    int runs_to_bracket = -1;
+    while (const auto x = search.next()) {
+      search.add(*x, *x >= x_c);
+      if (runs_to_bracket < 0 && search.state() == CurveState::kBracketed) runs_to_bracket = search.runs();
+    }
+    ASSERT_GT(runs_to_bracket, 0) << "x_c = " << x_c;
+    worst = std::max(worst, runs_to_bracket);
+    EXPECT_LT(search.last_safe_intensity(), x_c);
+    EXPECT_GE(search.collapse_intensity(), x_c);
+  }
+  EXPECT_LE(worst, 15);
 }
 
 TEST(IdaSearch, BracketsEveryCollapseIntensityToTheResolutionWithin16Runs) {
@@ -100,6 +157,9 @@ TEST(IdaSearch, BadSettingsAreRejected) {
   EXPECT_THROW(IdaSearch{s}, std::invalid_argument);
   s = defaults();
   s.max_intensity = 0.1;
+  EXPECT_THROW(IdaSearch{s}, std::invalid_argument);
+  s = defaults();
+  s.step_factor = 0.9;  // shrinking steps could never reach the cap
   EXPECT_THROW(IdaSearch{s}, std::invalid_argument);
 }
 

@@ -102,6 +102,25 @@ TEST(PlotCommand, IdaHasOnePanelPerFrameAndFragilityOne) {
   EXPECT_EQ(plot(dir / "stripes.svg", "fragility " + quoted(stripes)), 1);
 }
 
+TEST(PlotCommand, SpectrumHasOnePanelPerFrame) {
+  PCRF_REQUIRE_MATPLOTLIB();
+  const auto dir = test::scratch_dir("plot_spectrum");
+  const auto cube = study(dir, "spectrum",
+                          "[[records]]\npulse = [\"pulse-sine\", \"ricker\"]\n[frame]\nmodel = \"block\"\nsize_m = 1\n"
+                          "[axes]\nslenderness_rad = [0.15, 0.25]\n"
+                          "pulse_period_s = {from = 0.3, to = 2, count = 4, spacing = \"log\"}\n"
+                          "[intensity]\nmeasure = \"pga_g\"\n[ida]\nstart = 0.2\nmax_intensity = 20\nmax_runs = 14\n"
+                          "resolution = 0.05\n[physics]\ntail_s = 5\n");
+  EXPECT_EQ(plot(dir / "spectrum.svg", "spectrum " + quoted(cube)), 2);
+  EXPECT_EQ(plot(dir / "spectrum1.svg", "spectrum " + quoted(cube) + " -w slenderness_rad=0.15"), 1);
+  const auto r = test::run_command(pcrf() + " plot spectrum " + quoted(study(dir, "noise", records_line() +
+                                   "[intensity]\nmeasure = \"pga_g\"\n[ida]\nstart = 0.5\nmax_intensity = 4\nmax_runs = 4\n")) +
+                                   " -o " + quoted(dir / "no.svg"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("not a rocking-spectrum cube (no omega_p_over_p)"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "no.svg"));
+}
+
 TEST(PlotCommand, SensitivityHasOnePanelOfBars) {
   PCRF_REQUIRE_MATPLOTLIB();
   const auto dir = test::scratch_dir("plot_sensitivity");

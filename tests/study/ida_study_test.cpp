@@ -175,6 +175,59 @@ TEST(IdaStudy, FragilityFitsTheCollapseIntensitiesWithCensoring) {
   EXPECT_EQ(k, runs.size());
 }
 
+TEST(IdaStudy, EveryCurveEndsInAStateTheCubeRecordsAndTheFragilityCensorsUnbracketedOnesAtTheirLastSafeRun) {
+  const auto dir = test::scratch_dir("ida_states");
+  // 6 runs up to 3 g at 2 %: a curve safe at 0.5, 1, 2, 3 is censored; one collapsing at 1 or
+  // 2 has 4 or 2 runs left to bisect a 100 % bracket down to 2 %: too few, unbracketed.
+  std::string text = ida_study(8, 6);
+  text.replace(text.find("max_intensity = 8"), 17, "max_intensity = 3");
+  ASSERT_EQ(run_ida(dir, text, "ida.h5").exit_code, 0);
+  cube::CubeReader cube(dir / "ida.h5");
+  const auto c = cube.read_side("collapse_intensity");
+  const auto s = cube.read_side("last_safe_intensity");
+  const auto state = cube.read_side("curve_state");
+  int counts[3] = {0, 0, 0};
+  std::vector<std::vector<double>> censored_of(2);  // per frame: what the fit must censor
+  for (std::size_t curve = 0; curve < c.size(); ++curve) {
+    const double expected = std::isnan(c[curve]) ? (s[curve] >= 3.0 ? 1.0 : 2.0) : (c[curve] / s[curve] - 1.0 <= 0.02 ? 0.0 : 2.0);
+    ASSERT_EQ(state[curve], expected) << "curve " << curve;
+    ++counts[static_cast<int>(expected)];
+    if (expected != 0.0 && std::isfinite(s[curve])) censored_of[curve % 2].push_back(s[curve]);
+  }
+  ASSERT_GT(counts[2], 0) << "no curve ran out of runs: lower max_runs";
+  ASSERT_GT(counts[1] + counts[0], 0);
+  const auto info = test::run_command(pcrf() + " cube info " + quoted(dir / "ida.h5"));
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_NE(info.out.find("16 IDA curves: " + std::to_string(counts[0]) + " bracketed to the resolution, " +
+                          std::to_string(counts[1]) + " right-censored at max_intensity, " + std::to_string(counts[2]) +
+                          " unbracketed (max_runs ran out)"),
+            std::string::npos)
+      << info.out;
+  const auto fragility = test::run_command(pcrf() + " cube fragility " + quoted(dir / "ida.h5") + " --csv " +
+                                           quoted(dir / "f.csv") + " --points " + quoted(dir / "p.csv"));
+  ASSERT_EQ(fragility.exit_code, 0) << fragility.err;
+  EXPECT_NE(fragility.err.find("unbracketed curves (max_runs ran out"), std::string::npos) << fragility.err;
+  std::ifstream csv(dir / "f.csv");
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line.substr(line.rfind(',') + 1), "unbracketed") << line;
+  int unbracketed_listed = 0;
+  while (std::getline(csv, line)) unbracketed_listed += std::stoi(line.substr(line.rfind(',') + 1));
+  EXPECT_EQ(unbracketed_listed, counts[2]);
+  // The censored points are the censored curves' caps and the unbracketed curves' last safe runs.
+  std::ifstream points(dir / "p.csv");
+  std::getline(points, line);
+  std::vector<double> listed;
+  while (std::getline(points, line))
+    if (line.find(",censored,") != std::string::npos) listed.push_back(std::stod(line.substr(line.find(",censored,") + 10)));
+  std::vector<double> expected = censored_of[0];
+  expected.insert(expected.end(), censored_of[1].begin(), censored_of[1].end());
+  std::sort(listed.begin(), listed.end());
+  std::sort(expected.begin(), expected.end());
+  ASSERT_EQ(listed.size(), expected.size());
+  for (std::size_t i = 0; i < listed.size(); ++i) EXPECT_NEAR(listed[i], expected[i], 1e-9 * expected[i]);
+}
+
 TEST(IdaStudy, RanksDoNotChangeTheCurves) {
   PCRF_REQUIRE_MPIRUN();
   const auto dir = test::scratch_dir("ida_ranks");

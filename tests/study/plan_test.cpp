@@ -44,11 +44,7 @@ std::string canonical(const Plan& plan) {
   return out.str();
 }
 
-bool same_frame(const FrameParameters& a, const FrameParameters& b) {
-  for (const auto& info : all_parameters())
-    if (a.*info.member != b.*info.member) return false;
-  return a.h_m == b.h_m && a.m_c_kg == b.m_c_kg;
-}
+bool same_frame(const ScenePoint& a, const ScenePoint& b) { return same_point(a, b); }
 
 TEST(Plan, EveryKindIsTestedHere) {
   for (auto kind : plan_kinds()) EXPECT_EQ(kStudies.count(std::string(kind)), 1u) << kind;

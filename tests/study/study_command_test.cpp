@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <map>
+#include <set>
 #include <regex>
 #include <sstream>
 #include <thread>
@@ -73,6 +74,46 @@ TEST(StudyCommand, EveryCubeValueEqualsPcrfRunForThatCase) {
         EXPECT_EQ(std::strtod(text.c_str(), nullptr), values[k]) << name << " of case " << i << args;
     }
   }
+}
+
+TEST(StudyCommand, ABlockStudyGivesWhatPcrfRunGivesForEachCase) {
+  const auto dir = test::scratch_dir("study_block");
+  const std::string text =
+      "[[records]]\nsynthetic = [\"pulse-sine:period_s=0.5,amplitude_g=0.6\", \"ricker:period_s=0.8,amplitude_g=0.9\"]\n"
+      "[frame]\nmodel = \"block\"\ngiven_restitution = 0.9\n"
+      "[axes]\nslenderness_rad = [0.15, 0.25]\nfrequency_parameter_rad_s = [1.5, 3]\n"
+      "[outputs]\nmetrics = [\"theta_max_rad\", \"impacts\", \"t_uplift_s\"]\n";
+  const auto r = run_study(dir, "block.toml", text, "-o cube.h5 --progress-interval 0");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  cube::CubeReader cube(dir / "cube.h5");
+  const auto& layout = cube.layout();
+  EXPECT_EQ(layout.text_attribute("scene_model"), "block");
+  const auto status = cube.read_status();
+  const auto theta = cube.read_metric("theta_max_rad");
+  const auto impacts = cube.read_metric("impacts");
+  const auto shape = layout.shape();
+  const auto record = *layout.find_dimension("record");
+  const auto alpha = *layout.find_dimension("slenderness_rad");
+  const auto p = *layout.find_dimension("frequency_parameter_rad_s");
+  std::set<std::string> statuses;
+  for (std::int64_t i = 0; i < layout.case_count(); ++i) {
+    const auto c = cube::unravel(i, shape);
+    const std::string args = " run --model block --restitution 0.9 --synthetic '" +
+                             layout.find_coordinate("record")->label(c[record]) + "' --slenderness-rad " +
+                             layout.find_coordinate("slenderness_rad")->label(c[alpha]) + " --frequency-parameter-rad-s " +
+                             layout.find_coordinate("frequency_parameter_rad_s")->label(c[p]);
+    const auto run = test::run_command(pcrf() + args);
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const auto json = parse_flat_json(run.out);
+    const auto k = static_cast<std::size_t>(i);
+    EXPECT_EQ(json.at("status"), status_meaning(layout, status[k])) << args;
+    statuses.insert(json.at("status"));
+    if (json.at("theta_max_rad") != "null") {
+      EXPECT_EQ(std::strtod(json.at("theta_max_rad").c_str(), nullptr), theta[k]) << args;
+    }
+    EXPECT_EQ(std::strtod(json.at("impacts").c_str(), nullptr), impacts[k]) << args;
+  }
+  EXPECT_GE(statuses.size(), 2u) << "every case ended alike: the test sees too little";
 }
 
 TEST(StudyCommand, OneTwoAndThreeRanksGiveTheSameCube) {

@@ -11,6 +11,9 @@
 namespace pcrf::study {
 namespace {
 
+/// A parameter of the prestressed frame's point by name.
+double at(const ScenePoint& point, std::string_view key) { return point.at(scene_model("pcrf").index(key)); }
+
 Study parse(const std::string& text) { return parse_study(text, "t.toml", test::source_dir()); }
 
 const std::string kRecords = "[[records]]\nsynthetic = \"sine:amplitude_g=1.5\"\n";
@@ -38,8 +41,8 @@ TEST(StudyParser, DefaultsAreTheBasicModelAndEveryMetric) {
   EXPECT_EQ(s.plan->name(), "grid");
   EXPECT_EQ(s.name, "t");
   EXPECT_EQ(s.levels, std::vector<double>{1.0});
-  EXPECT_DOUBLE_EQ(s.base.kappa, FrameParameters{}.kappa);
-  EXPECT_DOUBLE_EQ(s.base.pi_e_c, FrameParameters{}.pi_e_c);
+  EXPECT_DOUBLE_EQ(at(s.base, "kappa"), FrameParameters{}.kappa);
+  EXPECT_DOUBLE_EQ(at(s.base, "pi_e_c"), FrameParameters{}.pi_e_c);
   // every metric but the verdict check's three (they need [solver] verdict_check = true)
   EXPECT_EQ(s.metrics.size(), all_metrics().size() - 3);
   const Study checked = parse(kRecords + "[solver]\nverdict_check = true\n");
@@ -55,7 +58,7 @@ TEST(StudyParser, ListsNumbersAndLinearAndLogRanges) {
   EXPECT_EQ(s.levels, (std::vector<double>{0.5, 1.0}));
   EXPECT_EQ(coordinate(s, "kappa").numbers, std::vector<double>{2.0});
   EXPECT_EQ(coordinate(s, "lambda").numbers, (std::vector<double>{1.5, 2.0, 2.5}));
-  EXPECT_EQ(coordinate(s, "tan_alpha").numbers, std::vector<double>{s.base.tan_alpha});  // not given: the base value
+  EXPECT_EQ(coordinate(s, "tan_alpha").numbers, std::vector<double>{at(s.base, "tan_alpha")});  // not given: the base value
   const auto pi_e_c = coordinate(s, "pi_e_c").numbers;
   ASSERT_EQ(pi_e_c.size(), 3u);
   EXPECT_DOUBLE_EQ(pi_e_c[1], 10000.0);
@@ -115,8 +118,8 @@ TEST(StudyParser, OneAtATimeSweepsEachParameterAroundTheBase) {
   EXPECT_EQ(varied[0], "none");
   EXPECT_EQ(labels[1], "kappa=1");
   EXPECT_EQ(varied[3], "tan_alpha");
-  EXPECT_DOUBLE_EQ(space.case_at(3).parameters.kappa, 2.0);  // the base, not the default
-  EXPECT_DOUBLE_EQ(space.case_at(3).parameters.tan_alpha, 0.15);
+  EXPECT_DOUBLE_EQ(at(space.case_at(3).parameters, "kappa"), 2.0);  // the base, not the default
+  EXPECT_DOUBLE_EQ(at(space.case_at(3).parameters, "tan_alpha"), 0.15);
   EXPECT_EQ(space.dimension_names(), (std::vector<std::string>{"record", "scale", "case"}));
 }
 
@@ -125,7 +128,7 @@ TEST(StudyParser, ListPlanTakesExplicitCases) {
                                    "[[cases]]\nkappa = 3\n");
   const CaseSpace space(s);
   EXPECT_EQ(coordinate(s, "case_label").strings, (std::vector<std::string>{"stocky", "case1"}));
-  EXPECT_DOUBLE_EQ(space.case_at(1).parameters.kappa, 3.0);
+  EXPECT_DOUBLE_EQ(at(space.case_at(1).parameters, "kappa"), 3.0);
 }
 
 TEST(StudyParser, PhysicsSolverOutputsAndRun) {
@@ -172,6 +175,84 @@ TEST(StudyParser, RejectsBadStudiesNamingFileLineKeyAndProblem) {
   }
 }
 
+TEST(StudyParser, AScenesParametersAreItsAxesAndBasePoint) {
+  const Study s = parse(kRecords + "[frame]\nmodel = \"block\"\nslenderness_rad = 0.2\ngiven_restitution = 0.9\n"
+                                   "[axes]\nfrequency_parameter_rad_s = {from = 1, to = 4, count = 3, spacing = \"log\"}\n");
+  ASSERT_EQ(s.model->name, "block");
+  EXPECT_EQ(coordinate(s, "frequency_parameter_rad_s").numbers, (std::vector<double>{1.0, 2.0, 4.0}));
+  EXPECT_EQ(coordinate(s, "slenderness_rad").numbers, std::vector<double>{0.2});
+  EXPECT_EQ(coordinate(s, "frequency_parameter_rad_s").units, "rad/s");
+  const CaseSpace space(s);
+  ASSERT_EQ(space.size(), 3);
+  const auto& block = scene_model("block");
+  EXPECT_EQ(space.case_at(2).parameters[block.index("frequency_parameter_rad_s")], 4.0);
+  EXPECT_EQ(space.case_at(2).parameters[block.index("given_restitution")], 0.9);
+  EXPECT_EQ(space.case_at(2).parameters[block.index("slenderness_rad")], 0.2);
+  // The rocking frame's γ on a one-at-a-time sweep; the list plan's cases take a scene's keys too.
+  const Study frames = parse(kRecords + "[frame]\nmodel = \"rocking-frame\"\n[plan]\nkind = \"one-at-a-time\"\n"
+                                        "[axes]\nbeam_mass_ratio = [0.5, 1]\n");
+  EXPECT_EQ(CaseSpace(frames).size(), 3);
+  const Study listed = parse(kRecords + "[frame]\nmodel = \"block\"\n[plan]\nkind = \"list\"\n"
+                                        "[[cases]]\nlabel = \"slender\"\nslenderness_rad = 0.1\n");
+  EXPECT_EQ(CaseSpace(listed).case_at(0).parameters[block.index("slenderness_rad")], 0.1);
+}
+
+TEST(StudyParser, RefusesAnotherScenesKeysAndImpossibleScenes) {
+  const std::string block = kRecords + "[frame]\nmodel = \"block\"\n";
+  const std::vector<BadStudy> corpus = {
+      {block + "[axes]\nkappa = [1, 2]\n",
+       "t.toml:6: axes.kappa: does not apply to model \"block\" (it is a parameter of model \"pcrf\""},
+      {block + "pi_sigma_c = 3\n", "t.toml:5: frame.pi_sigma_c: does not apply to model \"block\""},
+      {kRecords + "[axes]\nslenderness_rad = [0.1, 0.2]\n", "axes.slenderness_rad: does not apply to model \"pcrf\""},
+      {block + "slenderness_rad = 1.6\n", "t.toml:5: frame.slenderness_rad: value 1.6 must lie between 0 and pi/2"},
+      {block + "[axes]\nslenderness_rad = [0.1, 1.5708]\n", "axes.slenderness_rad: value 1.5708 must lie between 0 and pi/2"},
+      {block + "beam_mass_ratio = 0.5\n", "frame.beam_mass_ratio: does not apply to model \"block\" (it is a parameter of model \"rocking-frame\""},
+      {kRecords + "[frame]\nmodel = \"rocking-frame\"\nbeam_mass_ratio = -0.5\n", "t.toml:5: frame.beam_mass_ratio: value -0.5 must not be negative"},
+      {block + "size_m = 2\nfrequency_parameter_rad_s = 3\n", "give either size_m or frequency_parameter_rad_s, not both"},
+      {block + "given_restitution = 1.2\n", "frame.given_restitution: value 1.2 must lie in [0, 1]"},
+      {kRecords + "[frame]\nmodel = \"cylinder\"\n", "t.toml:4: frame.model: unknown scene 'cylinder' (expected pcrf, block or rocking-frame)"},
+      {kRecords + "[frame]\nkappa = 2\n[base]\nkappa = 3\n", "base.kappa: is also given in [frame]"},
+  };
+  for (const auto& bad : corpus) {
+    const std::string message = error_of(bad.text);
+    EXPECT_NE(message.find(bad.message), std::string::npos) << "got: " << message << "\nfor:\n" << bad.text;
+  }
+}
+
+TEST(StudyParser, PulseParametersAreAxesOfPulseRecords) {
+  const Study s = parse("[[records]]\npulse = [\"pulse-sine\", \"pulse-cycles\"]\ndt_s = 0.002\n"
+                        "[axes]\npulse_period_s = {from = 0.1, to = 1, count = 3, spacing = \"log\"}\n"
+                        "pulse_amplitude_g = [0.5, 2]\npulse_cycles = [1, 3]\n");
+  // pulse-sine: 3 periods x 2 amplitudes; pulse-cycles also x 2 cycle counts.
+  ASSERT_EQ(s.records.size(), 6u + 12u);
+  EXPECT_EQ(s.records[0].name, "pulse-sine:period_s=0.1,amplitude_g=0.5,dt_s=0.002");
+  EXPECT_EQ(s.records[1].name, "pulse-sine:period_s=0.1,amplitude_g=2,dt_s=0.002");
+  EXPECT_EQ(s.records[6].name, "pulse-cycles:period_s=0.1,amplitude_g=0.5,cycles=1,dt_s=0.002");
+  EXPECT_EQ(s.records[6].pulse_shape, "pulse-cycles");
+  ASSERT_EQ(s.records[2].pulse_values.size(), 2u);
+  EXPECT_EQ(s.records[2].pulse_values[0].first, "pulse_period_s");
+  EXPECT_NEAR(s.records[2].pulse_values[0].second, std::sqrt(0.1), 1e-15);
+  // Every record is a pulse that the synthetic reader makes.
+  for (const auto& r : s.records) EXPECT_NO_THROW(load_record(r)) << r.name;
+}
+
+TEST(StudyParser, RefusesImpossiblePulses) {
+  const std::string pulse = "[[records]]\npulse = \"ricker\"\n";
+  const std::vector<BadStudy> corpus = {
+      {pulse + "[axes]\npulse_period_s = [0.5, 0]\n", "t.toml:4: axes.pulse_period_s: value 0 must be positive"},
+      {pulse + "[axes]\npulse_period_s = [-1, 0.5]\n", "t.toml:4: axes.pulse_period_s: value -1 must be positive"},
+      {pulse + "[axes]\npulse_period_s = [0.01, 0.5]\n", "t.toml:4: axes.pulse_period_s: value 0.01 is below 4 dt = 0.02 s"},
+      {"[[records]]\npulse = \"ricker\"\ndt_s = 0.01\n[axes]\npulse_period_s = 0.03\n", "axes.pulse_period_s: value 0.03 is below 4 dt = 0.04 s"},
+      {"[[records]]\npulse = \"wavelet\"\n", "t.toml:2: records[0].pulse: unknown pulse \"wavelet\" (expected pulse-sine"},
+      {kRecords + "[axes]\npulse_period_s = [0.5, 1]\n", "t.toml:4: axes.pulse_period_s: needs a [[records]] pulse entry"},
+      {pulse + "name = \"r\"\n", "records[0].name: does not apply to pulse records"},
+  };
+  for (const auto& bad : corpus) {
+    const std::string message = error_of(bad.text);
+    EXPECT_NE(message.find(bad.message), std::string::npos) << "got: " << message << "\nfor:\n" << bad.text;
+  }
+}
+
 TEST(CaseSpace, LinearIndexAndCoordinatesRoundTrip) {
   const Study s = parse(kRecords + "[axes]\nscale = [1, 2, 3]\nkappa = [1, 2]\npi_e_c = [1000, 2000, 3000, 4000]\n");
   const CaseSpace space(s);
@@ -179,10 +260,10 @@ TEST(CaseSpace, LinearIndexAndCoordinatesRoundTrip) {
   for (std::int64_t i = 0; i < space.size(); ++i) EXPECT_EQ(space.index(space.coordinates(i)), i);
   const CaseSpec last = space.case_at(23);  // last of every axis
   EXPECT_EQ(last.level, 3.0);
-  EXPECT_EQ(last.parameters.kappa, 2.0);
-  EXPECT_EQ(last.parameters.pi_e_c, 4000.0);
+  EXPECT_EQ(at(last.parameters, "kappa"), 2.0);
+  EXPECT_EQ(at(last.parameters, "pi_e_c"), 4000.0);
   const CaseSpec second = space.case_at(1);  // the fastest axis moves first
-  EXPECT_EQ(second.parameters.pi_e_c, 2000.0);
+  EXPECT_EQ(at(second.parameters, "pi_e_c"), 2000.0);
   EXPECT_EQ(second.level, 1.0);
 }
 

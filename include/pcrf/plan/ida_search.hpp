@@ -3,10 +3,10 @@
 /// intensity to run next, given the verdicts of the runs so far. Pure logic: no solver, no
 /// MPI, no cube.
 ///
-///  hunt   from `start`, steps that grow by `step` each time (start, start + step,
-///         start + 3 step, start + 6 step, …), capped at `max_intensity`, until a run
-///         collapses. A safe run at `max_intensity` ends the curve: its collapse intensity
-///         is right-censored there.
+///  hunt   from `start`, steps that grow geometrically: the k-th step is step · step_factor^(k−1)
+///         (start, start + step, start + step (1 + f), …; with f = 2 and step = start the
+///         intensity doubles), capped at `max_intensity`, until a run collapses. A safe run
+///         at `max_intensity` ends the curve: its collapse intensity is right-censored there.
 ///  bracket  bisect between the highest safe run below the lowest collapse and that
 ///         collapse until (collapse − safe)/safe ≤ `resolution` (when the very first run
 ///         collapses, halve down from it until a run is safe).
@@ -15,18 +15,39 @@
 ///         lowers the collapse and the bracket is refined again; a gap is filled only while
 ///         the runs left could bisect such a new bracket down to `resolution`, so a curve that
 ///         was bracketed stays bracketed.
+/// A finished curve is in one of three states (CurveState): bracketed to `resolution`,
+/// right-censored at `max_intensity`, or unbracketed because `max_runs` ran out first.
 /// The next intensity depends only on this curve's own results, so a resumed or differently
 /// scheduled search makes the same runs.
 #pragma once
 
+#include <array>
 #include <optional>
+#include <string>
 #include <vector>
+
+#include "pcrf/setting.hpp"
 
 namespace pcrf::plan {
 
+/// How a curve ended (its value is the cube's `curve_state` code).
+enum class CurveState {
+  kBracketed = 0,   ///< collapse / last safe − 1 ≤ resolution
+  kCensored = 1,    ///< safe at max_intensity: right-censored there
+  kUnbracketed = 2, ///< max_runs ran out before either
+};
+inline constexpr std::array<EnumName<CurveState>, 3> kCurveStateNames{{{CurveState::kBracketed, "bracketed"},
+                                                                       {CurveState::kCensored, "censored"},
+                                                                       {CurveState::kUnbracketed, "unbracketed"}}};
+inline std::string curve_state_name(CurveState state) { return name_of(kCurveStateNames, state); }
+
+/// The hunt's default growth of its steps, measured (studies/README.md, [ida] step_factor).
+inline constexpr double kDefaultStepFactor = 2.0;
+
 struct IdaSearchSettings {
   double start = 0.0;          ///< first intensity (> 0)
-  double step = 0.0;           ///< hunt increment growth; 0: `start`
+  double step = 0.0;           ///< hunt: the first step; 0: `start`
+  double step_factor = kDefaultStepFactor;  ///< hunt: each step is this times the one before (≥ 1)
   double resolution = 0.02;    ///< relative width of the final bracket, in (0, 1)
   double max_intensity = 0.0;  ///< cap of the hunt (≥ start)
   int max_runs = 16;           ///< runs of the curve, ≥ 2
@@ -49,6 +70,8 @@ class IdaSearch {
   double last_safe_intensity() const;
   /// True when the bracket is within `resolution` (or the curve is censored at the cap).
   bool bracketed() const;
+  /// How the curve stands: bracketed, censored at the cap, or (done or not) neither yet.
+  CurveState state() const;
 
  private:
   struct Run {

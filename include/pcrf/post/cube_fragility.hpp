@@ -8,7 +8,9 @@
 /// cases' `collapse_fraction` (the share of their perturbed runs that collapsed). Cases that failed (solver_failure, time_limit) or were
 /// not run count in neither and are reported. An IDA cube gives each record's collapse
 /// intensity, right-censored at its last safe intensity where none was found (fitted by
-/// censored maximum likelihood). The bootstrap resamples records.
+/// censored maximum likelihood); a curve whose runs ran out before it was bracketed
+/// (`curve_state` unbracketed) is censored at its last safe intensity and counted apart. The
+/// bootstrap resamples records.
 #pragma once
 
 #include <optional>
@@ -32,6 +34,10 @@ struct FrameFragility {
   double collapses = 0.0;         ///< of which collapsed
   std::size_t failed = 0;         ///< cases with no verdict (solver failure, time limit; IDA: curves with no value)
   std::size_t not_run = 0;        ///< cases (IDA: curves) never run: neither fitted nor counted as failed
+  /// IDA cubes only: curves whose max_runs ran out before they were bracketed or censored at
+  /// max_intensity; each is right-censored at its last safe intensity (left out when it has
+  /// none), never fitted as a collapse or as censored at the cap.
+  std::optional<std::size_t> unbracketed;
   std::optional<analysis::Lognormal> fit;
   analysis::BootstrapResult interval;
   /// What was fitted: the stripes (grid cube), or each curve's collapse intensity and the
@@ -39,6 +45,9 @@ struct FrameFragility {
   std::vector<analysis::Stripe> stripes;
   std::vector<double> collapse_intensities, censored_intensities;
 };
+
+/// One line per frame with unbracketed curves, saying how they were fitted (for stderr).
+std::vector<std::string> unbracketed_warnings(const std::vector<FrameFragility>& frames);
 
 /// One entry per frame of the selected cases. \throws cube::CubeError when the cube has no
 /// intensity axis (scale-only cubes have no common intensity to fit against).

@@ -43,6 +43,8 @@ struct OutputRequest {
 /// |θ₀| below its overturning angle (95 % of the closing limit, where the linkage folds).
 /// \throws std::invalid_argument "theta0_rad: …" naming both angles.
 void check_initial_state(const Frame& frame, const PhysicsOptions& physics);
+/// The same for any scene.
+void check_initial_state(const Scene& scene, const PhysicsOptions& physics);
 
 /// A frame that the rigid-body rocking model cannot represent: its geometry is impossible,
 /// it cannot stand at rest (uplift threshold ≤ 0) or its impacts would not be dissipative

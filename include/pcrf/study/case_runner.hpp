@@ -64,9 +64,9 @@ class CaseRunner {
 
   /// The frame of a case, prepared once and kept for the next cases of the same frame (a
   /// grid hands out every record and level of a frame together). \throws InvalidFrame.
-  PreparedFrame& prepared(const FrameParameters& parameters) const;
+  PreparedFrame& prepared(const ScenePoint& parameters) const;
   struct Prepared {
-    FrameParameters parameters;
+    ScenePoint parameters;
     std::shared_ptr<PreparedFrame> frame;
   };
   mutable std::vector<Prepared> prepared_;  ///< most recent first

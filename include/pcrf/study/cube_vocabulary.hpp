@@ -26,8 +26,14 @@ inline constexpr const char* kIdaIntensity = "ida_intensity";
 inline constexpr const char* kCollapseIntensity = "collapse_intensity";
 inline constexpr const char* kLastSafeIntensity = "last_safe_intensity";
 inline constexpr const char* kIdaRuns = "ida_runs";
+inline constexpr const char* kCurveState = "curve_state";
 inline constexpr const char* kUnstableFrom = "unstable_from_intensity";
 inline constexpr const char* kUnstableTo = "unstable_to_intensity";
+inline constexpr const char* kPulseShape = "pulse_shape";
+inline constexpr const char* kPulsePeriod = "pulse_period_s";
+inline constexpr const char* kFrequencyParameter = "frame_frequency_parameter_rad_s";
+inline constexpr const char* kUpliftThreshold = "frame_uplift_threshold_g";
+inline constexpr const char* kOmegaOverP = "omega_p_over_p";
 inline constexpr const char* kCase = "case";
 inline constexpr const char* kCaseLabel = "case_label";
 inline constexpr const char* kVariedParameter = "varied_parameter";
@@ -71,5 +77,18 @@ struct NotRun {
 /// \throws cube::CubeError when the cube cannot be read.
 NotRun not_run(const cube::CubeReader& cube);
 inline constexpr const char* kCollapses = "collapses";
+
+/// How an IDA cube's curves ended, from its `curve_state` (plan::CurveState codes): how many
+/// are bracketed to the resolution, censored at max_intensity, unbracketed (max_runs ran out),
+/// and not finished (not run, or still running). Empty (total 0) for other cubes and for IDA
+/// cubes written before `curve_state`.
+struct CurveStates {
+  std::int64_t bracketed = 0, censored = 0, unbracketed = 0, unfinished = 0, total = 0;
+};
+/// \throws cube::CubeError when the cube cannot be read.
+CurveStates curve_states(const cube::CubeReader& cube);
+/// "132 IDA curves: 120 bracketed to the resolution, 10 right-censored at max_intensity,
+/// 2 unbracketed (max_runs ran out)"; empty when the cube has no curve states.
+std::string curve_states_text(const CurveStates& states);
 
 }  // namespace pcrf::study::vocabulary

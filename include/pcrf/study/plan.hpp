@@ -34,11 +34,11 @@ class Plan {
   /// first; their sizes multiply to the number of frames.
   virtual const std::vector<cube::Dimension>& dimensions() const = 0;
 
-  /// The frame at `coordinates` (one per dimension, each below its size).
-  virtual FrameParameters frame_at(std::span<const std::size_t> coordinates) const = 0;
+  /// The frame at `coordinates` (one per dimension, each below its size): the scene's values.
+  virtual ScenePoint frame_at(std::span<const std::size_t> coordinates) const = 0;
 
   /// Every frame, in storage order (row-major over dimensions()).
-  virtual std::vector<FrameParameters> frames() const = 0;
+  virtual std::vector<ScenePoint> frames() const = 0;
 
   /// The cube's coordinate variables along dimensions(), with their auxiliary coordinates.
   virtual std::vector<cube::Coordinate> coordinates() const = 0;

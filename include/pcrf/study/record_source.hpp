@@ -32,6 +32,10 @@ struct RecordSource {
   std::optional<double> strike_deg = std::nullopt;  ///< the fault's strike [deg from north], for fault-normal incidence
 
   bool has_components() const { return h2 || up; }
+  /// A pulse of a [[records]] pulse entry: its shape ("ricker") and the values of its [axes]
+  /// pulse_* keys by key ("pulse_period_s"), the cube's coordinates along `record`.
+  std::string pulse_shape = {};
+  std::vector<std::pair<std::string, double>> pulse_values = {};
 
   /// "file ER1.AT2" or "synthetic sine:...", for messages.
   std::string describe() const;

@@ -1,6 +1,6 @@
 /// \file study.hpp
 /// \brief A parametric study as a study file defines it: the record and scale axes, the
-/// plan over the eight frame parameters, physics and solver settings, and what to keep.
+/// scene and the plan over its parameters, physics and solver settings, and what to keep.
 ///
 /// A Study is plain data; study_parser.hpp makes one from TOML and checks every value that
 /// can be checked alone. studies/README.md documents every key.
@@ -20,6 +20,7 @@
 
 #include "pcrf/model/frame.hpp"
 #include "pcrf/model/parameters.hpp"
+#include "pcrf/model/scene_catalog.hpp"
 #include "pcrf/plan/ida_search.hpp"
 #include "pcrf/record/intensity.hpp"
 #include "pcrf/setting.hpp"
@@ -38,7 +39,7 @@ struct HistoryRequest {
   std::optional<double> scale;
   std::optional<double> incidence_deg;    ///< incidence axis value (as the study gives it)
   std::optional<std::string> case_label;  ///< plans with a `case` dimension
-  std::array<std::optional<double>, kParameterCount> parameters;  ///< plans with parameter dimensions (grid)
+  std::vector<std::optional<double>> parameters;  ///< plans with parameter dimensions (grid), by the scene's table
   double dt_s = 0.0;                      ///< output interval [s]; 0: the record's dt
   std::string declared_at;                ///< "study.toml:40", for messages
 };
@@ -59,6 +60,7 @@ const SettingTable<RunOptions>& run_settings();
 struct IdaOptions {
   double start = 0.0;
   double step = 0.0;
+  double step_factor = plan::kDefaultStepFactor;
   double resolution = 0.02;
   double max_intensity = 0.0;
   long max_runs = 16;
@@ -66,7 +68,7 @@ struct IdaOptions {
   double theta_limit_rad = 0.0;
 
   plan::IdaSearchSettings search() const {
-    return {start, step, resolution, max_intensity, static_cast<int>(max_runs)};
+    return {start, step, step_factor, resolution, max_intensity, static_cast<int>(max_runs)};
   }
 };
 const SettingTable<IdaOptions>& ida_settings();
@@ -83,6 +85,14 @@ struct Study {
   std::shared_ptr<const Plan> plan;
 
   std::vector<RecordSource> records;
+  /// [axes] pulse_period_s, pulse_amplitude_g, …: each [[records]] pulse entry becomes one
+  /// record per combination of these values (in this order, the last varying fastest).
+  struct PulseAxis {
+    std::string key;             ///< "pulse_period_s"
+    std::vector<double> values;
+    std::string declared_at;     ///< "study.toml:7"
+  };
+  std::vector<PulseAxis> pulse_axes;
   /// The values of the second axis: scale factors of the records (`scale`), or, when
   /// `intensity` is set, intensities in the measure's units (each record gets its own factor
   /// intensity / IM(record)).
@@ -90,7 +100,10 @@ struct Study {
   std::optional<IntensitySpec> intensity;  ///< the [intensity] table, when given
   /// The [ida] table, when given: the intensity axis becomes a search, `levels` is unused.
   std::optional<IdaOptions> ida;
-  FrameParameters base;             ///< the base point; h_m and m_c_kg of every case
+  /// The scene ([frame] model; the prestressed frame by default) and its base point (the
+  /// [frame] or [base] values, every other parameter at its default): every frame starts there.
+  const SceneModel* model = &scene_model("pcrf");
+  ScenePoint base = scene_model("pcrf").defaults();
   /// [axes] incidence_deg: the azimuths of the frames' plane [deg], a dimension of its own
   /// after the level axis; empty: no such axis, every frame lies along its record's first
   /// component (and feels it bit for bit as if the others did not exist).

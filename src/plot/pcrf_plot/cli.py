@@ -26,6 +26,8 @@ KINDS = {
                "pcrf run --history CSV)",
     "sweep": "one panel per varied parameter: median and 16–84 % band across records, collapses apart",
     "ida": "IDA curves per record, one panel per frame, with the collapse intensities' median and 16/84 %",
+    "spectrum": "rocking spectrum of an IDA over pulses: collapse amplitude over the uplift threshold against "
+                "omega_p/p, one line per pulse shape, overturning and fracture marked apart",
     "fragility": "collapse fractions or IDA collapse points, the fitted lognormal and its 90 % interval",
     "sensitivity": "first-order and total Sobol' indices with their 90 % intervals",
     "status": "map of the status over two axes (--x, --y), the others selected with -w",

@@ -2,7 +2,9 @@
 (intensity against a response metric) are joined in order of intensity; its collapse
 intensity is a flat line to the panel's edge (the usual IDA flatline);
 runs above it that did not collapse (the curve "resurrects") are open circles. Horizontal lines: the
-median and 16/84 % collapse intensities of the lognormal that `pcrf cube fragility` fits."""
+median and 16/84 % collapse intensities of the lognormal that `pcrf cube fragility` fits.
+A curve whose runs ran out before it was bracketed (``curve_state`` unbracketed) gets no
+flatline: a triangle at its last safe run says only that it survived there."""
 import math
 
 import matplotlib.pyplot as plt
@@ -11,14 +13,16 @@ import numpy as np
 from pcrf_plot import engine, style
 from pcrf_plot.errors import PlotError
 
+UNBRACKETED = 2  # curve_state: max_runs ran out (plan::CurveState, the cube's long_name)
 
-def frames_of(cube, metric, where, fits):
+
+def frames_of(cube, metric, where, fits, extra):
     """Each frame's rows, in the engine's order: the frames `pcrf cube fragility` names,
     each exported with its own selection (the frame's -w selectors) added to the user's."""
     frames = {}
     for fit in fits:
         own = [w for w in (fit.get("selection") or "").split(",") if w]
-        rows = cube.export([metric, "ida_intensity", "collapse_intensity"], list(where) + own)
+        rows = cube.export([metric, "ida_intensity", "collapse_intensity"] + extra, list(where) + own)
         if rows:
             frames[fit["frame"]] = rows
     return frames
@@ -40,7 +44,8 @@ def draw(args):
     metric = args.metric or "theta_max_rad"
     cube.require_metric(metric, "ida")
     fits = {f["frame"]: f for f in cube.fragility(args.where)["frames"]}
-    frames = frames_of(cube, metric, args.where, fits.values())
+    has_states = cube.variable("curve_state") is not None  # cubes from before it have none
+    frames = frames_of(cube, metric, args.where, fits.values(), ["curve_state"] if has_states else [])
     if not frames:
         raise PlotError(f"{args.input}: no case matches the selection")
     units = cube.variable("ida_intensity")["units"]
@@ -48,7 +53,7 @@ def draw(args):
     fig, axes = plt.subplots(math.ceil(len(frames) / columns), columns, figsize=(4.4 * columns, 4.2), squeeze=False,
                              sharey=True, constrained_layout=True)
     for ax, (frame, frame_rows) in zip(axes.flat, frames.items()):
-        records, resurrected = {}, False
+        records, resurrected, unbracketed = {}, False, 0
         for r in frame_rows:
             records.setdefault(r["record"], []).append(r)
         edge = edge_of(metric, frame_rows)
@@ -56,6 +61,13 @@ def draw(args):
             safe = sorted((engine.number(r["ida_intensity"]), engine.number(r[metric])) for r in record_rows
                           if r["status"] not in engine.collapse_statuses() and r["ida_intensity"] != ""
                           and r[metric] != "")
+            if has_states and engine.number(record_rows[0]["curve_state"]) == UNBRACKETED:
+                unbracketed += 1
+                if safe:
+                    im, edp = zip(*safe)
+                    ax.plot(edp, im, "--", color=style.GREY, lw=0.8, alpha=0.8)
+                    ax.plot(safe[-1][1], safe[-1][0], "^", color=style.PURPLE, ms=6)
+                continue
             collapse = engine.number(record_rows[0]["collapse_intensity"])
             below = [p for p in safe if not p[0] > collapse]  # NaN (censored): every run
             above = [p for p in safe if p[0] > collapse]
@@ -82,7 +94,10 @@ def draw(args):
         ax.plot([], [], "x", color=style.VERMILLION, label="collapse")
         if resurrected:
             ax.plot([], [], "o", mfc="none", color=style.ORANGE, ms=4, label="safe above its collapse intensity")
-        ax.set(xlim=(0, edge * 1.03), title=f"{frame} ({len(records)} records)",
+        if unbracketed:
+            ax.plot([], [], "^", color=style.PURPLE, ms=6, label="unbracketed (max_runs ran out): last safe run")
+        counted = f"{len(records)} records" + (f", {unbracketed} unbracketed" if unbracketed else "")
+        ax.set(xlim=(0, edge * 1.03), title=f"{frame} ({counted})",
                xlabel=style.metric_label(metric, cube.variable(metric)))
     for ax in axes.flat[len(frames):]:
         ax.remove()

@@ -1,5 +1,6 @@
 // The grid plan: every combination of the parameter axes, one cube dimension per parameter
-// (a parameter [axes] does not give has one value, the base point's).
+// (a parameter [axes] does not give has one value, the base point's), over the scene's axis
+// parameters.
 #include <memory>
 
 #include "pcrf/study/cube_vocabulary.hpp"
@@ -10,33 +11,32 @@ namespace {
 
 class GridPlan final : public Plan {
  public:
-  GridPlan(const FrameParameters& base, std::array<std::vector<double>, kParameterCount> axes)
-      : base_(base), given_(std::move(axes)) {
-    for (std::size_t p = 0; p < kParameterCount; ++p) {
-      const auto& info = all_parameters()[p];
-      values_[p] = given_[p].empty() ? std::vector<double>{base_.*info.member} : given_[p];
-      dimensions_.push_back({std::string(info.name), values_[p].size()});
+  GridPlan(const SceneModel& model, const ScenePoint& base, std::vector<std::vector<double>> axes)
+      : model_(&model), base_(base), given_(std::move(axes)), swept_(axis_parameters(model)) {
+    for (std::size_t p : swept_) {
+      values_.push_back(given_[p].empty() ? std::vector<double>{base_[p]} : given_[p]);
+      dimensions_.push_back({std::string(model.parameters[p].name), values_.back().size()});
     }
   }
 
   std::string_view name() const override { return "grid"; }
   const std::vector<cube::Dimension>& dimensions() const override { return dimensions_; }
 
-  FrameParameters frame_at(std::span<const std::size_t> coordinates) const override {
-    FrameParameters frame = base_;
-    for (std::size_t p = 0; p < kParameterCount; ++p) frame.*all_parameters()[p].member = values_[p][coordinates[p]];
+  ScenePoint frame_at(std::span<const std::size_t> coordinates) const override {
+    ScenePoint frame = base_;
+    for (std::size_t d = 0; d < swept_.size(); ++d) frame[swept_[d]] = values_[d][coordinates[d]];
     return frame;
   }
 
-  std::vector<FrameParameters> frames() const override {
-    std::vector<FrameParameters> frames{base_};
-    for (std::size_t p = 0; p < kParameterCount; ++p) {
-      std::vector<FrameParameters> next;
-      next.reserve(frames.size() * values_[p].size());
+  std::vector<ScenePoint> frames() const override {
+    std::vector<ScenePoint> frames{base_};
+    for (std::size_t d = 0; d < swept_.size(); ++d) {
+      std::vector<ScenePoint> next;
+      next.reserve(frames.size() * values_[d].size());
       for (const auto& f : frames)
-        for (double v : values_[p]) {
+        for (double v : values_[d]) {
           next.push_back(f);
-          next.back().*all_parameters()[p].member = v;
+          next.back()[swept_[d]] = v;
         }
       frames = std::move(next);
     }
@@ -45,24 +45,25 @@ class GridPlan final : public Plan {
 
   std::vector<cube::Coordinate> coordinates() const override {
     std::vector<cube::Coordinate> coords;
-    for (std::size_t p = 0; p < kParameterCount; ++p) {
-      const auto& info = all_parameters()[p];
-      coords.push_back(number_coordinate(std::string(info.name), std::string(info.name), "1", std::string(info.long_name), values_[p]));
+    for (std::size_t d = 0; d < swept_.size(); ++d) {
+      const auto& parameter = model_->parameters[swept_[d]];
+      coords.push_back(number_coordinate(std::string(parameter.name), std::string(parameter.name), std::string(parameter.units),
+                                         std::string(parameter.long_name), values_[d]));
     }
     return coords;
   }
 
   std::vector<std::size_t> locate(const HistoryRequest& request) const override {
-    std::vector<std::size_t> coords(kParameterCount);
-    for (std::size_t p = 0; p < kParameterCount; ++p) {
-      const std::string key(all_parameters()[p].name);
-      const auto& value = request.parameters[p];
+    std::vector<std::size_t> coords(swept_.size());
+    for (std::size_t d = 0; d < swept_.size(); ++d) {
+      const std::string key(model_->parameters[swept_[d]].name);
+      const auto value = swept_[d] < request.parameters.size() ? request.parameters[swept_[d]] : std::nullopt;
       if (!value) {
-        coords[p] = pick_single(request, values_[p].size(), key);
+        coords[d] = pick_single(request, values_[d].size(), key);
         continue;
       }
-      coords[p] = find_value(values_[p], *value);
-      if (coords[p] == std::string::npos) fail_history(request, key + " " + number_text(*value) + " is not on the " + key + " axis");
+      coords[d] = find_value(values_[d], *value);
+      if (coords[d] == std::string::npos) fail_history(request, key + " " + number_text(*value) + " is not on the " + key + " axis");
     }
     return coords;
   }
@@ -71,19 +72,21 @@ class GridPlan final : public Plan {
     return key == vocabulary::kCase ? "plan \"grid\" selects cases by parameter values" : "";
   }
 
-  void describe(std::ostream& out) const override { describe_axes(out, given_); }
+  void describe(std::ostream& out) const override { describe_axes(out, *model_, given_); }
 
  private:
-  FrameParameters base_;
-  std::array<std::vector<double>, kParameterCount> given_;   ///< as [axes] gives them
-  std::array<std::vector<double>, kParameterCount> values_;  ///< the dimensions' values
+  const SceneModel* model_;
+  ScenePoint base_;
+  std::vector<std::vector<double>> given_;   ///< as [axes] gives them, per parameter of the table
+  std::vector<std::size_t> swept_;           ///< the table's axis parameters: one dimension each
+  std::vector<std::vector<double>> values_;  ///< the dimensions' values
   std::vector<cube::Dimension> dimensions_;
 };
 
 }  // namespace
 
 std::shared_ptr<const Plan> read_grid_plan(const PlanInput& input) {
-  return std::make_shared<GridPlan>(input.base, read_parameter_axes(input));
+  return std::make_shared<GridPlan>(input.model, input.base, read_parameter_axes(input));
 }
 
 }  // namespace pcrf::study::detail

@@ -10,14 +10,14 @@ namespace {
 
 class ListPlan final : public PointPlan {
  public:
-  explicit ListPlan(std::vector<Point> cases) : PointPlan(std::move(cases)) {}
+  ListPlan(const SceneModel& model, std::vector<Point> cases) : PointPlan(model, std::move(cases)) {}
 
   std::string_view name() const override { return "list"; }
   void describe(std::ostream& out) const override {
-    describe_axes(out, {});
+    describe_axes(out, model(), {});
     for (const auto& c : points()) {
       out << "case " << c.label;
-      describe_parameters(out, c.parameters);
+      describe_parameters(out, model(), c.parameters);
       out << '\n';
     }
   }
@@ -42,10 +42,10 @@ std::shared_ptr<const Plan> read_list_plan(const PlanInput& input) {
     PointPlan::Point c{f.text("label").value_or("case" + std::to_string(i)), input.base};
     if (c.label.empty()) f.fail("label", "must not be empty");
     if (!labels.insert(c.label).second) f.fail("label", "\"" + c.label + "\" is used by another case");
-    read_parameters(f, all_parameters(), c.parameters);
+    read_parameters(f, input.model, c.parameters, true);
     cases.push_back(std::move(c));
   }
-  return std::make_shared<ListPlan>(std::move(cases));
+  return std::make_shared<ListPlan>(input.model, std::move(cases));
 }
 
 }  // namespace pcrf::study::detail

@@ -11,13 +11,13 @@ namespace {
 
 class OneAtATimePlan final : public PointPlan {
  public:
-  OneAtATimePlan(std::vector<Point> points, std::vector<std::string> varied,
-                 std::array<std::vector<double>, kParameterCount> sweeps, bool include_base)
-      : PointPlan(std::move(points)), varied_(std::move(varied)), sweeps_(std::move(sweeps)), include_base_(include_base) {}
+  OneAtATimePlan(const SceneModel& model, std::vector<Point> points, std::vector<std::string> varied,
+                 std::vector<std::vector<double>> sweeps, bool include_base)
+      : PointPlan(model, std::move(points)), varied_(std::move(varied)), sweeps_(std::move(sweeps)), include_base_(include_base) {}
 
   std::string_view name() const override { return "one-at-a-time"; }
   std::string canonical_heading() const override { return "include_base=" + std::to_string(include_base_ ? 1 : 0); }
-  void describe(std::ostream& out) const override { describe_axes(out, sweeps_); }
+  void describe(std::ostream& out) const override { describe_axes(out, model(), sweeps_); }
 
  protected:
   std::vector<cube::Coordinate> extra_coordinates() const override {
@@ -27,7 +27,7 @@ class OneAtATimePlan final : public PointPlan {
 
  private:
   std::vector<std::string> varied_;  ///< per case: the parameter swept, "none" for the base point
-  std::array<std::vector<double>, kParameterCount> sweeps_;
+  std::vector<std::vector<double>> sweeps_;
   bool include_base_;
 };
 
@@ -44,15 +44,15 @@ std::shared_ptr<const Plan> read_one_at_a_time_plan(const PlanInput& input) {
     points.push_back({"base", input.base});
     varied.emplace_back("none");
   }
-  for (std::size_t p = 0; p < kParameterCount; ++p) {
-    const auto& info = all_parameters()[p];
+  for (std::size_t p : axis_parameters(input.model)) {
+    const auto& parameter = input.model.parameters[p];
     for (double v : sweeps[p]) {
-      points.push_back({std::string(info.name) + "=" + number_text(v), input.base});
-      points.back().parameters.*info.member = v;
-      varied.emplace_back(info.name);
+      points.push_back({std::string(parameter.name) + "=" + number_text(v), input.base});
+      points.back().parameters[p] = v;
+      varied.emplace_back(parameter.name);
     }
   }
-  return std::make_shared<OneAtATimePlan>(std::move(points), std::move(varied), std::move(sweeps), include_base);
+  return std::make_shared<OneAtATimePlan>(input.model, std::move(points), std::move(varied), std::move(sweeps), include_base);
 }
 
 }  // namespace pcrf::study::detail

@@ -54,39 +54,53 @@ cube::Coordinate text_coordinate(std::string name, std::string dimension, std::s
 
 namespace detail {
 
-std::array<std::vector<double>, kParameterCount> read_parameter_axes(const PlanInput& input) {
-  std::array<std::vector<double>, kParameterCount> axes;
-  for (std::size_t p = 0; p < kParameterCount && input.axes != nullptr; ++p) {
-    const auto key = all_parameters()[p].name;
-    if (!input.axes->has(key)) continue;
-    axes[p] = read_values(*input.axes, key);
-    check_axis(*input.axes, key, axes[p], p);
+std::vector<std::vector<double>> read_parameter_axes(const PlanInput& input) {
+  std::vector<std::vector<double>> axes(input.model.parameters.size());
+  if (input.axes == nullptr) return axes;
+  refuse_other_scenes(*input.axes, input.model);
+  for (std::size_t p : axis_parameters(input.model)) {
+    const auto& parameter = input.model.parameters[p];
+    if (!input.axes->has(parameter.name)) continue;
+    axes[p] = read_values(*input.axes, parameter.name);
+    check_axis(*input.axes, parameter.name, axes[p], &parameter);
   }
+  std::vector<std::string_view> swept;
+  for (auto key : input.model.exclusive)
+    if (input.axes->has(key)) swept.push_back(key);
+  if (swept.size() > 1)
+    input.axes->fail(swept.back(), "give either " + std::string(swept.front()) + " or " + std::string(swept.back()) + ", not both");
   return axes;
 }
 
-void describe_axes(std::ostream& out, const std::array<std::vector<double>, kParameterCount>& axes) {
-  for (std::size_t p = 0; p < kParameterCount; ++p) {
-    out << "axis " << all_parameters()[p].name;
-    for (double v : axes[p]) out << ' ' << v;
+std::vector<std::size_t> axis_parameters(const SceneModel& model) {
+  std::vector<std::size_t> indices;
+  for (std::size_t k = 0; k < model.parameters.size(); ++k)
+    if (model.parameters[k].axis) indices.push_back(k);
+  return indices;
+}
+
+void describe_axes(std::ostream& out, const SceneModel& model, const std::vector<std::vector<double>>& axes) {
+  for (std::size_t p : axis_parameters(model)) {
+    out << "axis " << model.parameters[p].name;
+    if (!axes.empty())
+      for (double v : axes[p]) out << ' ' << v;
     out << '\n';
   }
 }
 
-void describe_parameters(std::ostream& out, const FrameParameters& frame) {
-  for (const auto& info : all_parameters()) out << ' ' << info.name << '=' << frame.*info.member;
-  out << " h_m=" << frame.h_m << " m_c_kg=" << frame.m_c_kg;
+void describe_parameters(std::ostream& out, const SceneModel& model, const ScenePoint& frame) {
+  for (std::size_t k = 0; k < model.parameters.size(); ++k) out << ' ' << model.parameters[k].name << '=' << frame[k];
 }
 
-PointPlan::PointPlan(std::vector<Point> points)
-    : points_(std::move(points)), dimensions_{{vocabulary::kCase, points_.size()}} {}
+PointPlan::PointPlan(const SceneModel& model, std::vector<Point> points)
+    : model_(&model), points_(std::move(points)), dimensions_{{vocabulary::kCase, points_.size()}} {}
 
-FrameParameters PointPlan::frame_at(std::span<const std::size_t> coordinates) const {
+ScenePoint PointPlan::frame_at(std::span<const std::size_t> coordinates) const {
   return points_[coordinates[0]].parameters;
 }
 
-std::vector<FrameParameters> PointPlan::frames() const {
-  std::vector<FrameParameters> frames;
+std::vector<ScenePoint> PointPlan::frames() const {
+  std::vector<ScenePoint> frames;
   for (const auto& p : points_) frames.push_back(p.parameters);
   return frames;
 }
@@ -102,10 +116,12 @@ std::vector<cube::Coordinate> PointPlan::coordinates() const {
   coords.back().is_index = true;
   coords.push_back(text_coordinate(vocabulary::kCaseLabel, vocabulary::kCase, "frame label", labels));
   for (auto& c : extra_coordinates()) coords.push_back(std::move(c));
-  for (const auto& info : all_parameters()) {
+  for (std::size_t k : axis_parameters(*model_)) {
+    const auto& parameter = model_->parameters[k];
     std::vector<double> values;
-    for (const auto& p : points_) values.push_back(p.parameters.*info.member);
-    coords.push_back(number_coordinate(std::string(info.name), vocabulary::kCase, "1", std::string(info.long_name), values));
+    for (const auto& p : points_) values.push_back(p.parameters[k]);
+    coords.push_back(number_coordinate(std::string(parameter.name), vocabulary::kCase, std::string(parameter.units),
+                                       std::string(parameter.long_name), values));
   }
   return coords;
 }

@@ -23,7 +23,8 @@ struct PlanInput {
   const Fields& plan;          ///< [plan] (an empty table when the file has none)
   const Fields* axes;          ///< [axes], or nullptr; its scale and intensity keys are not the plan's
   const Fields& top;           ///< the whole file
-  const FrameParameters& base; ///< [base]: every frame starts from it
+  const SceneModel& model;     ///< the study's scene: its parameters are the plan's
+  const ScenePoint& base;      ///< [frame] / [base]: every frame starts from it
 };
 
 /// A plan kind: its name, the [plan] keys (besides `kind`) and top-level tables it takes,
@@ -38,13 +39,17 @@ struct PlanEntry {
 /// Every plan kind, the default (grid) first.
 const std::vector<PlanEntry>& plan_registry();
 
-/// The value lists [axes] gives the parameters (empty: not given), each checked by check_axis.
-std::array<std::vector<double>, kParameterCount> read_parameter_axes(const PlanInput& input);
+/// The value lists [axes] gives the scene's parameters (one per parameter of its table, empty:
+/// not given), each checked by check_axis; a key of another scene is refused.
+std::vector<std::vector<double>> read_parameter_axes(const PlanInput& input);
 
-/// "axis <parameter> v1 v2 …" for each parameter (no values: not an axis of the plan).
-void describe_axes(std::ostream& out, const std::array<std::vector<double>, kParameterCount>& axes);
-/// " kappa=… … pi_e_c=… h_m=… m_c_kg=…" (no newline).
-void describe_parameters(std::ostream& out, const FrameParameters& frame);
+/// The positions of the model's axis parameters in its table.
+std::vector<std::size_t> axis_parameters(const SceneModel& model);
+
+/// "axis <parameter> v1 v2 …" for each axis parameter (no values: not an axis of the plan).
+void describe_axes(std::ostream& out, const SceneModel& model, const std::vector<std::vector<double>>& axes);
+/// " kappa=… … pi_e_c=… h_m=… m_c_kg=…": every parameter of the table (no newline).
+void describe_parameters(std::ostream& out, const SceneModel& model, const ScenePoint& frame);
 
 /// A plan whose frames are listed along one dimension, `case`: its coordinates are the case
 /// number, `case_label`, the plan's own (extra_coordinates) and the eight parameters; a
@@ -53,23 +58,25 @@ class PointPlan : public Plan {
  public:
   struct Point {
     std::string label;
-    FrameParameters parameters;
+    ScenePoint parameters;
   };
 
   const std::vector<cube::Dimension>& dimensions() const override { return dimensions_; }
-  FrameParameters frame_at(std::span<const std::size_t> coordinates) const override;
-  std::vector<FrameParameters> frames() const override;
+  ScenePoint frame_at(std::span<const std::size_t> coordinates) const override;
+  std::vector<ScenePoint> frames() const override;
   std::vector<cube::Coordinate> coordinates() const override;
   std::vector<std::size_t> locate(const HistoryRequest& request) const override;
   std::string history_key_problem(std::string_view key) const override;
 
  protected:
-  explicit PointPlan(std::vector<Point> points);
+  PointPlan(const SceneModel& model, std::vector<Point> points);
+  const SceneModel& model() const { return *model_; }
   /// Auxiliary coordinates along `case` between case_label and the parameters.
   virtual std::vector<cube::Coordinate> extra_coordinates() const { return {}; }
   const std::vector<Point>& points() const { return points_; }
 
  private:
+  const SceneModel* model_;
   std::vector<Point> points_;
   std::vector<cube::Dimension> dimensions_;
 };

@@ -31,10 +31,10 @@ struct Sampling {
   std::size_t samples = 0;
   std::uint64_t seed = 0;
   bool scramble = false;
-  std::array<std::optional<SampledRange>, kParameterCount> ranges;
+  std::vector<std::optional<SampledRange>> ranges;  ///< per parameter of the scene's table
   std::vector<std::size_t> varied() const {
     std::vector<std::size_t> v;
-    for (std::size_t p = 0; p < kParameterCount; ++p)
+    for (std::size_t p = 0; p < ranges.size(); ++p)
       if (ranges[p]) v.push_back(p);
     return v;
   }
@@ -42,8 +42,7 @@ struct Sampling {
 
 /// A sampled plan's range: {from, to} (and spacing), every value inside the parameter's
 /// domain; a list, a single number or a count is an error.
-SampledRange read_sampled_range(const Fields& fields, std::size_t parameter) {
-  const auto& info = all_parameters()[parameter];
+SampledRange read_sampled_range(const Fields& fields, const SceneParameter& info) {
   const toml::node& node = *fields.node(info.name);
   const auto* table = node.as_table();
   if (table == nullptr)
@@ -60,7 +59,7 @@ SampledRange read_sampled_range(const Fields& fields, std::size_t parameter) {
   if (!(r.to > r.from)) range.fail("to", "must be above from (" + number_text(r.from) + ")");
   if (r.log && !(r.from > 0.0)) range.fail("from", "a log range must start above 0");
   for (auto [key, value] : {std::pair{"from", r.from}, std::pair{"to", r.to}})
-    if (const auto problem = parameter_problem(info, value); !problem.empty())
+    if (const auto problem = info.problem(value); !problem.empty())
       range.fail(key, "value " + number_text(value) + " " + problem);
   return r;
 }
@@ -75,8 +74,11 @@ Sampling read_sampling(const PlanInput& input) {
   if (seed < 0) input.plan.fail("seed", "must not be negative");
   s.seed = static_cast<std::uint64_t>(seed);
   s.scramble = input.plan.flag("scramble").value_or(false);
-  for (std::size_t p = 0; p < kParameterCount && input.axes != nullptr; ++p)
-    if (input.axes->has(all_parameters()[p].name)) s.ranges[p] = read_sampled_range(*input.axes, p);
+  s.ranges.resize(input.model.parameters.size());
+  if (input.axes != nullptr) refuse_other_scenes(*input.axes, input.model);
+  for (std::size_t p : axis_parameters(input.model))
+    if (input.axes != nullptr && input.axes->has(input.model.parameters[p].name))
+      s.ranges[p] = read_sampled_range(*input.axes, input.model.parameters[p]);
   if (s.varied().empty()) input.top.fail("axes", "a sampled plan needs at least one parameter range {from, to} in [axes]");
   return s;
 }
@@ -87,7 +89,7 @@ void check_drawable(const PlanInput& input, const Sampling& s, double frames_per
 }
 
 /// Unit points (row-major, one row per frame) mapped onto the ranges; labels "s<row>".
-std::vector<PointPlan::Point> map_points(const plan::UnitPoints& unit, const Sampling& s, const FrameParameters& base) {
+std::vector<PointPlan::Point> map_points(const plan::UnitPoints& unit, const Sampling& s, const ScenePoint& base) {
   const auto varied = s.varied();
   const std::size_t d = varied.size();
   std::vector<PointPlan::Point> points(unit.size() / d);
@@ -95,23 +97,23 @@ std::vector<PointPlan::Point> map_points(const plan::UnitPoints& unit, const Sam
     points[row].label = "s" + std::to_string(row);
     points[row].parameters = base;
     for (std::size_t k = 0; k < d; ++k)
-      points[row].parameters.*all_parameters()[varied[k]].member = s.ranges[varied[k]]->at(unit[row * d + k]);
+      points[row].parameters[varied[k]] = s.ranges[varied[k]]->at(unit[row * d + k]);
   }
   return points;
 }
 
 class SampledPlan : public PointPlan {
  public:
-  SampledPlan(std::string_view name, std::vector<Point> points, Sampling sampling)
-      : PointPlan(std::move(points)), name_(name), sampling_(std::move(sampling)) {}
+  SampledPlan(const SceneModel& model, std::string_view name, std::vector<Point> points, Sampling sampling)
+      : PointPlan(model, std::move(points)), name_(name), sampling_(std::move(sampling)) {}
 
   std::string_view name() const override { return name_; }
   void describe(std::ostream& out) const override {
-    describe_axes(out, {});
+    describe_axes(out, model(), {});
     out << "sampled samples=" << sampling_.samples << " seed=" << sampling_.seed << " scramble=" << sampling_.scramble;
-    for (std::size_t p = 0; p < kParameterCount; ++p)
+    for (std::size_t p = 0; p < sampling_.ranges.size(); ++p)
       if (const auto& r = sampling_.ranges[p])
-        out << ' ' << all_parameters()[p].name << '=' << r->from << ':' << r->to << (r->log ? ":log" : "");
+        out << ' ' << model().parameters[p].name << '=' << r->from << ':' << r->to << (r->log ? ":log" : "");
     out << '\n';
   }
 
@@ -122,8 +124,9 @@ class SampledPlan : public PointPlan {
 
 class SaltelliPlan final : public SampledPlan {
  public:
-  SaltelliPlan(std::vector<Point> points, Sampling sampling, std::vector<std::string> blocks, std::vector<double> samples)
-      : SampledPlan("saltelli", std::move(points), std::move(sampling)), blocks_(std::move(blocks)), samples_(std::move(samples)) {}
+  SaltelliPlan(const SceneModel& model, std::vector<Point> points, Sampling sampling, std::vector<std::string> blocks,
+               std::vector<double> samples)
+      : SampledPlan(model, "saltelli", std::move(points), std::move(sampling)), blocks_(std::move(blocks)), samples_(std::move(samples)) {}
 
  protected:
   std::vector<cube::Coordinate> extra_coordinates() const override {
@@ -142,14 +145,14 @@ std::shared_ptr<const Plan> read_lhs_plan(const PlanInput& input) {
   const Sampling s = read_sampling(input);
   check_drawable(input, s, 1.0);
   auto points = map_points(plan::latin_hypercube(s.samples, s.varied().size(), s.seed), s, input.base);
-  return std::make_shared<SampledPlan>("lhs", std::move(points), s);
+  return std::make_shared<SampledPlan>(input.model, "lhs", std::move(points), s);
 }
 
 std::shared_ptr<const Plan> read_sobol_plan(const PlanInput& input) {
   const Sampling s = read_sampling(input);
   check_drawable(input, s, 1.0);
   auto points = map_points(plan::sobol_points(s.samples, s.varied().size(), s.scramble, s.seed), s, input.base);
-  return std::make_shared<SampledPlan>("sobol", std::move(points), s);
+  return std::make_shared<SampledPlan>(input.model, "sobol", std::move(points), s);
 }
 
 std::shared_ptr<const Plan> read_saltelli_plan(const PlanInput& input) {
@@ -164,11 +167,11 @@ std::shared_ptr<const Plan> read_saltelli_plan(const PlanInput& input) {
   for (std::size_t row = 0; row < points.size(); ++row) {
     const std::size_t block = plan::SaltelliDesign::block(row, d);
     const std::size_t sample = plan::SaltelliDesign::sample(row, d);
-    blocks.push_back(block == 0 ? "A" : block == 1 ? "B" : "AB_" + std::string(all_parameters()[varied[block - 2]].name));
+    blocks.push_back(block == 0 ? "A" : block == 1 ? "B" : "AB_" + std::string(input.model.parameters[varied[block - 2]].name));
     samples.push_back(static_cast<double>(sample));
     points[row].label = "s" + std::to_string(sample) + ":" + blocks.back();
   }
-  return std::make_shared<SaltelliPlan>(std::move(points), s, std::move(blocks), std::move(samples));
+  return std::make_shared<SaltelliPlan>(input.model, std::move(points), s, std::move(blocks), std::move(samples));
 }
 
 }  // namespace pcrf::study::detail

@@ -1,0 +1,79 @@
+/// \file scene_catalog.hpp
+/// \brief Every scene a study, `pcrf run --model` or the Python module can name, each with
+/// its parameter table: one place that turns a model name and parameter values into a Scene.
+///
+///   pcrf           the prestressed rocking frame (Zhao & Su 2021): the eight dimensionless
+///                  parameters and the size (h_m, m_c_kg; not study axes)
+///   block          Housner's rigid block: slenderness_rad, size_m or
+///                  frequency_parameter_rad_s, given_restitution (default: from momentum)
+///   rocking-frame  the Makris–Vassiliou frame: the block's keys and beam_mass_ratio
+///
+/// A scene's values are a ScenePoint: one number per parameter of its table, in table order,
+/// NaN for an optional parameter not given. Adding a scene: its class, and one entry here.
+#pragma once
+
+#include <cstddef>
+#include <map>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "pcrf/model/scene.hpp"
+
+namespace pcrf {
+
+/// One value per parameter of a SceneModel, in its table's order.
+using ScenePoint = std::vector<double>;
+
+/// One parameter of a scene model, spelled as study keys, cube coordinates and (with dashes)
+/// `pcrf run` flags.
+struct SceneParameter {
+  std::string_view name;       ///< e.g. "slenderness_rad"
+  std::string_view long_name;  ///< e.g. "slenderness alpha of the columns"
+  std::string_view units;      ///< UDUNITS
+  double default_value;        ///< NaN: optional, derived by the scene when not given
+  bool axis;                   ///< may be a study axis (false: the base point sets it for every case)
+  /// Why `value` is outside the parameter's domain on its own ("must be positive"); empty when inside.
+  std::string (*problem)(double value);
+};
+
+struct SceneModel {
+  std::string_view name;
+  std::string_view description;
+  std::vector<SceneParameter> parameters;
+  /// The scene at `values`. \throws std::invalid_argument "key: problem" (one line).
+  std::unique_ptr<Scene> (*make)(std::span<const double> values);
+  /// Keys of which at most one may be given (the block's size_m and frequency_parameter_rad_s).
+  std::vector<std::string_view> exclusive;
+
+  /// Position of a parameter in the table; npos when the model has none of that name.
+  std::size_t index(std::string_view key) const;
+  /// Every parameter at its default.
+  ScenePoint defaults() const;
+  /// "slenderness_rad, size_m, …": the model's keys, for messages.
+  std::string keys_text() const;
+};
+
+/// The scene models, the default (pcrf) first.
+const std::vector<SceneModel>& scene_models();
+
+/// \throws std::invalid_argument "unknown scene 'x' (expected pcrf, block or rocking-frame)".
+const SceneModel& scene_model(std::string_view name);
+
+/// The names of the models that take `key`, "model \"block\" or \"rocking-frame\"", for
+/// messages; empty when none does.
+std::string models_taking(std::string_view key);
+
+/// NaN-aware equality of two points of the same model (NaN: the same absent value).
+bool same_point(const ScenePoint& a, const ScenePoint& b);
+
+/// The plain entry point (command line, Python): a model's name and the values given by
+/// key, every other parameter at its default. \throws std::invalid_argument with a one-line
+/// message naming the key: an unknown model, a key of another model ("kappa does not apply
+/// to model \"block\" (it is a parameter of model \"pcrf\")"), an unknown key, a value outside
+/// its domain, two exclusive keys both given, an impossible scene.
+std::unique_ptr<Scene> make_scene(std::string_view model, const std::map<std::string, double, std::less<>>& values);
+
+}  // namespace pcrf

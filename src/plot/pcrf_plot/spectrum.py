@@ -1,0 +1,81 @@
+"""`spectrum`: a rocking (collapse) spectrum of an IDA cube over pulse records ([[records]]
+pulse, [axes] pulse_period_s): each curve's collapse amplitude, over the frame's uplift
+threshold, against ω_p/p, one line per pulse shape, one panel per frame. The marker says how
+the run at the collapse amplitude ended: overturned (filled circle) or tendon fracture
+(cross); a curve safe up to max_intensity is a triangle at the cap (its amplitude is above),
+an unbracketed one (max_runs ran out) a hollow triangle at its last safe amplitude."""
+import math
+
+import matplotlib.pyplot as plt
+from matplotlib import ticker
+
+from pcrf_plot import engine, style
+from pcrf_plot.errors import PlotError
+
+UNBRACKETED, CENSORED = 2, 1  # curve_state (plan::CurveState)
+
+
+def draw(args):
+    cube = engine.Cube(args.input)
+    for needed, why in (("collapse_intensity", "an IDA cube ([ida] table)"),
+                        ("omega_p_over_p", "pulse records ([[records]] pulse with [axes] pulse_period_s)")):
+        if cube.variable(needed) is None:
+            raise PlotError(f"{args.input}: not a rocking-spectrum cube (no {needed}): it needs {why}")
+    units = cube.variable("collapse_intensity")["units"]
+    names = ["ida_intensity", "collapse_intensity", "last_safe_intensity", "curve_state", "omega_p_over_p",
+             "frame_uplift_threshold_g"]
+    rows = cube.export(names, args.where)
+    if not rows:
+        raise PlotError(f"{args.input}: no case matches the selection")
+    frame_dims = [d["name"] for d in cube.dimensions if d["name"] not in ("record", "ida_point") and d["size"] > 1]
+    curves = {}  # (frame, shape) → {record: (ω_p/p, a_c/threshold, marker kind)}
+    for r in rows:
+        frame = ",".join(f"{d}={r[d]}" if d != "case" else r["case_label"] for d in frame_dims) or "all"
+        threshold = engine.number(r["frame_uplift_threshold_g"]) if units == "g" else 1.0
+        key = (frame, r["pulse_shape"])
+        record = curves.setdefault(key, {}).setdefault(r["record"], {"x": engine.number(r["omega_p_over_p"])})
+        collapse, state = engine.number(r["collapse_intensity"]), engine.number(r["curve_state"])
+        if state == CENSORED:
+            record["point"] = (engine.number(r["last_safe_intensity"]) / threshold, "censored")
+        elif state == UNBRACKETED or not math.isfinite(collapse):
+            record["point"] = (engine.number(r["last_safe_intensity"]) / threshold, "unbracketed")
+        elif r["ida_intensity"] != "" and engine.number(r["ida_intensity"]) == collapse:
+            record["point"] = (collapse / threshold, r["status"])
+    frames = sorted({f for f, _ in curves})
+    columns = min(2, len(frames))
+    fig, axes = plt.subplots(math.ceil(len(frames) / columns), columns, figsize=(6.4 * columns, 4.8), squeeze=False,
+                             constrained_layout=True)
+    shapes = sorted({s for _, s in curves})
+    markers = {"overturned": ("o", "overturned"), "tendon_fracture": ("x", "tendon fracture"),
+               "censored": ("^", "safe up to max_intensity"), "unbracketed": ("^", "unbracketed: last safe")}
+    for ax, frame in zip(axes.flat, frames):
+        for colour, shape in zip(style.CYCLE, shapes):
+            points = sorted((p["x"], *p["point"]) for p in curves.get((frame, shape), {}).values()
+                            if "point" in p and math.isfinite(p["x"]))
+            if not points:
+                continue
+            ax.plot([p[0] for p in points], [p[1] for p in points], "-", color=colour, lw=1.4, label=shape)
+            for kind, (marker, _) in markers.items():
+                chosen = [p for p in points if p[2] == kind]
+                if chosen:
+                    ax.plot([p[0] for p in chosen], [p[1] for p in chosen], marker, color=colour, ms=5,
+                            mfc="none" if kind in ("unbracketed",) else colour)
+        for kind, (marker, label) in markers.items():
+            ax.plot([], [], marker, color=style.GREY, mfc="none" if kind == "unbracketed" else style.GREY, label=label)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        for axis, (low, high) in ((ax.xaxis, ax.get_xlim()), (ax.yaxis, ax.get_ylim())):
+            # Plain numbers, not powers of ten; the minor ticks labelled too when the axis spans
+            # less than a decade and a half (else a decade's only label would be its base).
+            axis.set_major_formatter(ticker.FormatStrFormatter("%g"))
+            short = high / low < 30
+            axis.set_minor_formatter(ticker.FormatStrFormatter("%g") if short else ticker.NullFormatter())
+        ylabel = "collapse amplitude / uplift threshold" if units == "g" else f"collapse intensity [{units}]"
+        ax.set(xlabel="ω_p / p", ylabel=ylabel, title=frame)
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(loc="upper left", fontsize="small")
+    for ax in axes.flat[len(frames):]:
+        ax.remove()
+    scene = cube.info.get("attributes", {}).get("scene_model", "pcrf")
+    fig.suptitle(args.title or f"Rocking spectrum ({scene})")
+    return fig
