@@ -71,7 +71,7 @@ TEST(CubeOutputs, StatsJsonIsTheLibrarysReportGroupedBySeveralCoordinates) {
   const auto r = cube_command("stats g.h5 --by kappa --by scale -m theta_max_rad -w tan_alpha=0.18 --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const cube::CubeReader reader(cubes() / "g.h5");
-  const auto report = post::stats_report(reader, {{"kappa", "scale"}, "theta_max_rad", {{"tan_alpha", "0.18"}}});
+  const auto report = post::stats_report(reader, {{"kappa", "scale"}, "theta_max_rad", {{"tan_alpha", "0.18"}}, {}});
   const auto expected = json_of(report);
   EXPECT_EQ(r.out, expected.substr(0, expected.find("\"file\": ")) + "\"file\": \"g.h5\"" +
                        expected.substr(expected.find(", \"metric\"")));
