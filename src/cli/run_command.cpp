@@ -51,6 +51,8 @@ double scale_factor(const RunOptions& o, const GroundMotion& motion) {
   if (!(o.intensity > 0.0)) throw UsageError("--intensity must be positive");
   const IntensitySpec spec = o.measure->resolve();
   if (const auto problem = intensity_spec_problem(spec); !problem.empty()) throw UsageError("--period-s: " + problem);
+  if (spec.normalise != SetNormalisation::kNone)
+    throw UsageError("--normalise applies to a study's record set, not to one record: scale it with --scale");
   if (spec.measure == IntensityMeasure::kSa)
     if (const auto problem = sa_period_problem(spec.period_s, motion.dt_s()); !problem.empty())
       throw UsageError("--period-s: " + problem + " (" + motion.name() + ")");
@@ -66,6 +68,7 @@ std::unique_ptr<FrameExcitation> load_excitation(const RunOptions& o, double& fa
   std::vector<std::string> notes;
   const StationRecord station = o.record.load_station(notes);
   for (const auto& note : notes) std::cerr << "pcrf run: note: " << note << '\n';
+  for (const auto& line : implausible_records(o.record, station)) std::cerr << "pcrf run: warning: " << line << '\n';
   try {
     factor = scale_factor(o, in_plane_motion(station, o.incidence_deg));
     return std::make_unique<FrameExcitation>(station, o.incidence_deg, factor);

@@ -275,9 +275,10 @@ std::vector<GroupStats> group_stats(const CubeReader& cube, const std::string& b
   const auto shape = layout.shape();
   const std::size_t by_dim = dimension_index(layout, group_by.dimension);
 
-  const auto status = pool.set_apart.empty() ? std::vector<std::int8_t>{} : cube.read_status();
+  const auto status = pool.set_apart.empty() && pool.unresolved.empty() ? std::vector<std::int8_t>{} : cube.read_status();
+  auto among = [](const std::vector<std::int8_t>& set, std::int8_t s) { return std::find(set.begin(), set.end(), s) != set.end(); };
   std::vector<std::vector<double>> samples(group_by.size());
-  std::vector<std::size_t> cases(group_by.size(), 0), apart(group_by.size(), 0);
+  std::vector<std::size_t> cases(group_by.size(), 0), apart(group_by.size(), 0), unresolved(group_by.size(), 0);
   std::vector<std::vector<bool>> seen(shape.size());
   for (std::size_t d = 0; d < shape.size(); ++d) seen[d].assign(shape[d], false);
   for (std::int64_t i = 0; i < layout.case_count(); ++i) {
@@ -287,8 +288,10 @@ std::vector<GroupStats> group_stats(const CubeReader& cube, const std::string& b
     for (std::size_t d = 0; d < shape.size(); ++d) seen[d][coords[d]] = true;
     const std::size_t g = coords[by_dim];
     ++cases[g];
-    if (!status.empty() && std::find(pool.set_apart.begin(), pool.set_apart.end(), status[k]) != pool.set_apart.end())
+    if (!status.empty() && among(pool.set_apart, status[k]))
       ++apart[g];
+    else if (!status.empty() && among(pool.unresolved, status[k]))
+      ++unresolved[g];
     else if (std::isfinite(values[k]))
       samples[g].push_back(values[k]);
   }
@@ -307,9 +310,10 @@ std::vector<GroupStats> group_stats(const CubeReader& cube, const std::string& b
     if (cases[g] == 0) continue;
     const std::string value = group_by.label(g);
     auto [it, inserted] = position.emplace(value, stats.size());
-    if (inserted) stats.push_back({value, 0, 0, 0, 0, 0, 0});
+    if (inserted) stats.push_back({value, 0, 0, 0, 0, 0, 0, 0});
     stats[it->second].cases += cases[g];
     stats[it->second].set_apart += apart[g];
+    stats[it->second].unresolved += unresolved[g];
   }
   std::vector<std::vector<double>> merged(stats.size());
   for (std::size_t g = 0; g < group_by.size(); ++g)
@@ -329,10 +333,10 @@ std::vector<GroupStats> group_stats(const CubeReader& cube, const std::string& b
 
 void print_stats(const std::string& by, const std::string& set_apart_name, const std::vector<GroupStats>& stats,
                  std::ostream& out) {
-  out << csv_field(by) << ",cases," << set_apart_name << ",values,median,p16,p84\n";
+  out << csv_field(by) << ",cases," << set_apart_name << ",values,median,p16,p84,unresolved\n";
   for (const auto& s : stats)
     out << csv_field(s.value) << ',' << s.cases << ',' << s.set_apart << ',' << s.values << ',' << csv_number(s.median) << ','
-        << csv_number(s.p16) << ',' << csv_number(s.p84) << '\n';
+        << csv_number(s.p16) << ',' << csv_number(s.p84) << ',' << s.unresolved << '\n';
 }
 
 }  // namespace pcrf::cube

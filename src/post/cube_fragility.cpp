@@ -38,6 +38,7 @@ struct FrameCases {
   std::string label;
   std::vector<std::vector<std::int8_t>> status;  // [record][level]
   std::vector<std::vector<double>> fraction;     // [record][level]: collapse_fraction, NaN if not checked
+  std::int64_t first_case = -1;
 };
 
 }  // namespace
@@ -67,6 +68,7 @@ std::vector<FrameFragility> ida_fragility(const cube::CubeReader& cube, const st
 
   std::map<std::string, std::vector<std::size_t>> curves_of;  // frame label → its curves run, by record
   std::map<std::string, std::size_t> not_run_of;
+  std::map<std::string, std::int64_t> first_case_of;
   std::vector<std::string> order;
   for (std::size_t curve = 0; curve < collapse.size(); ++curve) {
     if (!selected[curve * runs]) continue;
@@ -74,7 +76,7 @@ std::vector<FrameFragility> ida_fragility(const cube::CubeReader& cube, const st
     coords.push_back(0);
     const std::string label = frame_label(layout, coords, record_dim, point_dim);
     auto [it, inserted] = curves_of.try_emplace(label);
-    if (inserted) order.push_back(label);
+    if (inserted) order.push_back(label), first_case_of[label] = static_cast<std::int64_t>(curve * runs);
     if (runs_of[curve] > 0.0) it->second.push_back(curve);
     else ++not_run_of[label];  // NaN: no part ran it (a partial merge): left out of the fit
   }
@@ -84,6 +86,7 @@ std::vector<FrameFragility> ida_fragility(const cube::CubeReader& cube, const st
     FrameFragility out;
     out.frame = label;
     out.records = records;
+    out.first_case = first_case_of[label];
     auto fit = [&](const std::vector<std::size_t>& sample) {
       std::vector<double> observed, censored;
       for (std::size_t k : sample) {
@@ -137,6 +140,7 @@ std::vector<FrameFragility> cube_fragility(const cube::CubeReader& cube, const s
     if (inserted) {
       order.push_back(label);
       it->second.label = label;
+      it->second.first_case = i;
       it->second.status.assign(records, std::vector<std::int8_t>(levels.size(), cube::kStatusNotRun));
       it->second.fraction.assign(records, std::vector<double>(levels.size(), std::nan("")));
     }
@@ -150,6 +154,7 @@ std::vector<FrameFragility> cube_fragility(const cube::CubeReader& cube, const s
     FrameFragility out;
     out.frame = label;
     out.records = records;
+    out.first_case = f.first_case;
     auto stripes_of = [&](const std::vector<std::size_t>& sample) {
       std::vector<analysis::Stripe> stripes(levels.size());
       for (std::size_t l = 0; l < levels.size(); ++l) {
@@ -172,8 +177,11 @@ std::vector<FrameFragility> cube_fragility(const cube::CubeReader& cube, const s
       out.collapses += s.collapses;
     }
     for (const auto& by_level : f.status)
-      for (std::int8_t s : by_level) out.not_run += s == cube::kStatusNotRun ? 1 : 0;
-    out.failed = records * levels.size() - out.cases - out.not_run;
+      for (std::int8_t s : by_level) {
+        out.not_run += s == cube::kStatusNotRun ? 1 : 0;
+        out.unresolved += s != cube::kStatusNotRun && is_unresolved(static_cast<CaseStatus>(s)) ? 1 : 0;
+      }
+    out.failed = records * levels.size() - out.cases - out.not_run - out.unresolved;
     out.fit = analysis::fit_stripes(out.stripes);
     if (out.fit)
       out.interval = analysis::bootstrap(records, [&](const std::vector<std::size_t>& sample) {

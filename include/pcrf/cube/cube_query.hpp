@@ -55,6 +55,7 @@ struct GroupStats {
   std::string value;        ///< the coordinate value
   std::size_t cases = 0;    ///< selected cases in the group
   std::size_t set_apart = 0;  ///< cases whose status is set apart (e.g. collapses): not in the values
+  std::size_t unresolved = 0;  ///< cases whose status is PoolReport::unresolved: in neither
   std::size_t values = 0;   ///< finite values of the metric among the other cases
   double median = 0.0;
   double p16 = 0.0;
@@ -67,13 +68,14 @@ struct PoolReport {
   std::vector<std::string> expected;         ///< e.g. the record axis: pooling over it is the point
   std::vector<std::string>* pooled = nullptr;  ///< receives "NAME (N values)" for every other pooled axis
   std::vector<std::int8_t> set_apart;        ///< e.g. collapses, whose metrics stop at the collapse
+  std::vector<std::int8_t> unresolved;       ///< e.g. frames still moving at the end: counted in a column of their own
 };
 
 /// Groups the selected cases by `by` and summarizes `metric` across the rest.
 std::vector<GroupStats> group_stats(const CubeReader& cube, const std::string& by, const std::string& metric,
                                     const std::vector<Selector>& selectors, const PoolReport& pool = {});
 
-/// CSV: <by>,cases,<set_apart_name>,values,median,p16,p84
+/// CSV: <by>,cases,<set_apart_name>,values,median,p16,p84,unresolved
 void print_stats(const std::string& by, const std::string& set_apart_name, const std::vector<GroupStats>& stats,
                  std::ostream& out);
 
