@@ -24,6 +24,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -58,6 +59,9 @@ struct Setting {
   std::string_view unit;  ///< UDUNITS text ("s", "rad", "rad/s", "1"); empty for flags and choices
   Bound bound = Bound::kAny;
   std::vector<std::string> choices;  ///< kChoice: the words allowed
+  /// kNumber: words that stand for a value outside `bound` ("until-rest" for an unbounded
+  /// tail). A value given as one of them is carried as the word (fingerprint, attributes).
+  std::vector<std::string> number_words;
   std::string_view doc;              ///< one line, for help texts and the README tables
   /// False for keys that change how a run behaves but not what it computes ([run]), and
   /// for keys whose whole effect is captured by other keys (the solver `preset`).
@@ -133,6 +137,7 @@ std::string setting_kind_text(const Setting<Target>& s) {
     case Bound::kOpenUnit: text += " in (0, 1)"; break;
   }
   if (!s.unit.empty() && s.unit != "1") text += " [" + std::string(s.unit) + "]";
+  for (const auto& w : s.number_words) text += " or \"" + w + "\"";
   return text;
 }
 
@@ -174,6 +179,11 @@ std::string check_setting(const Setting<Target>& s, SettingValue& value) {
       break;
     case SettingType::kNumber:
       if (const auto* i = std::get_if<std::int64_t>(&value)) value = static_cast<double>(*i);
+      if (const auto* word = std::get_if<std::string>(&value); word != nullptr && !s.number_words.empty()) {
+        for (const auto& w : s.number_words)
+          if (w == *word) return "";
+        return "unknown value \"" + *word + "\" (expected " + setting_kind_text(s) + ")";
+      }
       if (!std::holds_alternative<double>(value)) return "expected a number";
       if (!std::isfinite(std::get<double>(value))) return "must be a finite number";
       break;
@@ -205,6 +215,8 @@ SettingValue parse_setting_text(const Setting<Target>& s, const std::string& tex
     case SettingType::kWords: return text;
     case SettingType::kInteger:
     case SettingType::kNumber: {
+      for (const auto& w : s.number_words)
+        if (w == text) return text;
       std::size_t used = 0;
       double value = 0.0;
       try {
@@ -233,6 +245,29 @@ Setting<Target> number_setting(std::string_view key, double Target::*member, std
   s.doc = doc;
   s.get = [member](const Target& t) { return SettingValue(t.*member); };
   s.set = [member](Target& t, const SettingValue& v) { t.*member = std::get<double>(v); };
+  return s;
+}
+
+/// A real-valued member that also takes words standing for values outside `bound`
+/// (`words[k]` stores `values[k]`, and reads back as the word).
+template <class Target>
+Setting<Target> number_or_word_setting(std::string_view key, double Target::*member, std::string_view unit, Bound bound,
+                                       std::vector<std::pair<std::string, double>> words, std::string_view doc) {
+  Setting<Target> s = number_setting(key, member, unit, bound, doc);
+  for (const auto& w : words) s.number_words.push_back(w.first);
+  s.get = [member, words](const Target& t) {
+    for (const auto& w : words)
+      if (w.second == t.*member) return SettingValue(w.first);
+    return SettingValue(t.*member);
+  };
+  s.set = [member, words](Target& t, const SettingValue& v) {
+    if (const auto* word = std::get_if<std::string>(&v)) {
+      for (const auto& w : words)
+        if (w.first == *word) t.*member = w.second;
+      return;
+    }
+    t.*member = std::get<double>(v);
+  };
   return s;
 }
 

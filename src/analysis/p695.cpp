@@ -76,12 +76,14 @@ double beta_total(double mu_t, char design_rating, char test_rating, char model_
 double spectral_shape_factor(double period_s, double mu_t, Sdc sdc) {
   if (!(mu_t >= 1.0)) throw std::invalid_argument("the period-based ductility mu_T must be at least 1");
   if (!(period_s > 0.0)) throw std::invalid_argument("the period must be positive");
-  const double beta1 = 0.14 * std::pow(std::min(mu_t, 8.0) - 1.0, 0.42);
-  const double t = std::clamp(period_s, 0.5, 1.5);
-  const double epsilon_records = 0.6 * (1.5 - t);
-  const double epsilon_target = sdc == Sdc::kDmax ? 1.5 : 1.0;
-  return std::exp(beta1 * (epsilon_target - epsilon_records));
+  return std::exp(ssf_beta1(mu_t) * (target_epsilon(sdc) - far_field_epsilon(period_s)));
 }
+
+double ssf_beta1(double mu_t) { return 0.14 * std::pow(std::min(mu_t, 8.0) - 1.0, 0.42); }
+
+double far_field_epsilon(double period_s) { return 0.6 * (1.5 - std::clamp(period_s, 0.5, 1.5)); }
+
+double target_epsilon(Sdc sdc) { return sdc == Sdc::kDmax ? 1.5 : 1.0; }
 
 double acceptable_cmr(double beta_total, double probability) {
   const boost::math::normal standard;

@@ -43,7 +43,7 @@ struct CubeArguments {
   // cube p695
   std::string sdc = "Dmax";
   double period_s = 0.0;
-  double mu_t = 3.0;
+  double mu_t = 0.0;  // 0: each frame's own (docs/p695_rocking_frame.md)
   std::string ratings = "B,B,B";
 };
 
@@ -68,6 +68,23 @@ void note_partial(const std::string& command, const std::string& file, const cub
   if (missing.count > 0)
     std::cerr << "pcrf cube " << command << ": " << file << ": " << missing.count << " of " << missing.total << " "
               << missing.unit << " not run (a partial cube): left out\n";
+}
+
+/// Cases that say nothing about the frame because it was still rocking when they ended, and
+/// (IDA cubes) collapse statuses that occurred but the study's [ida] collapse leaves out:
+/// one line each on stderr, since what is printed cannot show them. `treatment`: what the
+/// command does with the unresolved cases.
+void note_verdicts(const std::string& command, const std::string& file, const cube::CubeReader& reader,
+                   const std::string& treatment) {
+  namespace v = study::vocabulary;
+  const auto status = reader.read_status();
+  const bool ida = reader.layout().find_side_variable(v::kIdaRuns) != nullptr;
+  const std::string note = v::unresolved_note(v::unresolved_count(status), ida ? "runs" : "cases",
+                                              ida ? "counted as collapses by the IDA's search (conservative)" : treatment);
+  if (!note.empty()) std::cerr << "pcrf cube " << command << ": " << file << ": " << note << '\n';
+  if (!ida) return;
+  for (const auto& line : v::uncounted_collapse_notes(status, reader.layout().text_attribute(v::kIdaCollapseAttribute)))
+    std::cerr << "pcrf cube " << command << ": " << file << ": warning: " << line << '\n';
 }
 
 /// Runs a cube action; cube problems (missing file, unknown name) are usage errors.
@@ -221,6 +238,7 @@ void add_stats(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
       check_report_outputs(*args);
       cube::CubeReader reader(args->file);
       note_partial("stats", args->file, reader);
+      note_verdicts("stats", args->file, reader, "in the column `unresolved`, not in the percentiles");
       if (args->reduce_over.empty() && args->reduce_how != "max")
         throw UsageError("--reduce goes with --reduce-over DIMENSION");
       const auto report =
@@ -251,6 +269,7 @@ void add_fragility(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& arg
       check_output(args->points, is_stdout(args->csv) ? csv_inputs : points_inputs, args->overwrite);
       cube::CubeReader reader(args->file);
       note_partial("fragility", args->file, reader);
+      note_verdicts("fragility", args->file, reader, "counted in no stripe (neither safe nor collapsed)");
       const auto report = post::fragility_report(reader, {selectors(args->where), args->mce});
       write_report(report, "frames", *args, "");
       if (!args->points.empty())
@@ -276,6 +295,7 @@ void add_sensitivity(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& a
       check_report_outputs(*args);
       cube::CubeReader reader(args->file);
       note_partial("sensitivity", args->file, reader);
+      note_verdicts("sensitivity", args->file, reader, "without a value (their base samples are left out)");
       write_report(post::sensitivity_report(reader, {args->metric, selectors(args->where), by_record}), "indices", *args, "");
     });
   });
@@ -290,7 +310,7 @@ post::P695Inputs p695_inputs(const CubeArguments& args) {
   try {
     in.sdc = p695::parse_sdc(args.sdc);
     for (const char c : r) (void)p695::rating_beta(c);
-    if (!(args.mu_t >= 1.0)) throw std::invalid_argument("--mu-t must be at least 1");
+    if (!(args.mu_t >= 1.0 || args.mu_t == 0.0)) throw std::invalid_argument("--mu-t must be at least 1");
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
@@ -308,7 +328,9 @@ void add_p695(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
   p695_cmd->add_option("--sdc", args->sdc, "seismic design category: Dmax, Dmin, Cmax, Cmin, Bmax or Bmin (Table 5-1)")
       ->capture_default_str();
   p695_cmd->add_option("--period-s", args->period_s, "the archetype's period T [s]: max(C_u T_a, 0.25 s)")->required();
-  p695_cmd->add_option("--mu-t", args->mu_t, "period-based ductility mu_T (SSF and beta_RTR)")->capture_default_str();
+  p695_cmd->add_option("--mu-t", args->mu_t,
+                       "period-based ductility mu_T (SSF and beta_RTR); default: each frame's own from its pushover "
+                       "curve at --period-s (docs/p695_rocking_frame.md)");
   p695_cmd->add_option("--ratings", args->ratings,
                        "quality ratings A-D of design requirements, test data and modelling, e.g. B,B,C")
       ->capture_default_str();
@@ -322,6 +344,7 @@ void add_p695(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
       check_report_outputs(*args);
       cube::CubeReader reader(args->file);
       note_partial("p695", args->file, reader);
+      note_verdicts("p695", args->file, reader, "counted in no stripe (neither safe nor collapsed)");
       post::P695Report result;
       try {
         result = post::cube_p695(reader, selectors(args->where), in);

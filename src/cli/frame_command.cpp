@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,7 +25,32 @@ struct FrameOptions {
   std::unique_ptr<SettingFlags<PhysicsOptions>> physics;
   int points = 41;
   bool json = false;
+  double period_s = 0.0;  ///< > 0: also FEMA P-695's period-based ductility at this period
 };
+
+/// Rotations at which the curve is sampled for the ductility (finer than any printed curve,
+/// and independent of --points).
+constexpr int kDuctilityPoints = 2001;
+
+void add_ductility(JsonObject& json, double period_s, const P695Ductility& d) {
+  json.number("p695_period_s", period_s)
+      .number("p695_ultimate_rotation_rad", d.ultimate_rotation_rad)
+      .number("p695_ultimate_displacement_m", d.ultimate_displacement_m)
+      .number("p695_yield_displacement_m", d.yield_displacement_capacity_m)
+      .number("p695_mu_t", d.mu_t_capacity)
+      .number("p695_yield_displacement_uplift_m", d.yield_displacement_uplift_m)
+      .number("p695_mu_t_uplift", d.mu_t_uplift);
+}
+
+void print_ductility(double period_s, const P695Ductility& d) {
+  std::printf("\nFEMA P-695 period-based ductility at T = %g s (docs/p695_rocking_frame.md)\n", period_s);
+  std::printf("%-38s %12.6g rad\n", "capacity lost at rotation", d.ultimate_rotation_rad);
+  std::printf("%-38s %12.6g m\n", "roof displacement there delta_u", d.ultimate_displacement_m);
+  std::printf("%-38s %12.6g m\n", "delta_y,eff (V_max = pushover peak)", d.yield_displacement_capacity_m);
+  std::printf("%-38s %12.6g  (the engine's convention)\n", "mu_T = delta_u / delta_y,eff", d.mu_t_capacity);
+  std::printf("%-38s %12.6g m\n", "delta_y,eff (V_max = uplift threshold)", d.yield_displacement_uplift_m);
+  std::printf("%-38s %12.6g\n", "mu_T with yield at uplift", d.mu_t_uplift);
+}
 
 JsonObject as_json(const FrameProperties& p) {
   std::vector<double> theta, accel;
@@ -50,11 +76,21 @@ void print_text(const FrameProperties& p) {
 void describe(const FrameOptions& o) {
   if (o.points < 2) throw UsageError("--points must be at least 2");
   const PhysicsOptions physics = o.physics->resolve();
-  const FrameProperties p = frame_properties(*o.scene.scene(), physics.fracture_strain, o.points);
+  const auto scene = o.scene.scene();
+  const FrameProperties p = frame_properties(*scene, physics.fracture_strain, o.points);
+  std::optional<P695Ductility> ductility;
+  if (o.period_s != 0.0) {
+    if (!(o.period_s > 0.0)) throw UsageError("--period-s must be positive");
+    if (o.scene.model != "pcrf") throw UsageError("--period-s: the P-695 ductility needs the frame's height (--model pcrf)");
+    ductility = p695_ductility(frame_properties(*scene, physics.fracture_strain, kDuctilityPoints), o.scene.frame.h_m, o.period_s);
+  }
   if (o.json) {
-    std::cout << as_json(p).str() << std::endl;
+    JsonObject json = as_json(p);
+    if (ductility) add_ductility(json, o.period_s, *ductility);
+    std::cout << json.str() << std::endl;
   } else {
     print_text(p);
+    if (ductility) print_ductility(o.period_s, *ductility);
   }
 }
 
@@ -68,6 +104,8 @@ void add_frame_command(CLI::App& app) {
   o->physics = std::make_unique<SettingFlags<PhysicsOptions>>(cmd, physics_settings());
   cmd->add_option("--points", o->points, "rotations at which the pushover curve is printed")->capture_default_str();
   cmd->add_flag("--json", o->json, "one JSON object instead of text");
+  cmd->add_option("--period-s", o->period_s,
+                  "also FEMA P-695's period-based ductility mu_T at this archetype period T [s] (PCRF only)");
   cmd->callback([o] { describe(*o); });
 }
 

@@ -98,6 +98,7 @@ void describe(const RecordArguments& args) {
   std::vector<std::string> notes;
   const StationRecord station = args.record.load_station(notes);
   for (const auto& note : notes) std::cerr << "pcrf record: note: " << note << '\n';
+  for (const auto& line : implausible_records(args.record, station)) std::cerr << "pcrf record: warning: " << line << '\n';
   const RecordFlags& flags = args.record;
   JsonObject json = measures(station.h1, metadata_of_file(flags, flags.file), args);
   if (station.h2) {

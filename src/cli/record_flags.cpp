@@ -2,6 +2,8 @@
 #include "cli/record_flags.hpp"
 
 #include "cli/commands.hpp"
+#include "pcrf/record/horizontal_pair.hpp"
+#include "pcrf/record/intensity.hpp"
 #include "pcrf/record/synthetic.hpp"
 
 namespace pcrf::cli {
@@ -79,6 +81,24 @@ std::string component_of(const RecordFileSpec& spec) {
 }
 
 }  // namespace
+
+std::vector<std::string> implausible_records(const RecordFlags& flags, const StationRecord& station) {
+  std::vector<std::string> lines;
+  const AccelUnit unit = flags.spec().unit;
+  auto check = [&](const std::string& file, const GroundMotion& motion) {
+    const bool at2 = (flags.format.empty() ? guess_record_format(file) : parse_record_format(flags.format)) == RecordFormat::kAt2;
+    const auto p = record_plausibility(motion, at2 ? AccelUnit::kG : unit);
+    if (p.problem.empty()) return;
+    std::string line = file + ": " + p.problem + ": " + p.hint;
+    if (p.likely_unit) line += at2 ? " (an .AT2 file is read in g)" : " use --units " + to_string(*p.likely_unit);
+    lines.push_back(line);
+  };
+  if (flags.file.empty()) return lines;  // a synthetic motion is what it was asked to be
+  check(flags.file, station.h1);
+  if (station.h2 && !flags.file_h2.empty()) check(flags.file_h2, *station.h2);
+  if (station.up && !flags.file_up.empty()) check(flags.file_up, *station.up);
+  return lines;
+}
 
 StationRecord RecordFlags::load_station(std::vector<std::string>& notes) const {
   auto other = [this](const std::string& path) {

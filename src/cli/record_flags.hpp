@@ -46,4 +46,9 @@ struct RecordFlags {
   StationRecord load_station(std::vector<std::string>& notes) const;
 };
 
+/// One line per record file of `flags` (first horizontal, --record-h2, --record-up) whose
+/// measures no earthquake record has (record_plausibility), naming the file and the likely
+/// --units: "a.txt: PGA 501 g is above 3 g: is this file in cm/s2 (PGA 0.511 g)? use --units cm/s2".
+std::vector<std::string> implausible_records(const RecordFlags& flags, const StationRecord& station);
+
 }  // namespace pcrf::cli

@@ -52,6 +52,8 @@ double scale_factor(const RunOptions& o, const StationRecord& station) {
   if (!(o.intensity > 0.0)) throw UsageError("--intensity must be positive");
   const IntensitySpec spec = o.measure->resolve();
   if (const auto problem = intensity_spec_problem(spec); !problem.empty()) throw UsageError("--period-s: " + problem);
+  if (spec.normalise != SetNormalisation::kNone)
+    throw UsageError("--normalise applies to a study's record set, not to one record: scale it with --scale");
   if (component_measure(spec.measure) == IntensityMeasure::kSa)
     if (const auto problem = sa_period_problem(spec.period_s, motion.dt_s()); !problem.empty())
       throw UsageError("--period-s: " + problem + " (" + motion.name() + ")");
@@ -67,6 +69,7 @@ std::unique_ptr<FrameExcitation> load_excitation(const RunOptions& o, double& fa
   std::vector<std::string> notes;
   const StationRecord station = o.record.load_station(notes);
   for (const auto& note : notes) std::cerr << "pcrf run: note: " << note << '\n';
+  for (const auto& line : implausible_records(o.record, station)) std::cerr << "pcrf run: warning: " << line << '\n';
   try {
     factor = scale_factor(o, station);
     return std::make_unique<FrameExcitation>(station, o.incidence_deg, factor);

@@ -121,6 +121,8 @@ void run_study_command(StudyArguments& args) {
               << summary->total << " cases saved in " << summary->output.string() << "; continue with: pcrf study "
               << args.run.study_file.string() << " -o " << summary->output.string() << " --resume" << std::endl;
   }
+  if (summary && mpi.is_master())
+    for (const auto& note : summary->verdict_notes) std::cerr << "pcrf study: " << printable(note) << std::endl;
   if (summary && summary->stopped_by != 0) exit_code() = 128 + summary->stopped_by;
   if (summary && !summary->error.empty()) {
     std::cerr << "pcrf: error: " << printable(summary->error) << "; " << advice(summary->error_cause) << std::endl;

@@ -285,9 +285,10 @@ std::vector<GroupStats> group_stats(const CubeReader& cube, const std::vector<st
 
   struct Group {
     std::vector<double> samples;
-    std::size_t cases = 0, apart = 0;
+    std::size_t cases = 0, apart = 0, unresolved = 0;
   };
-  const auto status = pool.set_apart.empty() ? std::vector<std::int8_t>{} : cube.read_status();
+  const auto status = pool.set_apart.empty() && pool.unresolved.empty() ? std::vector<std::int8_t>{} : cube.read_status();
+  auto among = [](const std::vector<std::int8_t>& set, std::int8_t s) { return std::find(set.begin(), set.end(), s) != set.end(); };
   std::map<std::vector<std::size_t>, Group> by_position;  // positions on the `by` coordinates → cases
   std::vector<std::vector<bool>> seen(shape.size());
   for (std::size_t d = 0; d < shape.size(); ++d) seen[d].assign(shape[d], false);
@@ -300,8 +301,10 @@ std::vector<GroupStats> group_stats(const CubeReader& cube, const std::vector<st
     for (std::size_t b = 0; b < by.size(); ++b) key[b] = coords[by_dims[b]];
     Group& g = by_position[key];
     ++g.cases;
-    if (!status.empty() && std::find(pool.set_apart.begin(), pool.set_apart.end(), status[k]) != pool.set_apart.end())
+    if (!status.empty() && among(pool.set_apart, status[k]))
       ++g.apart;
+    else if (!status.empty() && among(pool.unresolved, status[k]))
+      ++g.unresolved;
     else if (std::isfinite(values[k]))
       g.samples.push_back(values[k]);
   }
@@ -323,11 +326,12 @@ std::vector<GroupStats> group_stats(const CubeReader& cube, const std::vector<st
     for (std::size_t b = 0; b < by.size(); ++b) labels.push_back(group_by[b]->label(positions[b]));
     auto [it, inserted] = position.emplace(labels, stats.size());
     if (inserted) {
-      stats.push_back({labels, 0, 0, 0, 0, 0, 0});
+      stats.push_back({labels, 0, 0, 0, 0, 0, 0, 0});
       merged.emplace_back();
     }
     stats[it->second].cases += g.cases;
     stats[it->second].set_apart += g.apart;
+    stats[it->second].unresolved += g.unresolved;
     merged[it->second].insert(merged[it->second].end(), g.samples.begin(), g.samples.end());
   }
   for (std::size_t s = 0; s < stats.size(); ++s) {
@@ -428,7 +432,7 @@ std::vector<GroupStats> group_stats_reduced(const CubeReader& cube, const std::v
     const std::size_t g = unravel(key, var_shape)[by_pos];
     auto [it, inserted] = group_of.emplace(group_by.label(g), stats.size());
     if (inserted) {
-      stats.push_back({{group_by.label(g)}, 0, 0, 0, 0, 0, 0});
+      stats.push_back({{group_by.label(g)}, 0, 0, 0, 0, 0, 0, 0});
       samples.emplace_back();
     }
     GroupStats& group = stats[it->second];

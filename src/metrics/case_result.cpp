@@ -49,8 +49,10 @@ bool is_collapse(CaseStatus status) {
 }
 
 bool has_verdict(CaseStatus status) {
-  return status == CaseStatus::kAtRest || status == CaseStatus::kRockingAtEnd || is_collapse(status);
+  return status == CaseStatus::kAtRest || is_collapse(status);
 }
+
+bool is_unresolved(CaseStatus status) { return status == CaseStatus::kRockingAtEnd; }
 
 Verdict verdict_of(CaseStatus status) {
   switch (status) {

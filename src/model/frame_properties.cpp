@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 
 #include "pcrf/units.hpp"
@@ -88,6 +89,28 @@ FrameProperties frame_properties(const Scene& eom, double fracture_strain, int p
   p.capacity_g = peak.accel_g;
   p.capacity_theta_rad = peak.theta_rad;
   return p;
+}
+
+P695Ductility p695_ductility(const FrameProperties& p, double half_column_height_m, double period_s) {
+  // δ_u: 80 % of the peak after it, interpolated between the curve's points, else its end.
+  double theta_u = p.pushover.back().theta_rad;
+  const double floor_g = 0.8 * p.capacity_g;
+  for (std::size_t i = 1; i < p.pushover.size(); ++i) {
+    const PushoverPoint &a = p.pushover[i - 1], &b = p.pushover[i];
+    if (b.theta_rad <= p.capacity_theta_rad || !(b.accel_g <= floor_g)) continue;
+    theta_u = a.accel_g <= floor_g ? a.theta_rad
+                                   : a.theta_rad + (a.accel_g - floor_g) / (a.accel_g - b.accel_g) * (b.theta_rad - a.theta_rad);
+    break;
+  }
+  P695Ductility d{};
+  d.ultimate_rotation_rad = theta_u;
+  d.ultimate_displacement_m = 2.0 * half_column_height_m * std::sin(theta_u);
+  const double spectral_m_per_g = kGravity_m_s2 * period_s * period_s / (4.0 * std::numbers::pi * std::numbers::pi);
+  d.yield_displacement_capacity_m = p.capacity_g * spectral_m_per_g;
+  d.yield_displacement_uplift_m = p.uplift_threshold_g * spectral_m_per_g;
+  d.mu_t_capacity = d.ultimate_displacement_m / d.yield_displacement_capacity_m;
+  d.mu_t_uplift = d.ultimate_displacement_m / d.yield_displacement_uplift_m;
+  return d;
 }
 
 }  // namespace pcrf

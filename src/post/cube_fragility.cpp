@@ -50,6 +50,7 @@ struct FrameCases {
   std::string label, selection;
   std::vector<std::vector<std::int8_t>> status;  // [record][level]
   std::vector<std::vector<double>> fraction;     // [record][level]: collapse_fraction, NaN if not checked
+  std::int64_t first_case = -1;
 };
 
 }  // namespace
@@ -86,6 +87,7 @@ std::vector<FrameFragility> ida_fragility(const cube::CubeReader& cube, const st
   std::map<std::string, std::vector<std::size_t>> curves_of;  // frame label → its curves run, by record
   std::map<std::string, std::size_t> not_run_of;
   std::map<std::string, std::string> selection_of;
+  std::map<std::string, std::int64_t> first_case_of;
   std::vector<std::string> order;
   for (std::size_t curve = 0; curve < collapse.size(); ++curve) {
     if (!selected[curve * runs]) continue;
@@ -96,6 +98,7 @@ std::vector<FrameFragility> ida_fragility(const cube::CubeReader& cube, const st
     if (inserted) {
       order.push_back(label);
       selection_of[label] = frame_selection(layout, coords, record_dim, point_dim);
+      first_case_of[label] = static_cast<std::int64_t>(curve * runs);
     }
     if (runs_of[curve] > 0.0) it->second.push_back(curve);
     else ++not_run_of[label];  // NaN: no part ran it (a partial merge): left out of the fit
@@ -107,6 +110,7 @@ std::vector<FrameFragility> ida_fragility(const cube::CubeReader& cube, const st
     out.frame = label;
     out.selection = selection_of[label];
     out.records = records;
+    out.first_case = first_case_of[label];
     auto fit = [&](const std::vector<std::size_t>& sample) {
       std::vector<double> observed, censored;
       for (std::size_t k : sample) {
@@ -163,6 +167,7 @@ std::vector<FrameFragility> cube_fragility(const cube::CubeReader& cube, const s
       order.push_back(label);
       it->second.label = label;
       it->second.selection = frame_selection(layout, coords, record_dim, level_dim);
+      it->second.first_case = i;
       it->second.status.assign(records, std::vector<std::int8_t>(levels.size(), cube::kStatusNotRun));
       it->second.fraction.assign(records, std::vector<double>(levels.size(), std::nan("")));
     }
@@ -177,6 +182,7 @@ std::vector<FrameFragility> cube_fragility(const cube::CubeReader& cube, const s
     out.frame = label;
     out.selection = f.selection;
     out.records = records;
+    out.first_case = f.first_case;
     auto stripes_of = [&](const std::vector<std::size_t>& sample) {
       std::vector<analysis::Stripe> stripes(levels.size());
       for (std::size_t l = 0; l < levels.size(); ++l) {
@@ -199,8 +205,11 @@ std::vector<FrameFragility> cube_fragility(const cube::CubeReader& cube, const s
       out.collapses += s.collapses;
     }
     for (const auto& by_level : f.status)
-      for (std::int8_t s : by_level) out.not_run += s == cube::kStatusNotRun ? 1 : 0;
-    out.failed = records * levels.size() - out.cases - out.not_run;
+      for (std::int8_t s : by_level) {
+        out.not_run += s == cube::kStatusNotRun ? 1 : 0;
+        out.unresolved += s != cube::kStatusNotRun && is_unresolved(static_cast<CaseStatus>(s)) ? 1 : 0;
+      }
+    out.failed = records * levels.size() - out.cases - out.not_run - out.unresolved;
     out.fit = analysis::fit_stripes(out.stripes);
     if (out.fit)
       out.interval = analysis::bootstrap(records, [&](const std::vector<std::size_t>& sample) {

@@ -1,13 +1,20 @@
 // FEMA P-695 from a cube (see cube_p695.hpp).
 #include "pcrf/post/cube_p695.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
 #include <utility>
 
+#include "pcrf/model/equation_of_motion.hpp"
+#include "pcrf/model/frame.hpp"
+#include "pcrf/model/frame_properties.hpp"
+#include "pcrf/model/parameters.hpp"
 #include "pcrf/number_text.hpp"
 #include "pcrf/record/intensity.hpp"
+#include "pcrf/row_major.hpp"
+#include "pcrf/solver/settings.hpp"
 
 namespace pcrf::post {
 namespace {
@@ -26,7 +33,45 @@ std::string measure_problem(const cube::CubeReader& cube, double period_s) {
       return "the cube's Sa is at T = " + number_text(*stored) + " s, not at the --period-s " + number_text(period_s) +
              " s: these numbers are not P-695's";
   }
+  if (layout.text_attribute("intensity_normalise") != to_string(SetNormalisation::kP695))
+    return "the cube's records were each scaled to their own Sa(T), not normalised and scaled as one set "
+           "([intensity] normalise = \"p695\", Appendix A): its median collapse intensity is not P-695's S_CT";
   return {};
+}
+
+/// The frame parameters of case `index`: the study's base point, overridden by every
+/// parameter coordinate the cube has (a grid's axes, a list's or sample's per-case values).
+FrameParameters parameters_of_case(const cube::CubeLayout& layout, std::int64_t index) {
+  auto attribute = [&](const std::string& name) {
+    for (const auto& a : layout.attributes)
+      if (a.name == name)
+        if (const double* v = std::get_if<double>(&a.value)) return *v;
+    throw std::invalid_argument("the cube has no attribute " + name + ": give --mu-t");
+  };
+  FrameParameters p;
+  for (const auto& info : all_parameters()) p.*info.member = attribute("base_" + std::string(info.name));
+  p.h_m = attribute("frame_h_m");
+  p.m_c_kg = attribute("frame_m_c_kg");
+  const auto coords = unravel(index, layout.shape());
+  for (const auto& info : all_parameters()) {
+    const cube::Coordinate* c = layout.find_coordinate(std::string(info.name));
+    if (c == nullptr || c->is_text) continue;
+    const auto dim = layout.find_dimension(c->dimension);
+    if (dim) p.*info.member = c->numbers[coords[*dim]];
+  }
+  return p;
+}
+
+/// μ_T of the frame of case `index` by the engine's convention (docs/p695_rocking_frame.md).
+double own_mu_t(const cube::CubeLayout& layout, std::int64_t index, double period_s) {
+  double fracture_strain = PhysicsOptions{}.fracture_strain;
+  for (const auto& a : layout.attributes)
+    if (a.name == "physics_fracture_strain")
+      if (const double* v = std::get_if<double>(&a.value)) fracture_strain = *v;
+  const FrameParameters parameters = parameters_of_case(layout, index);
+  const EquationOfMotion eom(make_frame(parameters));
+  const auto properties = frame_properties(eom, fracture_strain, 2001);
+  return std::max(1.0, p695_ductility(properties, parameters.h_m, period_s).mu_t_capacity);
 }
 
 }  // namespace
@@ -37,8 +82,9 @@ P695Report cube_p695(const cube::CubeReader& cube, const std::vector<cube::Selec
   report.measure_problem = measure_problem(cube, in.period_s);
   for (const FrameFragility& f : cube_fragility(cube, selectors)) {
     if (!f.fit) throw std::invalid_argument("frame " + f.frame + ": no collapse, so no median collapse intensity to assess");
-    report.frames.push_back({f.frame, p695::assess(f.fit->median, in.period_s, in.mu_t, in.sdc, in.design_rating,
-                                                   in.test_rating, in.model_rating)});
+    const double mu_t = in.mu_t > 0.0 ? in.mu_t : own_mu_t(cube.layout(), f.first_case, in.period_s);
+    report.frames.push_back({f.frame, mu_t, p695::assess(f.fit->median, in.period_s, mu_t, in.sdc, in.design_rating,
+                                                         in.test_rating, in.model_rating)});
   }
   std::vector<p695::Assessment> all;
   for (const auto& f : report.frames) all.push_back(f.assessment);
@@ -47,18 +93,26 @@ P695Report cube_p695(const cube::CubeReader& cube, const std::vector<cube::Selec
 }
 
 void print_p695(const P695Report& report, const P695Inputs& in, std::ostream& out) {
-  char line[256];
-  std::snprintf(line, sizeof line, "FEMA P-695, SDC %s, T = %g s, mu_T = %g, ratings %c/%c/%c\n",
-                p695::to_string(in.sdc).c_str(), in.period_s, in.mu_t, in.design_rating, in.test_rating, in.model_rating);
+  char line[320];
+  const auto spectrum = p695::mce_spectrum(in.sdc);
+  std::snprintf(line, sizeof line,
+                "FEMA P-695, SDC %s (S_MS %g g, S_M1 %g g), T = %g s, mu_T %s, ratings %c/%c/%c (design, tests, model)\n",
+                p695::to_string(in.sdc).c_str(), spectrum.s_ms_g, spectrum.s_m1_g, in.period_s,
+                in.mu_t > 0.0 ? number_text(in.mu_t).c_str() : "of each frame (pushover peak, docs/p695_rocking_frame.md)",
+                in.design_rating, in.test_rating, in.model_rating);
   out << line;
-  std::snprintf(line, sizeof line, "%-24s %8s %8s %6s %6s %6s %8s %8s %8s %8s %10s\n", "frame", "S_CT [g]", "S_MT [g]",
-                "CMR", "SSF", "ACMR", "beta_TOT", "ACMR10%", "ACMR20%", "P(c|MCE)", "ACMR20%?");
+  std::snprintf(line, sizeof line,
+                "SSF = exp(beta1 (eps0 - eps(T))), beta1 = 0.14 (mu_T - 1)^0.42, far-field eps(T) = %.3f, eps0 = %.1f\n",
+                p695::far_field_epsilon(in.period_s), p695::target_epsilon(in.sdc));
+  out << line;
+  std::snprintf(line, sizeof line, "%-24s %8s %8s %6s %6s %6s %6s %6s %8s %8s %8s %8s %10s\n", "frame", "S_CT [g]",
+                "S_MT [g]", "CMR", "mu_T", "SSF", "ACMR", "b_RTR", "beta_TOT", "ACMR10%", "ACMR20%", "P(c|MCE)", "ACMR20%?");
   out << line;
   for (const auto& f : report.frames) {
     const auto& a = f.assessment;
-    std::snprintf(line, sizeof line, "%-24s %8.3f %8.3f %6.2f %6.2f %6.2f %8.3f %8.2f %8.2f %8.3f %10s\n",
-                  f.frame.c_str(), a.s_ct_g, a.s_mt_g, a.cmr, a.ssf, a.acmr, a.beta_total, a.acmr10, a.acmr20,
-                  a.p_collapse_mce, a.passes_individual ? "pass" : "fail");
+    std::snprintf(line, sizeof line, "%-24s %8.3f %8.3f %6.2f %6.2f %6.2f %6.2f %6.2f %8.3f %8.2f %8.2f %8.3f %10s\n",
+                  f.frame.c_str(), a.s_ct_g, a.s_mt_g, a.cmr, f.mu_t, a.ssf, a.acmr, a.beta_rtr, a.beta_total, a.acmr10,
+                  a.acmr20, a.p_collapse_mce, a.passes_individual ? "pass" : "fail");
     out << line;
   }
   std::snprintf(line, sizeof line, "group: mean ACMR %.2f against ACMR10%% %.2f, every frame against ACMR20%%: %s\n",

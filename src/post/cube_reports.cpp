@@ -45,6 +45,8 @@ std::vector<ColumnOf<cube::GroupStats>> stats_spec(const std::vector<std::string
                   [](const G& g) { return number_or_missing(g.p16); }});
   spec.push_back({{"p84", "", "84th percentile of the metric (in metric_units)"},
                   [](const G& g) { return number_or_missing(g.p84); }});
+  spec.push_back({{"unresolved", "", "cases whose frame was still rocking at the end (rocking_at_end): no verdict, not in the percentiles"},
+                  [](const G& g) { return count(g.unresolved); }});
   return spec;
 }
 
@@ -145,6 +147,10 @@ std::vector<ColumnOf<FrameP695>> p695_spec() {
   using A = p695::Assessment;
   return {
       {{"frame", "", "the frame, as in cube fragility", "%s"}, [](const P& p) { return Cell{p.frame}; }},
+      {{"mu_t", "", "period-based ductility used (given, or the frame's own: docs/p695_rocking_frame.md)"},
+       [](const P& p) { return number_or_missing(p.mu_t); }},
+      {{"ssf_beta1", "", "beta1 of the spectral shape factor at that mu_T (Appendix B)"},
+       [](const P& p) { return number_or_missing(p695::ssf_beta1(p.mu_t)); }},
       {{"s_ct_g", "g", "median collapse intensity S_CT (the fragility's median)"}, number(&A::s_ct_g)},
       {{"s_mt_g", "g", "MCE intensity S_MT at T (Table 5-1)"}, number(&A::s_mt_g)},
       {{"cmr", "", "collapse margin ratio S_CT / S_MT"}, number(&A::cmr)},
@@ -169,7 +175,8 @@ Report stats_report(const cube::CubeReader& cube, const StatsRequest& request) {
   auto where = request.where;
   for (const auto& by : request.by) where = vocabulary::stats_selectors(layout, by, where);
   std::vector<std::string> pooled;
-  const cube::PoolReport pool{vocabulary::expected_pooling(), &pooled, vocabulary::collapse_statuses()};
+  const cube::PoolReport pool{vocabulary::expected_pooling(), &pooled, vocabulary::collapse_statuses(),
+                              vocabulary::unresolved_statuses()};
   const auto groups = request.reduction.dimension.empty()
                           ? cube::group_stats(cube, request.by, request.metric, where, pool)
                           : cube::group_stats_reduced(cube, request.by, request.metric, where, request.reduction, pool);
@@ -235,7 +242,12 @@ Report p695_report(const P695Report& result, const P695Inputs& in, const std::st
   report.fields = {{"file", file},
                    {"sdc", p695::to_string(in.sdc)},
                    {"period_s", in.period_s},
-                   {"mu_t", in.mu_t},
+                   {"mu_t", in.mu_t > 0.0 ? Cell{in.mu_t} : Cell{}},
+                   {"mu_t_source", std::string(in.mu_t > 0.0 ? "given" : "frame (pushover peak, docs/p695_rocking_frame.md)")},
+                   {"s_ms_g", p695::mce_spectrum(in.sdc).s_ms_g},
+                   {"s_m1_g", p695::mce_spectrum(in.sdc).s_m1_g},
+                   {"far_field_epsilon", p695::far_field_epsilon(in.period_s)},
+                   {"target_epsilon", p695::target_epsilon(in.sdc)},
                    {"ratings", std::string{in.design_rating, in.test_rating, in.model_rating}},
                    {"group_mean_acmr", result.group.mean_acmr},
                    {"group_acmr10", result.group.acmr10},

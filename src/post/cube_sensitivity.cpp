@@ -22,8 +22,10 @@ std::vector<double> outputs(const cube::CubeReader& cube, const std::string& met
   const auto status = cube.read_status();
   if (metric != "collapse") {
     auto values = cube.read_metric(metric);
-    for (std::size_t i = 0; i < values.size(); ++i)  // a case without a verdict has no output
-      if (status[i] == cube::kStatusNotRun || status[i] >= static_cast<std::int8_t>(CaseStatus::kSolverFailure)) values[i] = kNaN;
+    for (std::size_t i = 0; i < values.size(); ++i)  // a case without a verdict (or unresolved) has no output
+      if (status[i] == cube::kStatusNotRun || status[i] >= static_cast<std::int8_t>(CaseStatus::kSolverFailure) ||
+          is_unresolved(static_cast<CaseStatus>(status[i])))
+        values[i] = kNaN;
     return values;
   }
   std::vector<double> values(status.size(), kNaN);

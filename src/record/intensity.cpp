@@ -20,6 +20,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 
@@ -151,6 +152,8 @@ constexpr std::array<EnumName<IntensityMeasure>, 9> kMeasureNames{{{IntensityMea
                                                                    {IntensityMeasure::kPgvRotD100, "pgv_rotd100_m_s"},
                                                                    {IntensityMeasure::kSaRotD50, "sa_rotd50_g"},
                                                                    {IntensityMeasure::kSaRotD100, "sa_rotd100_g"}}};
+constexpr std::array<EnumName<SetNormalisation>, 2> kNormalisationNames{{{SetNormalisation::kNone, "none"},
+                                                                         {SetNormalisation::kP695, "p695"}}};
 }  // namespace
 
 IntensityMeasure component_measure(IntensityMeasure measure) {
@@ -176,6 +179,11 @@ int rotd_percentile(IntensityMeasure measure) {
     default: return 0;
   }
 }
+SetNormalisation parse_set_normalisation(const std::string& text) {
+  return parse_name(kNormalisationNames, text, "normalisation");
+}
+
+std::string to_string(SetNormalisation normalisation) { return name_of(kNormalisationNames, normalisation); }
 
 IntensityMeasure parse_intensity_measure(const std::string& text) {
   return parse_name(kMeasureNames, text, "intensity measure");
@@ -251,6 +259,10 @@ const SettingTable<IntensitySpec>& intensity_settings() {
     s.back().aliases = {"--period"};
     s.push_back(number_setting("damping", &IntensitySpec::damping, "1", Bound::kFraction,
                                "damping ratio of the sa_g (sa_rotd*_g) oscillator"));
+    s.push_back(choice_setting("normalise", &IntensitySpec::normalise, values_of(kNormalisationNames), &to_string,
+                               &parse_set_normalisation,
+                               "studies: p695 scales the record set as FEMA P-695 does (each station by its pair's "
+                               "geometric-mean PGV, the set by its median measure; studies/README.md)"));
     return t;
   }();
   return table;
@@ -276,6 +288,45 @@ std::string sa_period_problem(double period_s, double dt_s) {
     return text;
   }
   return "";
+}
+
+RecordPlausibility record_plausibility(const GroundMotion& record, AccelUnit read_as) {
+  RecordPlausibility result;
+  const double pga_g = peak_acceleration(record).pga_g;
+  if (!(pga_g > 0.0) || !std::isfinite(pga_g)) return result;  // measures_problem's, or a motionless record
+  char text[200];
+  if (pga_g > kMaxPlausiblePga_g || pga_g < kMinPlausiblePga_g) {
+    std::snprintf(text, sizeof text, "PGA %.3g g is %s %g g", pga_g, pga_g > kMaxPlausiblePga_g ? "above" : "below",
+                  pga_g > kMaxPlausiblePga_g ? kMaxPlausiblePga_g : kMinPlausiblePga_g);
+    result.problem = text;
+    // The values as written, then as each other unit would read them: of the units giving a
+    // plausible PGA, the one nearest (in ratio) to a typical strong motion, 0.3 g.
+    const double written = pga_g * kGravity_m_s2 / to_m_s2(read_as);
+    double best_distance = std::numeric_limits<double>::infinity(), best_g = 0.0;
+    for (AccelUnit unit : {AccelUnit::kG, AccelUnit::kMeterPerSecond2, AccelUnit::kCentimeterPerSecond2}) {
+      if (unit == read_as) continue;
+      const double as_g = written * to_m_s2(unit) / kGravity_m_s2;
+      const double distance = std::abs(std::log(as_g / 0.3));
+      if (as_g >= kMinPlausiblePga_g && as_g <= kMaxPlausiblePga_g && distance < best_distance) {
+        best_distance = distance, best_g = as_g;
+        result.likely_unit = unit;
+      }
+    }
+    if (result.likely_unit) {
+      std::snprintf(text, sizeof text, "is this file in %s (PGA %.3g g)?", to_string(*result.likely_unit).c_str(), best_g);
+      result.hint = text;
+    }
+    if (!result.likely_unit) result.hint = "check its units and scale";
+    return result;
+  }
+  const double ratio_s = peak_velocity_m_s(record) / (pga_g * kGravity_m_s2);
+  if (ratio_s < kMinPgvPgaRatio_s || ratio_s > kMaxPgvPgaRatio_s) {
+    std::snprintf(text, sizeof text, "PGV/PGA = %.3g s is outside %g–%g s", ratio_s, kMinPgvPgaRatio_s, kMaxPgvPgaRatio_s);
+    result.problem = text;
+    std::snprintf(text, sizeof text, "is its time step %g s right (PGV scales with it)?", record.dt_s());
+    result.hint = text;
+  }
+  return result;
 }
 
 std::string measures_problem(const GroundMotion& record) {

@@ -392,6 +392,15 @@ AccelUnit parse_accel_unit(const std::string& text) {
                               " (expected g, m/s2, m/s^2, mps2, cm/s2, cm/s^2 or gal)");
 }
 
+std::string to_string(AccelUnit unit) {
+  switch (unit) {
+    case AccelUnit::kG: return "g";
+    case AccelUnit::kMeterPerSecond2: return "m/s2";
+    case AccelUnit::kCentimeterPerSecond2: return "cm/s2";
+  }
+  return "unknown";
+}
+
 double to_m_s2(AccelUnit unit) {
   switch (unit) {
     case AccelUnit::kG: return kGravity_m_s2;

@@ -83,8 +83,11 @@ double free_fall_time(const Excitation& excitation, double gravity_m_s2, double 
   return kNaN;
 }
 
-CaseEnd::CaseEnd(const Excitation& excitation, double gravity_m_s2, double tail_s)
-    : t_end_s(excitation.duration_s() + tail_s), free_fall(false) {
+CaseEnd::CaseEnd(const Excitation& excitation, double gravity_m_s2, const PhysicsOptions& physics)
+    : t_end_s(excitation.duration_s() + (physics.tail_s == kTailUntilRest ? physics.max_tail_s : physics.tail_s)),
+      free_fall(false),
+      until_rest(physics.tail_s == kTailUntilRest),
+      record_end_s(excitation.duration_s()) {
   const double t_fall = free_fall_time(excitation, gravity_m_s2, t_end_s);
   if (!std::isnan(t_fall)) t_end_s = t_fall, free_fall = true;
 }

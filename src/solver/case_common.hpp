@@ -31,12 +31,17 @@ double first_opening(const Excitation& excitation, const Scene& scene, double t_
 /// vertical component; NaN when it never does (always without a vertical component).
 double free_fall_time(const Excitation& excitation, double gravity_m_s2, double t_end);
 
-/// When and why a case's simulated time ends: the end of the record plus the tail, or the
-/// ground's free fall if that comes first.
+/// When and why a case's simulated time ends: the end of the record plus the tail (an
+/// until-rest tail: plus max_tail_s at most), or the ground's free fall if that comes first.
 struct CaseEnd {
-  CaseEnd(const Excitation& excitation, double gravity_m_s2, double tail_s);
+  CaseEnd(const Excitation& excitation, double gravity_m_s2, const PhysicsOptions& physics);
   double t_end_s;   ///< [s]
   bool free_fall;   ///< t_end_s is the free fall's start
+  bool until_rest;  ///< the tail ends when the frame rests after the record
+  double record_end_s;
+  /// When a case whose frame is at rest at `t_s` and is not opened again ends: with an
+  /// until-rest tail as soon as the record is over, else at t_end_s.
+  double rest_end_s(double t_s) const { return until_rest ? std::min(std::max(t_s, record_end_s), t_end_s) : t_end_s; }
   /// The status of a case that reached t_end_s without collapsing (`reached`: at rest or
   /// still rocking), and its message.
   CaseStatus status(CaseStatus reached) const { return free_fall ? CaseStatus::kGroundFreeFall : reached; }

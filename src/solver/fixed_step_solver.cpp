@@ -26,7 +26,7 @@ class FixedStepRun {
         history_(history, scene, excitation),
         r_(scene.restitution()),
         h_(solver.fixed_step_s > 0 ? solver.fixed_step_s : excitation.dt_s()),
-        end_(excitation, scene.gravity_m_s2(), physics.tail_s),
+        end_(excitation, scene.gravity_m_s2(), physics),
         t_end_(end_.t_end_s),
         stop_(stop_angles(scene, physics)) {}
 
@@ -40,8 +40,9 @@ class FixedStepRun {
       // prestress; the physical criteria start it where the net force opens the joints.
       t = physics_.uplift == UpliftCriterion::kPaperProcedure
               ? paper_trigger_time(excitation_.horizontal(), scene_.lambda_g())
-              : first_opening(excitation_, scene_, 0.0, t_end_);
-      if (std::isnan(t) || t > t_end_) return finish(end_.status(CaseStatus::kAtRest), t_end_, end_.message());
+              : first_opening(excitation_, scene_, 0.0, end_.rest_end_s(0.0));
+      if (std::isnan(t) || t > end_.rest_end_s(0.0))
+        return finish(end_.status(CaseStatus::kAtRest), end_.rest_end_s(0.0), end_.message());
       side_ = uplift_side(excitation_.at(t).horizontal_m_s2);
     } else {
       side_ = initial_side(y.theta, y.omega);

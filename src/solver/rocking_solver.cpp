@@ -117,7 +117,7 @@ class CaseRun {
         stop_(frame.stop_angles()),
         problem_(frame.table(), excitation_, stop_.stop_rad(), request.omega_peak),
         integrator_(detail::make_integrator(solver, problem_)),
-        end_(excitation, frame.scene().gravity_m_s2(), physics_.tail_s),
+        end_(excitation, frame.scene().gravity_m_s2(), physics_),
         t_end_(end_.t_end_s) {}
 
   CaseResult run();
@@ -194,10 +194,11 @@ void CaseRun::rest_until_uplift() {
   // Both criteria open the frame where the net force at θ₁ = 0 does (see README,
   // "Uplift criteria"): a unilateral contact pushes, it never pulls, so after the paper's
   // trigger a frame still held by its prestress stays closed.
-  const double t_open = first_opening(excitation_, scene_, t_, t_end_);
+  const double t_stop = end_.rest_end_s(t_);
+  const double t_open = t_ < t_stop ? first_opening(excitation_, scene_, t_, t_stop) : std::nan("");
   if (std::isnan(t_open)) {
-    emit_rest_until(t_end_);
-    t_ = t_end_;
+    emit_rest_until(t_stop);
+    t_ = t_stop;
     finish(end_.status(CaseStatus::kAtRest), end_.message());
     return;
   }
@@ -437,9 +438,9 @@ std::optional<CaseResult> rest_throughout(PreparedFrame& frame, const Excitation
                                           const OutputRequest& request, const HistorySink& history) {
   const PhysicsOptions& physics = frame.physics();
   if (history || frame.broken_at_rest() || physics.theta0_rad != 0.0 || physics.omega0_rad_s != 0.0) return std::nullopt;
-  const detail::CaseEnd end(excitation, frame.scene().gravity_m_s2(), physics.tail_s);
+  const detail::CaseEnd end(excitation, frame.scene().gravity_m_s2(), physics);
   if (end.free_fall) return std::nullopt;  // the full run ends it at the free fall
-  const double t_end = end.t_end_s;
+  const double t_end = end.rest_end_s(0.0);
   if (!std::isnan(first_opening(excitation, frame.scene(), 0.0, t_end))) return std::nullopt;
   CaseResult result = detail::initial_result(frame.scene(), excitation, frame.restitution(), request.omega_peak);
   result.status = CaseStatus::kAtRest;

@@ -42,9 +42,12 @@ const SettingTable<PhysicsOptions>& physics_settings() {
     s.back().aliases = {"--criterion"};
     s.push_back(number_setting("fracture_strain", &P::fracture_strain, "1", Bound::kPositive,
                                "total tendon strain at fracture"));
-    s.push_back(number_setting("tail_s", &P::tail_s, "s", Bound::kNonNegative,
-                               "free vibration computed after the record ends"));
+    s.push_back(number_or_word_setting("tail_s", &P::tail_s, "s", Bound::kNonNegative, {{"until-rest", kTailUntilRest}},
+                                       "free vibration computed after the record ends: a time, or until the frame "
+                                       "rests or collapses (at most max_tail_s; still rocking then: unresolved)"));
     s.back().aliases = {"--tail"};
+    s.push_back(number_setting("max_tail_s", &P::max_tail_s, "s", Bound::kPositive,
+                               "longest until-rest tail; a frame still rocking then is rocking_at_end, unresolved"));
     s.push_back(number_setting("zeno_time_s", &P::zeno_time_s, "s", Bound::kPositive,
                                "return-to-rest time scale (README, \"Return to rest\")"));
     s.back().aliases = {"--zeno-time"};

@@ -35,6 +35,48 @@ std::vector<std::int8_t> collapse_statuses() {
   return codes;
 }
 
+std::vector<std::int8_t> unresolved_statuses() {
+  std::vector<std::int8_t> codes;
+  for (CaseStatus s : all_final_statuses())
+    if (is_unresolved(s)) codes.push_back(static_cast<std::int8_t>(s));
+  return codes;
+}
+
+std::int64_t unresolved_count(const std::vector<std::int8_t>& status) {
+  std::int64_t n = 0;
+  for (auto s : status) n += s != cube::kStatusNotRun && is_unresolved(static_cast<CaseStatus>(s)) ? 1 : 0;
+  return n;
+}
+
+std::string unresolved_note(std::int64_t count, const std::string& unit, const std::string& what) {
+  if (count == 0) return {};
+  return std::to_string(count) + " " + unit + " ended with the frame still rocking (rocking_at_end: the tail, at most "
+         "physics.max_tail_s with tail_s = \"until-rest\", ended first): unresolved, " + what;
+}
+
+std::vector<std::pair<std::string, std::int64_t>> uncounted_collapses(const std::vector<std::int8_t>& status,
+                                                                      const std::string& collapse) {
+  std::vector<std::pair<std::string, std::int64_t>> result;
+  const std::string listed = "," + collapse + ",";
+  for (CaseStatus s : all_final_statuses()) {
+    if (!is_collapse(s)) continue;
+    const std::string name(status_name(s));
+    if (listed.find("," + name + ",") != std::string::npos) continue;
+    const auto n = std::count(status.begin(), status.end(), static_cast<std::int8_t>(s));
+    if (n > 0) result.emplace_back(name, n);
+  }
+  return result;
+}
+
+std::vector<std::string> uncounted_collapse_notes(const std::vector<std::int8_t>& status, const std::string& collapse) {
+  std::vector<std::string> notes;
+  for (const auto& [name, n] : uncounted_collapses(status, collapse))
+    notes.push_back(std::to_string(n) + (n == 1 ? " run" : " runs") + " ended in " + name +
+                    ", which this study does not count as collapse ([ida] collapse = \"" + collapse +
+                    "\"): its curves call them safe");
+  return notes;
+}
+
 NotRun not_run(const cube::CubeReader& cube) {
   NotRun result;
   if (cube.layout().find_side_variable(kIdaRuns) != nullptr) {

@@ -24,7 +24,8 @@ const SettingTable<IdaOptions>& ida_settings() {
     for (CaseStatus status : all_final_statuses())
       if (is_collapse(status)) statuses.emplace_back(status_name(status));
     s.push_back(words_setting("collapse", &I::collapse, statuses,
-                              "statuses that count as collapse (a solver failure or time limit always does)"));
+                              "statuses that count as collapse (a solver failure, a time limit or an unresolved run, the frame still "
+                              "rocking when its tail ended, always does)"));
     s.push_back(number_setting("theta_limit_rad", &I::theta_limit_rad, "rad", Bound::kNonNegative,
                                "also a collapse: θ_max at or above this; 0: none"));
     return t;

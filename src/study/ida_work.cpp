@@ -15,7 +15,8 @@ namespace {
 
 /// Which verdicts end a curve's hunt: the [ida] collapse statuses, a failed run (its
 /// response is unknown: conservatively a collapse, as IDA practice counts non-convergence),
-/// and, with theta_limit_rad, a peak rotation at or above it.
+/// an unresolved run (the frame still rocking when its tail ended: never safe, so, for the
+/// same reason, a collapse), and, with theta_limit_rad, a peak rotation at or above it.
 class CollapseRule {
  public:
   explicit CollapseRule(const Study& study) : limit_rad_(study.ida->theta_limit_rad) {
@@ -28,7 +29,7 @@ class CollapseRule {
 
   bool operator()(std::int8_t status, double theta_max_rad) const {
     const auto s = static_cast<CaseStatus>(status);
-    if (is_failure(s) || status == parallel::kEvaluatorThrew) return true;
+    if (is_failure(s) || is_unresolved(s) || status == parallel::kEvaluatorThrew) return true;
     if (std::find(statuses_.begin(), statuses_.end(), status) != statuses_.end()) return true;
     return limit_rad_ > 0.0 && theta_max_rad >= limit_rad_;
   }

@@ -1,6 +1,11 @@
 // Record axis sources and the per-process record cache (see record_source.hpp).
 #include "pcrf/study/record_source.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+
 #include "pcrf/record/synthetic.hpp"
 
 namespace pcrf::study {
@@ -50,7 +55,65 @@ const std::vector<std::string>& RecordCache::notes(std::size_t index) { return l
 
 const std::string& RecordCache::title(std::size_t index) { return loaded(index).title; }
 
+std::string station_of(const std::string& record_name) {
+  const auto cut = record_name.rfind('_');
+  return cut == std::string::npos ? record_name : record_name.substr(0, cut);
+}
+
+namespace {
+double median_of(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+}  // namespace
+
+std::vector<double> p695_set_intensities(const std::vector<std::string>& stations, const std::vector<double>& pgv_m_s,
+                                         const std::vector<double>& measure) {
+  std::map<std::string, std::vector<std::size_t>> members;
+  for (std::size_t i = 0; i < stations.size(); ++i) members[stations[i]].push_back(i);
+  std::map<std::string, double> pair_pgv;
+  for (const auto& [station, which] : members) {
+    if (which.size() != 2)
+      throw std::invalid_argument("normalise = \"p695\" pairs the two horizontals of each station (records named "
+                                  "STATION_COMPONENT), but station \"" + station + "\" has " +
+                                  std::to_string(which.size()) + " component(s)");
+    pair_pgv[station] = std::sqrt(pgv_m_s[which[0]] * pgv_m_s[which[1]]);
+  }
+  std::vector<double> pgvs;
+  for (const auto& [station, pgv] : pair_pgv) pgvs.push_back(pgv);
+  const double median_pgv = median_of(pgvs);
+  std::vector<double> factor(stations.size()), normalised(stations.size());
+  for (std::size_t i = 0; i < stations.size(); ++i) {
+    factor[i] = median_pgv / pair_pgv.at(stations[i]);
+    normalised[i] = factor[i] * measure[i];
+  }
+  const double set_intensity = median_of(normalised);
+  std::vector<double> result(stations.size());
+  for (std::size_t i = 0; i < stations.size(); ++i) result[i] = set_intensity / factor[i];
+  return result;
+}
+
+double RecordCache::p695_intensity(std::size_t index, const IntensitySpec& spec) {
+  {
+    std::lock_guard lock(mutex_);
+    if (intensities_.at(index)) return *intensities_[index];
+  }
+  std::vector<std::string> stations;
+  std::vector<double> pgv, measure;
+  for (std::size_t i = 0; i < sources_.size(); ++i) {
+    stations.push_back(station_of(sources_[i].name));
+    pgv.push_back(peak_velocity_m_s(get(i)));
+    measure.push_back(intensity_of(get(i), spec));
+  }
+  const auto values = p695_set_intensities(stations, pgv, measure);
+  std::lock_guard lock(mutex_);
+  for (std::size_t i = 0; i < values.size(); ++i) intensities_[i] = values[i];
+  return values[index];
+}
+
 double RecordCache::intensity(std::size_t index, const IntensitySpec& spec) {
+  if (spec.normalise == SetNormalisation::kP695) return p695_intensity(index, spec);
   const StationRecord& record = station(index);
   std::lock_guard lock(mutex_);
   auto& value = intensities_.at(index);

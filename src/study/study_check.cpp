@@ -14,7 +14,8 @@
 namespace pcrf::study {
 namespace {
 
-void check_records(const Study& study, RecordCache& records, std::vector<std::string>& notes) {
+void check_records(const Study& study, RecordCache& records, std::vector<std::string>& notes,
+                   std::vector<std::string>& warnings) {
   for (std::size_t r = 0; r < study.records.size(); ++r) {
     const auto& source = study.records[r];
     try {
@@ -26,6 +27,10 @@ void check_records(const Study& study, RecordCache& records, std::vector<std::st
     }
     if (const auto problem = measures_problem(records.get(r)); !problem.empty())
       throw StudyError(source.declared_at + ": records: record \"" + source.name + "\": " + problem);
+    if (auto warning = record_warning(study, r, records.get(r)); !warning.empty()) {
+      if (study.run.warnings_as_errors) throw StudyError(warning + " ([run] warnings_as_errors)");
+      warnings.push_back(std::move(warning));
+    }
     if (!study.intensity) continue;
     if (component_measure(study.intensity->measure) == IntensityMeasure::kSa)
       if (const auto problem = sa_period_problem(study.intensity->period_s, records.get(r).dt_s()); !problem.empty()) {
@@ -37,6 +42,10 @@ void check_records(const Study& study, RecordCache& records, std::vector<std::st
     try {
       im = records.intensity(r, *study.intensity);
     } catch (const std::invalid_argument& e) {
+      if (study.intensity->normalise != SetNormalisation::kNone) {  // normalise = "p695" over records that are not pairs
+        const auto line = study.setting_lines.find("intensity.normalise");
+        throw StudyError((line != study.setting_lines.end() ? line->second : study.file) + ": intensity.normalise: " + e.what());
+      }
       throw StudyError(source.declared_at + ": records: record \"" + source.name + "\": " + e.what());
     }
     if (!(im > 0.0) || !std::isfinite(im))
@@ -79,9 +88,21 @@ void check_frames(const Study& study, const CaseSpace& space, CheckedStudy& chec
 
 }  // namespace
 
+std::string record_warning(const Study& study, std::size_t r, const GroundMotion& motion) {
+  const auto& source = study.records[r];
+  if (!source.file) return {};
+  const bool at2 = source.file->format == RecordFormat::kAt2;
+  const auto p = record_plausibility(motion, at2 ? AccelUnit::kG : source.file->unit);
+  if (p.problem.empty()) return {};
+  std::string line = source.declared_at + ": records: record \"" + source.name + "\" (" + source.describe() +
+                     "): " + p.problem + ": " + p.hint;
+  if (p.likely_unit) line += at2 ? " (an .AT2 file is read in g)" : " give units = \"" + to_string(*p.likely_unit) + "\"";
+  return line;
+}
+
 CheckedStudy check_study(const Study& study, const CaseSpace& space, RecordCache& records) {
   CheckedStudy checked;
-  check_records(study, records, checked.notes);
+  check_records(study, records, checked.notes, checked.warnings);
   check_frames(study, space, checked);
   for (const auto& h : study.histories) {
     const std::int64_t index = space.resolve(h);

@@ -17,6 +17,7 @@
 #include "pcrf/parallel/scheduler.hpp"
 #include "pcrf/parallel/work_queue.hpp"
 #include "pcrf/study/case_runner.hpp"
+#include "pcrf/study/cube_vocabulary.hpp"
 #include "pcrf/study/ida_work.hpp"
 #include "pcrf/study/progress.hpp"
 #include "pcrf/study/study_check.hpp"
@@ -73,6 +74,8 @@ MasterSetup prepare_master(const StudyRunOptions& options, const Prepared& p) {
   MasterSetup m;
   m.checked = check_study(p.study, *p.space, *p.records);
   for (const auto& note : m.checked.notes) std::cerr << "pcrf study: note: " << note << '\n';
+  if (options.progress != nullptr)
+    for (const auto& warning : m.checked.warnings) *options.progress << "pcrf study: warning: " << warning << '\n';
   if (options.check_only) return m;
   m.output = options.output.empty() ? default_output(options.study_file) : options.output;
   check_output_is_not_an_input(m.output, options, p.study);
@@ -323,6 +326,21 @@ class StopOnSignal final : public parallel::WorkSource {
   bool failed_ = false;  // master thread only
 };
 
+/// What the cube's statuses say that the study did not ask for: unresolved cases, and
+/// collapses of a status the [ida] collapse leaves out.
+std::vector<std::string> verdict_notes(const Study& study, const std::vector<std::int8_t>& status) {
+  std::vector<std::string> notes;
+  const std::string unit = study.ida ? "runs" : "cases";
+  const std::string note = vocabulary::unresolved_note(
+      vocabulary::unresolved_count(status), unit,
+      study.ida ? "counted as collapses by the IDA's search (conservative; a longer physics.max_tail_s resolves them)"
+                : "neither safe nor collapsed (a longer physics.max_tail_s resolves them)");
+  if (!note.empty()) notes.push_back(note);
+  if (study.ida)
+    for (auto& line : vocabulary::uncounted_collapse_notes(status, study.ida->collapse)) notes.push_back(std::move(line));
+  return notes;
+}
+
 StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::MpiSession& mpi,
                              std::ostream& progress, const StudyRunOptions& options) {
   const std::atomic<int>* stop_signal = options.stop_signal;
@@ -332,7 +350,7 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
     history_requests[m.checked.history_cases[h]] = &p.study.histories[h];
 
   StudySummary summary{p.space->size(), m.writer->done_count(), 0, 0, m.output, m.checked.fingerprint,
-                       m.checked.invalid_cases, m.checked.invalid_frames, m.checked.first_invalid, 0, {}};
+                       m.checked.invalid_cases, m.checked.invalid_frames, m.checked.first_invalid, 0, {}, {}, {}};
   ProgressMeter meter(summary.total, summary.already_done, p.study.run.progress_interval_s, progress);
   HistoryInbox inbox;
   // The cases come from the IDA's search, or from the list of cases not done yet.
@@ -376,6 +394,7 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
   if (stoppable.stopped()) summary.stopped_by = stop_signal->load();
   summary.error = sink.error();
   summary.error_cause = sink.error_cause();
+  summary.verdict_notes = verdict_notes(p.study, m.writer->status());
   return summary;
 }
 
@@ -426,7 +445,7 @@ std::optional<StudySummary> run_study(const StudyRunOptions& options, const para
   if (options.check_only) {
     if (!mpi.is_master()) return StudySummary{};
     const auto& c = setup.checked;
-    return StudySummary{prepared->space->size(), 0, 0, 0, {}, c.fingerprint, c.invalid_cases, c.invalid_frames, c.first_invalid, 0, {}};
+    return StudySummary{prepared->space->size(), 0, 0, 0, {}, c.fingerprint, c.invalid_cases, c.invalid_frames, c.first_invalid, 0, {}, {}, {}};
   }
   if (auto received = receive_study(mpi, prepared.get())) prepared = std::move(received);
 

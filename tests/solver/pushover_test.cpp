@@ -24,7 +24,7 @@ TEST(Pushover, ASlowRampFollowsTheStaticCurve) {
   for (double t = 0.0; t <= 30.0 + 1e-9; t += dt) a.push_back(rate * t);
   const GroundMotion ramp("ramp", dt, a);
   test::Trace trace;
-  const CaseResult r = solve_case(frame, ramp, {}, test::tight(), {}, trace.sink());
+  const CaseResult r = solve_case(frame, ramp, test::record_only(), test::tight(), {}, trace.sink());
   ASSERT_GT(r.theta_max_rad, 0.005);
   int checked = 0;
   for (const HistorySample& s : trace.samples) {

@@ -26,7 +26,7 @@ std::vector<Path> paths(Integrator integrator) {
   SolverSettings solver;
   solver.integrator = integrator;
   solver.fixed_step_s = 1e-3;
-  PhysicsOptions physics;
+  PhysicsOptions physics = test::record_only();
   const GroundMotion strong = test::strong_record(7, 12.0);
   PulseSpec pulse;
   pulse.amplitude_g = 1.6;

@@ -165,7 +165,7 @@ TEST(RockingSolver, FreeVibrationTailExtendsTheCaseUntilRest) {
   pulse.amplitude_g = 1.5;
   pulse.duration_s = 1.0;  // the record ends while the frame still rocks
   const GroundMotion rec = make_sine_pulse_train(pulse);
-  const CaseResult no_tail = solve_case(frame, rec, {}, {});
+  const CaseResult no_tail = solve_case(frame, rec, test::record_only(), {});
   EXPECT_EQ(no_tail.status, CaseStatus::kRockingAtEnd);
   EXPECT_DOUBLE_EQ(no_tail.t_end_s, 1.0);
   PhysicsOptions physics;
@@ -175,6 +175,22 @@ TEST(RockingSolver, FreeVibrationTailExtendsTheCaseUntilRest) {
   EXPECT_DOUBLE_EQ(tail.t_end_s, 21.0);
   EXPECT_GT(tail.impacts, no_tail.impacts);
   EXPECT_EQ(tail.theta_max_rad, no_tail.theta_max_rad);  // the peak came during the pulse
+  // The default tail goes on until the frame rests, and ends there: the same motion as the
+  // fixed tail (the frame rests well before 21 s), ending at the return to rest.
+  const CaseResult until_rest = solve_case(frame, rec, {}, {});
+  EXPECT_EQ(until_rest.status, CaseStatus::kAtRest);
+  EXPECT_GT(until_rest.t_end_s, 1.0);
+  EXPECT_LT(until_rest.t_end_s, 21.0);
+  EXPECT_EQ(until_rest.impacts, tail.impacts);
+  EXPECT_EQ(until_rest.theta_max_rad, tail.theta_max_rad);
+  // A cap shorter than the rocking leaves it unresolved: still rocking, not at rest.
+  PhysicsOptions capped;
+  capped.max_tail_s = 0.05;
+  const CaseResult short_cap = solve_case(frame, rec, capped, {});
+  EXPECT_EQ(short_cap.status, CaseStatus::kRockingAtEnd);
+  EXPECT_TRUE(is_unresolved(short_cap.status));
+  EXPECT_FALSE(has_verdict(short_cap.status));
+  EXPECT_DOUBLE_EQ(short_cap.t_end_s, 1.05);
 }
 
 TEST(RockingSolver, SkippingTheOmegaPeakLeavesItUnset) {

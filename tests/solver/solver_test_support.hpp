@@ -29,6 +29,14 @@ inline GroundMotion strong_record(std::uint64_t seed = 7, double duration_s = 12
   return make_stochastic(s);
 }
 
+/// Physics whose case ends with its record (tail_s = 0), for tests written about a fixed span
+/// of time: the default tail (until the frame rests) would run past it.
+inline PhysicsOptions record_only() {
+  PhysicsOptions physics;
+  physics.tail_s = 0.0;
+  return physics;
+}
+
 inline SolverSettings tight(Integrator i = Integrator::kCvodeAdams) {
   SolverSettings s;
   s.integrator = i;

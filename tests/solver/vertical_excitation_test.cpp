@@ -55,8 +55,8 @@ TEST_P(ConstantVertical, IsTheSameFrameInAChangedGravity) {
   heavier.gravity_m_s2 = (1.0 + c) * kGravity_m_s2;
   for (const Integrator integrator : {Integrator::kCvodeAdams, Integrator::kArkodeErk8, Integrator::kCvodeBdf}) {
     SCOPED_TRACE(to_string(integrator));
-    const CaseResult shaken = solve_case(frame, Excitation(h, &v), {}, test::tight(integrator));
-    const CaseResult in_gravity = solve_case(heavier, h, {}, test::tight(integrator));
+    const CaseResult shaken = solve_case(frame, Excitation(h, &v), test::record_only(), test::tight(integrator));
+    const CaseResult in_gravity = solve_case(heavier, h, test::record_only(), test::tight(integrator));
     ASSERT_GT(in_gravity.impacts, 0) << "the pulse must rock the frame";
     // The two differ only in how g + c·g and (1 + c)·g round: far below the tolerances.
     expect_same_response(shaken, in_gravity, 1e-9);
@@ -132,7 +132,7 @@ TEST(VerticalExcitation, EnergyChangesByTheVerticalWorkBetweenImpacts) {
   const std::size_t n = 20001;
   const GroundMotion h = record_of("still", n, dt, [](double) { return 0.0; });
   const GroundMotion v = record_of("up", n, dt, [](double t) { return 0.3 * kGravity_m_s2 * std::sin(2 * M_PI * 3.0 * t); });
-  PhysicsOptions physics;
+  PhysicsOptions physics = test::record_only();
   physics.theta0_rad = -0.02;
   test::Trace trace;
   const CaseResult r = solve_case(frame, Excitation(h, &v), physics, test::tight(), {}, trace.sink());

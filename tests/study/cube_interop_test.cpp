@@ -184,10 +184,11 @@ TEST(CubeInterop, StatsGivesMedianAndPercentilesAcrossRecords) {
   std::string header, first;
   std::getline(in, header);
   std::getline(in, first);
-  EXPECT_EQ(header, "kappa,cases,collapses,values,median,p16,p84");
+  EXPECT_EQ(header, "kappa,cases,collapses,values,median,p16,p84,unresolved");
   EXPECT_EQ(first.rfind("1.2,3,0,3,", 0), 0u) << first;
   const auto fields = numbers(std::regex_replace(first, std::regex(","), " "));
-  ASSERT_EQ(fields.size(), 7u);
+  ASSERT_EQ(fields.size(), 8u);
+  EXPECT_EQ(fields[7], 0.0);  // every frame came to rest or collapsed
   EXPECT_EQ(fields[4], across[1]);  // median of three
   EXPECT_DOUBLE_EQ(fields[5], across[0] + 0.32 * (across[1] - across[0]));  // h = (3 − 1) × 0.16
   const auto oat = test::run_command(pcrf() + " cube stats " + quoted(oat_cube() / "oat.h5") + " --by kappa -m impacts");

@@ -237,7 +237,7 @@ std::vector<BadStudy> bad_study_corpus(const std::filesystem::path& dir) {
   return {
       {"unknown_key.toml", pulse + "[axes]\nkapa = [1, 2]\n", "unknown_key.toml:4: axes.kapa: unknown key (did you mean 'kappa'?)"},
       {"unknown_table.toml", pulse + "[solvr]\nrtol = 1e-6\n", "unknown_table.toml:3: solvr: unknown key (did you mean 'solver'?)"},
-      {"wrong_type.toml", pulse + "[physics]\ntail_s = \"long\"\n", "wrong_type.toml:4: physics.tail_s: expected a number, got a string"},
+      {"wrong_type.toml", pulse + "[physics]\ntail_s = \"long\"\n", "wrong_type.toml:4: physics.tail_s: unknown value \"long\" (expected number ≥ 0 [s] or \"until-rest\")"},
       {"empty_list.toml", pulse + "[axes]\nscale = []\n", "empty_list.toml:4: axes.scale: empty list"},
       {"backwards.toml", pulse + "[axes]\nlambda = { from = 3, to = 2, count = 4 }\n", "axes.lambda.to: the range runs backwards"},
       {"zero_count.toml", pulse + "[axes]\nlambda = { from = 2, to = 3, count = 0 }\n", "axes.lambda.count: must be at least 1 (got 0)"},

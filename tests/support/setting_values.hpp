@@ -24,6 +24,7 @@ SettingValue other_value(const Setting<Target>& s, const SettingValue& current) 
       return s.choices.front();
     case SettingType::kNumber: break;
   }
+  if (std::holds_alternative<std::string>(current)) return 2.0;  // a word ("until-rest"): a number instead
   const double v = std::get<double>(current);
   if (s.bound == Bound::kFraction || s.bound == Bound::kOpenUnit) return v == 0.0 ? 0.5 : 0.5 * v;
   return v == 0.0 ? 0.5 : 2.0 * v;

@@ -44,6 +44,11 @@ double beta_total(double mu_t, char design_rating, char test_rating, char model_
 /// 1.0 for the others; μ_T above 8 counts as 8. Equals Tables 7-1a/7-1b to their two decimals.
 /// \throws std::invalid_argument for μ_T < 1 or T ≤ 0.
 double spectral_shape_factor(double period_s, double mu_t, Sdc sdc);
+/// The three pieces of the SSF: β₁(μ_T) (Eq. B-3, μ_T above 8 as 8), the far-field set's
+/// ε̄(T) (Eq. B-1, Figure B-3) and the target ε̄₀ of the SDC (Section B.3.2).
+double ssf_beta1(double mu_t);
+double far_field_epsilon(double period_s);
+double target_epsilon(Sdc sdc);
 
 /// Acceptable collapse margin ratio at a collapse probability `p` under the MCE:
 /// exp(−Φ⁻¹(p) β_TOT) (Section 7.4, Table 7-3 lists it for ACMR10% and ACMR20%).

@@ -56,6 +56,7 @@ struct GroupStats {
   std::vector<std::string> key;  ///< the group's value of each coordinate grouped by, in their order
   std::size_t cases = 0;    ///< selected cases in the group
   std::size_t set_apart = 0;  ///< cases whose status is set apart (e.g. collapses): not in the values
+  std::size_t unresolved = 0;  ///< cases whose status is PoolReport::unresolved: in neither
   std::size_t values = 0;   ///< finite values of the metric among the other cases
   double median = 0.0;
   double p16 = 0.0;
@@ -68,6 +69,7 @@ struct PoolReport {
   std::vector<std::string> expected;         ///< e.g. the record axis: pooling over it is the point
   std::vector<std::string>* pooled = nullptr;  ///< receives "NAME (N values)" for every other pooled axis
   std::vector<std::int8_t> set_apart;        ///< e.g. collapses, whose metrics stop at the collapse
+  std::vector<std::int8_t> unresolved;       ///< e.g. frames still moving at the end: counted in a column of their own
 };
 
 /// Groups the selected cases by the values of the coordinates `by` (one group per

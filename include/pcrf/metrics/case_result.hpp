@@ -41,9 +41,13 @@ CaseStatus parse_status(const std::string& text);
 const std::vector<CaseStatus>& all_final_statuses();
 /// A collapse: a tendon fractured or the frame overturned.
 bool is_collapse(CaseStatus status);
-/// The case says something about the frame: it survived (at rest, still rocking) or
-/// collapsed. A solver failure, a time limit, an invalid frame or a ground in free fall does not.
+/// The case says something about the frame: it came to rest or collapsed. A frame still
+/// rocking when its tail ended (unresolved), a solver failure, a time limit, an invalid frame
+/// or a ground in free fall does not.
 bool has_verdict(CaseStatus status);
+/// The frame was still rocking when the case ended (the record plus its tail): neither safe
+/// nor collapsed. Counted apart by every summary, never as safe.
+bool is_unresolved(CaseStatus status);
 /// What a case says about the frame, as verdict checks and benchmarks compare cases.
 enum class Verdict { kSurvived, kTendonFracture, kOverturned, kNone };
 Verdict verdict_of(CaseStatus status);

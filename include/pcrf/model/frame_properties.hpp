@@ -57,6 +57,26 @@ const std::vector<FramePropertyInfo>& frame_property_table();
 /// sampled at `points` rotations (≥ 2) and its peak located to 1e-10 rad.
 FrameProperties frame_properties(const Scene& eom, double fracture_strain, int points = 101);
 
+/// FEMA P-695's period-based ductility μ_T = δ_u / δ_y,eff (Section 6.3, Eqs. 6-5 to 6-7) of a
+/// one-storey frame, from its pushover curve (docs/p695_rocking_frame.md):
+///  - δ_u, the roof displacement where the frame loses its capacity: the first rotation past
+///    the peak at which the curve has fallen to 80 % of the peak, else the curve's end (a
+///    tendon's fracture, the overturning angle); the roof moves by 2h sin θ₁ (h the half
+///    column height: the column tops, rocking about the toes, neglecting b(1 − cos θ₁));
+///  - δ_y,eff = C0 (V_max/W) (g/4π²) max(T, T1)², C0 = 1 (one storey), T1 = 0 (a rigid frame
+///    has no elastic period), V_max/W the static capacity in g (`capacity`: the pushover
+///    peak, P-695's convention) or the uplift threshold (`uplift`: the strength at which a
+///    rigid frame first softens, the bilinear idealisation's yield).
+struct P695Ductility {
+  double ultimate_rotation_rad;    ///< θ₁ at δ_u [rad]
+  double ultimate_displacement_m;  ///< δ_u [m]
+  double yield_displacement_capacity_m;  ///< δ_y,eff with V_max = the pushover peak [m]
+  double yield_displacement_uplift_m;    ///< δ_y,eff with V_max = the uplift threshold [m]
+  double mu_t_capacity;            ///< δ_u / δ_y,eff (pushover peak): the engine's convention
+  double mu_t_uplift;              ///< δ_u / δ_y,eff (uplift threshold)
+};
+P695Ductility p695_ductility(const FrameProperties& p, double half_column_height_m, double period_s);
+
 /// The pushover curve's ground acceleration at |θ₁| = theta_rad [g]; NaN past the closing limit.
 double pushover_accel_g(const Scene& eom, double theta_rad);
 

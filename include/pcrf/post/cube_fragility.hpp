@@ -5,14 +5,15 @@
 /// A grid cube with an `intensity` axis gives stripes: at each intensity, the records whose
 /// case ended (at rest, rocking, fracture, overturned) and how many of them collapsed
 /// (tendon fracture or overturned) — or, when the cube holds verdict checks, the sum of the
-/// cases' `collapse_fraction` (the share of their perturbed runs that collapsed). Cases that failed (solver_failure, time_limit) or were
-/// not run count in neither and are reported. An IDA cube gives each record's collapse
+/// cases' `collapse_fraction` (the share of their perturbed runs that collapsed). Cases that failed (solver_failure, time_limit),
+/// were not run, or ended with the frame still rocking (unresolved) count in neither and are reported. An IDA cube gives each record's collapse
 /// intensity, right-censored at its last safe intensity where none was found (fitted by
 /// censored maximum likelihood); a curve whose runs ran out before it was bracketed
 /// (`curve_state` unbracketed) is censored at its last safe intensity and counted apart. The
 /// bootstrap resamples records.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -38,6 +39,10 @@ struct FrameFragility {
   /// max_intensity; each is right-censored at its last safe intensity (left out when it has
   /// none), never fitted as a collapse or as censored at the cap.
   std::optional<std::size_t> unbracketed;
+  /// Grid cubes: cases whose frame was still rocking at the end (rocking_at_end), in no
+  /// stripe: neither safe nor collapsed. (An IDA's search counts such runs as collapses.)
+  std::size_t unresolved = 0;
+  std::int64_t first_case = -1;   ///< one case of the frame (its parameters), -1 when none was selected
   std::optional<analysis::Lognormal> fit;
   analysis::BootstrapResult interval;
   /// What was fitted: the stripes (grid cube), or each curve's collapse intensity and the

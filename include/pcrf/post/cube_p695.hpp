@@ -17,7 +17,9 @@ namespace pcrf::post {
 struct P695Inputs {
   p695::Sdc sdc = p695::Sdc::kDmax;
   double period_s = 0.0;      ///< T [s]: max(C_u T_a, 0.25 s) or the frame's own convention
-  double mu_t = 3.0;          ///< period-based ductility μ_T
+  /// Period-based ductility μ_T of every frame; 0: each frame's own, by the engine's
+  /// convention (p695_ductility: δ_u over δ_y,eff from the pushover peak) at `period_s`.
+  double mu_t = 0.0;
   char design_rating = 'B';   ///< quality ratings A–D of design requirements,
   char test_rating = 'B';     ///< test data
   char model_rating = 'B';    ///< and modelling
@@ -25,6 +27,7 @@ struct P695Inputs {
 
 struct FrameP695 {
   std::string frame;
+  double mu_t = 0.0;  ///< the μ_T used (given, or the frame's own)
   p695::Assessment assessment;
 };
 

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "pcrf/record/ground_motion.hpp"
+#include "pcrf/record/record_readers.hpp"
 #include "pcrf/setting.hpp"
 
 namespace pcrf {
@@ -61,11 +62,24 @@ std::string_view intensity_units(IntensityMeasure measure);
 /// "peak ground acceleration", "spectral acceleration Sa(T = 1 s, 5 % damping)", …
 std::string intensity_long_name(IntensityMeasure measure, double period_s, double damping);
 
+/// How a study's records are brought to a common intensity.
+enum class SetNormalisation {
+  kNone,  ///< each record is scaled to the intensity by its own measure
+  /// FEMA P-695 Appendix A: each record (both components of a station) is first multiplied by
+  /// NM = median over stations of PGV_pair / its station's PGV_pair, PGV_pair the geometric
+  /// mean of the two horizontals' PGV; the normalised set is then scaled as a whole, its
+  /// intensity being the median of the normalised components' measures.
+  kP695,
+};
+SetNormalisation parse_set_normalisation(const std::string& text);  ///< "none" | "p695"
+std::string to_string(SetNormalisation normalisation);
+
 /// Which measure, and for Sa the oscillator.
 struct IntensitySpec {
   IntensityMeasure measure = IntensityMeasure::kPga;
   double period_s = 0.0;   ///< Sa only
   double damping = 0.05;   ///< Sa only
+  SetNormalisation normalise = SetNormalisation::kNone;  ///< studies only (the record set)
 };
 /// The record's value of the measure, in its units.
 /// \throws std::invalid_argument for a RotD measure (it needs a pair: station_intensity()).
@@ -95,6 +109,24 @@ inline constexpr double kMaxSaPeriod_s = 100.0;
 /// finite period up to kMaxSaPeriod_s, or below 2·dt, where the oscillator is not resolved);
 /// empty when it can. `dt_s` ≤ 0: the record is not known yet.
 std::string sa_period_problem(double period_s, double dt_s);
+
+/// A record read as `read_as` whose measures no earthquake record has: an unscaled PGA above
+/// kMaxPlausiblePga_g or below kMinPlausiblePga_g (a file in other units than it was read
+/// in), or a ratio PGV/PGA outside [kMinPgvPgaRatio_s, kMaxPgvPgaRatio_s] (a wrong time
+/// step). Empty `problem` when it looks like a record.
+struct RecordPlausibility {
+  std::string problem;                ///< "PGA 501 g is above 3 g", …
+  std::optional<AccelUnit> likely_unit;  ///< the unit that gives a plausible PGA, when one does
+  std::string hint;                   ///< "is this file in cm/s²?", or what else to check
+};
+RecordPlausibility record_plausibility(const GroundMotion& record, AccelUnit read_as);
+inline constexpr double kMaxPlausiblePga_g = 3.0;
+inline constexpr double kMinPlausiblePga_g = 0.01;
+/// PGV [m/s] over PGA [m/s²]: 0.023–0.73 s over the 192 files of ../shared/records (a
+/// vertical of Imperial Valley to Chi-Chi TCU068-N, a fling record); the bounds leave a
+/// factor of about 3 either side, so only a time step off by more than that is flagged.
+inline constexpr double kMinPgvPgaRatio_s = 0.007;
+inline constexpr double kMaxPgvPgaRatio_s = 2.0;
 
 /// Why a record's values cannot be measured (they overflow the measures: Arias intensity or
 /// the integrated velocity and displacement are not finite); empty when they can.

@@ -28,6 +28,9 @@ enum class AccelUnit { kG, kMeterPerSecond2, kCentimeterPerSecond2 };
 /// \throws std::invalid_argument naming the bad text.
 AccelUnit parse_accel_unit(const std::string& text);
 
+/// "g", "m/s2" or "cm/s2": the spelling parse_accel_unit takes and messages suggest.
+std::string to_string(AccelUnit unit);
+
 /// Factor that converts a value in `unit` to m/s² (g → pcrf::kGravity_m_s2).
 /// \throws std::invalid_argument for a value outside the enumeration.
 double to_m_s2(AccelUnit unit);

@@ -2,6 +2,7 @@
 /// \brief Physics options and integrator settings of one case.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -40,12 +41,19 @@ enum class Integrator {
 Integrator parse_integrator(const std::string& text);  ///< "cvode-bdf", "cvode-adams", "arkode-erk5", "arkode-erk8", "fixed-rk4"
 std::string to_string(Integrator i);
 
+/// tail_s = "until-rest": the free vibration after the record goes on until the frame rests.
+inline constexpr double kTailUntilRest = std::numeric_limits<double>::infinity();
+
 /// What the physics of a case includes. Every member is described (key, unit, default,
 /// check, doc) in physics_settings(); the comments here say only what the code needs.
 struct PhysicsOptions {
   UpliftCriterion uplift = UpliftCriterion::kPhysical;
   double fracture_strain = 0.01;   ///< total tendon strain at fracture [-]
-  double tail_s = 0.0;             ///< free vibration after the record [s]
+  /// Free vibration after the record [s]: a fixed time, or kTailUntilRest (the default): until
+  /// the frame is at rest or has collapsed, at most max_tail_s. A case still rocking when its
+  /// tail ends is `rocking_at_end`, and has no verdict (is_unresolved).
+  double tail_s = kTailUntilRest;
+  double max_tail_s = 60.0;        ///< cap of an until-rest tail [s]
   /// Return to rest when the remaining Zeno sequence would end within this time [s]
   /// (see README, "Return to rest").
   double zeno_time_s = 1e-4;

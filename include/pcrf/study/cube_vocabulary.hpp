@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "pcrf/cube/cube_layout.hpp"
@@ -90,5 +91,22 @@ CurveStates curve_states(const cube::CubeReader& cube);
 /// "132 IDA curves: 120 bracketed to the resolution, 10 right-censored at max_intensity,
 /// 2 unbracketed (max_runs ran out)"; empty when the cube has no curve states.
 std::string curve_states_text(const CurveStates& states);
+/// The statuses of a case without a verdict on a frame still moving (rocking_at_end): its
+/// tail ended before the frame came to rest.
+std::vector<std::int8_t> unresolved_statuses();
+/// Cases (IDA: runs) of `status` that are unresolved.
+std::int64_t unresolved_count(const std::vector<std::int8_t>& status);
+/// "N cases ended still rocking …: unresolved, …" (how `what` treats them), or "" when none.
+std::string unresolved_note(std::int64_t count, const std::string& unit, const std::string& what);
+
+/// Collapse statuses that occur in `status` but are not in `collapse` (an IDA's [ida]
+/// collapse, comma-separated), with how many cases ended in each.
+std::vector<std::pair<std::string, std::int64_t>> uncounted_collapses(const std::vector<std::int8_t>& status,
+                                                                      const std::string& collapse);
+/// One line per uncounted status: "413 runs ended in tendon_fracture, which this study does
+/// not count as collapse ([ida] collapse = overturned)".
+std::vector<std::string> uncounted_collapse_notes(const std::vector<std::int8_t>& status, const std::string& collapse);
+/// The attribute holding an IDA cube's collapse set (the [ida] table's `collapse`).
+inline constexpr const char* kIdaCollapseAttribute = "ida_collapse";
 
 }  // namespace pcrf::study::vocabulary

@@ -52,6 +52,19 @@ struct LoadedRecord {
 /// Reads or generates the motion. \throws RecordError or std::invalid_argument.
 LoadedRecord load_record(const RecordSource& source);
 
+/// The station of a record for FEMA P-695's pairs: its name up to the last '_'
+/// ("RSN1111_KOBE" for "RSN1111_KOBE_NIS000", "NGA_no_829" for "NGA_no_829_RIO270").
+std::string station_of(const std::string& record_name);
+
+/// FEMA P-695 Appendix A over a set of components, each named by its station (station_of):
+/// the normalisation factor of station k, NM_k = median_j(PGV_j) / PGV_k with PGV_k the
+/// geometric mean of its two components' PGV; the set's intensity S = median_i(NM_i IM_i)
+/// over all components; returned per component i: S / NM_i, the set intensity at which it
+/// enters unscaled (so the factor to a set intensity I is I / (S / NM_i) = NM_i I / S).
+/// \throws std::invalid_argument naming a station that has not exactly two components.
+std::vector<double> p695_set_intensities(const std::vector<std::string>& stations, const std::vector<double>& pgv_m_s,
+                                         const std::vector<double>& measure);
+
 /// Loads each record at most once per process (records are read by every rank that needs
 /// them, then scaled per case). Thread-safe.
 class RecordCache {
@@ -69,7 +82,10 @@ class RecordCache {
   const std::string& title(std::size_t index);
 
   /// The unscaled record's value of an intensity measure, computed once per record: of its
-  /// first component, or for a RotD measure of its horizontal pair (station_intensity).
+  /// first component, or for a RotD measure of its horizontal pair (station_intensity). With
+  /// spec.normalise = p695 the intensity at which the record is used unscaled in the
+  /// normalised set (p695_set_intensities). \throws std::invalid_argument when the records
+  /// do not form pairs.
   double intensity(std::size_t index, const IntensitySpec& spec);
 
   /// The factor record `index` is multiplied by for a value of the study's second axis: the
@@ -81,6 +97,8 @@ class RecordCache {
  private:
   std::vector<RecordSource> sources_;
   const LoadedRecord& loaded(std::size_t index);
+
+  double p695_intensity(std::size_t index, const IntensitySpec& spec);
 
   std::vector<std::unique_ptr<LoadedRecord>> loaded_;
   std::vector<std::optional<double>> intensities_;  // of the one measure a study uses

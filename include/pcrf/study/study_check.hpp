@@ -20,6 +20,10 @@ struct CheckedStudy {
   std::int64_t invalid_cases = 0;           ///< their cases (they end as invalid_frame)
   std::string first_invalid;                ///< "kappa=…, …: why", for the --check report
   std::vector<std::string> notes;           ///< "record \"R\": …" for each record's alignment and sign notes
+  /// Record files whose measures no earthquake record has (record_plausibility), one line
+  /// each naming the study line, the record and the likely `units`. With [run]
+  /// warnings_as_errors they are a StudyError instead.
+  std::vector<std::string> warnings;
 };
 
 /// Loads every record into `records` (so they are read once), builds every distinct frame
@@ -27,5 +31,9 @@ struct CheckedStudy {
 /// the history requests. Runs before any work starts and before the output file is
 /// created. \throws StudyError naming the file, the key and the problem.
 CheckedStudy check_study(const Study& study, const CaseSpace& space, RecordCache& records);
+
+/// The warning about record `r` of `study` (record_plausibility), or "" when it looks like a
+/// record; a synthetic record never warns.
+std::string record_warning(const Study& study, std::size_t r, const GroundMotion& motion);
 
 }  // namespace pcrf::study

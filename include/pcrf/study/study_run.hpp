@@ -54,6 +54,10 @@ struct StudySummary {
   std::string error;
   /// What a user can do about `error` (free space, or the cube was removed or replaced).
   cube::CubeError::Cause error_cause = cube::CubeError::Cause::kOther;
+  /// Lines for the end of the run about the cube's verdicts: cases unresolved (the frame
+  /// still rocking when its tail ended), and collapse statuses that occurred although the
+  /// study's [ida] collapse leaves them out.
+  std::vector<std::string> verdict_notes;
 };
 
 /// Default output of a study file.
