@@ -3,6 +3,7 @@
 #include "cube/hdf5_util.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <mutex>
 
 namespace pcrf::cube::h5 {
@@ -32,12 +33,21 @@ std::string library_reason() {
   return reason;
 }
 
+/// The operating system's error that HDF5 quotes in its reason ("errno = 28, error message =
+/// 'No space left on device'"), 0 when it quotes none. HDF5 1.14 reports a full disk from its
+/// file driver this way, where 1.10 failed earlier: the cause, and so the advice, is the same.
+int quoted_os_error(const std::string& reason) {
+  const std::string key = "errno = ";
+  const auto at = reason.find(key);
+  return at == std::string::npos ? 0 : std::atoi(reason.c_str() + at + key.size());
+}
+
 }  // namespace
 
 hid_t check(hid_t id, const std::string& what) {
   if (id >= 0) return id;
   const std::string reason = library_reason();
-  throw CubeError(reason.empty() ? what : what + " (" + reason + ")");
+  throw CubeError(reason.empty() ? what : what + " (" + reason + ")", CubeError::cause_of(quoted_os_error(reason)));
 }
 
 bool is_dataset(hid_t location, const std::string& name) {

@@ -92,7 +92,7 @@ TEST(CubeOutputs, StatsCsvIsItsDefaultOutputAndAFileCopy) {
   const auto dash = cube_command("stats g.h5 --by kappa -m theta_max_rad --csv -");
   ASSERT_EQ(plain.exit_code, 0) << plain.err;
   EXPECT_EQ(dash.out, plain.out);
-  EXPECT_EQ(lines_of(plain.out).front(), "kappa,cases,collapses,values,median,p16,p84");
+  EXPECT_EQ(lines_of(plain.out).front(), "kappa,cases,collapses,values,median,p16,p84,unresolved");
   const auto file = cube_command("stats g.h5 --by kappa -m theta_max_rad --csv s.csv --overwrite");
   ASSERT_EQ(file.exit_code, 0) << file.err;
   std::ifstream in(cubes() / "s.csv");
