@@ -22,9 +22,11 @@ import tempfile
 
 import xarray as xr
 
+# One definition of "bracketed" and of the collapse statuses, shared with the IDA benchmark.
+from ida_bench import COLLAPSE, runs_to_bracket  # noqa: E402  (bench/ is the script's folder)
+
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
 HERE = os.path.dirname(os.path.abspath(__file__))
-COLLAPSE = {2, 3, 4, 5}  # tendon_fracture, overturned, and failures, as the IDA counts them
 BUDGET = 16
 
 PULSES = """[[records]]
@@ -43,18 +45,6 @@ metrics = ["theta_max_rad"]
 """
 
 
-def runs_to_bracket(intensity, status, resolution):
-    """Runs of a curve, in order, until collapse / last safe - 1 <= resolution (None: never)."""
-    for n in range(1, len(intensity) + 1):
-        x, s = intensity[:n], status[:n]
-        collapses = [v for v, st in zip(x, s) if st in COLLAPSE]
-        if not collapses:
-            continue
-        c = min(collapses)
-        safe = [v for v, st in zip(x, s) if st not in COLLAPSE and v < c]
-        if safe and c / max(safe) - 1.0 <= resolution:
-            return n
-    return None
 
 
 def run_study(pcrf, text, folder, name):
