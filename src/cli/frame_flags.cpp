@@ -6,6 +6,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/setting_flags.hpp"
+#include "pcrf/api/frame_input.hpp"
 #include "pcrf/model/equation_of_motion.hpp"
 #include "pcrf/model/parameters.hpp"
 
@@ -57,7 +58,7 @@ std::unique_ptr<Scene> SceneFlags::scene() const {
   for (const auto& [flag, option] : pcrf ? rocker_options_ : frame_options_)
     if (option->count() > 0) throw UsageError(flag + " does not apply to --model " + model);
   try {
-    if (pcrf) return std::make_unique<EquationOfMotion>(make_frame(frame));
+    if (pcrf) return api::frame_scene(frame);
     RockerParameters p = rocker;
     if (block && p.beam_mass_ratio != 0.0) throw UsageError("--beam-mass-ratio applies to --model rocking-frame");
     if (restitution_option_->count() > 0) p.restitution = restitution;
