@@ -1,4 +1,6 @@
-// `pcrf cube info|export|stats|fragility|sensitivity|merge`: looks into result cubes.
+// `pcrf cube info|export|stats|fragility|sensitivity|p695|merge`: looks into result cubes.
+// One function per subcommand; stats, fragility, sensitivity and p695 compute a post::Report
+// (cube_reports.hpp) and write it as text, CSV (--csv) or JSON (--json).
 #include <CLI/CLI.hpp>
 
 #include <functional>
@@ -13,6 +15,7 @@
 #include "pcrf/io/run_lock.hpp"
 #include "pcrf/post/cube_fragility.hpp"
 #include "pcrf/post/cube_p695.hpp"
+#include "pcrf/post/cube_reports.hpp"
 #include "pcrf/post/cube_sensitivity.hpp"
 #include "pcrf/study/cube_vocabulary.hpp"
 
@@ -29,7 +32,8 @@ struct CubeArguments {
   std::vector<std::string> metrics;
   std::string metric;
   std::vector<std::string> where;
-  std::string by;
+  std::vector<std::string> by;
+  bool no_record_text = false;
   std::string output;
   std::string history;
   std::string points;
@@ -104,13 +108,45 @@ void add_where(CLI::App* cmd, CubeArguments& args) {
   cmd->add_option("-w,--where", args.where, "keep cases with NAME=VALUE (any coordinate; repeatable)");
 }
 
-}  // namespace
+/// --json and --csv of a reporting command: JSON alone on stdout; CSV to a file (beside the
+/// text on stdout) or, with `--csv -`, alone on stdout.
+void add_report_outputs(CLI::App* cmd, CubeArguments& args, const std::string& schema) {
+  cmd->add_flag("--json", args.json, "one JSON object on stdout, full precision (schema below), instead of the text");
+  cmd->add_option("--csv", args.csv, "also write the table as CSV (full precision) to this file; `-`: only the CSV, on stdout");
+  add_overwrite(cmd, args);
+  cmd->footer("--json writes {\"command\", the fields below, \"warnings\": [...], each table as a list of row objects, "
+              "\"columns\": {table: [{\"name\", \"units\", \"description\"}]}}; null where a value does not exist.\n" +
+              schema);
+}
 
-void add_cube_command(CLI::App& app) {
-  auto args = std::make_shared<CubeArguments>();
-  auto* cube_cmd = app.add_subcommand("cube", "Look into a result cube");
-  cube_cmd->require_subcommand(1);
+/// Writes a report: JSON, or the text (`text`, by default the table aligned) and the CSV
+/// copy of `table` by add_report_outputs()' rules; the warnings on stderr, each prefixed.
+void write_report(const post::Report& report, const std::string& table, const CubeArguments& args,
+                  const std::string& warning_prefix, const std::function<void(std::ostream&)>& text = {}) {
+  for (const auto& w : report.warnings) std::cerr << "pcrf cube " << report.command << ": " << warning_prefix << w << '\n';
+  if (args.json) {
+    post::write_json(report, std::cout);
+  } else if (!is_stdout(args.csv) || args.csv.empty()) {
+    if (text) text(std::cout);
+    else post::write_text(report.table(table), std::cout);
+  }
+  if (!args.csv.empty())
+    with_output(args.csv, {args.file}, args.overwrite, [&](std::ostream& out) { post::write_csv(report.table(table), out); });
+}
 
+/// Refuses --json with `--csv -` (both are stdout) and a CSV output that is the cube.
+void check_report_outputs(const CubeArguments& args) {
+  if (args.json && args.csv == "-") throw UsageError("--json and --csv - both write to stdout: choose one");
+  check_output(args.csv, {args.file}, args.overwrite);
+}
+
+std::string schema(const std::string& fields, const std::vector<std::pair<std::string, std::vector<post::Column>>>& tables) {
+  std::string text = "fields: " + fields + "\n";
+  for (const auto& [name, columns] : tables) text += "table " + name + ":\n" + post::describe_columns(columns);
+  return text;
+}
+
+void add_info(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
   auto* info = cube_cmd->add_subcommand("info", "Axes, metrics, completion and failures by status");
   info->add_option("FILE", args->file, "result cube")->required();
   info->add_flag("--json", args->json, "one JSON object for scripts (dimensions with values, metrics with units, …)");
@@ -129,12 +165,16 @@ void add_cube_command(CLI::App& app) {
       }
     });
   });
+}
 
+void add_export(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
   auto* exporter = cube_cmd->add_subcommand("export", "Metrics as a long CSV table, one row per case");
   exporter->add_option("FILE", args->file, "result cube")->required();
   exporter->add_option("-m,--metric", args->metrics, "metric to export (repeatable; default: all)");
   add_where(exporter, *args);
   exporter->add_option("-o,--output", args->output, "CSV file (default: stdout)");
+  exporter->add_flag("--no-record-text", args->no_record_text,
+                     "leave out the records' long texts (where each comes from, its title): the record column names it");
   add_overwrite(exporter, *args);
   auto* history = exporter->add_option("--history", args->history,
                                        "instead: the stored history group /histories/NAME, one row per time");
@@ -149,87 +189,96 @@ void add_cube_command(CLI::App& app) {
         return;
       }
       const auto chosen = selectors(args->where);
+      const auto leave_out = args->no_record_text ? study::vocabulary::record_text_coordinates() : std::vector<std::string>{};
       with_output(args->output, {args->file}, args->overwrite,
-                  [&](std::ostream& out) { cube::export_csv(reader, args->metrics, chosen, out); });
+                  [&](std::ostream& out) { cube::export_csv(reader, args->metrics, chosen, out, leave_out); });
     });
   });
+}
 
+void add_stats(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
   auto* stats = cube_cmd->add_subcommand(
-      "stats", "Median and 16th/84th percentiles of a metric across records, per value of a parameter; collapsed "
-               "cases (tendon fracture, overturned) are counted apart, not in the percentiles");
+      "stats", "Median and 16th/84th percentiles of a metric across records, per value of one or more coordinates; "
+               "collapsed cases (tendon fracture, overturned) are counted apart, not in the percentiles. "
+               "Default output: CSV on stdout");
   stats->add_option("FILE", args->file, "result cube")->required();
-  stats->add_option("--by", args->by, "coordinate to group by (e.g. kappa, scale)")->required();
+  stats->add_option("--by", args->by, "coordinate to group by (e.g. kappa, scale); repeat for combinations")->required();
   stats->add_option("-m,--metric", args->metric, "metric to summarize")->required();
   add_where(stats, *args);
+  add_report_outputs(stats, *args, schema("file, metric, metric_units, by (comma-separated)",
+                                          {{"groups", post::stats_columns()}}));
   stats->callback([args] {
     guarded(args->file, [&] {
+      check_report_outputs(*args);
       cube::CubeReader reader(args->file);
       note_partial("stats", args->file, reader);
-      std::vector<std::string> pooled;
-      const auto chosen = study::vocabulary::stats_selectors(reader.layout(), args->by, selectors(args->where));
-      const auto result = cube::group_stats(reader, args->by, args->metric, chosen,
-                                            {study::vocabulary::expected_pooling(), &pooled,
-                                             study::vocabulary::collapse_statuses()});
-      for (const auto& p : pooled) std::cerr << "pcrf cube stats: also pooled over " << p << '\n';
-      cube::print_stats(args->by, study::vocabulary::kCollapses, result, std::cout);
+      const auto report = post::stats_report(reader, {args->by, args->metric, selectors(args->where)});
+      // The text of stats is its CSV (as it always was): --csv FILE adds a copy.
+      write_report(report, "groups", *args, "",
+                   [&](std::ostream& out) { post::write_csv(report.table("groups"), out); });
     });
   });
+}
 
+void add_fragility(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
   auto* fragility = cube_cmd->add_subcommand(
       "fragility", "Lognormal collapse fragility of each frame (median, beta, 90 % bootstrap intervals)");
   fragility->add_option("FILE", args->file, "result cube with an intensity axis")->required();
   add_where(fragility, *args);
   fragility->add_option("--mce", args->mce, "MCE intensity (the measure's units): adds the collapse margin ratio");
-  fragility->add_option("--csv", args->csv, "also write the table as CSV to this file");
   fragility->add_option("--points", args->points,
                         "also write the fitted data as CSV to this file: stripes, or IDA collapse and censored intensities");
-  add_overwrite(fragility, *args);
+  add_report_outputs(fragility, *args,
+                     schema("file, intensity_units, mce", {{"frames", post::fragility_columns()},
+                                                           {"points", post::fragility_point_columns()}}));
   fragility->callback([args] {
     guarded(args->file, [&] {
-      if (args->mce && !(*args->mce > 0.0)) throw UsageError("--mce must be positive");
+      if (const auto problem = post::mce_problem(args->mce); !problem.empty()) throw UsageError(problem);
+      check_report_outputs(*args);
       const std::vector<std::filesystem::path> csv_inputs{args->file}, points_inputs{args->file, args->csv};
-      check_output(args->csv, csv_inputs, args->overwrite);
       check_output(args->points, is_stdout(args->csv) ? csv_inputs : points_inputs, args->overwrite);
       cube::CubeReader reader(args->file);
       note_partial("fragility", args->file, reader);
-      const auto frames = post::cube_fragility(reader, selectors(args->where));
-      const auto units = post::intensity_units(reader);
-      post::print_fragility(frames, units, args->mce, false, std::cout);
-      if (!args->csv.empty())
-        with_output(args->csv, csv_inputs, args->overwrite,
-                    [&](std::ostream& out) { post::print_fragility(frames, units, args->mce, true, out); });
+      const auto report = post::fragility_report(reader, {selectors(args->where), args->mce});
+      write_report(report, "frames", *args, "");
       if (!args->points.empty())
         with_output(args->points, is_stdout(args->csv) ? csv_inputs : points_inputs, args->overwrite,
-                    [&](std::ostream& out) { post::print_fragility_points(frames, out); });
+                    [&](std::ostream& out) { post::write_csv(report.table("points"), out); });
     });
   });
+}
 
+void add_sensitivity(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
   auto* sensitivity = cube_cmd->add_subcommand(
       "sensitivity", "First-order and total Sobol' indices of a saltelli cube, with 90 % bootstrap intervals");
   sensitivity->add_option("FILE", args->file, "result cube of a saltelli plan")->required();
   sensitivity->add_option("-m,--metric", args->metric, "a metric, or `collapse` (tendon fracture or overturned)")->required();
   add_where(sensitivity, *args);
   sensitivity->add_option("--by", args->by, "`record`: one set of indices per record (default: across records)");
-  sensitivity->add_option("--csv", args->csv, "also write the table as CSV to this file");
-  add_overwrite(sensitivity, *args);
+  add_report_outputs(sensitivity, *args,
+                     schema("file, metric, by_record (0 or 1)", {{"indices", post::sensitivity_columns()}}));
   sensitivity->callback([args] {
     guarded(args->file, [&] {
-      if (!args->by.empty() && args->by != "record") throw UsageError("--by takes `record` only");
-      check_output(args->csv, {args->file}, args->overwrite);
+      const bool by_record = !args->by.empty();
+      if (args->by.size() > 1 || (by_record && args->by.front() != "record")) throw UsageError("--by takes `record` only");
+      check_report_outputs(*args);
       cube::CubeReader reader(args->file);
       note_partial("sensitivity", args->file, reader);
-      const auto groups = post::cube_sensitivity(reader, args->metric, selectors(args->where), args->by == "record");
-      for (const auto& g : groups)
-        if (g.dropped > 0)
-          std::cerr << "pcrf cube sensitivity: " << g.record << ": " << g.dropped
-                    << " base samples left out (a frame without a value)\n";
-      post::print_sensitivity(groups, false, std::cout);
-      if (!args->csv.empty())
-        with_output(args->csv, {args->file}, args->overwrite,
-                    [&](std::ostream& out) { post::print_sensitivity(groups, true, out); });
+      write_report(post::sensitivity_report(reader, {args->metric, selectors(args->where), by_record}), "indices", *args, "");
     });
   });
+}
 
+/// The P-695 inputs of the command line, checked (post::p695_inputs).
+post::P695Inputs p695_inputs(const CubeArguments& args) {
+  try {
+    return post::p695_inputs(args.sdc, args.period_s, args.mu_t, args.ratings);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+}
+
+void add_p695(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
   auto* p695_cmd = cube_cmd->add_subcommand(
       "p695", "FEMA P-695 from an IDA or stripe cube: CMR, SSF, ACMR, beta_TOT, ACMR10%/20%, P(collapse|MCE), verdicts");
   p695_cmd->add_option("FILE", args->file, "result cube with an intensity axis (Sa(T) for P-695's own numbers)")->required();
@@ -241,36 +290,29 @@ void add_cube_command(CLI::App& app) {
   p695_cmd->add_option("--ratings", args->ratings,
                        "quality ratings A-D of design requirements, test data and modelling, e.g. B,B,C")
       ->capture_default_str();
-  p695_cmd->add_flag("--json", args->json, "one JSON object on stdout");
+  add_report_outputs(p695_cmd, *args,
+                     schema("file, sdc, period_s, mu_t, ratings, group_mean_acmr, group_acmr10, group (pass or fail), "
+                            "measure_problem (empty when the cube is at Sa(T))",
+                            {{"frames", post::p695_columns()}}));
   p695_cmd->callback([args] {
     guarded(args->file, [&] {
-      post::P695Inputs in;
-      std::string r = args->ratings;
-      std::erase(r, ',');
-      if (r.size() != 3) throw UsageError("--ratings: give three letters A-D, e.g. B,B,C (got '" + args->ratings + "')");
-      try {
-        in.sdc = p695::parse_sdc(args->sdc);
-        for (const char c : r) (void)p695::rating_beta(c);
-        if (!(args->mu_t >= 1.0)) throw std::invalid_argument("--mu-t must be at least 1");
-      } catch (const std::invalid_argument& e) {
-        throw UsageError(e.what());
-      }
-      in.period_s = p695::archetype_period_s(args->period_s);
-      in.mu_t = args->mu_t;
-      in.design_rating = r[0], in.test_rating = r[1], in.model_rating = r[2];
+      const post::P695Inputs in = p695_inputs(*args);
+      check_report_outputs(*args);
       cube::CubeReader reader(args->file);
       note_partial("p695", args->file, reader);
-      post::P695Report report;
+      post::P695Report result;
       try {
-        report = post::cube_p695(reader, selectors(args->where), in);
+        result = post::cube_p695(reader, selectors(args->where), in);
       } catch (const std::invalid_argument& e) {
         throw UsageError(e.what());
       }
-      if (!report.measure_problem.empty()) std::cerr << "pcrf cube p695: warning: " << report.measure_problem << '\n';
-      post::print_p695(report, in, args->json, std::cout);
+      write_report(post::p695_report(result, in, args->file), "frames", *args, "warning: ",
+                   [&](std::ostream& out) { post::print_p695(result, in, out); });
     });
   });
+}
 
+void add_merge(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
   auto* merge = cube_cmd->add_subcommand("merge", "Join the cubes of a sharded run (pcrf study --shard K/N) into one");
   merge->add_option("PARTS", args->parts, "the shards' cubes")->required();
   merge->add_option("-o,--output", args->output, "the merged cube")->required();
@@ -291,6 +333,21 @@ void add_cube_command(CLI::App& app) {
       std::cout << "merged " << parts.size() << " parts into " << args->output << '\n';
     });
   });
+}
+
+}  // namespace
+
+void add_cube_command(CLI::App& app) {
+  auto args = std::make_shared<CubeArguments>();
+  auto* cube_cmd = app.add_subcommand("cube", "Look into a result cube");
+  cube_cmd->require_subcommand(1);
+  add_info(cube_cmd, args);
+  add_export(cube_cmd, args);
+  add_stats(cube_cmd, args);
+  add_fragility(cube_cmd, args);
+  add_sensitivity(cube_cmd, args);
+  add_p695(cube_cmd, args);
+  add_merge(cube_cmd, args);
 }
 
 }  // namespace pcrf::cli

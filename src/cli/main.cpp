@@ -1,10 +1,14 @@
 // pcrf: command-line entry point. Thin layer: every sub-command lives in its own file.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <exception>
 #include <iostream>
+#include <string_view>
+#include <vector>
 
 #include "cli/commands.hpp"
+#include "pcrf/closest_word.hpp"
 #include "pcrf/io/checked_stream.hpp"
 #include "pcrf/printable.hpp"
 #include "pcrf/version.hpp"
@@ -17,6 +21,50 @@ int& exit_code() {
 }  // namespace pcrf::cli
 
 namespace {
+
+/// The deepest subcommand the command line reached: where an unknown flag was given.
+const CLI::App* reached(const CLI::App& app) {
+  const CLI::App* at = &app;
+  while (!at->get_subcommands().empty()) at = at->get_subcommands().front();
+  return at;
+}
+
+/// "cube stats": the subcommands' names down to `at`.
+std::string command_path(const CLI::App* at) {
+  std::string path;
+  for (; at != nullptr && at->get_parent() != nullptr; at = at->get_parent())
+    path = at->get_name() + (path.empty() ? "" : " " + path);
+  return path;
+}
+
+/// The flag `at` knows that `flag` most likely means: its own spelling with dashes for
+/// underscores (--tan_alpha, a study key, is --tan-alpha), else the closest flag.
+std::string meant_flag(const std::string& flag, const CLI::App& at) {
+  std::vector<std::string> names;
+  for (const CLI::Option* o : at.get_options()) {
+    for (const auto& l : o->get_lnames()) names.push_back("--" + l);
+    for (const auto& s : o->get_snames()) names.push_back("-" + s);
+  }
+  std::string word = flag.substr(0, flag.find('='));
+  std::string dashed = word;
+  std::replace(dashed.begin(), dashed.end(), '_', '-');
+  if (std::find(names.begin(), names.end(), dashed) != names.end()) return dashed;
+  return pcrf::closest_word(word, std::vector<std::string_view>(names.begin(), names.end()));
+}
+
+/// The first flag the command line did not know, as one line with the flag meant; empty
+/// when every argument left over is a value. A misspelt required flag is reported so, not
+/// as the required flag missing.
+std::string unknown_flag_message(const CLI::App& app) {
+  const CLI::App* at = reached(app);
+  for (const auto& arg : app.remaining(true)) {
+    if (arg.size() < 2 || arg[0] != '-' || (arg[1] >= '0' && arg[1] <= '9') || arg[1] == '.') continue;
+    const std::string path = command_path(at), hint = meant_flag(arg, *at);
+    return "pcrf: error: " + (path.empty() ? "" : path + ": ") + "unknown flag " + pcrf::printable(arg) +
+           (hint.empty() ? " (see pcrf " + (path.empty() ? "" : path + " ") + "--help)" : " (did you mean " + hint + "?)");
+  }
+  return {};
+}
 
 /// Runs the command line; every write to stdout is checked (OutputError), and what is
 /// buffered is written before an error line so that the two keep their order.
@@ -43,6 +91,7 @@ int run(CLI::App& app, int argc, char** argv, pcrf::io::CheckedStdout& out) {
   } catch (const CLI::CallForVersion& e) {
     return shown(app.exit(e));
   } catch (const CLI::ParseError& e) {
+    if (const auto unknown = unknown_flag_message(app); !unknown.empty()) return fail(unknown, 2);
     return fail("pcrf: error: " + pcrf::printable(e.what()) + " (see pcrf --help)", 2);
   } catch (const pcrf::cli::UsageError& e) {
     return fail("pcrf: error: " + pcrf::printable(e.what()), 2);

@@ -52,7 +52,7 @@ std::vector<bool> matching_positions(const Coordinate& c, const std::string& tex
 }
 
 std::string status_text(const CubeLayout& layout, std::int8_t value) {
-  if (value == kStatusNotRun) return "not_run";
+  if (value == kStatusNotRun) return kStatusNotRunName;
   for (const auto& f : layout.status_flags)
     if (f.value == value) return f.meaning;
   return std::to_string(value);
@@ -234,7 +234,7 @@ void export_history_csv(const CubeReader& cube, const std::string& name, std::os
 }
 
 void export_csv(const CubeReader& cube, const std::vector<std::string>& metrics,
-                const std::vector<Selector>& selectors, std::ostream& out) {
+                const std::vector<Selector>& selectors, std::ostream& out, const std::vector<std::string>& leave_out) {
   const auto& layout = cube.layout();
   std::vector<std::string> names = metrics;
   if (names.empty()) {
@@ -245,8 +245,11 @@ void export_csv(const CubeReader& cube, const std::vector<std::string>& metrics,
   for (const auto& name : names) values.push_back(per_case_values(cube, name));
   const auto selected = select_cases(layout, selectors);
   const auto status = cube.read_status();
+  std::vector<const Coordinate*> shown;
   std::vector<std::size_t> coordinate_dims;
   for (const auto& c : layout.coordinates) {
+    if (std::find(leave_out.begin(), leave_out.end(), c.name) != leave_out.end()) continue;
+    shown.push_back(&c);
     coordinate_dims.push_back(dimension_index(layout, c.dimension));
     out << csv_field(c.name) << ',';
   }
@@ -258,65 +261,74 @@ void export_csv(const CubeReader& cube, const std::vector<std::string>& metrics,
     const auto k = static_cast<std::size_t>(i);
     if (!selected[k]) continue;
     const auto coords = unravel(i, shape);
-    for (std::size_t c = 0; c < layout.coordinates.size(); ++c)
-      out << csv_field(layout.coordinates[c].label(coords[coordinate_dims[c]])) << ',';
+    for (std::size_t c = 0; c < shown.size(); ++c) out << csv_field(shown[c]->label(coords[coordinate_dims[c]])) << ',';
     out << status_text(layout, status[k]);
     for (const auto& v : values) out << ',' << csv_number(v[k]);
     out << '\n';
   }
 }
 
-std::vector<GroupStats> group_stats(const CubeReader& cube, const std::string& by, const std::string& metric,
+std::vector<GroupStats> group_stats(const CubeReader& cube, const std::vector<std::string>& by, const std::string& metric,
                                     const std::vector<Selector>& selectors, const PoolReport& pool) {
   const auto& layout = cube.layout();
-  const Coordinate& group_by = coordinate(layout, by);
+  if (by.empty()) throw CubeError("statistics need at least one coordinate to group by");
+  std::vector<const Coordinate*> group_by;
+  std::vector<std::size_t> by_dims;
+  for (const auto& name : by) {
+    group_by.push_back(&coordinate(layout, name));
+    by_dims.push_back(dimension_index(layout, group_by.back()->dimension));
+  }
   const auto selected = select_cases(layout, selectors);
   const auto values = cube.read_metric(metric);
   const auto shape = layout.shape();
-  const std::size_t by_dim = dimension_index(layout, group_by.dimension);
 
+  struct Group {
+    std::vector<double> samples;
+    std::size_t cases = 0, apart = 0;
+  };
   const auto status = pool.set_apart.empty() ? std::vector<std::int8_t>{} : cube.read_status();
-  std::vector<std::vector<double>> samples(group_by.size());
-  std::vector<std::size_t> cases(group_by.size(), 0), apart(group_by.size(), 0);
+  std::map<std::vector<std::size_t>, Group> by_position;  // positions on the `by` coordinates → cases
   std::vector<std::vector<bool>> seen(shape.size());
   for (std::size_t d = 0; d < shape.size(); ++d) seen[d].assign(shape[d], false);
+  std::vector<std::size_t> key(by.size());
   for (std::int64_t i = 0; i < layout.case_count(); ++i) {
     const auto k = static_cast<std::size_t>(i);
     if (!selected[k]) continue;
     const auto coords = unravel(i, shape);
     for (std::size_t d = 0; d < shape.size(); ++d) seen[d][coords[d]] = true;
-    const std::size_t g = coords[by_dim];
-    ++cases[g];
+    for (std::size_t b = 0; b < by.size(); ++b) key[b] = coords[by_dims[b]];
+    Group& g = by_position[key];
+    ++g.cases;
     if (!status.empty() && std::find(pool.set_apart.begin(), pool.set_apart.end(), status[k]) != pool.set_apart.end())
-      ++apart[g];
+      ++g.apart;
     else if (std::isfinite(values[k]))
-      samples[g].push_back(values[k]);
+      g.samples.push_back(values[k]);
   }
   if (pool.pooled != nullptr) {
     for (std::size_t d = 0; d < shape.size(); ++d) {
       const auto n = std::count(seen[d].begin(), seen[d].end(), true);
       const auto& name = layout.dimensions[d].name;
       const bool expected = std::find(pool.expected.begin(), pool.expected.end(), name) != pool.expected.end();
-      if (d != by_dim && !expected && n > 1) pool.pooled->push_back(name + " (" + std::to_string(n) + " values)");
+      const bool grouped = std::find(by_dims.begin(), by_dims.end(), d) != by_dims.end();
+      if (!grouped && !expected && n > 1) pool.pooled->push_back(name + " (" + std::to_string(n) + " values)");
     }
   }
   // Groups keyed by value text: an auxiliary coordinate may repeat a value along its dimension.
   std::vector<GroupStats> stats;
-  std::map<std::string, std::size_t> position;
-  for (std::size_t g = 0; g < group_by.size(); ++g) {
-    if (cases[g] == 0) continue;
-    const std::string value = group_by.label(g);
-    auto [it, inserted] = position.emplace(value, stats.size());
-    if (inserted) stats.push_back({value, 0, 0, 0, 0, 0, 0});
-    stats[it->second].cases += cases[g];
-    stats[it->second].set_apart += apart[g];
-  }
-  std::vector<std::vector<double>> merged(stats.size());
-  for (std::size_t g = 0; g < group_by.size(); ++g)
-    if (cases[g] > 0) {
-      auto& target = merged[position[group_by.label(g)]];
-      target.insert(target.end(), samples[g].begin(), samples[g].end());
+  std::vector<std::vector<double>> merged;
+  std::map<std::vector<std::string>, std::size_t> position;
+  for (auto& [positions, g] : by_position) {
+    std::vector<std::string> labels;
+    for (std::size_t b = 0; b < by.size(); ++b) labels.push_back(group_by[b]->label(positions[b]));
+    auto [it, inserted] = position.emplace(labels, stats.size());
+    if (inserted) {
+      stats.push_back({labels, 0, 0, 0, 0, 0, 0});
+      merged.emplace_back();
     }
+    stats[it->second].cases += g.cases;
+    stats[it->second].set_apart += g.apart;
+    merged[it->second].insert(merged[it->second].end(), g.samples.begin(), g.samples.end());
+  }
   for (std::size_t s = 0; s < stats.size(); ++s) {
     std::sort(merged[s].begin(), merged[s].end());
     stats[s].values = merged[s].size();
@@ -325,14 +337,6 @@ std::vector<GroupStats> group_stats(const CubeReader& cube, const std::string& b
     stats[s].p84 = analysis::percentile_sorted(merged[s], 0.84);
   }
   return stats;
-}
-
-void print_stats(const std::string& by, const std::string& set_apart_name, const std::vector<GroupStats>& stats,
-                 std::ostream& out) {
-  out << csv_field(by) << ",cases," << set_apart_name << ",values,median,p16,p84\n";
-  for (const auto& s : stats)
-    out << csv_field(s.value) << ',' << s.cases << ',' << s.set_apart << ',' << s.values << ',' << csv_number(s.median) << ','
-        << csv_number(s.p16) << ',' << csv_number(s.p84) << '\n';
 }
 
 }  // namespace pcrf::cube

@@ -197,6 +197,10 @@ void CubeWriter::Impl::create(const std::filesystem::path& target) {
     flag_values.push_back(f.value);
     flag_meanings.push_back(f.meaning);
   }
+  if (std::find(flag_values.begin(), flag_values.end(), kStatusNotRun) == flag_values.end()) {
+    flag_values.push_back(kStatusNotRun);  // the fill: a case not run (yet)
+    flag_meanings.push_back(kStatusNotRunName);
+  }
   h5::write_attribute(status_set, "long_name", std::string("how the case ended"));
   h5::write_attribute(status_set, "flag_values", flag_values);
   h5::write_attribute(status_set, "flag_meanings", join(flag_meanings));
@@ -214,11 +218,10 @@ h5::Handle CubeWriter::Impl::create_cube_variable(const std::string& name, hid_t
   h5::check(H5Pset_deflate(dcpl, kDeflateLevel), what(problem));
   h5::check(H5Pset_fill_value(dcpl, memory_type, fill), what(problem));
   auto d = h5::dataset(H5Dcreate2(file, name.c_str(), file_type, s, H5P_DEFAULT, dcpl, H5P_DEFAULT), what(problem));
-  // _FillValue has the variable's own type, as netCDF requires.
-  if (memory_type == H5T_NATIVE_INT8)
-    h5::write_int8_attribute(d, "_FillValue", *static_cast<const std::int8_t*>(fill));
-  else
-    h5::write_attribute(d, "_FillValue", *static_cast<const double*>(fill));
+  // The metrics' _FillValue is NaN (a value that does not exist). The status has none: its
+  // fill (not run) is one of its CF flags, and an integer with a _FillValue reaches xarray as
+  // floats with NaN, where it must stay an integer with flag meanings.
+  if (memory_type != H5T_NATIVE_INT8) h5::write_attribute(d, "_FillValue", *static_cast<const double*>(fill));
   for (std::size_t i = 0; i < scales.size(); ++i)
     h5::check(H5DSattach_scale(d, scales[i], static_cast<unsigned>(i)), what(problem + ": cannot attach dimensions"));
   const auto auxiliary = layout.auxiliary_names();

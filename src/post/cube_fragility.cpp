@@ -2,7 +2,6 @@
 #include "pcrf/post/cube_fragility.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <map>
 
 #include "pcrf/metrics/case_result.hpp"
@@ -33,9 +32,21 @@ std::string frame_label(const cube::CubeLayout& layout, const std::vector<std::s
   return label.empty() ? "all" : label;
 }
 
+/// The frame of a case as -w selectors (see FrameFragility::selection).
+std::string frame_selection(const cube::CubeLayout& layout, const std::vector<std::size_t>& coords, std::size_t record_dim,
+                            std::size_t level_dim) {
+  std::string selection;
+  for (std::size_t d = 0; d < coords.size(); ++d) {
+    if (d == record_dim || d == level_dim || layout.dimensions[d].size < 2) continue;
+    const auto& name = layout.dimensions[d].name;
+    selection += (selection.empty() ? "" : ",") + name + "=" + layout.find_coordinate(name)->label(coords[d]);
+  }
+  return selection;
+}
+
 /// Per frame: per record, per intensity, the case's status (or not-run).
 struct FrameCases {
-  std::string label;
+  std::string label, selection;
   std::vector<std::vector<std::int8_t>> status;  // [record][level]
   std::vector<std::vector<double>> fraction;     // [record][level]: collapse_fraction, NaN if not checked
 };
@@ -67,6 +78,7 @@ std::vector<FrameFragility> ida_fragility(const cube::CubeReader& cube, const st
 
   std::map<std::string, std::vector<std::size_t>> curves_of;  // frame label → its curves run, by record
   std::map<std::string, std::size_t> not_run_of;
+  std::map<std::string, std::string> selection_of;
   std::vector<std::string> order;
   for (std::size_t curve = 0; curve < collapse.size(); ++curve) {
     if (!selected[curve * runs]) continue;
@@ -74,7 +86,10 @@ std::vector<FrameFragility> ida_fragility(const cube::CubeReader& cube, const st
     coords.push_back(0);
     const std::string label = frame_label(layout, coords, record_dim, point_dim);
     auto [it, inserted] = curves_of.try_emplace(label);
-    if (inserted) order.push_back(label);
+    if (inserted) {
+      order.push_back(label);
+      selection_of[label] = frame_selection(layout, coords, record_dim, point_dim);
+    }
     if (runs_of[curve] > 0.0) it->second.push_back(curve);
     else ++not_run_of[label];  // NaN: no part ran it (a partial merge): left out of the fit
   }
@@ -83,6 +98,7 @@ std::vector<FrameFragility> ida_fragility(const cube::CubeReader& cube, const st
     const auto& curves = curves_of.at(label);
     FrameFragility out;
     out.frame = label;
+    out.selection = selection_of[label];
     out.records = records;
     auto fit = [&](const std::vector<std::size_t>& sample) {
       std::vector<double> observed, censored;
@@ -137,6 +153,7 @@ std::vector<FrameFragility> cube_fragility(const cube::CubeReader& cube, const s
     if (inserted) {
       order.push_back(label);
       it->second.label = label;
+      it->second.selection = frame_selection(layout, coords, record_dim, level_dim);
       it->second.status.assign(records, std::vector<std::int8_t>(levels.size(), cube::kStatusNotRun));
       it->second.fraction.assign(records, std::vector<double>(levels.size(), std::nan("")));
     }
@@ -149,6 +166,7 @@ std::vector<FrameFragility> cube_fragility(const cube::CubeReader& cube, const s
     const FrameCases& f = frames.at(label);
     FrameFragility out;
     out.frame = label;
+    out.selection = f.selection;
     out.records = records;
     auto stripes_of = [&](const std::vector<std::size_t>& sample) {
       std::vector<analysis::Stripe> stripes(levels.size());
@@ -182,56 +200,6 @@ std::vector<FrameFragility> cube_fragility(const cube::CubeReader& cube, const s
     result.push_back(std::move(out));
   }
   return result;
-}
-
-void print_fragility(const std::vector<FrameFragility>& frames, const std::string& units, std::optional<double> mce,
-                     bool csv, std::ostream& out) {
-  const std::string u = units.empty() ? "" : " [" + units + "]";
-  auto number = [](double v) {
-    if (!std::isfinite(v)) return std::string();
-    char buffer[32];
-    std::snprintf(buffer, sizeof buffer, "%.4g", v);
-    return std::string(buffer);
-  };
-  const std::vector<std::string> header{"frame", "records", "cases", "collapses", "failed", "median" + u,
-                                        "median_5%" + u, "median_95%" + u, "beta", "beta_5%", "beta_95%"};
-  std::vector<std::vector<std::string>> rows;
-  for (const auto& f : frames) {
-    const double nan = std::nan("");
-    const auto& fit = f.fit;
-    std::vector<std::string> row{f.frame, std::to_string(f.records), std::to_string(f.cases), number(f.collapses),
-                                 std::to_string(f.failed), number(fit ? fit->median : nan),
-                                 number(fit ? f.interval.median.low : nan), number(fit ? f.interval.median.high : nan),
-                                 number(fit ? fit->beta : nan), number(fit ? f.interval.beta.low : nan),
-                                 number(fit ? f.interval.beta.high : nan)};
-    if (mce) row.push_back(number(fit ? fit->median / *mce : nan));
-    rows.push_back(std::move(row));
-  }
-  auto columns = header;
-  if (mce) columns.push_back("CMR");
-  rows.insert(rows.begin(), columns);
-  cube::print_table(rows, csv, out);
-}
-
-
-void print_fragility_points(const std::vector<FrameFragility>& frames, std::ostream& out) {
-  out << "frame,kind,intensity,trials,collapses\n";
-  char line[256];
-  for (const auto& f : frames) {
-    const std::string frame = cube::csv_field(f.frame);
-    for (const auto& s : f.stripes) {
-      std::snprintf(line, sizeof line, ",stripe,%.10g,%.10g,%.10g\n", s.intensity, s.trials, s.collapses);
-      out << frame << line;
-    }
-    for (double x : f.collapse_intensities) {
-      std::snprintf(line, sizeof line, ",collapse,%.10g,1,1\n", x);
-      out << frame << line;
-    }
-    for (double x : f.censored_intensities) {
-      std::snprintf(line, sizeof line, ",censored,%.10g,1,0\n", x);
-      out << frame << line;
-    }
-  }
 }
 
 }  // namespace pcrf::post

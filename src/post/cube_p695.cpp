@@ -6,7 +6,6 @@
 #include <stdexcept>
 #include <utility>
 
-#include "pcrf/json.hpp"
 #include "pcrf/number_text.hpp"
 #include "pcrf/record/intensity.hpp"
 
@@ -47,38 +46,7 @@ P695Report cube_p695(const cube::CubeReader& cube, const std::vector<cube::Selec
   return report;
 }
 
-void print_p695(const P695Report& report, const P695Inputs& in, bool json, std::ostream& out) {
-  if (json) {
-    std::vector<JsonObject> frames;
-    for (const auto& f : report.frames) {
-      const auto& a = f.assessment;
-      JsonObject o;
-      o.text("frame", f.frame)
-          .number("s_ct_g", a.s_ct_g)
-          .number("s_mt_g", a.s_mt_g)
-          .number("cmr", a.cmr)
-          .number("ssf", a.ssf)
-          .number("acmr", a.acmr)
-          .number("beta_rtr", a.beta_rtr)
-          .number("beta_total", a.beta_total)
-          .number("acmr10", a.acmr10)
-          .number("acmr20", a.acmr20)
-          .number("p_collapse_mce", a.p_collapse_mce)
-          .text("individual", a.passes_individual ? "pass" : "fail");
-      frames.push_back(std::move(o));
-    }
-    JsonObject root;
-    root.text("sdc", p695::to_string(in.sdc))
-        .number("period_s", in.period_s)
-        .number("mu_t", in.mu_t)
-        .objects("frames", frames)
-        .number("group_mean_acmr", report.group.mean_acmr)
-        .number("group_acmr10", report.group.acmr10)
-        .text("group", report.group.passes ? "pass" : "fail")
-        .text("measure_problem", report.measure_problem);
-    out << root.str() << '\n';
-    return;
-  }
+void print_p695(const P695Report& report, const P695Inputs& in, std::ostream& out) {
   char line[256];
   std::snprintf(line, sizeof line, "FEMA P-695, SDC %s, T = %g s, mu_T = %g, ratings %c/%c/%c\n",
                 p695::to_string(in.sdc).c_str(), in.period_s, in.mu_t, in.design_rating, in.test_rating, in.model_rating);

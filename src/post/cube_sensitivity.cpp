@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <cstdio>
 #include <map>
 
 #include "pcrf/metrics/case_result.hpp"
@@ -104,22 +103,6 @@ std::vector<SensitivityGroup> cube_sensitivity(const cube::CubeReader& cube, con
     groups.push_back(group_of("all", all));
   }
   return groups;
-}
-
-void print_sensitivity(const std::vector<SensitivityGroup>& groups, bool csv, std::ostream& out) {
-  auto number = [](double v) {
-    char buffer[32];
-    std::snprintf(buffer, sizeof buffer, "%.3f", v);
-    return std::isfinite(v) ? std::string(buffer) : std::string();
-  };
-  std::vector<std::vector<std::string>> rows{{"record", "parameter", "S1", "S1_5%", "S1_95%", "ST", "ST_5%", "ST_95%", "samples"}};
-  for (const auto& g : groups)
-    for (std::size_t i = 0; i < g.parameters.size(); ++i) {
-      const analysis::SobolIndex s = i < g.indices.size() ? g.indices[i] : analysis::SobolIndex{kNaN, kNaN, kNaN, kNaN, kNaN, kNaN};
-      rows.push_back({g.record, g.parameters[i], number(s.s1), number(s.s1_low), number(s.s1_high), number(s.st),
-                      number(s.st_low), number(s.st_high), std::to_string(g.samples)});
-    }
-  cube::print_table(rows, csv, out);
 }
 
 }  // namespace pcrf::post

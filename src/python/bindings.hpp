@@ -14,5 +14,6 @@ void bind_frame(py::module_& m);     ///< frame(**keywords): a frame's propertie
 void bind_record(py::module_& m);    ///< record_measures(**keywords): as `pcrf record`
 void bind_study(py::module_& m);     ///< study(source, **keywords): a study in process, as `pcrf study`
 void bind_settings(py::module_& m);  ///< settings(): every setting's description, as `pcrf settings`
+void bind_cube(py::module_& m);      ///< cube_report(kind, file, **keywords): as `pcrf cube KIND --json`
 
 }  // namespace pcrf::python

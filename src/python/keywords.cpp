@@ -10,7 +10,7 @@
 #include "pcrf/solver/settings.hpp"
 #include "pcrf/study/study.hpp"
 #include "pcrf/units.hpp"
-#include "study/toml_fields.hpp"  // closest_word: the study parser's suggestion for a mistyped key
+#include "pcrf/closest_word.hpp"
 
 namespace pcrf::python {
 
@@ -159,7 +159,7 @@ void Keywords::finish() const {
   if (given_.empty()) return;
   const std::string& key = given_.begin()->first;
   const std::vector<std::string_view> known(known_.begin(), known_.end());
-  const std::string hint = study::detail::closest_word(key, known);
+  const std::string hint = closest_word(key, known);
   throw api::InputError("unknown keyword '" + key + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
 }
 

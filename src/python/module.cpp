@@ -18,4 +18,5 @@ PYBIND11_MODULE(_pcrf, m) {
   pcrf::python::bind_record(m);
   pcrf::python::bind_study(m);
   pcrf::python::bind_settings(m);
+  pcrf::python::bind_cube(m);
 }

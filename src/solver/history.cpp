@@ -3,6 +3,19 @@
 
 namespace pcrf {
 
+const std::vector<HistoryEventName>& history_events() {
+  static const std::vector<HistoryEventName> events = {
+      {kEventUplift, "uplift", "the frame leaves rest"},
+      {kEventImpact, "impact", "theta1 returns to 0: velocity before and after in the row"},
+      {kEventThetaPeak, "theta_peak", "local extremum of theta1 (located exactly)"},
+      {kEventOmegaPeak, "omega_peak", "local extremum of the angular velocity (located exactly)"},
+      {kEventRest, "rest", "the frame is put at rest"},
+      {kEventStop, "stop", "tendon fracture or overturning: the case ends"},
+      {kEventEnd, "end", "the end of the computed time (record plus tail)"},
+  };
+  return events;
+}
+
 const std::vector<HistoryColumn>& history_columns() {
   static const std::vector<HistoryColumn> columns = {
       {"t_s", "s", "time", &HistorySample::t_s},

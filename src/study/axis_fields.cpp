@@ -29,7 +29,7 @@ std::vector<double> read_range(const toml::table& table, const std::string& path
   std::vector<double> values(static_cast<std::size_t>(count));
   for (std::size_t i = 0; i < values.size(); ++i) {
     const double t = count == 1 ? 0.0 : static_cast<double>(i) / static_cast<double>(count - 1);
-    values[i] = spacing == "log" ? from * std::pow(to / from, t) : from + t * (to - from);
+    values[i] = shortest_decimal_near(spacing == "log" ? from * std::pow(to / from, t) : from + t * (to - from));
   }
   values.front() = from;  // exact ends, whatever the rounding in between
   values.back() = to;

@@ -23,6 +23,8 @@ std::vector<cube::Selector> stats_selectors(const cube::CubeLayout& layout, cons
   return selectors;
 }
 
+std::vector<std::string> record_text_coordinates() { return {kRecordSource, kRecordTitle}; }
+
 std::vector<std::string> expected_pooling() { return {kRecord}; }
 
 std::vector<std::int8_t> collapse_statuses() {

@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "pcrf/closest_word.hpp"
 #include "pcrf/setting.hpp"
 
 namespace pcrf::study::detail {
@@ -70,9 +71,7 @@ class Fields {
   std::string file_;
 };
 
-/// The closest allowed word within two edits (else one that starts with `word`), for
-/// "did you mean" hints; empty if none.
-std::string closest_word(std::string_view word, const std::vector<std::string_view>& candidates);
+using pcrf::closest_word;  // "did you mean" hints (pcrf/closest_word.hpp)
 
 /// Reads the table `table.name` of `top` into `target` (starting from table.defaults):
 /// every key must be described, values are checked and applied in description order.

@@ -179,6 +179,61 @@ TEST(PlotCommand, BadInputFailsWithOneLineAndWritesNothing) {
   EXPECT_TRUE(std::filesystem::is_symlink(dir / "grid_link.svg"));
 }
 
+TEST(PlotCommand, AComparisonWithoutTheProcedureColumnsIsOneLine) {
+  // It once ended in a KeyError traceback: the procedure's columns were read unchecked.
+  PCRF_REQUIRE_MATPLOTLIB();
+  const auto dir = test::scratch_dir("plot_table3_short");
+  std::ifstream in(test::source_dir() / "docs" / "paper_comparison.csv");
+  std::string out, line;
+  while (std::getline(in, line)) {  // every column but proc*: the procedure's
+    std::vector<std::string> cells;
+    std::stringstream fields(line);
+    for (std::string cell; std::getline(fields, cell, ',');) cells.push_back(cell);
+    static std::vector<bool> keep;
+    if (keep.empty())
+      for (const auto& c : cells) keep.push_back(c.rfind("proc", 0) != 0);
+    std::string kept;
+    for (std::size_t i = 0; i < cells.size(); ++i)
+      if (i < keep.size() && keep[i]) kept += (kept.empty() ? "" : ",") + cells[i];
+    out += kept + "\n";
+  }
+  test::write_file(dir, "short.csv", out);
+  const auto r = test::run_command(pcrf() + " plot table3 " + quoted(dir / "short.csv") + " -o " + quoted(dir / "t.svg"));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("not a paper comparison table (no column proc5ms_theta_max_rad"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "t.svg"));
+}
+
+TEST(PlotCommand, AnIdaInWhichEveryRunCollapsedIsDrawn) {
+  // It once ended in a ValueError traceback: the panel's edge was the largest safe response.
+  PCRF_REQUIRE_MATPLOTLIB();
+  const auto dir = test::scratch_dir("plot_ida_collapsed");
+  std::string records = "[[records]]\nsynthetic = [";
+  for (int seed = 1; seed <= 3; ++seed)
+    records += std::string(seed > 1 ? ", " : "") + "\"stochastic:seed=" + std::to_string(seed) + ",pga_g=1,duration_s=6\"";
+  const auto cube = study(dir, "ida", records + "]\n[intensity]\nmeasure = \"pga_g\"\n"
+                                      "[ida]\nstart = 30\nmax_intensity = 40\nmax_runs = 2\n");
+  const auto status = test::run_command(pcrf() + " cube info --json " + quoted(cube));
+  ASSERT_EQ(status.exit_code, 0) << status.err;
+  EXPECT_EQ(status.out.find("\"at_rest\""), std::string::npos) << "a run survived: raise start\n" << status.out;
+  EXPECT_EQ(status.out.find("\"rocking_at_end\""), std::string::npos) << "a run survived: raise start\n" << status.out;
+  EXPECT_EQ(plot(dir / "ida.svg", "ida " + quoted(cube)), 1);
+  EXPECT_EQ(plot(dir / "fragility.svg", "fragility " + quoted(cube)), 1);
+}
+
+TEST(PlotCommand, AnUnexpectedErrorIsOneLineNamingItsKindAndInput) {
+  PCRF_REQUIRE_MATPLOTLIB();
+  const auto dir = test::scratch_dir("plot_unexpected");
+  const auto csv = test::write_file(dir, "h.csv",
+                                    "t_s,theta1_rad,omega1_rad_s,omega1_after_rad_s,ground_accel_g,event\n0,zero,0,0,0,0\n");
+  const auto r = test::run_command(pcrf() + " plot history " + quoted(csv) + " -o " + quoted(dir / "h.svg"));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("pcrf plot: error: history " + csv.string() + ": unexpected ValueError: "), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "h.svg"));
+}
+
 TEST(PlotCommand, AMissingMatplotlibIsNamedWithItsPackage) {
   const auto dir = test::scratch_dir("plot_no_matplotlib");
   // A matplotlib that cannot be imported shadows the real one.

@@ -74,3 +74,22 @@ def test_more_ranks_start_mpirun(tmp_path, monkeypatch, capfd):
     assert "mpirun -n 2" in capfd.readouterr().err
     assert cube["theta_max_rad"].sizes["scale"] == 2
     assert not list(tmp_path.glob(".pcrf_study_*"))  # the temporary study file is gone
+
+
+def test_cube_reports_are_the_command_lines(tmp_path, monkeypatch):
+    import json
+
+    monkeypatch.chdir(tmp_path)
+    pcrf.study(STUDY, output=tmp_path / "r.h5")
+    expected = json.loads(cli("cube", "stats", tmp_path / "r.h5", "--by", "kappa", "--by", "scale", "-m",
+                              "theta_max_rad", "--json")[1])
+    table = pcrf.stats(tmp_path / "r.h5", by=["kappa", "scale"], metric="theta_max_rad")
+    assert list(table.columns) == [c["name"] for c in expected["columns"]["groups"]]
+    assert len(table) == len(expected["groups"]) == 6
+    for row, want in zip(table.to_dict("records"), expected["groups"]):
+        for key, value in want.items():
+            assert value == row[key] or (value is None and row[key] != row[key]), key
+    code, _, stderr = cli("cube", "fragility", tmp_path / "r.h5", check=False)
+    with pytest.raises(ValueError) as error:
+        pcrf.fragility(tmp_path / "r.h5")
+    assert code == 2 and stderr.strip().splitlines()[-1] == "pcrf: error: " + str(error.value)

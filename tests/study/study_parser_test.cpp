@@ -1,6 +1,8 @@
 // Study files: values, ranges, plans, defaults, and the errors of the parser (in process).
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "pcrf/metrics/case_result.hpp"
 #include "pcrf/study/case_space.hpp"
 #include "pcrf/study/study_parser.hpp"
@@ -61,6 +63,24 @@ TEST(StudyParser, ListsNumbersAndLinearAndLogRanges) {
   const CaseSpace space(s);
   EXPECT_EQ(space.size(), 2 * 1 * 3 * 3);
   EXPECT_EQ(space.dimension_names().size(), 10u);
+}
+
+TEST(StudyParser, RangeValuesAreTheDecimalsTheStudyMeant) {
+  // from + t (to - from) gives 1.7999999999999998 for the fifth value of 1.2 … 2.4 in 7 steps,
+  // and 0.30000000000000004 in 0.1 … 0.9: the axis holds the decimals, read as a reader types them.
+  const Study s = parse(kRecords + "[axes]\nkappa = {from = 1.2, to = 2.4, count = 7}\n"
+                                   "lambda_h = {from = 0.1, to = 0.9, count = 9}\n"
+                                   "lambda = {from = 1, to = 2, count = 4}\n"
+                                   "pi_e_c = {from = 1000, to = 100000, count = 4, spacing = \"log\"}\n");
+  EXPECT_EQ(coordinate(s, "kappa").numbers, (std::vector<double>{1.2, 1.4, 1.6, 1.8, 2.0, 2.2, 2.4}));
+  EXPECT_EQ(coordinate(s, "lambda_h").numbers, (std::vector<double>{0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9}));
+  // Values that are no short decimal stay as computed: thirds, and log-spaced values.
+  const auto lambda = coordinate(s, "lambda").numbers;
+  EXPECT_EQ(lambda[1], 1.0 + (1.0 / 3.0) * 1.0);
+  EXPECT_EQ(lambda[2], 1.0 + (2.0 / 3.0) * 1.0);
+  const auto pi_e_c = coordinate(s, "pi_e_c").numbers;
+  EXPECT_EQ(pi_e_c[1], 1000.0 * std::pow(100.0, 1.0 / 3.0));
+  EXPECT_EQ(pi_e_c[2], 1000.0 * std::pow(100.0, 2.0 / 3.0));
 }
 
 TEST(StudyParser, SyntheticRecordsAreNamedByTheirText) {

@@ -93,6 +93,7 @@ struct Attribute {
 
 /// Fill of `status`: the case has not been computed.
 inline constexpr std::int8_t kStatusNotRun = -1;
+inline constexpr const char* kStatusNotRunName = "not_run";  ///< its CF flag meaning
 inline constexpr const char* kStatusName = "status";
 /// Global attribute that identifies the study a cube belongs to (compared by --resume).
 inline constexpr const char* kFingerprintName = "study_fingerprint";

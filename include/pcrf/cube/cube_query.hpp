@@ -44,15 +44,16 @@ void print_table(const std::vector<std::vector<std::string>>& rows, bool csv, st
 /// \throws CubeError naming the group when it does not exist.
 void export_history_csv(const CubeReader& cube, const std::string& name, std::ostream& out);
 
-/// One row per selected case: every coordinate, the status, and the named metrics or side
-/// variables (all of both when `metrics` is empty; a side variable repeats over the
-/// dimensions it lacks). NaN is written as an empty field.
+/// One row per selected case: every coordinate but those in `leave_out`, the status, and
+/// the named metrics or side variables (all of both when `metrics` is empty; a side variable
+/// repeats over the dimensions it lacks). NaN is written as an empty field.
 void export_csv(const CubeReader& cube, const std::vector<std::string>& metrics,
-                const std::vector<Selector>& selectors, std::ostream& out);
+                const std::vector<Selector>& selectors, std::ostream& out,
+                const std::vector<std::string>& leave_out = {});
 
-/// Summary of a metric over the cases that share one value of a coordinate.
+/// Summary of a metric over the cases that share one value of each coordinate grouped by.
 struct GroupStats {
-  std::string value;        ///< the coordinate value
+  std::vector<std::string> key;  ///< the group's value of each coordinate grouped by, in their order
   std::size_t cases = 0;    ///< selected cases in the group
   std::size_t set_apart = 0;  ///< cases whose status is set apart (e.g. collapses): not in the values
   std::size_t values = 0;   ///< finite values of the metric among the other cases
@@ -69,12 +70,10 @@ struct PoolReport {
   std::vector<std::int8_t> set_apart;        ///< e.g. collapses, whose metrics stop at the collapse
 };
 
-/// Groups the selected cases by `by` and summarizes `metric` across the rest.
-std::vector<GroupStats> group_stats(const CubeReader& cube, const std::string& by, const std::string& metric,
+/// Groups the selected cases by the values of the coordinates `by` (one group per
+/// combination present, in the order of the coordinates' positions) and summarizes `metric`
+/// across the rest. \throws CubeError for an unknown coordinate or metric, or no `by`.
+std::vector<GroupStats> group_stats(const CubeReader& cube, const std::vector<std::string>& by, const std::string& metric,
                                     const std::vector<Selector>& selectors, const PoolReport& pool = {});
-
-/// CSV: <by>,cases,<set_apart_name>,values,median,p16,p84
-void print_stats(const std::string& by, const std::string& set_apart_name, const std::vector<GroupStats>& stats,
-                 std::ostream& out);
 
 }  // namespace pcrf::cube

@@ -24,6 +24,9 @@ namespace pcrf::post {
 
 struct FrameFragility {
   std::string frame;              ///< "kappa=1.8,lambda=2" (the frame axes with several values), or "all"
+  /// The frame as -w selectors, comma-separated ("kappa=1.8,lambda=2"; "case=3" where the
+  /// frame label is a list plan's case label); empty for "all".
+  std::string selection;
   std::size_t records = 0;        ///< records on the cube's record axis
   std::size_t cases = 0;          ///< cases that ended with a verdict (IDA: curves)
   double collapses = 0.0;         ///< of which collapsed
@@ -43,15 +46,5 @@ std::vector<FrameFragility> cube_fragility(const cube::CubeReader& cube, const s
 
 /// Units and name of the cube's intensity ("g", "peak ground acceleration").
 std::string intensity_units(const cube::CubeReader& cube);
-
-/// A table, one row per frame: records, collapses, median and β with their 90 % intervals,
-/// and with `mce` the collapse margin ratio median / MCE. `csv`: comma-separated.
-void print_fragility(const std::vector<FrameFragility>& frames, const std::string& units, std::optional<double> mce,
-                     bool csv, std::ostream& out);
-
-/// The fitted data as CSV: frame,kind,intensity,trials,collapses with kind `stripe` (the
-/// records with a verdict at that intensity and how many collapsed), `collapse` (one IDA
-/// curve's collapse intensity) or `censored` (a curve safe up to that intensity).
-void print_fragility_points(const std::vector<FrameFragility>& frames, std::ostream& out);
 
 }  // namespace pcrf::post

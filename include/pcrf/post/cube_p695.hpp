@@ -40,7 +40,7 @@ struct P695Report {
 /// fitted median (no collapse at all) or bad inputs.
 P695Report cube_p695(const cube::CubeReader& cube, const std::vector<cube::Selector>& selectors, const P695Inputs& inputs);
 
-/// One row per frame and the group's verdict, aligned text; or the same as one JSON object.
-void print_p695(const P695Report& report, const P695Inputs& inputs, bool json, std::ostream& out);
+/// One row per frame and the group's verdict, aligned text (JSON: p695_report() and write_json()).
+void print_p695(const P695Report& report, const P695Inputs& inputs, std::ostream& out);
 
 }  // namespace pcrf::post

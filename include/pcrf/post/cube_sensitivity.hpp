@@ -31,7 +31,4 @@ struct SensitivityGroup {
 std::vector<SensitivityGroup> cube_sensitivity(const cube::CubeReader& cube, const std::string& metric,
                                                const std::vector<cube::Selector>& selectors, bool by_record);
 
-/// parameter,S1,S1_5%,S1_95%,ST,ST_5%,ST_95% (with a record column when by record).
-void print_sensitivity(const std::vector<SensitivityGroup>& groups, bool csv, std::ostream& out);
-
 }  // namespace pcrf::post

@@ -30,6 +30,15 @@ enum HistoryEvent : std::uint32_t {
   kEventEnd = 64,        ///< the end of the computed time (record plus tail)
 };
 
+/// An event flag's name and meaning: the one list scripts and figures read (`pcrf settings --json`).
+struct HistoryEventName {
+  HistoryEvent flag;
+  std::string_view name;
+  std::string_view meaning;
+};
+/// Every flag, in bit order.
+const std::vector<HistoryEventName>& history_events();
+
 /// One row of a time history.
 struct HistorySample {
   double t_s;

@@ -47,6 +47,10 @@ std::string info_heading(const cube::CubeLayout& layout);
 std::vector<cube::Selector> stats_selectors(const cube::CubeLayout& layout, const std::string& by,
                                             std::vector<cube::Selector> selectors);
 
+/// The long texts of each record (where it comes from, its own title): `pcrf cube export
+/// --no-record-text` leaves them out.
+std::vector<std::string> record_text_coordinates();
+
 /// Axes that statistics pool over by design (records): not reported as pooled.
 std::vector<std::string> expected_pooling();
 

@@ -5,7 +5,6 @@ import json
 import os
 import subprocess
 import sys
-import tempfile
 
 from pcrf_plot.errors import PlotError
 
@@ -31,6 +30,52 @@ def run(*args, stdin=None):
     return stdout, stderr
 
 
+def run_json(*args):
+    """Runs ``pcrf ARGS`` that prints one JSON object; returns it."""
+    out, _ = run(*args)
+    try:
+        return json.loads(out)
+    except json.JSONDecodeError as e:
+        raise PlotError(f"pcrf {' '.join(args)}: not JSON ({e.msg})") from e
+
+
+_VOCABULARY = None
+
+
+def vocabulary():
+    """The engine's names (``pcrf settings --json``): statuses with their kind (survived,
+    collapse, no_verdict), history event flags, frame parameters in axis order."""
+    global _VOCABULARY
+    if _VOCABULARY is None:
+        _VOCABULARY = run_json("settings", "--json")
+    return _VOCABULARY
+
+
+def statuses():
+    return [s["name"] for s in vocabulary()["statuses"]]
+
+
+def collapse_statuses():
+    return {s["name"] for s in vocabulary()["statuses"] if s["kind"] == "collapse"}
+
+
+def status_kind(name):
+    return next((s["kind"] for s in vocabulary()["statuses"] if s["name"] == name), "no_verdict")
+
+
+def event_flag(name):
+    """The bit of a history event ("impact", "stop")."""
+    for e in vocabulary()["history_events"]:
+        if e["name"] == name:
+            return e["flag"]
+    raise PlotError(f"the engine has no history event {name!r}")
+
+
+def parameters():
+    """The frame parameters' names, in the model's (axis) order."""
+    return [p["name"] for p in vocabulary()["parameters"]]
+
+
 def where_args(where):
     return [arg for w in where for arg in ("-w", w)]
 
@@ -40,8 +85,9 @@ def table(text):
     return list(csv.DictReader(io.StringIO(text)))
 
 
-def number(text):
-    return float(text) if text not in ("", None) else float("nan")
+def number(value):
+    """A CSV text or a JSON value as a float; NaN where it is missing (empty, null)."""
+    return float(value) if value not in ("", None) else float("nan")
 
 
 class Cube:
@@ -91,26 +137,17 @@ class Cube:
         return table(out)
 
     def stats(self, by, metric, where):
-        """Median and 16/84 % percentiles per value of `by`; also what was pooled."""
-        out, err = run("cube", "stats", self.path, "--by", by, "-m", metric, *where_args(where))
-        pooled = [line.split("also pooled over ", 1)[1] for line in err.splitlines() if "also pooled over" in line]
-        return table(out), pooled
+        """Median and 16/84 % percentiles per value of `by` (rows of ``cube stats --json``);
+        also the axes pooled over besides the records."""
+        report = run_json("cube", "stats", self.path, "--by", by, "-m", metric, *where_args(where), "--json")
+        pooled = [w.removeprefix("also pooled over ") for w in report["warnings"] if w.startswith("also pooled over ")]
+        return report["groups"], pooled
 
     def fragility(self, where):
-        """The fitted lognormal of each frame (table) and the fitted data (points)."""
-        with tempfile.TemporaryDirectory(prefix="pcrf_plot_") as folder:
-            fit, points = os.path.join(folder, "fit.csv"), os.path.join(folder, "points.csv")
-            run("cube", "fragility", self.path, *where_args(where), "--csv", fit, "--points", points)
-            with open(fit, encoding="utf-8") as f:
-                fits = table(f.read())
-            with open(points, encoding="utf-8") as f:
-                data = table(f.read())
-        return fits, data
+        """``cube fragility --json``: the fitted lognormal of each frame (`frames`), the fitted
+        data (`points`) and the intensity's units (`intensity_units`)."""
+        return run_json("cube", "fragility", self.path, *where_args(where), "--json")
 
     def sensitivity(self, metric, where):
-        out, _ = run("cube", "sensitivity", self.path, "-m", metric, *where_args(where), "--csv", "-")
-        # The aligned table goes to stdout first, then the CSV copy: keep the CSV part.
-        lines = out.splitlines()
-        start = max(i for i, line in enumerate(lines) if line.startswith("record,"))
-        return table("\n".join(lines[start:]) + "\n")
-
+        """The rows of ``cube sensitivity --json``."""
+        return run_json("cube", "sensitivity", self.path, "-m", metric, *where_args(where), "--json")["indices"]

@@ -12,7 +12,6 @@ import numpy as np
 from pcrf_plot import engine, style
 from pcrf_plot.errors import PlotError
 
-EVENT_IMPACT, EVENT_STOP = 2, 32
 COLUMNS = ("t_s", "theta1_rad", "omega1_rad_s", "omega1_after_rad_s", "ground_accel_g", "event")
 
 
@@ -61,7 +60,7 @@ def draw(args):
         k = int(np.argmax(np.abs(theta)))
         a_theta.plot(t[k], theta[k], "o", color=style.VERMILLION, ms=6,
                      label=rf"peak $|\theta_1|$ = {abs(theta[k]):.4g} rad at {t[k]:.3f} s")
-    if events[-1] & EVENT_STOP:
+    if events[-1] & engine.event_flag("stop"):
         a_theta.plot(t[-1], theta[-1], "X", color=style.BLACK, ms=8, label=f"fracture or overturning at {t[-1]:.3f} s")
     if a_theta.get_legend_handles_labels()[0]:
         a_theta.legend(loc="best")
@@ -80,7 +79,7 @@ def draw(args):
     for ax in (a_theta, a_phase, a_omega, a_ground):
         ax.xaxis.set_major_locator(ticker.MaxNLocator(6))
         ax.ticklabel_format(axis="both", style="sci", scilimits=(-3, 4))
-    impacts = int(np.count_nonzero(events & EVENT_IMPACT))
+    impacts = int(np.count_nonzero(events & engine.event_flag("impact")))
     if not np.any(theta):
         a_theta.text(0.5, 0.5, "at rest throughout", transform=a_theta.transAxes, ha="center")
     fig.suptitle(args.title or f"Time history, {name} ({impacts} impacts)")

@@ -12,23 +12,25 @@ from pcrf_plot import engine, style
 from pcrf_plot.errors import PlotError
 
 
-def frame_label(cube, row):
-    """A case's frame, named as `pcrf cube fragility` names it: the frame axes with several
-    values ("kappa=1.4", or the case label of a list plan), or "all"."""
-    parts = []
-    for d in cube.dimensions:
-        if d["name"] in ("record", "ida_point") or d["size"] < 2:
-            continue
-        parts.append(row["case_label"] if d["name"] == "case" else f"{d['name']}={row[d['name']]}")
-    return ",".join(parts) or "all"
-
-
-def frames_of(cube, rows):
-    """Frame label → its rows, in the cube's order."""
+def frames_of(cube, metric, where, fits):
+    """Each frame's rows, in the engine's order: the frames `pcrf cube fragility` names,
+    each exported with its own selection (the frame's -w selectors) added to the user's."""
     frames = {}
-    for r in rows:
-        frames.setdefault(frame_label(cube, r), []).append(r)
+    for fit in fits:
+        own = [w for w in (fit.get("selection") or "").split(",") if w]
+        rows = cube.export([metric, "ida_intensity", "collapse_intensity"], list(where) + own)
+        if rows:
+            frames[fit["frame"]] = rows
     return frames
+
+
+def edge_of(metric, rows):
+    """The panel's right edge: beyond every safe run's response, or (every run collapsed)
+    beyond every run's."""
+    safe = [engine.number(r[metric]) for r in rows if r["status"] not in engine.collapse_statuses()]
+    values = [v for v in safe if math.isfinite(v)] or \
+             [v for v in (engine.number(r[metric]) for r in rows) if math.isfinite(v)] or [1.0]
+    return max(max(values), 1e-12) * 1.15
 
 
 def draw(args):
@@ -37,12 +39,11 @@ def draw(args):
         raise PlotError(f"{args.input}: not an IDA cube (no collapse_intensity): run a study with an [ida] table")
     metric = args.metric or "theta_max_rad"
     cube.require_metric(metric, "ida")
-    rows = cube.export([metric, "ida_intensity", "collapse_intensity"], args.where)
-    if not rows:
+    fits = {f["frame"]: f for f in cube.fragility(args.where)["frames"]}
+    frames = frames_of(cube, metric, args.where, fits.values())
+    if not frames:
         raise PlotError(f"{args.input}: no case matches the selection")
-    fits = {f["frame"]: f for f in cube.fragility(args.where)[0]}
     units = cube.variable("ida_intensity")["units"]
-    frames = frames_of(cube, rows)
     columns = min(3, len(frames))
     fig, axes = plt.subplots(math.ceil(len(frames) / columns), columns, figsize=(4.4 * columns, 4.2), squeeze=False,
                              sharey=True, constrained_layout=True)
@@ -50,11 +51,11 @@ def draw(args):
         records, resurrected = {}, False
         for r in frame_rows:
             records.setdefault(r["record"], []).append(r)
-        edge = max(engine.number(r[metric]) for r in frame_rows if r["status"] not in style.COLLAPSE_STATUSES
-                   and r[metric] != "") * 1.15
+        edge = edge_of(metric, frame_rows)
         for record_rows in records.values():
             safe = sorted((engine.number(r["ida_intensity"]), engine.number(r[metric])) for r in record_rows
-                          if r["status"] not in style.COLLAPSE_STATUSES and r["ida_intensity"] != "" and r[metric] != "")
+                          if r["status"] not in engine.collapse_statuses() and r["ida_intensity"] != ""
+                          and r[metric] != "")
             collapse = engine.number(record_rows[0]["collapse_intensity"])
             below = [p for p in safe if not p[0] > collapse]  # NaN (censored): every run
             above = [p for p in safe if p[0] > collapse]
@@ -69,13 +70,15 @@ def draw(args):
                 ax.plot([start, edge], [collapse, collapse], "-", color=style.GREY, lw=0.8, alpha=0.8)
                 ax.plot(edge, collapse, "x", color=style.VERMILLION, ms=5)
         fit = fits.get(frame)
-        if fit and fit.get(f"median [{cube.variable('ida_intensity')['units']}]"):
-            median = engine.number(fit[f"median [{cube.variable('ida_intensity')['units']}]"])
-            beta = engine.number(fit["beta"])
+        median, beta = (engine.number(fit["median"]), engine.number(fit["beta"])) if fit else (math.nan, math.nan)
+        if math.isfinite(median) and math.isfinite(beta):
             for value, line, label in ((median, "-", "median collapse intensity"),
                                        (median * math.exp(-beta), "--", "16 % / 84 %"),
                                        (median * math.exp(beta), "--", None)):
                 ax.axhline(value, color=style.BLUE, ls=line, lw=1.5, label=label)
+        if not any(r["status"] not in engine.collapse_statuses() for r in frame_rows):
+            ax.text(0.5, 0.6, "every run collapsed:\nstart the search lower", transform=ax.transAxes, ha="center",
+                    color=style.VERMILLION)
         ax.plot([], [], "x", color=style.VERMILLION, label="collapse")
         if resurrected:
             ax.plot([], [], "o", mfc="none", color=style.ORANGE, ms=4, label="safe above its collapse intensity")

@@ -45,7 +45,9 @@ def draw(args):
         hint = " ".join(f"-w {n}={rows[0][n]}" for n in rest)
         raise PlotError(f"{', '.join(rest)}: several values left; select one of each, e.g. {hint}")
     xs, ys = axis_values(cube, rows, x), axis_values(cube, rows, y)
-    statuses = [s for s in style.STATUS_COLOURS if any(r["status"] == s for r in rows)]
+    present = {r["status"] for r in rows}
+    statuses = [s for s in engine.statuses() if s in present] + sorted(present - set(engine.statuses()))
+    colours = [style.status_colour(s, engine.status_kind(s)) for s in statuses]
     code = {s: i for i, s in enumerate(statuses)}
     grid = np.full((len(ys), len(xs)), np.nan)
     xi, yi = {v: i for i, v in enumerate(xs)}, {v: i for i, v in enumerate(ys)}
@@ -53,7 +55,7 @@ def draw(args):
         grid[yi[r[y]], xi[r[x]]] = code[r["status"]]
     fig, ax = plt.subplots(figsize=(min(14, 2.5 + 0.45 * len(xs)), min(10, 2.0 + 0.35 * len(ys))),
                            constrained_layout=True)
-    ax.pcolormesh(np.ma.masked_invalid(grid), cmap=ListedColormap([style.STATUS_COLOURS[s] for s in statuses]),
+    ax.pcolormesh(np.ma.masked_invalid(grid), cmap=ListedColormap(colours),
                   vmin=-0.5, vmax=len(statuses) - 0.5, edgecolors="white", linewidth=0.5)
     for axis, values, name, set_ticks, set_label in ((ax.xaxis, xs, x, ax.set_xticks, ax.set_xlabel),
                                                       (ax.yaxis, ys, y, ax.set_yticks, ax.set_ylabel)):
@@ -64,7 +66,7 @@ def draw(args):
     if len(xs) > 8:
         plt.setp(ax.get_xticklabels(), rotation=60, ha="right")
     ax.grid(False)
-    ax.legend(handles=[Patch(color=style.STATUS_COLOURS[s], label=s.replace("_", " ")) for s in statuses],
+    ax.legend(handles=[Patch(color=c, label=s.replace("_", " ")) for s, c in zip(statuses, colours)],
               loc="upper left", bbox_to_anchor=(1.01, 1.0), title="status")
     selected = ", ".join(args.where) if args.where else "all cases"
     ax.set_title(args.title or f"How each case ended ({selected})")

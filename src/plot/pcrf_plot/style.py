@@ -7,6 +7,8 @@ BLACK, ORANGE, SKY_BLUE, GREEN, YELLOW, BLUE, VERMILLION, PURPLE = (
 CYCLE = [BLUE, ORANGE, GREEN, VERMILLION, PURPLE, SKY_BLUE, YELLOW, BLACK]
 GREY = "#8C8C8C"
 
+# Colours of the statuses the engine names (`pcrf settings --json`); a status added to the
+# engine later gets its kind's colour (survived, collapse, no verdict).
 STATUS_COLOURS = {
     "at_rest": GREEN,
     "rocking_at_end": SKY_BLUE,
@@ -17,9 +19,15 @@ STATUS_COLOURS = {
     "invalid_frame": GREY,
     "not_run": "#E5E5E5",
 }
-COLLAPSE_STATUSES = ("tendon_fracture", "overturned")
+KIND_COLOURS = {"survived": BLUE, "collapse": VERMILLION, "no_verdict": YELLOW}
 
-# Display symbols of the frame parameters (the model's names are the keys).
+
+def status_colour(name, kind):
+    return STATUS_COLOURS.get(name, KIND_COLOURS.get(kind, GREY))
+
+
+# Display symbols of the frame parameters and axes (the engine's names are the keys; a name
+# without a symbol is shown as it is).
 PARAMETER_SYMBOLS = {
     "kappa": r"$\kappa$", "lambda": r"$\lambda$", "tan_alpha": r"$\tan\alpha$", "lambda_h": r"$\lambda_h$",
     "pi_sigma_b": r"$\Pi_{\sigma b}$", "pi_sigma_c": r"$\Pi_{\sigma c}$", "pi_e_b": r"$\Pi_{Eb}$",

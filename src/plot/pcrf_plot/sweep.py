@@ -9,9 +9,6 @@ import numpy as np
 from pcrf_plot import engine, style
 from pcrf_plot.errors import PlotError
 
-PARAMETERS = ("kappa", "lambda", "tan_alpha", "lambda_h", "pi_sigma_b", "pi_sigma_c", "pi_e_b", "pi_e_c")
-
-
 def varied_parameters(cube, metric, where):
     """The parameters the cube varies (one-at-a-time: its varied_parameter values; a grid:
     the parameter axes with several values), in the model's order."""
@@ -20,8 +17,8 @@ def varied_parameters(cube, metric, where):
         raise PlotError(f"{cube.path}: no case matches the selection")
     if "varied_parameter" in rows[0]:
         named = {r["varied_parameter"] for r in rows} - {"none"}
-        return [p for p in PARAMETERS if p in named]
-    return [p for p in PARAMETERS if p in rows[0] and len({r[p] for r in rows}) > 1]
+        return [p for p in engine.parameters() if p in named]
+    return [p for p in engine.parameters() if p in rows[0] and len({r[p] for r in rows}) > 1]
 
 
 def draw(args):
@@ -44,7 +41,7 @@ def draw(args):
         median = np.array([engine.number(r["median"]) for r in stats])
         low = np.array([engine.number(r["p16"]) for r in stats])
         high = np.array([engine.number(r["p84"]) for r in stats])
-        collapses = [int(r["collapses"]) for r in stats]
+        collapses = [r["collapses"] for r in stats]
         ax.fill_between(x, low, high, color=style.SKY_BLUE, alpha=0.4, lw=0, label="16–84 %")
         ax.plot(x, median, "o-", color=style.BLUE, ms=4, label="median")
         for xi, c in zip(x, collapses):

@@ -12,14 +12,16 @@ from pcrf_plot.errors import PlotError
 STEPS = (("5", style.ORANGE, "s"), ("2.5", style.SKY_BLUE, "^"), ("1", style.BLUE, "v"))
 NEEDED = ("record", "paper_t_RI_s", "engine_t_RI_s", "paper_theta_max_rad", "paper_omega_max_rad_s",
           "scale1_status", "first_lift_scale", "paper_fit_a0_rad_s2", "paper_fit_w2_s2", "model_a0_rad_s2",
-          "model_w2_s2")
+          "model_w2_s2") + tuple(f"proc{step}ms_theta_max_rad" for step, _, _ in STEPS)
 
 
 def read(path):
     with open(path, encoding="utf-8") as f:
         rows = engine.table(f.read())
-    if not rows or any(c not in rows[0] for c in NEEDED):
-        raise PlotError(f"{path}: not a paper comparison table (write one with python3 bench/paper_comparison.py)")
+    missing = [c for c in NEEDED if not rows or c not in rows[0]]
+    if missing:
+        raise PlotError(f"{path}: not a paper comparison table (no column {', '.join(missing)}; "
+                        "write one with python3 bench/paper_comparison.py)")
     return rows
 
 

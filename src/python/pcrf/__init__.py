@@ -15,6 +15,7 @@ message.
 - ``record_measures(...)``: a record's intensity measures (``pcrf record``).
 - ``study(dict or path, output=...)``: a study, returned as an xarray.Dataset (``pcrf study``).
 - ``open_cube(path)``: a result cube as an xarray.Dataset, ``status`` as integer flags.
+- ``stats``, ``fragility``, ``sensitivity``, ``p695``: ``pcrf cube``'s reports as DataFrames.
 - ``settings()``: every [physics] / [solver] / intensity / [run] key, with unit and default.
 
 The compiled part releases the GIL while it computes: a thread pool over cases uses every core.
@@ -140,9 +141,11 @@ def settings():
 
 
 from ._cube import open_cube  # noqa: E402
+from ._reports import fragility, p695, sensitivity, stats  # noqa: E402
 from ._study import study  # noqa: E402
 
-__all__ = ["run", "Frame", "record_measures", "study", "open_cube", "settings", "InputError", "StudyError"]
+__all__ = ["run", "Frame", "record_measures", "study", "open_cube", "stats", "fragility", "sensitivity", "p695",
+           "settings", "InputError", "StudyError"]
 
 import atexit as _atexit  # noqa: E402
 

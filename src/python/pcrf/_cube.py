@@ -19,7 +19,7 @@ def open_cube(path, **open_dataset_keywords):
     import xarray as xr
 
     ds = xr.open_dataset(path, **open_dataset_keywords)
-    if "status" in ds.variables:
+    if "status" in ds.variables and ds["status"].dtype.kind == "f":  # a cube written with a _FillValue
         with xr.open_dataset(path, mask_and_scale=False) as raw:
             status = raw["status"].load()
         fill = status.attrs.pop("_FillValue", None)

@@ -1,0 +1,72 @@
+/// \file cube_reports.hpp
+/// \brief One function per cube command (`pcrf cube stats|fragility|sensitivity|p695`):
+/// reads the cube, computes, and returns a Report (table.hpp) without printing. The command
+/// line writes it as text, CSV or JSON; the Python module turns its tables into DataFrames.
+///
+/// Tables and fields (the JSON's keys; `columns` in the JSON describes every column):
+/// - stats: fields file, metric, metric_units, by; table `groups` (stats_columns()).
+/// - fragility: fields file, intensity_units, mce; tables `frames` (fragility_columns())
+///   and `points` (fragility_point_columns()).
+/// - sensitivity: fields file, metric, by_record; table `indices` (sensitivity_columns()).
+/// - p695: fields file, sdc, period_s, mu_t, ratings, group_mean_acmr, group_acmr10, group,
+///   measure_problem; table `frames` (p695_columns()).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "pcrf/cube/cube_query.hpp"
+#include "pcrf/cube/cube_reader.hpp"
+#include "pcrf/post/cube_p695.hpp"
+#include "pcrf/post/table.hpp"
+
+namespace pcrf::post {
+
+struct StatsRequest {
+  std::vector<std::string> by;  ///< coordinates to group by (at least one)
+  std::string metric;
+  std::vector<cube::Selector> where;
+};
+/// Median and 16th/84th percentiles of the metric across records per group; collapses are
+/// counted apart. Warnings: the axes pooled over besides the records ("also pooled over …").
+/// \throws cube::CubeError for an unknown coordinate, metric or value.
+Report stats_report(const cube::CubeReader& cube, const StatsRequest& request);
+
+struct FragilityRequest {
+  std::vector<cube::Selector> where;
+  std::optional<double> mce;  ///< MCE intensity: adds the collapse margin ratio column `cmr`
+};
+/// The lognormal collapse fragility of each frame and the data fitted (cube_fragility.hpp).
+Report fragility_report(const cube::CubeReader& cube, const FragilityRequest& request);
+
+struct SensitivityRequest {
+  std::string metric;  ///< a metric, or "collapse"
+  std::vector<cube::Selector> where;
+  bool by_record = false;
+};
+/// Sobol' indices of each parameter (cube_sensitivity.hpp). Warnings: base samples left out.
+Report sensitivity_report(const cube::CubeReader& cube, const SensitivityRequest& request);
+
+/// FEMA P-695 per frame and the group's verdict (cube_p695.hpp). Warning: the measure problem.
+/// \throws std::invalid_argument as cube_p695().
+Report p695_report(const cube::CubeReader& cube, const std::vector<cube::Selector>& where, const P695Inputs& inputs);
+/// The same from an assessment already made (the text report needs it too).
+Report p695_report(const P695Report& result, const P695Inputs& inputs, const std::string& file);
+
+/// Why `mce` cannot be a fragility's MCE intensity ("--mce must be positive"); empty when it can.
+std::string mce_problem(const std::optional<double>& mce);
+
+/// The P-695 inputs from their text forms (the command line's --sdc, --period-s, --mu-t,
+/// --ratings "B,B,C"), checked. \throws std::invalid_argument naming the input.
+P695Inputs p695_inputs(const std::string& sdc, double period_s, double mu_t, const std::string& ratings);
+
+/// The columns of each table, for --help and the README (units of cube-dependent columns
+/// are left empty here: the JSON's `columns` carries them).
+std::vector<Column> stats_columns(const std::vector<std::string>& by = {"BY"});
+std::vector<Column> fragility_columns(bool with_mce = true);
+std::vector<Column> fragility_point_columns();
+std::vector<Column> sensitivity_columns();
+std::vector<Column> p695_columns();
+
+}  // namespace pcrf::post

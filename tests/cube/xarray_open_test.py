@@ -1,0 +1,65 @@
+"""A cube opened by plain xarray (no pcrf code): `status` is an integer with CF flags that
+name every status, and range-generated coordinates select by the decimals a reader types.
+
+Run by ctest: python3 xarray_open_test.py PCRF SCRATCH_DIR. Exit code 77 (skipped) when
+xarray or netCDF4 is missing.
+"""
+import os
+import subprocess
+import sys
+
+try:
+    import numpy as np
+    import xarray as xr
+    import netCDF4  # noqa: F401 (the engine xarray uses for netCDF-4 files)
+except ImportError as e:
+    print(f"skipped: {e}")
+    sys.exit(77)
+
+STUDY = """[[records]]
+synthetic = ["sine:amplitude_g=1.5,period_s=0.5,cycles=2,duration_s=3", "sine:amplitude_g=3,period_s=0.7,cycles=2,duration_s=3"]
+[axes]
+scale = [1.0, 2.5]
+kappa = {from = 1.2, to = 2.4, count = 7}
+lambda_h = {from = 0.1, to = 0.3, count = 3}
+"""
+
+
+def main(pcrf, folder):
+    os.makedirs(folder, exist_ok=True)
+    study = os.path.join(folder, "ranges.toml")
+    cube = os.path.join(folder, "ranges.h5")
+    with open(study, "w", encoding="utf-8") as f:
+        f.write(STUDY)
+    # --shard 1/2 leaves half of the cases not run: their status is the not_run flag, not NaN.
+    subprocess.run([pcrf, "study", study, "-o", cube, "--overwrite", "--progress-interval", "0", "--shard", "1/2"],
+                   check=True, capture_output=True)
+    settings = subprocess.run([pcrf, "settings", "--json"], check=True, capture_output=True, text=True).stdout
+    import json
+    names = {s["name"]: s["value"] for s in json.loads(settings)["statuses"]}
+
+    for engine in ("netcdf4", "h5netcdf"):
+        try:
+            ds = xr.open_dataset(cube, engine=engine)
+        except (ValueError, ImportError) as e:  # h5netcdf not installed
+            print(f"{engine}: skipped ({e})")
+            continue
+        status = ds["status"]
+        assert np.issubdtype(status.dtype, np.integer), f"{engine}: status is {status.dtype}"
+        flags = dict(zip(status.attrs["flag_meanings"].split(), np.asarray(status.attrs["flag_values"]).tolist()))
+        assert flags == names, f"{engine}: flags {flags} against the engine's {names}"
+        present = set(np.unique(status.values).tolist())
+        assert names["not_run"] in present and present <= set(names.values()), present
+        assert "_FillValue" not in status.encoding or status.encoding["_FillValue"] is None, status.encoding
+        # Range values are the decimals the study meant: .sel with the typed number works.
+        assert ds.kappa.values.tolist() == [1.2, 1.4, 1.6, 1.8, 2.0, 2.2, 2.4], ds.kappa.values.tolist()
+        assert ds.lambda_h.values.tolist() == [0.1, 0.2, 0.3], ds.lambda_h.values.tolist()
+        one = ds.theta_max_rad.sel(kappa=1.8, lambda_h=0.3, scale=2.5)
+        assert one.sizes["record"] == 2
+        assert int(ds.status.sel(kappa=1.8, lambda_h=0.2, scale=1.0).isel(record=0)) in names.values()
+        ds.close()
+        print(f"{engine}: status {status.dtype}, kappa {ds.kappa.values.tolist()}")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1], sys.argv[2])
