@@ -4,7 +4,7 @@
 /// main() turns into a one-line message and exit code 2.
 #pragma once
 
-#include <stdexcept>
+#include "pcrf/api/input_error.hpp"
 
 namespace CLI {
 class App;
@@ -12,11 +12,9 @@ class App;
 
 namespace pcrf::cli {
 
-/// Bad arguments or bad input files: one line on stderr, exit code 2.
-class UsageError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+/// Bad arguments or bad input files: one line on stderr, exit code 2. The same error as the
+/// layer below the command line throws (api::InputError), so its checks are not repeated.
+using UsageError = api::InputError;
 
 /// Exit code a sub-command asks main() to return (set by its callback; default 0).
 int& exit_code();

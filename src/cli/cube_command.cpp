@@ -263,7 +263,7 @@ void add_fragility(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& arg
                                                            {"points", post::fragility_point_columns()}}));
   fragility->callback([args] {
     guarded(args->file, [&] {
-      if (args->mce && !(*args->mce > 0.0)) throw UsageError("--mce must be positive");
+      if (const auto problem = post::mce_problem(args->mce); !problem.empty()) throw UsageError(problem);
       check_report_outputs(*args);
       const std::vector<std::filesystem::path> csv_inputs{args->file}, points_inputs{args->file, args->csv};
       check_output(args->points, is_stdout(args->csv) ? csv_inputs : points_inputs, args->overwrite);
@@ -301,23 +301,13 @@ void add_sensitivity(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& a
   });
 }
 
-/// The P-695 inputs of the command line, checked.
+/// The P-695 inputs of the command line, checked (post::p695_inputs).
 post::P695Inputs p695_inputs(const CubeArguments& args) {
-  post::P695Inputs in;
-  std::string r = args.ratings;
-  std::erase(r, ',');
-  if (r.size() != 3) throw UsageError("--ratings: give three letters A-D, e.g. B,B,C (got '" + args.ratings + "')");
   try {
-    in.sdc = p695::parse_sdc(args.sdc);
-    for (const char c : r) (void)p695::rating_beta(c);
-    if (!(args.mu_t >= 1.0 || args.mu_t == 0.0)) throw std::invalid_argument("--mu-t must be at least 1");
+    return post::p695_inputs(args.sdc, args.period_s, args.mu_t, args.ratings);
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
-  in.period_s = p695::archetype_period_s(args.period_s);
-  in.mu_t = args.mu_t;
-  in.design_rating = r[0], in.test_rating = r[1], in.model_rating = r[2];
-  return in;
 }
 
 void add_p695(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {

@@ -12,6 +12,7 @@
 #include "cli/commands.hpp"
 #include "cli/frame_flags.hpp"
 #include "cli/setting_flags.hpp"
+#include "pcrf/api/frame_input.hpp"
 #include "pcrf/json.hpp"
 #include "pcrf/model/equation_of_motion.hpp"
 #include "pcrf/model/frame_properties.hpp"
@@ -74,7 +75,7 @@ void print_text(const FrameProperties& p) {
 }
 
 void describe(const FrameOptions& o) {
-  if (o.points < 2) throw UsageError("--points must be at least 2");
+  api::check_pushover_points(o.points);
   const PhysicsOptions physics = o.physics->resolve();
   const auto scene = o.scene.scene();
   const FrameProperties p = frame_properties(*scene, physics.fracture_strain, o.points);

@@ -11,14 +11,9 @@
 #include "cli/frame_flags.hpp"
 #include "cli/record_flags.hpp"
 #include "cli/setting_flags.hpp"
+#include "pcrf/api/one_case.hpp"
 #include "pcrf/io/output_file.hpp"
-#include "pcrf/model/frame.hpp"
-#include "pcrf/model/parameters.hpp"
 #include "pcrf/number_text.hpp"
-#include "pcrf/record/intensity.hpp"
-#include "pcrf/record/record_readers.hpp"
-#include "pcrf/record/synthetic.hpp"
-#include "pcrf/solver/rocking_solver.hpp"
 
 namespace pcrf::cli {
 namespace {
@@ -39,43 +34,19 @@ struct RunOptions {
   std::optional<double> incidence_deg;  ///< the frame's plane [deg from north]; needs both horizontals
 };
 
-/// The factor the record is scaled by: --scale, or --intensity over the record's measure.
-double scale_factor(const RunOptions& o, const StationRecord& station) {
-  const GroundMotion& motion = station.h1;
-  const auto measure_flags = o.measure->given();
-  const bool by_intensity = o.intensity_flag->count() > 0;
-  if (!by_intensity) {
-    if (!measure_flags.empty()) throw UsageError("--measure, --period-s and --damping go with --intensity VALUE");
-    return o.scale;
-  }
-  if (o.scale_flag->count() > 0) throw UsageError("give either --scale or --intensity, not both");
-  if (!(o.intensity > 0.0)) throw UsageError("--intensity must be positive");
-  const IntensitySpec spec = o.measure->resolve();
-  if (const auto problem = intensity_spec_problem(spec); !problem.empty()) throw UsageError("--period-s: " + problem);
-  if (spec.normalise != SetNormalisation::kNone)
-    throw UsageError("--normalise applies to a study's record set, not to one record: scale it with --scale");
-  if (component_measure(spec.measure) == IntensityMeasure::kSa)
-    if (const auto problem = sa_period_problem(spec.period_s, motion.dt_s()); !problem.empty())
-      throw UsageError("--period-s: " + problem + " (" + motion.name() + ")");
-  if (const auto problem = measures_problem(motion); !problem.empty()) throw UsageError(motion.name() + ": " + problem);
-  const double im = station_intensity(station, o.incidence_deg, spec);
-  if (!(im > 0.0)) throw UsageError(motion.name() + ": its " + to_string(spec.measure) + " is 0: it cannot be scaled");
-  return intensity_scale_factor(o.intensity, im);
-}
-
 /// What the frame feels: the station's components at the frame's incidence, scaled by
 /// --scale or to --intensity of the in-plane horizontal motion.
-std::unique_ptr<FrameExcitation> load_excitation(const RunOptions& o, double& factor) {
+api::ScaledExcitation load_excitation(const RunOptions& o) {
   std::vector<std::string> notes;
   const StationRecord station = o.record.load_station(notes);
   for (const auto& note : notes) std::cerr << "pcrf run: note: " << note << '\n';
-  for (const auto& line : implausible_records(o.record, station)) std::cerr << "pcrf run: warning: " << line << '\n';
-  try {
-    factor = scale_factor(o, station);
-    return std::make_unique<FrameExcitation>(station, o.incidence_deg, factor);
-  } catch (const std::invalid_argument& e) {  // an incidence without a pair, a scale that overflows
-    throw UsageError(e.what());
-  }
+  for (const auto& line : api::implausible_records(o.record, station)) std::cerr << "pcrf run: warning: " << line << '\n';
+  api::Scaling scaling;
+  scaling.scale = o.scale;
+  scaling.scale_given = o.scale_flag->count() > 0;
+  if (o.intensity_flag->count() > 0) scaling.intensity = o.intensity;
+  scaling.measure = o.measure->given();
+  return api::scaled_excitation(station, o.incidence_deg, scaling);
 }
 
 /// Writes the history as CSV, one row per history row, a header of column names (their
@@ -109,8 +80,7 @@ class CsvHistory {
 };
 
 void run(const RunOptions& o) {
-  double factor = 1.0;
-  const auto excitation = load_excitation(o, factor);
+  const api::ScaledExcitation scaled = load_excitation(o);
   const PhysicsOptions physics = o.physics->resolve();
   const SolverSettings solver = o.solver->resolve();
   std::unique_ptr<Scene> scene = o.scene.scene();
@@ -123,20 +93,10 @@ void run(const RunOptions& o) {
     csv = std::make_unique<CsvHistory>(o.history_file, records, o.overwrite);
     sink = [&csv](const HistorySample& s) { (*csv)(s); };
   }
-  CaseResult result;
-  try {
-    OutputRequest request;
-    request.history_dt_s = o.history_dt_s;
-    const auto prepared = prepare_scene(std::move(scene), physics);
-    result = solve_case(*prepared, excitation->view(), solver, request, sink);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
+  const CaseResult result =
+      api::solve_one_case(std::move(scene), physics, scaled.excitation->view(), solver, o.history_dt_s, sink);
   if (csv) csv->commit();
-  JsonObject json;
-  json.number("scale_factor", factor);
-  add_to_json(json, result);
-  std::cout << json.str() << std::endl;
+  std::cout << api::case_json(scaled.scale_factor, result).str() << std::endl;
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "pcrf/api/given_settings.hpp"
 #include "pcrf/setting.hpp"
 
 namespace pcrf::cli {
@@ -38,30 +39,15 @@ class SettingFlags {
 
   /// The values given on the command line, checked, in table order.
   /// \throws UsageError "--flag: problem".
-  std::vector<std::pair<const Setting<Target>*, SettingValue>> given() const {
-    std::vector<std::pair<const Setting<Target>*, SettingValue>> values;
-    for (const Entry& e : entries_) {
-      if (e.option->count() == 0) continue;
-      const std::string flag = flag_name(e.setting->key);
-      SettingValue value;
-      try {
-        value = parse_setting_text(*e.setting, e.text);
-      } catch (const std::invalid_argument& error) {
-        throw UsageError(flag + ": " + error.what());
-      }
-      if (const auto problem = check_setting(*e.setting, value); !problem.empty())
-        throw UsageError(flag + ": " + problem);
-      values.emplace_back(e.setting, std::move(value));
-    }
+  api::GivenSettings<Target> given() const {
+    api::GivenSettings<Target> values;
+    for (const Entry& e : entries_)
+      if (e.option->count() > 0) values.emplace_back(e.setting, api::checked_setting_text(*e.setting, e.text));
     return values;
   }
 
   /// table.defaults with every given value applied. \throws UsageError.
-  Target resolve() const {
-    Target target = table_.defaults;
-    for (const auto& [setting, value] : given()) setting->set(target, value);
-    return target;
-  }
+  Target resolve() const { return api::resolve_settings(table_, given()); }
 
  private:
   struct Entry {

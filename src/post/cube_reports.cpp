@@ -2,8 +2,11 @@
 // a result struct: a new field needs one line here to reach text, CSV, JSON and Python.
 #include "pcrf/post/cube_reports.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 #include "pcrf/post/cube_fragility.hpp"
 #include "pcrf/post/cube_sensitivity.hpp"
@@ -267,5 +270,23 @@ std::vector<Column> fragility_columns(bool with_mce) {
 std::vector<Column> fragility_point_columns() { return columns_of(fragility_point_spec()); }
 std::vector<Column> sensitivity_columns() { return columns_of(sensitivity_spec()); }
 std::vector<Column> p695_columns() { return columns_of(p695_spec()); }
+
+std::string mce_problem(const std::optional<double>& mce) {
+  return mce && !(*mce > 0.0) ? "--mce must be positive" : "";
+}
+
+P695Inputs p695_inputs(const std::string& sdc, double period_s, double mu_t, const std::string& ratings) {
+  P695Inputs in;
+  std::string r = ratings;
+  std::erase(r, ',');
+  if (r.size() != 3) throw std::invalid_argument("--ratings: give three letters A-D, e.g. B,B,C (got '" + ratings + "')");
+  in.sdc = p695::parse_sdc(sdc);
+  for (const char c : r) (void)p695::rating_beta(c);
+  if (!(mu_t >= 1.0 || mu_t == 0.0)) throw std::invalid_argument("--mu-t must be at least 1 (0: each frame's own)");
+  in.period_s = p695::archetype_period_s(period_s);
+  in.mu_t = mu_t;
+  in.design_rating = r[0], in.test_rating = r[1], in.model_rating = r[2];
+  return in;
+}
 
 }  // namespace pcrf::post

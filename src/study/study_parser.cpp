@@ -612,6 +612,11 @@ Study parse_study(const std::string& text, const std::string& file, const std::f
     throw StudyError(file + ":" + std::to_string(e.source().begin.line) + ": not valid TOML: " +
                      std::string(e.description()));
   }
+  return parse_study_table(root, text, file, base_dir);
+}
+
+Study parse_study_table(const toml::table& root, const std::string& text, const std::string& file,
+                        const std::filesystem::path& base_dir) {
   Study s;
   s.file = file;
   s.base_dir = base_dir;

@@ -57,6 +57,13 @@ Report p695_report(const cube::CubeReader& cube, const std::vector<cube::Selecto
 /// The same from an assessment already made (the text report needs it too).
 Report p695_report(const P695Report& result, const P695Inputs& inputs, const std::string& file);
 
+/// Why `mce` cannot be a fragility's MCE intensity ("--mce must be positive"); empty when it can.
+std::string mce_problem(const std::optional<double>& mce);
+
+/// The P-695 inputs from their text forms (the command line's --sdc, --period-s, --mu-t,
+/// --ratings "B,B,C"), checked. \throws std::invalid_argument naming the input.
+P695Inputs p695_inputs(const std::string& sdc, double period_s, double mu_t, const std::string& ratings);
+
 /// The columns of each table, for --help and the README (units of cube-dependent columns
 /// are left empty here: the JSON's `columns` carries them).
 std::vector<Column> stats_columns(const std::vector<std::string>& by = {"BY"});

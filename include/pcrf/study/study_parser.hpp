@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <string>
 
+#include <toml++/toml.h>
+
 #include "pcrf/study/study.hpp"
 #include "pcrf/study/study_error.hpp"
 
@@ -15,6 +17,13 @@ namespace pcrf::study {
 /// `base_dir`. \throws StudyError.
 Study parse_study(const std::string& text, const std::string& file,
                   const std::filesystem::path& base_dir);
+
+/// Reads a study already in TOML tables (e.g. built from a Python dict), whose nodes may
+/// carry no source position: messages then name `file` and the key path
+/// ("study: axes.kappa: …"). `text` is what the cube keeps as the study's text.
+/// \throws StudyError.
+Study parse_study_table(const toml::table& root, const std::string& text, const std::string& file,
+                        const std::filesystem::path& base_dir);
 
 /// Reads and parses a study file; record paths resolve against its folder.
 /// \throws StudyError (also when the file cannot be read).

@@ -1,0 +1,97 @@
+// One ground motion as a user names it (see record_input.hpp).
+#include "pcrf/api/record_input.hpp"
+
+#include "pcrf/api/input_error.hpp"
+#include "pcrf/record/intensity.hpp"
+#include "pcrf/record/synthetic.hpp"
+
+namespace pcrf::api {
+
+RecordFileSpec RecordInput::spec() const {
+  RecordFileSpec spec;
+  spec.path = file;
+  try {
+    spec.format = format.empty() ? guess_record_format(spec.path) : parse_record_format(format);
+    spec.unit = parse_accel_unit(units);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(e.what());
+  }
+  spec.dt_s = dt_s;
+  spec.skip_rows = skip_rows;
+  spec.column = column;
+  if (column > 0 && spec.format != RecordFormat::kOneColumn) throw InputError("--column applies to one-column records only");
+  if (spec.format == RecordFormat::kOneColumn && !(dt_s > 0)) throw InputError("--dt is required (and > 0) for a one-column record");
+  return spec;
+}
+
+GroundMotion RecordInput::load() const {
+  if (file.empty() == synthetic.empty()) throw InputError("give exactly one of --record FILE or --synthetic SPEC");
+  try {
+    if (!synthetic.empty()) return make_synthetic(synthetic);
+    return read_record(spec());
+  } catch (const RecordError& e) {
+    throw InputError(e.what());
+  } catch (const std::invalid_argument& e) {
+    throw InputError(e.what());
+  }
+}
+
+RecordInput RecordInput::component(const std::string& path) const {
+  RecordInput input = *this;
+  input.file = path;
+  input.synthetic.clear();
+  return input;
+}
+
+RecordMetadata record_metadata(const RecordFileSpec& spec) {
+  try {
+    return read_metadata(spec);
+  } catch (const RecordError& e) {
+    throw InputError(e.what());
+  }
+}
+
+namespace {
+
+/// The component name an AT2 header states ("230", "UP"); empty for other files.
+std::string component_of(const RecordFileSpec& spec) {
+  return spec.format == RecordFormat::kAt2 ? record_metadata(spec).component : std::string();
+}
+
+}  // namespace
+
+StationRecord RecordInput::load_station(std::vector<std::string>& notes) const {
+  // The checks of the components' names and azimuths are the study's too (make_station).
+  auto part = [](const RecordInput& input) {
+    const std::string component = input.file.empty() ? std::string() : component_of(input.spec());
+    return StationComponent{input.load(), component, input.file.empty() ? input.synthetic : input.file};
+  };
+  std::optional<StationComponent> h2, up;
+  if (!file_h2.empty()) h2 = part(component(file_h2));
+  if (!file_up.empty()) up = part(component(file_up));
+  try {
+    return make_station(part(*this), az1_deg, std::move(h2), az2_deg, std::move(up), notes);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(e.what());
+  }
+}
+
+std::vector<std::string> implausible_records(const RecordInput& input, const StationRecord& station) {
+  std::vector<std::string> lines;
+  const AccelUnit unit = input.spec().unit;
+  auto check = [&](const std::string& file, const GroundMotion& motion) {
+    const bool at2 = (input.format.empty() ? guess_record_format(file) : parse_record_format(input.format)) == RecordFormat::kAt2;
+    const auto p = record_plausibility(motion, at2 ? AccelUnit::kG : unit);
+    if (p.problem.empty()) return;
+    std::string line = file + ": " + p.problem + ": " + p.hint;
+    if (p.likely_unit) line += at2 ? " (an .AT2 file is read in g)" : " use --units " + to_string(*p.likely_unit);
+    lines.push_back(line);
+  };
+  if (input.file.empty()) return lines;  // a synthetic motion is what it was asked to be
+  check(input.file, station.h1);
+  if (station.h2 && !input.file_h2.empty()) check(input.file_h2, *station.h2);
+  if (station.up && !input.file_up.empty()) check(input.file_up, *station.up);
+  return lines;
+}
+
+}  // namespace pcrf::api

@@ -1,0 +1,106 @@
+// pcrf._pcrf.cube_report: what `pcrf cube stats|fragility|sensitivity|p695 --json` writes,
+// from the same reports (post/cube_reports.hpp) and the same JSON writer (full precision).
+#include <pybind11/stl.h>
+
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "bindings.hpp"
+#include "keywords.hpp"
+#include "pcrf/api/input_error.hpp"
+#include "pcrf/cube/cube_query.hpp"
+#include "pcrf/cube/cube_reader.hpp"
+#include "pcrf/post/cube_reports.hpp"
+
+namespace pcrf::python {
+namespace {
+
+/// A word or a list of words.
+std::vector<std::string> words(const std::optional<py::object>& value) {
+  if (!value) return {};
+  if (py::isinstance<py::str>(*value)) return {value->cast<std::string>()};
+  return value->cast<std::vector<std::string>>();
+}
+
+/// where=: "name=value" texts, or a dict {name: value}, as the command line's -w selectors.
+std::vector<cube::Selector> selectors(const std::optional<py::object>& where) {
+  std::vector<std::string> texts;
+  if (where && py::isinstance<py::dict>(*where)) {
+    for (const auto& [name, value] : where->cast<py::dict>())
+      texts.push_back(py::str(name).cast<std::string>() + "=" + py::str(value).cast<std::string>());
+  } else {
+    texts = words(where);
+  }
+  std::vector<cube::Selector> result;
+  for (const auto& t : texts) result.push_back(cube::parse_selector(t));
+  return result;
+}
+
+post::Report report(const std::string& kind, const std::string& file, Keywords& keywords) {
+  const auto where = selectors(keywords.take("where"));
+  if (kind == "stats") {
+    const auto metric = keywords.take_text("metric").value_or("");
+    const auto by = words(keywords.take("by"));
+    keywords.finish();
+    const cube::CubeReader reader(file);
+    return post::stats_report(reader, {by, metric, where, {}});  // no reduction (cube stats --reduce-over): not offered here yet
+  }
+  if (kind == "fragility") {
+    const auto mce = keywords.take_number("mce");
+    keywords.finish();
+    if (const auto problem = post::mce_problem(mce); !problem.empty()) throw api::InputError(problem);
+    const cube::CubeReader reader(file);
+    return post::fragility_report(reader, {where, mce});
+  }
+  if (kind == "sensitivity") {
+    const auto metric = keywords.take_text("metric").value_or("");
+    const auto by_record = keywords.take("by_record");
+    keywords.finish();
+    const cube::CubeReader reader(file);
+    return post::sensitivity_report(reader, {metric, where, by_record && py::bool_(*by_record)});
+  }
+  if (kind == "p695") {
+    const auto period_s = keywords.take_number("period_s");
+    const auto sdc = keywords.take_text("sdc").value_or("Dmax");
+    const auto mu_t = keywords.take_number("mu_t").value_or(3.0);
+    const auto ratings = keywords.take_text("ratings").value_or("B,B,B");
+    keywords.finish();
+    if (!period_s) throw api::InputError("p695 needs period_s, the archetype's period T [s]");
+    post::P695Inputs in;
+    try {
+      in = post::p695_inputs(sdc, *period_s, mu_t, ratings);
+    } catch (const std::invalid_argument& e) {
+      throw api::InputError(e.what());
+    }
+    const cube::CubeReader reader(file);
+    try {
+      return post::p695_report(reader, where, in);
+    } catch (const std::invalid_argument& e) {
+      throw api::InputError(e.what());
+    }
+  }
+  throw api::InputError("unknown report '" + kind + "' (expected stats, fragility, sensitivity or p695)");
+}
+
+std::string cube_report(const std::string& kind, const std::string& file, const py::kwargs& kwargs) {
+  Keywords keywords(kwargs);
+  std::ostringstream json;
+  try {
+    post::write_json(report(kind, file, keywords), json);
+  } catch (const cube::CubeError& e) {  // named as the command line names it: the file first
+    const std::string text = e.what();
+    throw api::InputError(text.rfind(file, 0) == 0 ? text : file + ": " + text);
+  }
+  return json.str();
+}
+
+}  // namespace
+
+void bind_cube(py::module_& m) {
+  m.def("cube_report", &cube_report, py::arg("kind"), py::arg("file"),
+        "The JSON of `pcrf cube KIND FILE --json` (stats, fragility, sensitivity, p695); see pcrf.fragility.");
+}
+
+}  // namespace pcrf::python

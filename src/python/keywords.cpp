@@ -1,0 +1,178 @@
+// A Python call's keyword arguments (see keywords.hpp).
+#include "keywords.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string_view>
+
+#include "pcrf/api/input_error.hpp"
+#include "pcrf/model/scene_catalog.hpp"
+#include "pcrf/record/intensity.hpp"
+#include "pcrf/record/record_readers.hpp"
+#include "pcrf/solver/settings.hpp"
+#include "pcrf/study/study.hpp"
+#include "pcrf/units.hpp"
+#include "pcrf/closest_word.hpp"
+
+namespace pcrf::python {
+
+template <class Target>
+SettingValue setting_value(const Setting<Target>& s, const py::handle& value) {
+  SettingValue v;
+  if (py::isinstance<py::bool_>(value)) {
+    v = value.cast<bool>();
+  } else if (py::isinstance<py::str>(value)) {
+    return api::checked_setting_text(s, value.cast<std::string>());
+  } else if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
+    std::string words;
+    for (const auto& word : value) words += (words.empty() ? "" : ",") + py::str(word).cast<std::string>();
+    return api::checked_setting_text(s, words);
+  } else if (PyIndex_Check(value.ptr())) {
+    v = static_cast<std::int64_t>(py::int_(py::reinterpret_borrow<py::object>(value)).cast<long long>());
+  } else if (PyFloat_Check(value.ptr()) || py::hasattr(value, "__float__")) {
+    v = py::float_(py::reinterpret_borrow<py::object>(value)).cast<double>();
+  } else {
+    throw api::InputError(flag_name(s.key) + ": expected " + setting_kind_text(s));
+  }
+  return api::checked_setting(s, std::move(v));
+}
+
+template SettingValue setting_value(const Setting<PhysicsOptions>&, const py::handle&);
+template SettingValue setting_value(const Setting<SolverSettings>&, const py::handle&);
+template SettingValue setting_value(const Setting<IntensitySpec>&, const py::handle&);
+template SettingValue setting_value(const Setting<study::RunOptions>&, const py::handle&);
+
+Keywords::Keywords(const py::kwargs& keywords) {
+  for (const auto& [key, value] : keywords)
+    if (!value.is_none()) given_[key.cast<std::string>()] = py::reinterpret_borrow<py::object>(value);
+}
+
+std::optional<py::object> Keywords::take(const std::string& key) {
+  known_.push_back(key);
+  const auto it = given_.find(key);
+  if (it == given_.end()) return std::nullopt;
+  py::object value = it->second;
+  given_.erase(it);
+  return value;
+}
+
+std::optional<double> Keywords::take_number(const std::string& key) {
+  const auto value = take(key);
+  if (!value) return std::nullopt;
+  try {
+    return py::float_(*value).cast<double>();
+  } catch (const py::error_already_set&) {
+    throw api::InputError(key + ": expected a number");
+  }
+}
+
+std::optional<std::string> Keywords::take_text(const std::string& key) {
+  const auto value = take(key);
+  if (!value) return std::nullopt;
+  if (py::hasattr(*value, "__fspath__")) return py::str(value->attr("__fspath__")()).cast<std::string>();
+  if (!py::isinstance<py::str>(*value)) throw api::InputError(key + ": expected a string or a path");
+  return value->cast<std::string>();
+}
+
+std::vector<double> to_doubles(const py::handle& value, const std::string& what) {
+  py::array_t<double, py::array::c_style | py::array::forcecast> array;
+  try {
+    array = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
+  } catch (const py::error_already_set&) {
+  }
+  if (!array || array.ndim() != 1) throw api::InputError(what + ": expected a one-dimensional array of numbers");
+  return std::vector<double>(array.data(), array.data() + array.size());
+}
+
+namespace {
+
+/// A component given as an array of accelerations in g: in m/s² as a reader converts a
+/// file in g (the same product, so an array read from a file gives the same case).
+GroundMotion motion_in_g(const std::string& name, double dt_s, const std::vector<double>& accel_g) {
+  std::vector<double> accel_m_s2(accel_g.size());
+  const double factor = to_m_s2(AccelUnit::kG);
+  std::transform(accel_g.begin(), accel_g.end(), accel_m_s2.begin(), [factor](double a) { return a * factor; });
+  try {
+    return GroundMotion(name, dt_s, std::move(accel_m_s2));
+  } catch (const std::invalid_argument& e) {
+    throw api::InputError(name + ": " + e.what());
+  }
+}
+
+}  // namespace
+
+StationRecord Keywords::take_station(std::vector<std::string>& notes, api::RecordInput* used) {
+  const auto h1 = take("ground_accel_g"), h2 = take("ground_accel_h2_g"), up = take("ground_accel_up_g");
+  api::RecordInput input;
+  input.az1_deg = take_number("azimuth_deg");
+  input.az2_deg = take_number("h2_azimuth_deg");
+  const auto dt_s = take_number("dt_s");
+  if (h1) {
+    if (!dt_s) throw api::InputError("ground_accel_g needs dt_s, its sample interval [s]");
+    for (const char* file_key : {"record", "record_h2", "record_up", "synthetic"})
+      if (take(file_key)) throw api::InputError(std::string("give either ground_accel_g or ") + file_key + ", not both");
+    const std::string name = take_text("name").value_or("ground_accel_g");
+    StationRecord station{motion_in_g(name, *dt_s, to_doubles(*h1, "ground_accel_g")), input.az1_deg, std::nullopt,
+                          input.az2_deg, std::nullopt};
+    if (h2) station.h2 = motion_in_g(name + " (h2)", *dt_s, to_doubles(*h2, "ground_accel_h2_g"));
+    if (up) station.up = motion_in_g(name + " (up)", *dt_s, to_doubles(*up, "ground_accel_up_g"));
+    try {
+      notes = station.align();
+    } catch (const std::invalid_argument& e) {
+      throw api::InputError(e.what());
+    }
+    return station;
+  }
+  if (h2 || up) throw api::InputError("ground_accel_h2_g and ground_accel_up_g go with ground_accel_g");
+  input.file = take_text("record").value_or("");
+  input.file_h2 = take_text("record_h2").value_or("");
+  input.file_up = take_text("record_up").value_or("");
+  input.synthetic = take_text("synthetic").value_or("");
+  input.format = take_text("format").value_or("");
+  input.units = take_text("units").value_or("g");
+  input.dt_s = dt_s.value_or(0.0);
+  if (const auto rows = take_number("skip_rows")) input.skip_rows = static_cast<std::size_t>(*rows);
+  if (const auto column = take_number("column")) input.column = static_cast<std::size_t>(*column);
+  if (used != nullptr) *used = input;
+  return input.load_station(notes);
+}
+
+std::unique_ptr<Scene> Keywords::take_scene() {
+  const std::string model = take_text("model").value_or("pcrf");
+  std::map<std::string, double, std::less<>> values;
+  if (const auto frame = take("frame")) {
+    py::object parameters = *frame;
+    if (!py::isinstance<py::dict>(parameters)) {
+      if (!py::hasattr(parameters, "parameters")) throw api::InputError("frame: expected a dict of parameters or a pcrf.Frame");
+      parameters = parameters.attr("parameters");
+    }
+    for (const auto& [key, value] : parameters.cast<py::dict>()) {
+      const std::string name = py::str(key).cast<std::string>();
+      try {
+        values[name] = py::float_(py::reinterpret_borrow<py::object>(value)).cast<double>();
+      } catch (const py::error_already_set&) {
+        throw api::InputError("frame: " + name + ": expected a number");
+      }
+    }
+  }
+  try {
+    scene_model(model);
+  } catch (const std::invalid_argument& e) {
+    throw api::InputError(std::string("model: ") + e.what());
+  }
+  try {
+    return make_scene(model, values);
+  } catch (const std::invalid_argument& e) {
+    throw api::InputError(e.what());
+  }
+}
+
+void Keywords::finish() const {
+  if (given_.empty()) return;
+  const std::string& key = given_.begin()->first;
+  const std::vector<std::string_view> known(known_.begin(), known_.end());
+  const std::string hint = closest_word(key, known);
+  throw api::InputError("unknown keyword '" + key + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
+}
+
+}  // namespace pcrf::python

@@ -1,0 +1,69 @@
+/// \file keywords.hpp
+/// \brief A Python call's keyword arguments, taken one by one: values of the settings tables
+/// by their keys (checked as the command line checks its flags), records as arrays or file
+/// paths, frames as dicts. A keyword nobody took is refused with a suggestion.
+#pragma once
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "pcrf/api/frame_input.hpp"
+#include "pcrf/api/given_settings.hpp"
+#include "pcrf/api/record_input.hpp"
+#include "pcrf/model/scene.hpp"
+
+namespace pcrf::python {
+
+namespace py = pybind11;
+
+/// A Python value as a setting of `s` takes it: booleans, integers, floats as they are,
+/// text as the command line reads it, a list of words joined. \throws api::InputError.
+template <class Target>
+SettingValue setting_value(const Setting<Target>& s, const py::handle& value);
+
+class Keywords {
+ public:
+  explicit Keywords(const py::kwargs& keywords);
+
+  /// The value of `key`, or nothing when it was not given (or given as None).
+  std::optional<py::object> take(const std::string& key);
+  std::optional<double> take_number(const std::string& key);
+  std::optional<std::string> take_text(const std::string& key);  ///< str or os.PathLike
+
+  /// The values of the table's keys that were given, checked, in table order.
+  template <class Target>
+  api::GivenSettings<Target> take_settings(const SettingTable<Target>& table) {
+    api::GivenSettings<Target> given;
+    for (const auto& setting : table.settings)
+      if (const auto value = take(std::string(setting.key))) given.emplace_back(&setting, setting_value(setting, *value));
+    return given;
+  }
+
+  /// The record the keywords name: ground_accel_g (+ dt_s) with ground_accel_h2_g and
+  /// ground_accel_up_g, or record / synthetic with record_h2 and record_up read like
+  /// `pcrf run` reads its files; the azimuths; the notes of padding in `notes`; how the files
+  /// were named in `input` (when not null). \throws api::InputError.
+  StationRecord take_station(std::vector<std::string>& notes, api::RecordInput* input = nullptr);
+  /// The scene of `model=` (pcrf, block, rocking-frame; default pcrf) with the parameters of
+  /// `frame=` (a dict by the model's keys, or a pcrf.Frame), every other one at its default,
+  /// built as `pcrf run --model` builds it (model/scene_catalog.hpp). \throws api::InputError.
+  std::unique_ptr<Scene> take_scene();
+
+  /// \throws api::InputError "unknown keyword 'x' (did you mean 'y'?)" for one not taken.
+  void finish() const;
+
+ private:
+  std::map<std::string, py::object> given_;
+  std::vector<std::string> known_;
+};
+
+/// A numpy float array as doubles. \throws api::InputError naming `what`.
+std::vector<double> to_doubles(const py::handle& value, const std::string& what);
+
+}  // namespace pcrf::python

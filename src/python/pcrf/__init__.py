@@ -1,0 +1,154 @@
+"""pcrf in Python: the engine in process.
+
+Every function calls the C++ that the ``pcrf`` command line calls, so a result is the
+command line's, bit for bit, and a bad input raises ``ValueError`` with the command line's
+message.
+
+>>> import numpy as np, pcrf
+>>> t = np.arange(0, 4, 0.01)
+>>> result = pcrf.run(ground_accel_g=1.5 * np.sin(2 * np.pi * t / 0.5), dt_s=0.01, preset="reference")
+>>> result["status"], result["theta_max_rad"]
+
+- ``run(...)``: one case (``pcrf run``); the history as a numpy structured array or a pandas
+  DataFrame with ``history="numpy"`` / ``"pandas"``.
+- ``Frame(**parameters)``: a frame's properties and pushover curve (``pcrf frame``).
+- ``record_measures(...)``: a record's intensity measures (``pcrf record``).
+- ``study(dict or path, output=...)``: a study, returned as an xarray.Dataset (``pcrf study``).
+- ``open_cube(path)``: a result cube as an xarray.Dataset, ``status`` as integer flags.
+- ``stats``, ``fragility``, ``sensitivity``, ``p695``: ``pcrf cube``'s reports as DataFrames.
+- ``settings()``: every [physics] / [solver] / intensity / [run] key, with unit and default.
+
+The compiled part releases the GIL while it computes: a thread pool over cases uses every core.
+"""
+
+import json as _json
+import os as _os
+import warnings as _warnings
+
+from . import _pcrf
+from ._pcrf import InputError, StudyError  # both are ValueError
+
+__version__ = _pcrf.__version__
+
+# The environment before MPI started in this process (pcrf.study): mpirun gets this one.
+_ENVIRONMENT_AT_IMPORT = dict(_os.environ)
+
+
+def _warn_notes(notes):
+    for note in notes:
+        _warnings.warn(note, stacklevel=3)
+
+
+def _history_table(array, history):
+    if history in (True, "numpy"):
+        return array
+    if history == "pandas":
+        import pandas
+
+        return pandas.DataFrame(array)
+    raise ValueError(f"history: expected False, True, 'numpy' or 'pandas' (got {history!r})")
+
+
+def run(ground_accel_g=None, dt_s=None, *, history=False, **keywords):
+    """Solves one case as ``pcrf run`` does and returns its result record (a dict with the
+    keys of ``pcrf run``'s JSON; NaN where it writes null).
+
+    The ground motion: ``ground_accel_g`` (a 1-D array in g, sample interval ``dt_s``), with
+    ``ground_accel_h2_g`` and ``ground_accel_up_g`` for a station's other components; or
+    ``record`` (a file: .AT2, two-column or one-column text with ``format``, ``units``,
+    ``dt_s``, ``skip_rows``, ``column``) with ``record_h2`` and ``record_up``, or
+    ``synthetic="sine:..."``. ``azimuth_deg``, ``h2_azimuth_deg``, ``incidence_deg`` as on the
+    command line. ``scale=`` or ``intensity=`` (with ``measure``, ``period_s``, ``damping``).
+
+    The frame: ``frame=`` a dict of parameters (kappa, lambda, tan_alpha, lambda_h, pi_sigma_b,
+    pi_sigma_c, pi_e_b, pi_e_c, h_m, m_c_kg) or a ``pcrf.Frame``; default the paper's basic
+    model. ``model="block"`` or ``"rocking-frame"`` (as ``pcrf run --model``) solves another
+    scene; ``frame=`` then holds its keys as a study spells them (slenderness_rad, size_m or
+    frequency_parameter_rad_s, given_restitution, beam_mass_ratio). Every key of a study's [physics] and [solver] tables is a keyword (``preset``,
+    ``tail_s``, ``rtol``, ...; ``pcrf.settings()`` lists them).
+
+    ``history``: False (default), True or "numpy" (a structured array), "pandas" (a DataFrame);
+    then ``(result, history)`` is returned. ``history_dt_s`` sets its interval.
+    """
+    if ground_accel_g is not None:
+        keywords["ground_accel_g"] = ground_accel_g
+    if dt_s is not None:
+        keywords["dt_s"] = dt_s
+    result, rows, notes = _pcrf.run(history=bool(history), **keywords)
+    _warn_notes(notes)
+    if not history:
+        return result
+    return result, _history_table(rows, history)
+
+
+class Frame:
+    """A prestressed frame (``pcrf frame``): ``Frame(kappa=2.5)``; the other parameters are the
+    paper's basic model's. Its properties are attributes (``threshold`` is
+    ``uplift_threshold_g``; ``properties`` holds them all, ``units`` their units), the
+    pushover curve is ``pushover_theta_rad`` and ``pushover_accel_g`` (numpy arrays, ``points``
+    rotations, default 41). ``fracture_strain`` (a [physics] key) sets where tendons fracture.
+    ``pcrf.run(frame=Frame(...))`` solves this frame.
+    """
+
+    def __init__(self, **parameters):
+        described = _pcrf.frame(**parameters)
+        self.parameters = described["parameters"]
+        self.properties = described["properties"]
+        self.units = described["units"]
+        self.fracture_tendon = described["fracture_tendon"]
+        self.pushover_theta_rad = described["pushover_theta_rad"]
+        self.pushover_accel_g = described["pushover_accel_g"]
+
+    @property
+    def threshold(self):
+        """The ground acceleration that opens the frame, prestress included [g]."""
+        return self.properties["uplift_threshold_g"]
+
+    def __getattr__(self, name):
+        properties = self.__dict__.get("properties", {})
+        if name in properties:
+            return properties[name]
+        raise AttributeError(f"pcrf.Frame has no attribute {name!r} (properties: {', '.join(properties)})")
+
+    def __dir__(self):
+        return sorted(set(super().__dir__()) | set(self.properties))
+
+    def __repr__(self):
+        given = ", ".join(f"{k}={v!r}" for k, v in self.parameters.items())
+        return f"pcrf.Frame({given})"
+
+
+def record_measures(record=None, **keywords):
+    """What ``pcrf record`` prints, as a dict: PGA, PGV, PGD, Arias intensity, D5-95, Sa at
+    ``periods_s`` (``damping``, default 0.05), the header's metadata; with ``record_h2`` (the
+    command line's ``--pair``) RotD50/RotD100 and the pair's measures, with ``record_up`` the
+    vertical's. ``record`` is a file (keywords as for ``run``) or an array in g (then
+    ``dt_s=``)."""
+    if record is not None:
+        if isinstance(record, (str, _os.PathLike)):
+            keywords["record"] = record
+        else:
+            keywords["ground_accel_g"] = record
+    periods = keywords.get("periods_s")
+    if periods is not None and not hasattr(periods, "__len__"):
+        keywords["periods_s"] = [periods]
+    text, notes = _pcrf.record_measures(**keywords)
+    _warn_notes(notes)
+    return _json.loads(text)
+
+
+def settings():
+    """Every setting: a list of dicts (table, key, kind, unit, default, doc)."""
+    return _pcrf.settings()
+
+
+from ._cube import open_cube  # noqa: E402
+from ._reports import fragility, p695, sensitivity, stats  # noqa: E402
+from ._study import study  # noqa: E402
+
+__all__ = ["run", "Frame", "record_measures", "study", "open_cube", "stats", "fragility", "sensitivity", "p695",
+           "settings", "InputError", "StudyError"]
+
+import atexit as _atexit  # noqa: E402
+
+_atexit.register(_pcrf.finalize_mpi)  # MPI (started by the first pcrf.study) ends with the interpreter

@@ -1,0 +1,46 @@
+"""pcrf.stats, fragility, sensitivity, p695: the command line's cube reports as pandas
+DataFrames, from the JSON that `pcrf cube KIND --json` writes (the same C++, full precision)."""
+
+import json
+import os
+
+from . import _pcrf
+
+
+def _frame(kind, cube, table, **keywords):
+    """The report's table `table` as a DataFrame; ``attrs`` holds the report's fields, its
+    warnings, the columns' units and descriptions, and its other tables (as DataFrames)."""
+    import pandas
+
+    report = json.loads(_pcrf.cube_report(kind, os.fspath(cube), **keywords))
+    columns = report.pop("columns")
+    tables = {name: pandas.DataFrame(report.pop(name), columns=[c["name"] for c in spec])
+              for name, spec in columns.items()}
+    result = tables.pop(table)
+    result.attrs.update(
+        command=report.pop("command"), warnings=report.pop("warnings", []), fields=report,
+        units={c["name"]: c["units"] for c in columns[table]},
+        descriptions={c["name"]: c["description"] for c in columns[table]}, tables=tables)
+    return result
+
+
+def stats(cube, by, metric, where=None):
+    """``pcrf cube stats``: median and 16th/84th percentiles of ``metric`` across records per
+    value of ``by`` (a coordinate or a list); ``where`` a dict or "name=value" texts."""
+    return _frame("stats", cube, "groups", by=by, metric=metric, where=where)
+
+
+def fragility(cube, where=None, mce=None, table="frames"):
+    """``pcrf cube fragility``: the lognormal collapse fragility of each frame (median, beta and
+    their 90 % intervals; ``cmr`` with ``mce``); ``table="points"`` for the data fitted."""
+    return _frame("fragility", cube, table, where=where, mce=mce)
+
+
+def sensitivity(cube, metric, where=None, by_record=False):
+    """``pcrf cube sensitivity``: Sobol' indices of each parameter of a saltelli cube."""
+    return _frame("sensitivity", cube, "indices", metric=metric, where=where, by_record=by_record)
+
+
+def p695(cube, period_s, sdc="Dmax", mu_t=3.0, ratings="B,B,B", where=None):
+    """``pcrf cube p695``: FEMA P-695 per frame; the group's verdict in ``attrs["fields"]``."""
+    return _frame("p695", cube, "frames", period_s=period_s, sdc=sdc, mu_t=mu_t, ratings=ratings, where=where)

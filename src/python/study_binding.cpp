@@ -1,0 +1,138 @@
+// pcrf._pcrf.study: a study in process, on one rank, as `pcrf study` runs it
+// (study/study_run.hpp); a dict study is read by the same parser as a file, from TOML tables
+// built here, its messages naming the key path in place of a line.
+#include <pybind11/stl.h>
+
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "bindings.hpp"
+#include "keywords.hpp"
+#include "pcrf/api/input_error.hpp"
+#include "pcrf/parallel/mpi_session.hpp"
+#include "pcrf/study/study_error.hpp"
+#include "pcrf/study/study_parser.hpp"
+#include "pcrf/study/study_run.hpp"
+
+namespace pcrf::python {
+namespace {
+
+/// How a dict study is named in messages and in the cube ("study: axes.kappa: …").
+constexpr const char* kDictSource = "study";
+
+[[noreturn]] void refuse(const py::handle& value, const std::string& path) {
+  throw study::StudyError(std::string(kDictSource) + ": " + path + ": a " +
+                          py::str(value.get_type().attr("__name__")).cast<std::string>() +
+                          " cannot be a study value (expected a dict, list, bool, int, float or str)");
+}
+
+toml::table toml_table(const py::dict& dict, const std::string& path);
+toml::array toml_array(const py::handle& list, const std::string& path);
+
+/// Hands one value of a dict study, as its TOML type, to `put` (tables, arrays, booleans,
+/// integers, floats, strings; numpy arrays and scalars through their Python values).
+template <class Put>
+void with_toml_value(const py::handle& value, const std::string& path, Put put) {
+  if (py::isinstance<py::dict>(value)) return put(toml_table(value.cast<py::dict>(), path));
+  if (py::hasattr(value, "tolist") && !py::isinstance<py::str>(value))
+    return with_toml_value(value.attr("tolist")(), path, put);
+  if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) return put(toml_array(value, path));
+  if (py::isinstance<py::bool_>(value)) return put(value.cast<bool>());
+  if (py::isinstance<py::int_>(value)) return put(value.cast<std::int64_t>());
+  if (py::isinstance<py::float_>(value)) return put(value.cast<double>());
+  if (py::isinstance<py::str>(value)) return put(value.cast<std::string>());
+  if (py::hasattr(value, "__fspath__")) return put(py::str(value.attr("__fspath__")()).cast<std::string>());
+  refuse(value, path);
+}
+
+toml::table toml_table(const py::dict& dict, const std::string& path) {
+  toml::table table;
+  for (const auto& [key, item] : dict) {
+    const std::string name = py::str(key).cast<std::string>();
+    with_toml_value(item, path.empty() ? name : path + "." + name,
+                    [&](auto&& value) { table.insert(name, std::forward<decltype(value)>(value)); });
+  }
+  return table;
+}
+
+toml::array toml_array(const py::handle& list, const std::string& path) {
+  toml::array array;
+  std::size_t i = 0;
+  for (const auto& item : list)
+    with_toml_value(item, path + "[" + std::to_string(i++) + "]",
+                    [&](auto&& value) { array.push_back(std::forward<decltype(value)>(value)); });
+  return array;
+}
+
+/// The dict as TOML text, checked by the study parser (StudyError naming the key path).
+std::string checked_study_text(const py::dict& study) {
+  const toml::table table = toml_table(study, "");
+  std::ostringstream text;
+  text << table;
+  study::parse_study_table(table, text.str(), kDictSource, std::filesystem::current_path());
+  return text.str();
+}
+
+/// The one MPI session of this process (a singleton rank), made by the first study and
+/// finalized when the interpreter exits (finalize_mpi): MPI cannot start twice in a process.
+std::unique_ptr<parallel::MpiSession>& mpi_session() {
+  static std::unique_ptr<parallel::MpiSession> session;
+  return session;
+}
+
+py::dict study(const py::object& source, const py::kwargs& kwargs) {
+  study::StudyRunOptions options;
+  if (py::isinstance<py::dict>(source)) {
+    options.study_text = checked_study_text(source.cast<py::dict>());
+    options.study_file = kDictSource;
+  } else {
+    options.study_file = py::str(py::hasattr(source, "__fspath__") ? source.attr("__fspath__")() : source).cast<std::string>();
+  }
+  Keywords keywords(kwargs);
+  if (const auto output = keywords.take_text("output")) options.output = *output;
+  if (const auto flag = keywords.take("overwrite")) options.overwrite = py::bool_(*flag);
+  if (const auto flag = keywords.take("resume")) options.resume = py::bool_(*flag);
+  if (const auto flag = keywords.take("check")) options.check_only = py::bool_(*flag);
+  if (options.resume && options.overwrite) throw api::InputError("give either resume or overwrite, not both");
+  const auto progress = keywords.take("progress");
+  if (progress && py::bool_(*progress)) options.progress = &std::cerr;
+  options.run_overrides = keywords.take_settings(study::run_settings());
+  keywords.finish();
+  if (!options.study_text.empty() && options.output.empty() && !options.check_only)
+    throw api::InputError("a study given as a dict needs output= (the cube's path)");
+
+  std::optional<study::StudySummary> summary;
+  {
+    py::gil_scoped_release released;
+    if (!mpi_session()) {
+      if (const auto problem = parallel::MpiSession::startup_problem(); !problem.empty()) throw api::InputError(problem);
+      mpi_session() = std::make_unique<parallel::MpiSession>();
+    }
+    summary = study::run_study(options, *mpi_session());
+  }
+  py::dict d;
+  d["total"] = summary->total;
+  d["already_done"] = summary->already_done;
+  d["computed"] = summary->computed;
+  d["failed"] = summary->failed;
+  d["output"] = summary->output.string();
+  d["fingerprint"] = summary->fingerprint;
+  d["invalid_cases"] = summary->invalid_cases;
+  d["invalid_frames"] = summary->invalid_frames;
+  d["first_invalid"] = summary->first_invalid;
+  d["error"] = summary->error;
+  return d;
+}
+
+}  // namespace
+
+void bind_study(py::module_& m) {
+  m.def("study", &study, py::arg("source"), "A study in process on one rank; see pcrf.study.");
+  m.def("study_text", &checked_study_text, py::arg("study"),
+        "A dict study as TOML text, checked as a study file is (StudyError naming the key path).");
+  m.def("finalize_mpi", [] { mpi_session().reset(); }, "Ends this process's MPI session (at exit).");
+}
+
+}  // namespace pcrf::python
