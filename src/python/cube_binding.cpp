@@ -64,7 +64,7 @@ post::Report report(const std::string& kind, const std::string& file, Keywords& 
   if (kind == "p695") {
     const auto period_s = keywords.take_number("period_s");
     const auto sdc = keywords.take_text("sdc").value_or("Dmax");
-    const auto mu_t = keywords.take_number("mu_t").value_or(3.0);
+    const auto mu_t = keywords.take_number("mu_t").value_or(0.0);
     const auto ratings = keywords.take_text("ratings").value_or("B,B,B");
     keywords.finish();
     if (!period_s) throw api::InputError("p695 needs period_s, the archetype's period T [s]");

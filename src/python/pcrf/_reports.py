@@ -41,6 +41,7 @@ def sensitivity(cube, metric, where=None, by_record=False):
     return _frame("sensitivity", cube, "indices", metric=metric, where=where, by_record=by_record)
 
 
-def p695(cube, period_s, sdc="Dmax", mu_t=3.0, ratings="B,B,B", where=None):
-    """``pcrf cube p695``: FEMA P-695 per frame; the group's verdict in ``attrs["fields"]``."""
+def p695(cube, period_s, sdc="Dmax", mu_t=0.0, ratings="B,B,B", where=None):
+    """``pcrf cube p695``: FEMA P-695 per frame; the group's verdict in ``attrs["fields"]``. ``mu_t=0``: each
+    frame's own period-based ductility (docs/p695_rocking_frame.md), as the command line's default."""
     return _frame("p695", cube, "frames", period_s=period_s, sdc=sdc, mu_t=mu_t, ratings=ratings, where=where)
