@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <csignal>
 #include <cstdlib>
 #include <fstream>
@@ -142,6 +143,27 @@ TEST(StudyCommand, FailingCasesAreRecordedAndTheStudyGoesOn) {
   ASSERT_EQ(cube.read_notes().size(), 1u);
   EXPECT_EQ(cube.read_notes()[0].first, 1);
   EXPECT_FALSE(cube.read_notes()[0].second.empty());
+}
+
+/// A record in cm/s² read as g (PGA 490 g): the run and --check warn naming the file and the
+/// likely units; with [run] warnings_as_errors the study stops with exit code 2 and writes no cube.
+TEST(StudyCommand, ARecordInTheWrongUnitsWarnsOrStopsTheStudy) {
+  const auto dir = test::scratch_dir("study_wrong_units");
+  std::ostringstream rows;
+  for (int i = 0; i <= 1000; ++i) rows << 0.01 * i << ' ' << 490.0 * std::sin(2.0 * 3.141592653589793 * 0.01 * i) << '\n';
+  test::write_file(dir, "cm.txt", rows.str());
+  const std::string study = "[[records]]\nfile = \"cm.txt\"\n[axes]\nscale = [0.001]\n";
+  const auto warned = run_study(dir, "w.toml", study, "--check");
+  EXPECT_EQ(warned.exit_code, 0) << warned.err;
+  EXPECT_NE(warned.err.find("cm.txt"), std::string::npos) << warned.err;
+  EXPECT_NE(warned.err.find("cm/s2"), std::string::npos) << warned.err;
+
+  const auto stopped = run_study(dir, "e.toml", study + "[run]\nwarnings_as_errors = true\n", "-o e.h5");
+  EXPECT_EQ(stopped.exit_code, 2) << stopped.err;
+  EXPECT_EQ(std::count(stopped.err.begin(), stopped.err.end(), '\n'), 1) << stopped.err;
+  EXPECT_NE(stopped.err.find("cm.txt"), std::string::npos) << stopped.err;
+  EXPECT_NE(stopped.err.find("warnings_as_errors"), std::string::npos) << stopped.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "e.h5"));
 }
 
 TEST(StudyCommand, MoreRanksThanCasesIsFine) {
