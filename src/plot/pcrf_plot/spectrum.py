@@ -15,6 +15,12 @@ from pcrf_plot.errors import PlotError
 UNBRACKETED, CENSORED = 2, 1  # curve_state (plan::CurveState)
 
 
+def minor_label(value, _position):
+    """A minor tick's label, except beside a decade's (0.9 next to 1 would overlap it)."""
+    decade = 10.0 ** round(math.log10(value))
+    return "" if abs(value / decade - 1.0) < 0.15 else f"{value:g}"
+
+
 def draw(args):
     cube = engine.Cube(args.input)
     for needed, why in (("collapse_intensity", "an IDA cube ([ida] table)"),
@@ -69,9 +75,10 @@ def draw(args):
             # less than a decade and a half (else a decade's only label would be its base).
             axis.set_major_formatter(ticker.FormatStrFormatter("%g"))
             short = high / low < 30
-            axis.set_minor_formatter(ticker.FormatStrFormatter("%g") if short else ticker.NullFormatter())
+            axis.set_minor_formatter(ticker.FuncFormatter(minor_label) if short else ticker.NullFormatter())
         ylabel = "collapse amplitude / uplift threshold" if units == "g" else f"collapse intensity [{units}]"
-        ax.set(xlabel="ω_p / p", ylabel=ylabel, title=frame)
+        # One frame ("all") needs no panel title: the figure's title names it.
+        ax.set(xlabel="ω_p / p", ylabel=ylabel, title="" if frame == "all" else frame)
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(loc="upper left", fontsize="small")
     for ax in axes.flat[len(frames):]:
