@@ -269,6 +269,19 @@ void export_csv(const CubeReader& cube, const std::vector<std::string>& metrics,
   }
 }
 
+namespace {
+
+/// A group's count of values, median and 16th/84th percentiles of `samples`.
+void summarize(std::vector<double> samples, GroupStats& group) {
+  std::sort(samples.begin(), samples.end());
+  group.values = samples.size();
+  group.median = analysis::percentile_sorted(samples, 0.50);
+  group.p16 = analysis::percentile_sorted(samples, 0.16);
+  group.p84 = analysis::percentile_sorted(samples, 0.84);
+}
+
+}  // namespace
+
 std::vector<GroupStats> group_stats(const CubeReader& cube, const std::vector<std::string>& by, const std::string& metric,
                                     const std::vector<Selector>& selectors, const PoolReport& pool) {
   const auto& layout = cube.layout();
@@ -334,13 +347,7 @@ std::vector<GroupStats> group_stats(const CubeReader& cube, const std::vector<st
     stats[it->second].unresolved += g.unresolved;
     merged[it->second].insert(merged[it->second].end(), g.samples.begin(), g.samples.end());
   }
-  for (std::size_t s = 0; s < stats.size(); ++s) {
-    std::sort(merged[s].begin(), merged[s].end());
-    stats[s].values = merged[s].size();
-    stats[s].median = analysis::percentile_sorted(merged[s], 0.50);
-    stats[s].p16 = analysis::percentile_sorted(merged[s], 0.16);
-    stats[s].p84 = analysis::percentile_sorted(merged[s], 0.84);
-  }
+  for (std::size_t s = 0; s < stats.size(); ++s) summarize(std::move(merged[s]), stats[s]);
   return stats;
 }
 
@@ -451,13 +458,7 @@ std::vector<GroupStats> group_stats_reduced(const CubeReader& cube, const std::v
       if (p != by_pos && p != reduce_pos && !expected && var_shape[p] > 1)
         pool.pooled->push_back(name + " (" + std::to_string(var_shape[p]) + " values)");
     }
-  for (std::size_t s = 0; s < stats.size(); ++s) {
-    std::sort(samples[s].begin(), samples[s].end());
-    stats[s].values = samples[s].size();
-    stats[s].median = analysis::percentile_sorted(samples[s], 0.50);
-    stats[s].p16 = analysis::percentile_sorted(samples[s], 0.16);
-    stats[s].p84 = analysis::percentile_sorted(samples[s], 0.84);
-  }
+  for (std::size_t s = 0; s < stats.size(); ++s) summarize(std::move(samples[s]), stats[s]);
   return stats;
 }
 
