@@ -43,6 +43,14 @@ class CollapseRule {
   int theta_column_;
 };
 
+/// Runs among status[first, first + count) whose frame was still rocking when the tail ended.
+std::size_t unresolved_runs(const std::vector<std::int8_t>& status, std::size_t first, std::size_t count) {
+  return static_cast<std::size_t>(std::count_if(status.begin() + static_cast<std::ptrdiff_t>(first),
+                                                status.begin() + static_cast<std::ptrdiff_t>(first + count), [](std::int8_t s) {
+                                                  return s != cube::kStatusNotRun && is_unresolved(static_cast<CaseStatus>(s));
+                                                }));
+}
+
 }  // namespace
 
 std::unique_ptr<plan::IdaPlan> make_ida_plan(const Study& study, const CaseSpace& space, const cube::CubeWriter& writer,
@@ -70,8 +78,10 @@ std::unique_ptr<plan::IdaPlan> make_ida_plan(const Study& study, const CaseSpace
 }
 
 void store_ida_summaries(const Study& study, const plan::IdaPlan& plan, cube::CubeWriter& writer) {
-  std::vector<double> collapse, safe, runs, state;
+  std::vector<double> collapse, safe, runs, state, unresolved;
   const double none = std::nan("");  // a curve another shard computes: nothing known here
+  const auto& status = writer.status();
+  const auto points = static_cast<std::size_t>(plan.max_runs());
   for (std::size_t c = 0; c < plan.curves(); ++c) {
     const bool here = !plan.skipped(c);
     const auto& curve = plan.curve(c);
@@ -80,16 +90,17 @@ void store_ida_summaries(const Study& study, const plan::IdaPlan& plan, cube::Cu
     runs.push_back(here ? static_cast<double>(curve.runs()) : none);
     // A state only once the curve is done: a curve still running is neither.
     state.push_back(here && curve.done() ? static_cast<double>(curve.state()) : none);
+    unresolved.push_back(here ? static_cast<double>(unresolved_runs(status, c * points, points)) : none);
   }
   writer.store_side(vocabulary::kCollapseIntensity, std::move(collapse));
   writer.store_side(vocabulary::kLastSafeIntensity, std::move(safe));
   writer.store_side(vocabulary::kIdaRuns, std::move(runs));
   writer.store_side(vocabulary::kCurveState, std::move(state));
+  writer.store_side(vocabulary::kUnresolvedRuns, std::move(unresolved));
   if (!study.solver.verdict_check) return;
   // The band of intensities whose verdicts failed the perturbation test, per curve.
   const auto stable = writer.read_values(std::string(metric::status_stable().name));
   const auto intensity = writer.read_values(vocabulary::kIdaIntensity);
-  const auto points = static_cast<std::size_t>(plan.max_runs());
   std::vector<double> from(plan.curves(), std::nan("")), to(plan.curves(), std::nan(""));
   for (std::size_t c = 0; c < plan.curves(); ++c)
     for (std::size_t k = 0; k < points; ++k) {

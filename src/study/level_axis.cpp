@@ -96,7 +96,8 @@ class IdaAxis final : public MeasuredAxis {
   void add_leading(cube::CubeLayout& layout, RecordCache& records) const override { add_unscaled(layout, records); }
 
   /// `ida_point` (the runs of a curve, in the order run) and per curve the collapse
-  /// intensity, the last safe intensity, the number of runs, and with verdict checks the band
+  /// intensity, the last safe intensity, the number of runs, how the curve ended, how many of
+  /// its runs were unresolved, and with verdict checks the band
   /// of intensities whose verdicts were unstable.
   void add_trailing(cube::CubeLayout& layout, const std::vector<std::string>& curves) const override {
     std::vector<double> points(runs_);
@@ -110,6 +111,10 @@ class IdaAxis final : public MeasuredAxis {
     side.push_back({names::kLastSafeIntensity, units_, "highest safe intensity below the collapse", curves, {}});
     side.push_back({names::kIdaRuns, "1", "runs of the curve so far", curves, {}});
     side.push_back({names::kCurveState, "1", curve_state_long_name(), curves, {}});
+    side.push_back({names::kUnresolvedRuns, "1",
+                    "runs of the curve whose frame was still rocking when its tail ended (rocking_at_end): no verdict, "
+                    "counted as collapses by the search",
+                    curves, {}});
     if (!verdict_check_) return;
     side.push_back({names::kUnstableFrom, units_,
                     "lowest intensity of the curve whose verdict failed the perturbation test (NaN: none)", curves, {}});

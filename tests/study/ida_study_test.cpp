@@ -369,5 +369,31 @@ TEST(IdaStudy, ACollapseStatusLeftOutOfTheCollapseSetIsNamedAtTheEndAndByFragili
   EXPECT_EQ(plain.err.find("does not count as collapse"), std::string::npos) << plain.err;
 }
 
+TEST(IdaStudy, UnresolvedRunsAreCountedPerCurveInTheCubeAndOnStderr) {
+  // A 0.05 s cap on the free vibration leaves frames that rocked still moving when their tail
+  // ends: those runs are rocking_at_end, unresolved. The cube counts them per curve in
+  // unresolved_runs, which must equal the count of that status among the curve's own runs.
+  const auto dir = test::scratch_dir("ida_unresolved");
+  std::string text = ida_study(2, 6);
+  text.replace(text.find("[intensity]"), 0, "[physics]\nmax_tail_s = 0.05\n");
+  const auto run = run_ida(dir, text, "ida.h5");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  cube::CubeReader cube(dir / "ida.h5");
+  const auto status = cube.read_status();
+  const auto per_curve = cube.read_side("unresolved_runs");
+  const std::size_t points = 6;
+  ASSERT_EQ(per_curve.size() * points, status.size());
+  std::size_t total = 0;
+  for (std::size_t c = 0; c < per_curve.size(); ++c) {
+    const auto first = status.begin() + static_cast<std::ptrdiff_t>(c * points);
+    const auto n = std::count(first, first + static_cast<std::ptrdiff_t>(points),
+                              static_cast<std::int8_t>(pcrf::CaseStatus::kRockingAtEnd));
+    EXPECT_EQ(per_curve[c], static_cast<double>(n)) << "curve " << c;
+    total += static_cast<std::size_t>(n);
+  }
+  ASSERT_GT(total, 0u) << "some runs must end unresolved for this test to mean anything";
+  EXPECT_NE(run.err.find(std::to_string(total) + " runs"), std::string::npos) << run.err;
+}
+
 }  // namespace
 }  // namespace pcrf::study_test

@@ -85,10 +85,10 @@ TEST(LevelAxis, AnIdaPutsTheRunsOfACurveAfterTheFrames) {
     EXPECT_EQ(s.dimensions, (std::vector<std::string>{"record", "kappa"})) << s.name;
   }
   EXPECT_EQ(side, (std::vector<std::string>{"collapse_intensity", "last_safe_intensity", "ida_runs", "curve_state",
-                                            "unstable_from_intensity", "unstable_to_intensity"}));
+                                            "unresolved_runs", "unstable_from_intensity", "unstable_to_intensity"}));
   cube::CubeLayout plain;
   make_level_axis(parse(ida))->add_trailing(plain, {"record", "kappa"});
-  EXPECT_EQ(plain.side_variables.size(), 4u);  // no verdict check, no unstable band
+  EXPECT_EQ(plain.side_variables.size(), 5u);  // no verdict check, no unstable band
 }
 
 }  // namespace

@@ -28,6 +28,7 @@ inline constexpr const char* kCollapseIntensity = "collapse_intensity";
 inline constexpr const char* kLastSafeIntensity = "last_safe_intensity";
 inline constexpr const char* kIdaRuns = "ida_runs";
 inline constexpr const char* kCurveState = "curve_state";
+inline constexpr const char* kUnresolvedRuns = "unresolved_runs";
 inline constexpr const char* kUnstableFrom = "unstable_from_intensity";
 inline constexpr const char* kUnstableTo = "unstable_to_intensity";
 inline constexpr const char* kPulseShape = "pulse_shape";
