@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """IDA bench (not a test): how many runs the adaptive IDA needs to bracket each record's
 collapse intensity, against a dense grid at the same resolution, and whether each bracket's
-ends really are a collapse and a safe run when rerun alone with `pcrf run`.
+ends really are a collapse and a safe run when rerun alone with `pcrf run` (scaled by the
+factor the study applied to that run, whatever the measure and normalisation).
 
     python3 bench/ida_bench.py --pcrf build/pcrf                  # studies/fema_p695_ida.toml
     python3 bench/ida_bench.py --pcrf build/pcrf --cube ida.h5    # an IDA cube already made
@@ -37,9 +38,10 @@ def runs_to_bracket(intensity, status, resolution):
     return None
 
 
-def status_of(pcrf, source, kappa_flags, intensity):
-    command = [pcrf, "run", "--record", source.removeprefix("file "), "--measure", "pga_g", "--intensity",
-               repr(float(intensity))] + kappa_flags
+def status_of(pcrf, source, frame_flags, scale_factor):
+    """The status of `pcrf run` on the record scaled by the factor the study applied (any
+    intensity measure and normalisation: the cube stores each run's own factor)."""
+    command = [pcrf, "run", "--record", source.removeprefix("file "), "--scale", repr(float(scale_factor))] + frame_flags
     out = subprocess.run(command, capture_output=True, text=True, env=ENV).stdout
     at = out.find('"status": "')
     return out[at + 11:out.find('"', at + 11)]
@@ -97,7 +99,9 @@ def main():
                 if "case_label" in ds:
                     for p in ("kappa", "lambda", "tan_alpha", "lambda_h", "pi_sigma_b", "pi_sigma_c", "pi_e_b", "pi_e_c"):
                         flags += ["--" + p.replace("_", "-"), repr(float(ds[p].values[f]))]
-                at_c, at_s = status_of(args.pcrf, source, flags, c), status_of(args.pcrf, source, flags, s)
+                factor = dict(zip(curve.ida_intensity.values.tolist(), curve.scale_factor.values.tolist()))
+                at_c = status_of(args.pcrf, source, flags, factor[c])
+                at_s = status_of(args.pcrf, source, flags, factor[s])
                 checked += 1
                 agree += at_c in ("tendon_fracture", "overturned") and at_s in ("at_rest", "rocking_at_end")
         median = statistics.median(to_bracket) if to_bracket else float("nan")

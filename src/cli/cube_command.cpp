@@ -178,6 +178,7 @@ void add_info(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
       if (const auto states = study::vocabulary::curve_states_text(study::vocabulary::curve_states(reader));
           !states.empty())
         (args->json ? std::cerr : std::cout) << states << '\n';
+      note_verdicts("info", args->file, reader, "neither safe nor collapsed");
       // Vouch for nothing unread: a variable whose chunks no longer decompress is damage.
       const auto damage = reader.damage();
       if (!damage.empty()) {

@@ -393,6 +393,9 @@ TEST(IdaStudy, UnresolvedRunsAreCountedPerCurveInTheCubeAndOnStderr) {
   }
   ASSERT_GT(total, 0u) << "some runs must end unresolved for this test to mean anything";
   EXPECT_NE(run.err.find(std::to_string(total) + " runs"), std::string::npos) << run.err;
+  const auto info = test::run_command(pcrf() + " cube info " + quoted(dir / "ida.h5"));
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_NE(info.err.find(std::to_string(total) + " runs ended with the frame still rocking"), std::string::npos) << info.err;
 }
 
 }  // namespace
