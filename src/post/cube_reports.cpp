@@ -201,13 +201,17 @@ Report stats_report(const cube::CubeReader& cube, const StatsRequest& request) {
   return report;
 }
 
-Report fragility_report(const cube::CubeReader& cube, const FragilityRequest& request) {
-  const auto frames = cube_fragility(cube, request.where);
+Report fragility_report(const cube::CubeReader& cube, const FragilityRequest& request, const cube::Reduction& reduction) {
+  const auto frames = cube_fragility(cube, request.where, reduction);
   const std::string units = intensity_units(cube);
   Report report;
   report.command = "fragility";
   report.fields = {{"file", cube.file().string()}, {"intensity_units", units},
                    {"mce", request.mce ? Cell{*request.mce} : Cell{}}};
+  if (!reduction.dimension.empty()) {
+    report.fields.emplace_back("reduced_over", reduction.dimension);
+    report.fields.emplace_back("reduction", reduction.how);
+  }
   report.warnings = unbracketed_warnings(frames);
   const bool ida = !frames.empty() && frames.front().unbracketed.has_value();
   report.tables.emplace_back("frames", make_table(fragility_spec(units, request.mce, ida), frames));
