@@ -7,7 +7,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <fstream>
 #include <map>
+#include <regex>
+#include <set>
 #include <sstream>
 
 #include "pcrf/cube/cube_query.hpp"
@@ -99,6 +102,66 @@ TEST(CubeReduce, ABadReductionIsOneLineAndWritesNothing) {
   }
   const auto r = test::run_command("cd " + quoted(dir) + " && " + pcrf() + " cube fragility ida.h5 --reduce-over incidence_deg --reduce mean");
   EXPECT_NE(r.err.find("--reduce: reduce with max, min or median, not 'mean'"), std::string::npos) << r.err;
+}
+
+TEST(CubeReduce, CurvesThatNeverCollapsedStayCensoredInTheWorstOrientation) {
+  // The same stations searched only up to 3 g: some orientations never collapse.
+  const auto dir = ida_cube();
+  test::write_file(dir, "capped.toml", [&] {
+    std::ifstream in(dir / "ida.toml");
+    std::stringstream text;
+    text << in.rdbuf();
+    return std::regex_replace(text.str(), std::regex("max_intensity = 16"), "max_intensity = 3");
+  }());
+  auto r = test::run_command("cd " + quoted(dir) + " && " + pcrf() + " study capped.toml -o capped.h5 --overwrite --progress-interval 0");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  cube::CubeReader cube(dir / "capped.h5");
+  const auto ci = cube.read_side("collapse_intensity"), safe = cube.read_side("last_safe_intensity");
+  // By hand, per record: the worst orientation (min) is a collapse when one was found at or
+  // below every censored curve's last safe intensity, else it is only known to exceed the lowest
+  // bound; the best (max) is a collapse when no curve is censored, else it exceeds every value.
+  std::size_t censored_curves = 0;
+  for (const std::string how : {"min", "max"}) {
+    std::multiset<std::pair<std::string, double>> expected;
+    censored_curves = 0;
+    for (std::size_t rec = 0; rec < 3; ++rec) {
+      const double inf = std::numeric_limits<double>::infinity();
+      double lowest_collapse = inf, lowest_bound = inf, highest = -inf;
+      for (std::size_t k = rec * 4; k < rec * 4 + 4; ++k) {
+        if (std::isfinite(ci[k])) lowest_collapse = std::min(lowest_collapse, ci[k]), highest = std::max(highest, ci[k]);
+        else lowest_bound = std::min(lowest_bound, safe[k]), highest = std::max(highest, safe[k]), ++censored_curves;
+      }
+      const bool some_censored = lowest_bound < inf;
+      if (how == "min")
+        expected.insert(lowest_collapse <= lowest_bound ? std::pair{std::string("collapse"), lowest_collapse}
+                                                         : std::pair{std::string("censored"), lowest_bound});
+      else
+        expected.insert({some_censored ? "censored" : "collapse", highest});
+    }
+    ASSERT_GT(censored_curves, 0u) << "the cap must leave some curves censored";
+    r = test::run_command("cd " + quoted(dir) + " && " + pcrf() + " cube fragility capped.h5 --reduce-over incidence_deg --reduce " +
+                          how + " --points points.csv --overwrite");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    std::ifstream points(dir / "points.csv");
+    std::multiset<std::pair<std::string, double>> found;
+    std::string line;
+    std::getline(points, line);  // frame,kind,intensity,trials,collapses
+    while (std::getline(points, line)) {
+      std::stringstream fields(line);
+      std::string frame, kind, intensity;
+      std::getline(fields, frame, ',');
+      std::getline(fields, kind, ',');
+      std::getline(fields, intensity, ',');
+      found.insert({kind, std::stod(intensity)});
+    }
+    EXPECT_EQ(found, expected) << how;
+  }
+  // cube stats reduces what collapsed only, and says so.
+  r = test::run_command("cd " + quoted(dir) + " && " + pcrf() +
+                        " cube stats capped.h5 --by kappa -m collapse_intensity --reduce-over incidence_deg --reduce min");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find(std::to_string(censored_curves) + " curves without a bracketed collapse (censored or unbracketed) "
+                       "are left out of the reduction"), std::string::npos) << r.err;
 }
 
 TEST(CubeReduce, ACensoredValueCensorsTheReductionOnlyWhereItCouldChangeIt) {
