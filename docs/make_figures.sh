@@ -40,9 +40,13 @@ study fema_p695_ida.toml ida
 plot ida "$SCRATCH/ida.h5" -o docs/ida.png --title "Adaptive IDA, 22 FEMA P-695 far-field records"
 plot fragility "$SCRATCH/ida.h5" -o docs/fragility.png \
   --title "Collapse fragility from the adaptive IDA (22 FEMA P-695 records)"
+study near_field.toml near_field
+plot fragility "$SCRATCH/near_field.h5" --reduce-over incidence_deg --reduce min --reduce median \
+  --compare-where incidence_deg=0 -o docs/near_field_fragility.png \
+  --title "Six near-fault pairs: fragility at fault-normal (incidence_deg=0) and over orientation"
 study sensitivity.toml sensitivity
 plot sensitivity "$SCRATCH/sensitivity.h5" -m theta_max_rad -o docs/sensitivity.png \
   --title "Sobol' indices of peak rotation: 8 parameters +-30 %, 13 paper records x 2.5"
 "$PYTHON" bench/paper_comparison.py --pcrf "$PCRF" --records "$RECORDS" --out docs
 plot table3 docs/paper_comparison.csv -o docs/table3.png
-echo "make_figures: docs/history.png sweep.png status.png ida.png fragility.png sensitivity.png table3.png"
+echo "make_figures: docs/history.png sweep.png status.png ida.png fragility.png near_field_fragility.png sensitivity.png table3.png"

@@ -34,8 +34,8 @@ struct CubeArguments {
   std::vector<std::string> where;
   std::vector<std::string> by;
   bool no_record_text = false;
-  std::string reduce_over;         ///< stats: a dimension the metric is reduced over first (incidence_deg)
-  std::string reduce_how = "max";  ///< stats: max, min or median over it
+  std::string reduce_over;  ///< stats, fragility: a dimension reduced over first (incidence_deg)
+  std::string reduce_how;   ///< max, min or median over it; empty: the command's default (reduction_of)
   std::string output;
   std::string history;
   std::string points;
@@ -165,6 +165,27 @@ std::string schema(const std::string& fields, const std::vector<std::pair<std::s
   return text;
 }
 
+/// --reduce-over and --reduce of stats and fragility, which reduce differently by default:
+/// the largest response (stats: θ_max's RotD100) and the smallest capacity (fragility: each
+/// record's collapse intensity at its worst orientation).
+void add_reduction(CLI::App* cmd, CubeArguments& args, const std::string& over_help, const std::string& default_how) {
+  cmd->add_option("--reduce-over", args.reduce_over, over_help);
+  cmd->add_option("--reduce", args.reduce_how, "how --reduce-over reduces: max, min or median (default: " + default_how + ")");
+}
+
+/// The reduction asked for, `default_how` unless --reduce says; --reduce alone is refused.
+cube::Reduction reduction_of(const CubeArguments& args, const std::string& default_how) {
+  if (args.reduce_over.empty() && !args.reduce_how.empty()) throw UsageError("--reduce goes with --reduce-over DIMENSION");
+  if (args.reduce_over.empty()) return {};
+  cube::Reduction reduction{args.reduce_over, args.reduce_how.empty() ? default_how : args.reduce_how};
+  try {
+    cube::check_reduction(reduction.how);
+  } catch (const cube::CubeError& e) {
+    throw UsageError(std::string("--reduce: ") + e.what());
+  }
+  return reduction;
+}
+
 void add_info(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
   auto* info = cube_cmd->add_subcommand("info", "Axes, metrics, completion and failures by status");
   info->add_option("FILE", args->file, "result cube")->required();
@@ -227,23 +248,22 @@ void add_stats(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
   stats->add_option("FILE", args->file, "result cube")->required();
   stats->add_option("--by", args->by, "coordinate to group by (e.g. kappa, scale); repeat for combinations")->required();
   stats->add_option("-m,--metric", args->metric, "metric to summarize (or an IDA's collapse_intensity with --reduce-over)")->required();
-  stats->add_option("--reduce-over", args->reduce_over,
-                    "first reduce the metric over this dimension (e.g. incidence_deg: each record and frame's worst "
-                    "orientation with --reduce max, RotD100; the median, RotD50); one --by");
-  stats->add_option("--reduce", args->reduce_how, "how --reduce-over reduces: max, min or median")->capture_default_str();
+  add_reduction(stats, *args,
+                "first reduce the metric over this dimension (e.g. incidence_deg: each record and frame's worst "
+                "orientation with --reduce max, RotD100; the median, RotD50; for an IDA's collapse_intensity the "
+                "worst orientation is --reduce min); one --by",
+                "max");
   add_where(stats, *args);
-  add_report_outputs(stats, *args, schema("file, metric, metric_units, by (comma-separated)",
+  add_report_outputs(stats, *args, schema("file, metric, metric_units, by (comma-separated), reduced_over and reduction (when reduced)",
                                           {{"groups", post::stats_columns()}}));
   stats->callback([args] {
     guarded(args->file, [&] {
       check_report_outputs(*args);
+      const auto reduction = reduction_of(*args, "max");
       cube::CubeReader reader(args->file);
       note_partial("stats", args->file, reader);
       note_verdicts("stats", args->file, reader, "in the column `unresolved`, not in the percentiles");
-      if (args->reduce_over.empty() && args->reduce_how != "max")
-        throw UsageError("--reduce goes with --reduce-over DIMENSION");
-      const auto report =
-          post::stats_report(reader, {args->by, args->metric, selectors(args->where), {args->reduce_over, args->reduce_how}});
+      const auto report = post::stats_report(reader, {args->by, args->metric, selectors(args->where), reduction});
       // The text of stats is its CSV (as it always was): --csv FILE adds a copy.
       write_report(report, "groups", *args, "",
                    [&](std::ostream& out) { post::write_csv(report.table("groups"), out); });
@@ -257,10 +277,15 @@ void add_fragility(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& arg
   fragility->add_option("FILE", args->file, "result cube with an intensity axis")->required();
   add_where(fragility, *args);
   fragility->add_option("--mce", args->mce, "MCE intensity (the measure's units): adds the collapse margin ratio");
+  add_reduction(fragility, *args,
+                "IDA cubes: first reduce each record's collapse intensities over this dimension (incidence_deg: "
+                "--reduce min, the default, fits each record's worst orientation; median its RotD50-like value; max "
+                "the best); a curve that never collapsed stays censored where it could change the reduced value",
+                "min");
   fragility->add_option("--points", args->points,
                         "also write the fitted data as CSV to this file: stripes, or IDA collapse and censored intensities");
   add_report_outputs(fragility, *args,
-                     schema("file, intensity_units, mce", {{"frames", post::fragility_columns()},
+                     schema("file, intensity_units, mce, reduced_over and reduction (when reduced)", {{"frames", post::fragility_columns()},
                                                            {"points", post::fragility_point_columns()}}));
   fragility->callback([args] {
     guarded(args->file, [&] {
@@ -268,10 +293,11 @@ void add_fragility(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& arg
       check_report_outputs(*args);
       const std::vector<std::filesystem::path> csv_inputs{args->file}, points_inputs{args->file, args->csv};
       check_output(args->points, is_stdout(args->csv) ? csv_inputs : points_inputs, args->overwrite);
+      const auto reduction = reduction_of(*args, "min");
       cube::CubeReader reader(args->file);
       note_partial("fragility", args->file, reader);
       note_verdicts("fragility", args->file, reader, "counted in no stripe (neither safe nor collapsed)");
-      const auto report = post::fragility_report(reader, {selectors(args->where), args->mce});
+      const auto report = post::fragility_report(reader, {selectors(args->where), args->mce}, reduction);
       write_report(report, "frames", *args, "");
       if (!args->points.empty())
         with_output(args->points, is_stdout(args->csv) ? csv_inputs : points_inputs, args->overwrite,

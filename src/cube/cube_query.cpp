@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <charconv>
 #include <cmath>
+#include <limits>
 #include <map>
 
 namespace pcrf::cube {
@@ -351,16 +352,32 @@ std::vector<GroupStats> group_stats(const CubeReader& cube, const std::vector<st
   return stats;
 }
 
-namespace {
+void check_reduction(const std::string& how) {
+  if (how != "max" && how != "min" && how != "median") throw CubeError("reduce with max, min or median, not '" + how + "'");
+}
 
-/// The value of a reduction over `values` (finite ones; NaN when none).
-double reduce(std::vector<double> values, const std::string& how) {
+double reduce_values(std::vector<double> values, const std::string& how) {
+  check_reduction(how);
+  std::erase_if(values, [](double v) { return !std::isfinite(v); });
   if (values.empty()) return std::nan("");
   std::sort(values.begin(), values.end());
   if (how == "max") return values.back();
   if (how == "min") return values.front();
   return analysis::percentile_sorted(values, 0.50);
 }
+
+CensoredReduction reduce_censored(const std::vector<double>& observed, const std::vector<double>& censored_from,
+                                  const std::string& how) {
+  std::vector<double> at_bounds = observed, unbounded = observed;
+  for (double bound : censored_from) {
+    at_bounds.push_back(bound);
+    unbounded.push_back(std::numeric_limits<double>::max());  // finite: the median interpolates it
+  }
+  const double low = reduce_values(at_bounds, how);
+  return {low, !censored_from.empty() && reduce_values(unbounded, how) != low};
+}
+
+namespace {
 
 /// Whether a combination of `members` cases of which `apart` are set apart is set apart.
 bool reduced_apart(std::size_t apart, std::size_t members, const std::string& how) {
@@ -374,8 +391,7 @@ bool reduced_apart(std::size_t apart, std::size_t members, const std::string& ho
 std::vector<GroupStats> group_stats_reduced(const CubeReader& cube, const std::vector<std::string>& by_list, const std::string& metric,
                                             const std::vector<Selector>& selectors, const Reduction& reduction,
                                             const PoolReport& pool) {
-  if (reduction.how != "max" && reduction.how != "min" && reduction.how != "median")
-    throw CubeError("reduce with max, min or median, not '" + reduction.how + "'");
+  check_reduction(reduction.how);
   if (by_list.size() != 1) throw CubeError("a reduction over '" + reduction.dimension + "' groups by one coordinate");
   const std::string& by = by_list.front();
   const auto& layout = cube.layout();
@@ -448,7 +464,7 @@ std::vector<GroupStats> group_stats_reduced(const CubeReader& cube, const std::v
       ++group.set_apart;
       continue;
     }
-    const double value = reduce(combination.values, reduction.how);
+    const double value = reduce_values(combination.values, reduction.how);
     if (std::isfinite(value)) samples[it->second].push_back(value);
   }
   if (pool.pooled != nullptr)

@@ -21,11 +21,13 @@ std::size_t dimension_index(const cube::CubeLayout& layout, const std::string& n
                         "([intensity] table and [axes] intensity)");
 }
 
+/// The frame of a case: the coordinates with several values but the record, the level and
+/// `reduced_dim` (the axis a reduction takes away; the level again when none).
 std::string frame_label(const cube::CubeLayout& layout, const std::vector<std::size_t>& coords, std::size_t record_dim,
-                        std::size_t level_dim) {
+                        std::size_t level_dim, std::size_t reduced_dim) {
   std::string label;
   for (std::size_t d = 0; d < coords.size(); ++d) {
-    if (d == record_dim || d == level_dim || layout.dimensions[d].size < 2) continue;
+    if (d == record_dim || d == level_dim || d == reduced_dim || layout.dimensions[d].size < 2) continue;
     const auto& name = layout.dimensions[d].name;
     const cube::Coordinate* c = layout.find_coordinate(name == vocabulary::kCase ? vocabulary::kCaseLabel : name);
     label += (label.empty() ? "" : ",") + (name == vocabulary::kCase ? c->label(coords[d]) : name + "=" + c->label(coords[d]));
@@ -35,10 +37,10 @@ std::string frame_label(const cube::CubeLayout& layout, const std::vector<std::s
 
 /// The frame of a case as -w selectors (see FrameFragility::selection).
 std::string frame_selection(const cube::CubeLayout& layout, const std::vector<std::size_t>& coords, std::size_t record_dim,
-                            std::size_t level_dim) {
+                            std::size_t level_dim, std::size_t reduced_dim) {
   std::string selection;
   for (std::size_t d = 0; d < coords.size(); ++d) {
-    if (d == record_dim || d == level_dim || layout.dimensions[d].size < 2) continue;
+    if (d == record_dim || d == level_dim || d == reduced_dim || layout.dimensions[d].size < 2) continue;
     const auto& name = layout.dimensions[d].name;
     selection += (selection.empty() ? "" : ",") + name + "=" + layout.find_coordinate(name)->label(coords[d]);
   }
@@ -63,14 +65,36 @@ std::string intensity_units(const cube::CubeReader& cube) {
 
 namespace {
 
+/// What an IDA fits per record (or, reduced, per combination of the other coordinates): its
+/// collapse intensity, or an intensity it is known to exceed (censored), or nothing (failed).
+struct CurveValue {
+  double intensity = std::nan("");
+  bool censored = false;
+  bool has_value() const { return std::isfinite(intensity); }
+};
+
 /// IDA cube: each curve's collapse intensity, or (none found) a right-censored value at its
-/// last safe intensity; one fit per frame, the bootstrap resampling records.
-std::vector<FrameFragility> ida_fragility(const cube::CubeReader& cube, const std::vector<cube::Selector>& selectors) {
+/// last safe intensity; one fit per frame, the bootstrap resampling records. With a reduction
+/// over a dimension (incidence_deg), the curves that differ only along it are reduced to one
+/// value first (cube::reduce_censored: min gives the worst orientation), and frames no longer
+/// differ along it.
+std::vector<FrameFragility> ida_fragility(const cube::CubeReader& cube, const std::vector<cube::Selector>& selectors,
+                                          const cube::Reduction& reduction) {
   const auto& layout = cube.layout();
   const std::size_t record_dim = dimension_index(layout, vocabulary::kRecord);
   const std::size_t point_dim = dimension_index(layout, vocabulary::kIdaPoint);
   const std::size_t records = layout.dimensions[record_dim].size;
   const std::size_t runs = layout.dimensions[point_dim].size;
+  const bool reduced = !reduction.dimension.empty();
+  std::size_t reduced_dim = point_dim;  // "none": the point axis is never a frame axis anyway
+  if (reduced) {
+    cube::check_reduction(reduction.how);
+    const auto d = layout.find_dimension(reduction.dimension);
+    if (!d) throw cube::CubeError("no dimension '" + reduction.dimension + "' to reduce over");
+    if (*d == record_dim || *d == point_dim)
+      throw cube::CubeError("cannot reduce the fragility over '" + reduction.dimension + "': it fits over records and runs");
+    reduced_dim = *d;
+  }
   const auto collapse = cube.read_side(vocabulary::kCollapseIntensity);
   const auto safe = cube.read_side(vocabulary::kLastSafeIntensity);
   const auto runs_of = cube.read_side(vocabulary::kIdaRuns);
@@ -80,60 +104,91 @@ std::vector<FrameFragility> ida_fragility(const cube::CubeReader& cube, const st
   const auto unbracketed = [&state](std::size_t curve) {
     return state[curve] == static_cast<double>(plan::CurveState::kUnbracketed);
   };
+  const auto value_of = [&](std::size_t curve) {
+    if (std::isfinite(collapse[curve]) && !unbracketed(curve)) return CurveValue{collapse[curve], false};
+    if (std::isfinite(safe[curve])) return CurveValue{safe[curve], true};
+    return CurveValue{};
+  };
   const auto selected = cube::select_cases(layout, selectors);
   std::vector<std::size_t> curve_shape(layout.shape());
   curve_shape.pop_back();  // ida_point is the last axis
 
-  std::map<std::string, std::vector<std::size_t>> curves_of;  // frame label → its curves run, by record
-  std::map<std::string, std::size_t> not_run_of;
-  std::map<std::string, std::string> selection_of;
-  std::map<std::string, std::int64_t> first_case_of;
+  // A frame's units: curves, or (reduced) the curves that differ only along the reduced axis.
+  struct Unit {
+    std::vector<std::size_t> curves;
+  };
+  struct Frame {
+    std::vector<Unit> units;
+    std::map<std::int64_t, std::size_t> unit_of;  // curve coordinates with the reduced one at 0 → unit
+    std::size_t not_run = 0, unbracketed = 0;
+    std::string selection;
+    std::int64_t first_case = -1;
+  };
+  std::map<std::string, Frame> frames;
   std::vector<std::string> order;
   for (std::size_t curve = 0; curve < collapse.size(); ++curve) {
     if (!selected[curve * runs]) continue;
     auto coords = unravel(static_cast<std::int64_t>(curve), curve_shape);
     coords.push_back(0);
-    const std::string label = frame_label(layout, coords, record_dim, point_dim);
-    auto [it, inserted] = curves_of.try_emplace(label);
+    const std::string label = frame_label(layout, coords, record_dim, point_dim, reduced_dim);
+    auto [it, inserted] = frames.try_emplace(label);
+    Frame& frame = it->second;
     if (inserted) {
       order.push_back(label);
-      selection_of[label] = frame_selection(layout, coords, record_dim, point_dim);
-      first_case_of[label] = static_cast<std::int64_t>(curve * runs);
+      frame.selection = frame_selection(layout, coords, record_dim, point_dim, reduced_dim);
+      frame.first_case = static_cast<std::int64_t>(curve * runs);
     }
-    if (runs_of[curve] > 0.0) it->second.push_back(curve);
-    else ++not_run_of[label];  // NaN: no part ran it (a partial merge): left out of the fit
+    if (!(runs_of[curve] > 0.0)) {  // NaN: no part ran it (a partial merge): left out of the fit
+      ++frame.not_run;
+      continue;
+    }
+    if (unbracketed(curve)) ++frame.unbracketed;
+    coords.pop_back();
+    if (reduced) coords[reduced_dim] = 0;
+    const auto key = reduced ? ravel(coords, curve_shape) : static_cast<std::int64_t>(curve);
+    const auto [unit, added] = frame.unit_of.try_emplace(key, frame.units.size());
+    if (added) frame.units.emplace_back();
+    frame.units[unit->second].curves.push_back(curve);
   }
+  // A unit's value: its curve's, or the reduction of its curves' (none when one has none).
+  const auto unit_value = [&](const Unit& unit) {
+    if (!reduced) return value_of(unit.curves.front());
+    std::vector<double> observed, censored;
+    for (std::size_t curve : unit.curves) {
+      const CurveValue v = value_of(curve);
+      if (!v.has_value()) return CurveValue{};
+      (v.censored ? censored : observed).push_back(v.intensity);
+    }
+    const auto r = cube::reduce_censored(observed, censored, reduction.how);
+    return CurveValue{r.value, r.censored};
+  };
   std::vector<FrameFragility> result;
   for (const auto& label : order) {
-    const auto& curves = curves_of.at(label);
+    const Frame& frame = frames.at(label);
+    std::vector<CurveValue> values;
+    for (const Unit& unit : frame.units) values.push_back(unit_value(unit));
     FrameFragility out;
     out.frame = label;
-    out.selection = selection_of[label];
+    out.selection = frame.selection;
     out.records = records;
-    out.first_case = first_case_of[label];
+    out.first_case = frame.first_case;
     auto fit = [&](const std::vector<std::size_t>& sample) {
       std::vector<double> observed, censored;
-      for (std::size_t k : sample) {
-        const std::size_t curve = curves[k];
-        if (std::isfinite(collapse[curve]) && !unbracketed(curve)) observed.push_back(collapse[curve]);
-        else if (std::isfinite(safe[curve])) censored.push_back(safe[curve]);
-      }
+      for (std::size_t k : sample)
+        if (values[k].has_value()) (values[k].censored ? censored : observed).push_back(values[k].intensity);
       return analysis::fit_censored(observed, censored);
     };
-    out.unbracketed = 0;
-    for (std::size_t curve : curves) {
-      if (unbracketed(curve)) ++*out.unbracketed;
-      if (std::isfinite(collapse[curve]) && !unbracketed(curve)) out.collapse_intensities.push_back(collapse[curve]);
-      else if (std::isfinite(safe[curve])) out.censored_intensities.push_back(safe[curve]);
-    }
+    out.unbracketed = frame.unbracketed;
+    for (const CurveValue& v : values)
+      if (v.has_value()) (v.censored ? out.censored_intensities : out.collapse_intensities).push_back(v.intensity);
     out.cases = out.collapse_intensities.size() + out.censored_intensities.size();
     out.collapses = static_cast<double>(out.collapse_intensities.size());
-    out.not_run = not_run_of[label];
-    out.failed = curves.size() - out.cases;
-    std::vector<std::size_t> all(curves.size());
+    out.not_run = frame.not_run;
+    out.failed = values.size() - out.cases;
+    std::vector<std::size_t> all(values.size());
     for (std::size_t k = 0; k < all.size(); ++k) all[k] = k;
     out.fit = fit(all);
-    if (out.fit) out.interval = analysis::bootstrap(curves.size(), fit);
+    if (out.fit) out.interval = analysis::bootstrap(values.size(), fit);
     result.push_back(std::move(out));
   }
   return result;
@@ -141,9 +196,12 @@ std::vector<FrameFragility> ida_fragility(const cube::CubeReader& cube, const st
 
 }  // namespace
 
-std::vector<FrameFragility> cube_fragility(const cube::CubeReader& cube, const std::vector<cube::Selector>& selectors) {
+std::vector<FrameFragility> cube_fragility(const cube::CubeReader& cube, const std::vector<cube::Selector>& selectors,
+                                           const cube::Reduction& reduction) {
   const auto& layout = cube.layout();
-  if (layout.find_side_variable(vocabulary::kCollapseIntensity) != nullptr) return ida_fragility(cube, selectors);
+  if (layout.find_side_variable(vocabulary::kCollapseIntensity) != nullptr) return ida_fragility(cube, selectors, reduction);
+  if (!reduction.dimension.empty())
+    throw cube::CubeError("--reduce-over needs an IDA cube (its collapse intensities are reduced; a stripe's verdicts are not)");
   const std::size_t record_dim = dimension_index(layout, vocabulary::kRecord);
   const std::size_t level_dim = dimension_index(layout, vocabulary::kIntensity);
   const auto& levels = layout.find_coordinate(vocabulary::kIntensity)->numbers;
@@ -161,12 +219,12 @@ std::vector<FrameFragility> cube_fragility(const cube::CubeReader& cube, const s
   for (std::int64_t i = 0; i < layout.case_count(); ++i) {
     if (!selected[static_cast<std::size_t>(i)]) continue;
     const auto coords = unravel(i, shape);
-    const std::string label = frame_label(layout, coords, record_dim, level_dim);
+    const std::string label = frame_label(layout, coords, record_dim, level_dim, level_dim);
     auto [it, inserted] = frames.try_emplace(label);
     if (inserted) {
       order.push_back(label);
       it->second.label = label;
-      it->second.selection = frame_selection(layout, coords, record_dim, level_dim);
+      it->second.selection = frame_selection(layout, coords, record_dim, level_dim, level_dim);
       it->second.first_case = i;
       it->second.status.assign(records, std::vector<std::int8_t>(levels.size(), cube::kStatusNotRun));
       it->second.fraction.assign(records, std::vector<double>(levels.size(), std::nan("")));

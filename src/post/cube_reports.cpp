@@ -10,6 +10,7 @@
 
 #include "pcrf/post/cube_fragility.hpp"
 #include "pcrf/post/cube_sensitivity.hpp"
+#include "pcrf/plan/ida_search.hpp"
 #include "pcrf/study/cube_vocabulary.hpp"
 
 namespace pcrf::post {
@@ -169,6 +170,24 @@ std::vector<ColumnOf<FrameP695>> p695_spec() {
   };
 }
 
+/// A reduction of an IDA's collapse_intensity in cube stats sees collapses only: a curve that
+/// never collapsed (NaN) or ran out of runs (unbracketed, its collapse not refined) is left out
+/// of it, where cube fragility --reduce-over keeps it censored. Says so when the cube has such curves.
+std::string censored_reduction_note(const cube::CubeReader& cube, const StatsRequest& request) {
+  if (request.reduction.dimension.empty() || request.metric != vocabulary::kCollapseIntensity) return "";
+  const auto collapse = cube.read_side(vocabulary::kCollapseIntensity);
+  const auto runs = cube.read_side(vocabulary::kIdaRuns);
+  const bool has_states = cube.layout().find_side_variable(vocabulary::kCurveState) != nullptr;
+  const auto state = has_states ? cube.read_side(vocabulary::kCurveState) : std::vector<double>(collapse.size(), kNaN);
+  std::size_t censored = 0;
+  for (std::size_t c = 0; c < collapse.size(); ++c)
+    if (runs[c] > 0.0 && (!std::isfinite(collapse[c]) || state[c] == static_cast<double>(plan::CurveState::kUnbracketed)))
+      ++censored;
+  if (censored == 0) return "";
+  return std::to_string(censored) + " curves without a bracketed collapse (censored or unbracketed) are left out of the "
+         "reduction; cube fragility --reduce-over keeps them as censored values";
+}
+
 }  // namespace
 
 Report stats_report(const cube::CubeReader& cube, const StatsRequest& request) {
@@ -195,19 +214,24 @@ Report stats_report(const cube::CubeReader& cube, const StatsRequest& request) {
     report.fields.emplace_back("reduction", request.reduction.how);
   }
   for (const auto& p : pooled) report.warnings.push_back("also pooled over " + p);
+  if (const auto note = censored_reduction_note(cube, request); !note.empty()) report.warnings.push_back(note);
   std::vector<bool> numeric;
   for (const auto& b : request.by) numeric.push_back(!layout.find_coordinate(b)->is_text);
   report.tables.emplace_back("groups", make_table(stats_spec(request.by, numeric), groups));
   return report;
 }
 
-Report fragility_report(const cube::CubeReader& cube, const FragilityRequest& request) {
-  const auto frames = cube_fragility(cube, request.where);
+Report fragility_report(const cube::CubeReader& cube, const FragilityRequest& request, const cube::Reduction& reduction) {
+  const auto frames = cube_fragility(cube, request.where, reduction);
   const std::string units = intensity_units(cube);
   Report report;
   report.command = "fragility";
   report.fields = {{"file", cube.file().string()}, {"intensity_units", units},
                    {"mce", request.mce ? Cell{*request.mce} : Cell{}}};
+  if (!reduction.dimension.empty()) {
+    report.fields.emplace_back("reduced_over", reduction.dimension);
+    report.fields.emplace_back("reduction", reduction.how);
+  }
   report.warnings = unbracketed_warnings(frames);
   const bool ida = !frames.empty() && frames.front().unbracketed.has_value();
   report.tables.emplace_back("frames", make_table(fragility_spec(units, request.mce, ida), frames));

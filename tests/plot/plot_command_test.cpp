@@ -121,6 +121,39 @@ TEST(PlotCommand, SpectrumHasOnePanelPerFrame) {
   EXPECT_FALSE(std::filesystem::exists(dir / "no.svg"));
 }
 
+TEST(PlotCommand, ReducedKindsDrawOnePanelPerFrameWithoutTheReducedAxis) {
+  PCRF_REQUIRE_MATPLOTLIB();
+  const auto dir = test::scratch_dir("plot_reduce");
+  const std::string records =
+      study_test::station_pair(dir, "a") +
+      "[[records]]\nh1 = \"h2.txt\"\nh2 = \"h1.txt\"\nunits = \"m/s2\"\naz1_deg = 30\naz2_deg = 120\nname = \"b\"\n";
+  const auto ida = study(dir, "ida", records + "[intensity]\nmeasure = \"pga_rotd50_g\"\n"
+                                              "[ida]\nstart = 1.0\nstep = 1.0\nmax_intensity = 16\nmax_runs = 8\n"
+                                              "[axes]\nkappa = [1.4, 2.2]\nincidence_deg = [0, 90]\n");
+  EXPECT_EQ(plot(dir / "ida.svg", "ida " + quoted(ida)), 4);  // a frame per κ and incidence
+  EXPECT_EQ(plot(dir / "ida_min.svg", "ida " + quoted(ida) + " --reduce-over incidence_deg"), 2);  // per κ
+  EXPECT_EQ(plot(dir / "ida_med.svg", "ida " + quoted(ida) + " --reduce-over incidence_deg --reduce median -w kappa=1.4"), 1);
+  EXPECT_EQ(plot(dir / "frag.svg", "fragility " + quoted(ida) + " --reduce-over incidence_deg"), 1);
+  EXPECT_EQ(plot(dir / "frag3.svg", "fragility " + quoted(ida) + " -w kappa=2.2 --reduce-over incidence_deg "
+                                    "--reduce min --reduce median --compare-where incidence_deg=0"), 1);
+  const auto grid = study(dir, "grid", records + "[axes]\nscale = [1.4]\nkappa = [1.2, 2.4]\n"
+                                                 "incidence_deg = [0, 60, 120]\n");
+  EXPECT_EQ(plot(dir / "sweep.svg", "sweep " + quoted(grid) + " --reduce-over incidence_deg --reduce median"), 1);
+  // The engine refuses a reduction it does not know; kinds that draw cases one by one take none.
+  for (const std::string& args : {"fragility " + quoted(ida) + " --reduce-over incidence_deg --reduce mean",
+                                 "sweep " + quoted(grid) + " --reduce-over incidence_deg --reduce mean",
+                                 "status " + quoted(grid) + " --reduce-over incidence_deg",
+                                 "ida " + quoted(ida) + " --reduce-over incidence_deg --reduce min --reduce max"}) {
+    const auto r = test::run_command(pcrf() + " plot " + args + " -o " + quoted(dir / "bad.svg"));
+    EXPECT_EQ(r.exit_code, 2) << args;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << "\n" << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "bad.svg")) << args;
+  }
+  const auto r = test::run_command(pcrf() + " plot fragility " + quoted(ida) + " --reduce-over incidence_deg --reduce mean -o " +
+                                   quoted(dir / "bad.svg"));
+  EXPECT_NE(r.err.find("reduce with max, min or median, not 'mean'"), std::string::npos) << r.err;
+}
+
 TEST(PlotCommand, SensitivityHasOnePanelOfBars) {
   PCRF_REQUIRE_MATPLOTLIB();
   const auto dir = test::scratch_dir("plot_sensitivity");

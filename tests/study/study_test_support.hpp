@@ -8,12 +8,14 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <regex>
 #include <string>
 #include <thread>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -21,6 +23,7 @@
 #include <spawn.h>
 
 #include "pcrf/cube/cube_reader.hpp"
+#include "pcrf/record/synthetic.hpp"
 #include "support/test_support.hpp"
 
 extern char** environ;
@@ -90,6 +93,27 @@ inline std::string small_grid_study(const std::string& extra = "") {
   return std::string("[study]\nname = \"small\"\n\n") +
          "[[records]]\nsynthetic = [\"" + kPulse + "\", \"" + kPulse2 + "\", \"" + kNoise + "\"]\n\n" +
          "[axes]\nscale = [0.9, 1.2]\nkappa = [1.2, 2.4]\ntan_alpha = [0.18, 0.22]\n\n" + extra;
+}
+
+/// Two horizontal components of a station, h1.txt and h2.txt in `dir` (stochastic, 6 s, PGA
+/// 1 g and 0.9 g; two columns, time and m/s², 17 digits), and a [[records]] table naming them
+/// as a pair at azimuths 0 and 90 (`name`: the record's name).
+inline std::string station_pair(const std::filesystem::path& dir, const std::string& name = "pair") {
+  for (const auto& [file, seed, pga_g] : {std::tuple{"h1.txt", 3, 1.0}, std::tuple{"h2.txt", 4, 0.9}}) {
+    StochasticSpec spec;
+    spec.seed = static_cast<std::uint64_t>(seed);
+    spec.pga_g = pga_g;
+    spec.duration_s = 6.0;
+    const GroundMotion motion = make_stochastic(spec);
+    std::ofstream out(dir / file);
+    char line[80];
+    for (std::size_t i = 0; i < motion.size(); ++i) {
+      std::snprintf(line, sizeof line, "%.17g %.17g\n", static_cast<double>(i) * motion.dt_s(), motion.samples_m_s2()[i]);
+      out << line;
+    }
+  }
+  return "[[records]]\nh1 = \"h1.txt\"\nh2 = \"h2.txt\"\nunits = \"m/s2\"\naz1_deg = 0\naz2_deg = 90\nname = \"" + name +
+         "\"\n";
 }
 
 /// Every value of every variable of `a` equals `b` (NaN equals NaN), except `ignored`.

@@ -89,6 +89,24 @@ struct Reduction {
   std::string how;  ///< "max", "min" or "median"
 };
 
+/// \throws CubeError unless `how` is max, min or median (one line: "reduce with max, min or median, not 'x'").
+void check_reduction(const std::string& how);
+
+/// The reduction of `values` by `how` (max, min or median; NaN and infinities left out; NaN when none
+/// is left): the one reduction of `cube stats --reduce-over` and `cube fragility --reduce-over`.
+double reduce_values(std::vector<double> values, const std::string& how);
+
+/// A reduction of values of which some are known only from below (right-censored: an IDA curve that
+/// did not collapse up to its last safe intensity). `value` is exact when no censored value can
+/// change it, else the reduction is itself censored at `value` (a lower bound): the reduction with
+/// the bounds in place and the one with the censored values raised without limit are compared.
+struct CensoredReduction {
+  double value = 0.0;  ///< NaN when there is neither an observed nor a censored value
+  bool censored = false;
+};
+CensoredReduction reduce_censored(const std::vector<double>& observed, const std::vector<double>& censored_from,
+                                  const std::string& how);
+
 /// group_stats() of `metric` reduced over `reduction.dimension` first (one coordinate in `by`). `metric` may also be a
 /// side variable over that dimension (an IDA's collapse_intensity); `cases` then counts its
 /// combinations. \throws CubeError when `by` is the reduced dimension, the variable does not

@@ -54,9 +54,17 @@ struct FrameFragility {
 /// One line per frame with unbracketed curves, saying how they were fitted (for stderr).
 std::vector<std::string> unbracketed_warnings(const std::vector<FrameFragility>& frames);
 
-/// One entry per frame of the selected cases. \throws cube::CubeError when the cube has no
-/// intensity axis (scale-only cubes have no common intensity to fit against).
-std::vector<FrameFragility> cube_fragility(const cube::CubeReader& cube, const std::vector<cube::Selector>& selectors);
+/// One entry per frame of the selected cases. With `reduction.dimension` set (an IDA cube only),
+/// each record's collapse intensities along that dimension are first reduced to one
+/// (cube::reduce_censored): over incidence_deg, `min` is the worst orientation of each record,
+/// `median` its RotD50-like value, `max` the best; a reduced value is censored when a censored
+/// curve could still change it, and missing when one of its curves has no value. The
+/// dimension is then no frame axis; `collapses` and `cases` count reduced values.
+/// \throws cube::CubeError when the cube has no intensity axis (scale-only cubes have no
+/// common intensity to fit against), or for a reduction of a stripe cube, of an unknown
+/// dimension or by another `how` than max, min, median.
+std::vector<FrameFragility> cube_fragility(const cube::CubeReader& cube, const std::vector<cube::Selector>& selectors,
+                                           const cube::Reduction& reduction = {});
 
 /// Units and name of the cube's intensity ("g", "peak ground acceleration").
 std::string intensity_units(const cube::CubeReader& cube);

@@ -5,7 +5,7 @@
 ///
 /// Tables and fields (the JSON's keys; `columns` in the JSON describes every column):
 /// - stats: fields file, metric, metric_units, by; table `groups` (stats_columns()).
-/// - fragility: fields file, intensity_units, mce; tables `frames` (fragility_columns())
+/// - fragility: fields file, intensity_units, mce (and reduced_over, reduction when reduced); tables `frames` (fragility_columns())
 ///   and `points` (fragility_point_columns()).
 /// - sensitivity: fields file, metric, by_record; table `indices` (sensitivity_columns()).
 /// - p695: fields file, sdc, period_s, mu_t, ratings, group_mean_acmr, group_acmr10, group,
@@ -40,8 +40,11 @@ struct FragilityRequest {
   std::vector<cube::Selector> where;
   std::optional<double> mce;  ///< MCE intensity: adds the collapse margin ratio column `cmr`
 };
-/// The lognormal collapse fragility of each frame and the data fitted (cube_fragility.hpp).
-Report fragility_report(const cube::CubeReader& cube, const FragilityRequest& request);
+/// The lognormal collapse fragility of each frame and the data fitted (cube_fragility.hpp);
+/// with `reduction` (an IDA cube), of each record's collapse intensity reduced over a
+/// dimension first (fields reduced_over and reduction then name it).
+Report fragility_report(const cube::CubeReader& cube, const FragilityRequest& request,
+                        const cube::Reduction& reduction = {});
 
 struct SensitivityRequest {
   std::string metric;  ///< a metric, or "collapse"

@@ -35,6 +35,13 @@ KINDS = {
 }
 
 
+# The kinds that can show a metric reduced over an axis (--reduce-over): they draw what cube
+# stats or cube fragility compute. status maps each case's own end (select an orientation with
+# -w, or map it with --x incidence_deg); history is one case; spectrum's pulses have no
+# orientation; sensitivity's saltelli samples are frames; table3 is a fixed table.
+REDUCING = ("sweep", "ida", "fragility")
+
+
 class Parser(argparse.ArgumentParser):
     def error(self, message):
         raise PlotError(message + self.flag_meant(message))
@@ -65,12 +72,31 @@ def parser():
     p.add_argument("--group", help="history: the cube's history group (default: its only one)")
     p.add_argument("--x", help="status: axis across (default: the first axis with several values)")
     p.add_argument("--y", help="status: axis up (default: the second axis with several values)")
+    p.add_argument("--reduce-over", metavar="DIM",
+                   help="sweep, ida, fragility: reduce over this axis first, in the engine (incidence_deg: each "
+                        "record's orientations; as cube stats / cube fragility --reduce-over)")
+    p.add_argument("--reduce", metavar="HOW", action="append",
+                   help="with --reduce-over: max, min or median (default: the worst: max of the response for "
+                        "sweep, min of the collapse intensity for ida and fragility); fragility: repeat it for a "
+                        "fit of each")
+    p.add_argument("--compare-where", action="append", default=[], metavar="NAME=VALUE",
+                   help="fragility: also the fit of the cases with this coordinate value, not reduced "
+                        "(e.g. incidence_deg=0, fault-normal, beside --reduce-over incidence_deg; repeatable)")
     p.add_argument("--title", help="figure title (default: what the figure shows)")
     return p
 
 
 def output_args(args):
     return [args.output, "--input", args.input] + (["--overwrite"] if args.overwrite else [])
+
+
+def check_reduction(args):
+    if (args.reduce_over or args.reduce) and args.kind not in REDUCING:
+        raise PlotError(f"{args.kind} does not reduce over an axis (--reduce-over goes with {', '.join(REDUCING)})")
+    if args.reduce and len(args.reduce) > 1 and args.kind != "fragility":
+        raise PlotError(f"{args.kind} draws one reduction: give --reduce once")
+    if args.compare_where and args.kind != "fragility":
+        raise PlotError("--compare-where goes with fragility")
 
 
 def check_paths(args):
@@ -93,6 +119,7 @@ def main(argv):
     args = None
     try:
         args = parser().parse_args(argv)
+        check_reduction(args)
         check_paths(args)
         try:
             import matplotlib

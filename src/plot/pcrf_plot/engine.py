@@ -80,6 +80,16 @@ def where_args(where):
     return [arg for w in where for arg in ("-w", w)]
 
 
+def reduction_args(args, how=None):
+    """``--reduce-over DIM [--reduce HOW]`` as given to ``pcrf plot`` (`how`: one of several
+    --reduce; default the only one), for the engine's cube stats and cube fragility, which
+    reduce (and check the names); without --reduce each takes its worst: the largest response
+    (stats) or the smallest collapse intensity (fragility)."""
+    how = how or (args.reduce[0] if args.reduce else None)
+    flags = ["--reduce-over", args.reduce_over] if args.reduce_over else []
+    return flags + (["--reduce", how] if how else [])
+
+
 def table(text):
     """CSV text as a list of dicts (strings; empty where pcrf wrote NaN)."""
     return list(csv.DictReader(io.StringIO(text)))
@@ -88,6 +98,11 @@ def table(text):
 def number(value):
     """A CSV text or a JSON value as a float; NaN where it is missing (empty, null)."""
     return float(value) if value not in ("", None) else float("nan")
+
+
+def reduced_text(report):
+    """"min over incidence_deg" from a reduced report's fields; "" when it is not reduced."""
+    return f"{report['reduction']} over {report['reduced_over']}" if report.get("reduced_over") else ""
 
 
 class Cube:
@@ -136,17 +151,19 @@ class Cube:
         out, _ = run("cube", "export", self.path, "--history", label)
         return table(out)
 
-    def stats(self, by, metric, where):
-        """Median and 16/84 % percentiles per value of `by` (rows of ``cube stats --json``);
-        also the axes pooled over besides the records."""
-        report = run_json("cube", "stats", self.path, "--by", by, "-m", metric, *where_args(where), "--json")
+    def stats(self, by, metric, where, reduction=()):
+        """Median and 16/84 % percentiles per value of `by` (rows of ``cube stats --json``),
+        the metric first reduced over an axis by the engine when `reduction` holds its flags
+        (reduction_args); also the axes pooled over besides the records, and reduced_text()."""
+        report = run_json("cube", "stats", self.path, "--by", by, "-m", metric, *where_args(where), *reduction, "--json")
         pooled = [w.removeprefix("also pooled over ") for w in report["warnings"] if w.startswith("also pooled over ")]
-        return report["groups"], pooled
+        return report["groups"], pooled, reduced_text(report)
 
-    def fragility(self, where):
+    def fragility(self, where, reduction=()):
         """``cube fragility --json``: the fitted lognormal of each frame (`frames`), the fitted
-        data (`points`) and the intensity's units (`intensity_units`)."""
-        return run_json("cube", "fragility", self.path, *where_args(where), "--json")
+        data (`points`) and the intensity's units (`intensity_units`); with `reduction`, of each
+        record's collapse intensity reduced over an axis by the engine (`reduced_over`, `reduction`)."""
+        return run_json("cube", "fragility", self.path, *where_args(where), *reduction, "--json")
 
     def sensitivity(self, metric, where):
         """The rows of ``cube sensitivity --json``."""

@@ -2,7 +2,8 @@
 intensity axis): the fraction of records that collapsed at each intensity. IDA: the empirical
 distribution of the curves' collapse intensities (censored curves marked at the top). With
 each frame's lognormal fitted by `pcrf cube fragility` and the band between the fits at the
-ends of its median's 90 % bootstrap interval."""
+ends of its median's 90 % bootstrap interval. With --reduce-over, the engine first reduces each
+record's collapse intensities over that axis (e.g. the worst orientation: min over incidence_deg)."""
 import math
 
 import matplotlib.pyplot as plt
@@ -16,19 +17,33 @@ def lognormal_cdf(x, median, beta):
     return 0.5 * (1.0 + np.vectorize(math.erf)(np.log(x / median) / (beta * math.sqrt(2.0))))
 
 
+def series_of(cube, args):
+    """(label prefix, cube fragility report) of each fit drawn: the selection, reduced once per
+    --reduce (or not), then each --compare-where selection, not reduced."""
+    reductions = args.reduce or [None]
+    series = [("", cube.fragility(args.where, engine.reduction_args(args, how))) for how in reductions]
+    if len(series) > 1 or args.compare_where:
+        series = [(engine.reduced_text(r) or "all", r) for _, r in series]
+    series += [(w, cube.fragility(args.where + [w])) for w in args.compare_where]
+    return series
+
+
 def draw(args):
     cube = engine.Cube(args.input)
-    report = cube.fragility(args.where)
-    fits, points, units = report["frames"], report["points"], report["intensity_units"]
-    if not fits:
+    series = series_of(cube, args)
+    units = series[0][1]["intensity_units"]
+    if not any(r["frames"] for _, r in series):
         raise PlotError(f"{args.input}: no frame to fit among the selected cases")
     num = engine.number
     fig, ax = plt.subplots(figsize=(7, 4.6), constrained_layout=True)
-    top = max([num(p["intensity"]) for p in points] + [num(f["median_95%"]) for f in fits
-                                                        if math.isfinite(num(f["median_95%"]))] + [1e-9])
+    top = max([num(p["intensity"]) for _, r in series for p in r["points"]] +
+              [num(f["median_95%"]) for _, r in series for f in r["frames"] if math.isfinite(num(f["median_95%"]))] +
+              [1e-9])
     x = np.linspace(top * 1e-3, top * 1.25, 400)
-    for colour, fit in zip(style.CYCLE, fits):
+    drawn = [(prefix, fit, r["points"]) for prefix, r in series for fit in r["frames"]]
+    for colour, (prefix, fit, points) in zip(style.CYCLE, drawn):
         frame = fit["frame"]
+        name = frame if not prefix else prefix if frame in ("all", prefix) else f"{prefix}, {frame}"
         mine = [p for p in points if p["frame"] == frame]
         stripes = [p for p in mine if p["kind"] == "stripe" and num(p["trials"]) > 0]
         collapses = sorted(num(p["intensity"]) for p in mine if p["kind"] == "collapse")
@@ -44,16 +59,19 @@ def draw(args):
             ax.plot(censored, np.ones(len(censored)), "v", color=colour, ms=5)
         median, beta = num(fit["median"]), num(fit["beta"])
         if math.isfinite(median) and math.isfinite(beta):
-            label = f"{frame}: median {median:.3g} {units}, β = {beta:.2f}"
+            label = f"{name}: median {median:.3g} {units}, β = {beta:.2f}"
             ax.plot(x, lognormal_cdf(x, median, beta), "-", color=colour, lw=1.8, label=label)
             low, high = num(fit["median_5%"]), num(fit["median_95%"])
             if math.isfinite(low) and math.isfinite(high):
                 ax.fill_between(x, lognormal_cdf(x, high, beta), lognormal_cdf(x, low, beta), color=colour,
                                 alpha=0.18, lw=0)
         else:
-            ax.plot([], [], "o", color=colour, mfc="none", label=f"{frame}: no fit (the data cannot fix a median and a β)")
+            ax.plot([], [], "o", color=colour, mfc="none", label=f"{name}: no fit (the data cannot fix a median and a β)")
+    points = [p for _, r in series for p in r["points"]]
     kind = "collapse fraction per stripe" if any(p["kind"] == "stripe" for p in points) else \
         "IDA collapse intensities (empirical; ▼ censored)"
+    if len(series) == 1 and engine.reduced_text(series[0][1]):
+        kind = f"each record's {engine.reduced_text(series[0][1])} of its IDA collapse intensities (▼ censored)"
     ax.set(xlabel=style.intensity_label(cube, units), ylabel="probability of collapse [–]", ylim=(-0.02, 1.05),
            xlim=(0, x[-1]), title=args.title or f"Collapse fragility: {kind}")
     ax.legend(loc="lower right", title="lognormal fit (band: 90 % interval of the median)")

@@ -4,7 +4,10 @@ intensity is a flat line to the panel's edge (the usual IDA flatline);
 runs above it that did not collapse (the curve "resurrects") are open circles. Horizontal lines: the
 median and 16/84 % collapse intensities of the lognormal that `pcrf cube fragility` fits.
 A curve whose runs ran out before it was bracketed (``curve_state`` unbracketed) gets no
-flatline: a triangle at its last safe run says only that it survived there."""
+flatline: a triangle at its last safe run says only that it survived there. With --reduce-over
+(e.g. incidence_deg), a panel holds every orientation's curve, its flatline unmarked, and the
+crosses and the fitted lines are each record's reduced collapse intensity, as the engine's
+`cube fragility --reduce-over` computes it."""
 import math
 
 import matplotlib.pyplot as plt
@@ -14,6 +17,14 @@ from pcrf_plot import engine, style
 from pcrf_plot.errors import PlotError
 
 UNBRACKETED = 2  # curve_state: max_runs ran out (plan::CurveState, the cube's long_name)
+
+
+def curves_of(rows, reduced_over):
+    """A frame's rows by curve: by record, and (reduced) by the reduced axis's value too."""
+    curves = {}
+    for r in rows:
+        curves.setdefault((r["record"], r[reduced_over] if reduced_over else ""), []).append(r)
+    return curves
 
 
 def frames_of(cube, metric, where, fits, extra):
@@ -43,7 +54,9 @@ def draw(args):
         raise PlotError(f"{args.input}: not an IDA cube (no collapse_intensity): run a study with an [ida] table")
     metric = args.metric or "theta_max_rad"
     cube.require_metric(metric, "ida")
-    fits = {f["frame"]: f for f in cube.fragility(args.where)["frames"]}
+    report = cube.fragility(args.where, engine.reduction_args(args))
+    fits = {f["frame"]: f for f in report["frames"]}
+    reduced_over, reduced = report.get("reduced_over"), engine.reduced_text(report)
     has_states = cube.variable("curve_state") is not None  # cubes from before it have none
     frames = frames_of(cube, metric, args.where, fits.values(), ["curve_state"] if has_states else [])
     if not frames:
@@ -53,9 +66,8 @@ def draw(args):
     fig, axes = plt.subplots(math.ceil(len(frames) / columns), columns, figsize=(4.4 * columns, 4.2), squeeze=False,
                              sharey=True, constrained_layout=True)
     for ax, (frame, frame_rows) in zip(axes.flat, frames.items()):
-        records, resurrected, unbracketed = {}, False, 0
-        for r in frame_rows:
-            records.setdefault(r["record"], []).append(r)
+        resurrected, unbracketed = False, 0
+        records = curves_of(frame_rows, reduced_over)
         edge = edge_of(metric, frame_rows)
         for record_rows in records.values():
             safe = sorted((engine.number(r["ida_intensity"]), engine.number(r[metric])) for r in record_rows
@@ -80,7 +92,11 @@ def draw(args):
             if math.isfinite(collapse):
                 start = below[-1][1] if below else 0.0
                 ax.plot([start, edge], [collapse, collapse], "-", color=style.GREY, lw=0.8, alpha=0.8)
-                ax.plot(edge, collapse, "x", color=style.VERMILLION, ms=5)
+                if not reduced:
+                    ax.plot(edge, collapse, "x", color=style.VERMILLION, ms=5)
+        if reduced:  # the values fitted: each record's reduction, from the engine's fragility points
+            mine = [engine.number(p["intensity"]) for p in report["points"] if p["frame"] == frame and p["kind"] == "collapse"]
+            ax.plot([edge] * len(mine), mine, "x", color=style.VERMILLION, ms=7, mew=1.8)
         fit = fits.get(frame)
         median, beta = (engine.number(fit["median"]), engine.number(fit["beta"])) if fit else (math.nan, math.nan)
         if math.isfinite(median) and math.isfinite(beta):
@@ -91,12 +107,13 @@ def draw(args):
         if not any(r["status"] not in engine.collapse_statuses() for r in frame_rows):
             ax.text(0.5, 0.6, "every run collapsed:\nstart the search lower", transform=ax.transAxes, ha="center",
                     color=style.VERMILLION)
-        ax.plot([], [], "x", color=style.VERMILLION, label="collapse")
+        ax.plot([], [], "x", color=style.VERMILLION, label=f"collapse: each record's {reduced}" if reduced else "collapse")
         if resurrected:
             ax.plot([], [], "o", mfc="none", color=style.ORANGE, ms=4, label="safe above its collapse intensity")
         if unbracketed:
             ax.plot([], [], "^", color=style.PURPLE, ms=6, label="unbracketed (max_runs ran out): last safe run")
-        counted = f"{len(records)} records" + (f", {unbracketed} unbracketed" if unbracketed else "")
+        counted = f"{len(records)} " + ("curves" if reduced else "records") + \
+            (f", {unbracketed} unbracketed" if unbracketed else "")
         ax.set(xlim=(0, edge * 1.03), title=f"{frame} ({counted})",
                xlabel=style.metric_label(metric, cube.variable(metric)))
     for ax in axes.flat[len(frames):]:

@@ -33,9 +33,9 @@ def draw(args):
     rows = math.ceil(len(parameters) / columns)
     fig, axes = plt.subplots(rows, columns, figsize=(3.6 * columns, 3.2 * rows), squeeze=False,
                              sharey=True, constrained_layout=True)
-    pooled_over = set()
+    pooled_over, reduced = set(), ""
     for ax, parameter in zip(axes.flat, parameters):
-        stats, pooled = cube.stats(parameter, metric, args.where)
+        stats, pooled, reduced = cube.stats(parameter, metric, args.where, engine.reduction_args(args))
         pooled_over.update(pooled)
         x = np.array([engine.number(r[parameter]) for r in stats])
         median = np.array([engine.number(r["median"]) for r in stats])
@@ -55,6 +55,9 @@ def draw(args):
         ax.set_ylabel(style.metric_label(metric, cube.variable(metric)))
     axes.flat[0].legend(loc="upper left")
     note = "collapsed cases (tendon fracture, overturned) counted apart: n✕ above the panel"
+    if reduced:
+        note = (f"each record's {reduced} (pcrf cube stats --reduce-over); a reduction that is a collapse is "
+                "counted apart: n✕ above the panel")
     if pooled_over:
         note += "; pooled over " + ", ".join(sorted(pooled_over)) + " (select with -w)"
     fig.suptitle(args.title or f"Parameter sweeps across {len(cube.dimension('record')['values'])} records")

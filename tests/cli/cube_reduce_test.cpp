@@ -1,0 +1,191 @@
+// `pcrf cube fragility --reduce-over incidence_deg`: the fit of each record's collapse
+// intensity reduced over the orientations (min: the worst, median, max: the best) equals a fit
+// of the reduction done here by hand from the cube's own values; a bad --reduce is one line,
+// exit code 2, nothing written. cube::reduce_censored: when a censored curve changes the value.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "pcrf/cube/cube_query.hpp"
+#include "pcrf/cube/cube_reader.hpp"
+#include "study/study_test_support.hpp"
+
+namespace pcrf {
+namespace {
+
+using study_test::pcrf;
+using study_test::quoted;
+namespace fs = std::filesystem;
+
+/// Three stations (one pair of motions at three geometries) × 4 incidences, an adaptive IDA
+/// of the basic frame scaled by RotD50 of PGA; made once per test process.
+const fs::path& ida_cube() {
+  static const fs::path dir = [] {
+    const auto d = test::scratch_dir(std::string("cube_reduce_") +
+                                     ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    const std::string records =
+        study_test::station_pair(d, "a") +
+        "[[records]]\nh1 = \"h2.txt\"\nh2 = \"h1.txt\"\nunits = \"m/s2\"\naz1_deg = 30\naz2_deg = 120\nname = \"b\"\n"
+        "[[records]]\nh1 = \"h1.txt\"\nh2 = \"h2.txt\"\nunits = \"m/s2\"\naz1_deg = 0\naz2_deg = 60\nname = \"c\"\n";
+    test::write_file(d, "ida.toml", records +
+                                        "[intensity]\nmeasure = \"pga_rotd50_g\"\n"
+                                        "[ida]\nstart = 1.0\nstep = 1.0\nmax_intensity = 16\nmax_runs = 10\n"
+                                        "[axes]\nincidence_deg = [0, 45, 90, 135]\n");
+    const auto r = test::run_command("cd " + quoted(d) + " && " + pcrf() + " study ida.toml -o ida.h5 --progress-interval 0");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return d;
+  }();
+  return dir;
+}
+
+/// The number after `"key": ` in the first frame of a fragility JSON.
+double json_number(const std::string& json, const std::string& key) {
+  const auto frames = json.find("\"frames\"");
+  const auto at = json.find("\"" + key + "\": ", frames);
+  EXPECT_NE(at, std::string::npos) << key << " in " << json;
+  return at == std::string::npos ? std::nan("") : std::strtod(json.c_str() + at + key.size() + 4, nullptr);
+}
+
+TEST(CubeReduce, TheReducedFragilityFitsEachRecordsReductionOverTheIncidence) {
+  const auto file = ida_cube() / "ida.h5";
+  cube::CubeReader cube(file);
+  const auto ci = cube.read_side("collapse_intensity");
+  ASSERT_EQ(ci.size(), 12u);  // record × incidence (the frame axes have one value each)
+  for (double c : ci) ASSERT_TRUE(std::isfinite(c)) << "every curve must collapse below max_intensity";
+  for (double s : cube.read_side("curve_state")) ASSERT_EQ(s, 0.0) << "every curve bracketed";
+  for (const std::string how : {"min", "median", "max"}) {
+    // By hand: per record its four orientations' collapse intensities reduced; with nothing
+    // censored the lognormal's maximum-likelihood median is their geometric mean.
+    double log_sum = 0.0;
+    for (std::size_t rec = 0; rec < 3; ++rec) {
+      std::vector<double> v(ci.begin() + static_cast<long>(rec * 4), ci.begin() + static_cast<long>(rec * 4 + 4));
+      std::sort(v.begin(), v.end());
+      const double reduced = how == "min" ? v.front() : how == "max" ? v.back() : 0.5 * (v[1] + v[2]);
+      log_sum += std::log(reduced);
+    }
+    const auto out = test::run_command(pcrf() + " cube fragility " + quoted(file) +
+                                       " --reduce-over incidence_deg --reduce " + how + " --json");
+    ASSERT_EQ(out.exit_code, 0) << out.err;
+    EXPECT_NEAR(json_number(out.out, "median"), std::exp(log_sum / 3.0), 1e-9 * std::exp(log_sum / 3.0)) << how;
+    EXPECT_EQ(json_number(out.out, "cases"), 3.0) << how;  // one reduced value per record
+    EXPECT_NE(out.out.find("\"reduced_over\": \"incidence_deg\""), std::string::npos) << out.out;
+    EXPECT_NE(out.out.find("\"frame\": \"all\""), std::string::npos) << "incidence is no frame axis once reduced";
+  }
+  // Without --reduce the fragility takes each record's worst orientation, the smallest.
+  const auto worst = test::run_command(pcrf() + " cube fragility " + quoted(file) + " --reduce-over incidence_deg --json");
+  const auto min = test::run_command(pcrf() + " cube fragility " + quoted(file) + " --reduce-over incidence_deg --reduce min --json");
+  EXPECT_EQ(worst.out, min.out);
+  // Not reduced: one frame per incidence.
+  const auto plain = test::run_command(pcrf() + " cube fragility " + quoted(file) + " --json");
+  EXPECT_NE(plain.out.find("\"frame\": \"incidence_deg=45\""), std::string::npos) << plain.out;
+}
+
+TEST(CubeReduce, ABadReductionIsOneLineAndWritesNothing) {
+  const auto dir = ida_cube();
+  const auto csv = dir / "bad.csv";
+  for (const std::string args : {"fragility ida.h5 --reduce-over incidence_deg --reduce mean --csv bad.csv",
+                                 "stats ida.h5 --by kappa -m theta_max_rad --reduce-over incidence_deg --reduce mean --csv bad.csv",
+                                 "fragility ida.h5 --reduce min --csv bad.csv",
+                                 "fragility ida.h5 --reduce-over record --csv bad.csv",
+                                 "fragility ida.h5 --reduce-over kappa_typo --csv bad.csv"}) {
+    const auto r = test::run_command("cd " + quoted(dir) + " && " + pcrf() + " cube " + args);
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << "\n" << r.err;
+    EXPECT_FALSE(fs::exists(csv)) << args;
+  }
+  const auto r = test::run_command("cd " + quoted(dir) + " && " + pcrf() + " cube fragility ida.h5 --reduce-over incidence_deg --reduce mean");
+  EXPECT_NE(r.err.find("--reduce: reduce with max, min or median, not 'mean'"), std::string::npos) << r.err;
+}
+
+TEST(CubeReduce, CurvesThatNeverCollapsedStayCensoredInTheWorstOrientation) {
+  // The same stations searched only up to 3 g: some orientations never collapse.
+  const auto dir = ida_cube();
+  test::write_file(dir, "capped.toml", [&] {
+    std::ifstream in(dir / "ida.toml");
+    std::stringstream text;
+    text << in.rdbuf();
+    return std::regex_replace(text.str(), std::regex("max_intensity = 16"), "max_intensity = 3");
+  }());
+  auto r = test::run_command("cd " + quoted(dir) + " && " + pcrf() + " study capped.toml -o capped.h5 --overwrite --progress-interval 0");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  cube::CubeReader cube(dir / "capped.h5");
+  const auto ci = cube.read_side("collapse_intensity"), safe = cube.read_side("last_safe_intensity");
+  // By hand, per record: the worst orientation (min) is a collapse when one was found at or
+  // below every censored curve's last safe intensity, else it is only known to exceed the lowest
+  // bound; the best (max) is a collapse when no curve is censored, else it exceeds every value.
+  std::size_t censored_curves = 0;
+  for (const std::string how : {"min", "max"}) {
+    std::multiset<std::pair<std::string, double>> expected;
+    censored_curves = 0;
+    for (std::size_t rec = 0; rec < 3; ++rec) {
+      const double inf = std::numeric_limits<double>::infinity();
+      double lowest_collapse = inf, lowest_bound = inf, highest = -inf;
+      for (std::size_t k = rec * 4; k < rec * 4 + 4; ++k) {
+        if (std::isfinite(ci[k])) lowest_collapse = std::min(lowest_collapse, ci[k]), highest = std::max(highest, ci[k]);
+        else lowest_bound = std::min(lowest_bound, safe[k]), highest = std::max(highest, safe[k]), ++censored_curves;
+      }
+      const bool some_censored = lowest_bound < inf;
+      if (how == "min")
+        expected.insert(lowest_collapse <= lowest_bound ? std::pair{std::string("collapse"), lowest_collapse}
+                                                         : std::pair{std::string("censored"), lowest_bound});
+      else
+        expected.insert({some_censored ? "censored" : "collapse", highest});
+    }
+    ASSERT_GT(censored_curves, 0u) << "the cap must leave some curves censored";
+    r = test::run_command("cd " + quoted(dir) + " && " + pcrf() + " cube fragility capped.h5 --reduce-over incidence_deg --reduce " +
+                          how + " --points points.csv --overwrite");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    std::ifstream points(dir / "points.csv");
+    std::multiset<std::pair<std::string, double>> found;
+    std::string line;
+    std::getline(points, line);  // frame,kind,intensity,trials,collapses
+    while (std::getline(points, line)) {
+      std::stringstream fields(line);
+      std::string frame, kind, intensity;
+      std::getline(fields, frame, ',');
+      std::getline(fields, kind, ',');
+      std::getline(fields, intensity, ',');
+      found.insert({kind, std::stod(intensity)});
+    }
+    EXPECT_EQ(found, expected) << how;
+  }
+  // cube stats reduces what collapsed only, and says so.
+  r = test::run_command("cd " + quoted(dir) + " && " + pcrf() +
+                        " cube stats capped.h5 --by kappa -m collapse_intensity --reduce-over incidence_deg --reduce min");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find(std::to_string(censored_curves) + " curves without a bracketed collapse (censored or unbracketed) "
+                       "are left out of the reduction"), std::string::npos) << r.err;
+}
+
+TEST(CubeReduce, ACensoredValueCensorsTheReductionOnlyWhereItCouldChangeIt) {
+  using cube::reduce_censored;
+  // min: a curve safe up to 1 may collapse anywhere above 1: the worst is only known to exceed 1.
+  auto r = reduce_censored({2.0, 3.0}, {1.0}, "min");
+  EXPECT_EQ(r.value, 1.0);
+  EXPECT_TRUE(r.censored);
+  r = reduce_censored({2.0, 3.0}, {5.0}, "min");  // safe up to 5: the worst is the collapse at 2
+  EXPECT_EQ(r.value, 2.0);
+  EXPECT_FALSE(r.censored);
+  r = reduce_censored({2.0, 3.0}, {5.0}, "max");  // the best exceeds 5
+  EXPECT_EQ(r.value, 5.0);
+  EXPECT_TRUE(r.censored);
+  r = reduce_censored({1.0, 2.0, 3.0}, {10.0}, "median");  // above the middle: (2 + 3) / 2 whatever it is
+  EXPECT_EQ(r.value, 2.5);
+  EXPECT_FALSE(r.censored);
+  r = reduce_censored({1.0, 2.0}, {1.5, 10.0}, "median");  // 1.5 is a middle value: known from below only
+  EXPECT_EQ(r.value, 1.75);
+  EXPECT_TRUE(r.censored);
+  r = reduce_censored({}, {}, "min");
+  EXPECT_TRUE(std::isnan(r.value));
+  EXPECT_THROW(reduce_censored({1.0}, {}, "mean"), cube::CubeError);
+}
+
+}  // namespace
+}  // namespace pcrf
