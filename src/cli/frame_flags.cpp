@@ -54,10 +54,11 @@ void SceneFlags::add_to(CLI::App* cmd) {
 }
 
 std::unique_ptr<Scene> SceneFlags::scene() const {
-  // The model layer checks everything (scene_catalog.hpp); here only the flags' spelling.
-  const SceneModel* chosen = nullptr;
+  // The model layer checks everything (scene_catalog.hpp), with the messages the Python
+  // module gives too (a parameter of another model, a value outside its domain); here only
+  // the flags' spelling.
   try {
-    chosen = &scene_model(model);
+    scene_model(model);
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("--model: ") + e.what());
   }
@@ -66,12 +67,6 @@ std::unique_ptr<Scene> SceneFlags::scene() const {
     if (option->count() == 0) return;
     if (name.empty()) name = flag.substr(2);
     std::replace(name.begin(), name.end(), '-', '_');
-    if (chosen->index(name) == std::string::npos) {
-      auto owners = models_taking(name);
-      std::erase(owners, '"');
-      throw UsageError(flag + " does not apply to --model " + model +
-                       (owners.empty() ? "" : " (it applies to --" + owners + ")"));
-    }
     values[name] = value;
   };
   for (std::size_t k = 0; k < frame_options_.size(); ++k) {

@@ -349,10 +349,11 @@ TEST(RunCommand, SolvesTheCanonicalScenes) {
   EXPECT_NEAR(json_number(frame.out, "theta_max_rad"), json_number(as_block.out, "theta_max_rad"),
               1e-5 * json_number(frame.out, "theta_max_rad"));  // r passes through 6 printed digits
   const std::vector<std::pair<std::string, std::string>> bad = {
-      {" --model block --kappa 2", "--kappa does not apply to --model block"},
-      {" --size-m 2", "--size-m does not apply to --model pcrf"},
+      // The scene catalogue's messages (the Python module's too), naming the parameter.
+      {" --model block --kappa 2", "kappa does not apply to model \"block\" (it is a parameter of model \"pcrf\")"},
+      {" --size-m 2", "size_m does not apply to model \"pcrf\""},
       {" --model block --slenderness-rad 1.6", "slenderness_rad: must lie between 0 and pi/2"},
-      {" --model block --beam-mass-ratio 1", "--beam-mass-ratio does not apply to --model block (it applies to --model rocking-frame)"},
+      {" --model block --beam-mass-ratio 1", "beam_mass_ratio does not apply to model \"block\" (it is a parameter of model \"rocking-frame\")"},
       {" --model block --restitution 1.5", "restitution: must lie in [0, 1]"},
       {" --model cylinder", "unknown scene 'cylinder'"}};
   for (const auto& [flags, message] : bad) {
