@@ -35,7 +35,7 @@ struct CubeArguments {
   std::vector<std::string> by;
   bool no_record_text = false;
   std::string reduce_over;         ///< stats: a dimension the metric is reduced over first (incidence_deg)
-  std::string reduce_how = "max";  ///< stats: max, min or median over it
+  std::string reduce_how = post::kDefaultReduction;  ///< stats: max, min or median over it
   std::string output;
   std::string history;
   std::string points;
@@ -239,10 +239,9 @@ void add_stats(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
       cube::CubeReader reader(args->file);
       note_partial("stats", args->file, reader);
       note_verdicts("stats", args->file, reader, "in the column `unresolved`, not in the percentiles");
-      if (args->reduce_over.empty() && args->reduce_how != "max")
-        throw UsageError("--reduce goes with --reduce-over DIMENSION");
-      const auto report =
-          post::stats_report(reader, {args->by, args->metric, selectors(args->where), {args->reduce_over, args->reduce_how}});
+      const cube::Reduction reduction{args->reduce_over, args->reduce_how};
+      if (const auto problem = post::reduction_problem(reduction); !problem.empty()) throw UsageError(problem);
+      const auto report = post::stats_report(reader, {args->by, args->metric, selectors(args->where), reduction});
       // The text of stats is its CSV (as it always was): --csv FILE adds a copy.
       write_report(report, "groups", *args, "",
                    [&](std::ostream& out) { post::write_csv(report.table("groups"), out); });

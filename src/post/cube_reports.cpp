@@ -275,6 +275,10 @@ std::string mce_problem(const std::optional<double>& mce) {
   return mce && !(*mce > 0.0) ? "--mce must be positive" : "";
 }
 
+std::string reduction_problem(const cube::Reduction& reduction) {
+  return reduction.dimension.empty() && reduction.how != kDefaultReduction ? "--reduce goes with --reduce-over DIMENSION" : "";
+}
+
 P695Inputs p695_inputs(const std::string& sdc, double period_s, double mu_t, const std::string& ratings) {
   P695Inputs in;
   std::string r = ratings;

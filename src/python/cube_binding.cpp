@@ -43,9 +43,12 @@ post::Report report(const std::string& kind, const std::string& file, Keywords& 
   if (kind == "stats") {
     const auto metric = keywords.take_text("metric").value_or("");
     const auto by = words(keywords.take("by"));
+    const cube::Reduction reduction{keywords.take_text("reduce_over").value_or(""),
+                                    keywords.take_text("reduce").value_or(post::kDefaultReduction)};
     keywords.finish();
     const cube::CubeReader reader(file);
-    return post::stats_report(reader, {by, metric, where, {}});  // no reduction (cube stats --reduce-over): not offered here yet
+    if (const auto problem = post::reduction_problem(reduction); !problem.empty()) throw api::InputError(problem);
+    return post::stats_report(reader, {by, metric, where, reduction});
   }
   if (kind == "fragility") {
     const auto mce = keywords.take_number("mce");

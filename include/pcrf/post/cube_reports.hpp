@@ -23,6 +23,9 @@
 
 namespace pcrf::post {
 
+/// How a reduction reduces when only its dimension is given (`pcrf cube stats --reduce`'s default).
+inline constexpr const char* kDefaultReduction = "max";
+
 struct StatsRequest {
   std::vector<std::string> by;  ///< coordinates to group by (at least one)
   std::string metric;
@@ -59,6 +62,11 @@ Report p695_report(const P695Report& result, const P695Inputs& inputs, const std
 
 /// Why `mce` cannot be a fragility's MCE intensity ("--mce must be positive"); empty when it can.
 std::string mce_problem(const std::optional<double>& mce);
+
+/// Why `reduction` cannot be asked for ("--reduce goes with --reduce-over DIMENSION": a way
+/// of reducing other than the default without a dimension); empty when it can. A `how` other
+/// than max, min or median is refused by the reduction itself (cube::group_stats_reduced).
+std::string reduction_problem(const cube::Reduction& reduction);
 
 /// The P-695 inputs from their text forms (the command line's --sdc, --period-s, --mu-t,
 /// --ratings "B,B,C"), checked. \throws std::invalid_argument naming the input.

@@ -24,10 +24,14 @@ def _frame(kind, cube, table, **keywords):
     return result
 
 
-def stats(cube, by, metric, where=None):
+def stats(cube, by, metric, where=None, reduce_over=None, reduce="max"):
     """``pcrf cube stats``: median and 16th/84th percentiles of ``metric`` across records per
-    value of ``by`` (a coordinate or a list); ``where`` a dict or "name=value" texts."""
-    return _frame("stats", cube, "groups", by=by, metric=metric, where=where)
+    value of ``by`` (a coordinate or a list); ``where`` a dict or "name=value" texts.
+    ``reduce_over`` (``--reduce-over``, e.g. "incidence_deg") first reduces the metric over that
+    dimension, by ``reduce`` (``--reduce``): "max" (each record and frame's worst orientation,
+    RotD100), "median" (RotD50) or "min" (an IDA's ``collapse_intensity`` at its worst)."""
+    return _frame("stats", cube, "groups", by=by, metric=metric, where=where, reduce_over=reduce_over,
+                  reduce=reduce)
 
 
 def fragility(cube, where=None, mce=None, table="frames"):
