@@ -26,7 +26,16 @@ CHILD = """
 import json, signal, sys
 import pcrf
 signal.signal(signal.SIGINT, signal.default_int_handler)
-pcrf.study(json.loads(sys.argv[1]), output=sys.argv[2], progress=True)
+study = json.loads(sys.argv[1])
+if sys.argv[3] == "uncaught":
+    pcrf.study(study, output=sys.argv[2], progress=True)
+else:  # as in a Jupyter kernel: the interpreter goes on, and resumes the study itself
+    try:
+        pcrf.study(study, output=sys.argv[2], progress=True)
+    except KeyboardInterrupt as interrupt:
+        print("interrupted:", *interrupt.__notes__, flush=True)
+    status = pcrf.study(study, output=sys.argv[2], resume=True)["status"].values
+    print("resumed:", int((status >= 0).sum()), "of", status.size, flush=True)
 print("finished", flush=True)
 """
 
@@ -38,10 +47,11 @@ def cases_done(line):
     return int(line.removeprefix("pcrf study: ").split("/")[0])
 
 
-def test_ctrl_c_stops_a_study_in_process_leaving_a_resumable_cube(tmp_path):
-    cube = tmp_path / "interrupted.h5"
-    child = subprocess.Popen([sys.executable, "-c", CHILD, json.dumps(STUDY), str(cube)], stdout=subprocess.PIPE,
-                             stderr=subprocess.PIPE, text=True)
+def interrupted_child(cube, mode):
+    """Runs CHILD in `mode` and sends it SIGINT once its study has stored cases: (exit code,
+    stdout, stderr)."""
+    child = subprocess.Popen([sys.executable, "-c", CHILD, json.dumps(STUDY), str(cube), mode],
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     lines = []
     try:
         for line in child.stderr:  # wait until the study has stored cases
@@ -52,8 +62,13 @@ def test_ctrl_c_stops_a_study_in_process_leaving_a_resumable_cube(tmp_path):
         stdout, rest = child.communicate(timeout=300)
     finally:
         child.kill()
-    stderr = "".join(lines) + rest
-    assert child.returncode == -signal.SIGINT, stderr  # Python's exit on an uncaught KeyboardInterrupt
+    return child.returncode, stdout, "".join(lines) + rest
+
+
+def test_ctrl_c_stops_a_study_in_process_leaving_a_resumable_cube(tmp_path):
+    cube = tmp_path / "interrupted.h5"
+    returncode, stdout, stderr = interrupted_child(cube, "uncaught")
+    assert returncode == -signal.SIGINT, stderr  # Python's exit on an uncaught KeyboardInterrupt
     assert "finished" not in stdout
     assert "KeyboardInterrupt" in stderr, stderr
     assert "pcrf.study: stopped by SIGINT: " in stderr and "continue with pcrf.study(..., resume=True)" in stderr, stderr
@@ -67,3 +82,13 @@ def test_ctrl_c_stops_a_study_in_process_leaving_a_resumable_cube(tmp_path):
     status = resumed["status"].values
     assert int((status >= 0).sum()) == status.size
     np.testing.assert_array_equal(status[stopped >= 0], stopped[stopped >= 0])  # the saved cases kept
+
+
+def test_after_ctrl_c_the_same_interpreter_resumes_the_study(tmp_path):
+    """The run ended in order: its MPI session and the cube's lock serve the next study."""
+    returncode, stdout, stderr = interrupted_child(tmp_path / "kernel.h5", "caught")
+    assert returncode == 0, stderr
+    assert "interrupted: pcrf.study: stopped by SIGINT: " in stdout, stdout + stderr
+    axes = STUDY["axes"]
+    total = len(STUDY["records"][0]["synthetic"]) * axes["scale"]["count"] * axes["kappa"]["count"]
+    assert f"resumed: {total} of {total}" in stdout and "finished" in stdout, stdout + stderr
