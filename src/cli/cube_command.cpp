@@ -173,17 +173,13 @@ void add_reduction(CLI::App* cmd, CubeArguments& args, const std::string& over_h
   cmd->add_option("--reduce", args.reduce_how, "how --reduce-over reduces: max, min or median (default: " + default_how + ")");
 }
 
-/// The reduction asked for, `default_how` unless --reduce says; --reduce alone is refused.
+/// The reduction asked for, `default_how` unless --reduce says (post::reduction_of).
 cube::Reduction reduction_of(const CubeArguments& args, const std::string& default_how) {
-  if (args.reduce_over.empty() && !args.reduce_how.empty()) throw UsageError("--reduce goes with --reduce-over DIMENSION");
-  if (args.reduce_over.empty()) return {};
-  cube::Reduction reduction{args.reduce_over, args.reduce_how.empty() ? default_how : args.reduce_how};
   try {
-    cube::check_reduction(reduction.how);
-  } catch (const cube::CubeError& e) {
-    throw UsageError(std::string("--reduce: ") + e.what());
+    return post::reduction_of(args.reduce_over, args.reduce_how, default_how);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
   }
-  return reduction;
 }
 
 void add_info(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
@@ -252,14 +248,14 @@ void add_stats(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
                 "first reduce the metric over this dimension (e.g. incidence_deg: each record and frame's worst "
                 "orientation with --reduce max, RotD100; the median, RotD50; for an IDA's collapse_intensity the "
                 "worst orientation is --reduce min); one --by",
-                "max");
+                post::kStatsReduction);
   add_where(stats, *args);
   add_report_outputs(stats, *args, schema("file, metric, metric_units, by (comma-separated), reduced_over and reduction (when reduced)",
                                           {{"groups", post::stats_columns()}}));
   stats->callback([args] {
     guarded(args->file, [&] {
       check_report_outputs(*args);
-      const auto reduction = reduction_of(*args, "max");
+      const auto reduction = reduction_of(*args, post::kStatsReduction);
       cube::CubeReader reader(args->file);
       note_partial("stats", args->file, reader);
       note_verdicts("stats", args->file, reader, "in the column `unresolved`, not in the percentiles");
@@ -281,7 +277,7 @@ void add_fragility(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& arg
                 "IDA cubes: first reduce each record's collapse intensities over this dimension (incidence_deg: "
                 "--reduce min, the default, fits each record's worst orientation; median its RotD50-like value; max "
                 "the best); a curve that never collapsed stays censored where it could change the reduced value",
-                "min");
+                post::kFragilityReduction);
   fragility->add_option("--points", args->points,
                         "also write the fitted data as CSV to this file: stripes, or IDA collapse and censored intensities");
   add_report_outputs(fragility, *args,
@@ -293,7 +289,7 @@ void add_fragility(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& arg
       check_report_outputs(*args);
       const std::vector<std::filesystem::path> csv_inputs{args->file}, points_inputs{args->file, args->csv};
       check_output(args->points, is_stdout(args->csv) ? csv_inputs : points_inputs, args->overwrite);
-      const auto reduction = reduction_of(*args, "min");
+      const auto reduction = reduction_of(*args, post::kFragilityReduction);
       cube::CubeReader reader(args->file);
       note_partial("fragility", args->file, reader);
       note_verdicts("fragility", args->file, reader, "counted in no stripe (neither safe nor collapsed)");

@@ -2,6 +2,7 @@
 #include "cli/frame_flags.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -13,6 +14,25 @@
 #include "pcrf/model/scene_catalog.hpp"
 
 namespace pcrf::cli {
+
+namespace {
+
+/// `text` with each whole-word `word` (letters, digits and '_' around it end the word) replaced.
+std::string replace_word(std::string text, const std::string& word, const std::string& by) {
+  auto part_of_word = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+  for (std::size_t at = text.find(word); at != std::string::npos; at = text.find(word, at)) {
+    const std::size_t end = at + word.size();
+    if ((at > 0 && part_of_word(text[at - 1])) || (end < text.size() && part_of_word(text[end]))) {
+      at = end;
+      continue;
+    }
+    text.replace(at, word.size(), by);
+    at += by.size();
+  }
+  return text;
+}
+
+}  // namespace
 
 /// The older `--h` is gone: CLI11 2.4 refuses a one-letter long name beside `-h` (help).
 void SceneFlags::add_to(CLI::App* cmd) {
@@ -54,25 +74,22 @@ void SceneFlags::add_to(CLI::App* cmd) {
 }
 
 std::unique_ptr<Scene> SceneFlags::scene() const {
-  // The model layer checks everything (scene_catalog.hpp); here only the flags' spelling.
-  const SceneModel* chosen = nullptr;
+  // The model layer checks everything (scene_catalog.hpp), with the messages the Python
+  // module gives too (a parameter of another model, a value outside its domain); here only
+  // the flags' spelling.
   try {
-    chosen = &scene_model(model);
+    scene_model(model);
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("--model: ") + e.what());
   }
   std::map<std::string, double, std::less<>> values;
+  std::map<std::string, std::string> flag_of;  // a key of the catalogue -> the flag that gave it
   auto take = [&](const std::string& flag, CLI::Option* option, double value, std::string name = "") {
     if (option->count() == 0) return;
     if (name.empty()) name = flag.substr(2);
     std::replace(name.begin(), name.end(), '-', '_');
-    if (chosen->index(name) == std::string::npos) {
-      auto owners = models_taking(name);
-      std::erase(owners, '"');
-      throw UsageError(flag + " does not apply to --model " + model +
-                       (owners.empty() ? "" : " (it applies to --" + owners + ")"));
-    }
     values[name] = value;
+    flag_of[name] = flag;
   };
   for (std::size_t k = 0; k < frame_options_.size(); ++k) {
     const bool size = k >= all_parameters().size();
@@ -87,7 +104,11 @@ std::unique_ptr<Scene> SceneFlags::scene() const {
   try {
     return make_scene(model, values);
   } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
+    // The catalogue's message names keys (given_restitution: ...); here the user typed flags
+    // (--restitution), so the message names those.
+    std::string text = e.what();
+    for (const auto& [name, flag] : flag_of) text = replace_word(text, name, flag);
+    throw UsageError(text);
   }
 }
 

@@ -116,9 +116,7 @@ void run_study_command(StudyArguments& args) {
   }
   if (!summary) exit_code() = 2;  // rank ≠ 0 of a study that cannot run: rank 0 reported it
   if (summary && mpi.is_master() && summary->stopped_by != 0) {
-    const std::string name = summary->stopped_by == SIGTERM ? "SIGTERM" : summary->stopped_by == SIGINT ? "SIGINT" : "a signal";
-    std::cerr << "pcrf study: stopped by " << name << ": " << summary->already_done + summary->computed << " of "
-              << summary->total << " cases saved in " << summary->output.string() << "; continue with: pcrf study "
+    std::cerr << "pcrf study: " << study::stop_report(*summary) << "; continue with: pcrf study "
               << args.run.study_file.string() << " -o " << summary->output.string() << " --resume" << std::endl;
   }
   if (summary && mpi.is_master())

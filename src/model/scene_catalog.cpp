@@ -158,6 +158,10 @@ bool same_point(const ScenePoint& a, const ScenePoint& b) {
 
 std::unique_ptr<Scene> make_scene(std::string_view model_name, const std::map<std::string, double, std::less<>>& values) {
   const SceneModel& model = scene_model(model_name);
+  return model.make(scene_point(model, values));
+}
+
+ScenePoint scene_point(const SceneModel& model, const std::map<std::string, double, std::less<>>& values) {
   ScenePoint point = model.defaults();
   for (const auto& [key, value] : values) {
     const std::size_t k = model.index(key);
@@ -178,7 +182,10 @@ std::unique_ptr<Scene> make_scene(std::string_view model_name, const std::map<st
     for (auto key : model.exclusive) keys += (keys.empty() ? "" : " or ") + std::string(key);
     throw std::invalid_argument("give either " + keys + ", not both");
   }
-  return model.make(point);
+  if (given == 1)
+    for (auto key : model.exclusive)
+      if (values.count(key) == 0) point[model.index(key)] = kAbsent;
+  return point;
 }
 
 }  // namespace pcrf

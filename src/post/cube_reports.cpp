@@ -299,6 +299,18 @@ std::string mce_problem(const std::optional<double>& mce) {
   return mce && !(*mce > 0.0) ? "--mce must be positive" : "";
 }
 
+cube::Reduction reduction_of(const std::string& over, const std::string& how, const std::string& default_how) {
+  if (over.empty() && !how.empty()) throw std::invalid_argument("--reduce goes with --reduce-over DIMENSION");
+  if (over.empty()) return {};
+  cube::Reduction reduction{over, how.empty() ? default_how : how};
+  try {
+    cube::check_reduction(reduction.how);
+  } catch (const cube::CubeError& e) {
+    throw std::invalid_argument(std::string("--reduce: ") + e.what());
+  }
+  return reduction;
+}
+
 P695Inputs p695_inputs(const std::string& sdc, double period_s, double mu_t, const std::string& ratings) {
   P695Inputs in;
   std::string r = ratings;

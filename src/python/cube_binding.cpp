@@ -38,21 +38,34 @@ std::vector<cube::Selector> selectors(const std::optional<py::object>& where) {
   return result;
 }
 
+/// reduce_over= and reduce= as the command line's --reduce-over and --reduce (post::reduction_of).
+cube::Reduction reduction_of(Keywords& keywords, const std::string& default_how) {
+  const auto over = keywords.take_text("reduce_over").value_or("");
+  const auto how = keywords.take_text("reduce").value_or("");
+  try {
+    return post::reduction_of(over, how, default_how);
+  } catch (const std::invalid_argument& e) {
+    throw api::InputError(e.what());
+  }
+}
+
 post::Report report(const std::string& kind, const std::string& file, Keywords& keywords) {
   const auto where = selectors(keywords.take("where"));
   if (kind == "stats") {
     const auto metric = keywords.take_text("metric").value_or("");
     const auto by = words(keywords.take("by"));
+    const auto reduction = reduction_of(keywords, post::kStatsReduction);
     keywords.finish();
     const cube::CubeReader reader(file);
-    return post::stats_report(reader, {by, metric, where, {}});  // no reduction (cube stats --reduce-over): not offered here yet
+    return post::stats_report(reader, {by, metric, where, reduction});
   }
   if (kind == "fragility") {
     const auto mce = keywords.take_number("mce");
+    const auto reduction = reduction_of(keywords, post::kFragilityReduction);
     keywords.finish();
     if (const auto problem = post::mce_problem(mce); !problem.empty()) throw api::InputError(problem);
     const cube::CubeReader reader(file);
-    return post::fragility_report(reader, {where, mce});
+    return post::fragility_report(reader, {where, mce}, reduction);
   }
   if (kind == "sensitivity") {
     const auto metric = keywords.take_text("metric").value_or("");

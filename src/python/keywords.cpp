@@ -137,34 +137,60 @@ StationRecord Keywords::take_station(std::vector<std::string>& notes, api::Recor
   return input.load_station(notes);
 }
 
+std::unique_ptr<Scene> scene_of(const SceneRequest& request, ScenePoint* point) {
+  const SceneModel* model = nullptr;
+  try {
+    model = &scene_model(request.model);
+  } catch (const std::invalid_argument& e) {
+    throw api::InputError(std::string("model: ") + e.what());
+  }
+  try {
+    ScenePoint made = scene_point(*model, request.values);
+    auto scene = model->make(made);
+    if (point != nullptr) *point = std::move(made);
+    return scene;
+  } catch (const std::invalid_argument& e) {
+    throw api::InputError(e.what());
+  }
+}
+
 std::unique_ptr<Scene> Keywords::take_scene() {
-  const std::string model = take_text("model").value_or("pcrf");
-  std::map<std::string, double, std::less<>> values;
+  SceneRequest request;
+  const auto model = take_text("model");
   if (const auto frame = take("frame")) {
     py::object parameters = *frame;
     if (!py::isinstance<py::dict>(parameters)) {
       if (!py::hasattr(parameters, "parameters")) throw api::InputError("frame: expected a dict of parameters or a pcrf.Frame");
+      // A pcrf.Frame carries its model: model= may only repeat it.
+      const auto frame_model = py::str(py::getattr(parameters, "model", py::str("pcrf"))).cast<std::string>();
+      if (model && *model != frame_model)
+        throw api::InputError("model: '" + *model + "' but frame= is a pcrf.Frame of model '" + frame_model + "'");
+      request.model = frame_model;
       parameters = parameters.attr("parameters");
     }
     for (const auto& [key, value] : parameters.cast<py::dict>()) {
       const std::string name = py::str(key).cast<std::string>();
       try {
-        values[name] = py::float_(py::reinterpret_borrow<py::object>(value)).cast<double>();
+        request.values[name] = py::float_(py::reinterpret_borrow<py::object>(value)).cast<double>();
       } catch (const py::error_already_set&) {
         throw api::InputError("frame: " + name + ": expected a number");
       }
     }
   }
-  try {
-    scene_model(model);
-  } catch (const std::invalid_argument& e) {
-    throw api::InputError(std::string("model: ") + e.what());
-  }
-  try {
-    return make_scene(model, values);
-  } catch (const std::invalid_argument& e) {
-    throw api::InputError(e.what());
-  }
+  if (model) request.model = *model;
+  return scene_of(request);
+}
+
+SceneRequest Keywords::take_scene_parameters() {
+  SceneRequest request;
+  request.model = take_text("model").value_or(request.model);
+  for (const auto& model : scene_models())
+    for (const auto& parameter : model.parameters) {
+      const std::string key(parameter.name);
+      if (request.values.count(key) > 0) continue;  // a key several models share
+      if (const auto value = take_number(key)) request.values[key] = *value;
+    }
+  return request;
 }
 
 void Keywords::finish() const {

@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
-#include "pcrf/api/frame_input.hpp"
 #include "pcrf/api/given_settings.hpp"
 #include "pcrf/api/record_input.hpp"
 #include "pcrf/model/scene.hpp"
+#include "pcrf/model/scene_catalog.hpp"
 
 namespace pcrf::python {
 
@@ -26,6 +26,16 @@ namespace py = pybind11;
 /// text as the command line reads it, a list of words joined. \throws api::InputError.
 template <class Target>
 SettingValue setting_value(const Setting<Target>& s, const py::handle& value);
+
+/// A scene as keywords name it: the catalogue's model name and the values given by its keys.
+struct SceneRequest {
+  std::string model = "pcrf";
+  std::map<std::string, double, std::less<>> values;
+};
+
+/// The scene of the catalogue (make_scene: the command line's checks and messages) and the
+/// point it was made from (when not null). \throws api::InputError.
+std::unique_ptr<Scene> scene_of(const SceneRequest& request, ScenePoint* point = nullptr);
 
 class Keywords {
  public:
@@ -54,6 +64,9 @@ class Keywords {
   /// `frame=` (a dict by the model's keys, or a pcrf.Frame), every other one at its default,
   /// built as `pcrf run --model` builds it (model/scene_catalog.hpp). \throws api::InputError.
   std::unique_ptr<Scene> take_scene();
+  /// `model=` and every parameter of a scene given as a keyword by its catalogue key
+  /// (pcrf.Frame(model="block", slenderness_rad=0.2)); checked by scene_of().
+  SceneRequest take_scene_parameters();
 
   /// \throws api::InputError "unknown keyword 'x' (did you mean 'y'?)" for one not taken.
   void finish() const;

@@ -3,9 +3,13 @@
 // built here, its messages naming the key path in place of a line.
 #include <pybind11/stl.h>
 
+#include <atomic>
+#include <chrono>
+#include <csignal>
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "bindings.hpp"
@@ -82,6 +86,30 @@ std::unique_ptr<parallel::MpiSession>& mpi_session() {
   return session;
 }
 
+/// Ctrl-C during a study run in process: the interpreter's own SIGINT handler only marks the
+/// signal, and Python code runs its handler (raising KeyboardInterrupt) when it next holds the
+/// GIL. The study's master thread, which released it, looks every kPollInterval_s: with the
+/// GIL held briefly, PyErr_CheckSignals() runs the handler; an exception it raises stops the
+/// run as a signal stops `pcrf study` (StudyRunOptions::stop_signal) and is raised once the
+/// cube is saved.
+struct Interrupt {
+  static constexpr double kPollInterval_s = 0.05;
+  std::atomic<int> stop{0};
+  std::optional<py::error_already_set> exception;
+  std::chrono::steady_clock::time_point last = std::chrono::steady_clock::now();
+
+  void poll() {
+    const auto now = std::chrono::steady_clock::now();
+    if (stop.load() != 0 || std::chrono::duration<double>(now - last).count() < kPollInterval_s) return;
+    last = now;
+    py::gil_scoped_acquire held;
+    if (PyErr_CheckSignals() != 0) {
+      exception.emplace();  // takes the raised exception out of the interpreter
+      stop.store(SIGINT);
+    }
+  }
+};
+
 py::dict study(const py::object& source, const py::kwargs& kwargs) {
   study::StudyRunOptions options;
   if (py::isinstance<py::dict>(source)) {
@@ -104,6 +132,9 @@ py::dict study(const py::object& source, const py::kwargs& kwargs) {
     throw api::InputError("a study given as a dict needs output= (the cube's path)");
 
   std::optional<study::StudySummary> summary;
+  Interrupt interrupt;  // outside the released block: its exception is let go with the GIL held
+  options.stop_signal = &interrupt.stop;
+  options.poll = [&interrupt] { interrupt.poll(); };
   {
     py::gil_scoped_release released;
     if (!mpi_session()) {
@@ -111,6 +142,12 @@ py::dict study(const py::object& source, const py::kwargs& kwargs) {
       mpi_session() = std::make_unique<parallel::MpiSession>();
     }
     summary = study::run_study(options, *mpi_session());
+  }
+  if (interrupt.exception) {
+    // The cube is left as `pcrf study` leaves it on SIGINT: checkpointed, resumable.
+    const std::string note = "pcrf.study: " + study::stop_report(*summary) + "; continue with pcrf.study(..., resume=True)";
+    if (py::hasattr(interrupt.exception->value(), "add_note")) interrupt.exception->value().attr("add_note")(note);
+    throw std::move(*interrupt.exception);
   }
   py::dict d;
   d["total"] = summary->total;

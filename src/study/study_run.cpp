@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <functional>
 #include <iostream>
 #include <map>
@@ -386,7 +387,10 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
   sink.on_error([&stoppable] { stoppable.fail(); });
   parallel::run_master(mpi.comm(), stoppable, schedule_options(p.study, runner, stop_signal),
                        evaluate, [&sink](parallel::ResultBatch&& batch) { sink.store(std::move(batch)); },
-                       [&sink] { sink.idle(); });
+                       [&sink, &options] {
+                         if (options.poll) options.poll();
+                         sink.idle();
+                       });
   sink.close();
   meter.finish(m.output.string());
   summary.computed = meter.computed();
@@ -419,6 +423,13 @@ std::unique_ptr<Prepared> receive_study(const parallel::MpiSession& mpi, const P
 }
 
 }  // namespace
+
+std::string stop_report(const StudySummary& summary) {
+  const int number = summary.stopped_by;
+  const std::string name = number == SIGTERM ? "SIGTERM" : number == SIGINT ? "SIGINT" : "a signal";
+  return "stopped by " + name + ": " + std::to_string(summary.already_done + summary.computed) + " of " +
+         std::to_string(summary.total) + " cases saved in " + summary.output.string();
+}
 
 std::filesystem::path default_output(const std::filesystem::path& study_file) {
   return std::filesystem::current_path() / (study_file.stem().string() + ".h5");

@@ -98,7 +98,7 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(BadArgs{"", "--record FILE or --synthetic"},
                       BadArgs{"--record /no/such/file.AT2", "/no/such/file.AT2"},
                       BadArgs{"--synthetic 'sine:amplitude_g=1' --kappa -1", "kappa"},
-                      BadArgs{"--synthetic 'sine:amplitude_g=1' --lambda-h 1.5", "lambda_h"},
+                      BadArgs{"--synthetic 'sine:amplitude_g=1' --lambda-h 1.5", "--lambda-h"},
                       BadArgs{"--synthetic 'sine:amplitude_g=1' --integrator euler", "euler"},
                       BadArgs{"--synthetic 'sine:amplitude_g=1' --criterion maybe", "maybe"},
                       BadArgs{"--synthetic 'sine:amplitude_g=1' --rtol 0", "rtol"},
@@ -278,7 +278,7 @@ TEST(FrameCommand, PrintsThePropertiesAndThePushoverCurve) {
   EXPECT_NE(bad.err.find("--points must be at least 2"), std::string::npos) << bad.err;
   const auto impossible = test::run_command(pcrf() + " frame --lambda-h 1.5");
   EXPECT_EQ(impossible.exit_code, 2);
-  EXPECT_NE(impossible.err.find("lambda_h"), std::string::npos) << impossible.err;
+  EXPECT_NE(impossible.err.find("--lambda-h"), std::string::npos) << impossible.err;
 }
 
 }  // namespace
@@ -349,11 +349,13 @@ TEST(RunCommand, SolvesTheCanonicalScenes) {
   EXPECT_NEAR(json_number(frame.out, "theta_max_rad"), json_number(as_block.out, "theta_max_rad"),
               1e-5 * json_number(frame.out, "theta_max_rad"));  // r passes through 6 printed digits
   const std::vector<std::pair<std::string, std::string>> bad = {
-      {" --model block --kappa 2", "--kappa does not apply to --model block"},
-      {" --size-m 2", "--size-m does not apply to --model pcrf"},
-      {" --model block --slenderness-rad 1.6", "slenderness_rad: must lie between 0 and pi/2"},
-      {" --model block --beam-mass-ratio 1", "--beam-mass-ratio does not apply to --model block (it applies to --model rocking-frame)"},
-      {" --model block --restitution 1.5", "restitution: must lie in [0, 1]"},
+      // The scene catalogue's messages (the Python module's too), naming the flag given.
+      {" --model block --kappa 2", "error: --kappa does not apply to model \"block\" (it is a parameter of model \"pcrf\")"},
+      {" --size-m 2", "error: --size-m does not apply to model \"pcrf\""},
+      {" --model block --slenderness-rad 1.6", "error: --slenderness-rad: must lie between 0 and pi/2"},
+      {" --model block --beam-mass-ratio 1", "error: --beam-mass-ratio does not apply to model \"block\" (it is a parameter of model \"rocking-frame\")"},
+      {" --model block --restitution 1.5", "error: --restitution: must lie in [0, 1]"},
+      {" --model pcrf --restitution 0.9", "error: --restitution does not apply to model \"pcrf\""},
       {" --model cylinder", "unknown scene 'cylinder'"}};
   for (const auto& [flags, message] : bad) {
     const auto r = test::run_command(pcrf() + " run" + pulse + flags);

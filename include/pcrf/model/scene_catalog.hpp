@@ -76,4 +76,10 @@ bool same_point(const ScenePoint& a, const ScenePoint& b);
 /// its domain, two exclusive keys both given, an impossible scene.
 std::unique_ptr<Scene> make_scene(std::string_view model, const std::map<std::string, double, std::less<>>& values);
 
+/// The point make_scene() builds its scene from: every parameter at its default, the given
+/// values set, and of a model's exclusive keys only the one given (the others absent, NaN), so
+/// that the point's values that are not NaN, given again, make the same scene.
+/// \throws std::invalid_argument as make_scene().
+ScenePoint scene_point(const SceneModel& model, const std::map<std::string, double, std::less<>>& values);
+
 }  // namespace pcrf

@@ -23,6 +23,12 @@
 
 namespace pcrf::post {
 
+/// How a reduction reduces when only its dimension is given: each command's worst. For a
+/// response (stats of θ_max) the worst orientation is its maximum; for a capacity (the
+/// fragility's collapse intensity) its minimum.
+inline constexpr const char* kStatsReduction = "max";
+inline constexpr const char* kFragilityReduction = "min";
+
 struct StatsRequest {
   std::vector<std::string> by;  ///< coordinates to group by (at least one)
   std::string metric;
@@ -62,6 +68,11 @@ Report p695_report(const P695Report& result, const P695Inputs& inputs, const std
 
 /// Why `mce` cannot be a fragility's MCE intensity ("--mce must be positive"); empty when it can.
 std::string mce_problem(const std::optional<double>& mce);
+
+/// The reduction that --reduce-over `over` and --reduce `how` ask for (`how` empty:
+/// `default_how`); none when `over` is empty. \throws std::invalid_argument for a `how`
+/// without `over` ("--reduce goes with --reduce-over DIMENSION") or other than max, min or median.
+cube::Reduction reduction_of(const std::string& over, const std::string& how, const std::string& default_how);
 
 /// The P-695 inputs from their text forms (the command line's --sdc, --period-s, --mu-t,
 /// --ratings "B,B,C"), checked. \throws std::invalid_argument naming the input.

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -38,6 +39,11 @@ struct StudyRunOptions {
   /// Set (to the signal's number) when the run should stop: rank 0 hands out no more work,
   /// collects what is in flight, flushes and returns. Null: never.
   const std::atomic<int>* stop_signal = nullptr;
+  /// Called on rank 0's calling thread between the scheduler's messages (at least every
+  /// ScheduleOptions::poll_interval_s) while the cases run: a front end whose signals arrive
+  /// elsewhere than in a handler of its own (the Python module: the interpreter's SIGINT)
+  /// looks there and sets `stop_signal`. Empty: nothing to look at.
+  std::function<void()> poll;
   /// [run] values that override the study file's (already checked against run_settings()).
   std::vector<std::pair<const Setting<RunOptions>*, SettingValue>> run_overrides;
 };
@@ -63,6 +69,10 @@ struct StudySummary {
   /// study's [ida] collapse leaves them out.
   std::vector<std::string> verdict_notes;
 };
+
+/// "stopped by SIGINT: 120 of 324 cases saved in demo.h5": what a run stopped by a signal
+/// (summary.stopped_by) leaves, for the front end to add how it resumes.
+std::string stop_report(const StudySummary& summary);
 
 /// Default output of a study file.
 std::filesystem::path default_output(const std::filesystem::path& study_file);

@@ -11,7 +11,8 @@ message.
 
 - ``run(...)``: one case (``pcrf run``); the history as a numpy structured array or a pandas
   DataFrame with ``history="numpy"`` / ``"pandas"``.
-- ``Frame(**parameters)``: a frame's properties and pushover curve (``pcrf frame``).
+- ``Frame(model="pcrf"|"block"|"rocking-frame", **parameters)``: a scene's properties and
+  pushover curve (``pcrf frame``).
 - ``record_measures(...)``: a record's intensity measures (``pcrf record``).
 - ``study(dict or path, output=...)``: a study, returned as an xarray.Dataset (``pcrf study``).
 - ``open_cube(path)``: a result cube as an xarray.Dataset, ``status`` as integer flags.
@@ -61,10 +62,10 @@ def run(ground_accel_g=None, dt_s=None, *, history=False, **keywords):
     command line. ``scale=`` or ``intensity=`` (with ``measure``, ``period_s``, ``damping``).
 
     The frame: ``frame=`` a dict of parameters (kappa, lambda, tan_alpha, lambda_h, pi_sigma_b,
-    pi_sigma_c, pi_e_b, pi_e_c, h_m, m_c_kg) or a ``pcrf.Frame``; default the paper's basic
-    model. ``model="block"`` or ``"rocking-frame"`` (as ``pcrf run --model``) solves another
-    scene; ``frame=`` then holds its keys as a study spells them (slenderness_rad, size_m or
-    frequency_parameter_rad_s, given_restitution, beam_mass_ratio). Every key of a study's [physics] and [solver] tables is a keyword (``preset``,
+    pi_sigma_c, pi_e_b, pi_e_c, h_m, m_c_kg) or a ``pcrf.Frame`` (of any model); default the
+    paper's basic model. ``model="block"`` or ``"rocking-frame"`` (as ``pcrf run --model``)
+    solves another scene; ``frame=`` then holds its keys as a study spells them
+    (slenderness_rad, size_m or frequency_parameter_rad_s, given_restitution, beam_mass_ratio). Every key of a study's [physics] and [solver] tables is a keyword (``preset``,
     ``tail_s``, ``rtol``, ...; ``pcrf.settings()`` lists them).
 
     ``history``: False (default), True or "numpy" (a structured array), "pandas" (a DataFrame);
@@ -82,16 +83,25 @@ def run(ground_accel_g=None, dt_s=None, *, history=False, **keywords):
 
 
 class Frame:
-    """A prestressed frame (``pcrf frame``): ``Frame(kappa=2.5)``; the other parameters are the
-    paper's basic model's. Its properties are attributes (``threshold`` is
-    ``uplift_threshold_g``; ``properties`` holds them all, ``units`` their units), the
-    pushover curve is ``pushover_theta_rad`` and ``pushover_accel_g`` (numpy arrays, ``points``
-    rotations, default 41). ``fracture_strain`` (a [physics] key) sets where tendons fracture.
-    ``pcrf.run(frame=Frame(...))`` solves this frame.
+    """A scene before any ground motion (``pcrf frame --model M``): ``Frame(kappa=2.5)`` (the
+    prestressed frame; its other parameters the paper's basic model's),
+    ``Frame(model="block", slenderness_rad=0.2, size_m=1)`` (Housner's block),
+    ``Frame(model="rocking-frame", ..., beam_mass_ratio=0.5)``; the parameters are the scene
+    catalogue's keys, as a study's [frame] spells them, checked with the command line's
+    messages (a parameter of another model, a value outside its domain: ``ValueError``).
+    Its properties are attributes (``threshold`` is ``uplift_threshold_g``, also
+    ``frequency_parameter_rad_s``, ``restitution``, ``fracture_angle_rad``,
+    ``overturn_angle_rad``, ...; ``properties`` holds them all as ``pcrf frame --json`` prints
+    them, NaN where it prints null, ``units`` their units), the pushover curve is
+    ``pushover_theta_rad`` and ``pushover_accel_g`` (numpy arrays, ``points`` rotations,
+    default 41). ``fracture_strain`` (a [physics] key) sets where tendons fracture.
+    ``model`` and ``parameters`` (every parameter of the scene, defaults included) describe it:
+    ``pcrf.run(frame=Frame(...))`` solves this scene.
     """
 
-    def __init__(self, **parameters):
-        described = _pcrf.frame(**parameters)
+    def __init__(self, model="pcrf", **parameters):
+        described = _pcrf.frame(model=model, **parameters)
+        self.model = described["model"]
         self.parameters = described["parameters"]
         self.properties = described["properties"]
         self.units = described["units"]
@@ -115,7 +125,7 @@ class Frame:
 
     def __repr__(self):
         given = ", ".join(f"{k}={v!r}" for k, v in self.parameters.items())
-        return f"pcrf.Frame({given})"
+        return f"pcrf.Frame(model={self.model!r}, {given})"
 
 
 def record_measures(record=None, **keywords):

@@ -24,16 +24,23 @@ def _frame(kind, cube, table, **keywords):
     return result
 
 
-def stats(cube, by, metric, where=None):
+def stats(cube, by, metric, where=None, reduce_over=None, reduce=None):
     """``pcrf cube stats``: median and 16th/84th percentiles of ``metric`` across records per
-    value of ``by`` (a coordinate or a list); ``where`` a dict or "name=value" texts."""
-    return _frame("stats", cube, "groups", by=by, metric=metric, where=where)
+    value of ``by`` (a coordinate or a list); ``where`` a dict or "name=value" texts.
+    ``reduce_over`` (``--reduce-over``, e.g. "incidence_deg") first reduces the metric over that
+    dimension, by ``reduce`` (``--reduce``): "max" (the default: each record and frame's worst
+    orientation, RotD100), "median" (RotD50) or "min" (an IDA's ``collapse_intensity`` at its worst)."""
+    return _frame("stats", cube, "groups", by=by, metric=metric, where=where, reduce_over=reduce_over,
+                  reduce=reduce)
 
 
-def fragility(cube, where=None, mce=None, table="frames"):
+def fragility(cube, where=None, mce=None, table="frames", reduce_over=None, reduce=None):
     """``pcrf cube fragility``: the lognormal collapse fragility of each frame (median, beta and
-    their 90 % intervals; ``cmr`` with ``mce``); ``table="points"`` for the data fitted."""
-    return _frame("fragility", cube, table, where=where, mce=mce)
+    their 90 % intervals; ``cmr`` with ``mce``); ``table="points"`` for the data fitted.
+    ``reduce_over`` (an IDA cube, e.g. "incidence_deg") first reduces each record's collapse
+    intensities over that dimension, by ``reduce``: "min" (the default: its worst orientation),
+    "median" or "max", as ``--reduce-over`` and ``--reduce`` do."""
+    return _frame("fragility", cube, table, where=where, mce=mce, reduce_over=reduce_over, reduce=reduce)
 
 
 def sensitivity(cube, metric, where=None, by_record=False):
