@@ -93,3 +93,25 @@ def test_cube_reports_are_the_command_lines(tmp_path, monkeypatch):
     with pytest.raises(ValueError) as error:
         pcrf.fragility(tmp_path / "r.h5")
     assert code == 2 and stderr.strip().splitlines()[-1] == "pcrf: error: " + str(error.value)
+
+
+def test_pulse_dimensions_unstack_the_records_into_the_pulse_axes(tmp_path):
+    """open_cube(pulse_dimensions=True): every record's values land at its own (shape, period)."""
+    study = {"study": {"name": "pulses"}, "plan": {"kind": "grid"},
+             "records": [{"pulse": ["pulse-sine", "ricker"]}],
+             "axes": {"pulse_period_s": [0.3, 0.6, 1.2], "intensity": [0.4, 0.8]},
+             "intensity": {"measure": "pga_g"}}
+    stacked = pcrf.study(study, output=tmp_path / "pulses.h5")
+    unstacked = pcrf.open_cube(tmp_path / "pulses.h5", pulse_dimensions=True)
+    assert "record" not in unstacked.dims
+    assert unstacked.sizes["pulse_shape"] == 2 and unstacked.sizes["pulse_period_s"] == 3
+    assert unstacked["status"].dtype == np.int8
+    for r in range(stacked.sizes["record"]):
+        shape, period = str(stacked.pulse_shape.values[r]), float(stacked.pulse_period_s.values[r])
+        at = unstacked.sel(pulse_shape=shape, pulse_period_s=period)
+        for name in ("theta_max_rad", "status"):
+            expected = stacked[name].isel(record=r)
+            np.testing.assert_array_equal(at[name].transpose(*expected.dims).values, expected.values, strict=True)
+    pcrf.study(STUDY, output=tmp_path / "records.h5")
+    with pytest.raises(ValueError, match="not all pulses"):
+        pcrf.open_cube(tmp_path / "records.h5", pulse_dimensions=True)

@@ -7,13 +7,19 @@ def _meant(value):
     return float(f"{value:.15g}")
 
 
-def open_cube(path, **open_dataset_keywords):
+def open_cube(path, pulse_dimensions=False, **open_dataset_keywords):
     """The cube at ``path`` as an xarray.Dataset (opened lazily, as ``xarray.open_dataset``):
 
     - ``status`` is the integer the engine stores (int8), with ``flag_values`` and
       ``flag_meanings`` (CF) in its attributes, -1 for a case not computed; not the float32 with
       NaN that plain xarray makes of it. ``ds.status.attrs["flag_meanings"].split()`` names them.
     - float coordinates are the values the study meant, so ``ds.sel(kappa=1.8)`` works.
+    - ``pulse_dimensions=True``, for a study of pulses (``[[records]] pulse`` with pulse axes):
+      the ``record`` dimension is unstacked into one dimension per pulse coordinate
+      (``pulse_shape``, ``pulse_period_s``, …), so that ``ds.sel(pulse_shape="ricker")`` and
+      ``ds.collapse_intensity.plot(x="pulse_period_s")`` work; the engine keeps pulses along
+      ``record``, as motions, since a study may mix pulses and records. Combinations the study
+      did not run are NaN (status -1). ValueError for a cube whose records are not all pulses.
     """
     import numpy as np
     import xarray as xr
@@ -30,4 +36,19 @@ def open_cube(path, **open_dataset_keywords):
         if coordinate.ndim == 1 and np.issubdtype(coordinate.dtype, np.floating):
             ds = ds.assign_coords({name: (coordinate.dims, np.array([_meant(v) for v in coordinate.values]),
                                           coordinate.attrs)})
-    return ds
+    return _pulses_unstacked(ds) if pulse_dimensions else ds
+
+
+def _pulses_unstacked(ds):
+    """``record`` unstacked into the pulse coordinates along it (names beginning ``pulse_``)."""
+    levels = [name for name, c in ds.coords.items() if name.startswith("pulse_") and c.dims == ("record",)]
+    if "pulse_shape" not in levels or any(shape == "" for shape in ds["pulse_shape"].values):
+        raise ValueError("pulse_dimensions=True: the cube's records are not all pulses (its pulse_shape is "
+                         + ("missing" if "pulse_shape" not in levels else "empty for some") + ")")
+    import numpy as np
+
+    stacked = ds.set_index(record=levels)
+    # Every variable needs its own filler (older xarray takes none by default from a dict).
+    fill = {name: -1 if v.dtype.kind == "i" else np.nan if v.dtype.kind == "f" else ""
+            for name, v in stacked.variables.items() if "record" in v.dims}
+    return stacked.unstack("record", fill_value=fill)
