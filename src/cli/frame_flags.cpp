@@ -2,37 +2,18 @@
 #include "cli/frame_flags.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <map>
 #include <stdexcept>
 #include <string>
 
 #include "cli/commands.hpp"
 #include "cli/setting_flags.hpp"
+#include "pcrf/api/frame_input.hpp"
 #include "pcrf/model/equation_of_motion.hpp"
 #include "pcrf/model/parameters.hpp"
 #include "pcrf/model/scene_catalog.hpp"
 
 namespace pcrf::cli {
-
-namespace {
-
-/// `text` with each whole-word `word` (letters, digits and '_' around it end the word) replaced.
-std::string replace_word(std::string text, const std::string& word, const std::string& by) {
-  auto part_of_word = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
-  for (std::size_t at = text.find(word); at != std::string::npos; at = text.find(word, at)) {
-    const std::size_t end = at + word.size();
-    if ((at > 0 && part_of_word(text[at - 1])) || (end < text.size() && part_of_word(text[end]))) {
-      at = end;
-      continue;
-    }
-    text.replace(at, word.size(), by);
-    at += by.size();
-  }
-  return text;
-}
-
-}  // namespace
 
 /// The older `--h` is gone: CLI11 2.4 refuses a one-letter long name beside `-h` (help).
 void SceneFlags::add_to(CLI::App* cmd) {
@@ -66,30 +47,23 @@ void SceneFlags::add_to(CLI::App* cmd) {
   frequency_option_ = cmd->add_option("--frequency-parameter-rad-s", frequency_parameter_rad_s,
                                       "p = sqrt(3g/4R) of the block (p-hat of the rocking frame) instead of --size-m [rad/s]")
                           ->group(group);
-  restitution_option_ = cmd->add_option("--restitution", restitution,
+  restitution_option_ = cmd->add_option(api::scene_flag("given_restitution"), restitution,
                                         "coefficient of restitution of a block or rocking frame (default: from momentum)")
                             ->group(group);
   rocker_options_.emplace_back("--frequency-parameter-rad-s", frequency_option_);
-  rocker_options_.emplace_back("--restitution", restitution_option_);
+  rocker_options_.emplace_back(api::scene_flag("given_restitution"), restitution_option_);
 }
 
 std::unique_ptr<Scene> SceneFlags::scene() const {
-  // The model layer checks everything (scene_catalog.hpp), with the messages the Python
-  // module gives too (a parameter of another model, a value outside its domain); here only
-  // the flags' spelling.
-  try {
-    scene_model(model);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(std::string("--model: ") + e.what());
-  }
+  // The catalogue checks everything, through api::scene_of with the messages the Python module
+  // gives too (a parameter of another model, a value outside its domain); here only which
+  // flags were given.
   std::map<std::string, double, std::less<>> values;
-  std::map<std::string, std::string> flag_of;  // a key of the catalogue -> the flag that gave it
   auto take = [&](const std::string& flag, CLI::Option* option, double value, std::string name = "") {
     if (option->count() == 0) return;
     if (name.empty()) name = flag.substr(2);
     std::replace(name.begin(), name.end(), '-', '_');
     values[name] = value;
-    flag_of[name] = flag;
   };
   for (std::size_t k = 0; k < frame_options_.size(); ++k) {
     const bool size = k >= all_parameters().size();
@@ -100,16 +74,8 @@ std::unique_ptr<Scene> SceneFlags::scene() const {
     for (const auto& [flag, option] : rocker_options_)
       if (flag == flag_name(info.name)) take(flag, option, rocker.*info.member);
   take("--frequency-parameter-rad-s", frequency_option_, frequency_parameter_rad_s);
-  take("--restitution", restitution_option_, restitution, "given_restitution");
-  try {
-    return make_scene(model, values);
-  } catch (const std::invalid_argument& e) {
-    // The catalogue's message names keys (given_restitution: ...); here the user typed flags
-    // (--restitution), so the message names those.
-    std::string text = e.what();
-    for (const auto& [name, flag] : flag_of) text = replace_word(text, name, flag);
-    throw UsageError(text);
-  }
+  take(api::scene_flag("given_restitution"), restitution_option_, restitution, "given_restitution");
+  return api::scene_of(model, values);
 }
 
 }  // namespace pcrf::cli

@@ -1,6 +1,8 @@
 // A Python call's keyword arguments (see keywords.hpp).
 #include "keywords.hpp"
 
+#include "pcrf/api/frame_input.hpp"
+
 #include <algorithm>
 #include <stdexcept>
 #include <string_view>
@@ -138,20 +140,7 @@ StationRecord Keywords::take_station(std::vector<std::string>& notes, api::Recor
 }
 
 std::unique_ptr<Scene> scene_of(const SceneRequest& request, ScenePoint* point) {
-  const SceneModel* model = nullptr;
-  try {
-    model = &scene_model(request.model);
-  } catch (const std::invalid_argument& e) {
-    throw api::InputError(std::string("model: ") + e.what());
-  }
-  try {
-    ScenePoint made = scene_point(*model, request.values);
-    auto scene = model->make(made);
-    if (point != nullptr) *point = std::move(made);
-    return scene;
-  } catch (const std::invalid_argument& e) {
-    throw api::InputError(e.what());
-  }
+  return api::scene_of(request.model, request.values, point);
 }
 
 std::unique_ptr<Scene> Keywords::take_scene() {

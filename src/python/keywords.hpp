@@ -33,8 +33,8 @@ struct SceneRequest {
   std::map<std::string, double, std::less<>> values;
 };
 
-/// The scene of the catalogue (make_scene: the command line's checks and messages) and the
-/// point it was made from (when not null). \throws api::InputError.
+/// The scene of the catalogue and the point it was made from (when not null), through
+/// api::scene_of: the command line's checks and messages. \throws api::InputError.
 std::unique_ptr<Scene> scene_of(const SceneRequest& request, ScenePoint* point = nullptr);
 
 class Keywords {

@@ -69,9 +69,6 @@ def test_a_bad_scene_parameter_is_the_command_lines_message(model, parameters):
     expected = cli_error("frame", "--model", model, *flags)
     with pytest.raises(ValueError) as error:
         pcrf.Frame(model=model, **parameters)
-    # The same message, each naming the input as its user typed it: --kappa there, kappa here.
-    for flag, keyword in zip(flags[::2], parameters):
-        expected = expected.replace(flag, keyword)
     assert str(error.value) == expected
 
 
