@@ -220,5 +220,60 @@ TEST(RockingCanon, OneSineOverturningWithoutImpactMatchesTheClosedFormForSlender
   }
 }
 
+/// The block's verdict under one pulse: overturned or not, and its impacts.
+struct PulseVerdict {
+  bool overturned;
+  long impacts;
+};
+PulseVerdict under_pulse(double alpha, double p_rad_s, std::optional<double> restitution, PulseShape shape,
+                         double period_s, double amplitude_g) {
+  PhysicsOptions physics;
+  physics.tail_s = 30.0;
+  const double R = 3.0 * kGravity_m_s2 / (4.0 * p_rad_s * p_rad_s);
+  PulseSpec pulse;
+  pulse.shape = shape;
+  pulse.period_s = period_s;
+  pulse.amplitude_g = amplitude_g;
+  pulse.dt_s = period_s / 2000.0;
+  const CaseResult r = solve_case(*rocker(alpha, R, 0.0, restitution, physics), make_pulse(pulse), test::tight(), {});
+  return {r.status == CaseStatus::kOverturned, r.impacts};
+}
+
+TEST(RockingCanon, PublishedOverturningAmplitudesOfTheNonlinearBlock) {
+  // Makris & Konstantinidis (2003), EESD 32(2), Fig. 4 and its text: p = 2 rad/s, alpha = 15 deg,
+  // Housner's restitution, a 2-s one-cosine (type B) pulse: 0.315 g is on the verge, 0.316 g overturns.
+  const double alpha15 = 15.0 * M_PI / 180.0;
+  EXPECT_FALSE(under_pulse(alpha15, 2.0, {}, PulseShape::kCosine, 2.0, 0.315).overturned);
+  EXPECT_TRUE(under_pulse(alpha15, 2.0, {}, PulseShape::kCosine, 2.0, 0.316).overturned);
+  // Zhang & Makris (2001), J. Eng. Mech. 127(5), p. 480, nonlinear formulation: alpha = 0.25 rad,
+  // p = 2.14 rad/s, restitution 0.9, one-sine (type A) pulse of 15.7 rad/s: least overturning
+  // amplitude 2.22 g, after one impact (mode 1). 2.215 g is safe, 2.225 g overturns after one.
+  const double period_s = 2.0 * M_PI / 15.7;
+  EXPECT_FALSE(under_pulse(0.25, 2.14, 0.9, PulseShape::kSine, period_s, 2.215).overturned);
+  const auto mode1 = under_pulse(0.25, 2.14, 0.9, PulseShape::kSine, period_s, 2.225);
+  EXPECT_TRUE(mode1.overturned);
+  EXPECT_EQ(mode1.impacts, 1);
+}
+
+TEST(RockingCanon, TheOneSineSafeCapeBetweenTheTwoOverturningModes) {
+  // Zhang & Makris (2001), Figs. 7 and 8 (linearised formulation, restitution 0.9, omega_p/p = 5):
+  // the block overturns after one impact from a_p = 3.01 alpha g to 6.32 alpha g, survives from
+  // 6.33 to 7.17 alpha g and overturns without an impact from 7.18 alpha g. A slender block
+  // (alpha = 0.01: the linear limit) shows the same three regions; the points are taken 0.3-1 %
+  // inside them (the engine's boundaries: 3.0187, 6.3209, 7.1707; docs/rocking_canon.md).
+  const double alpha = 0.01, p = 2.14, period_s = 2.0 * M_PI / (5.0 * p);
+  auto at = [&](double beta) { return under_pulse(alpha, p, 0.9, PulseShape::kSine, period_s, beta * alpha); };
+  EXPECT_FALSE(at(2.99).overturned);
+  for (const double beta : {3.03, 4.5, 6.30}) {
+    const auto v = at(beta);
+    EXPECT_TRUE(v.overturned) << beta;
+    EXPECT_EQ(v.impacts, 1) << beta;
+  }
+  for (const double beta : {6.35, 6.8, 7.15}) EXPECT_FALSE(at(beta).overturned) << beta;
+  const auto mode2 = at(7.20);
+  EXPECT_TRUE(mode2.overturned);
+  EXPECT_EQ(mode2.impacts, 0);
+}
+
 }  // namespace
 }  // namespace pcrf
