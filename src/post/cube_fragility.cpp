@@ -21,13 +21,21 @@ std::size_t dimension_index(const cube::CubeLayout& layout, const std::string& n
                         "([intensity] table and [axes] intensity)");
 }
 
-/// The frame of a case: the coordinates with several values but the record, the level and
-/// `reduced_dim` (the axis a reduction takes away; the level again when none).
-std::string frame_label(const cube::CubeLayout& layout, const std::vector<std::size_t>& coords, std::size_t record_dim,
-                        std::size_t level_dim, std::size_t reduced_dim) {
+/// The dimensions that tell frames apart: those with several values but the record, the
+/// level and `reduced_dim` (the axis a reduction takes away; the level again when none).
+std::vector<std::size_t> frame_dimensions(const cube::CubeLayout& layout, std::size_t record_dim, std::size_t level_dim,
+                                          std::size_t reduced_dim) {
+  std::vector<std::size_t> dims;
+  for (std::size_t d = 0; d < layout.dimensions.size(); ++d)
+    if (d != record_dim && d != level_dim && d != reduced_dim && layout.dimensions[d].size > 1) dims.push_back(d);
+  return dims;
+}
+
+/// The frame of a case on `frame_dims`: "name=value,…" ("all" when none; a `case` by its case_label).
+std::string frame_label(const cube::CubeLayout& layout, const std::vector<std::size_t>& frame_dims,
+                        const std::vector<std::size_t>& coords) {
   std::string label;
-  for (std::size_t d = 0; d < coords.size(); ++d) {
-    if (d == record_dim || d == level_dim || d == reduced_dim || layout.dimensions[d].size < 2) continue;
+  for (std::size_t d : frame_dims) {
     const auto& name = layout.dimensions[d].name;
     const cube::Coordinate* c = layout.find_coordinate(name == vocabulary::kCase ? vocabulary::kCaseLabel : name);
     label += (label.empty() ? "" : ",") + (name == vocabulary::kCase ? c->label(coords[d]) : name + "=" + c->label(coords[d]));
@@ -36,11 +44,10 @@ std::string frame_label(const cube::CubeLayout& layout, const std::vector<std::s
 }
 
 /// The frame of a case as -w selectors (see FrameFragility::selection).
-std::string frame_selection(const cube::CubeLayout& layout, const std::vector<std::size_t>& coords, std::size_t record_dim,
-                            std::size_t level_dim, std::size_t reduced_dim) {
+std::string frame_selection(const cube::CubeLayout& layout, const std::vector<std::size_t>& frame_dims,
+                            const std::vector<std::size_t>& coords) {
   std::string selection;
-  for (std::size_t d = 0; d < coords.size(); ++d) {
-    if (d == record_dim || d == level_dim || d == reduced_dim || layout.dimensions[d].size < 2) continue;
+  for (std::size_t d : frame_dims) {
     const auto& name = layout.dimensions[d].name;
     selection += (selection.empty() ? "" : ",") + name + "=" + layout.find_coordinate(name)->label(coords[d]);
   }
@@ -126,16 +133,17 @@ std::vector<FrameFragility> ida_fragility(const cube::CubeReader& cube, const st
   };
   std::map<std::string, Frame> frames;
   std::vector<std::string> order;
+  const auto frame_dims = frame_dimensions(layout, record_dim, point_dim, reduced_dim);
   for (std::size_t curve = 0; curve < collapse.size(); ++curve) {
     if (!selected[curve * runs]) continue;
     auto coords = unravel(static_cast<std::int64_t>(curve), curve_shape);
     coords.push_back(0);
-    const std::string label = frame_label(layout, coords, record_dim, point_dim, reduced_dim);
+    const std::string label = frame_label(layout, frame_dims, coords);
     auto [it, inserted] = frames.try_emplace(label);
     Frame& frame = it->second;
     if (inserted) {
       order.push_back(label);
-      frame.selection = frame_selection(layout, coords, record_dim, point_dim, reduced_dim);
+      frame.selection = frame_selection(layout, frame_dims, coords);
       frame.first_case = static_cast<std::int64_t>(curve * runs);
     }
     if (!(runs_of[curve] > 0.0)) {  // NaN: no part ran it (a partial merge): left out of the fit
@@ -216,15 +224,16 @@ std::vector<FrameFragility> cube_fragility(const cube::CubeReader& cube, const s
 
   std::map<std::string, FrameCases> frames;  // by label, in label order
   std::vector<std::string> order;
+  const auto frame_dims = frame_dimensions(layout, record_dim, level_dim, level_dim);
   for (std::int64_t i = 0; i < layout.case_count(); ++i) {
     if (!selected[static_cast<std::size_t>(i)]) continue;
     const auto coords = unravel(i, shape);
-    const std::string label = frame_label(layout, coords, record_dim, level_dim, level_dim);
+    const std::string label = frame_label(layout, frame_dims, coords);
     auto [it, inserted] = frames.try_emplace(label);
     if (inserted) {
       order.push_back(label);
       it->second.label = label;
-      it->second.selection = frame_selection(layout, coords, record_dim, level_dim, level_dim);
+      it->second.selection = frame_selection(layout, frame_dims, coords);
       it->second.first_case = i;
       it->second.status.assign(records, std::vector<std::int8_t>(levels.size(), cube::kStatusNotRun));
       it->second.fraction.assign(records, std::vector<double>(levels.size(), std::nan("")));
