@@ -188,6 +188,13 @@ std::string censored_reduction_note(const cube::CubeReader& cube, const StatsReq
          "reduction; cube fragility --reduce-over keeps them as censored values";
 }
 
+/// The fields reduced_over and reduction of a report whose values were reduced first (none when not).
+void add_reduction_fields(const cube::Reduction& reduction, Report& report) {
+  if (reduction.dimension.empty()) return;
+  report.fields.emplace_back("reduced_over", reduction.dimension);
+  report.fields.emplace_back("reduction", reduction.how);
+}
+
 }  // namespace
 
 Report stats_report(const cube::CubeReader& cube, const StatsRequest& request) {
@@ -209,10 +216,7 @@ Report stats_report(const cube::CubeReader& cube, const StatsRequest& request) {
   for (const auto& m : layout.metrics)
     if (m.name == request.metric) units = m.units;
   report.fields = {{"file", cube.file().string()}, {"metric", request.metric}, {"metric_units", units}, {"by", by_text}};
-  if (!request.reduction.dimension.empty()) {
-    report.fields.emplace_back("reduced_over", request.reduction.dimension);
-    report.fields.emplace_back("reduction", request.reduction.how);
-  }
+  add_reduction_fields(request.reduction, report);
   for (const auto& p : pooled) report.warnings.push_back("also pooled over " + p);
   if (const auto note = censored_reduction_note(cube, request); !note.empty()) report.warnings.push_back(note);
   std::vector<bool> numeric;
@@ -228,10 +232,7 @@ Report fragility_report(const cube::CubeReader& cube, const FragilityRequest& re
   report.command = "fragility";
   report.fields = {{"file", cube.file().string()}, {"intensity_units", units},
                    {"mce", request.mce ? Cell{*request.mce} : Cell{}}};
-  if (!reduction.dimension.empty()) {
-    report.fields.emplace_back("reduced_over", reduction.dimension);
-    report.fields.emplace_back("reduction", reduction.how);
-  }
+  add_reduction_fields(reduction, report);
   report.warnings = unbracketed_warnings(frames);
   const bool ida = !frames.empty() && frames.front().unbracketed.has_value();
   report.tables.emplace_back("frames", make_table(fragility_spec(units, request.mce, ida), frames));
