@@ -70,21 +70,19 @@ void note_partial(const std::string& command, const std::string& file, const cub
               << missing.unit << " not run (a partial cube): left out\n";
 }
 
-/// Cases that say nothing about the frame because it was still rocking when they ended, and
-/// (IDA cubes) collapse statuses that occurred but the study's [ida] collapse leaves out:
-/// one line each on stderr, since what is printed cannot show them. `treatment`: what the
-/// command does with the unresolved cases.
+/// What the cube's statuses say that the printed answer cannot show (vocabulary::verdict_notes:
+/// unresolved cases, collapse statuses an IDA's collapse set leaves out), one line each on
+/// stderr. `treatment`: what the command does with the unresolved cases.
 void note_verdicts(const std::string& command, const std::string& file, const cube::CubeReader& reader,
                    const std::string& treatment) {
   namespace v = study::vocabulary;
-  const auto status = reader.read_status();
-  const bool ida = reader.layout().find_side_variable(v::kIdaRuns) != nullptr;
-  const std::string note = v::unresolved_note(v::unresolved_count(status), ida ? "runs" : "cases",
-                                              ida ? "counted as collapses by the IDA's search (conservative)" : treatment);
-  if (!note.empty()) std::cerr << "pcrf cube " << command << ": " << file << ": " << note << '\n';
-  if (!ida) return;
-  for (const auto& line : v::uncounted_collapse_notes(status, reader.layout().text_attribute(v::kIdaCollapseAttribute)))
-    std::cerr << "pcrf cube " << command << ": " << file << ": warning: " << line << '\n';
+  const auto& layout = reader.layout();
+  const bool ida = layout.find_side_variable(v::kIdaRuns) != nullptr;
+  for (const auto& line : v::verdict_notes(reader.read_status(),
+                                           ida ? std::optional<std::string>(layout.text_attribute(v::kIdaCollapseAttribute))
+                                               : std::nullopt,
+                                           treatment))
+    std::cerr << "pcrf cube " << command << ": " << file << ": " << line << '\n';
 }
 
 /// Runs a cube action; cube problems (missing file, unknown name) are usage errors.

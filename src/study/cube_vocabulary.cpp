@@ -77,6 +77,19 @@ std::vector<std::string> uncounted_collapse_notes(const std::vector<std::int8_t>
   return notes;
 }
 
+std::vector<std::string> verdict_notes(const std::vector<std::int8_t>& status, const std::optional<std::string>& ida_collapse,
+                                       const std::string& treatment) {
+  std::vector<std::string> notes;
+  const std::string note = unresolved_note(
+      unresolved_count(status), ida_collapse ? "runs" : "cases",
+      ida_collapse ? "counted as collapses by the IDA's search (conservative; a longer physics.max_tail_s resolves them)"
+                   : treatment);
+  if (!note.empty()) notes.push_back(note);
+  if (ida_collapse)
+    for (auto& line : uncounted_collapse_notes(status, *ida_collapse)) notes.push_back(std::move(line));
+  return notes;
+}
+
 NotRun not_run(const cube::CubeReader& cube) {
   NotRun result;
   if (cube.layout().find_side_variable(kIdaRuns) != nullptr) {

@@ -327,21 +327,6 @@ class StopOnSignal final : public parallel::WorkSource {
   bool failed_ = false;  // master thread only
 };
 
-/// What the cube's statuses say that the study did not ask for: unresolved cases, and
-/// collapses of a status the [ida] collapse leaves out.
-std::vector<std::string> verdict_notes(const Study& study, const std::vector<std::int8_t>& status) {
-  std::vector<std::string> notes;
-  const std::string unit = study.ida ? "runs" : "cases";
-  const std::string note = vocabulary::unresolved_note(
-      vocabulary::unresolved_count(status), unit,
-      study.ida ? "counted as collapses by the IDA's search (conservative; a longer physics.max_tail_s resolves them)"
-                : "neither safe nor collapsed (a longer physics.max_tail_s resolves them)");
-  if (!note.empty()) notes.push_back(note);
-  if (study.ida)
-    for (auto& line : vocabulary::uncounted_collapse_notes(status, study.ida->collapse)) notes.push_back(std::move(line));
-  return notes;
-}
-
 StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::MpiSession& mpi,
                              std::ostream& progress, const StudyRunOptions& options) {
   const std::atomic<int>* stop_signal = options.stop_signal;
@@ -398,7 +383,9 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
   if (stoppable.stopped()) summary.stopped_by = stop_signal->load();
   summary.error = sink.error();
   summary.error_cause = sink.error_cause();
-  summary.verdict_notes = verdict_notes(p.study, m.writer->status());
+  summary.verdict_notes = vocabulary::verdict_notes(
+      m.writer->status(), p.study.ida ? std::optional<std::string>(p.study.ida->collapse) : std::nullopt,
+      "neither safe nor collapsed (a longer physics.max_tail_s resolves them)");
   return summary;
 }
 

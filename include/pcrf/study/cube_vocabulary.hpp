@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -107,6 +108,13 @@ std::vector<std::pair<std::string, std::int64_t>> uncounted_collapses(const std:
 /// One line per uncounted status: "413 runs ended in tendon_fracture, which this study does
 /// not count as collapse ([ida] collapse = overturned)".
 std::vector<std::string> uncounted_collapse_notes(const std::vector<std::int8_t>& status, const std::string& collapse);
+/// What a run's or a cube's statuses say that its answers cannot show, one line each: the
+/// unresolved cases (an IDA, `ida_collapse` set to its [ida] collapse: "runs", which its search
+/// counted as collapses; else "cases", treated as `treatment` says), and for an IDA each
+/// collapse status that occurred but its collapse set leaves out. Empty when there is nothing
+/// to say. The end of `pcrf study` and the `pcrf cube` commands print the same lines.
+std::vector<std::string> verdict_notes(const std::vector<std::int8_t>& status, const std::optional<std::string>& ida_collapse,
+                                       const std::string& treatment);
 /// The attribute holding an IDA cube's collapse set (the [ida] table's `collapse`).
 inline constexpr const char* kIdaCollapseAttribute = "ida_collapse";
 
