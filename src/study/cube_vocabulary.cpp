@@ -42,7 +42,7 @@ std::vector<std::int8_t> unresolved_statuses() {
   return codes;
 }
 
-std::int64_t unresolved_count(const std::vector<std::int8_t>& status) {
+std::int64_t unresolved_count(std::span<const std::int8_t> status) {
   std::int64_t n = 0;
   for (auto s : status) n += s != cube::kStatusNotRun && is_unresolved(static_cast<CaseStatus>(s)) ? 1 : 0;
   return n;

@@ -43,14 +43,6 @@ class CollapseRule {
   int theta_column_;
 };
 
-/// Runs among status[first, first + count) whose frame was still rocking when the tail ended.
-std::size_t unresolved_runs(const std::vector<std::int8_t>& status, std::size_t first, std::size_t count) {
-  return static_cast<std::size_t>(std::count_if(status.begin() + static_cast<std::ptrdiff_t>(first),
-                                                status.begin() + static_cast<std::ptrdiff_t>(first + count), [](std::int8_t s) {
-                                                  return s != cube::kStatusNotRun && is_unresolved(static_cast<CaseStatus>(s));
-                                                }));
-}
-
 }  // namespace
 
 std::unique_ptr<plan::IdaPlan> make_ida_plan(const Study& study, const CaseSpace& space, const cube::CubeWriter& writer,
@@ -90,7 +82,8 @@ void store_ida_summaries(const Study& study, const plan::IdaPlan& plan, cube::Cu
     runs.push_back(here ? static_cast<double>(curve.runs()) : none);
     // A state only once the curve is done: a curve still running is neither.
     state.push_back(here && curve.done() ? static_cast<double>(curve.state()) : none);
-    unresolved.push_back(here ? static_cast<double>(unresolved_runs(status, c * points, points)) : none);
+    const std::span<const std::int8_t> runs_of_curve(status.data() + c * points, points);
+    unresolved.push_back(here ? static_cast<double>(vocabulary::unresolved_count(runs_of_curve)) : none);
   }
   writer.store_side(vocabulary::kCollapseIntensity, std::move(collapse));
   writer.store_side(vocabulary::kLastSafeIntensity, std::move(safe));

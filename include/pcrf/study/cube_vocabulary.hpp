@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -97,7 +98,7 @@ std::string curve_states_text(const CurveStates& states);
 /// tail ended before the frame came to rest.
 std::vector<std::int8_t> unresolved_statuses();
 /// Cases (IDA: runs) of `status` that are unresolved.
-std::int64_t unresolved_count(const std::vector<std::int8_t>& status);
+std::int64_t unresolved_count(std::span<const std::int8_t> status);
 /// "N cases ended still rocking …: unresolved, …" (how `what` treats them), or "" when none.
 std::string unresolved_note(std::int64_t count, const std::string& unit, const std::string& what);
 
