@@ -76,9 +76,9 @@ def draw(args):
             axis.set_major_formatter(ticker.FormatStrFormatter("%g"))
             short = high / low < 30
             axis.set_minor_formatter(ticker.FuncFormatter(minor_label) if short else ticker.NullFormatter())
-        ylabel = "collapse amplitude / uplift threshold" if units == "g" else f"collapse intensity [{units}]"
+        ylabel = "collapse amplitude / uplift threshold [–]" if units == "g" else f"collapse intensity [{units}]"
         # One frame ("all") needs no panel title: the figure's title names it.
-        ax.set(xlabel="ω_p / p", ylabel=ylabel, title="" if frame == "all" else frame)
+        ax.set(xlabel="pulse frequency / frame frequency parameter ω_p / p [–]", ylabel=ylabel, title="" if frame == "all" else frame)
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(loc="upper left", fontsize="small")
     for ax in axes.flat[len(frames):]:
