@@ -72,12 +72,15 @@ def measure(cube):
     return counts
 
 
-def far_field_text(factor):
+def far_field_study():
+    """studies/fema_p695_ida.toml with its records' paths made absolute (run from elsewhere)."""
     with open(os.path.join(HERE, "..", "studies", "fema_p695_ida.toml"), encoding="utf-8") as f:
         text = f.read()
-    records = os.path.abspath(os.path.join(HERE, "..", "..", "shared", "records"))
-    text = text.replace("../../shared/records", records)
-    text = re.sub(r"max_runs = \d+", "max_runs = 40", text)
+    return text.replace("../../shared/records", os.path.abspath(os.path.join(HERE, "..", "..", "shared", "records")))
+
+
+def far_field_text(factor):
+    text = re.sub(r"max_runs = \d+", "max_runs = 40", far_field_study())
     return text.replace("[ida]\n", f"[ida]\nstep_factor = {factor}\n")
 
 

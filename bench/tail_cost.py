@@ -12,43 +12,34 @@ Sa. Needs ../shared/records; prints a note and exits 0 without them.
 """
 import argparse
 import os
-import re
 import statistics
-import subprocess
 import sys
 import tempfile
 
 import numpy as np
 import xarray as xr
 
-ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+from ida_step_factor import far_field_study  # noqa: E402  (bench/ is the script's folder)
+from study_bench import run_study  # noqa: E402
+
 HERE = os.path.dirname(os.path.abspath(__file__))
-STUDY = os.path.join(HERE, "..", "studies", "fema_p695_ida.toml")
 TAILS = {"until-rest (default)": "", "0 s": "[physics]\ntail_s = 0\n\n"}
 
 
-def study_text(physics):
-    """The study with its records' paths made absolute (it is run from a temporary folder)."""
-    text = open(STUDY).read().replace('"../../shared/', '"' + os.path.abspath(os.path.join(HERE, "..", "..", "shared")) + "/")
-    return text.replace("[intensity]", physics + "[intensity]", 1)
-
-
-def run(pcrf, ranks, text, folder):
+def run(pcrf, ranks, physics, folder):
+    """The study with `physics` before its [intensity] table: its computing time and what its cube holds."""
     study, cube = os.path.join(folder, "study.toml"), os.path.join(folder, "ida.h5")
-    with open(study, "w") as f:
-        f.write(text)
-    result = subprocess.run(["mpirun", "--oversubscribe", "-n", str(ranks), pcrf, "study", study, "-o", cube,
-                             "--overwrite", "--progress-interval", "0"], capture_output=True, text=True, env=ENV)
-    if result.returncode != 0:
-        sys.exit(result.stderr)
-    seconds = float(re.search(r"in ([0-9.]+) s;", result.stderr).group(1))
+    with open(study, "w", encoding="utf-8") as f:
+        f.write(far_field_study().replace("[intensity]", physics + "[intensity]", 1))
+    _, seconds = run_study(pcrf, study, ranks, cube)
     with xr.open_dataset(cube) as ds:
         status = ds.status.values
         code = dict(zip(ds.status.attrs["flag_meanings"].split(), ds.status.attrs["flag_values"].tolist()))
         medians = [float(np.exp(np.mean(np.log(ds.collapse_intensity.isel(case=c).values))))
                    for c in range(ds.sizes["case"])]
         return dict(seconds=seconds, wall=float(np.nansum(ds.wall_time_s.values)), runs=int((status >= 0).sum()),
-                    unresolved=int((status == code["rocking_at_end"]).sum()), medians=medians, labels=[str(v) for v in ds.case_label.values])
+                    unresolved=int((status == code["rocking_at_end"]).sum()), medians=medians,
+                    labels=[str(v) for v in ds.case_label.values])
 
 
 def main():
@@ -64,7 +55,7 @@ def main():
     with tempfile.TemporaryDirectory() as folder:
         for _ in range(args.repeats):
             for tail, physics in TAILS.items():
-                results[tail].append(run(args.pcrf, args.ranks, study_text(physics), folder))
+                results[tail].append(run(args.pcrf, args.ranks, physics, folder))
     labels = results[next(iter(TAILS))][0]["labels"]
     print(f"\nfar-field P-695 IDA, {args.ranks} ranks, medians of {args.repeats} interleaved runs")
     print("| tail | runs | unresolved | computing [s] | sum of wall_time_s [s] | " +
