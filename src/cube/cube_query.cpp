@@ -281,6 +281,9 @@ void summarize(std::vector<double> samples, GroupStats& group) {
   group.p84 = analysis::percentile_sorted(samples, 0.84);
 }
 
+/// Whether status `s` is one of `set` (PoolReport's set_apart or unresolved).
+bool among(const std::vector<std::int8_t>& set, std::int8_t s) { return std::find(set.begin(), set.end(), s) != set.end(); }
+
 }  // namespace
 
 std::vector<GroupStats> group_stats(const CubeReader& cube, const std::vector<std::string>& by, const std::string& metric,
@@ -302,7 +305,6 @@ std::vector<GroupStats> group_stats(const CubeReader& cube, const std::vector<st
     std::size_t cases = 0, apart = 0, unresolved = 0;
   };
   const auto status = pool.set_apart.empty() && pool.unresolved.empty() ? std::vector<std::int8_t>{} : cube.read_status();
-  auto among = [](const std::vector<std::int8_t>& set, std::int8_t s) { return std::find(set.begin(), set.end(), s) != set.end(); };
   std::map<std::vector<std::size_t>, Group> by_position;  // positions on the `by` coordinates → cases
   std::vector<std::vector<bool>> seen(shape.size());
   for (std::size_t d = 0; d < shape.size(); ++d) seen[d].assign(shape[d], false);
@@ -420,8 +422,9 @@ std::vector<GroupStats> group_stats_reduced(const CubeReader& cube, const std::v
   const std::size_t by_pos = position(dimension_index(layout, group_by.dimension));
 
   const auto selected = select_cases(layout, selectors);
-  const auto status = pool.set_apart.empty() || side != nullptr ? std::vector<std::int8_t>{} : cube.read_status();
-  std::vector<char> chosen(values.size(), 0), apart(values.size(), 0);
+  const bool by_status = side == nullptr && !(pool.set_apart.empty() && pool.unresolved.empty());
+  const auto status = by_status ? cube.read_status() : std::vector<std::int8_t>{};
+  std::vector<char> chosen(values.size(), 0), apart(values.size(), 0), unresolved(values.size(), 0);
   std::vector<std::size_t> var_coords(dims.size());
   for (std::int64_t i = 0; i < layout.case_count(); ++i) {
     if (!selected[static_cast<std::size_t>(i)]) continue;
@@ -429,14 +432,15 @@ std::vector<GroupStats> group_stats_reduced(const CubeReader& cube, const std::v
     for (std::size_t p = 0; p < dims.size(); ++p) var_coords[p] = coords[dims[p]];
     const auto v = static_cast<std::size_t>(ravel(var_coords, var_shape));
     chosen[v] = 1;
-    if (!status.empty() && std::find(pool.set_apart.begin(), pool.set_apart.end(), status[static_cast<std::size_t>(i)]) !=
-                               pool.set_apart.end())
-      apart[v] = 1;
+    if (status.empty()) continue;
+    const auto k = static_cast<std::size_t>(i);
+    apart[v] = among(pool.set_apart, status[k]);
+    unresolved[v] = among(pool.unresolved, status[k]);
   }
   // Combinations: the variable's coordinates with the reduced one at 0.
   struct Combination {
     std::vector<double> values;
-    std::size_t members = 0, apart = 0;
+    std::size_t members = 0, apart = 0, unresolved = 0;
   };
   std::map<std::int64_t, Combination> combinations;
   for (std::size_t v = 0; v < values.size(); ++v) {
@@ -446,6 +450,7 @@ std::vector<GroupStats> group_stats_reduced(const CubeReader& cube, const std::v
     Combination& combination = combinations[ravel(c, var_shape)];
     ++combination.members;
     if (apart[v]) ++combination.apart;
+    else if (unresolved[v]) ++combination.unresolved;
     else if (std::isfinite(values[v])) combination.values.push_back(values[v]);
   }
   std::vector<GroupStats> stats;
@@ -462,6 +467,12 @@ std::vector<GroupStats> group_stats_reduced(const CubeReader& cube, const std::v
     ++group.cases;
     if (reduced_apart(combination.apart, combination.members, reduction.how)) {
       ++group.set_apart;
+      continue;
+    }
+    // A member still moving at its end could have become anything, a collapse included: the
+    // reduction is unknown unless the collapses already decide it.
+    if (combination.unresolved > 0) {
+      ++group.unresolved;
       continue;
     }
     const double value = reduce_values(combination.values, reduction.how);

@@ -156,6 +156,13 @@ bool same_point(const ScenePoint& a, const ScenePoint& b) {
          });
 }
 
+double SceneSpec::value(std::string_view key) const {
+  const std::size_t k = model->index(key);
+  return k == std::string::npos ? kAbsent : values[k];
+}
+
+bool same_scene(const SceneSpec& a, const SceneSpec& b) { return a.model == b.model && same_point(a.values, b.values); }
+
 std::unique_ptr<Scene> make_scene(std::string_view model_name, const std::map<std::string, double, std::less<>>& values) {
   const SceneModel& model = scene_model(model_name);
   return model.make(scene_point(model, values));

@@ -58,6 +58,16 @@ void refuse_other_scenes(const Fields& fields, const SceneModel& model) {
                            models_taking(key) + "; this scene's: " + model.keys_text() + ")");
 }
 
+const SceneModel* read_model(const Fields& fields) {
+  const auto name = fields.text("model");
+  if (!name) return nullptr;
+  try {
+    return &scene_model(*name);
+  } catch (const std::invalid_argument& e) {
+    fields.fail("model", e.what());
+  }
+}
+
 void read_parameters(const Fields& fields, const SceneModel& model, ScenePoint& point, bool axis_only) {
   refuse_other_scenes(fields, model);
   for (std::size_t k = 0; k < model.parameters.size(); ++k) {

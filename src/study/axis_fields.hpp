@@ -38,6 +38,10 @@ std::vector<double> read_values(const Fields& fields, std::string_view key);
 void check_axis(const Fields& fields, std::string_view key, const std::vector<double>& values,
                 const SceneParameter* parameter);
 
+/// The scene model `fields` names by its key `model`, or nullptr when it names none.
+/// \throws StudyError "FILE:LINE: t.model: unknown scene 'x' (expected pcrf, block or rocking-frame)".
+const SceneModel* read_model(const Fields& fields);
+
 /// Reads every parameter of `model` that `fields` gives into `point` ([frame] or [base]: all;
 /// a listed case: the axis parameters only), checking each value against its domain and
 /// refusing a key of another scene. Of the model's exclusive keys, at most one may be given.

@@ -25,13 +25,13 @@ CaseRunner::CaseRunner(const Study& study, const CaseSpace& space, RecordCache& 
     if (m == &metric::omega_max() || m == &metric::t_omega_max()) request_.omega_peak = true;
 }
 
-PreparedFrame& CaseRunner::prepared(const ScenePoint& parameters) const {
+PreparedFrame& CaseRunner::prepared(const SceneSpec& scene) const {
   std::lock_guard lock(last_mutex_);
-  auto same = [&](const Prepared& p) { return same_point(p.parameters, parameters); };
+  auto same = [&](const Prepared& p) { return same_scene(p.scene, scene); };
   auto it = std::find_if(prepared_.begin(), prepared_.end(), same);
   if (it == prepared_.end()) {
     if (prepared_.size() >= kPreparedFrames) prepared_.pop_back();
-    prepared_.insert(prepared_.begin(), {parameters, prepare_scene(study_.model->make(parameters), study_.physics)});
+    prepared_.insert(prepared_.begin(), {scene, prepare_scene(scene.make(), study_.physics)});
   } else if (it != prepared_.begin()) {
     std::rotate(prepared_.begin(), it, it + 1);  // most recent first
   }
@@ -57,7 +57,7 @@ parallel::CaseOutcome CaseRunner::run(const parallel::WorkItem& item, const Hist
     }
     PreparedFrame* frame = nullptr;
     try {
-      frame = &prepared(spec.parameters);
+      frame = &prepared(spec.frame);
     } catch (const std::invalid_argument& e) {  // make_frame's geometry, or InvalidFrame
       outcome.status = static_cast<std::int8_t>(CaseStatus::kInvalidFrame);
       outcome.note = std::string("invalid frame: ") + e.what();

@@ -65,7 +65,7 @@ std::vector<std::int64_t> CaseSpace::frame_major(std::vector<std::int64_t> indic
   return indices;
 }
 
-std::vector<ScenePoint> CaseSpace::frames() const { return plan_->frames(); }
+std::vector<SceneSpec> CaseSpace::frames() const { return plan_->frames(); }
 
 std::int64_t CaseSpace::resolve(const HistoryRequest& request) const {
   std::vector<std::size_t> coords(shape_.size());

@@ -55,10 +55,12 @@ void check_records(const Study& study, RecordCache& records, std::vector<std::st
   }
 }
 
-std::string describe(const SceneModel& model, const ScenePoint& p) {
+std::string describe(const Study& study, const SceneSpec& frame) {
   std::ostringstream out;
-  for (std::size_t k = 0; k < model.parameters.size(); ++k)
-    if (model.parameters[k].axis) out << (out.tellp() == 0 ? "" : ", ") << model.parameters[k].name << '=' << p[k];
+  if (frame.model != study.model) out << "model " << frame.model->name << ": ";
+  const auto& parameters = frame.model->parameters;
+  for (std::size_t k = 0; k < parameters.size(); ++k)
+    if (parameters[k].axis) out << (out.tellp() == 0 ? "" : ", ") << parameters[k].name << '=' << frame.values[k];
   return out.str();
 }
 
@@ -66,13 +68,13 @@ std::string describe(const SceneModel& model, const ScenePoint& p) {
 void check_frames(const Study& study, const CaseSpace& space, CheckedStudy& checked) {
   const auto frames = space.frames();
   const std::int64_t cases_per_frame = space.size() / static_cast<std::int64_t>(frames.size());
-  for (const auto& parameters : frames) {
+  for (const auto& spec : frames) {
     std::unique_ptr<Scene> frame;
     try {
-      frame = study.model->make(parameters);
-      (void)prepare_scene(study.model->make(parameters), study.physics);
+      frame = spec.make();
+      (void)prepare_scene(spec.make(), study.physics);
     } catch (const std::invalid_argument& e) {  // impossible geometry, or InvalidFrame
-      if (checked.invalid_frames++ == 0) checked.first_invalid = describe(*study.model, parameters) + ": " + e.what();
+      if (checked.invalid_frames++ == 0) checked.first_invalid = describe(study, spec) + ": " + e.what();
       checked.invalid_cases += cases_per_frame;
       continue;
     }
@@ -81,7 +83,7 @@ void check_frames(const Study& study, const CaseSpace& space, CheckedStudy& chec
     } catch (const std::invalid_argument& e) {
       const auto line = study.setting_lines.find("physics.theta0_rad");
       throw StudyError((line != study.setting_lines.end() ? line->second : study.file) + ": physics." + e.what() +
-                       " (frame " + describe(*study.model, parameters) + ")");
+                       " (frame " + describe(study, spec) + ")");
     }
   }
 }

@@ -124,7 +124,7 @@ void add_pulse_coordinates(const Study& study, const CaseSpace& space, cube::Cub
   for (const auto& point : space.frames()) {
     double p_rad_s = std::nan(""), threshold_g = std::nan("");
     try {
-      const auto scene = study.model->make(point);
+      const auto scene = point.make();
       const auto properties = frame_properties(*scene, study.physics.fracture_strain, 2);
       p_rad_s = properties.frequency_parameter_rad_s;
       threshold_g = properties.uplift_threshold_g;
@@ -164,7 +164,8 @@ void add_settings(std::vector<Attribute>& attributes, const SettingTable<Target>
   }
 }
 
-std::vector<Attribute> global_attributes(const Study& study, const std::string& fingerprint) {
+/// `mixed_scenes`: the frames are of several models (a `scene_model` coordinate says which).
+std::vector<Attribute> global_attributes(const Study& study, const std::string& fingerprint, bool mixed_scenes) {
   std::vector<Attribute> a{
       {"Conventions", std::string("CF-1.8")},
       {"title", "pcrf study " + study.name},
@@ -183,7 +184,7 @@ std::vector<Attribute> global_attributes(const Study& study, const std::string& 
   add_settings(a, physics_settings(), study.physics);
   add_settings(a, solver_settings(), study.solver);
   const auto& parameters = study.model->parameters;
-  if (study.model->name != "pcrf") a.push_back({"scene_model", std::string(study.model->name)});
+  if (study.model->name != "pcrf" && !mixed_scenes) a.push_back({names::kSceneModel, std::string(study.model->name)});
   for (std::size_t k = 0; k < parameters.size(); ++k)  // set once for every case: h_m, m_c_kg
     if (!parameters[k].axis) a.push_back({"frame_" + std::string(parameters[k].name), study.base[k]});
   a.push_back({"gravity_m_s2", kGravity_m_s2});
@@ -209,7 +210,7 @@ cube::CubeLayout make_cube_layout(const Study& study, const CaseSpace& space, Re
   space.level_axis().add_trailing(layout, {names.begin(), names.end() - trailing});
   for (CaseStatus status : all_final_statuses())
     layout.status_flags.push_back({static_cast<std::int8_t>(status), std::string(status_name(status))});
-  layout.attributes = global_attributes(study, fingerprint);
+  layout.attributes = global_attributes(study, fingerprint, layout.find_coordinate(names::kSceneModel) != nullptr);
   return layout;
 }
 
@@ -228,9 +229,10 @@ cube::HistoryTable make_history_table(const std::string& label, std::int64_t cas
   table.attributes = {{"case_index", static_cast<std::int64_t>(case_index)},
                       {names::kRecord, study.records[spec.record].name},
                       {space.dimension_names()[1], spec.level}};
-  for (std::size_t k = 0; k < study.model->parameters.size(); ++k)
-    if (study.model->parameters[k].axis)
-      table.attributes.push_back({std::string(study.model->parameters[k].name), spec.parameters[k]});
+  const auto& parameters = spec.frame.model->parameters;
+  if (spec.frame.model != study.model) table.attributes.push_back({names::kSceneModel, std::string(spec.frame.model->name)});
+  for (std::size_t k = 0; k < parameters.size(); ++k)
+    if (parameters[k].axis) table.attributes.push_back({std::string(parameters[k].name), spec.frame.values[k]});
   return table;
 }
 

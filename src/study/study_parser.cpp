@@ -196,12 +196,8 @@ void read_base(const Fields& top, Study& s) {
     std::vector<std::string_view> frame_keys = keys;
     frame_keys.insert(frame_keys.begin(), "model");
     const Fields f(*frame_table, "frame", s.file, frame_keys);
-    if (const auto model = f.text("model")) {
-      try {
-        s.model = &scene_model(*model);
-      } catch (const std::invalid_argument& e) {
-        f.fail("model", e.what());
-      }
+    if (const auto* model = detail::read_model(f)) {
+      s.model = model;
       s.base = s.model->defaults();
       if (s.model->name != "pcrf") s.setting_lines["frame.model"] = f.where("model");
     }

@@ -15,6 +15,8 @@
 
 #include "pcrf/cube/cube_query.hpp"
 #include "pcrf/cube/cube_reader.hpp"
+#include "pcrf/row_major.hpp"
+#include "pcrf/study/cube_vocabulary.hpp"
 #include "study/study_test_support.hpp"
 
 namespace pcrf {
@@ -162,6 +164,80 @@ TEST(CubeReduce, CurvesThatNeverCollapsedStayCensoredInTheWorstOrientation) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find(std::to_string(censored_curves) + " curves without a bracketed collapse (censored or unbracketed) "
                        "are left out of the reduction"), std::string::npos) << r.err;
+}
+
+/// The row of `key` in a CSV of `cube stats`: column name → text.
+std::map<std::string, std::string> csv_row(const fs::path& file, const std::string& key) {
+  std::ifstream in(file);
+  std::string line;
+  std::vector<std::string> names;
+  for (std::getline(in, line); std::stringstream header{line};) {
+    for (std::string name; std::getline(header, name, ',');) names.push_back(name);
+    break;
+  }
+  while (std::getline(in, line)) {
+    std::stringstream fields(line);
+    std::map<std::string, std::string> row;
+    for (const auto& name : names) std::getline(fields, row[name], ',');
+    if (row[names.front()] == key) return row;
+  }
+  ADD_FAILURE() << "no row " << key << " in " << file;
+  return {};
+}
+
+TEST(CubeReduce, AReducedStatisticCountsApartWhatAMovingCaseCouldChange) {
+  // Scaled records at four orientations, two frames, the free vibration cut short
+  // (max_tail_s) so that some cases end still rocking: a reduction over the orientations is a
+  // collapse when the collapses decide it (any for max, all for min, most for median), else
+  // unresolved when any member is still moving, else the reduction of the members' values.
+  const auto dir = test::scratch_dir("cube_reduce_unresolved");
+  test::write_file(dir, "moving.toml", study_test::station_pair(dir, "a") +
+                                           "[[records]]\nh1 = \"h2.txt\"\nh2 = \"h1.txt\"\nunits = \"m/s2\"\naz1_deg = 30\naz2_deg = 120\nname = \"b\"\n"
+                                           "[physics]\nmax_tail_s = 0.05\n"
+                                           "[axes]\nscale = [1.5, 2.5, 4]\nincidence_deg = [0, 45, 90, 135]\nkappa = [1.4, 1.8]\n"
+                                           "[outputs]\nmetrics = [\"theta_max_rad\"]\n");
+  auto r = test::run_command("cd " + quoted(dir) + " && " + pcrf() + " study moving.toml -o moving.h5 --progress-interval 0");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  cube::CubeReader cube(dir / "moving.h5");
+  const auto& layout = cube.layout();
+  const auto status = cube.read_status();
+  const auto collapses = study::vocabulary::collapse_statuses(), moving = study::vocabulary::unresolved_statuses();
+  auto is = [](const std::vector<std::int8_t>& set, std::int8_t s) { return std::find(set.begin(), set.end(), s) != set.end(); };
+  const auto shape = layout.shape();
+  const std::size_t incidence = *layout.find_dimension("incidence_deg"), kappa = *layout.find_dimension("kappa");
+  // Per κ and combination of the other coordinates (record, scale): its members' statuses.
+  std::map<std::size_t, std::map<std::int64_t, std::vector<std::int8_t>>> members;
+  for (std::int64_t i = 0; i < layout.case_count(); ++i) {
+    auto c = unravel(i, shape);
+    const std::size_t k = c[kappa];
+    c[incidence] = 0;
+    members[k][ravel(c, shape)].push_back(status[static_cast<std::size_t>(i)]);
+  }
+  std::size_t decided_by_collapses = 0, left_unresolved = 0;
+  for (const std::string how : {"max", "min", "median"}) {
+    r = test::run_command("cd " + quoted(dir) + " && " + pcrf() + " cube stats moving.h5 --by kappa -m theta_max_rad --reduce-over incidence_deg --reduce " +
+                          how + " --csv " + how + ".csv");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    for (const auto& [k, combinations] : members) {
+      std::size_t apart = 0, unresolved = 0, reduced = 0;
+      for (const auto& [key, statuses] : combinations) {
+        const auto collapsed = static_cast<std::size_t>(std::count_if(statuses.begin(), statuses.end(), [&](auto s) { return is(collapses, s); }));
+        const bool any_moving = std::any_of(statuses.begin(), statuses.end(), [&](auto s) { return is(moving, s); });
+        const bool decided = how == "max" ? collapsed > 0 : how == "min" ? collapsed == statuses.size() : 2 * collapsed > statuses.size();
+        if (decided) ++apart;
+        else if (any_moving) ++unresolved;
+        else ++reduced;
+        if (how == "max" && any_moving) (decided ? decided_by_collapses : left_unresolved) += 1;
+      }
+      const auto row = csv_row(dir / (how + ".csv"), layout.find_coordinate("kappa")->label(k));
+      EXPECT_EQ(row.at("cases"), std::to_string(combinations.size())) << how;
+      EXPECT_EQ(row.at("collapses"), std::to_string(apart)) << how << " kappa " << k;
+      EXPECT_EQ(row.at("unresolved"), std::to_string(unresolved)) << how << " kappa " << k;
+      EXPECT_EQ(row.at("values"), std::to_string(reduced)) << how << " kappa " << k;
+    }
+  }
+  EXPECT_GT(left_unresolved, 0u) << "no reduction is left unknown by a moving case: the test sees too little";
+  EXPECT_GT(decided_by_collapses, 0u) << "no collapse decides a reduction with a moving member: the test sees too little";
 }
 
 TEST(CubeReduce, ACensoredValueCensorsTheReductionOnlyWhereItCouldChangeIt) {

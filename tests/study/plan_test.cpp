@@ -44,44 +44,56 @@ std::string canonical(const Plan& plan) {
   return out.str();
 }
 
-bool same_frame(const ScenePoint& a, const ScenePoint& b) { return same_point(a, b); }
+bool same_frame(const SceneSpec& a, const SceneSpec& b) { return same_scene(a, b); }
 
 TEST(Plan, EveryKindIsTestedHere) {
   for (auto kind : plan_kinds()) EXPECT_EQ(kStudies.count(std::string(kind)), 1u) << kind;
   EXPECT_EQ(plan_kinds().front(), "grid");  // the default
 }
 
-TEST(Plan, EveryKindKeepsTheContract) {
-  for (const auto& [kind, texts] : kStudies) {
-    SCOPED_TRACE(kind);
-    const Study study = parse(texts.first);
-    const Plan& plan = *study.plan;
-    EXPECT_EQ(plan.name(), kind);
-    std::vector<std::size_t> shape;
-    for (const auto& d : plan.dimensions()) shape.push_back(d.size);
-    const auto frames = plan.frames();
-    std::size_t count = 1;
-    for (auto n : shape) count *= n;
-    ASSERT_EQ(frames.size(), count);
-    ASSERT_GT(count, 1u);
-    for (std::size_t i = 0; i < count; ++i) {
-      const auto coordinates = unravel(static_cast<std::int64_t>(i), shape);
-      EXPECT_TRUE(same_frame(plan.frame_at(coordinates), frames[i])) << "frame " << i;
-    }
-    const auto coordinates = plan.coordinates();
-    for (const auto& d : plan.dimensions())
-      EXPECT_TRUE(std::any_of(coordinates.begin(), coordinates.end(), [&](const auto& c) { return c.name == d.name; }))
-          << "no coordinate variable for dimension " << d.name;
-    for (const auto& c : coordinates) {
-      const auto d = std::find_if(plan.dimensions().begin(), plan.dimensions().end(), [&](const auto& dim) { return dim.name == c.dimension; });
-      ASSERT_NE(d, plan.dimensions().end()) << c.name << " is along " << c.dimension << ", not a dimension of the plan";
-      EXPECT_EQ(c.size(), d->size) << c.name;
-    }
-    const std::string text = canonical(plan);
-    EXPECT_EQ(text, canonical(*parse(texts.first).plan)) << "the same study, the same text";
-    EXPECT_NE(text, canonical(*parse(texts.second).plan)) << "another plan, another text";
-    EXPECT_EQ(text.back(), '\n');
+/// The contract of the plan `texts.first` makes, of kind `kind`; `texts.second` is another plan.
+void expect_contract(const std::string& kind, const std::pair<std::string, std::string>& texts) {
+  SCOPED_TRACE(kind);
+  const Study study = parse(texts.first);
+  const Plan& plan = *study.plan;
+  EXPECT_EQ(plan.name(), kind);
+  std::vector<std::size_t> shape;
+  for (const auto& d : plan.dimensions()) shape.push_back(d.size);
+  const auto frames = plan.frames();
+  std::size_t count = 1;
+  for (auto n : shape) count *= n;
+  ASSERT_EQ(frames.size(), count);
+  ASSERT_GT(count, 1u);
+  for (std::size_t i = 0; i < count; ++i) {
+    const auto coordinates = unravel(static_cast<std::int64_t>(i), shape);
+    EXPECT_TRUE(same_frame(plan.frame_at(coordinates), frames[i])) << "frame " << i;
   }
+  const auto coordinates = plan.coordinates();
+  for (const auto& d : plan.dimensions())
+    EXPECT_TRUE(std::any_of(coordinates.begin(), coordinates.end(), [&](const auto& c) { return c.name == d.name; }))
+        << "no coordinate variable for dimension " << d.name;
+  for (const auto& c : coordinates) {
+    const auto d = std::find_if(plan.dimensions().begin(), plan.dimensions().end(), [&](const auto& dim) { return dim.name == c.dimension; });
+    ASSERT_NE(d, plan.dimensions().end()) << c.name << " is along " << c.dimension << ", not a dimension of the plan";
+    EXPECT_EQ(c.size(), d->size) << c.name;
+  }
+  const std::string text = canonical(plan);
+  EXPECT_EQ(text, canonical(*parse(texts.first).plan)) << "the same study, the same text";
+  EXPECT_NE(text, canonical(*parse(texts.second).plan)) << "another plan, another text";
+  EXPECT_EQ(text.back(), '\n');
+}
+
+TEST(Plan, EveryKindKeepsTheContract) {
+  for (const auto& [kind, texts] : kStudies) expect_contract(kind, texts);
+}
+
+TEST(Plan, AListOfScenesKeepsTheContractAndItsTextNamesTheirModels) {
+  // The block and the rocking frame share their parameters' names: only the model tells
+  // these two plans apart.
+  const std::string frame = "[plan]\nkind = \"list\"\n[[cases]]\nkappa = 1.5\n[[cases]]\nlabel = \"b\"\nslenderness_rad = 0.2\n";
+  expect_contract("list", {frame + "model = \"block\"\n", frame + "model = \"rocking-frame\"\n"});
+  EXPECT_EQ(canonical(*parse(kStudies.at("list").first).plan).find("model="), std::string::npos)
+      << "a list of one scene keeps the text (and fingerprint) it had";
 }
 
 TEST(Plan, AKeyOfAnotherPlanNamesThePlansThatTakeIt) {

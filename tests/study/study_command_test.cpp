@@ -117,6 +117,58 @@ TEST(StudyCommand, ABlockStudyGivesWhatPcrfRunGivesForEachCase) {
   EXPECT_GE(statuses.size(), 2u) << "every case ended alike: the test sees too little";
 }
 
+TEST(StudyCommand, AListOfScenesGivesWhatPcrfRunGivesForEachCase) {
+  // The basic frame, a block and a rocking frame in one study (the list plan's `model`): each
+  // case equals `pcrf run --model …` bit for bit, and each frame's uplift threshold is its own.
+  const auto dir = test::scratch_dir("study_scenes");
+  const std::string text =
+      "[plan]\nkind = \"list\"\n"
+      "[[cases]]\nlabel = \"frame\"\n"
+      "[[cases]]\nlabel = \"block\"\nmodel = \"block\"\nslenderness_rad = 0.2\nfrequency_parameter_rad_s = 2.12\n"
+      "[[cases]]\nlabel = \"portal\"\nmodel = \"rocking-frame\"\nslenderness_rad = 0.2\nbeam_mass_ratio = 0.5\n"
+      "[[records]]\npulse = [\"pulse-sine\", \"ricker\"]\n"
+      "[axes]\npulse_period_s = [0.5, 1.5]\npulse_amplitude_g = [0.5, 1.5]\n";  // every metric, as pcrf run
+  const auto r = run_study(dir, "scenes.toml", text, "-o cube.h5 --progress-interval 0");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  cube::CubeReader cube(dir / "cube.h5");
+  const auto& layout = cube.layout();
+  EXPECT_EQ(layout.text_attribute("scene_model"), "") << "the cases' models are a coordinate, not one attribute";
+  const auto* models = layout.find_coordinate("scene_model");
+  ASSERT_NE(models, nullptr);
+  EXPECT_EQ(models->strings, (std::vector<std::string>{"pcrf", "block", "rocking-frame"}));
+  const std::vector<std::string> flags{"", " --model block --slenderness-rad 0.2 --frequency-parameter-rad-s 2.12",
+                                       " --model rocking-frame --slenderness-rad 0.2 --beam-mass-ratio 0.5"};
+  const auto threshold = cube.read_side("frame_uplift_threshold_g");
+  ASSERT_EQ(threshold.size(), flags.size());
+  const auto status = cube.read_status();
+  const auto theta = cube.read_metric("theta_max_rad");
+  const auto impacts = cube.read_metric("impacts");
+  const auto shape = layout.shape();
+  const auto record = *layout.find_dimension("record");
+  const auto frame = *layout.find_dimension("case");
+  std::set<std::string> statuses;
+  for (std::size_t f = 0; f < flags.size(); ++f) {
+    const auto properties = parse_flat_json(test::run_command(pcrf() + " frame --json" + flags[f]).out);
+    EXPECT_EQ(std::strtod(properties.at("uplift_threshold_g").c_str(), nullptr), threshold[f]) << flags[f];
+  }
+  EXPECT_NEAR(threshold[1], std::tan(0.2), 1e-12) << "the block uplifts at g tan alpha";
+  for (std::int64_t i = 0; i < layout.case_count(); ++i) {
+    const auto c = cube::unravel(i, shape);
+    const std::string args = " run --synthetic '" + layout.find_coordinate("record")->label(c[record]) + "'" + flags[c[frame]];
+    const auto run = test::run_command(pcrf() + args);
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const auto json = parse_flat_json(run.out);
+    const auto k = static_cast<std::size_t>(i);
+    EXPECT_EQ(json.at("status"), status_meaning(layout, status[k])) << args;
+    statuses.insert(json.at("status"));
+    if (json.at("theta_max_rad") != "null") {
+      EXPECT_EQ(std::strtod(json.at("theta_max_rad").c_str(), nullptr), theta[k]) << args;
+    }
+    EXPECT_EQ(std::strtod(json.at("impacts").c_str(), nullptr), impacts[k]) << args;
+  }
+  EXPECT_GE(statuses.size(), 2u) << "every case ended alike: the test sees too little";
+}
+
 TEST(StudyCommand, OneTwoAndThreeRanksGiveTheSameCube) {
   PCRF_REQUIRE_MPIRUN();
   const auto dir = test::scratch_dir("study_ranks");
@@ -420,7 +472,9 @@ TEST(StudyCommand, RefusesToOverwriteOrToResumeAnotherStudy) {
 
 TEST(StudyCommand, ExampleStudiesAreValid) {
   const std::map<std::string, std::string> expected = {{"demo.toml", ": ok, 324 cases"},
-                                                       {"extremes.toml", ": ok, 7776 cases"}};
+                                                       {"extremes.toml", ": ok, 7776 cases"},
+                                                       // 75 pulses × (the frame and the block) × 20 runs
+                                                       {"rocking_spectrum.toml", ": ok, 3000 cases"}};
   for (const auto& [file, text] : expected) {
     const auto r = test::run_command(pcrf() + " study " + quoted(test::source_dir() / "studies" / file) + " --check");
     EXPECT_EQ(r.exit_code, 0) << file << ": " << r.err;

@@ -118,8 +118,8 @@ TEST(StudyParser, OneAtATimeSweepsEachParameterAroundTheBase) {
   EXPECT_EQ(varied[0], "none");
   EXPECT_EQ(labels[1], "kappa=1");
   EXPECT_EQ(varied[3], "tan_alpha");
-  EXPECT_DOUBLE_EQ(at(space.case_at(3).parameters, "kappa"), 2.0);  // the base, not the default
-  EXPECT_DOUBLE_EQ(at(space.case_at(3).parameters, "tan_alpha"), 0.15);
+  EXPECT_DOUBLE_EQ(at(space.case_at(3).frame.values, "kappa"), 2.0);  // the base, not the default
+  EXPECT_DOUBLE_EQ(at(space.case_at(3).frame.values, "tan_alpha"), 0.15);
   EXPECT_EQ(space.dimension_names(), (std::vector<std::string>{"record", "scale", "case"}));
 }
 
@@ -128,7 +128,7 @@ TEST(StudyParser, ListPlanTakesExplicitCases) {
                                    "[[cases]]\nkappa = 3\n");
   const CaseSpace space(s);
   EXPECT_EQ(coordinate(s, "case_label").strings, (std::vector<std::string>{"stocky", "case1"}));
-  EXPECT_DOUBLE_EQ(at(space.case_at(1).parameters, "kappa"), 3.0);
+  EXPECT_DOUBLE_EQ(at(space.case_at(1).frame.values, "kappa"), 3.0);
 }
 
 TEST(StudyParser, PhysicsSolverOutputsAndRun) {
@@ -185,16 +185,16 @@ TEST(StudyParser, AScenesParametersAreItsAxesAndBasePoint) {
   const CaseSpace space(s);
   ASSERT_EQ(space.size(), 3);
   const auto& block = scene_model("block");
-  EXPECT_EQ(space.case_at(2).parameters[block.index("frequency_parameter_rad_s")], 4.0);
-  EXPECT_EQ(space.case_at(2).parameters[block.index("given_restitution")], 0.9);
-  EXPECT_EQ(space.case_at(2).parameters[block.index("slenderness_rad")], 0.2);
+  EXPECT_EQ(space.case_at(2).frame.values[block.index("frequency_parameter_rad_s")], 4.0);
+  EXPECT_EQ(space.case_at(2).frame.values[block.index("given_restitution")], 0.9);
+  EXPECT_EQ(space.case_at(2).frame.values[block.index("slenderness_rad")], 0.2);
   // The rocking frame's γ on a one-at-a-time sweep; the list plan's cases take a scene's keys too.
   const Study frames = parse(kRecords + "[frame]\nmodel = \"rocking-frame\"\n[plan]\nkind = \"one-at-a-time\"\n"
                                         "[axes]\nbeam_mass_ratio = [0.5, 1]\n");
   EXPECT_EQ(CaseSpace(frames).size(), 3);
   const Study listed = parse(kRecords + "[frame]\nmodel = \"block\"\n[plan]\nkind = \"list\"\n"
                                         "[[cases]]\nlabel = \"slender\"\nslenderness_rad = 0.1\n");
-  EXPECT_EQ(CaseSpace(listed).case_at(0).parameters[block.index("slenderness_rad")], 0.1);
+  EXPECT_EQ(CaseSpace(listed).case_at(0).frame.values[block.index("slenderness_rad")], 0.1);
 }
 
 TEST(StudyParser, RefusesAnotherScenesKeysAndImpossibleScenes) {
@@ -217,6 +217,54 @@ TEST(StudyParser, RefusesAnotherScenesKeysAndImpossibleScenes) {
     const std::string message = error_of(bad.text);
     EXPECT_NE(message.find(bad.message), std::string::npos) << "got: " << message << "\nfor:\n" << bad.text;
   }
+}
+
+TEST(StudyParser, AListedCaseMayNameAnotherSceneStartingFromItsDefaults) {
+  // A prestressed-frame study (its base kappa = 2) with a block and a rocking frame listed
+  // beside its own frame: each case keeps its model, the others start from their defaults.
+  const Study s = parse(kRecords + "[frame]\nkappa = 2\n[plan]\nkind = \"list\"\n"
+                                   "[[cases]]\nlabel = \"frame\"\n"
+                                   "[[cases]]\nlabel = \"block\"\nmodel = \"block\"\nslenderness_rad = 0.2\n"
+                                   "[[cases]]\nlabel = \"portal\"\nmodel = \"rocking-frame\"\nbeam_mass_ratio = 0.5\n");
+  const CaseSpace space(s);
+  ASSERT_EQ(space.size(), 3);
+  EXPECT_EQ(space.case_at(0).frame.model->name, "pcrf");
+  EXPECT_EQ(space.case_at(0).frame.value("kappa"), 2.0);
+  EXPECT_EQ(space.case_at(1).frame.model->name, "block");
+  EXPECT_EQ(space.case_at(1).frame.value("slenderness_rad"), 0.2);
+  EXPECT_EQ(space.case_at(1).frame.value("size_m"), scene_model("block").defaults()[scene_model("block").index("size_m")]);
+  EXPECT_EQ(space.case_at(2).frame.model->name, "rocking-frame");
+  EXPECT_EQ(space.case_at(2).frame.value("beam_mass_ratio"), 0.5);
+  // One coordinate per parameter of any model present, NaN where a case's model has none.
+  EXPECT_EQ(coordinate(s, "scene_model").strings, (std::vector<std::string>{"pcrf", "block", "rocking-frame"}));
+  const auto kappa = coordinate(s, "kappa").numbers;
+  EXPECT_EQ(kappa[0], 2.0);
+  EXPECT_TRUE(std::isnan(kappa[1]) && std::isnan(kappa[2]));
+  const auto alpha = coordinate(s, "slenderness_rad").numbers;
+  EXPECT_TRUE(std::isnan(alpha[0]));
+  EXPECT_EQ(alpha[1], 0.2);
+  EXPECT_TRUE(std::isnan(coordinate(s, "beam_mass_ratio").numbers[1]));
+  // A list of one model has no scene_model coordinate (its cubes as they were).
+  for (const auto& c : parse(kRecords + "[plan]\nkind = \"list\"\n[[cases]]\nkappa = 2\n").plan->coordinates())
+    EXPECT_NE(c.name, "scene_model");
+}
+
+TEST(StudyParser, RefusesAListedCasesKeysOfAnotherSceneThanItsOwn) {
+  const std::string list = kRecords + "[plan]\nkind = \"list\"\n[[cases]]\n";
+  const std::vector<BadStudy> corpus = {
+      {list + "model = \"block\"\nkappa = 2\n", "t.toml:7: cases[0].kappa: does not apply to model \"block\""},
+      {list + "slenderness_rad = 0.2\n", "t.toml:6: cases[0].slenderness_rad: does not apply to model \"pcrf\""},
+      {list + "model = \"sphere\"\n", "t.toml:6: cases[0].model: unknown scene 'sphere' (expected pcrf, block or rocking-frame)"},
+      {list + "model = \"block\"\nslenderness_rad = 1.6\n", "cases[0].slenderness_rad: value 1.6 must lie between 0 and pi/2"},
+      {list + "h_m = 5\n", "t.toml:6: cases[0].h_m: is set once for every case, in [frame] or [base]"},
+  };
+  for (const auto& bad : corpus) {
+    const std::string message = error_of(bad.text);
+    EXPECT_NE(message.find(bad.message), std::string::npos) << "got: " << message << "\nfor:\n" << bad.text;
+  }
+  // A case of another model than the study's sets all of its parameters: it has no base point.
+  const Study s = parse(kRecords + "[frame]\nmodel = \"block\"\n[plan]\nkind = \"list\"\n[[cases]]\nmodel = \"pcrf\"\nh_m = 5\n");
+  EXPECT_EQ(CaseSpace(s).case_at(0).frame.value("h_m"), 5.0);
 }
 
 TEST(StudyParser, PulseParametersAreAxesOfPulseRecords) {
@@ -260,10 +308,10 @@ TEST(CaseSpace, LinearIndexAndCoordinatesRoundTrip) {
   for (std::int64_t i = 0; i < space.size(); ++i) EXPECT_EQ(space.index(space.coordinates(i)), i);
   const CaseSpec last = space.case_at(23);  // last of every axis
   EXPECT_EQ(last.level, 3.0);
-  EXPECT_EQ(at(last.parameters, "kappa"), 2.0);
-  EXPECT_EQ(at(last.parameters, "pi_e_c"), 4000.0);
+  EXPECT_EQ(at(last.frame.values, "kappa"), 2.0);
+  EXPECT_EQ(at(last.frame.values, "pi_e_c"), 4000.0);
   const CaseSpec second = space.case_at(1);  // the fastest axis moves first
-  EXPECT_EQ(at(second.parameters, "pi_e_c"), 2000.0);
+  EXPECT_EQ(at(second.frame.values, "pi_e_c"), 2000.0);
   EXPECT_EQ(second.level, 1.0);
 }
 

@@ -83,7 +83,9 @@ std::vector<GroupStats> group_stats(const CubeReader& cube, const std::vector<st
 /// `dimension` (e.g. over `incidence_deg`: the response of the worst orientation, max, is a
 /// RotD100 and the median a RotD50, as Boore 2010 defines them for ground motions). A
 /// combination counts as set apart (a collapse) when its reduced value would be one: any
-/// member for max, every member for min, more than half for median.
+/// member for max, every member for min, more than half for median. Otherwise it counts as
+/// unresolved when any member is (PoolReport::unresolved: still moving at its end, it could
+/// have become anything, a collapse included), and only the rest are reduced.
 struct Reduction {
   std::string dimension;
   std::string how;  ///< "max", "min" or "median"

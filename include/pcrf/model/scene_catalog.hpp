@@ -69,6 +69,21 @@ std::string models_taking(std::string_view key);
 /// NaN-aware equality of two points of the same model (NaN: the same absent value).
 bool same_point(const ScenePoint& a, const ScenePoint& b);
 
+/// One scene as a study lays it out: its model and a point of that model's table. A study's
+/// frames are SceneSpecs, so that one study may hold scenes of several models.
+struct SceneSpec {
+  const SceneModel* model;
+  ScenePoint values;
+
+  /// The scene. \throws std::invalid_argument as SceneModel::make.
+  std::unique_ptr<Scene> make() const { return model->make(values); }
+  /// The value of parameter `key`; NaN when the model has none of that name (or it is absent).
+  double value(std::string_view key) const;
+};
+
+/// The same model at the same point (same_point).
+bool same_scene(const SceneSpec& a, const SceneSpec& b);
+
 /// The plain entry point (command line, Python): a model's name and the values given by
 /// key, every other parameter at its default. \throws std::invalid_argument with a one-line
 /// message naming the key: an unknown model, a key of another model ("kappa does not apply

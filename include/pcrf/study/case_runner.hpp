@@ -64,9 +64,9 @@ class CaseRunner {
 
   /// The frame of a case, prepared once and kept for the next cases of the same frame (a
   /// grid hands out every record and level of a frame together). \throws InvalidFrame.
-  PreparedFrame& prepared(const ScenePoint& parameters) const;
+  PreparedFrame& prepared(const SceneSpec& scene) const;
   struct Prepared {
-    ScenePoint parameters;
+    SceneSpec scene;
     std::shared_ptr<PreparedFrame> frame;
   };
   mutable std::vector<Prepared> prepared_;  ///< most recent first

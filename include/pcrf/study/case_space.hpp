@@ -24,7 +24,7 @@ namespace pcrf::study {
 struct CaseSpec {
   std::size_t record = 0;  ///< index into Study::records
   double level = 1.0;  ///< the record's scale factor, or (intensity axis) its target intensity
-  ScenePoint parameters;  ///< the scene's values (Study::model's table)
+  SceneSpec frame;     ///< the scene: its model and values
   /// The azimuth of the frame's plane [deg from north] (its incidence resolved for this
   /// record); none without an incidence axis (the frame lies along the first component).
   std::optional<double> incidence_deg;
@@ -51,7 +51,7 @@ class CaseSpace {
   /// adjacent, frames in storage order: a worker then prepares each frame once.
   std::vector<std::int64_t> frame_major(std::vector<std::int64_t> indices) const;
   /// Distinct frames of the study (every parameter combination), for up-front checks.
-  std::vector<ScenePoint> frames() const;
+  std::vector<SceneSpec> frames() const;
 
   /// The incidence axis' values as the study gives them (empty: no such axis).
   const std::vector<double>& incidences() const { return incidences_; }

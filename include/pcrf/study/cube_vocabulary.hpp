@@ -45,6 +45,9 @@ inline constexpr const char* kSaltelliBlock = "saltelli_block";
 inline constexpr const char* kSaltelliSample = "saltelli_sample";
 inline constexpr const char* kIncidenceDeg = "incidence_deg";
 inline constexpr const char* kFrameAzimuthDeg = "frame_azimuth_deg";
+/// The scene model of each frame: a `case` coordinate where a list plan mixes models, else a
+/// global attribute (when the study's model is not pcrf).
+inline constexpr const char* kSceneModel = "scene_model";
 // Global attributes.
 inline constexpr const char* kStudyName = "study_name";
 inline constexpr const char* kPlan = "plan";

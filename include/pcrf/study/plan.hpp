@@ -1,6 +1,6 @@
 /// \file plan.hpp
-/// \brief A study's plan: how the frames of a study (the eight frame parameters of each
-/// case) are laid out along the frame dimensions of its cube.
+/// \brief A study's plan: how the frames of a study (the scene of each case: its model and
+/// the values of the model's parameters) are laid out along the frame dimensions of its cube.
 ///
 /// A plan owns its dimensions, the frame at each of their points, the cube's coordinate
 /// variables along them, how a history request names one of its frames, and its part of the
@@ -34,11 +34,11 @@ class Plan {
   /// first; their sizes multiply to the number of frames.
   virtual const std::vector<cube::Dimension>& dimensions() const = 0;
 
-  /// The frame at `coordinates` (one per dimension, each below its size): the scene's values.
-  virtual ScenePoint frame_at(std::span<const std::size_t> coordinates) const = 0;
+  /// The frame at `coordinates` (one per dimension, each below its size): its scene.
+  virtual SceneSpec frame_at(std::span<const std::size_t> coordinates) const = 0;
 
   /// Every frame, in storage order (row-major over dimensions()).
-  virtual std::vector<ScenePoint> frames() const = 0;
+  virtual std::vector<SceneSpec> frames() const = 0;
 
   /// The cube's coordinate variables along dimensions(), with their auxiliary coordinates.
   virtual std::vector<cube::Coordinate> coordinates() const = 0;

@@ -132,7 +132,8 @@ def main(argv):
         style.apply()
         figure = importlib.import_module(f"pcrf_plot.{args.kind}").draw(args)
         save(figure, args)
-        print(f"pcrf plot: wrote {args.output} ({args.kind}, {len(figure.axes)} panels)")
+        panels = len(figure.axes)
+        print(f"pcrf plot: wrote {args.output} ({args.kind}, {panels} panel{'' if panels == 1 else 's'})")
         return 0
     except PlotError as e:
         print(f"pcrf plot: error: {e}", file=sys.stderr)

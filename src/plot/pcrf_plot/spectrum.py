@@ -83,6 +83,9 @@ def draw(args):
         ax.legend(loc="upper left", fontsize="small")
     for ax in axes.flat[len(frames):]:
         ax.remove()
+    # A study of one scene names its model in an attribute (none: pcrf); one that mixes scenes
+    # names each frame's in a coordinate, and its panels are titled by case label.
+    mixed = "scene_model" in cube.info["auxiliary_coordinates"]
     scene = cube.info.get("attributes", {}).get("scene_model", "pcrf")
-    fig.suptitle(args.title or f"Rocking spectrum ({scene})")
+    fig.suptitle(args.title or ("Rocking spectra" if mixed else f"Rocking spectrum ({scene})"))
     return fig

@@ -22,21 +22,21 @@ class GridPlan final : public Plan {
   std::string_view name() const override { return "grid"; }
   const std::vector<cube::Dimension>& dimensions() const override { return dimensions_; }
 
-  ScenePoint frame_at(std::span<const std::size_t> coordinates) const override {
-    ScenePoint frame = base_;
-    for (std::size_t d = 0; d < swept_.size(); ++d) frame[swept_[d]] = values_[d][coordinates[d]];
+  SceneSpec frame_at(std::span<const std::size_t> coordinates) const override {
+    SceneSpec frame{model_, base_};
+    for (std::size_t d = 0; d < swept_.size(); ++d) frame.values[swept_[d]] = values_[d][coordinates[d]];
     return frame;
   }
 
-  std::vector<ScenePoint> frames() const override {
-    std::vector<ScenePoint> frames{base_};
+  std::vector<SceneSpec> frames() const override {
+    std::vector<SceneSpec> frames{{model_, base_}};
     for (std::size_t d = 0; d < swept_.size(); ++d) {
-      std::vector<ScenePoint> next;
+      std::vector<SceneSpec> next;
       next.reserve(frames.size() * values_[d].size());
       for (const auto& f : frames)
         for (double v : values_[d]) {
           next.push_back(f);
-          next.back()[swept_[d]] = v;
+          next.back().values[swept_[d]] = v;
         }
       frames = std::move(next);
     }

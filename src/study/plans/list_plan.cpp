@@ -1,4 +1,5 @@
-// The list plan: the frames [[cases]] gives, each starting from the base point.
+// The list plan: the frames [[cases]] gives, each starting from the base point, or, for a case
+// that names another scene model (`model = "block"`), from that model's defaults.
 #include <memory>
 #include <set>
 
@@ -17,7 +18,8 @@ class ListPlan final : public PointPlan {
     describe_axes(out, model(), {});
     for (const auto& c : points()) {
       out << "case " << c.label;
-      describe_parameters(out, model(), c.parameters);
+      if (c.model != &model()) out << " model=" << c.model->name;  // one model: the fingerprints as before
+      describe_parameters(out, *c.model, c.parameters);
       out << '\n';
     }
   }
@@ -38,11 +40,16 @@ std::shared_ptr<const Plan> read_list_plan(const PlanInput& input) {
     const std::string path = "cases[" + std::to_string(i) + "]";
     const auto* table = (*array)[i].as_table();
     if (table == nullptr) Fields::fail_at(input.top.file(), &(*array)[i], path, "expected a table");
-    Fields f(*table, path, input.top.file(), with_parameter_keys({"label"}));
-    PointPlan::Point c{f.text("label").value_or("case" + std::to_string(i)), input.base};
+    std::vector<std::string_view> keys{"label", "model"};
+    for (auto key : all_scene_keys()) keys.push_back(key);
+    Fields f(*table, path, input.top.file(), keys);
+    const SceneModel* model = read_model(f);
+    if (model == nullptr) model = &input.model;
+    const bool own = model == &input.model;  // another model's cases set all its parameters: it has no base point
+    PointPlan::Point c{f.text("label").value_or("case" + std::to_string(i)), own ? input.base : model->defaults(), model};
     if (c.label.empty()) f.fail("label", "must not be empty");
     if (!labels.insert(c.label).second) f.fail("label", "\"" + c.label + "\" is used by another case");
-    read_parameters(f, input.model, c.parameters, true);
+    read_parameters(f, *model, c.parameters, own);
     cases.push_back(std::move(c));
   }
   return std::make_shared<ListPlan>(input.model, std::move(cases));

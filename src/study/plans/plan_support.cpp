@@ -93,36 +93,52 @@ void describe_parameters(std::ostream& out, const SceneModel& model, const Scene
 }
 
 PointPlan::PointPlan(const SceneModel& model, std::vector<Point> points)
-    : model_(&model), points_(std::move(points)), dimensions_{{vocabulary::kCase, points_.size()}} {}
-
-ScenePoint PointPlan::frame_at(std::span<const std::size_t> coordinates) const {
-  return points_[coordinates[0]].parameters;
+    : model_(&model), points_(std::move(points)), dimensions_{{vocabulary::kCase, points_.size()}} {
+  for (auto& p : points_)
+    if (p.model == nullptr) p.model = model_;
 }
 
-std::vector<ScenePoint> PointPlan::frames() const {
-  std::vector<ScenePoint> frames;
-  for (const auto& p : points_) frames.push_back(p.parameters);
+SceneSpec PointPlan::frame_at(std::span<const std::size_t> coordinates) const {
+  const Point& p = points_[coordinates[0]];
+  return {p.model, p.parameters};
+}
+
+std::vector<SceneSpec> PointPlan::frames() const {
+  std::vector<SceneSpec> frames;
+  for (const auto& p : points_) frames.push_back({p.model, p.parameters});
   return frames;
 }
 
 std::vector<cube::Coordinate> PointPlan::coordinates() const {
   std::vector<double> index(points_.size());
-  std::vector<std::string> labels;
+  std::vector<std::string> labels, models;
   for (std::size_t i = 0; i < points_.size(); ++i) {
     index[i] = static_cast<double>(i);
     labels.push_back(points_[i].label);
+    models.emplace_back(points_[i].model->name);
   }
   std::vector<cube::Coordinate> coords{number_coordinate(vocabulary::kCase, vocabulary::kCase, "", "frame number", index)};
   coords.back().is_index = true;
   coords.push_back(text_coordinate(vocabulary::kCaseLabel, vocabulary::kCase, "frame label", labels));
+  // The models present: the plan's first, then the others in catalogue order.
+  std::vector<const SceneModel*> present{model_};
+  for (const auto& m : scene_models())
+    if (&m != model_ && std::any_of(points_.begin(), points_.end(), [&](const Point& p) { return p.model == &m; }))
+      present.push_back(&m);
+  if (present.size() > 1)
+    coords.push_back(text_coordinate(vocabulary::kSceneModel, vocabulary::kCase, "scene model of the frame", models));
   for (auto& c : extra_coordinates()) coords.push_back(std::move(c));
-  for (std::size_t k : axis_parameters(*model_)) {
-    const auto& parameter = model_->parameters[k];
-    std::vector<double> values;
-    for (const auto& p : points_) values.push_back(p.parameters[k]);
-    coords.push_back(number_coordinate(std::string(parameter.name), vocabulary::kCase, std::string(parameter.units),
-                                       std::string(parameter.long_name), values));
-  }
+  std::vector<std::string_view> written;
+  for (const SceneModel* m : present)
+    for (std::size_t k : axis_parameters(*m)) {
+      const auto& parameter = m->parameters[k];
+      if (std::find(written.begin(), written.end(), parameter.name) != written.end()) continue;
+      written.push_back(parameter.name);
+      std::vector<double> values;
+      for (const auto& p : points_) values.push_back(SceneSpec{p.model, p.parameters}.value(parameter.name));
+      coords.push_back(number_coordinate(std::string(parameter.name), vocabulary::kCase, std::string(parameter.units),
+                                         std::string(parameter.long_name), values));
+    }
   return coords;
 }
 

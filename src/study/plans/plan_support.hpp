@@ -23,7 +23,7 @@ struct PlanInput {
   const Fields& plan;          ///< [plan] (an empty table when the file has none)
   const Fields* axes;          ///< [axes], or nullptr; its scale and intensity keys are not the plan's
   const Fields& top;           ///< the whole file
-  const SceneModel& model;     ///< the study's scene: its parameters are the plan's
+  const SceneModel& model;     ///< the study's scene: its parameters are the plan's (a list case may name another)
   const ScenePoint& base;      ///< [frame] / [base]: every frame starts from it
 };
 
@@ -52,18 +52,20 @@ void describe_axes(std::ostream& out, const SceneModel& model, const std::vector
 void describe_parameters(std::ostream& out, const SceneModel& model, const ScenePoint& frame);
 
 /// A plan whose frames are listed along one dimension, `case`: its coordinates are the case
-/// number, `case_label`, the plan's own (extra_coordinates) and the eight parameters; a
-/// history names its frame by `case` label.
+/// number, `case_label`, where the cases mix scene models `scene_model`, the plan's own
+/// (extra_coordinates) and the axis parameters of every model present (NaN for a case whose
+/// model has no such parameter); a history names its frame by `case` label.
 class PointPlan : public Plan {
  public:
   struct Point {
     std::string label;
-    ScenePoint parameters;
+    ScenePoint parameters;              ///< a point of `model`'s table
+    const SceneModel* model = nullptr;  ///< nullptr: the plan's model (the study's)
   };
 
   const std::vector<cube::Dimension>& dimensions() const override { return dimensions_; }
-  ScenePoint frame_at(std::span<const std::size_t> coordinates) const override;
-  std::vector<ScenePoint> frames() const override;
+  SceneSpec frame_at(std::span<const std::size_t> coordinates) const override;
+  std::vector<SceneSpec> frames() const override;
   std::vector<cube::Coordinate> coordinates() const override;
   std::vector<std::size_t> locate(const HistoryRequest& request) const override;
   std::string history_key_problem(std::string_view key) const override;
