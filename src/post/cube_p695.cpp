@@ -15,6 +15,7 @@
 #include "pcrf/record/intensity.hpp"
 #include "pcrf/row_major.hpp"
 #include "pcrf/solver/settings.hpp"
+#include "pcrf/study/cube_vocabulary.hpp"
 
 namespace pcrf::post {
 namespace {
@@ -39,9 +40,22 @@ std::string measure_problem(const cube::CubeReader& cube, double period_s) {
   return {};
 }
 
+/// The scene model of case `index`: its `scene_model` coordinate (a study of several scenes),
+/// else the cube's attribute, else the prestressed frame.
+std::string scene_of_case(const cube::CubeLayout& layout, std::int64_t index) {
+  namespace names = study::vocabulary;
+  if (const cube::Coordinate* c = layout.find_coordinate(names::kSceneModel))
+    if (const auto dim = layout.find_dimension(c->dimension)) return c->label(unravel(index, layout.shape())[*dim]);
+  const std::string attribute = layout.text_attribute(names::kSceneModel);
+  return attribute.empty() ? "pcrf" : attribute;
+}
+
 /// The frame parameters of case `index`: the study's base point, overridden by every
 /// parameter coordinate the cube has (a grid's axes, a list's or sample's per-case values).
+/// \throws std::invalid_argument for a case of another scene than the prestressed frame.
 FrameParameters parameters_of_case(const cube::CubeLayout& layout, std::int64_t index) {
+  if (const auto scene = scene_of_case(layout, index); scene != "pcrf")
+    throw std::invalid_argument("a " + scene + " scene has no engine convention for mu_T (docs/p695_rocking_frame.md is the prestressed frame's): give --mu-t");
   auto attribute = [&](const std::string& name) {
     for (const auto& a : layout.attributes)
       if (a.name == name)
@@ -82,7 +96,12 @@ P695Report cube_p695(const cube::CubeReader& cube, const std::vector<cube::Selec
   report.measure_problem = measure_problem(cube, in.period_s);
   for (const FrameFragility& f : cube_fragility(cube, selectors)) {
     if (!f.fit) throw std::invalid_argument("frame " + f.frame + ": no collapse, so no median collapse intensity to assess");
-    const double mu_t = in.mu_t > 0.0 ? in.mu_t : own_mu_t(cube.layout(), f.first_case, in.period_s);
+    double mu_t = in.mu_t;
+    try {
+      if (!(mu_t > 0.0)) mu_t = own_mu_t(cube.layout(), f.first_case, in.period_s);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("frame " + f.frame + ": " + e.what());
+    }
     report.frames.push_back({f.frame, mu_t, p695::assess(f.fit->median, in.period_s, mu_t, in.sdc, in.design_rating,
                                                          in.test_rating, in.model_rating)});
   }

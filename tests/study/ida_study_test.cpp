@@ -338,6 +338,25 @@ TEST(IdaStudy, P695CarriesTheCollapseIntensityToItsVerdict) {
   EXPECT_NE(bad.err.find("unknown quality rating 'E'"), std::string::npos) << bad.err;
 }
 
+TEST(IdaStudy, P695OfAStudyOfSeveralScenesTakesTheFramesDuctilityOnlyFromAPrestressedFrame) {
+  // The engine's mu_T is the prestressed frame's (docs/p695_rocking_frame.md): a block listed
+  // beside it has none, so the verdict needs --mu-t rather than the frame's applied to the block.
+  const auto dir = test::scratch_dir("ida_p695_scenes");
+  std::string text = ida_study(4, 10);
+  text.replace(text.find("[axes]\nkappa = [1.4, 2.2]\n"), std::string("[axes]\nkappa = [1.4, 2.2]\n").size(),
+               "[plan]\nkind = \"list\"\n[[cases]]\nlabel = \"frame\"\n"
+               "[[cases]]\nlabel = \"block\"\nmodel = \"block\"\nslenderness_rad = 0.2\n");
+  ASSERT_EQ(run_ida(dir, text, "scenes.h5").exit_code, 0);
+  const auto cube = quoted(dir / "scenes.h5");
+  const auto refused = test::run_command(pcrf() + " cube p695 " + cube + " --period-s 0.5");
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.err.find("frame block: a block scene has no engine convention for mu_T"), std::string::npos) << refused.err;
+  EXPECT_EQ(refused.out, "");
+  const auto given = test::run_command(pcrf() + " cube p695 " + cube + " --period-s 0.5 --mu-t 3");
+  EXPECT_EQ(given.exit_code, 0) << given.err;
+  EXPECT_NE(given.out.find("block "), std::string::npos) << given.out;
+}
+
 }  // namespace
 }  // namespace pcrf::study_test
 
