@@ -70,14 +70,17 @@ toml::array toml_array(const py::handle& list, const std::string& path) {
   return array;
 }
 
-/// The dict as TOML text, checked by the study parser (StudyError naming the key path).
-std::string checked_study_text(const py::dict& study) {
+/// The dict as a study, read by the study parser (StudyError naming the key path); the cube
+/// keeps its TOML text.
+study::Study parsed_study(const py::dict& study) {
   const toml::table table = toml_table(study, "");
   std::ostringstream text;
   text << table;
-  study::parse_study_table(table, text.str(), kDictSource, std::filesystem::current_path());
-  return text.str();
+  return study::parse_study_table(table, text.str(), kDictSource, std::filesystem::current_path());
 }
+
+/// The dict as TOML text, checked as a study file is.
+std::string checked_study_text(const py::dict& study) { return parsed_study(study).text; }
 
 /// The one MPI session of this process (a singleton rank), made by the first study and
 /// finalized when the interpreter exits (finalize_mpi): MPI cannot start twice in a process.
@@ -113,7 +116,7 @@ struct Interrupt {
 py::dict study(const py::object& source, const py::kwargs& kwargs) {
   study::StudyRunOptions options;
   if (py::isinstance<py::dict>(source)) {
-    options.study_text = checked_study_text(source.cast<py::dict>());
+    options.study = parsed_study(source.cast<py::dict>());
     options.study_file = kDictSource;
   } else {
     options.study_file = py::str(py::hasattr(source, "__fspath__") ? source.attr("__fspath__")() : source).cast<std::string>();
@@ -128,7 +131,7 @@ py::dict study(const py::object& source, const py::kwargs& kwargs) {
   if (progress && py::bool_(*progress)) options.progress = &std::cerr;
   options.run_overrides = keywords.take_settings(study::run_settings());
   keywords.finish();
-  if (!options.study_text.empty() && options.output.empty() && !options.check_only)
+  if (options.study && options.output.empty() && !options.check_only)
     throw api::InputError("a study given as a dict needs output= (the cube's path)");
 
   std::optional<study::StudySummary> summary;

@@ -428,10 +428,7 @@ std::optional<StudySummary> run_study(const StudyRunOptions& options, const para
   std::string error;
   if (mpi.is_master()) {
     try {
-      prepared = std::make_unique<Prepared>(
-          options.study_text.empty()
-              ? load_study(options.study_file)
-              : parse_study(options.study_text, options.study_file.string(), std::filesystem::current_path()));
+      prepared = std::make_unique<Prepared>(options.study ? *options.study : load_study(options.study_file));
       apply_overrides(options, prepared->study.run);
       setup = prepare_master(options, *prepared);
     } catch (const StudyError& e) {

@@ -115,3 +115,21 @@ def test_pulse_dimensions_unstack_the_records_into_the_pulse_axes(tmp_path):
     pcrf.study(STUDY, output=tmp_path / "records.h5")
     with pytest.raises(ValueError, match="not all pulses"):
         pcrf.open_cube(tmp_path / "records.h5", pulse_dimensions=True)
+
+
+def test_a_study_of_several_scenes_gives_each_case_what_run_gives(tmp_path):
+    """A list plan whose cases name their model: one cube, a scene_model coordinate, and each
+    case's values those of pcrf.run on that scene (every metric, as pcrf.run computes them)."""
+    block = {"slenderness_rad": 0.2, "frequency_parameter_rad_s": 2.12}
+    study = {"study": {"name": "scenes"}, "plan": {"kind": "list"},
+             "cases": [{"label": "frame"}, {"label": "block", "model": "block", **block}],
+             "records": [{"synthetic": ["pulse-sine:period_s=0.5,amplitude_g=1.5",
+                                        "ricker:period_s=1,amplitude_g=0.6"]}]}
+    cube = pcrf.study(study, output=tmp_path / "scenes.h5")
+    assert list(cube["scene_model"].values) == ["pcrf", "block"]
+    assert np.isnan(cube["kappa"].sel(case=1)) and np.isnan(cube["slenderness_rad"].sel(case=0))
+    scenes = {0: {}, 1: {"model": "block", "frame": block}}
+    for r, record in enumerate(cube["record"].values):
+        for case, keywords in scenes.items():
+            result = pcrf.run(synthetic=str(record), **keywords)
+            assert cube["theta_max_rad"].isel(record=r, scale=0).sel(case=case) == result["theta_max_rad"], (record, case)

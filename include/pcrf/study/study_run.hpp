@@ -22,10 +22,10 @@ namespace pcrf::study {
 
 struct StudyRunOptions {
   std::filesystem::path study_file;
-  /// The study itself when it comes from no file (a Python dict, already checked by
-  /// parse_study_table): its TOML text, read with record paths relative to the working
-  /// directory; `study_file` then only names it. Empty: read `study_file`.
-  std::string study_text;
+  /// The study itself when it comes from no file (a Python dict, parsed by parse_study_table
+  /// with record paths relative to the working directory); `study_file` then only names it.
+  /// None: read `study_file`.
+  std::optional<Study> study;
   std::filesystem::path output;   ///< empty: "<study file stem>.h5" in the working directory
   bool resume = false;            ///< continue an existing cube of the same study
   bool overwrite = false;         ///< replace an existing cube
