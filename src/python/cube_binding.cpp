@@ -13,6 +13,7 @@
 #include "pcrf/cube/cube_query.hpp"
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/post/cube_reports.hpp"
+#include "pcrf/study/cube_vocabulary.hpp"
 
 namespace pcrf::python {
 namespace {
@@ -114,6 +115,8 @@ std::string cube_report(const std::string& kind, const std::string& file, const 
 void bind_cube(py::module_& m) {
   m.def("cube_report", &cube_report, py::arg("kind"), py::arg("file"),
         "The JSON of `pcrf cube KIND FILE --json` (stats, fragility, sensitivity, p695); see pcrf.fragility.");
+  m.def("pulse_coordinates", &study::vocabulary::pulse_coordinates,
+        "The coordinates a study of pulses may have along `record`: pulse_shape and the pulse axes.");
 }
 
 }  // namespace pcrf::python

@@ -8,6 +8,21 @@
 
 namespace pcrf::study::vocabulary {
 
+const std::vector<PulseAxisKey>& pulse_axis_keys() {
+  static const std::vector<PulseAxisKey> keys{{kPulsePeriod, "period_s", {}},
+                                              {"pulse_amplitude_g", "amplitude_g", {}},
+                                              {"pulse_cycles", "cycles", {PulseShape::kCycles}},
+                                              {"pulse_gamma", "gamma", {PulseShape::kMavroeidis}},
+                                              {"pulse_nu_deg", "nu_deg", {PulseShape::kMavroeidis}}};
+  return keys;
+}
+
+std::vector<std::string> pulse_coordinates() {
+  std::vector<std::string> names{kPulseShape};
+  for (const auto& k : pulse_axis_keys()) names.emplace_back(k.axis_key);
+  return names;
+}
+
 std::string info_heading(const cube::CubeLayout& layout) {
   return "study: " + layout.text_attribute(kStudyName) + " (plan " + layout.text_attribute(kPlan) + "), pcrf " +
          layout.text_attribute(kPcrfVersion) + ", fingerprint " + layout.text_attribute(cube::kFingerprintName);

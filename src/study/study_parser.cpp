@@ -14,6 +14,7 @@
 
 #include "pcrf/metrics/case_result.hpp"
 #include "pcrf/record/pulses.hpp"
+#include "pcrf/study/cube_vocabulary.hpp"
 #include "pcrf/study/plan.hpp"
 #include "study/axis_fields.hpp"
 #include "study/plans/plan_support.hpp"
@@ -33,21 +34,8 @@ using detail::with_parameter_keys;
 
 // ---- pulses ------------------------------------------------------------------------------
 
-/// The [axes] keys of pulse parameters, "pulse_" + the pulse's own key, and which shapes take
-/// each (empty: every shape; record/pulses.hpp).
-struct PulseKey {
-  std::string_view axis_key;
-  std::string_view pulse_key;
-  std::vector<PulseShape> only;
-};
-const std::vector<PulseKey>& pulse_keys() {
-  static const std::vector<PulseKey> keys{{"pulse_period_s", "period_s", {}},
-                                          {"pulse_amplitude_g", "amplitude_g", {}},
-                                          {"pulse_cycles", "cycles", {PulseShape::kCycles}},
-                                          {"pulse_gamma", "gamma", {PulseShape::kMavroeidis}},
-                                          {"pulse_nu_deg", "nu_deg", {PulseShape::kMavroeidis}}};
-  return keys;
-}
+using PulseKey = vocabulary::PulseAxisKey;
+const std::vector<PulseKey>& pulse_keys() { return vocabulary::pulse_axis_keys(); }
 
 std::vector<std::string_view> axes_keys() {
   std::vector<std::string_view> keys{"scale", "intensity", "incidence_deg", "incidence"};

@@ -14,6 +14,7 @@
 #include "pcrf/cube/cube_layout.hpp"
 #include "pcrf/cube/cube_query.hpp"
 #include "pcrf/cube/cube_reader.hpp"
+#include "pcrf/record/pulses.hpp"
 
 namespace pcrf::study::vocabulary {
 
@@ -52,6 +53,20 @@ inline constexpr const char* kSceneModel = "scene_model";
 inline constexpr const char* kStudyName = "study_name";
 inline constexpr const char* kPlan = "plan";
 inline constexpr const char* kPcrfVersion = "pcrf_version";
+
+/// A pulse parameter a study may put on its axes ([axes] pulse_period_s, …): the key,
+/// "pulse_" + the pulse's own key (record/pulses.hpp), and the shapes that take it (empty:
+/// every shape). Each axis a study gives is a coordinate of that name along `record`.
+struct PulseAxisKey {
+  std::string_view axis_key;
+  std::string_view pulse_key;
+  std::vector<PulseShape> only;
+};
+const std::vector<PulseAxisKey>& pulse_axis_keys();
+
+/// Every coordinate a study of pulses may have along `record`: kPulseShape, then the pulse
+/// axis keys (pcrf.open_cube(pulse_dimensions=True) unstacks `record` into those present).
+std::vector<std::string> pulse_coordinates();
 
 /// "study: NAME (plan P), pcrf V, fingerprint F", for `pcrf cube info`.
 std::string info_heading(const cube::CubeLayout& layout);

@@ -1,5 +1,7 @@
 """pcrf.open_cube: a result cube as an xarray.Dataset, status as integer flags."""
 
+from . import _pcrf
+
 
 def _meant(value):
     """A coordinate value as the study wrote it: range-generated values in older cubes are
@@ -40,8 +42,8 @@ def open_cube(path, pulse_dimensions=False, **open_dataset_keywords):
 
 
 def _pulses_unstacked(ds):
-    """``record`` unstacked into the pulse coordinates along it (names beginning ``pulse_``)."""
-    levels = [name for name, c in ds.coords.items() if name.startswith("pulse_") and c.dims == ("record",)]
+    """``record`` unstacked into the pulse coordinates along it (the engine names them)."""
+    levels = [name for name in _pcrf.pulse_coordinates() if name in ds.coords and ds.coords[name].dims == ("record",)]
     if "pulse_shape" not in levels or any(shape == "" for shape in ds["pulse_shape"].values):
         raise ValueError("pulse_dimensions=True: the cube's records are not all pulses (its pulse_shape is "
                          + ("missing" if "pulse_shape" not in levels else "empty for some") + ")")
