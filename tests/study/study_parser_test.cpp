@@ -263,8 +263,13 @@ TEST(StudyParser, RefusesAListedCasesKeysOfAnotherSceneThanItsOwn) {
     EXPECT_NE(message.find(bad.message), std::string::npos) << "got: " << message << "\nfor:\n" << bad.text;
   }
   // A case of another model than the study's sets all of its parameters: it has no base point.
-  const Study s = parse(kRecords + "[frame]\nmodel = \"block\"\n[plan]\nkind = \"list\"\n[[cases]]\nmodel = \"pcrf\"\nh_m = 5\n");
+  // Its cube keeps them as coordinates, since no base point (attribute) holds them.
+  const Study s = parse(kRecords + "[frame]\nmodel = \"block\"\n[plan]\nkind = \"list\"\n[[cases]]\nmodel = \"pcrf\"\nh_m = 5\n"
+                                   "[[cases]]\nlabel = \"block\"\n");
   EXPECT_EQ(CaseSpace(s).case_at(0).frame.value("h_m"), 5.0);
+  const auto h = coordinate(s, "h_m").numbers;
+  EXPECT_EQ(h[0], 5.0);
+  EXPECT_TRUE(std::isnan(h[1]));
 }
 
 TEST(StudyParser, PulseParametersAreAxesOfPulseRecords) {

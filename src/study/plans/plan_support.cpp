@@ -128,10 +128,13 @@ std::vector<cube::Coordinate> PointPlan::coordinates() const {
   if (present.size() > 1)
     coords.push_back(text_coordinate(vocabulary::kSceneModel, vocabulary::kCase, "scene model of the frame", models));
   for (auto& c : extra_coordinates()) coords.push_back(std::move(c));
+  // The plan's model's other parameters are the cube's attributes (frame_h_m, …); another
+  // model has no base point, so all of its parameters are coordinates.
   std::vector<std::string_view> written;
   for (const SceneModel* m : present)
-    for (std::size_t k : axis_parameters(*m)) {
+    for (std::size_t k = 0; k < m->parameters.size(); ++k) {
       const auto& parameter = m->parameters[k];
+      if (m == model_ && !parameter.axis) continue;
       if (std::find(written.begin(), written.end(), parameter.name) != written.end()) continue;
       written.push_back(parameter.name);
       std::vector<double> values;

@@ -53,8 +53,9 @@ void describe_parameters(std::ostream& out, const SceneModel& model, const Scene
 
 /// A plan whose frames are listed along one dimension, `case`: its coordinates are the case
 /// number, `case_label`, where the cases mix scene models `scene_model`, the plan's own
-/// (extra_coordinates) and the axis parameters of every model present (NaN for a case whose
-/// model has no such parameter); a history names its frame by `case` label.
+/// (extra_coordinates), the axis parameters of the plan's model and every parameter of any
+/// other model present (NaN for a case whose model has no such parameter); a history names
+/// its frame by `case` label.
 class PointPlan : public Plan {
  public:
   struct Point {
