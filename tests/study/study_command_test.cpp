@@ -7,6 +7,7 @@
 #include <csignal>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <set>
 #include <regex>
@@ -42,6 +43,32 @@ std::string status_meaning(const cube::CubeLayout& layout, std::int8_t value) {
   for (const auto& f : layout.status_flags)
     if (f.value == value) return f.meaning;
   return "not_run";
+}
+
+/// Each case of `cube` against `pcrf` + `run_arguments(its coordinates)`: the same status,
+/// θ_max (where the run has one) and impacts, bit for bit. Returns the statuses seen.
+std::set<std::string> expect_each_case_is_pcrf_run(
+    const cube::CubeReader& cube, const std::function<std::string(const std::vector<std::size_t>&)>& run_arguments) {
+  const auto& layout = cube.layout();
+  const auto status = cube.read_status();
+  const auto theta = cube.read_metric("theta_max_rad");
+  const auto impacts = cube.read_metric("impacts");
+  std::set<std::string> statuses;
+  for (std::int64_t i = 0; i < layout.case_count(); ++i) {
+    const std::string args = run_arguments(cube::unravel(i, layout.shape()));
+    const auto run = test::run_command(pcrf() + args);
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    if (run.exit_code != 0) continue;
+    const auto json = parse_flat_json(run.out);
+    const auto k = static_cast<std::size_t>(i);
+    EXPECT_EQ(json.at("status"), status_meaning(layout, status[k])) << args;
+    statuses.insert(json.at("status"));
+    if (json.at("theta_max_rad") != "null") {
+      EXPECT_EQ(std::strtod(json.at("theta_max_rad").c_str(), nullptr), theta[k]) << args;
+    }
+    EXPECT_EQ(std::strtod(json.at("impacts").c_str(), nullptr), impacts[k]) << args;
+  }
+  return statuses;
 }
 
 TEST(StudyCommand, EveryCubeValueEqualsPcrfRunForThatCase) {
@@ -89,31 +116,14 @@ TEST(StudyCommand, ABlockStudyGivesWhatPcrfRunGivesForEachCase) {
   cube::CubeReader cube(dir / "cube.h5");
   const auto& layout = cube.layout();
   EXPECT_EQ(layout.text_attribute("scene_model"), "block");
-  const auto status = cube.read_status();
-  const auto theta = cube.read_metric("theta_max_rad");
-  const auto impacts = cube.read_metric("impacts");
-  const auto shape = layout.shape();
   const auto record = *layout.find_dimension("record");
   const auto alpha = *layout.find_dimension("slenderness_rad");
   const auto p = *layout.find_dimension("frequency_parameter_rad_s");
-  std::set<std::string> statuses;
-  for (std::int64_t i = 0; i < layout.case_count(); ++i) {
-    const auto c = cube::unravel(i, shape);
-    const std::string args = " run --model block --restitution 0.9 --synthetic '" +
-                             layout.find_coordinate("record")->label(c[record]) + "' --slenderness-rad " +
-                             layout.find_coordinate("slenderness_rad")->label(c[alpha]) + " --frequency-parameter-rad-s " +
-                             layout.find_coordinate("frequency_parameter_rad_s")->label(c[p]);
-    const auto run = test::run_command(pcrf() + args);
-    ASSERT_EQ(run.exit_code, 0) << run.err;
-    const auto json = parse_flat_json(run.out);
-    const auto k = static_cast<std::size_t>(i);
-    EXPECT_EQ(json.at("status"), status_meaning(layout, status[k])) << args;
-    statuses.insert(json.at("status"));
-    if (json.at("theta_max_rad") != "null") {
-      EXPECT_EQ(std::strtod(json.at("theta_max_rad").c_str(), nullptr), theta[k]) << args;
-    }
-    EXPECT_EQ(std::strtod(json.at("impacts").c_str(), nullptr), impacts[k]) << args;
-  }
+  const auto statuses = expect_each_case_is_pcrf_run(cube, [&](const std::vector<std::size_t>& c) {
+    return " run --model block --restitution 0.9 --synthetic '" + layout.find_coordinate("record")->label(c[record]) +
+           "' --slenderness-rad " + layout.find_coordinate("slenderness_rad")->label(c[alpha]) +
+           " --frequency-parameter-rad-s " + layout.find_coordinate("frequency_parameter_rad_s")->label(c[p]);
+  });
   EXPECT_GE(statuses.size(), 2u) << "every case ended alike: the test sees too little";
 }
 
@@ -140,32 +150,16 @@ TEST(StudyCommand, AListOfScenesGivesWhatPcrfRunGivesForEachCase) {
                                        " --model rocking-frame --slenderness-rad 0.2 --beam-mass-ratio 0.5"};
   const auto threshold = cube.read_side("frame_uplift_threshold_g");
   ASSERT_EQ(threshold.size(), flags.size());
-  const auto status = cube.read_status();
-  const auto theta = cube.read_metric("theta_max_rad");
-  const auto impacts = cube.read_metric("impacts");
-  const auto shape = layout.shape();
-  const auto record = *layout.find_dimension("record");
-  const auto frame = *layout.find_dimension("case");
-  std::set<std::string> statuses;
   for (std::size_t f = 0; f < flags.size(); ++f) {
     const auto properties = parse_flat_json(test::run_command(pcrf() + " frame --json" + flags[f]).out);
     EXPECT_EQ(std::strtod(properties.at("uplift_threshold_g").c_str(), nullptr), threshold[f]) << flags[f];
   }
   EXPECT_NEAR(threshold[1], std::tan(0.2), 1e-12) << "the block uplifts at g tan alpha";
-  for (std::int64_t i = 0; i < layout.case_count(); ++i) {
-    const auto c = cube::unravel(i, shape);
-    const std::string args = " run --synthetic '" + layout.find_coordinate("record")->label(c[record]) + "'" + flags[c[frame]];
-    const auto run = test::run_command(pcrf() + args);
-    ASSERT_EQ(run.exit_code, 0) << run.err;
-    const auto json = parse_flat_json(run.out);
-    const auto k = static_cast<std::size_t>(i);
-    EXPECT_EQ(json.at("status"), status_meaning(layout, status[k])) << args;
-    statuses.insert(json.at("status"));
-    if (json.at("theta_max_rad") != "null") {
-      EXPECT_EQ(std::strtod(json.at("theta_max_rad").c_str(), nullptr), theta[k]) << args;
-    }
-    EXPECT_EQ(std::strtod(json.at("impacts").c_str(), nullptr), impacts[k]) << args;
-  }
+  const auto record = *layout.find_dimension("record");
+  const auto frame = *layout.find_dimension("case");
+  const auto statuses = expect_each_case_is_pcrf_run(cube, [&](const std::vector<std::size_t>& c) {
+    return " run --synthetic '" + layout.find_coordinate("record")->label(c[record]) + "'" + flags[c[frame]];
+  });
   EXPECT_GE(statuses.size(), 2u) << "every case ended alike: the test sees too little";
 }
 

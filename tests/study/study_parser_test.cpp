@@ -149,6 +149,14 @@ struct BadStudy {
   std::string message;  ///< expected in the error
 };
 
+/// Each study of `corpus` fails to parse with its message.
+void expect_each_refused(const std::vector<BadStudy>& corpus) {
+  for (const auto& bad : corpus) {
+    const std::string message = error_of(bad.text);
+    EXPECT_NE(message.find(bad.message), std::string::npos) << "got: " << message << "\nfor:\n" << bad.text;
+  }
+}
+
 TEST(StudyParser, RejectsBadStudiesNamingFileLineKeyAndProblem) {
   const std::vector<BadStudy> corpus = {
       {kRecords + "[axes]\nkapa = 2\n", "t.toml:4: axes.kapa: unknown key (did you mean 'kappa'?)"},
@@ -169,10 +177,7 @@ TEST(StudyParser, RejectsBadStudiesNamingFileLineKeyAndProblem) {
       {kRecords + "kappa = [1\n", "t.toml:3: not valid TOML"},
       {kRecords + "[outputs]\nmetrics = [\"status_stable\"]\n", "metric \"status_stable\" needs [solver] verdict_check = true"},
   };
-  for (const auto& bad : corpus) {
-    const std::string message = error_of(bad.text);
-    EXPECT_NE(message.find(bad.message), std::string::npos) << "got: " << message << "\nfor:\n" << bad.text;
-  }
+  expect_each_refused(corpus);
 }
 
 TEST(StudyParser, AScenesParametersAreItsAxesAndBasePoint) {
@@ -213,10 +218,7 @@ TEST(StudyParser, RefusesAnotherScenesKeysAndImpossibleScenes) {
       {kRecords + "[frame]\nmodel = \"cylinder\"\n", "t.toml:4: frame.model: unknown scene 'cylinder' (expected pcrf, block or rocking-frame)"},
       {kRecords + "[frame]\nkappa = 2\n[base]\nkappa = 3\n", "base.kappa: is also given in [frame]"},
   };
-  for (const auto& bad : corpus) {
-    const std::string message = error_of(bad.text);
-    EXPECT_NE(message.find(bad.message), std::string::npos) << "got: " << message << "\nfor:\n" << bad.text;
-  }
+  expect_each_refused(corpus);
 }
 
 TEST(StudyParser, AListedCaseMayNameAnotherSceneStartingFromItsDefaults) {
@@ -258,10 +260,7 @@ TEST(StudyParser, RefusesAListedCasesKeysOfAnotherSceneThanItsOwn) {
       {list + "model = \"block\"\nslenderness_rad = 1.6\n", "cases[0].slenderness_rad: value 1.6 must lie between 0 and pi/2"},
       {list + "h_m = 5\n", "t.toml:6: cases[0].h_m: is set once for every case, in [frame] or [base]"},
   };
-  for (const auto& bad : corpus) {
-    const std::string message = error_of(bad.text);
-    EXPECT_NE(message.find(bad.message), std::string::npos) << "got: " << message << "\nfor:\n" << bad.text;
-  }
+  expect_each_refused(corpus);
   // A case of another model than the study's sets all of its parameters: it has no base point.
   // Its cube keeps them as coordinates, since no base point (attribute) holds them.
   const Study s = parse(kRecords + "[frame]\nmodel = \"block\"\n[plan]\nkind = \"list\"\n[[cases]]\nmodel = \"pcrf\"\nh_m = 5\n"
@@ -300,10 +299,7 @@ TEST(StudyParser, RefusesImpossiblePulses) {
       {kRecords + "[axes]\npulse_period_s = [0.5, 1]\n", "t.toml:4: axes.pulse_period_s: needs a [[records]] pulse entry"},
       {pulse + "name = \"r\"\n", "records[0].name: does not apply to pulse records"},
   };
-  for (const auto& bad : corpus) {
-    const std::string message = error_of(bad.text);
-    EXPECT_NE(message.find(bad.message), std::string::npos) << "got: " << message << "\nfor:\n" << bad.text;
-  }
+  expect_each_refused(corpus);
 }
 
 TEST(CaseSpace, LinearIndexAndCoordinatesRoundTrip) {
