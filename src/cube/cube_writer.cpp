@@ -624,8 +624,16 @@ void CubeWriter::Impl::checkpoint(const std::vector<std::int8_t>& status) {
       throw CubeError(what("cannot replace the cube with its new checkpoint: " + std::string(std::strerror(error))),
                       CubeError::cause_of(error));
     }
-  } catch (...) {
+  } catch (const CubeError& e) {
     std::error_code ignored;  // the cube itself is untouched: only the new file goes
+    std::filesystem::remove(partial, ignored);
+    // A write that failed because the cube or its folder went away says so, whether or not
+    // the library's reason quotes the system's error (HDF5 1.14's "can't retrieve stat info
+    // for file" does not).
+    if (on_disk && e.cause() == CubeError::Cause::kOther) check_identity();
+    throw;
+  } catch (...) {
+    std::error_code ignored;
     std::filesystem::remove(partial, ignored);
     throw;
   }
