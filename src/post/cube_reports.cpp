@@ -170,22 +170,30 @@ std::vector<ColumnOf<FrameP695>> p695_spec() {
   };
 }
 
-/// A reduction of an IDA's collapse_intensity in cube stats sees collapses only: a curve that
-/// never collapsed (NaN) or ran out of runs (unbracketed, its collapse not refined) is left out
-/// of it, where cube fragility --reduce-over keeps it censored. Says so when the cube has such curves.
+/// A reduction of an IDA's collapse_intensity in cube stats reduces the values the cube holds:
+/// a curve that found no collapse (NaN: censored, or unbracketed before one) is left out of it,
+/// and an unbracketed curve that found one enters at that collapse, not refined to the
+/// resolution (an upper bound), where cube fragility --reduce-over keeps both censored at
+/// their last safe intensity. Says so when the cube has such curves.
 std::string censored_reduction_note(const cube::CubeReader& cube, const StatsRequest& request) {
   if (request.reduction.dimension.empty() || request.metric != vocabulary::kCollapseIntensity) return "";
   const auto collapse = cube.read_side(vocabulary::kCollapseIntensity);
   const auto runs = cube.read_side(vocabulary::kIdaRuns);
   const bool has_states = cube.layout().find_side_variable(vocabulary::kCurveState) != nullptr;
   const auto state = has_states ? cube.read_side(vocabulary::kCurveState) : std::vector<double>(collapse.size(), kNaN);
-  std::size_t censored = 0;
-  for (std::size_t c = 0; c < collapse.size(); ++c)
-    if (runs[c] > 0.0 && (!std::isfinite(collapse[c]) || state[c] == static_cast<double>(plan::CurveState::kUnbracketed)))
-      ++censored;
-  if (censored == 0) return "";
-  return std::to_string(censored) + " curves without a bracketed collapse (censored or unbracketed) are left out of the "
-         "reduction; cube fragility --reduce-over keeps them as censored values";
+  std::size_t left_out = 0, unrefined = 0;
+  for (std::size_t c = 0; c < collapse.size(); ++c) {
+    if (!(runs[c] > 0.0)) continue;
+    if (!std::isfinite(collapse[c])) ++left_out;
+    else if (state[c] == static_cast<double>(plan::CurveState::kUnbracketed)) ++unrefined;
+  }
+  std::string note;
+  if (left_out > 0)
+    note = std::to_string(left_out) + " curves without a collapse (censored, or unbracketed before one) are left out of the reduction";
+  if (unrefined > 0)
+    note += (note.empty() ? "" : "; ") + std::to_string(unrefined) +
+            " unbracketed curves enter it at a collapse not refined to the resolution (an upper bound)";
+  return note.empty() ? "" : note + "; cube fragility --reduce-over keeps them censored at their last safe intensity";
 }
 
 /// The fields reduced_over and reduction of a report whose values were reduced first (none when not).
