@@ -192,7 +192,7 @@ std::string censored_reduction_note(const cube::CubeReader& cube, const StatsReq
     note = std::to_string(left_out) + " curves without a collapse (censored, or unbracketed before one) are left out of the reduction";
   if (unrefined > 0)
     note += (note.empty() ? "" : "; ") + std::to_string(unrefined) +
-            " unbracketed curves enter it at a collapse not refined to the resolution (an upper bound)";
+            " unbracketed curves enter the reduction at a collapse not refined to the resolution (an upper bound)";
   return note.empty() ? "" : note + "; cube fragility --reduce-over keeps them censored at their last safe intensity";
 }
 

@@ -186,7 +186,7 @@ TEST(CubeReduce, StatsNameTheUnbracketedCollapsesTheyReduce) {
   r = test::run_command("cd " + quoted(dir) + " && " + pcrf() +
                         " cube stats short.h5 --by kappa -m collapse_intensity --reduce-over incidence_deg --reduce min");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.err.find(std::to_string(unrefined) + " unbracketed curves enter it at a collapse not refined to the resolution"),
+  EXPECT_NE(r.err.find(std::to_string(unrefined) + " unbracketed curves enter the reduction at a collapse not refined to the resolution"),
             std::string::npos) << r.err;
 }
 
