@@ -90,6 +90,11 @@ std::vector<std::string_view> with_parameter_keys(std::vector<std::string_view> 
   return keys;
 }
 
+std::vector<std::string_view> with_scene_keys(std::vector<std::string_view> keys) {
+  for (auto key : all_scene_keys()) keys.push_back(key);
+  return keys;
+}
+
 std::vector<double> read_values(const Fields& fields, std::string_view key) {
   const toml::node& node = *fields.node(key);
   const std::string path = fields.path(key);

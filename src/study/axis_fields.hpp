@@ -25,6 +25,8 @@ std::vector<std::string_view> parameter_keys();
 std::vector<std::string_view> with_parameter_keys(std::vector<std::string_view> keys);
 /// Every key of every scene (axis or not).
 std::vector<std::string_view> all_scene_keys();
+/// `keys` followed by all_scene_keys() ([frame] and a listed case, which may name their model).
+std::vector<std::string_view> with_scene_keys(std::vector<std::string_view> keys);
 
 /// A key `fields` gives that belongs to another scene than `model`: "FILE:LINE: t.kappa: does
 /// not apply to model "block" (it is a parameter of model "pcrf")".

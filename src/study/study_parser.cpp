@@ -34,17 +34,16 @@ using detail::with_parameter_keys;
 
 // ---- pulses ------------------------------------------------------------------------------
 
-using PulseKey = vocabulary::PulseAxisKey;
-const std::vector<PulseKey>& pulse_keys() { return vocabulary::pulse_axis_keys(); }
+using vocabulary::pulse_axis_keys;
 
 std::vector<std::string_view> axes_keys() {
   std::vector<std::string_view> keys{"scale", "intensity", "incidence_deg", "incidence"};
-  for (const auto& k : pulse_keys()) keys.push_back(k.axis_key);
+  for (const auto& k : pulse_axis_keys()) keys.push_back(k.axis_key);
   return with_parameter_keys(keys);
 }
 
 void read_pulse_axes(const Fields& f, Study& s) {
-  for (const auto& k : pulse_keys()) {
+  for (const auto& k : pulse_axis_keys()) {
     if (!f.has(k.axis_key)) continue;
     auto values = read_values(f, k.axis_key);
     if (k.axis_key != "pulse_nu_deg") check_axis(f, k.axis_key, values, nullptr);  // ν may be any phase
@@ -81,8 +80,8 @@ std::vector<RecordSource> read_pulse_entry(const Fields& f, const Study& s) {
   for (PulseShape shape : shapes) {
     std::vector<const Study::PulseAxis*> axes;
     for (const auto& axis : s.pulse_axes) {
-      const auto& key = *std::find_if(pulse_keys().begin(), pulse_keys().end(),
-                                      [&](const PulseKey& k) { return k.axis_key == axis.key; });
+      const auto& key = *std::find_if(pulse_axis_keys().begin(), pulse_axis_keys().end(),
+                                      [&](const vocabulary::PulseAxisKey& k) { return k.axis_key == axis.key; });
       if (key.only.empty() || std::find(key.only.begin(), key.only.end(), shape) != key.only.end()) axes.push_back(&axis);
     }
     std::vector<std::size_t> at(axes.size(), 0);
@@ -179,11 +178,9 @@ void read_plan(const Fields& top, const Fields* axes, Study& s) {
 void read_base(const Fields& top, Study& s) {
   const auto* frame_table = top.subtable("frame");
   const auto* base_table = top.subtable("base");
-  std::vector<std::string_view> keys = detail::all_scene_keys();
+  const std::vector<std::string_view> keys = detail::all_scene_keys();
   if (frame_table != nullptr) {
-    std::vector<std::string_view> frame_keys = keys;
-    frame_keys.insert(frame_keys.begin(), "model");
-    const Fields f(*frame_table, "frame", s.file, frame_keys);
+    const Fields f(*frame_table, "frame", s.file, detail::with_scene_keys({"model"}));
     if (const auto* model = detail::read_model(f)) {
       s.model = model;
       s.base = s.model->defaults();

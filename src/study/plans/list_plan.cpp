@@ -36,12 +36,11 @@ std::shared_ptr<const Plan> read_list_plan(const PlanInput& input) {
   if (array->empty()) input.top.fail("cases", "empty list");
   std::vector<PointPlan::Point> cases;
   std::set<std::string> labels;
+  const auto keys = with_scene_keys({"label", "model"});
   for (std::size_t i = 0; i < array->size(); ++i) {
     const std::string path = "cases[" + std::to_string(i) + "]";
     const auto* table = (*array)[i].as_table();
     if (table == nullptr) Fields::fail_at(input.top.file(), &(*array)[i], path, "expected a table");
-    std::vector<std::string_view> keys{"label", "model"};
-    for (auto key : all_scene_keys()) keys.push_back(key);
     Fields f(*table, path, input.top.file(), keys);
     const SceneModel* model = read_model(f);
     if (model == nullptr) model = &input.model;
