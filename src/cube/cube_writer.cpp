@@ -604,6 +604,11 @@ void CubeWriter::Impl::checkpoint(const std::vector<std::int8_t>& status) {
   const std::filesystem::path partial = path.string() + ".partial";
   if (on_disk) check_identity();
   check_free_space(partial);
+  // On failure the cube itself is untouched: only the new file goes.
+  const auto discard_partial = [&partial] {
+    std::error_code ignored;
+    std::filesystem::remove(partial, ignored);
+  };
   try {
     if (on_disk) {
       std::error_code ec;
@@ -625,16 +630,14 @@ void CubeWriter::Impl::checkpoint(const std::vector<std::int8_t>& status) {
                       CubeError::cause_of(error));
     }
   } catch (const CubeError& e) {
-    std::error_code ignored;  // the cube itself is untouched: only the new file goes
-    std::filesystem::remove(partial, ignored);
+    discard_partial();
     // A write that failed because the cube or its folder went away says so, whether or not
     // the library's reason quotes the system's error (HDF5 1.14's "can't retrieve stat info
     // for file" does not).
     if (on_disk && e.cause() == CubeError::Cause::kOther) check_identity();
     throw;
   } catch (...) {
-    std::error_code ignored;
-    std::filesystem::remove(partial, ignored);
+    discard_partial();
     throw;
   }
   (void)sync_path(folder_of(path), true);

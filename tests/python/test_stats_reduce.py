@@ -18,17 +18,22 @@ def write_component(path, seed, pga_g, dt_s=0.01, duration_s=4.0):
     np.savetxt(path, np.column_stack([t, pga_g * accel / np.abs(accel).max()]), fmt="%.17g")
 
 
+def two_stations(folder):
+    """Stations a and b: the two components in folder, each the other's h1."""
+    station = {"units": "g", "az1_deg": 0, "az2_deg": 90}
+    return [{"h1": str(folder / "h1.txt"), "h2": str(folder / "h2.txt"), "name": "a", **station},
+            {"h1": str(folder / "h2.txt"), "h2": str(folder / "h1.txt"), "name": "b", **station}]
+
+
 @pytest.fixture(scope="module")
 def incidence_cube(tmp_path_factory):
     folder = tmp_path_factory.mktemp("incidence")
     for name, seed, pga_g in (("h1", 3, 1.6), ("h2", 4, 1.3)):
         write_component(folder / f"{name}.txt", seed, pga_g)
-    station = {"units": "g", "az1_deg": 0, "az2_deg": 90}
     study = {
         "study": {"name": "incidence"},
         "plan": {"kind": "grid"},
-        "records": [{"h1": str(folder / "h1.txt"), "h2": str(folder / "h2.txt"), "name": "a", **station},
-                    {"h1": str(folder / "h2.txt"), "h2": str(folder / "h1.txt"), "name": "b", **station}],
+        "records": two_stations(folder),
         "axes": {"scale": [1.0, 1.5], "kappa": [1.8, 2.4], "incidence_deg": {"from": 0, "to": 150, "count": 6}},
     }
     cube = folder / "incidence.h5"
@@ -76,12 +81,10 @@ def test_a_bad_reduction_is_the_command_lines_message(incidence_cube, flags, key
 def incidence_ida_cube(incidence_cube):
     """The same two stations, an adaptive IDA over three incidences."""
     folder = incidence_cube.parent
-    station = {"units": "g", "az1_deg": 0, "az2_deg": 90}
     study = {
         "study": {"name": "incidence_ida"},
         "plan": {"kind": "grid"},
-        "records": [{"h1": str(folder / "h1.txt"), "h2": str(folder / "h2.txt"), "name": "a", **station},
-                    {"h1": str(folder / "h2.txt"), "h2": str(folder / "h1.txt"), "name": "b", **station}],
+        "records": two_stations(folder),
         "axes": {"incidence_deg": [0, 60, 120]},
         "intensity": {"measure": "pga_rotd50_g"},
         "ida": {"start": 0.5, "max_intensity": 8.0, "max_runs": 8},
