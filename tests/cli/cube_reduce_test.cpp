@@ -47,6 +47,17 @@ const fs::path& ida_cube() {
   return dir;
 }
 
+/// The study of ida_cube() with `from` replaced by `to`, run into NAME.h5 beside it.
+test::CommandResult run_variant(const std::string& name, const std::string& from, const std::string& to) {
+  const auto& dir = ida_cube();
+  std::ifstream in(dir / "ida.toml");
+  std::stringstream text;
+  text << in.rdbuf();
+  test::write_file(dir, name + ".toml", std::regex_replace(text.str(), std::regex(from), to));
+  return test::run_command("cd " + quoted(dir) + " && " + pcrf() + " study " + name + ".toml -o " + name +
+                           ".h5 --overwrite --progress-interval 0");
+}
+
 /// The number after `"key": ` in the first frame of a fragility JSON.
 double json_number(const std::string& json, const std::string& key) {
   const auto frames = json.find("\"frames\"");
@@ -109,13 +120,7 @@ TEST(CubeReduce, ABadReductionIsOneLineAndWritesNothing) {
 TEST(CubeReduce, CurvesThatNeverCollapsedStayCensoredInTheWorstOrientation) {
   // The same stations searched only up to 3 g: some orientations never collapse.
   const auto dir = ida_cube();
-  test::write_file(dir, "capped.toml", [&] {
-    std::ifstream in(dir / "ida.toml");
-    std::stringstream text;
-    text << in.rdbuf();
-    return std::regex_replace(text.str(), std::regex("max_intensity = 16"), "max_intensity = 3");
-  }());
-  auto r = test::run_command("cd " + quoted(dir) + " && " + pcrf() + " study capped.toml -o capped.h5 --overwrite --progress-interval 0");
+  auto r = run_variant("capped", "max_intensity = 16", "max_intensity = 3");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   cube::CubeReader cube(dir / "capped.h5");
   const auto ci = cube.read_side("collapse_intensity"), safe = cube.read_side("last_safe_intensity");
@@ -170,13 +175,7 @@ TEST(CubeReduce, StatsNameTheUnbracketedCollapsesTheyReduce) {
   // Too few runs to refine: curves that found a collapse end unbracketed, their collapse an
   // upper bound; cube stats reduces them as the cube holds them, and says how many there are.
   const auto dir = ida_cube();
-  test::write_file(dir, "short.toml", [&] {
-    std::ifstream in(dir / "ida.toml");
-    std::stringstream text;
-    text << in.rdbuf();
-    return std::regex_replace(text.str(), std::regex("max_runs = 10"), "max_runs = 3");
-  }());
-  auto r = test::run_command("cd " + quoted(dir) + " && " + pcrf() + " study short.toml -o short.h5 --overwrite --progress-interval 0");
+  auto r = run_variant("short", "max_runs = 10", "max_runs = 3");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   cube::CubeReader cube(dir / "short.h5");
   const auto ci = cube.read_side("collapse_intensity"), state = cube.read_side("curve_state");
