@@ -109,11 +109,12 @@ def main():
     fams = OrderedDict()
     for row in s:
         fams.setdefault(row["family"], []).append(row)
-    colors = {"cvode-adams": "tab:blue", "cvode-bdf": "tab:purple", "arkode-erk5": "tab:green",
-              "arkode-erk8": "tab:orange", "fixed-rk4": "tab:red"}
+    # Okabe–Ito colours (colour-blind safe); the engine's own integrator in black.
+    colors = {"dopri5": "#000000", "cvode-adams": "#0072B2", "cvode-bdf": "#CC79A7", "arkode-erk5": "#009E73",
+              "arkode-erk8": "#E69F00", "fixed-rk4": "#D55E00"}
     for ax, key, title in ((axes[0], "err_median", "median"), (axes[1], "err_p90", "90th percentile")):
         for fam, rows in fams.items():
-            if fam == "preset" or "/atol=" in fam:
+            if fam in ("preset", "preset-before") or "/atol=" in fam:
                 continue
             base = fam.split("/")[0]
             ls = "-" if fam.endswith("/stop") or fam == "fixed-rk4" else "--"
@@ -121,15 +122,19 @@ def main():
             y = [max(r[key], 1e-16) for r in rows]
             ax.loglog(x, y, ls, marker="o" if fam != "fixed-rk4" else "s", ms=3.5, color=colors.get(base, "k"),
                       label=fam.replace("/stop", " (stop at samples)").replace("/nostop", " (no stop)"))
-            if fam == "arkode-erk5/stop" or fam == "fixed-rk4":
+            if fam in ("dopri5/stop", "arkode-erk5/stop") or fam == "fixed-rk4":
                 for r in rows:
                     lab = f"{r['knob']:.0e}" if fam != "fixed-rk4" else f"dt/{r['knob']:g}"
                     ax.annotate(lab, (r["wall_median_ms"], max(r[key], 1e-16)), fontsize=6, xytext=(3, 3),
                                 textcoords="offset points")
-        pcol = {"preset:fast": "cyan", "preset:balanced": "gold", "preset:reference": "magenta"}
+        pcol = {"preset:fast": "#56B4E9", "preset:balanced": "#F0E442", "preset:reference": "#D55E00"}
         for r in fams.get("preset", []):
             ax.loglog([r["wall_median_ms"]], [max(r[key], 1e-16)], "*", ms=15, mec="k",
                       color=pcol.get(r["setting"], "w"), label=r["setting"], zorder=5)
+        for r in fams.get("preset-before", []):  # the same preset on ARKODE ERK5, before dopri5
+            name = r["setting"].replace("preset-before:", "preset:")
+            ax.loglog([r["wall_median_ms"]], [max(r[key], 1e-16)], "*", ms=13, mfc="none", mew=1.5,
+                      color=pcol.get(name, "k"), label=name + " before (ARKODE ERK5)", zorder=5)
         if cond:
             c50 = quantile(cond, 0.5)
             ax.axhspan(1e-16, max(c50, 1e-16), color="0.85", zorder=0)

@@ -20,6 +20,23 @@ Excitation::Excitation(const GroundMotion& horizontal, const GroundMotion* verti
                                 ": pad the shorter with zeros first");
 }
 
+bool ExcitationCursor::enter(double t_s) {
+  const GroundMotion& h = excitation_.horizontal();
+  if (!(t_s >= 0.0) || !(t_s < h.duration_s())) return false;
+  const std::size_t k = h.interval_of(t_s);
+  const double dt = h.dt_s();
+  lo_s_ = static_cast<double>(k) * dt;
+  hi_s_ = static_cast<double>(k + 1) * dt;
+  inv_dt_per_s_ = h.inverse_dt_per_s();
+  const auto& a = h.samples_m_s2();
+  h0_ = a[k], dh_ = a[k + 1] - a[k];
+  if (const GroundMotion* v = excitation_.vertical()) {
+    const auto& b = v->samples_m_s2();
+    v0_ = b[k], dv_ = b[k + 1] - b[k];
+  }
+  return true;
+}
+
 ScaledExcitation::ScaledExcitation(const Excitation& of, double factor)
     : horizontal_(of.horizontal().scaled(factor)) {
   if (of.vertical() != nullptr) vertical_.emplace(of.vertical()->scaled(factor));

@@ -2,6 +2,7 @@
 #include "pcrf/model/equation_of_motion.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -132,12 +133,16 @@ TendonState EquationOfMotion::peak_tendon_strains(double abs_theta_rad) const {
   // strain) a scan of the visited range, refined by golden-section search around the
   // best sample, finds each tendon's own maximum.
   const int n = 64;
+  // One scan serves the three tendons: the state at each sample, and the last at the end.
+  std::array<TendonState, n + 1> scan;
+  for (int i = 0; i < n; ++i) scan[static_cast<std::size_t>(i)] = tendons(-(abs_theta_rad * i / n), -1);
+  scan[n] = tendons(-abs_theta_rad, -1);
   auto peak_of = [&](double TendonState::*member) {
     auto f = [&](double a) { return tendons(-a, -1).*member; };
     int best = n;
-    double best_value = f(abs_theta_rad);
+    double best_value = scan[n].*member;
     for (int i = 0; i < n; ++i) {
-      const double v = f(abs_theta_rad * i / n);
+      const double v = scan[static_cast<std::size_t>(i)].*member;
       if (v > best_value) best_value = v, best = i;
     }
     if (best == n) return best_value;  // monotone case: the end of the range
@@ -149,7 +154,7 @@ TendonState EquationOfMotion::peak_tendon_strains(double abs_theta_rad) const {
     }
     return std::max(best_value, f(0.5 * (lo + hi)));
   };
-  TendonState peak = tendons(-abs_theta_rad, -1);
+  TendonState peak = scan[n];
   peak.strain_column_left = peak_of(&TendonState::strain_column_left);
   peak.strain_column_right = peak_of(&TendonState::strain_column_right);
   peak.strain_beam = peak_of(&TendonState::strain_beam);

@@ -51,14 +51,10 @@ double GroundMotion::accel_m_s2(double t_s) const {
   const double t_end_s = static_cast<double>(last) * dt_s_;  // same product as duration_s()
   if (t_s >= t_end_s) return t_s == t_end_s ? accel_m_s2_[last] : 0.0;
 
-  // Here 0 ≤ t < t_end, so last ≥ 1. t·(1/dt) may land one ulp on the wrong side of an
-  // integer, so the guess is corrected against the sample times k·dt themselves (the same
-  // product a caller forms for "t = i·dt"). Both corrections compile to conditional adds;
-  // the product k·dt is monotone in k, so the result satisfies k·dt ≤ t < (k+1)·dt with
-  // k ≤ last − 1 (a guess of `last` is always pulled back by the first correction).
-  std::size_t k = static_cast<std::size_t>(t_s * inv_dt_);
-  k -= static_cast<std::size_t>(static_cast<double>(k) * dt_s_ > t_s);
-  k += static_cast<std::size_t>(static_cast<double>(k + 1) * dt_s_ <= t_s);
+  // Here 0 ≤ t < t_end, so last ≥ 1. The product k·dt is monotone in k, so the interval
+  // satisfies k·dt ≤ t < (k+1)·dt with k ≤ last − 1 (a guess of `last` is always pulled
+  // back by the first correction in interval_of).
+  const std::size_t k = interval_of(t_s);
 
   // frac is exactly 0 at t = k·dt, so the sample is returned unchanged there.
   const double frac = (t_s - static_cast<double>(k) * dt_s_) * inv_dt_;

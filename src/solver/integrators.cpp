@@ -12,6 +12,7 @@
 #include <string>
 #include <type_traits>
 
+#include "dormand_prince.hpp"
 #include "sundials_compat.hpp"
 
 namespace pcrf::detail {
@@ -285,8 +286,10 @@ class ErkIntegrator final : public SundialsBase {
 
 }  // namespace
 
-std::unique_ptr<OdeIntegrator> make_integrator(const SolverSettings& s, OdeProblem& p) {
+std::unique_ptr<OdeIntegrator> make_integrator(const SolverSettings& s, OdeProblem& p, SampleGrid samples) {
   switch (s.integrator) {
+    case Integrator::kDormandPrince5:
+      return std::make_unique<DormandPrinceIntegrator>(s, p, s.stop_at_samples ? samples : SampleGrid{});
     case Integrator::kCvodeBdf: return std::make_unique<CvodeIntegrator>(s, p, true);
     case Integrator::kCvodeAdams: return std::make_unique<CvodeIntegrator>(s, p, false);
     case Integrator::kArkodeErk5: return std::make_unique<ErkIntegrator>(s, p, ARKODE_DORMAND_PRINCE_7_4_5);

@@ -9,6 +9,7 @@
 /// sundials_compat.hpp.
 #pragma once
 
+#include <cstddef>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -24,6 +25,12 @@ class IntegratorError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// Times where the right-hand side has a kink (a record's samples): t = k·dt_s, k < count.
+struct SampleGrid {
+  double dt_s = 0.0;
+  std::size_t count = 0;  ///< 0: none
+};
+
 /// The ODE y' = f(t, y), y ∈ ℝ², with root functions g(t, y) ∈ ℝⁿ.
 class OdeProblem {
  public:
@@ -33,6 +40,10 @@ class OdeProblem {
   virtual int rhs(double t, const double* y, double* ydot) = 0;
   virtual int roots(double t, const double* y, double* g) = 0;
   virtual int root_count() const = 0;
+  /// The state component that root function i is (g_i = y[k]), or −1 when it is anything
+  /// else. An integrator with dense output may locate such a root on the interpolant alone,
+  /// without calling roots() at every probe.
+  virtual int root_state_index(int /*i*/) const { return -1; }
   /// ∂f/∂y, row-major 2×2, for implicit methods. Returns 0 on success; a problem without
   /// an analytic Jacobian returns −1 from has_jacobian() == false (difference quotients).
   virtual bool has_jacobian() const { return false; }
@@ -66,8 +77,14 @@ class OdeIntegrator {
   virtual SolverCounts counts() = 0;
   /// Text of the last failure.
   virtual const std::string& last_error() const = 0;
+  /// True when the integrator itself never steps across the sample grid it was made with,
+  /// so its caller need not stop it at every sample.
+  virtual bool steps_between_samples() const { return false; }
 };
 
-std::unique_ptr<OdeIntegrator> make_integrator(const SolverSettings& settings, OdeProblem& problem);
+/// The integrator `settings` name. `samples`: the record's sample grid, for an integrator
+/// that steps between samples itself (SUNDIALS' are stopped at each by their caller).
+std::unique_ptr<OdeIntegrator> make_integrator(const SolverSettings& settings, OdeProblem& problem,
+                                               SampleGrid samples = {});
 
 }  // namespace pcrf::detail

@@ -22,7 +22,7 @@ namespace pcrf {
 
 SolverSettings preset_settings(const std::string& name) {
   SolverSettings s;
-  s.integrator = Integrator::kArkodeErk5;
+  s.integrator = Integrator::kDormandPrince5;
   s.stop_at_samples = true;
   s.preset = name;
   if (name == "fast") {
@@ -34,6 +34,7 @@ SolverSettings preset_settings(const std::string& name) {
     s.atol_theta_rad = 1e-10;
     s.atol_omega_rad_s = 1e-9;
   } else if (name == "reference") {
+    s.integrator = Integrator::kArkodeErk5;  // SUNDIALS: an independent check of the others
     s.rtol = 1e-10;
     s.atol_theta_rad = 1e-14;
     s.atol_omega_rad_s = 1e-13;

@@ -33,7 +33,7 @@ enum Root { kImpact = 0, kThetaPeak = 1, kOmegaPeak = 2, kLimit = 3, kRootCount 
 class FlightProblem final : public detail::OdeProblem {
  public:
   FlightProblem(const EomTable& table, const Excitation& excitation, double theta_stop_rad, bool omega_peak)
-      : table_(table), excitation_(excitation), theta_stop_rad_(theta_stop_rad), omega_peak_(omega_peak) {}
+      : table_(table), forcing_(excitation), theta_stop_rad_(theta_stop_rad), omega_peak_(omega_peak) {}
 
   int side = -1;
 
@@ -55,11 +55,12 @@ class FlightProblem final : public detail::OdeProblem {
   }
 
   int root_count() const override { return kRootCount; }
+  int root_state_index(int i) const override { return i == kImpact ? 0 : i == kThetaPeak ? 1 : -1; }
 
   bool has_jacobian() const override { return true; }
   int jacobian(double t, const double* y, double* dfdy) override {
     double acc = 0, d_theta = 0, d_omega = 0;
-    if (!table_.acceleration_jacobian(y[0], y[1], excitation_.at(t), side, acc, d_theta, d_omega)) return 1;
+    if (!table_.acceleration_jacobian(y[0], y[1], forcing_.at(t), side, acc, d_theta, d_omega)) return 1;
     dfdy[0] = 0.0;
     dfdy[1] = 1.0;
     dfdy[2] = d_theta;
@@ -74,15 +75,16 @@ class FlightProblem final : public detail::OdeProblem {
   }
 
  private:
-  /// θ̈₁ at (t, y), remembering the last evaluation: the root functions are evaluated at
-  /// step ends, where the right-hand side has just been evaluated (FSAL methods, CVODE's
-  /// corrector), so the θ̈₁ root costs almost nothing.
+  /// θ̈₁ at (t, y). With the θ̈₁ root, remembering the last evaluation: the root functions
+  /// are evaluated at step ends, where the right-hand side has just been evaluated (FSAL
+  /// methods, CVODE's corrector), so that root costs almost nothing.
   bool acceleration(double t, const double* y, double& acc) {
+    if (!omega_peak_) return table_.acceleration(y[0], y[1], forcing_.at(t), side, acc) && std::isfinite(acc);
     if (t == last_t_ && y[0] == last_y_[0] && y[1] == last_y_[1] && side == last_side_) {
       acc = last_acc_;
       return true;
     }
-    if (!table_.acceleration(y[0], y[1], excitation_.at(t), side, acc) || !std::isfinite(acc)) return false;
+    if (!table_.acceleration(y[0], y[1], forcing_.at(t), side, acc) || !std::isfinite(acc)) return false;
     last_t_ = t;
     last_y_[0] = y[0];
     last_y_[1] = y[1];
@@ -92,7 +94,7 @@ class FlightProblem final : public detail::OdeProblem {
   }
 
   const EomTable& table_;  // the prepared frame's: built once for every case of the frame
-  Excitation excitation_;
+  ExcitationCursor forcing_;  // linear between samples: most stages fall in the last interval
   double theta_stop_rad_;
   bool omega_peak_;
   double last_t_ = std::numeric_limits<double>::quiet_NaN();
@@ -116,7 +118,7 @@ class CaseRun {
         restitution_(frame.restitution()),
         stop_(frame.stop_angles()),
         problem_(frame.table(), excitation_, stop_.stop_rad(), request.omega_peak),
-        integrator_(detail::make_integrator(solver, problem_)),
+        integrator_(detail::make_integrator(solver, problem_, {excitation.dt_s(), excitation.horizontal().size()})),
         end_(excitation, frame.scene().gravity_m_s2(), physics_),
         t_end_(end_.t_end_s) {}
 
@@ -245,7 +247,9 @@ void CaseRun::fly() {
   // wall-time limits are honoured; never beyond the next history sample.
   const double dt = excitation_.dt_s();
   double tout = std::min(t_end_, t_ + 1.0);
-  if (solver_.stop_at_samples && t_ < excitation_.duration_s()) {
+  if (integrator_->steps_between_samples()) {
+    // It stops at the samples itself, without returning.
+  } else if (solver_.stop_at_samples && t_ < excitation_.duration_s()) {
     // The next sample strictly after t (a root may leave t a hair below a sample).
     double next = (std::floor(t_ / dt) + 1.0) * dt;
     if (next - t_ < 1e-9 * dt) next += dt;

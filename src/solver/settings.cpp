@@ -12,7 +12,8 @@ constexpr std::array<EnumName<UpliftCriterion>, 3> kUpliftNames{{{UpliftCriterio
                                                                  {UpliftCriterion::kPaper, "paper"},
                                                                  {UpliftCriterion::kPaperProcedure, "paper-procedure"}}};
 
-constexpr std::array<EnumName<Integrator>, 5> kIntegratorNames{{{Integrator::kArkodeErk5, "arkode-erk5"},
+constexpr std::array<EnumName<Integrator>, 6> kIntegratorNames{{{Integrator::kDormandPrince5, "dopri5"},
+                                                                {Integrator::kArkodeErk5, "arkode-erk5"},
                                                                 {Integrator::kArkodeErk8, "arkode-erk8"},
                                                                 {Integrator::kCvodeAdams, "cvode-adams"},
                                                                 {Integrator::kCvodeBdf, "cvode-bdf"},

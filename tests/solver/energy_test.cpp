@@ -60,7 +60,7 @@ TEST_P(FreeRocking, KineticEnergyRatioAcrossImpactIsRSquared) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Integrators, FreeRocking,
-                         ::testing::Values(Integrator::kCvodeAdams, Integrator::kCvodeBdf, Integrator::kArkodeErk5,
+                         ::testing::Values(Integrator::kDormandPrince5, Integrator::kCvodeAdams, Integrator::kCvodeBdf, Integrator::kArkodeErk5,
                                            Integrator::kArkodeErk8),
                          test::integrator_test_name);
 

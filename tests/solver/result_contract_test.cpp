@@ -126,7 +126,7 @@ TEST_P(ResultContract, AScenewithoutTendonsHasNoStrains) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Integrators, ResultContract,
-                         ::testing::Values(Integrator::kCvodeAdams, Integrator::kCvodeBdf, Integrator::kArkodeErk5,
+                         ::testing::Values(Integrator::kDormandPrince5, Integrator::kCvodeAdams, Integrator::kCvodeBdf, Integrator::kArkodeErk5,
                                            Integrator::kArkodeErk8, Integrator::kFixedRk4SignChange),
                          test::integrator_test_name);
 

@@ -50,6 +50,31 @@ class Excitation {
   const GroundMotion* vertical_ = nullptr;
 };
 
+/// Evaluates an excitation at times that mostly fall in one sample interval (an
+/// integrator's stages between two samples, where the record is linear): it remembers the
+/// interval, so such a time costs a multiply-add. Bit for bit Excitation::at().
+class ExcitationCursor {
+ public:
+  explicit ExcitationCursor(const Excitation& excitation) : excitation_(excitation) {}
+
+  GroundAcceleration at(double t_s) {
+    if (!(t_s >= lo_s_ && t_s < hi_s_) && !enter(t_s)) return excitation_.at(t_s);
+    const double frac = (t_s - lo_s_) * inv_dt_per_s_;
+    return {h0_ + frac * dh_, v0_ + frac * dv_};
+  }
+  const Excitation& excitation() const { return excitation_; }
+
+ private:
+  /// Remembers the interval holding t; false outside the record (before, at or after its
+  /// last sample, or NaN).
+  bool enter(double t_s);
+
+  Excitation excitation_;
+  double lo_s_ = 0.0, hi_s_ = 0.0;  ///< the interval [k·dt, (k+1)·dt); empty at first
+  double inv_dt_per_s_ = 0.0;
+  double h0_ = 0.0, dh_ = 0.0, v0_ = 0.0, dv_ = 0.0;  ///< samples k and their differences [m/s²]
+};
+
 /// Owns copies of an excitation's components, every one multiplied by `factor` (the
 /// perturbed twins of the verdict check scale the whole ground motion).
 class ScaledExcitation {

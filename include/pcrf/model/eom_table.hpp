@@ -48,6 +48,7 @@ class EomTable {
     enum class State : char { kEmpty, kTabulated, kExact } state = State::kEmpty;
     Coefficients c;   ///< the series
     Coefficients dc;  ///< the series of their x-derivatives
+    std::array<std::array<double, 4>, kNodes> ijqs;  ///< c.I, c.J, c.Q, c.S interleaved (clenshaw4)
   };
 
   /// The cell holding θ₁ on `side` (built on first use) and the local coordinate

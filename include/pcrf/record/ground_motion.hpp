@@ -36,6 +36,19 @@ class GroundMotion {
   /// No allocation, no exceptions.
   double accel_m_s2(double t_s) const;
 
+  /// The sample interval holding t: the k with k·dt ≤ t < (k+1)·dt (the products as
+  /// written), for 0 ≤ t < duration_s(). accel_m_s2 interpolates in it.
+  std::size_t interval_of(double t_s) const {
+    std::size_t k = static_cast<std::size_t>(t_s * inv_dt_);
+    // t·(1/dt) may land one ulp on the wrong side of an integer: the guess is corrected
+    // against the sample times k·dt themselves (both corrections are conditional adds).
+    k -= static_cast<std::size_t>(static_cast<double>(k) * dt_s_ > t_s);
+    k += static_cast<std::size_t>(static_cast<double>(k + 1) * dt_s_ <= t_s);
+    return k;
+  }
+  /// 1/dt [1/s], the factor accel_m_s2 interpolates with.
+  double inverse_dt_per_s() const { return inv_dt_; }
+
   /// Peak absolute acceleration [m/s²].
   double pga_m_s2() const;
 

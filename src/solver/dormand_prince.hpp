@@ -1,0 +1,109 @@
+/// \file dormand_prince.hpp
+/// \brief The purpose-built integrator of the rocking scenes: Dormand–Prince 5(4) with its
+/// dense output, stepping between record samples, events located on the dense output.
+/// Private to the solver.
+///
+/// Method:
+///  - the explicit Runge–Kutta pair of J. R. Dormand and P. J. Prince, "A family of embedded
+///    Runge–Kutta formulae", J. Comput. Appl. Math. 6 (1980) 19–26 (seven stages, first
+///    same as last: six right-hand-side evaluations per accepted step), propagating the
+///    5th-order solution;
+///  - its 4th-order continuous extension by L. F. Shampine, "Some practical Runge–Kutta
+///    formulas", Math. Comp. 46 (1986) 135–150, in the form of E. Hairer, S. P. Nørsett and
+///    G. Wanner, Solving Ordinary Differential Equations I, 2nd ed., Springer 1993, §II.6
+///    (DOPRI5's CONTD5);
+///  - the step-size control of the same book, §II.4 and §IV.2: the error of the embedded
+///    4th-order solution in the weighted RMS norm with weights atol_i + rtol·max(|y_i|,
+///    |ŷ_i|), a PI controller (β = 0.04, safety 0.9, factor bounds 0.2…10), and the starting
+///    step of §II.4 (two right-hand-side evaluations) unless the caller gives one;
+///  - root functions checked for sign changes at step ends (directional, as SUNDIALS' root
+///    finding), and each crossing located on the dense output by the Illinois variant of
+///    regula falsi (M. Dowell and P. Jarratt, BIT 11 (1971) 168–174) to 100 ulp of the time,
+///    reporting the bracket's far end as SUNDIALS does. A root function that depends on the
+///    state alone costs no right-hand-side call per probe: OdeProblem::roots is called on the
+///    interpolated state, and the rocking problem's θ and θ̇ roots never call it.
+///
+/// The breakpoints (the record's samples, where ü_g has a kink) are part of the integrator:
+/// no step crosses one, and the step size the controller wanted is kept across it, so the
+/// integrator runs sample to sample without returning to its caller and without a restart
+/// (the right-hand side is continuous at a kink: the last stage of a step is still the first
+/// of the next). No heap allocation after construction; no N_Vector.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <string>
+
+#include "integrators.hpp"
+
+namespace pcrf::detail {
+
+class DormandPrinceIntegrator final : public OdeIntegrator {
+ public:
+  /// At most this many root functions.
+  static constexpr int kMaxRoots = 8;
+
+  /// `breakpoints`: no step crosses t = k·dt_s for k < count (0 count: none).
+  /// \throws IntegratorError when the problem has more than kMaxRoots roots.
+  DormandPrinceIntegrator(const SolverSettings& settings, OdeProblem& problem, SampleGrid breakpoints);
+
+  void restart(double t0, const double* y0, const int* root_dirs, double t_stop, double h0) override;
+  void set_stop_time(double t_stop) override { t_stop_ = t_stop; }
+  Outcome advance(double tout, double& t, double* y, bool one_step) override;
+  void interpolate(double t, double* y) override;
+  void root_info(int* found) override;
+  SolverCounts counts() override { return counts_; }
+  const std::string& last_error() const override { return error_; }
+  bool steps_between_samples() const override { return grid_.count > 0; }
+
+ private:
+  using Vec = std::array<double, 2>;
+
+  /// One attempted step from (t0_, y0_) with h; false when the right-hand side failed.
+  bool try_step(double h, Vec& y1, Vec& k7, double& err);
+  /// Takes one accepted step (with retries); false on failure (error_ set).
+  bool step();
+  /// The starting step of Hairer, Nørsett & Wanner §II.4.
+  double initial_step();
+  /// The next breakpoint strictly after t (or +∞).
+  double next_breakpoint(double t) const;
+  /// Looks for the earliest root crossing in (a, b] of the current step, from g_a at a.
+  /// Fills root_time_ and found_ and returns true when one exists.
+  bool find_roots(double a, const double* g_a, double b, const double* g_b);
+  /// Narrows [lo, hi] (values glo, ghi of opposite signs) around the root of dense
+  /// component `component` to ttol.
+  void locate_on_interpolant(int component, double& lo, double& glo, double& hi, double& ghi, double ttol) const;
+  /// g at time t of the current step, from the dense output.
+  bool roots_at(double t, double* g);
+  void dense(double t, Vec& y) const;
+  /// Component i of the dense output at t (within a step).
+  double dense_component(double t, int i) const;
+  bool fail(const std::string& text);
+
+  SolverSettings settings_;
+  OdeProblem& problem_;
+  SampleGrid grid_;
+  int nroots_;
+  std::array<int, kMaxRoots> dirs_{};
+  double t_stop_ = 0.0;
+
+  // The current step [t0_, t1_] and its dense output; the position tcur_ within it.
+  double t0_ = 0.0, t1_ = 0.0, tcur_ = 0.0;
+  Vec y0_{}, y1_{}, k1_{}, k7_{};
+  Vec k2_{}, k3_{}, k4_{}, k5_{}, k6_{};  ///< stages of the last attempt
+  std::array<Vec, 5> cont_{};  ///< coefficients of the continuous extension
+  double h_step_ = 0.0;        ///< t1_ − t0_
+  bool have_step_ = false;
+  std::array<double, kMaxRoots> g_cur_{};  ///< root functions at tcur_
+  std::array<double, kMaxRoots> g_end_{};  ///< root functions at t1_
+
+  double h_ = 0.0;        ///< the step the controller proposes next
+  double log_err_old_ = 0.0;  ///< log of the previous accepted error norm (PI control)
+
+  std::array<int, kMaxRoots> found_{};
+  double root_time_ = 0.0;
+  SolverCounts counts_;
+  std::string error_;
+};
+
+}  // namespace pcrf::detail
