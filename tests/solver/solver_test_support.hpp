@@ -37,7 +37,7 @@ inline PhysicsOptions record_only() {
   return physics;
 }
 
-inline SolverSettings tight(Integrator i = Integrator::kCvodeAdams) {
+inline SolverSettings tight(Integrator i = Integrator::kDormandPrince5) {
   SolverSettings s;
   s.integrator = i;
   s.rtol = 1e-12;
