@@ -30,15 +30,14 @@ void check_fragility(const analysis::Lognormal& f) {
 }
 
 /// Simpson's rule in u = ln x over [a, b] with `steps` (even) steps of ∫ P(x) k λ(x) du,
-/// k the hazard's exponent on the piece (one hazard segment).
+/// k the hazard's exponent on the piece (one hazard segment), λ(x) = λ(a) (x/a)^−k on it
+/// (never looked up by an x that rounding could move past the segment's end).
 double simpson(const HazardCurve& h, const analysis::Lognormal& f, double a, double b, std::size_t steps) {
   const double ua = std::log(a), ub = std::log(b), du = (ub - ua) / static_cast<double>(steps);
   const double k = h.slope(std::exp(0.5 * (ua + ub)));
   if (k == 0.0) return 0.0;
-  auto g = [&](double u) {
-    const double x = std::exp(u);
-    return lognormal_cdf(f, x) * h.rate_per_yr(x);
-  };
+  const double rate_a = h.rate_per_yr(a);
+  auto g = [&](double u) { return lognormal_cdf(f, std::exp(u)) * rate_a * std::exp(-k * (u - ua)); };
   double sum = g(ua) + g(ub);
   for (std::size_t i = 1; i < steps; ++i) sum += (i % 2 == 1 ? 4.0 : 2.0) * g(ua + du * static_cast<double>(i));
   return k * sum * du / 3.0;
@@ -152,14 +151,16 @@ RateResult collapse_rate(const HazardCurve& h, const analysis::Lognormal& f, con
   RateResult out;
   std::vector<double> parts(edges.size() - 1, 0.0);
   double total = kNaN;
-  for (std::size_t steps = 8;; steps *= 2) {
+  int settled = 0;  // successive halvings that moved λ_c by less than kSettled: two are asked
+  for (std::size_t steps = 16;; steps *= 2) {
     double sum = 0.0;
     for (std::size_t p = 0; p < parts.size(); ++p) sum += parts[p] = simpson(h, f, edges[p], edges[p + 1], steps);
     out.evaluations += parts.size() * (steps + 1);
     const double change = sum == total ? 0.0 : std::abs(sum - total) / std::abs(sum);
     total = sum;
     out.relative_change = change;
-    if (change < kSettled) break;
+    settled = change < kSettled ? settled + 1 : 0;
+    if (settled == 2) break;
     if (steps >= kMaxSteps) {
       if (change < kPromised) break;
       throw std::runtime_error("the collapse-rate integral did not settle to 0.1 % (relative change " +

@@ -61,7 +61,7 @@ TEST(Risk, CollapseRateMatchesCornellClosedForm) {
     const auto result = pcrf::risk::collapse_rate(hazard, f);
     const double exact = pcrf::risk::cornell_collapse_rate(k0, k, f);
     EXPECT_NEAR(result.lambda_per_yr / exact, 1.0, 1e-4) << "k " << k << " theta " << theta << " beta " << beta;
-    EXPECT_LT(result.relative_change, 1e-3);
+    EXPECT_LT(result.relative_change, 1e-7);  // settled, not stopped at the step limit
     double sum = 0.0;
     for (const auto& p : result.pieces) sum += p.rate_per_yr;
     EXPECT_NEAR(sum, result.lambda_per_yr, 1e-12 * exact);
@@ -80,7 +80,8 @@ TEST(Risk, CutOffCountsTheLastRateAtTheLastIntensityABound) {
   EXPECT_NEAR(cut.beyond_last_per_yr / mass, 1.0, 1e-12);
   EXPECT_GT(power.beyond_last_per_yr, cut.beyond_last_per_yr);
   // Below the last point the two agree.
-  EXPECT_NEAR(cut.rate_below(1.5) / power.rate_below(1.5), 1.0, 1e-6);  // each settled to 1e-7
+  EXPECT_NEAR(cut.rate_below(1.5) / power.rate_below(1.5), 1.0, 1e-7);  // each settled to 1e-7
+  EXPECT_LT(cut.relative_change, 1e-7);  // the integrand keeps its value at the cut-off point
 }
 
 // A fragility that starts at zero (a frame that cannot collapse at the curve's intensities;
