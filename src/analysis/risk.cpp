@@ -182,23 +182,39 @@ RateResult collapse_rate(const HazardCurve& h, const analysis::Lognormal& f, con
 }
 
 RateResult collapse_rate_steps(const HazardCurve& h, const std::vector<double>& intensity,
-                               const std::vector<double>& probability) {
+                               const std::vector<double>& probability, const std::vector<double>& breakpoints) {
   if (intensity.size() != probability.size()) throw std::invalid_argument("a step fragility needs a probability per intensity");
-  RateResult out;
-  double previous = 0.0;
-  const double last = h.intensities().back();
   for (std::size_t j = 0; j < intensity.size(); ++j) {
     if (!(intensity[j] > 0.0) || (j > 0 && !(intensity[j] > intensity[j - 1])))
       throw std::invalid_argument("a step fragility's intensities must be positive and increase");
     if (!(probability[j] >= 0.0 && probability[j] <= 1.0))
       throw std::invalid_argument("a step fragility's probabilities must lie in [0, 1]");
-    const double rate = h.rate_per_yr(intensity[j]) * (probability[j] - previous);
-    out.pieces.push_back({intensity[j], intensity[j], rate});
-    out.lambda_per_yr += rate;
-    if (intensity[j] > last) out.beyond_last_per_yr += rate;
-    if (intensity[j] <= h.intensities().front()) out.fragility_at_lowest = probability[j];
-    previous = probability[j];
   }
+  RateResult out;
+  if (intensity.empty()) return out;
+  const auto& xs = h.intensities();
+  const double last = xs.back();
+  // P is constant between consecutive edges: each piece is P(a) (λ(a) − λ(b)), and the
+  // rate of exceeding the last edge is counted at it with the last P.
+  std::vector<double> edges(intensity.begin(), intensity.end());
+  edges.insert(edges.end(), xs.begin(), xs.end());
+  for (double b : breakpoints)
+    if (b > 0.0 && std::isfinite(b)) edges.push_back(b);
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  auto p_at = [&](double x) {
+    const auto it = std::upper_bound(intensity.begin(), intensity.end(), x);
+    return it == intensity.begin() ? 0.0 : probability[static_cast<std::size_t>(it - intensity.begin()) - 1];
+  };
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    const double a = edges[e], p = p_at(a);
+    const bool final = e + 1 == edges.size();
+    const double rate = p * (h.rate_per_yr(a) - (final ? 0.0 : h.rate_per_yr(edges[e + 1])));
+    out.pieces.push_back({a, final ? a : edges[e + 1], rate});
+    out.lambda_per_yr += rate;
+    if (a >= last) out.beyond_last_per_yr += rate;
+  }
+  out.fragility_at_lowest = p_at(xs.front());
   return out;
 }
 

@@ -136,7 +136,7 @@ RiskReport cube_risk(const cube::CubeReader& cube, const std::vector<cube::Selec
     r.lowest_collapse = lowest_collapse(f);
     r.bracketing = bracketing(f);
     empirical_steps(f, r.empirical_intensity, r.empirical_probability);
-    r.empirical = risk::collapse_rate_steps(hazard, r.empirical_intensity, r.empirical_probability);
+    r.empirical = risk::collapse_rate_steps(hazard, r.empirical_intensity, r.empirical_probability, report.bin_edges);
     r.lower_tail_share = kNaN;
     r.hazard_factor = kNaN;
     if (f.fit) {
@@ -279,7 +279,7 @@ Report risk_report(const RiskReport& result, const RiskInputs& in, const std::st
   const double rt = result.risk_targeted_intensity, uh = result.uniform_hazard_intensity;
   report.fields = {
       {"file", file},
-      {"hazard", result.hazard.file.string()},
+      {"hazard_file", result.hazard.file.string()},
       {"measure", result.hazard.measure},
       {"period_s", result.hazard.period_s ? Cell{*result.hazard.period_s} : Cell{}},
       {"tail", risk::to_string(result.hazard.curve.tail())},
@@ -335,7 +335,7 @@ void print_risk(const Report& report, std::ostream& out) {
     if (const auto* i = std::get_if<std::int64_t>(&c)) return std::to_string(*i);
     return std::string("none");
   };
-  out << "hazard " << text("hazard") << " (" << text("measure")
+  out << "hazard " << text("hazard_file") << " (" << text("measure")
       << (text("period_s") == "none" ? "" : ", T = " + text("period_s") + " s") << "), beyond its last point: "
       << text("tail") << "; lambda_c integrated over a log grid to 0.1 %\n";
   out << "risk target " << text("target_probability") << " in " << text("target_years") << " years ("

@@ -94,7 +94,7 @@ TEST(Risk, FragilityStartingAtZeroGivesAFiniteRate) {
   const auto steps = pcrf::risk::collapse_rate_steps(hazard, {0.1, 0.2, 0.4}, {0.0, 0.0, 0.0});
   EXPECT_EQ(steps.lambda_per_yr, 0.0);
   const auto rising = pcrf::risk::collapse_rate_steps(hazard, {0.1, 0.2, 0.4}, {0.0, 0.0, 0.5});
-  EXPECT_DOUBLE_EQ(rising.lambda_per_yr, 0.5 * 3e-4);
+  EXPECT_DOUBLE_EQ(rising.lambda_per_yr, 0.5 * 3e-4);  // 0.5 (λ(0.4) − λ(0.8)) + 0.5 λ(0.8)
   EXPECT_EQ(pcrf::risk::probability_in_years(0.0, 50.0), 0.0);
   EXPECT_THROW(pcrf::risk::collapse_rate_steps(hazard, {0.1, 0.2}, {0.0, 1.5}), std::invalid_argument);
   EXPECT_THROW(pcrf::risk::collapse_rate(hazard, {0.0, 0.3}), std::invalid_argument);
@@ -112,11 +112,19 @@ TEST(Risk, TextbookDiscreteExampleGivesItsRate) {
   const auto result = pcrf::risk::collapse_rate_steps(hazard, {0.1, 0.2, 0.3}, {0.1, 0.4, 0.6});
   EXPECT_NEAR(result.lambda_per_yr, 0.0114, 0.00005);
   EXPECT_NEAR(pcrf::risk::probability_in_years(result.lambda_per_yr, 1.0), 0.0113, 0.00005);
-  // Its rate deaggregated: the jumps at 0.1, 0.2 and 0.3 g carry 0.006, 0.0048 and 0.0006 /yr.
-  const auto bins = pcrf::risk::deaggregate(result.pieces, {0.05, 0.15, 0.25, 0.35});
-  EXPECT_NEAR(bins[0], 0.006, 1e-15);
-  EXPECT_NEAR(bins[1], 0.0048, 1e-15);
-  EXPECT_NEAR(bins[2], 0.0006, 1e-15);
+  // Its rate deaggregated as the book's table does, P_i |Δλ_i| per IM: 0.0044, 0.0052 and 0.0018 /yr.
+  ASSERT_EQ(result.pieces.size(), 3u);
+  EXPECT_NEAR(result.pieces[0].rate_per_yr, 0.0044, 1e-15);
+  EXPECT_NEAR(result.pieces[1].rate_per_yr, 0.0052, 1e-15);
+  EXPECT_NEAR(result.pieces[2].rate_per_yr, 0.0018, 1e-15);
+  // And over bins, the bin edges splitting the pieces: [0.1, 0.15) holds half of the first
+  // piece in ln-rate terms, λ(0.1) − λ(0.15), times 0.1.
+  const auto split = pcrf::risk::collapse_rate_steps(hazard, {0.1, 0.2, 0.3}, {0.1, 0.4, 0.6}, {0.15, 0.25});
+  EXPECT_NEAR(split.lambda_per_yr, result.lambda_per_yr, 1e-15);
+  const auto bins = pcrf::risk::deaggregate(split.pieces, {0.1, 0.15, 0.2, 0.3, 1.0});
+  EXPECT_NEAR(bins[0], 0.1 * (0.06 - hazard.rate_per_yr(0.15)), 1e-15);
+  EXPECT_NEAR(bins[1], 0.1 * (hazard.rate_per_yr(0.15) - 0.016), 1e-15);
+  EXPECT_NEAR(bins[3], 0.0018, 1e-15);
 }
 
 // Luco et al. (2007): the intensity whose generic fragility (β, 10 % at it) gives 1 % in 50

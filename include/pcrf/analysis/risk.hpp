@@ -86,10 +86,13 @@ RateResult collapse_rate(const HazardCurve& hazard, const analysis::Lognormal& f
 
 /// A step fragility: P(C | x) = probability[j] for intensity[j] ≤ x < intensity[j+1], 0
 /// below intensity[0] (the fraction collapsed at each stripe; an IDA's empirical CDF). λ_c is
-/// exact: Σ_j λ(x_j) (P_j − P_{j−1}), one piece per jump. \throws std::invalid_argument for
-/// sizes that differ, intensities not increasing or ≤ 0, probabilities outside [0, 1].
+/// exact: between consecutive edges (the steps, the hazard points, `breakpoints`) P is
+/// constant and the piece is P(a) (λ(a) − λ(b)); beyond the last edge, P λ(last edge). The
+/// pieces are the deaggregation by ground-motion intensity, as for the lognormal; their sum
+/// equals Σ_j λ(x_j) (P_j − P_{j−1}). \throws std::invalid_argument for sizes that differ,
+/// intensities not increasing or ≤ 0, probabilities outside [0, 1].
 RateResult collapse_rate_steps(const HazardCurve& hazard, const std::vector<double>& intensity,
-                               const std::vector<double>& probability);
+                               const std::vector<double>& probability, const std::vector<double>& breakpoints = {});
 
 /// The empirical fragility of IDA collapse intensities: after each distinct collapse
 /// intensity, the fraction of all `curves` (collapsed or censored) that collapsed at or below it.
