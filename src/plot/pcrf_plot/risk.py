@@ -26,11 +26,12 @@ def draw_hazard(ax, r, units):
         k = -math.log(y[-1] / y[-2]) / math.log(x[-1] / x[-2])
         xt = np.geomspace(x[-1], x[-1] * 4, 20)
         ax.loglog(xt, y[-1] * (xt / x[-1]) ** -k, ":", color=style.BLACK, lw=1.4, label="power-law extension")
-    for field, colour, label in (("risk_targeted_intensity", style.VERMILLION, "risk-targeted"),
-                                 ("uniform_hazard_intensity_2pct_50yr", style.GREEN, "2 % in 50 years")):
+    # Solid and dashed: the two often nearly coincide (a risk coefficient near 1).
+    for field, colour, line, label in (("risk_targeted_intensity", style.VERMILLION, "-", "risk-targeted"),
+                                       ("uniform_hazard_intensity_2pct_50yr", style.GREEN, "--", "2 % in 50 years")):
         value = num(r.get(field))
         if math.isfinite(value):
-            ax.axvline(value, color=colour, ls="--", lw=1.3, label=f"{label}: {value:.3g} {units}")
+            ax.axvline(value, color=colour, ls=line, lw=1.4, label=f"{label}: {value:.3g} {units}")
     ax.set_ylabel("annual rate of exceedance λ [1/yr]")
     ax.legend(loc="lower left")
 
