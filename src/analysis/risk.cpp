@@ -243,6 +243,34 @@ std::vector<double> deaggregate(const std::vector<RatePiece>& pieces, const std:
   return bins;
 }
 
+RateInterval rate_interval(const HazardCurve& h, const std::function<std::optional<analysis::Lognormal>(std::mt19937_64&)>& refit,
+                           std::size_t resamples, double confidence, std::uint64_t seed) {
+  std::mt19937_64 generator(seed);
+  std::vector<double> rates;
+  rates.reserve(resamples);
+  for (std::size_t i = 0; i < resamples; ++i)
+    if (const auto f = refit(generator); f && f->median > 0.0 && f->beta > 0.0 && std::isfinite(f->median) && std::isfinite(f->beta))
+      rates.push_back(collapse_rate(h, *f).lambda_per_yr);
+  RateInterval out{kNaN, kNaN, rates.size()};
+  if (rates.size() < 2) return out;
+  std::sort(rates.begin(), rates.end());
+  auto at = [&](double q) {  // linear between order statistics
+    const double position = q * static_cast<double>(rates.size() - 1);
+    const auto k = static_cast<std::size_t>(position);
+    const double w = position - static_cast<double>(k);
+    return k + 1 < rates.size() ? rates[k] * (1.0 - w) + rates[k + 1] * w : rates[k];
+  };
+  out.low = at(0.5 * (1.0 - confidence));
+  out.high = at(0.5 * (1.0 + confidence));
+  return out;
+}
+
+double RateInterval::size_for(double lambda_per_yr, std::size_t size, double fraction) const {
+  if (!(lambda_per_yr > 0.0) || !std::isfinite(low) || !std::isfinite(high) || size == 0) return kNaN;
+  const double half = 0.5 * (high - low) / lambda_per_yr;
+  return std::ceil(static_cast<double>(size) * (half / fraction) * (half / fraction));
+}
+
 double probability_in_years(double lambda_per_yr, double years) { return -std::expm1(-lambda_per_yr * years); }
 
 double rate_for_probability(double probability, double years) { return -std::log1p(-probability) / years; }

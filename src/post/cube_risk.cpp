@@ -2,6 +2,8 @@
 #include "pcrf/post/cube_risk.hpp"
 
 #include <algorithm>
+#include <functional>
+#include <random>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -88,6 +90,41 @@ std::size_t bracketing(const FrameFragility& f) {
   return static_cast<std::size_t>(std::floor(most));
 }
 
+/// The refit of a resample: an IDA's curves drawn with replacement (censored ones stay
+/// censored); a stripe cube's collapses drawn per stripe from a binomial at its fraction.
+std::function<std::optional<analysis::Lognormal>(std::mt19937_64&)> refit_of(const FrameFragility& f) {
+  if (f.stripes.empty())
+    return [&f](std::mt19937_64& g) {
+      const std::size_t n = f.collapse_intensities.size() + f.censored_intensities.size();
+      std::uniform_int_distribution<std::size_t> pick(0, n - 1);
+      std::vector<double> observed, censored;
+      for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t k = pick(g);
+        if (k < f.collapse_intensities.size()) observed.push_back(f.collapse_intensities[k]);
+        else censored.push_back(f.censored_intensities[k - f.collapse_intensities.size()]);
+      }
+      return analysis::fit_censored(observed, censored);
+    };
+  return [&f](std::mt19937_64& g) {
+    auto stripes = f.stripes;
+    for (auto& s : stripes) {
+      const auto n = static_cast<int>(std::lround(s.trials));
+      if (n <= 0) continue;
+      std::binomial_distribution<int> draw(n, std::clamp(s.collapses / s.trials, 0.0, 1.0));
+      s.trials = n;
+      s.collapses = draw(g);
+    }
+    return analysis::fit_stripes(stripes);
+  };
+}
+
+std::size_t sample_size(const FrameFragility& f) {
+  if (f.stripes.empty()) return f.collapse_intensities.size() + f.censored_intensities.size();
+  double most = 0.0;
+  for (const auto& s : f.stripes) most = std::max(most, s.trials);
+  return static_cast<std::size_t>(std::lround(most));
+}
+
 std::string percent(double share) {
   char text[32];
   std::snprintf(text, sizeof text, "%.0f %%", 100.0 * share);
@@ -146,6 +183,8 @@ RiskReport cube_risk(const cube::CubeReader& cube, const std::vector<cube::Selec
       if (std::isfinite(r.lowest_collapse) && r.lognormal->lambda_per_yr > 0.0)
         r.lower_tail_share = r.lognormal->rate_below(r.lowest_collapse) / r.lognormal->lambda_per_yr;
       r.hazard_factor = risk::hazard_factor_at_target(hazard, *f.fit, in.target);
+      r.sample_size = sample_size(f);
+      if (r.sample_size > 0) r.interval = risk::rate_interval(hazard, refit_of(f));
     }
     warn(r, report, units, report.warnings);
     report.frames.push_back(std::move(r));
@@ -202,6 +241,15 @@ std::vector<ColumnOf<RiskRow>> risk_spec(const std::string& units) {
          return r.frame->lognormal && r.frame->lognormal->lambda_per_yr > 0.0
                     ? number_or_missing(r.frame->empirical.lambda_per_yr / r.frame->lognormal->lambda_per_yr - 1.0)
                     : Cell{};
+       }},
+      {{"lambda_collapse_5%", "1/yr", "5 % end of lambda_c's 90 % bootstrap interval (IDA: curves resampled; stripes: binomial redraws)", "%.3g"},
+       [](const R& r) { return r.frame->lognormal ? number_or_missing(r.frame->interval.low) : Cell{}; }},
+      {{"lambda_collapse_95%", "1/yr", "95 % end of lambda_c's 90 % bootstrap interval", "%.3g"},
+       [](const R& r) { return r.frame->lognormal ? number_or_missing(r.frame->interval.high) : Cell{}; }},
+      {{"records_for_10pct", "", "records (IDA: curves) for a 90 % interval of +-10 % of lambda_c, the width shrinking as 1/sqrt(n)", "%.0f"},
+       [](const R& r) {
+         return r.frame->lognormal ? number_or_missing(r.frame->interval.size_for(r.frame->lognormal->lambda_per_yr, r.frame->sample_size, 0.1))
+                                   : Cell{};
        }},
       {{"lowest_collapse", units, "the lowest intensity at which a collapse was seen"},
        [](const R& r) { return number_or_missing(r.frame->lowest_collapse); }},

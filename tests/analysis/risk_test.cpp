@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
+#include <random>
+#include <utility>
 #include <stdexcept>
 #include <tuple>
 #include <vector>
@@ -154,6 +157,49 @@ TEST(Risk, HazardFactorIsWhereTheFrameMeetsTheTarget) {
   // λ_c(θ / s) = k₀ (θ / s)^−k exp(k² β² / 2) = λ_t.
   const double exact = std::pow(target.rate_per_yr() / pcrf::risk::cornell_collapse_rate(k0, k, f), 1.0 / k);
   EXPECT_NEAR(pcrf::risk::hazard_factor_at_target(hazard, f, target) / exact, 1.0, 1e-4);
+}
+
+/// Collapse intensities at the lognormal's (i − ½)/n quantiles: a sample with no scatter of its own.
+std::vector<double> quantile_sample(const Lognormal& f, std::size_t n) {
+  std::vector<double> x;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double p = (static_cast<double>(i) + 0.5) / static_cast<double>(n);
+    double lo = -10.0, hi = 10.0;  // Φ⁻¹(p) by bisection
+    for (int k = 0; k < 100; ++k) (pcrf::analysis::normal_cdf(0.5 * (lo + hi)) < p ? lo : hi) = 0.5 * (lo + hi);
+    x.push_back(f.median * std::exp(f.beta * 0.5 * (lo + hi)));
+  }
+  return x;
+}
+
+TEST(Risk, BootstrapIntervalOfTheRateNarrowsAsOneOverRootN) {
+  const HazardCurve hazard = pcrf::risk::power_law_curve(4e-4, 2.5, 1e-3, 3.0, 21, Tail::kPowerLaw);
+  auto interval = [&](std::size_t n) {
+    const auto sample = quantile_sample({1.0, 0.4}, n);
+    const auto fit = pcrf::analysis::fit_censored(sample, {});
+    const auto rate = pcrf::risk::collapse_rate(hazard, *fit).lambda_per_yr;
+    const auto result = pcrf::risk::rate_interval(hazard, [&](std::mt19937_64& g) {
+      std::uniform_int_distribution<std::size_t> pick(0, n - 1);
+      std::vector<double> drawn;
+      for (std::size_t i = 0; i < n; ++i) drawn.push_back(sample[pick(g)]);
+      return pcrf::analysis::fit_censored(drawn, {});
+    }, 400);
+    EXPECT_LT(result.low, rate);
+    EXPECT_GT(result.high, rate);
+    EXPECT_EQ(result.fits, 400u);
+    return std::make_pair(rate, result);
+  };
+  const auto [rate20, i20] = interval(20);
+  const auto [rate80, i80] = interval(80);
+  const double ratio = (i20.high - i20.low) / rate20 / ((i80.high - i80.low) / rate80);
+  EXPECT_GT(ratio, 1.5);  // 2 for a width ∝ 1/√n
+  EXPECT_LT(ratio, 2.7);
+  // The size for ±10 %: more than the 20 curves used, and about what 80 curves' width implies.
+  const double need20 = i20.size_for(rate20, 20, 0.1), need80 = i80.size_for(rate80, 80, 0.1);
+  EXPECT_GT(need20, 20.0);
+  EXPECT_NEAR(need20 / need80, 1.0, 0.5);
+  // A refit that never changes gives a point.
+  const auto fixed = pcrf::risk::rate_interval(hazard, [](std::mt19937_64&) { return std::optional<Lognormal>(Lognormal{1.0, 0.4}); }, 10);
+  EXPECT_DOUBLE_EQ(fixed.low, fixed.high);
 }
 
 TEST(Risk, EmpiricalIdaStepsCountEveryCurve) {

@@ -15,7 +15,10 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
+#include <optional>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -102,6 +105,20 @@ void empirical_ida_steps(std::vector<double> collapse_intensities, std::size_t c
 /// Sums `pieces` over the bins [edges[b], edges[b+1]) (a jump at an edge goes to the bin it
 /// starts); pieces outside all bins go to the first or last. `edges` increasing, at least two.
 std::vector<double> deaggregate(const std::vector<RatePiece>& pieces, const std::vector<double>& edges);
+
+/// The spread of λ_c over refits of resampled data: the `confidence` percentile interval of
+/// the λ_c of each refit (`refit` draws a resample with the generator it is given and fits it;
+/// nullopt when the resample cannot be fitted: left out). Fixed `seed`: reproducible.
+struct RateInterval {
+  double low = 0.0;
+  double high = 0.0;
+  std::size_t fits = 0;  ///< resamples that gave a fit
+  /// The sample size at which the interval's half-width would be `fraction` of `lambda_per_yr`,
+  /// from `size` now, the width taken to shrink as 1/√n. NaN without an interval.
+  double size_for(double lambda_per_yr, std::size_t size, double fraction) const;
+};
+RateInterval rate_interval(const HazardCurve& hazard, const std::function<std::optional<analysis::Lognormal>(std::mt19937_64&)>& refit,
+                           std::size_t resamples = 1000, double confidence = 0.9, std::uint64_t seed = 20211);
 
 /// 1 − exp(−λ t): the probability of at least one collapse in `years` (Poisson).
 double probability_in_years(double lambda_per_yr, double years);

@@ -43,6 +43,10 @@ struct FrameRisk {
   /// seen collapsing at one intensity).
   std::size_t bracketing = 0;
   double hazard_factor = 0.0;       ///< risk::hazard_factor_at_target of the fit (NaN: none)
+  /// 90 % interval of the lognormal λ_c over 1000 refits: an IDA's curves resampled with
+  /// replacement; a stripe cube's collapses redrawn per stripe as binomial (n, z/n).
+  risk::RateInterval interval;
+  std::size_t sample_size = 0;      ///< curves (IDA) or records (stripes) the interval is of
 };
 
 struct RiskReport {
