@@ -396,6 +396,10 @@ void add_risk(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
   risk_cmd->add_option("--generic-probability", args->target.collapse_probability,
                        "collapse probability of the generic fragility at the risk-targeted intensity (ASCE 7-16: 0.1)")
       ->capture_default_str();
+  risk_cmd->add_option("--ratings", args->ratings,
+                       "FEMA P-695 quality ratings A-D (design, tests, model) whose dispersions are added to each fit's beta "
+                       "for a second lambda_c")
+      ->capture_default_str();
   add_where(risk_cmd, *args);
   add_report_outputs(risk_cmd, *args,
                      schema("file, hazard_file, measure, period_s, tail, years, target_probability, target_years, "
@@ -413,6 +417,8 @@ void add_risk(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
       post::Report report;
       try {
         in.tail = risk::parse_tail(args->tail);
+        const auto ratings = post::p695_inputs("Dmax", 1.0, 0.0, args->ratings);  // the ratings checked as p695 checks them
+        in.design_rating = ratings.design_rating, in.test_rating = ratings.test_rating, in.model_rating = ratings.model_rating;
         check_report_outputs(*args);
         cube::CubeReader reader(args->file);
         note_partial("risk", args->file, reader);

@@ -9,6 +9,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "pcrf/analysis/p695.hpp"
 #include "pcrf/number_text.hpp"
 #include "pcrf/post/cube_fragility.hpp"
 
@@ -154,9 +155,15 @@ void warn(const FrameRisk& r, const RiskReport& report, const std::string& units
 
 }  // namespace
 
+double RiskInputs::ratings_beta() const {
+  const double d = p695::rating_beta(design_rating), t = p695::rating_beta(test_rating), m = p695::rating_beta(model_rating);
+  return std::sqrt(d * d + t * t + m * m);
+}
+
 RiskReport cube_risk(const cube::CubeReader& cube, const std::vector<cube::Selector>& selectors, const RiskInputs& in) {
   if (!(in.years > 0.0) || !std::isfinite(in.years)) throw std::invalid_argument("--years must be positive");
   risk::check(in.target);
+  (void)in.ratings_beta();  // an unknown rating throws before anything is read
   RiskReport report{read_hazard_file(in.hazard, in.tail), "", {}, {}, kNaN, kNaN, {}};
   report.cube_measure = check_measure(cube, report.hazard);
   const auto& hazard = report.hazard.curve;
@@ -183,6 +190,8 @@ RiskReport cube_risk(const cube::CubeReader& cube, const std::vector<cube::Selec
       if (std::isfinite(r.lowest_collapse) && r.lognormal->lambda_per_yr > 0.0)
         r.lower_tail_share = r.lognormal->rate_below(r.lowest_collapse) / r.lognormal->lambda_per_yr;
       r.hazard_factor = risk::hazard_factor_at_target(hazard, *f.fit, in.target);
+      const double added = in.ratings_beta();
+      r.with_ratings = risk::collapse_rate(hazard, {f.fit->median, std::sqrt(f.fit->beta * f.fit->beta + added * added)});
       r.sample_size = sample_size(f);
       if (r.sample_size > 0) r.interval = risk::rate_interval(hazard, refit_of(f));
     }
@@ -211,6 +220,7 @@ std::vector<Column> columns_of(const std::vector<ColumnOf<Row>>& spec) {
 struct RiskRow {
   const FrameRisk* frame;
   double years;
+  double ratings_beta;
 };
 
 std::vector<ColumnOf<RiskRow>> risk_spec(const std::string& units) {
@@ -251,6 +261,12 @@ std::vector<ColumnOf<RiskRow>> risk_spec(const std::string& units) {
          return r.frame->lognormal ? number_or_missing(r.frame->interval.size_for(r.frame->lognormal->lambda_per_yr, r.frame->sample_size, 0.1))
                                    : Cell{};
        }},
+      {{"beta_with_ratings", "", "the fitted beta with the P-695 ratings' dispersion added in quadrature (--ratings)", "%.3f"},
+       [](const R& r) {
+         return r.frame->fit ? number_or_missing(std::sqrt(r.frame->fit->beta * r.frame->fit->beta + r.ratings_beta * r.ratings_beta)) : Cell{};
+       }},
+      {{"lambda_collapse_with_ratings_per_yr", "1/yr", "lambda_c of the fitted median with beta_with_ratings", "%.3g"},
+       [](const R& r) { return r.frame->with_ratings ? number_or_missing(r.frame->with_ratings->lambda_per_yr) : Cell{}; }},
       {{"lowest_collapse", units, "the lowest intensity at which a collapse was seen"},
        [](const R& r) { return number_or_missing(r.frame->lowest_collapse); }},
       {{"lower_tail_share", "", "share of the lognormal lambda_c from intensities below the lowest collapse seen", "%.3f"},
@@ -340,6 +356,8 @@ Report risk_report(const RiskReport& result, const RiskInputs& in, const std::st
       {"risk_targeted_intensity", number_or_missing(rt)},
       {"uniform_hazard_intensity_2pct_50yr", number_or_missing(uh)},
       {"risk_coefficient", number_or_missing(rt / uh)},
+      {"ratings", std::string{in.design_rating, in.test_rating, in.model_rating}},
+      {"ratings_beta", in.ratings_beta()},
       {"group_frames", static_cast<std::int64_t>(fitted)},
       {"group_lambda_collapse_per_yr", number_or_missing(mean)},
       {"group_p_collapse_in_years", number_or_missing(risk::probability_in_years(mean, in.years))},
@@ -347,7 +365,7 @@ Report risk_report(const RiskReport& result, const RiskInputs& in, const std::st
   };
   report.warnings = result.warnings;
   std::vector<RiskRow> rows;
-  for (const auto& f : result.frames) rows.push_back({&f, in.years});
+  for (const auto& f : result.frames) rows.push_back({&f, in.years, in.ratings_beta()});
   const std::string im_units = result.hazard.measure.empty() ? "" : result.hazard.measure.substr(result.hazard.measure.rfind('_') + 1);
   report.tables.emplace_back("frames", make_table(risk_spec(im_units), rows));
   report.tables.emplace_back("deaggregation", make_table(bin_spec(im_units), bin_rows(result)));
@@ -391,7 +409,8 @@ void print_risk(const Report& report, std::ostream& out) {
       << text("generic_collapse_probability") << " at the intensity: risk-targeted intensity " << text("risk_targeted_intensity")
       << "; 2 % in 50 years: " << text("uniform_hazard_intensity_2pct_50yr") << " (risk coefficient "
       << text("risk_coefficient") << ")\n";
-  out << "per frame: p_collapse_in_years for t = " << text("years") << " years; the empirical rate beside the lognormal's\n";
+  out << "per frame: p_collapse_in_years for t = " << text("years") << " years; the empirical rate beside the lognormal's; "
+      << "with ratings " << text("ratings") << " (beta " << text("ratings_beta") << " added in quadrature)\n";
   write_text(report.table("frames"), out);
   if (std::get<std::int64_t>(report.field("group_frames")) > 1)
     out << "group of " << text("group_frames") << " frames: mean lambda_c " << text("group_lambda_collapse_per_yr")

@@ -105,11 +105,14 @@ post::Report report(const std::string& kind, const std::string& file, Keywords& 
     in.target.years = keywords.take_number("target_years").value_or(in.target.years);
     in.target.beta = keywords.take_number("generic_beta").value_or(in.target.beta);
     in.target.collapse_probability = keywords.take_number("generic_probability").value_or(in.target.collapse_probability);
+    const auto ratings = keywords.take_text("ratings").value_or("B,B,B");
     keywords.finish();
     if (!hazard) throw api::InputError("risk needs hazard, the hazard curve's CSV file");
     in.hazard = *hazard;
     try {
       in.tail = risk::parse_tail(tail);
+      const auto checked = post::p695_inputs("Dmax", 1.0, 0.0, ratings);  // the ratings checked as p695 checks them
+      in.design_rating = checked.design_rating, in.test_rating = checked.test_rating, in.model_rating = checked.model_rating;
       const cube::CubeReader reader(file);
       return post::risk_report(post::cube_risk(reader, where, in), in, file);
     } catch (const std::invalid_argument& e) {  // a HazardFileError names the file and line

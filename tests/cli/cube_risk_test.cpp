@@ -114,6 +114,15 @@ TEST(CubeRisk, RatesAreTheFragilitysIntegratedAgainstTheCurve) {
   EXPECT_NEAR(std::stod(row["lambda_collapse_empirical_per_yr"]), empirical, 1e-12 * empirical);
   EXPECT_NEAR(std::stod(row["empirical_vs_lognormal"]), empirical / lognormal - 1.0, 1e-5);
   EXPECT_EQ(row["bracketing"], std::to_string(f.collapse_intensities.size()));
+  // With P-695's ratings B, B, B (0.2 each) added to β in quadrature.
+  const double widened = std::sqrt(f.fit->beta * f.fit->beta + 3 * 0.2 * 0.2);
+  EXPECT_NEAR(std::stod(row["beta_with_ratings"]), widened, 1e-12);
+  EXPECT_NEAR(std::stod(row["lambda_collapse_with_ratings_per_yr"]) /
+                  risk::collapse_rate(hazard.curve, {f.fit->median, widened}).lambda_per_yr, 1.0, 1e-6);
+  // The bootstrap interval holds the estimate.
+  EXPECT_LT(std::stod(row["lambda_collapse_5%"]), std::stod(row["lambda_collapse_per_yr"]));
+  EXPECT_GT(std::stod(row["lambda_collapse_95%"]), std::stod(row["lambda_collapse_per_yr"]));
+  EXPECT_EQ(risk_command("i.h5 --hazard h.csv --ratings B,B,X").exit_code, 2);
 
   // The text says which tail was used; the JSON carries it as a field.
   const auto text = risk_command("i.h5 --hazard h.csv --tail cut-off");

@@ -24,6 +24,11 @@ struct RiskInputs {
   risk::Tail tail = risk::Tail::kPowerLaw;
   double years = 50.0;       ///< t of p_collapse_in_years [yr]
   risk::RiskTarget target;   ///< 1 % in 50 years, generic β 0.6, 10 % at the intensity
+  /// FEMA P-695 quality ratings A–D of design requirements, test data and modelling: their
+  /// dispersions (Section 7.3.4) are added to the fitted β in quadrature for a second λ_c.
+  char design_rating = 'B', test_rating = 'B', model_rating = 'B';
+  /// √(β_DR² + β_TD² + β_MDL²) of the ratings.
+  double ratings_beta() const;
 };
 
 /// Fewer collapses than this bracket too few to trust λ_c (a warning).
@@ -47,6 +52,8 @@ struct FrameRisk {
   /// replacement; a stripe cube's collapses redrawn per stripe as binomial (n, z/n).
   risk::RateInterval interval;
   std::size_t sample_size = 0;      ///< curves (IDA) or records (stripes) the interval is of
+  /// λ_c of the fit with the ratings' dispersion added: β' = √(β² + RiskInputs::ratings_beta()²).
+  std::optional<risk::RateResult> with_ratings;
 };
 
 struct RiskReport {

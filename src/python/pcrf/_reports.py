@@ -55,11 +55,11 @@ def p695(cube, period_s, sdc="Dmax", mu_t=0.0, ratings="B,B,B", where=None):
 
 
 def risk(cube, hazard, years=50.0, tail="power-law", target_probability=0.01, target_years=50.0, generic_beta=0.6,
-         generic_probability=0.1, where=None, table="frames"):
+         generic_probability=0.1, ratings="B,B,B", where=None, table="frames"):
     """``pcrf cube risk``: each frame's annual collapse rate at the site of the hazard curve CSV ``hazard``
     (lognormal and empirical side by side), its probability in ``years``, the factor on the hazard at the
     risk target; ``attrs["fields"]`` holds the risk-targeted intensity and the group; ``table=
     "deaggregation"`` for λ_c over intensity bins (also "hazard", "empirical"). See docs/risk.md."""
     return _frame("risk", cube, table, hazard=os.fspath(hazard), years=years, tail=tail,
                   target_probability=target_probability, target_years=target_years, generic_beta=generic_beta,
-                  generic_probability=generic_probability, where=where)
+                  generic_probability=generic_probability, ratings=ratings, where=where)
