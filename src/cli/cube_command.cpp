@@ -404,6 +404,7 @@ void add_risk(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
   add_report_outputs(risk_cmd, *args,
                      schema("file, hazard_file, measure, period_s, tail, years, target_probability, target_years, "
                             "target_rate_per_yr, generic_beta, generic_collapse_probability, risk_targeted_intensity, "
+                            "ratings, ratings_beta, "
                             "uniform_hazard_intensity_2pct_50yr, risk_coefficient, group_frames, "
                             "group_lambda_collapse_per_yr, group_p_collapse_in_years, group_lambda_collapse_max_per_yr; "
                             "tables hazard (the curve read) and empirical (each frame's step fragility) for figures",

@@ -280,7 +280,7 @@ std::vector<ColumnOf<RiskRow>> risk_spec(const std::string& units) {
        [](const R& r) { return count(r.frame->bracketing); }},
       {{"hazard_factor_at_target", "", "factor on the hazard's intensities at which this fragility meets the risk target", "%.3f"},
        [](const R& r) { return number_or_missing(r.frame->hazard_factor); }},
-      {{"integration_change", "", "relative change of lambda_c at the last halving of the log-grid step (below 1e-3 = 0.1 %)", "%.1e", true},
+      {{"integration_change", "", "relative change of lambda_c at the last halving of the log-grid step (it stops below 1e-7; 1e-3 = 0.1 % at most)", "%.1e", true},
        lognormal([](const risk::RateResult& x) { return x.relative_change; })},
       {{"selection", "", "the frame as -w selectors, comma-separated (empty: all)", "%s", true},
        [](const R& r) { return Cell{r.frame->selection}; }},
