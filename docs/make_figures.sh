@@ -44,9 +44,12 @@ study near_field.toml near_field
 plot fragility "$SCRATCH/near_field.h5" --reduce-over incidence_deg --reduce min --reduce median \
   --compare-where incidence_deg=0 -o docs/near_field_fragility.png \
   --title "Six near-fault pairs: fragility at fault-normal (incidence_deg=0) and over orientation"
+study risk.toml risk
+plot risk "$SCRATCH/risk.h5" --hazard studies/risk_hazard_pga.csv -o docs/risk.png \
+  --title "Collapse risk, 44 far-field components, synthetic hazard 2.625e-4 x^-3 /yr"
 study sensitivity.toml sensitivity
 plot sensitivity "$SCRATCH/sensitivity.h5" -m theta_max_rad -o docs/sensitivity.png \
   --title "Sobol' indices of peak rotation: 8 parameters +-30 %, 13 paper records x 2.5"
 "$PYTHON" bench/paper_comparison.py --pcrf "$PCRF" --records "$RECORDS" --out docs
 plot table3 docs/paper_comparison.csv -o docs/table3.png
-echo "make_figures: docs/history.png sweep.png status.png ida.png fragility.png near_field_fragility.png sensitivity.png table3.png"
+echo "make_figures: docs/history.png sweep.png status.png ida.png fragility.png near_field_fragility.png risk.png sensitivity.png table3.png"

@@ -1,4 +1,4 @@
-// `pcrf cube info|export|stats|fragility|sensitivity|p695|merge`: looks into result cubes.
+// `pcrf cube info|export|stats|fragility|sensitivity|p695|risk|merge`: looks into result cubes.
 // One function per subcommand; stats, fragility, sensitivity and p695 compute a post::Report
 // (cube_reports.hpp) and write it as text, CSV (--csv) or JSON (--json).
 #include <CLI/CLI.hpp>
@@ -16,6 +16,7 @@
 #include "pcrf/post/cube_fragility.hpp"
 #include "pcrf/post/cube_p695.hpp"
 #include "pcrf/post/cube_reports.hpp"
+#include "pcrf/post/cube_risk.hpp"
 #include "pcrf/post/cube_sensitivity.hpp"
 #include "pcrf/study/cube_vocabulary.hpp"
 
@@ -45,6 +46,11 @@ struct CubeArguments {
   double period_s = 0.0;
   double mu_t = 0.0;  // 0: each frame's own (docs/p695_rocking_frame.md)
   std::string ratings = "B,B,B";
+  // cube risk
+  std::string hazard;
+  std::string tail = "power-law";
+  double years = 50.0;
+  risk::RiskTarget target;
 };
 
 std::vector<cube::Selector> selectors(const std::vector<std::string>& texts) {
@@ -368,6 +374,65 @@ void add_p695(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
   });
 }
 
+void add_risk(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
+  auto* risk_cmd = cube_cmd->add_subcommand(
+      "risk", "Annual collapse rate of each frame at a site: its fragility integrated against a hazard curve, "
+              "p in --years, deaggregation, risk-targeted intensity (docs/risk.md)");
+  risk_cmd->add_option("FILE", args->file, "result cube with an intensity axis (IDA or stripes)")->required();
+  risk_cmd->add_option("--hazard", args->hazard,
+                       "hazard curve CSV: header MEASURE,annual_rate_per_yr (the cube's measure, e.g. sa_g with a "
+                       "'# period_s = T' line before it), then intensity,rate rows")
+      ->required();
+  risk_cmd->add_option("--years", args->years, "t of p_collapse_in_years = 1 - exp(-lambda_c t) [yr]")->capture_default_str();
+  risk_cmd->add_option("--tail", args->tail,
+                       "beyond the curve's last point: power-law (its last two points' slope) or cut-off (the rate of "
+                       "exceeding the last point counted there: a lower bound)")
+      ->capture_default_str();
+  risk_cmd->add_option("--target-probability", args->target.target_probability,
+                       "risk target: collapse probability in --target-years")->capture_default_str();
+  risk_cmd->add_option("--target-years", args->target.years, "risk target's years")->capture_default_str();
+  risk_cmd->add_option("--generic-beta", args->target.beta,
+                       "beta of the generic fragility of the risk-targeted intensity (ASCE 7-16: 0.6)")->capture_default_str();
+  risk_cmd->add_option("--generic-probability", args->target.collapse_probability,
+                       "collapse probability of the generic fragility at the risk-targeted intensity (ASCE 7-16: 0.1)")
+      ->capture_default_str();
+  risk_cmd->add_option("--ratings", args->ratings,
+                       "FEMA P-695 quality ratings A-D (design, tests, model) whose dispersions are added to each fit's beta "
+                       "for a second lambda_c")
+      ->capture_default_str();
+  add_where(risk_cmd, *args);
+  add_report_outputs(risk_cmd, *args,
+                     schema("file, hazard_file, measure, period_s, tail, years, target_probability, target_years, "
+                            "target_rate_per_yr, generic_beta, generic_collapse_probability, risk_targeted_intensity, "
+                            "ratings, ratings_beta, "
+                            "uniform_hazard_intensity_2pct_50yr, risk_coefficient, group_frames, "
+                            "group_lambda_collapse_per_yr, group_p_collapse_in_years, group_lambda_collapse_max_per_yr; "
+                            "tables hazard (the curve read) and empirical (each frame's step fragility) for figures",
+                            {{"frames", post::risk_columns()}, {"deaggregation", post::risk_deaggregation_columns()}}));
+  risk_cmd->callback([args] {
+    guarded(args->file, [&] {
+      post::RiskInputs in;
+      in.hazard = args->hazard;
+      in.years = args->years;
+      in.target = args->target;
+      post::Report report;
+      try {
+        in.tail = risk::parse_tail(args->tail);
+        const auto ratings = post::p695_inputs("Dmax", 1.0, 0.0, args->ratings);  // the ratings checked as p695 checks them
+        in.design_rating = ratings.design_rating, in.test_rating = ratings.test_rating, in.model_rating = ratings.model_rating;
+        check_report_outputs(*args);
+        cube::CubeReader reader(args->file);
+        note_partial("risk", args->file, reader);
+        note_verdicts("risk", args->file, reader, "counted in no stripe (neither safe nor collapsed)");
+        report = post::risk_report(post::cube_risk(reader, selectors(args->where), in), in, args->file);
+      } catch (const std::invalid_argument& e) {  // a HazardFileError names the file and line
+        throw UsageError(e.what());
+      }
+      write_report(report, "frames", *args, "warning: ", [&](std::ostream& out) { post::print_risk(report, out); });
+    });
+  });
+}
+
 void add_merge(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
   auto* merge = cube_cmd->add_subcommand("merge", "Join the cubes of a sharded run (pcrf study --shard K/N) into one");
   merge->add_option("PARTS", args->parts, "the shards' cubes")->required();
@@ -403,6 +468,7 @@ void add_cube_command(CLI::App& app) {
   add_fragility(cube_cmd, args);
   add_sensitivity(cube_cmd, args);
   add_p695(cube_cmd, args);
+  add_risk(cube_cmd, args);
   add_merge(cube_cmd, args);
 }
 

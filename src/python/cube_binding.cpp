@@ -13,6 +13,7 @@
 #include "pcrf/cube/cube_query.hpp"
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/post/cube_reports.hpp"
+#include "pcrf/post/cube_risk.hpp"
 #include "pcrf/study/cube_vocabulary.hpp"
 
 namespace pcrf::python {
@@ -95,7 +96,30 @@ post::Report report(const std::string& kind, const std::string& file, Keywords& 
       throw api::InputError(e.what());
     }
   }
-  throw api::InputError("unknown report '" + kind + "' (expected stats, fragility, sensitivity or p695)");
+  if (kind == "risk") {
+    post::RiskInputs in;
+    const auto hazard = keywords.take_text("hazard");
+    in.years = keywords.take_number("years").value_or(in.years);
+    const auto tail = keywords.take_text("tail").value_or("power-law");
+    in.target.target_probability = keywords.take_number("target_probability").value_or(in.target.target_probability);
+    in.target.years = keywords.take_number("target_years").value_or(in.target.years);
+    in.target.beta = keywords.take_number("generic_beta").value_or(in.target.beta);
+    in.target.collapse_probability = keywords.take_number("generic_probability").value_or(in.target.collapse_probability);
+    const auto ratings = keywords.take_text("ratings").value_or("B,B,B");
+    keywords.finish();
+    if (!hazard) throw api::InputError("risk needs hazard, the hazard curve's CSV file");
+    in.hazard = *hazard;
+    try {
+      in.tail = risk::parse_tail(tail);
+      const auto checked = post::p695_inputs("Dmax", 1.0, 0.0, ratings);  // the ratings checked as p695 checks them
+      in.design_rating = checked.design_rating, in.test_rating = checked.test_rating, in.model_rating = checked.model_rating;
+      const cube::CubeReader reader(file);
+      return post::risk_report(post::cube_risk(reader, where, in), in, file);
+    } catch (const std::invalid_argument& e) {  // a HazardFileError names the file and line
+      throw api::InputError(e.what());
+    }
+  }
+  throw api::InputError("unknown report '" + kind + "' (expected stats, fragility, sensitivity, p695 or risk)");
 }
 
 std::string cube_report(const std::string& kind, const std::string& file, const py::kwargs& kwargs) {
@@ -114,7 +138,7 @@ std::string cube_report(const std::string& kind, const std::string& file, const 
 
 void bind_cube(py::module_& m) {
   m.def("cube_report", &cube_report, py::arg("kind"), py::arg("file"),
-        "The JSON of `pcrf cube KIND FILE --json` (stats, fragility, sensitivity, p695); see pcrf.fragility.");
+        "The JSON of `pcrf cube KIND FILE --json` (stats, fragility, sensitivity, p695, risk); see pcrf.fragility.");
   m.def("pulse_coordinates", &study::vocabulary::pulse_coordinates,
         "The coordinates a study of pulses may have along `record`: pulse_shape and the pulse axes.");
 }

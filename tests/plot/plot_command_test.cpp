@@ -97,6 +97,13 @@ TEST(PlotCommand, IdaHasOnePanelPerFrameAndFragilityOne) {
   EXPECT_EQ(plot(dir / "ida.svg", "ida " + quoted(cube)), 2);
   EXPECT_EQ(plot(dir / "ida1.svg", "ida " + quoted(cube) + " -w kappa=1.4"), 1);
   EXPECT_EQ(plot(dir / "fragility.svg", "fragility " + quoted(cube)), 1);
+  // risk: the hazard curve, the fragilities and the deaggregation, three panels on one figure.
+  test::write_file(dir, "hazard.csv", "pga_g,annual_rate_per_yr\n0.05,0.178885\n0.3,0.00202837\n3,6.415e-06\n");
+  EXPECT_EQ(plot(dir / "risk.svg", "risk " + quoted(cube) + " --hazard " + quoted(dir / "hazard.csv")), 3);
+  const auto no_hazard = test::run_command(pcrf() + " plot risk " + quoted(cube) + " -o " + quoted(dir / "none.svg"));
+  EXPECT_EQ(no_hazard.exit_code, 2);
+  EXPECT_NE(no_hazard.err.find("risk needs --hazard FILE"), std::string::npos) << no_hazard.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "none.svg"));
   const auto stripes = study(dir, "stripes", records + "]\n[intensity]\nmeasure = \"pga_g\"\n"
                                              "[axes]\nintensity = [1, 1.5, 2, 2.5, 3, 4]\n");
   EXPECT_EQ(plot(dir / "stripes.svg", "fragility " + quoted(stripes)), 1);

@@ -29,6 +29,8 @@ KINDS = {
     "spectrum": "rocking spectrum of an IDA over pulses: collapse amplitude over the uplift threshold against "
                 "omega_p/p, one line per pulse shape, overturning and fracture marked apart",
     "fragility": "collapse fractions or IDA collapse points, the fitted lognormal and its 90 % interval",
+    "risk": "collapse risk at a site (--hazard FILE): the hazard curve, each frame's fragility and the "
+            "deaggregation of its annual collapse rate, on one figure",
     "sensitivity": "first-order and total Sobol' indices with their 90 % intervals",
     "status": "map of the status over two axes (--x, --y), the others selected with -w",
     "table3": "the paper comparison (docs/paper_comparison.csv)",
@@ -82,6 +84,9 @@ def parser():
     p.add_argument("--compare-where", action="append", default=[], metavar="NAME=VALUE",
                    help="fragility: also the fit of the cases with this coordinate value, not reduced "
                         "(e.g. incidence_deg=0, fault-normal, beside --reduce-over incidence_deg; repeatable)")
+    p.add_argument("--hazard", metavar="FILE", help="risk: the site's hazard curve CSV (as pcrf cube risk --hazard)")
+    p.add_argument("--tail", default="power-law", help="risk: beyond the curve's last point, power-law or cut-off")
+    p.add_argument("--years", type=float, default=50.0, help="risk: t of p_collapse_in_years (default 50)")
     p.add_argument("--title", help="figure title (default: what the figure shows)")
     return p
 

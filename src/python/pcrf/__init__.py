@@ -16,7 +16,7 @@ message.
 - ``record_measures(...)``: a record's intensity measures (``pcrf record``).
 - ``study(dict or path, output=...)``: a study, returned as an xarray.Dataset (``pcrf study``).
 - ``open_cube(path)``: a result cube as an xarray.Dataset, ``status`` as integer flags.
-- ``stats``, ``fragility``, ``sensitivity``, ``p695``: ``pcrf cube``'s reports as DataFrames.
+- ``stats``, ``fragility``, ``sensitivity``, ``p695``, ``risk``: ``pcrf cube``'s reports as DataFrames.
 - ``settings()``: every [physics] / [solver] / intensity / [run] key, with unit and default.
 
 The compiled part releases the GIL while it computes: a thread pool over cases uses every core.
@@ -153,10 +153,10 @@ def settings():
 
 
 from ._cube import open_cube  # noqa: E402
-from ._reports import fragility, p695, sensitivity, stats  # noqa: E402
+from ._reports import fragility, p695, risk, sensitivity, stats  # noqa: E402
 from ._study import study  # noqa: E402
 
-__all__ = ["run", "Frame", "record_measures", "study", "open_cube", "stats", "fragility", "sensitivity", "p695",
+__all__ = ["run", "Frame", "record_measures", "study", "open_cube", "stats", "fragility", "sensitivity", "p695", "risk",
            "settings", "InputError", "StudyError"]
 
 import atexit as _atexit  # noqa: E402

@@ -1,4 +1,4 @@
-"""pcrf.stats, fragility, sensitivity, p695: the command line's cube reports as pandas
+"""pcrf.stats, fragility, sensitivity, p695, risk: the command line's cube reports as pandas
 DataFrames, from the JSON that `pcrf cube KIND --json` writes (the same C++, full precision)."""
 
 import json
@@ -52,3 +52,14 @@ def p695(cube, period_s, sdc="Dmax", mu_t=0.0, ratings="B,B,B", where=None):
     """``pcrf cube p695``: FEMA P-695 per frame; the group's verdict in ``attrs["fields"]``. ``mu_t=0``: each
     frame's own period-based ductility (docs/p695_rocking_frame.md), as the command line's default."""
     return _frame("p695", cube, "frames", period_s=period_s, sdc=sdc, mu_t=mu_t, ratings=ratings, where=where)
+
+
+def risk(cube, hazard, years=50.0, tail="power-law", target_probability=0.01, target_years=50.0, generic_beta=0.6,
+         generic_probability=0.1, ratings="B,B,B", where=None, table="frames"):
+    """``pcrf cube risk``: each frame's annual collapse rate at the site of the hazard curve CSV ``hazard``
+    (lognormal and empirical side by side), its probability in ``years``, the factor on the hazard at the
+    risk target; ``attrs["fields"]`` holds the risk-targeted intensity and the group; ``table=
+    "deaggregation"`` for λ_c over intensity bins (also "hazard", "empirical"). See docs/risk.md."""
+    return _frame("risk", cube, table, hazard=os.fspath(hazard), years=years, tail=tail,
+                  target_probability=target_probability, target_years=target_years, generic_beta=generic_beta,
+                  generic_probability=generic_probability, ratings=ratings, where=where)

@@ -1,0 +1,149 @@
+// `pcrf cube risk`: the hazard file's refusals (file, line, problem; exit 2; nothing on
+// stdout), the annual collapse rates of an IDA cube against the fragility and the hazard
+// curve directly, the tail choice reported, and the warnings of few collapses.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <sstream>
+
+#include "pcrf/analysis/risk.hpp"
+#include "pcrf/cube/cube_reader.hpp"
+#include "pcrf/post/cube_fragility.hpp"
+#include "pcrf/post/hazard_file.hpp"
+#include "study/study_test_support.hpp"
+
+namespace pcrf {
+namespace {
+
+using study_test::pcrf;
+using study_test::quoted;
+namespace fs = std::filesystem;
+
+/// λ(x) = 1e-4 x^−2.5 /yr at five PGAs (the synthetic curve of studies/risk_hazard_pga.csv).
+constexpr const char* kHazard =
+    "# synthetic power law lambda = 1e-4 x^-2.5\npga_g,annual_rate_per_yr\n0.05,0.178885\n0.1,0.0316228\n"
+    "0.3,0.00202837\n1,0.0001\n3,6.415e-06\n";
+
+/// An IDA of 12 stochastic records (one frame) and a 6-record stripe cube, made once per process.
+const fs::path& folder() {
+  static const fs::path dir = [] {
+    const auto d = test::scratch_dir(std::string("cube_risk_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    auto records = [](int n) {
+      std::string text = "[[records]]\nsynthetic = [";
+      for (int seed = 1; seed <= n; ++seed)
+        text += std::string(seed > 1 ? ", " : "") + "\"stochastic:seed=" + std::to_string(seed) + ",pga_g=1,duration_s=6\"";
+      return text + "]\n[intensity]\nmeasure = \"pga_g\"\n";
+    };
+    test::write_file(d, "i.toml", records(12) + "[ida]\nstart = 0.5\nmax_intensity = 8\n");
+    test::write_file(d, "f.toml", records(6) + "[axes]\nintensity = [1, 1.5, 2, 3, 4.5, 6]\n");
+    test::write_file(d, "h.csv", kHazard);
+    for (const char* name : {"i", "f"}) {
+      const auto r = test::run_command("cd " + quoted(d) + " && " + pcrf() + " study " + name + ".toml -o " + name +
+                                       ".h5 --progress-interval 0");
+      EXPECT_EQ(r.exit_code, 0) << r.err;
+    }
+    return d;
+  }();
+  return dir;
+}
+
+test::CommandResult risk_command(const std::string& args) {
+  return test::run_command("cd " + quoted(folder()) + " && " + pcrf() + " cube risk " + args);
+}
+
+/// The CSV on stdout as header → value of its only row.
+std::map<std::string, std::string> only_row(const std::string& csv) {
+  std::istringstream in(csv);
+  std::string header, row;
+  std::getline(in, header);
+  std::getline(in, row);
+  std::map<std::string, std::string> values;
+  std::stringstream h(header), r(row);
+  for (std::string name, value; std::getline(h, name, ',');) {
+    std::getline(r, value, ',');
+    values[name.substr(0, name.find(" ["))] = value;
+  }
+  return values;
+}
+
+TEST(CubeRisk, HazardFileRefusalsNameFileLineAndProblem) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"pga_g,annual_rate_per_yr\n0.1,1e-2\n0.2,1e-2\n", "flat.csv:3: the curve is not decreasing"},
+      {"pga_g,annual_rate_per_yr\n0.1,1e-2\n0.2,2e-2\n", "flat.csv:3: the curve is not decreasing"},
+      {"pga_g,annual_rate_per_yr\n0.1,1e-2\n0.2,0\n", "flat.csv:3: the annual rate must be positive"},
+      {"pga_g,annual_rate_per_yr\n0.1,1e-2\n0.2,-1e-3\n", "flat.csv:3: the annual rate must be positive"},
+      {"\n# c\npgv_m_s,annual_rate_per_yr\n0.1,1e-2\n0.2,1e-3\n", "flat.csv:3: the curve's measure is pgv_m_s, the cube's"},
+      {"# period_s = 1\nsa_g,annual_rate_per_yr\n0.1,1e-2\n0.2,1e-3\n", "flat.csv:2: the curve's measure is sa_g"},
+      {"sa_g,annual_rate_per_yr\n0.1,1e-2\n", "flat.csv:1: an sa measure needs a '# period_s"},
+      {"pga,annual_rate_per_yr\n0.1,1e-2\n", "flat.csv:1: the header's first column must name the intensity measure"},
+      {"pga_g,annual_rate_per_yr\n0.1,abc\n", "flat.csv:2: the rate is not a number"},
+      {"pga_g,annual_rate_per_yr\n0.1,1e-2,3\n", "flat.csv:2: expected two fields"},
+      {"pga_g,annual_rate_per_yr\n0.1,1e-2\n", "flat.csv: a hazard curve needs at least two points"},
+      {"0.1,1e-2\n", "flat.csv:1: the header's first column"},
+  };
+  for (const auto& [text, message] : cases) {
+    test::write_file(folder(), "flat.csv", text);
+    const auto r = risk_command("i.h5 --hazard flat.csv");
+    EXPECT_EQ(r.exit_code, 2) << text;
+    EXPECT_NE(r.err.find(message), std::string::npos) << text << "\n" << r.err;
+    EXPECT_EQ(r.out, "") << text;
+  }
+  const auto missing = risk_command("i.h5 --hazard none.csv");
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("none.csv: no such file"), std::string::npos) << missing.err;
+}
+
+TEST(CubeRisk, RatesAreTheFragilitysIntegratedAgainstTheCurve) {
+  const auto r = risk_command("i.h5 --hazard h.csv --years 10 --tail cut-off --csv -");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto row = only_row(r.out);
+  const cube::CubeReader reader(folder() / "i.h5");
+  const auto frames = post::cube_fragility(reader, {});
+  ASSERT_EQ(frames.size(), 1u);
+  const auto& f = frames.front();
+  ASSERT_TRUE(f.fit);
+  const auto hazard = post::read_hazard_file(folder() / "h.csv", risk::Tail::kCutOff);
+  // The lognormal's rate: the library's integral to its 1e-7 (the command adds bin edges).
+  const double lognormal = risk::collapse_rate(hazard.curve, *f.fit).lambda_per_yr;
+  EXPECT_NEAR(std::stod(row["lambda_collapse_per_yr"]) / lognormal, 1.0, 1e-6);
+  EXPECT_NEAR(std::stod(row["p_collapse_in_years"]), 1.0 - std::exp(-10.0 * std::stod(row["lambda_collapse_per_yr"])), 1e-15);
+  // The empirical rate: each curve that collapsed at c adds λ(c) / curves (exact).
+  double empirical = 0.0;
+  for (double c : f.collapse_intensities) empirical += hazard.curve.rate_per_yr(c) / static_cast<double>(f.cases);
+  EXPECT_NEAR(std::stod(row["lambda_collapse_empirical_per_yr"]), empirical, 1e-12 * empirical);
+  EXPECT_NEAR(std::stod(row["empirical_vs_lognormal"]), empirical / lognormal - 1.0, 1e-5);
+  EXPECT_EQ(row["bracketing"], std::to_string(f.collapse_intensities.size()));
+  // With P-695's ratings B, B, B (0.2 each) added to β in quadrature.
+  const double widened = std::sqrt(f.fit->beta * f.fit->beta + 3 * 0.2 * 0.2);
+  EXPECT_NEAR(std::stod(row["beta_with_ratings"]), widened, 1e-12);
+  EXPECT_NEAR(std::stod(row["lambda_collapse_with_ratings_per_yr"]) /
+                  risk::collapse_rate(hazard.curve, {f.fit->median, widened}).lambda_per_yr, 1.0, 1e-6);
+  // The bootstrap interval holds the estimate.
+  EXPECT_LT(std::stod(row["lambda_collapse_5%"]), std::stod(row["lambda_collapse_per_yr"]));
+  EXPECT_GT(std::stod(row["lambda_collapse_95%"]), std::stod(row["lambda_collapse_per_yr"]));
+  EXPECT_EQ(risk_command("i.h5 --hazard h.csv --ratings B,B,X").exit_code, 2);
+
+  // The text says which tail was used; the JSON carries it as a field.
+  const auto text = risk_command("i.h5 --hazard h.csv --tail cut-off");
+  EXPECT_NE(text.out.find("beyond its last point: cut-off"), std::string::npos) << text.out;
+  const auto json = risk_command("i.h5 --hazard h.csv --json");
+  EXPECT_NE(json.out.find("\"tail\": \"power-law\""), std::string::npos) << json.out.substr(0, 400);
+  // The power law beyond 3 g adds what the cut-off leaves at 3 g: never less.
+  auto power = only_row(risk_command("i.h5 --hazard h.csv --csv -").out);
+  EXPECT_GE(std::stod(power["lambda_collapse_per_yr"]), std::stod(row["lambda_collapse_per_yr"]));
+}
+
+TEST(CubeRisk, FewCollapsesAreWarnedOf) {
+  // Six records: at most six collapses bracket the fragility.
+  const auto r = risk_command("f.h5 --hazard h.csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("curves bracket a collapse (fewer than 10)"), std::string::npos) << r.err;
+  // Twelve curves that all collapsed: no such warning.
+  const auto ida = risk_command("i.h5 --hazard h.csv");
+  ASSERT_EQ(ida.exit_code, 0) << ida.err;
+  EXPECT_EQ(ida.err.find("fewer than 10"), std::string::npos) << ida.err;
+}
+
+}  // namespace
+}  // namespace pcrf
