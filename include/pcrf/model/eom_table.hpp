@@ -45,6 +45,9 @@ class EomTable {
     std::array<double, kNodes> I, J, Q, S, G;
   };
   struct Cell {
+    // User-provided: a vector of cells is not zero-filled first (a frame's table holds ~80
+    // cells of 1 kB, and a case visits a few); build() fills what it uses.
+    Cell() {}  // NOLINT(modernize-use-equals-default)
     enum class State : char { kEmpty, kTabulated, kExact } state = State::kEmpty;
     Coefficients c;   ///< the series
     Coefficients dc;  ///< the series of their x-derivatives
