@@ -83,3 +83,11 @@ GroundMotion GroundMotion::scaled(double factor) const {
 }
 
 }  // namespace pcrf
+
+namespace pcrf {
+
+bool same_sample_interval(double a_s, double b_s) {
+  return std::abs(a_s - b_s) <= kSameIntervalTolerance * std::max(std::abs(a_s), std::abs(b_s));
+}
+
+}  // namespace pcrf
