@@ -277,7 +277,8 @@ std::pair<std::int64_t, std::int64_t> shard_range(std::int64_t total, std::size_
 /// 16 384 cases), so that the chunks being computed are few and the writer holds only those.
 constexpr std::int64_t kWindowCases = 65536;
 
-/// The shard's cases not done yet, window by window in storage order (never the whole list):
+/// The shard's cases not done yet, window by window in hand-out order (CaseSpace::handout_index:
+/// storage order, or a Saltelli design's base sample by base sample; never the whole list):
 /// the chunks of a window finish together and the cube writer releases them at its next
 /// checkpoint. Inside a window the cases of a frame come together (CaseSpace::frame_major),
 /// so a worker prepares each frame once per window. Cases with a history stay on rank 0.
@@ -289,17 +290,19 @@ parallel::WorkQueue pending_cases(const cube::CubeWriter& writer, const std::map
   auto pending = [&status](std::int64_t i) { return status[static_cast<std::size_t>(i)] == cube::kStatusNotRun; };
   std::vector<std::int64_t> pinned;
   std::int64_t shared_total = 0;
-  for (std::int64_t i = first; i < last; ++i) {
+  for (std::int64_t k = first; k < last; ++k) {
+    const std::int64_t i = space.handout_index(k);
     if (!pending(i)) continue;
     if (histories.count(i)) pinned.push_back(i);
     else ++shared_total;
   }
+  // Positions in the hand-out order (storage order, or a Saltelli design's frame by frame).
   auto next_window = [pending, &histories, &space, cursor = first, last = last]() mutable {
     std::vector<std::int64_t> window;
     while (window.empty() && cursor < last) {
       const std::int64_t end = std::min(last, cursor + kWindowCases);
-      for (std::int64_t i = cursor; i < end; ++i)
-        if (pending(i) && !histories.count(i)) window.push_back(i);
+      for (std::int64_t k = cursor; k < end; ++k)
+        if (const std::int64_t i = space.handout_index(k); pending(i) && !histories.count(i)) window.push_back(i);
       cursor = end;
     }
     return space.frame_major(std::move(window));
