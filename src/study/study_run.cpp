@@ -18,6 +18,7 @@
 #include "pcrf/parallel/scheduler.hpp"
 #include "pcrf/parallel/work_queue.hpp"
 #include "pcrf/study/case_runner.hpp"
+#include "pcrf/study/cost_estimate.hpp"
 #include "pcrf/study/cube_vocabulary.hpp"
 #include "pcrf/study/ida_work.hpp"
 #include "pcrf/study/progress.hpp"
@@ -339,7 +340,7 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
     history_requests[m.checked.history_cases[h]] = &p.study.histories[h];
 
   StudySummary summary{p.space->size(), m.writer->done_count(), 0, 0, m.output, m.checked.fingerprint,
-                       m.checked.invalid_cases, m.checked.invalid_frames, m.checked.first_invalid, 0, {}, {}, {}};
+                       m.checked.invalid_cases, m.checked.invalid_frames, m.checked.first_invalid, 0, {}, {}, {}, {}};
   ProgressMeter meter(summary.total, summary.already_done, p.study.run.progress_interval_s, progress);
   HistoryInbox inbox;
   // The cases come from the IDA's search, or from the list of cases not done yet.
@@ -446,7 +447,10 @@ std::optional<StudySummary> run_study(const StudyRunOptions& options, const para
   if (options.check_only) {
     if (!mpi.is_master()) return StudySummary{};
     const auto& c = setup.checked;
-    return StudySummary{prepared->space->size(), 0, 0, 0, {}, c.fingerprint, c.invalid_cases, c.invalid_frames, c.first_invalid, 0, {}, {}, {}};
+    StudySummary summary{prepared->space->size(), 0, 0, 0, {}, c.fingerprint, c.invalid_cases, c.invalid_frames,
+                         c.first_invalid, 0, {}, {}, {}, {}};
+    summary.cost_estimate = estimate_cost(prepared->study, *prepared->space, *prepared->records, 16, 1.0).text();
+    return summary;
   }
   if (auto received = receive_study(mpi, prepared.get())) prepared = std::move(received);
 
