@@ -11,6 +11,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "pcrf/number_text.hpp"
+
 namespace pcrf {
 
 namespace {
@@ -23,7 +25,7 @@ std::string record_label(const std::string& name) {
 void validate(const std::string& name, double dt_s, const std::vector<double>& accel_m_s2) {
   if (!(dt_s > 0.0) || !std::isfinite(dt_s)) {
     throw std::invalid_argument(record_label(name) + "dt_s must be positive and finite, got " +
-                                std::to_string(dt_s));
+                                number_text(dt_s));
   }
   if (accel_m_s2.empty()) {
     throw std::invalid_argument(record_label(name) + "no samples");
@@ -75,7 +77,7 @@ double GroundMotion::pga_m_s2() const {
 GroundMotion GroundMotion::scaled(double factor) const {
   if (!std::isfinite(factor)) {
     throw std::invalid_argument(record_label(name_) + "scale factor must be finite, got " +
-                                std::to_string(factor));
+                                number_text(factor));
   }
   std::vector<double> out_m_s2(accel_m_s2_);
   for (double& a : out_m_s2) a *= factor;

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "pcrf/number_text.hpp"
 #include "pcrf/record/horizontal_pair.hpp"
 #include "pcrf/study/fingerprint.hpp"
 #include "pcrf/solver/rocking_solver.hpp"
@@ -55,7 +56,7 @@ void check_records(const Study& study, RecordCache& records, std::vector<std::st
     }
     if (!(im > 0.0) || !std::isfinite(im))
       throw StudyError(source.declared_at + ": records: record \"" + source.name + "\" has " +
-                       to_string(study.intensity->measure) + " = " + std::to_string(im) +
+                       to_string(study.intensity->measure) + " = " + number_text(im) +
                        ": it cannot be scaled to an intensity");
   }
 }

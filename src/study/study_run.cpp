@@ -340,7 +340,7 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
     history_requests[m.checked.history_cases[h]] = &p.study.histories[h];
 
   StudySummary summary{p.space->size(), m.writer->done_count(), 0, 0, m.output, m.checked.fingerprint,
-                       m.checked.invalid_cases, m.checked.invalid_frames, m.checked.first_invalid, 0, {}, {}, {}, {}};
+                       m.checked.invalid_cases, m.checked.invalid_frames, m.checked.first_invalid, 0, {}, {}, {}, {}, m.checked.warnings};
   ProgressMeter meter(summary.total, summary.already_done, p.study.run.progress_interval_s, progress);
   HistoryInbox inbox;
   // The cases come from the IDA's search, or from the list of cases not done yet.
@@ -448,7 +448,7 @@ std::optional<StudySummary> run_study(const StudyRunOptions& options, const para
     if (!mpi.is_master()) return StudySummary{};
     const auto& c = setup.checked;
     StudySummary summary{prepared->space->size(), 0, 0, 0, {}, c.fingerprint, c.invalid_cases, c.invalid_frames,
-                         c.first_invalid, 0, {}, {}, {}, {}};
+                         c.first_invalid, 0, {}, {}, {}, {}, c.warnings};
     summary.cost_estimate = estimate_cost(prepared->study, *prepared->space, *prepared->records, 16, 1.0).text();
     return summary;
   }

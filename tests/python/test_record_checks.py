@@ -97,3 +97,19 @@ def test_components_of_two_stations_warn_naming_both():
     # The station's own components: no warning.
     rinaldi_318 = rinaldi.with_name("RSN1063_NORTHR_RRS318.AT2")
     assert record_warnings(lambda: pcrf.record_measures(rinaldi, record_h2=rinaldi_318)) == []
+
+
+def test_a_study_in_python_gives_its_warnings_as_record_warnings(tmp_path):
+    """pcrf.study(check=True) without progress lines: the study's warnings are RecordWarnings,
+    and the check says what the run would cost."""
+    t = np.arange(0.0, 5.0, DT_S)
+    for name, motion in (("h1.txt", motion_g()), ("h2.txt", motion_g(0.3, period_s=0.7))):
+        np.savetxt(tmp_path / name, np.column_stack([t, motion[: t.size]]))
+    study = {"records": [{"h1": str(tmp_path / "h1.txt"), "h2": str(tmp_path / "h2.txt"), "az1_deg": 0, "az2_deg": 90}],
+             "axes": {"scale": [1.0], "incidence_deg": [3.7, 1.2]}}
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        summary = pcrf.study(study, check=True)
+    lines = [str(w.message) for w in caught if issubclass(w.category, pcrf.RecordWarning)]
+    assert len(lines) == 1 and "axes.incidence_deg" in lines[0], lines
+    assert "sampled cases" in summary["cost_estimate"], summary["cost_estimate"]
