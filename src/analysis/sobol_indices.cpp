@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <random>
 
@@ -66,6 +67,29 @@ std::vector<SobolIndex> sobol_indices(const SaltelliOutputs& outputs, std::size_
     indices[i] = {point.s1[i], percentile(s1[i], tail), percentile(s1[i], 1.0 - tail),
                   point.st[i], percentile(st[i], tail), percentile(st[i], 1.0 - tail)};
   return indices;
+}
+
+std::string sobol_caution(const SobolIndex& index, std::size_t samples) {
+  char text[200];
+  double inconsistency = 0.0;
+  if (index.s1_high < 0.0 || index.st_high < 0.0) {
+    const bool first = index.s1_high < 0.0;
+    inconsistency = -(first ? index.s1 : index.st);
+    std::snprintf(text, sizeof text, "%s = %.3g is negative beyond its interval", first ? "S1" : "ST",
+                  first ? index.s1 : index.st);
+  } else if (index.s1_low > index.st_high) {
+    inconsistency = index.s1 - index.st;
+    std::snprintf(text, sizeof text, "S1 = %.3g is above ST = %.3g beyond their intervals", index.s1, index.st);
+  } else {
+    return {};
+  }
+  const double ratio = inconsistency / kSobolReadableError;
+  double needed = static_cast<double>(samples) * ratio * ratio;
+  needed = std::exp2(std::ceil(std::log2(std::max(needed, 2.0 * static_cast<double>(samples)))));
+  char advice[160];
+  std::snprintf(advice, sizeof advice, ": %zu base samples are too few; about %.0f would bring the error under %g",
+                samples, needed, kSobolReadableError);
+  return std::string(text) + advice;
 }
 
 }  // namespace pcrf::analysis

@@ -91,6 +91,28 @@ std::vector<std::string> implausible_records(const RecordInput& input, const Sta
   check(input.file, station.h1);
   if (station.h2 && !input.file_h2.empty()) check(input.file_h2, *station.h2);
   if (station.up && !input.file_up.empty()) check(input.file_up, *station.up);
+  const auto header = [&](const std::string& file) {
+    const RecordInput part = input.component(file);
+    return ComponentHeader{file, record_metadata(part.spec())};
+  };
+  for (const std::string* other : {&input.file_h2, &input.file_up})
+    if (!other->empty())
+      if (auto line = different_station(header(input.file), header(*other)); !line.empty()) lines.push_back(std::move(line));
+  return lines;
+}
+
+std::vector<std::string> implausible_arrays(const StationRecord& station) {
+  std::vector<std::string> lines;
+  auto check = [&](const GroundMotion& motion) {
+    const auto p = record_plausibility(motion, AccelUnit::kG);
+    if (p.problem.empty()) return;
+    std::string line = motion.name() + ": " + p.problem + ": " + p.hint;
+    if (p.likely_unit) line += " (the array is read in g: convert it to g)";
+    lines.push_back(line);
+  };
+  check(station.h1);
+  if (station.h2) check(*station.h2);
+  if (station.up) check(*station.up);
   return lines;
 }
 

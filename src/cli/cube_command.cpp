@@ -194,8 +194,9 @@ void add_info(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
     guarded(args->file, [&] {
       const cube::CubeReader reader(args->file);
       note_partial("info", args->file, reader);
-      if (args->json) cube::print_info_json(reader, std::cout);
-      else cube::print_info(reader, study::vocabulary::info_heading(reader.layout()), std::cout);
+      const auto completion = study::vocabulary::completion(reader);
+      if (args->json) cube::print_info_json(reader, std::cout, completion);
+      else cube::print_info(reader, study::vocabulary::info_heading(reader.layout()), std::cout, completion);
       if (const auto states = study::vocabulary::curve_states_text(study::vocabulary::curve_states(reader));
           !states.empty())
         (args->json ? std::cerr : std::cout) << states << '\n';

@@ -14,6 +14,7 @@
 #include "pcrf/api/one_case.hpp"
 #include "pcrf/io/output_file.hpp"
 #include "pcrf/number_text.hpp"
+#include "pcrf/record/horizontal_pair.hpp"
 
 namespace pcrf::cli {
 namespace {
@@ -41,6 +42,9 @@ api::ScaledExcitation load_excitation(const RunOptions& o) {
   const StationRecord station = o.record.load_station(notes);
   for (const auto& note : notes) std::cerr << "pcrf run: note: " << note << '\n';
   for (const auto& line : api::implausible_records(o.record, station)) std::cerr << "pcrf run: warning: " << line << '\n';
+  if (o.incidence_deg)
+    if (const auto line = radians_warning("--incidence-deg", {*o.incidence_deg}); !line.empty())
+      std::cerr << "pcrf run: warning: " << line << '\n';
   api::Scaling scaling;
   scaling.scale = o.scale;
   scaling.scale_given = o.scale_flag->count() > 0;

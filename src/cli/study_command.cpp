@@ -134,6 +134,7 @@ void run_study_command(StudyArguments& args) {
       std::cout << args.run.study_file.string() << ": " << summary->invalid_cases << " cases ("
                 << summary->invalid_frames << " frames) lie outside the model's domain and will end as invalid_frame, "
                 << "e.g. " << summary->first_invalid << std::endl;
+    std::cout << args.run.study_file.string() << ": " << summary->cost_estimate << std::endl;
   }
 }
 

@@ -12,6 +12,7 @@
 #include <charconv>
 #include <cmath>
 #include <limits>
+#include <cctype>
 #include <map>
 
 namespace pcrf::cube {
@@ -86,7 +87,50 @@ std::vector<bool> select_cases(const CubeLayout& layout, const std::vector<Selec
   return selected;
 }
 
-void print_info(const CubeReader& cube, const std::string& heading, std::ostream& out) {
+std::vector<MessageKind> message_kinds(const std::vector<std::pair<std::int64_t, std::string>>& notes) {
+  const auto kind_of = [](const std::string& text) {  // the text with each number as '#'
+    std::string kind;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+      const bool digit = std::isdigit(static_cast<unsigned char>(text[i])) != 0;
+      if (!digit) {
+        kind += text[i];
+        continue;
+      }
+      if (kind.empty() || kind.back() != '#') kind += '#';
+      while (i + 1 < text.size() && (std::isdigit(static_cast<unsigned char>(text[i + 1])) || text[i + 1] == '.' ||
+                                     text[i + 1] == 'e' || text[i + 1] == 'E' || text[i + 1] == '-' || text[i + 1] == '+'))
+        ++i;
+    }
+    return kind;
+  };
+  std::vector<MessageKind> kinds;
+  std::map<std::string, std::size_t> index;
+  for (const auto& [case_index, text] : notes) {
+    const auto [it, added] = index.emplace(kind_of(text), kinds.size());
+    if (added) kinds.push_back({text, case_index, 0});
+    ++kinds[it->second].count;
+  }
+  return kinds;
+}
+
+namespace {
+
+Completion default_completion(const CubeReader& cube, const std::map<std::int8_t, std::int64_t>& counts) {
+  Completion c;
+  c.total = cube.layout().case_count();
+  const auto not_run = counts.find(kStatusNotRun);
+  c.done = c.total - (not_run != counts.end() ? not_run->second : 0);
+  return c;
+}
+
+std::string status_label(const CubeLayout& layout, std::int8_t value, const Completion& completion) {
+  return value == kStatusNotRun && !completion.not_run_label.empty() ? completion.not_run_label : status_text(layout, value);
+}
+
+}  // namespace
+
+void print_info(const CubeReader& cube, const std::string& heading, std::ostream& out,
+                const std::optional<Completion>& given) {
   const auto& layout = cube.layout();
   out << "cube: " << cube.file().string() << '\n';
   if (!heading.empty()) out << heading << '\n';
@@ -117,18 +161,24 @@ void print_info(const CubeReader& cube, const std::string& heading, std::ostream
   const auto status = cube.read_status();
   std::map<std::int8_t, std::int64_t> counts;
   for (auto s : status) ++counts[s];
-  const std::int64_t total = layout.case_count();
-  const std::int64_t done = total - (counts.count(kStatusNotRun) ? counts[kStatusNotRun] : 0);
+  const Completion completion = given ? *given : default_completion(cube, counts);
   char percent[32];
-  std::snprintf(percent, sizeof percent, "%.1f", total ? 100.0 * double(done) / double(total) : 100.0);
-  out << "completion: " << done << "/" << total << " cases (" << percent << " %)\n";
+  std::snprintf(percent, sizeof percent, "%.1f",
+                completion.total ? 100.0 * double(completion.done) / double(completion.total) : 100.0);
+  out << "completion: " << completion.done << "/" << completion.total << " " << completion.unit << " (" << percent << " %)\n";
   out << "status:\n";
-  for (const auto& [value, count] : counts) out << "  " << status_text(layout, value) << ": " << count << '\n';
+  for (const auto& [value, count] : counts) out << "  " << status_label(layout, value, completion) << ": " << count << '\n';
   const auto notes = cube.read_notes();
   if (!notes.empty()) {
-    out << "messages (" << notes.size() << "):\n";
-    for (std::size_t i = 0; i < notes.size() && i < 5; ++i)
-      out << "  case " << notes[i].first << ": " << notes[i].second << '\n';
+    constexpr std::size_t kShown = 8;
+    const auto kinds = message_kinds(notes);
+    out << "messages (" << notes.size() << " cases, " << kinds.size() << (kinds.size() == 1 ? " kind" : " kinds") << "):\n";
+    for (std::size_t i = 0; i < kinds.size() && i < kShown; ++i) {
+      out << "  " << kinds[i].text << " (";
+      if (kinds[i].count == 1) out << "case " << kinds[i].first_case << ")\n";
+      else out << kinds[i].count << " cases, first case " << kinds[i].first_case << ")\n";
+    }
+    if (kinds.size() > kShown) out << "  … and " << kinds.size() - kShown << " more kinds\n";
   }
   const auto histories = cube.history_names();
   if (!histories.empty()) {
@@ -138,7 +188,7 @@ void print_info(const CubeReader& cube, const std::string& heading, std::ostream
   }
 }
 
-void print_info_json(const CubeReader& cube, std::ostream& out) {
+void print_info_json(const CubeReader& cube, std::ostream& out, const std::optional<Completion>& given) {
   const auto& layout = cube.layout();
   std::vector<JsonObject> dimensions, metrics, sides;
   for (const auto& d : layout.dimensions) {
@@ -158,8 +208,16 @@ void print_info_json(const CubeReader& cube, std::ostream& out) {
   }
   std::map<std::int8_t, std::int64_t> counts;
   for (auto s : cube.read_status()) ++counts[s];
+  const Completion completion = given ? *given : default_completion(cube, counts);
   JsonObject status;
-  for (const auto& [value, count] : counts) status.integer(status_text(layout, value), count);
+  for (const auto& [value, count] : counts) status.integer(status_label(layout, value, completion), count);
+  JsonObject done;
+  done.integer("done", completion.done).integer("total", completion.total).text("unit", completion.unit);
+  std::vector<JsonObject> messages;
+  for (const auto& kind : message_kinds(cube.read_notes())) {
+    messages.emplace_back();
+    messages.back().text("text", kind.text).integer("first_case", kind.first_case).integer("cases", kind.count);
+  }
   JsonObject attributes;
   for (const auto& a : layout.attributes) {
     if (const auto* text = std::get_if<std::string>(&a.value)) attributes.text(a.name, *text);
@@ -173,6 +231,8 @@ void print_info_json(const CubeReader& cube, std::ostream& out) {
       .objects("metrics", metrics)
       .objects("side_variables", sides)
       .object("status", status)
+      .object("completion", done)
+      .objects("messages", messages)
       .integer("cases", layout.case_count())
       .texts("histories", cube.history_names())
       .object("attributes", attributes);

@@ -4,15 +4,17 @@
 #include <stdexcept>
 #include <string>
 
+#include "pcrf/number_text.hpp"
+
 namespace pcrf {
 
 Excitation::Excitation(const GroundMotion& horizontal, const GroundMotion* vertical)
     : horizontal_(&horizontal), vertical_(vertical) {
   if (vertical_ == nullptr) return;
-  if (vertical_->dt_s() != horizontal_->dt_s())
+  if (!same_sample_interval(vertical_->dt_s(), horizontal_->dt_s()))
     throw std::invalid_argument("the vertical component '" + vertical_->name() + "' is sampled every " +
-                                std::to_string(vertical_->dt_s()) + " s, the horizontal '" + horizontal_->name() +
-                                "' every " + std::to_string(horizontal_->dt_s()) + " s: they need the same dt");
+                                number_text(vertical_->dt_s()) + " s, the horizontal '" + horizontal_->name() +
+                                "' every " + number_text(horizontal_->dt_s()) + " s: they need the same dt");
   if (vertical_->size() != horizontal_->size())
     throw std::invalid_argument("the vertical component '" + vertical_->name() + "' has " +
                                 std::to_string(vertical_->size()) + " samples, the horizontal '" +

@@ -5,6 +5,7 @@
 #include <cctype>
 #include <stdexcept>
 
+#include "pcrf/number_text.hpp"
 #include "pcrf/record/horizontal_pair.hpp"
 #include "pcrf/record/rotd.hpp"
 
@@ -15,10 +16,12 @@ std::vector<std::string> StationRecord::align() {
   if (h2) parts.push_back(&*h2);
   if (up) parts.push_back(&*up);
   std::size_t longest = 0;
-  for (const GroundMotion* g : parts) {
-    if (g->dt_s() != h1.dt_s())
+  for (GroundMotion* g : parts) {
+    if (!same_sample_interval(g->dt_s(), h1.dt_s()))
       throw std::invalid_argument("components '" + h1.name() + "' and '" + g->name() + "' are sampled at different intervals (" +
-                                  std::to_string(h1.dt_s()) + " s and " + std::to_string(g->dt_s()) + " s)");
+                                  number_text(h1.dt_s()) + " s and " + number_text(g->dt_s()) + " s)");
+    // The same interval up to rounding (19.9 s / 1990 steps against 0.01 s): h1's, bit for bit.
+    if (g->dt_s() != h1.dt_s()) *g = GroundMotion(g->name(), h1.dt_s(), g->samples_m_s2());
     longest = std::max(longest, g->size());
   }
   std::vector<std::string> notes;

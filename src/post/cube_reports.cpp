@@ -257,12 +257,16 @@ Report sensitivity_report(const cube::CubeReader& cube, const SensitivityRequest
                    {"by_record", Cell{std::int64_t{request.by_record ? 1 : 0}}}};
   for (const auto& g : groups) {
     if (g.dropped > 0)
-      report.warnings.push_back(g.record + ": " + std::to_string(g.dropped) +
-                                " base samples left out (a frame without a value)");
-    for (std::size_t i = 0; i < g.parameters.size(); ++i)
+      report.warnings.push_back(g.record + ": interim indices from " + std::to_string(g.samples) + " of " +
+                                std::to_string(g.samples + g.dropped) + " base samples; " + std::to_string(g.dropped) +
+                                " left out (a frame without a value: not run yet, or no verdict)");
+    for (std::size_t i = 0; i < g.parameters.size(); ++i) {
       rows.push_back({g.record, g.parameters[i],
                       i < g.indices.size() ? g.indices[i] : analysis::SobolIndex{kNaN, kNaN, kNaN, kNaN, kNaN, kNaN},
                       g.samples});
+      if (const auto caution = analysis::sobol_caution(rows.back().index, g.samples); !caution.empty())
+        report.warnings.push_back(g.record + ": " + g.parameters[i] + ": " + caution);
+    }
   }
   report.tables.emplace_back("indices", make_table(sensitivity_spec(), rows));
   return report;

@@ -103,7 +103,18 @@ GroundMotion motion_in_g(const std::string& name, double dt_s, const std::vector
 
 }  // namespace
 
-StationRecord Keywords::take_station(std::vector<std::string>& notes, api::RecordInput* used) {
+namespace {
+
+/// An array's dt, checked as a reader checks a file's (sampling_problem).
+void check_array_sampling(const std::string& name, double dt_s, std::size_t samples) {
+  if (const auto problem = sampling_problem(dt_s, samples); !problem.empty())
+    throw api::InputError(name + ": dt_s: " + problem);
+}
+
+}  // namespace
+
+StationRecord Keywords::take_station(std::vector<std::string>& notes, api::RecordInput* used,
+                                     std::vector<std::string>* warnings) {
   const auto h1 = take("ground_accel_g"), h2 = take("ground_accel_h2_g"), up = take("ground_accel_up_g");
   api::RecordInput input;
   input.az1_deg = take_number("azimuth_deg");
@@ -123,6 +134,8 @@ StationRecord Keywords::take_station(std::vector<std::string>& notes, api::Recor
     } catch (const std::invalid_argument& e) {
       throw api::InputError(e.what());
     }
+    check_array_sampling(name, *dt_s, station.h1.size());
+    if (warnings != nullptr) add_warnings(api::implausible_arrays(station), *warnings);
     return station;
   }
   if (h2 || up) throw api::InputError("ground_accel_h2_g and ground_accel_up_g go with ground_accel_g");
@@ -136,7 +149,9 @@ StationRecord Keywords::take_station(std::vector<std::string>& notes, api::Recor
   if (const auto rows = take_number("skip_rows")) input.skip_rows = static_cast<std::size_t>(*rows);
   if (const auto column = take_number("column")) input.column = static_cast<std::size_t>(*column);
   if (used != nullptr) *used = input;
-  return input.load_station(notes);
+  StationRecord station = input.load_station(notes);
+  if (warnings != nullptr) add_warnings(api::implausible_records(input, station), *warnings);
+  return station;
 }
 
 std::unique_ptr<Scene> scene_of(const SceneRequest& request, ScenePoint* point) {
@@ -180,6 +195,16 @@ SceneRequest Keywords::take_scene_parameters() {
       if (const auto value = take_number(key)) request.values[key] = *value;
     }
   return request;
+}
+
+void Keywords::add_warnings(std::vector<std::string> found, std::vector<std::string>& warnings) {
+  found.erase(std::remove(found.begin(), found.end(), std::string()), found.end());  // a check that found nothing
+  if (!warnings_as_errors_) {
+    const auto value = take("warnings_as_errors");
+    warnings_as_errors_ = value && py::bool_(*value);
+  }
+  if (*warnings_as_errors_ && !found.empty()) throw api::InputError(found.front() + " (warnings_as_errors)");
+  for (auto& line : found) warnings.push_back(std::move(line));
 }
 
 void Keywords::finish() const {

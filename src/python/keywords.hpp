@@ -58,8 +58,11 @@ class Keywords {
   /// The record the keywords name: ground_accel_g (+ dt_s) with ground_accel_h2_g and
   /// ground_accel_up_g, or record / synthetic with record_h2 and record_up read like
   /// `pcrf run` reads its files; the azimuths; the notes of padding in `notes`; how the files
-  /// were named in `input` (when not null). \throws api::InputError.
-  StationRecord take_station(std::vector<std::string>& notes, api::RecordInput* input = nullptr);
+  /// were named in `input` (when not null); the record warnings (implausible_records for
+  /// files, implausible_arrays for arrays) in `warnings` (when not null) by add_warnings.
+  /// \throws api::InputError.
+  StationRecord take_station(std::vector<std::string>& notes, api::RecordInput* input = nullptr,
+                             std::vector<std::string>* warnings = nullptr);
   /// The scene of `model=` (pcrf, block, rocking-frame; default pcrf) with the parameters of
   /// `frame=` (a dict by the model's keys, or a pcrf.Frame), every other one at its default,
   /// built as `pcrf run --model` builds it (model/scene_catalog.hpp). \throws api::InputError.
@@ -68,12 +71,17 @@ class Keywords {
   /// (pcrf.Frame(model="block", slenderness_rad=0.2)); checked by scene_of().
   SceneRequest take_scene_parameters();
 
+  /// Adds `found` (lines of a check that warns) to `warnings`; with the keyword
+  /// warnings_as_errors true the first is an api::InputError instead.
+  void add_warnings(std::vector<std::string> found, std::vector<std::string>& warnings);
+
   /// \throws api::InputError "unknown keyword 'x' (did you mean 'y'?)" for one not taken.
   void finish() const;
 
  private:
   std::map<std::string, py::object> given_;
   std::vector<std::string> known_;
+  std::optional<bool> warnings_as_errors_;
 };
 
 /// A numpy float array as doubles. \throws api::InputError naming `what`.

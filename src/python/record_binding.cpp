@@ -8,7 +8,7 @@
 namespace pcrf::python {
 namespace {
 
-/// (the JSON text `pcrf record` prints, the notes of padding).
+/// (the JSON text `pcrf record` prints, the notes of padding, the record warnings).
 py::tuple record_measures(const py::kwargs& kwargs) {
   Keywords keywords(kwargs);
   api::MeasureRequest request;
@@ -17,20 +17,21 @@ py::tuple record_measures(const py::kwargs& kwargs) {
   api::check_measure_request(request);
   std::vector<std::string> notes;
   api::RecordInput input;  // the files' names, for their headers' metadata
-  const StationRecord station = keywords.take_station(notes, &input);
+  std::vector<std::string> warnings;
+  const StationRecord station = keywords.take_station(notes, &input, &warnings);
   keywords.finish();
   std::string json;
   {
     py::gil_scoped_release released;
     json = api::record_measures(station, input, request).str();
   }
-  return py::make_tuple(json, py::cast(notes));
+  return py::make_tuple(json, py::cast(notes), py::cast(warnings));
 }
 
 }  // namespace
 
 void bind_record(py::module_& m) {
-  m.def("record_measures", &record_measures, "What `pcrf record` prints, as (JSON text, notes); see pcrf.record_measures.");
+  m.def("record_measures", &record_measures, "What `pcrf record` prints, as (JSON text, notes, record warnings); see pcrf.record_measures.");
 }
 
 }  // namespace pcrf::python

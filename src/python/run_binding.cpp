@@ -9,6 +9,7 @@
 #include "bindings.hpp"
 #include "keywords.hpp"
 #include "pcrf/api/one_case.hpp"
+#include "pcrf/record/horizontal_pair.hpp"
 #include "pcrf/record/intensity.hpp"
 #include "pcrf/solver/history.hpp"
 #include "pcrf/solver/settings.hpp"
@@ -51,6 +52,7 @@ py::array history_array(const std::vector<HistorySample>& rows) {
 struct CaseCall {
   StationRecord station{GroundMotion("none", 1.0, {0.0}), {}, {}, {}, {}};
   std::vector<std::string> notes;
+  std::vector<std::string> warnings;  ///< the record's (implausible_records, implausible_arrays)
   std::optional<double> incidence_deg;
   api::Scaling scaling;
   api::GivenSettings<PhysicsOptions> physics;
@@ -63,8 +65,9 @@ struct CaseCall {
 CaseCall read_call(const py::kwargs& kwargs) {
   Keywords keywords(kwargs);
   CaseCall call;
-  call.station = keywords.take_station(call.notes);
+  call.station = keywords.take_station(call.notes, nullptr, &call.warnings);
   call.incidence_deg = keywords.take_number("incidence_deg");
+  if (call.incidence_deg) keywords.add_warnings({radians_warning("incidence_deg", {*call.incidence_deg})}, call.warnings);
   if (const auto scale = keywords.take_number("scale")) {
     call.scaling.scale = *scale;
     call.scaling.scale_given = true;
@@ -99,14 +102,14 @@ py::tuple run(const py::kwargs& kwargs) {
                                  call.history_dt_s, sink);
   }
   py::object history = call.history ? py::object(history_array(rows)) : py::none();
-  return py::make_tuple(result_dict(scaled.scale_factor, result), history, py::cast(call.notes));
+  return py::make_tuple(result_dict(scaled.scale_factor, result), history, py::cast(call.notes), py::cast(call.warnings));
 }
 
 }  // namespace
 
 void bind_run(py::module_& m) {
   m.def("run", &run,
-        "One case, as `pcrf run`: returns (result dict, history structured array or None, notes). "
+        "One case, as `pcrf run`: returns (result dict, history structured array or None, notes, record warnings). "
         "See pcrf.run for the keywords.");
 }
 

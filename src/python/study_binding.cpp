@@ -159,6 +159,8 @@ py::dict study(const py::object& source, const py::kwargs& kwargs) {
   d["failed"] = summary->failed;
   d["output"] = summary->output.string();
   d["fingerprint"] = summary->fingerprint;
+  d["cost_estimate"] = summary->cost_estimate;  // --check: measured on a sample of cases
+  d["warnings"] = summary->warnings;
   d["invalid_cases"] = summary->invalid_cases;
   d["invalid_frames"] = summary->invalid_frames;
   d["first_invalid"] = summary->first_invalid;

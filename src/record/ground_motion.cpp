@@ -11,6 +11,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "pcrf/number_text.hpp"
+
 namespace pcrf {
 
 namespace {
@@ -23,7 +25,7 @@ std::string record_label(const std::string& name) {
 void validate(const std::string& name, double dt_s, const std::vector<double>& accel_m_s2) {
   if (!(dt_s > 0.0) || !std::isfinite(dt_s)) {
     throw std::invalid_argument(record_label(name) + "dt_s must be positive and finite, got " +
-                                std::to_string(dt_s));
+                                number_text(dt_s));
   }
   if (accel_m_s2.empty()) {
     throw std::invalid_argument(record_label(name) + "no samples");
@@ -71,11 +73,19 @@ double GroundMotion::pga_m_s2() const {
 GroundMotion GroundMotion::scaled(double factor) const {
   if (!std::isfinite(factor)) {
     throw std::invalid_argument(record_label(name_) + "scale factor must be finite, got " +
-                                std::to_string(factor));
+                                number_text(factor));
   }
   std::vector<double> out_m_s2(accel_m_s2_);
   for (double& a : out_m_s2) a *= factor;
   return GroundMotion(name_, dt_s_, std::move(out_m_s2));
+}
+
+}  // namespace pcrf
+
+namespace pcrf {
+
+bool same_sample_interval(double a_s, double b_s) {
+  return std::abs(a_s - b_s) <= kSameIntervalTolerance * std::max(std::abs(a_s), std::abs(b_s));
 }
 
 }  // namespace pcrf

@@ -8,6 +8,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "pcrf/number_text.hpp"
+
 namespace pcrf {
 namespace {
 
@@ -77,10 +79,10 @@ GroundMotion padded(const GroundMotion& record, std::size_t samples) {
 }
 
 GroundMotion project(const HorizontalPair& pair, double phi_deg) {
-  if (pair.h1.dt_s() != pair.h2.dt_s())
+  if (!same_sample_interval(pair.h1.dt_s(), pair.h2.dt_s()))
     throw std::invalid_argument("the horizontal components '" + pair.h1.name() + "' and '" + pair.h2.name() +
-                                "' are sampled at different intervals (" + std::to_string(pair.h1.dt_s()) + " s, " +
-                                std::to_string(pair.h2.dt_s()) + " s)");
+                                "' are sampled at different intervals (" + number_text(pair.h1.dt_s()) + " s, " +
+                                number_text(pair.h2.dt_s()) + " s)");
   const ProjectionWeights w = projection_weights(pair.az1_deg, pair.az2_deg, phi_deg);
   const std::size_t n = std::max(pair.h1.size(), pair.h2.size());
   const auto& a1 = pair.h1.samples_m_s2();
@@ -93,6 +95,21 @@ GroundMotion project(const HorizontalPair& pair, double phi_deg) {
   char name[64];
   std::snprintf(name, sizeof name, "@%gdeg", phi_deg);
   return GroundMotion(pair.h1.name() + name, pair.h1.dt_s(), std::move(a));
+}
+
+std::string radians_warning(const std::string& key, const std::vector<double>& values_deg) {
+  constexpr double kTwoPi = 2.0 * std::numbers::pi;
+  if (values_deg.empty()) return {};
+  bool all_whole = true;
+  for (const double v : values_deg) {
+    if (!(std::fabs(v) <= kTwoPi)) return {};
+    all_whole = all_whole && v == std::nearbyint(v);
+  }
+  if (all_whole) return {};
+  char degrees[32];
+  std::snprintf(degrees, sizeof degrees, "%.4g", values_deg.front() * 180.0 / std::numbers::pi);
+  return key + ": every value is within ±2π and not all are whole degrees: are they radians? (" +
+         number_text(values_deg.front()) + " rad is " + degrees + "°); " + key + " is in degrees";
 }
 
 bool is_vertical_component(const std::string& component) {

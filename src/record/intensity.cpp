@@ -313,7 +313,7 @@ RecordPlausibility record_plausibility(const GroundMotion& record, AccelUnit rea
       }
     }
     if (result.likely_unit) {
-      std::snprintf(text, sizeof text, "is this file in %s (PGA %.3g g)?", to_string(*result.likely_unit).c_str(), best_g);
+      std::snprintf(text, sizeof text, "is it in %s (PGA %.3g g)?", to_string(*result.likely_unit).c_str(), best_g);
       result.hint = text;
     }
     if (!result.likely_unit) result.hint = "check its units and scale";

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "pcrf/number_text.hpp"
 #include "pcrf/setting.hpp"
 #include "pcrf/units.hpp"
 
@@ -20,23 +21,25 @@ constexpr double kPi = std::numbers::pi;
 constexpr double kRickerHalfWidth = 6.0;  ///< the wavelets are cut at |s| = 6 (relative size < 1e-6)
 constexpr double kMaxSamples = 1e8;
 
-[[noreturn]] void bad(const char* field, const std::string& problem) {
-  throw std::invalid_argument(std::string("PulseSpec.") + field + " " + problem);
+/// "period_s of ricker must be …": the key and the kind as a synthetic string names them.
+[[noreturn]] void bad(const PulseSpec& p, const char* field, const std::string& problem) {
+  throw std::invalid_argument(std::string(field) + " of " + pulse_kind(p.shape) + " " + problem);
 }
 
 void validate(const PulseSpec& p) {
-  auto positive = [](const char* field, double value) {
-    if (!(value > 0.0) || !std::isfinite(value)) bad(field, "must be positive and finite, got " + std::to_string(value));
+  auto bad = [&p](const char* field, const std::string& problem) { pcrf::bad(p, field, problem); };
+  auto positive = [&bad](const char* field, double value) {
+    if (!(value > 0.0) || !std::isfinite(value)) bad(field, "must be positive and finite, got " + number_text(value));
   };
   positive("dt_s", p.dt_s);
   positive("period_s", p.period_s);
   positive("amplitude_g", p.amplitude_g);
   if (p.period_s < 4.0 * p.dt_s)
-    bad("period_s", "= " + std::to_string(p.period_s) + " s is below 4 dt_s = " + std::to_string(4.0 * p.dt_s) +
+    bad("period_s", "= " + number_text(p.period_s) + " s is below 4 dt_s = " + number_text(4.0 * p.dt_s) +
                         " s: the pulse would not be resolved");
   if (p.shape == PulseShape::kCycles && p.cycles < 1) bad("cycles", "must be at least 1");
   if (p.shape == PulseShape::kMavroeidis && !(p.gamma > 1.0 && std::isfinite(p.gamma)))
-    bad("gamma", "must be above 1 (the envelope holds more than one oscillation), got " + std::to_string(p.gamma));
+    bad("gamma", "must be above 1 (the envelope holds more than one oscillation), got " + number_text(p.gamma));
   if (!std::isfinite(p.nu_deg)) bad("nu_deg", "must be finite");
   if (!(p.duration_s >= 0.0) || !std::isfinite(p.duration_s)) bad("duration_s", "must be 0 or positive");
 }
@@ -116,7 +119,7 @@ UnitPulse unit_pulse(const PulseSpec& p) {
       return {[p, scale](double t) { return scale * mp_accel(p, t); }, -half, half, peak};
     }
   }
-  throw std::invalid_argument("PulseSpec.shape: unknown value");
+  throw std::invalid_argument("pulse shape: unknown value");
 }
 
 }  // namespace
@@ -135,7 +138,7 @@ std::string pulse_kind(PulseShape shape) { return name_of(kPulseNames, shape); }
 std::vector<PulseShape> pulse_shapes() { return values_of(kPulseNames); }
 
 double cycles_pulse_phase_rad(int cycles) {
-  if (cycles < 1) throw std::invalid_argument("PulseSpec.cycles must be at least 1");
+  if (cycles < 1) throw std::invalid_argument("cycles of pulse-cycles must be at least 1");
   // 2 cos φ − ((2n + 1)π − 2φ) sin φ falls from 2 at φ = 0 to −2nπ at φ = π/2.
   const auto residual = [cycles](double phi) {
     return 2.0 * std::cos(phi) - ((2.0 * cycles + 1.0) * kPi - 2.0 * phi) * std::sin(phi);
@@ -179,7 +182,7 @@ GroundMotion make_pulse(const PulseSpec& p) {
   const double dt = unit.jumps_at_start && k > 0.0 ? to_peak / k : p.dt_s;
   const double delay = unit.jumps_at_start ? 0.0 : k * dt - to_peak;
   const double length_s = std::max(delay + (unit.end_s - unit.begin_s), p.duration_s);
-  if (length_s / dt > kMaxSamples) bad("duration_s", "gives more than 1e8 samples");
+  if (length_s / dt > kMaxSamples) bad(p, "duration_s", "gives more than 1e8 samples");
   const auto n = static_cast<std::size_t>(std::ceil(length_s / dt - 1e-9)) + 1;
   const double a_p = p.amplitude_g * kGravity_m_s2;
   std::vector<double> a(n, 0.0);

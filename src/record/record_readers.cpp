@@ -25,6 +25,7 @@
 #include <utility>
 #include <vector>
 
+#include "pcrf/number_text.hpp"
 #include "pcrf/printable.hpp"
 
 namespace pcrf {
@@ -134,13 +135,7 @@ constexpr double kMaxDt_s = 1.0;
 
 /// A record needs two samples (an interval to interpolate over) and a plausible dt.
 void check_sampling(const std::filesystem::path& file, std::size_t line_number, double dt_s, std::size_t samples) {
-  if (!(dt_s >= kMinDt_s && dt_s <= kMaxDt_s)) {
-    std::ostringstream text;
-    text << "sample interval " << dt_s << " s is outside the range of ground-motion records (" << kMinDt_s
-         << " to " << kMaxDt_s << " s)";
-    fail_at(file, line_number, text.str());
-  }
-  if (samples < 2) fail_at(file, line_number, "a record needs at least 2 samples, found " + std::to_string(samples));
+  if (const auto problem = sampling_problem(dt_s, samples); !problem.empty()) fail_at(file, line_number, problem);
 }
 
 /// value × factor in m/s², refusing a value whose conversion overflows.
@@ -492,6 +487,17 @@ RecordMetadata metadata_from_text(const RecordFileSpec& spec, const std::string&
 
 }  // namespace
 
+std::string sampling_problem(double dt_s, std::size_t samples) {
+  if (!(dt_s >= kMinDt_s && dt_s <= kMaxDt_s)) {
+    std::ostringstream text;
+    text << "sample interval " << number_text(dt_s) << " s is outside the range of ground-motion records (" << kMinDt_s
+         << " to " << kMaxDt_s << " s)";
+    return text.str();
+  }
+  if (samples < 2) return "a record needs at least 2 samples, found " + std::to_string(samples);
+  return {};
+}
+
 GroundMotion read_at2(const std::filesystem::path& file) { return at2_from_text(file, read_text(file)); }
 
 GroundMotion read_two_column(const std::filesystem::path& file, AccelUnit unit, std::size_t skip_rows) {
@@ -526,7 +532,7 @@ GroundMotion read_two_column(const std::filesystem::path& file, AccelUnit unit, 
 GroundMotion read_one_column(const std::filesystem::path& file, double dt_s, AccelUnit unit, std::size_t skip_rows,
                              std::size_t column) {
   if (!(dt_s > 0.0) || !std::isfinite(dt_s)) {
-    fail_file(file, "one-column record needs dt_s > 0, got " + std::to_string(dt_s));
+    fail_file(file, "one-column record needs dt_s > 0, got " + number_text(dt_s));
   }
   const std::string text = read_text(file);
   const std::vector<std::string_view> lines = split_lines(text);
@@ -578,6 +584,35 @@ std::string record_name(const RecordFileSpec& spec) {
 RecordMetadata read_metadata(const RecordFileSpec& spec) {
   if (spec.format != RecordFormat::kAt2) return metadata_from_text(spec, {});
   return metadata_from_text(spec, read_text(spec.path));
+}
+
+namespace {
+
+/// `text` in upper case with its runs of spaces as one, for comparing header fields.
+std::string header_key(const std::string& text) {
+  std::string key;
+  for (const char c : text) {
+    if (std::isspace(static_cast<unsigned char>(c))) {
+      if (!key.empty() && key.back() != ' ') key += ' ';
+    } else {
+      key += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    }
+  }
+  if (!key.empty() && key.back() == ' ') key.pop_back();
+  return key;
+}
+
+}  // namespace
+
+std::string different_station(const ComponentHeader& a, const ComponentHeader& b) {
+  const RecordMetadata &x = a.metadata, &y = b.metadata;
+  if (x.event.empty() || y.event.empty() || x.station.empty() || y.station.empty()) return {};
+  const bool same_event = header_key(x.event) == header_key(y.event);
+  const bool same_station = header_key(x.station) == header_key(y.station);
+  if (same_event && same_station) return {};
+  const char* what = !same_event && !same_station ? "events and stations" : same_event ? "stations" : "events";
+  return a.label + " (" + x.event + ", " + x.station + ") and " + b.label + " (" + y.event + ", " + y.station +
+         ") name different " + what + ": the components of one station were expected; check the file names";
 }
 
 RecordFile read_record_file(const RecordFileSpec& spec) {

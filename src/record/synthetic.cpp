@@ -34,9 +34,11 @@ constexpr double kTwoPi = 6.283185307179586476925286766559;
 constexpr double kMaxSamples = 1e8;
 
 
+/// "period_s of sine must be …, got 1e-07": the key and the kind as a synthetic string
+/// names them (`spec` is the kind: "sine", "stochastic"), the value in full.
 [[noreturn]] void bad_field(const char* spec, const char* field, const std::string& requirement,
                             double value) {
-  throw std::invalid_argument(std::string(spec) + "." + field + " " + requirement + ", got " +
+  throw std::invalid_argument(std::string(field) + " of " + spec + " " + requirement + ", got " +
                               number_text(value));
 }
 
@@ -65,7 +67,7 @@ std::size_t sample_count(const char* spec, double duration_s, double dt_s) {
 // ---- sine pulse train -----------------------------------------------------------------------
 
 void validate(const SinePulseSpec& s) {
-  constexpr const char* kSpec = "SinePulseSpec";
+  constexpr const char* kSpec = "sine";
   require_positive(kSpec, "amplitude_g", s.amplitude_g);
   require_positive(kSpec, "period_s", s.period_s);
   require_positive(kSpec, "dt_s", s.dt_s);
@@ -91,7 +93,7 @@ std::string sine_name(const SinePulseSpec& s) {
 // ---- stochastic record ----------------------------------------------------------------------
 
 void validate(const StochasticSpec& s) {
-  constexpr const char* kSpec = "StochasticSpec";
+  constexpr const char* kSpec = "stochastic";
   require_positive(kSpec, "pga_g", s.pga_g);
   require_positive(kSpec, "dt_s", s.dt_s);
   require_positive(kSpec, "duration_s", s.duration_s);
@@ -217,7 +219,7 @@ void scale_to_peak(std::vector<double>& accel, double target_peak) {
     if (std::abs(accel[i]) > std::abs(accel[peak_index])) peak_index = i;
   }
   const double peak = std::abs(accel[peak_index]);
-  if (!(peak > 0.0)) throw std::invalid_argument("StochasticSpec: the record is identically zero");
+  if (!(peak > 0.0)) throw std::invalid_argument("stochastic: the record is identically zero");
   const double factor = target_peak / peak;
   for (double& a : accel) {
     a *= factor;
@@ -343,7 +345,7 @@ GroundMotion renamed(const GroundMotion& g, const std::string& name) {
 
 GroundMotion make_sine_pulse_train(const SinePulseSpec& spec) {
   validate(spec);
-  const std::size_t n = sample_count("SinePulseSpec", spec.duration_s, spec.dt_s);
+  const std::size_t n = sample_count("sine", spec.duration_s, spec.dt_s);
   const double amplitude_m_s2 = spec.amplitude_g * kGravity_m_s2;
   std::vector<double> accel_m_s2(n, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
@@ -356,7 +358,7 @@ GroundMotion make_sine_pulse_train(const SinePulseSpec& spec) {
 
 GroundMotion make_stochastic(const StochasticSpec& spec) {
   validate(spec);
-  const std::size_t n = sample_count("StochasticSpec", spec.duration_s, spec.dt_s);
+  const std::size_t n = sample_count("stochastic", spec.duration_s, spec.dt_s);
   NormalSource noise(spec.seed);
   KanaiTajimiFilter filter(spec.ground_freq_hz, spec.ground_damping, spec.dt_s);
   std::vector<double> accel_m_s2(n);

@@ -65,6 +65,14 @@ std::vector<std::int64_t> CaseSpace::frame_major(std::vector<std::int64_t> indic
   return indices;
 }
 
+std::int64_t CaseSpace::handout_index(std::int64_t position) const {
+  if (!plan_->hands_out_by_frame() || ida_runs_ > 0) return position;
+  std::int64_t frames = 1;
+  for (std::size_t d = frame_dim_; d < shape_.size(); ++d) frames *= static_cast<std::int64_t>(shape_[d]);
+  const std::int64_t per_frame = size_ / frames;
+  return (position % per_frame) * frames + position / per_frame;
+}
+
 std::vector<SceneSpec> CaseSpace::frames() const { return plan_->frames(); }
 
 std::int64_t CaseSpace::resolve(const HistoryRequest& request) const {

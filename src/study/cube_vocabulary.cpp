@@ -123,6 +123,13 @@ NotRun not_run(const cube::CubeReader& cube) {
   return result;
 }
 
+cube::Completion completion(const cube::CubeReader& cube) {
+  const NotRun missing = not_run(cube);
+  cube::Completion c{missing.total - missing.count, missing.total, missing.unit, ""};
+  if (missing.unit == "curves") c.not_run_label = "no_run_slot";
+  return c;
+}
+
 CurveStates curve_states(const cube::CubeReader& cube) {
   CurveStates states;
   if (cube.layout().find_side_variable(kCurveState) == nullptr) return states;

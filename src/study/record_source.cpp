@@ -19,12 +19,17 @@ std::string RecordSource::describe() const {
 }
 
 LoadedRecord load_record(const RecordSource& source) {
-  if (!source.file) return {StationRecord{make_synthetic(source.synthetic), {}, {}, {}, {}}, source.synthetic, {}};
+  if (!source.file) return {StationRecord{make_synthetic(source.synthetic), {}, {}, {}, {}}, source.synthetic, {}, {}};
   RecordFile file = read_record_file(*source.file);
   std::string title = file.metadata.title.empty() ? source.file->path.filename().string() : std::move(file.metadata.title);
   if (!source.has_components() && !source.az1_deg)  // a record alone, read as it always was
-    return {StationRecord{std::move(file.motion), {}, {}, {}, {}}, std::move(title), {}};
-  auto component = [](RecordFile&& read, const RecordFileSpec& spec) {
+    return {StationRecord{std::move(file.motion), {}, {}, {}, {}}, std::move(title), {}, {}};
+  std::vector<std::string> warnings;
+  const ComponentHeader first{source.file->path.string(), file.metadata};
+  auto component = [&](RecordFile&& read, const RecordFileSpec& spec) {
+    if (&spec != &*source.file)
+      if (auto line = different_station(first, {spec.path.string(), read.metadata}); !line.empty())
+        warnings.push_back(std::move(line));
     return StationComponent{std::move(read.motion), std::move(read.metadata.component), spec.path.string()};
   };
   std::optional<StationComponent> h2, up;
@@ -33,7 +38,7 @@ LoadedRecord load_record(const RecordSource& source) {
   std::vector<std::string> notes;
   StationRecord station = make_station(component(std::move(file), *source.file), source.az1_deg, std::move(h2),
                                        source.az2_deg, std::move(up), notes);
-  return {std::move(station), std::move(title), std::move(notes)};
+  return {std::move(station), std::move(title), std::move(notes), std::move(warnings)};
 }
 
 RecordCache::RecordCache(std::vector<RecordSource> sources)
@@ -52,6 +57,8 @@ const GroundMotion& RecordCache::get(std::size_t index) { return loaded(index).s
 const StationRecord& RecordCache::station(std::size_t index) { return loaded(index).station; }
 
 const std::vector<std::string>& RecordCache::notes(std::size_t index) { return loaded(index).notes; }
+
+const std::vector<std::string>& RecordCache::warnings(std::size_t index) { return loaded(index).warnings; }
 
 const std::string& RecordCache::title(std::size_t index) { return loaded(index).title; }
 

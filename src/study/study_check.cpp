@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "pcrf/number_text.hpp"
+#include "pcrf/record/horizontal_pair.hpp"
 #include "pcrf/study/fingerprint.hpp"
 #include "pcrf/solver/rocking_solver.hpp"
 #include "pcrf/study/study_error.hpp"
@@ -27,7 +29,11 @@ void check_records(const Study& study, RecordCache& records, std::vector<std::st
     }
     if (const auto problem = measures_problem(records.get(r)); !problem.empty())
       throw StudyError(source.declared_at + ": records: record \"" + source.name + "\": " + problem);
-    if (auto warning = record_warning(study, r, records.get(r)); !warning.empty()) {
+    std::vector<std::string> found;
+    if (auto warning = record_warning(study, r, records.get(r)); !warning.empty()) found.push_back(std::move(warning));
+    for (const auto& line : records.warnings(r))
+      found.push_back(source.declared_at + ": records: record \"" + source.name + "\": " + line);
+    for (auto& warning : found) {
       if (study.run.warnings_as_errors) throw StudyError(warning + " ([run] warnings_as_errors)");
       warnings.push_back(std::move(warning));
     }
@@ -50,7 +56,7 @@ void check_records(const Study& study, RecordCache& records, std::vector<std::st
     }
     if (!(im > 0.0) || !std::isfinite(im))
       throw StudyError(source.declared_at + ": records: record \"" + source.name + "\" has " +
-                       to_string(study.intensity->measure) + " = " + std::to_string(im) +
+                       to_string(study.intensity->measure) + " = " + number_text(im) +
                        ": it cannot be scaled to an intensity");
   }
 }
@@ -88,6 +94,17 @@ void check_frames(const Study& study, const CaseSpace& space, CheckedStudy& chec
   }
 }
 
+/// Incidences that all look like radians (radians_warning): a warning, or an error with
+/// warnings_as_errors.
+void check_incidence(const Study& study, std::vector<std::string>& warnings) {
+  const auto line = study.setting_lines.find("axes.incidence_deg");
+  if (line == study.setting_lines.end()) return;
+  auto warning = radians_warning(line->second + ": axes.incidence_deg", study.incidence_deg);
+  if (warning.empty()) return;
+  if (study.run.warnings_as_errors) throw StudyError(warning + " ([run] warnings_as_errors)");
+  warnings.push_back(std::move(warning));
+}
+
 }  // namespace
 
 std::string record_warning(const Study& study, std::size_t r, const GroundMotion& motion) {
@@ -105,6 +122,7 @@ std::string record_warning(const Study& study, std::size_t r, const GroundMotion
 CheckedStudy check_study(const Study& study, const CaseSpace& space, RecordCache& records) {
   CheckedStudy checked;
   check_records(study, records, checked.notes, checked.warnings);
+  check_incidence(study, checked.warnings);
   check_frames(study, space, checked);
   for (const auto& h : study.histories) {
     const std::int64_t index = space.resolve(h);

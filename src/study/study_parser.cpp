@@ -249,6 +249,7 @@ void read_incidence(const Fields& f, Study& s) {
   }
   if (!f.has("incidence_deg")) return;
   s.incidence_deg = read_values(f, "incidence_deg");
+  s.setting_lines["axes.incidence_deg"] = f.where("incidence_deg");  // for the radians warning (study_check)
   std::vector<double> sorted = s.incidence_deg;
   std::sort(sorted.begin(), sorted.end());
   if (auto dup = std::adjacent_find(sorted.begin(), sorted.end()); dup != sorted.end())

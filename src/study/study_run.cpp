@@ -18,6 +18,7 @@
 #include "pcrf/parallel/scheduler.hpp"
 #include "pcrf/parallel/work_queue.hpp"
 #include "pcrf/study/case_runner.hpp"
+#include "pcrf/study/cost_estimate.hpp"
 #include "pcrf/study/cube_vocabulary.hpp"
 #include "pcrf/study/ida_work.hpp"
 #include "pcrf/study/progress.hpp"
@@ -277,7 +278,8 @@ std::pair<std::int64_t, std::int64_t> shard_range(std::int64_t total, std::size_
 /// 16 384 cases), so that the chunks being computed are few and the writer holds only those.
 constexpr std::int64_t kWindowCases = 65536;
 
-/// The shard's cases not done yet, window by window in storage order (never the whole list):
+/// The shard's cases not done yet, window by window in hand-out order (CaseSpace::handout_index:
+/// storage order, or a Saltelli design's base sample by base sample; never the whole list):
 /// the chunks of a window finish together and the cube writer releases them at its next
 /// checkpoint. Inside a window the cases of a frame come together (CaseSpace::frame_major),
 /// so a worker prepares each frame once per window. Cases with a history stay on rank 0.
@@ -289,17 +291,19 @@ parallel::WorkQueue pending_cases(const cube::CubeWriter& writer, const std::map
   auto pending = [&status](std::int64_t i) { return status[static_cast<std::size_t>(i)] == cube::kStatusNotRun; };
   std::vector<std::int64_t> pinned;
   std::int64_t shared_total = 0;
-  for (std::int64_t i = first; i < last; ++i) {
+  for (std::int64_t k = first; k < last; ++k) {
+    const std::int64_t i = space.handout_index(k);
     if (!pending(i)) continue;
     if (histories.count(i)) pinned.push_back(i);
     else ++shared_total;
   }
+  // Positions in the hand-out order (storage order, or a Saltelli design's frame by frame).
   auto next_window = [pending, &histories, &space, cursor = first, last = last]() mutable {
     std::vector<std::int64_t> window;
     while (window.empty() && cursor < last) {
       const std::int64_t end = std::min(last, cursor + kWindowCases);
-      for (std::int64_t i = cursor; i < end; ++i)
-        if (pending(i) && !histories.count(i)) window.push_back(i);
+      for (std::int64_t k = cursor; k < end; ++k)
+        if (const std::int64_t i = space.handout_index(k); pending(i) && !histories.count(i)) window.push_back(i);
       cursor = end;
     }
     return space.frame_major(std::move(window));
@@ -336,7 +340,7 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
     history_requests[m.checked.history_cases[h]] = &p.study.histories[h];
 
   StudySummary summary{p.space->size(), m.writer->done_count(), 0, 0, m.output, m.checked.fingerprint,
-                       m.checked.invalid_cases, m.checked.invalid_frames, m.checked.first_invalid, 0, {}, {}, {}};
+                       m.checked.invalid_cases, m.checked.invalid_frames, m.checked.first_invalid, 0, {}, {}, {}, {}, m.checked.warnings};
   ProgressMeter meter(summary.total, summary.already_done, p.study.run.progress_interval_s, progress);
   HistoryInbox inbox;
   // The cases come from the IDA's search, or from the list of cases not done yet.
@@ -443,7 +447,10 @@ std::optional<StudySummary> run_study(const StudyRunOptions& options, const para
   if (options.check_only) {
     if (!mpi.is_master()) return StudySummary{};
     const auto& c = setup.checked;
-    return StudySummary{prepared->space->size(), 0, 0, 0, {}, c.fingerprint, c.invalid_cases, c.invalid_frames, c.first_invalid, 0, {}, {}, {}};
+    StudySummary summary{prepared->space->size(), 0, 0, 0, {}, c.fingerprint, c.invalid_cases, c.invalid_frames,
+                         c.first_invalid, 0, {}, {}, {}, {}, c.warnings};
+    summary.cost_estimate = estimate_cost(prepared->study, *prepared->space, *prepared->records, 16, 1.0).text();
+    return summary;
   }
   if (auto received = receive_study(mpi, prepared.get())) prepared = std::move(received);
 

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <limits>
 #include <functional>
 #include <numbers>
 
@@ -71,6 +73,25 @@ TEST(SobolIndices, LinearModelIndicesAreTheSquaredWeights) {
 TEST(SobolIndices, AConstantOutputHasNoIndices) {
   const auto o = evaluate(64, 2, 0.0, 1.0, [](const std::vector<double>&) { return 3.0; });
   EXPECT_TRUE(std::isnan(sobol_indices(o, 10)[0].s1));
+}
+
+// Issue 29: S1 > ST at N = 64 passed without a word. An index that cannot be right (S1
+// above ST, or negative, beyond the intervals) gets a caution with the N that would do.
+TEST(SobolIndices, ImpossibleEstimatesGetACautionWithTheSamplesNeeded) {
+  const SobolIndex above{0.4, 0.35, 0.45, 0.2, 0.15, 0.25};
+  const std::string c = sobol_caution(above, 64);
+  EXPECT_NE(c.find("S1 = 0.4 is above ST = 0.2"), std::string::npos) << c;
+  EXPECT_NE(c.find("64 base samples"), std::string::npos) << c;
+  EXPECT_NE(c.find("about 1024"), std::string::npos) << c;  // 64 (0.2 / 0.05)² = 1024
+  const SobolIndex negative{0.1, 0.0, 0.2, -0.3, -0.5, -0.1};
+  const std::string n = sobol_caution(negative, 64);
+  EXPECT_NE(n.find("ST = -0.3 is negative"), std::string::npos) << n;
+  EXPECT_NE(n.find("about 4096"), std::string::npos) << n;  // 64 (0.3 / 0.05)² = 2304, up to 2^12
+  // Overlapping intervals, or a negative estimate whose interval reaches 0: no caution.
+  EXPECT_EQ(sobol_caution({0.3, 0.1, 0.5, 0.25, 0.2, 0.35}, 64), "");
+  EXPECT_EQ(sobol_caution({-0.02, -0.1, 0.05, 0.1, 0.05, 0.2}, 64), "");
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(sobol_caution({nan, nan, nan, nan, nan, nan}, 64), "");
 }
 
 }  // namespace

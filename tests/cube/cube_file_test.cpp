@@ -183,5 +183,22 @@ TEST(CubeQuery, SelectorsMatchDimensionAndAuxiliaryCoordinates) {
   EXPECT_THROW(parse_selector("scale"), CubeError);
 }
 
+// Repeated messages are counted by kind (their numbers set aside), in order of first case.
+TEST(MessageKinds, RepeatedMessagesAreCountedNotListed) {
+  const auto kinds = message_kinds({{3, "tendon strain reached the fracture strain"},
+                                    {5, "non-finite state at t = 3.200000 s"},
+                                    {7, "tendon strain reached the fracture strain"},
+                                    {9, "non-finite state at t = 1e-05 s"},
+                                    {11, "more than max_steps steps"}});
+  ASSERT_EQ(kinds.size(), 3u);
+  EXPECT_EQ(kinds[0].text, "tendon strain reached the fracture strain");
+  EXPECT_EQ(kinds[0].count, 2);
+  EXPECT_EQ(kinds[0].first_case, 3);
+  EXPECT_EQ(kinds[1].text, "non-finite state at t = 3.200000 s");
+  EXPECT_EQ(kinds[1].count, 2);
+  EXPECT_EQ(kinds[2].count, 1);
+  EXPECT_EQ(kinds[2].first_case, 11);
+}
+
 }  // namespace
 }  // namespace pcrf::cube

@@ -7,8 +7,10 @@
 
 #include "pcrf/excitation/station_record.hpp"
 #include "pcrf/model/frame.hpp"
+#include "pcrf/record/record_readers.hpp"
 #include "pcrf/record/synthetic.hpp"
 #include "pcrf/solver/rocking_solver.hpp"
+#include "support/test_support.hpp"
 
 namespace pcrf {
 namespace {
@@ -77,6 +79,58 @@ TEST(StationRecord, ComponentsAreAlignedOrRefused) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("has no second component"), std::string::npos) << e.what();
   }
+}
+
+/// A two-column file of `rows` samples at `dt_s`, its time column written to 2 decimals.
+std::filesystem::path time_column_file(const std::filesystem::path& dir, const std::string& name, std::size_t rows,
+                                       double dt_s) {
+  std::string text;
+  char line[64];
+  for (std::size_t i = 0; i < rows; ++i) {
+    std::snprintf(line, sizeof line, "%.2f %.6f\n", static_cast<double>(i) * dt_s, 0.1 * std::sin(0.3 * static_cast<double>(i)));
+    text += line;
+  }
+  return test::write_file(dir, name, text);
+}
+
+// Issue 29: two text components of one station with different lengths were refused as
+// "sampled at different intervals (0.010000 s and 0.010000 s)": their intervals come from
+// the time columns (19.9 s / 1990 against 9.99 s / 999) and differ in the last digit. They
+// are the same interval: the shorter component is padded with zeros to the longer.
+TEST(StationRecord, TextComponentsOfDifferentLengthsArePadded) {
+  const auto dir = test::scratch_dir("station_text_components");
+  const auto spec = [](const std::filesystem::path& file) { return RecordFileSpec{file, RecordFormat::kTwoColumn, AccelUnit::kG}; };
+  GroundMotion h1 = read_record(spec(time_column_file(dir, "long.txt", 1991, 0.01)));
+  GroundMotion h2 = read_record(spec(time_column_file(dir, "short.txt", 1000, 0.01)));
+  ASSERT_NE(h1.dt_s(), h2.dt_s()) << "the fixture no longer shows the rounding it is about";
+  const double short_last = h2.samples_m_s2().back();
+  std::vector<std::string> notes;
+  const StationRecord station = make_station({h1, "", "long.txt"}, 0.0, StationComponent{h2, "", "short.txt"}, 90.0,
+                                             std::nullopt, notes);
+  ASSERT_EQ(station.h2->size(), 1991u);
+  EXPECT_EQ(station.h2->dt_s(), station.h1.dt_s());
+  EXPECT_EQ(station.h2->samples_m_s2()[999], short_last);
+  EXPECT_EQ(station.h2->samples_m_s2()[1000], 0.0);
+  EXPECT_EQ(station.h2->samples_m_s2().back(), 0.0);
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_NE(notes[0].find("padded with zeros to 1991"), std::string::npos) << notes[0];
+  // A frame at an incidence and a vertical see one time axis.
+  const FrameExcitation excitation(station, 30.0, 1.0);
+  EXPECT_EQ(excitation.horizontal().size(), 1991u);
+}
+
+// Intervals that do differ are refused, and the message tells them apart.
+TEST(StationRecord, DifferentIntervalsAreNamedInFull) {
+  StationRecord station{GroundMotion("a", 0.01, {0.0, 1.0, 0.0}), 0.0, GroundMotion("b", 0.0100001, {0.0, 1.0}), 90.0,
+                        std::nullopt};
+  try {
+    station.align();
+    FAIL() << "different intervals accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("0.01 s and 0.0100001 s"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(same_sample_interval(19.9 / 1990, 0.01));
+  EXPECT_FALSE(same_sample_interval(0.01, 0.01 * (1 + 1e-8)));
 }
 
 }  // namespace

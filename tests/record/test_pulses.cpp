@@ -121,11 +121,14 @@ TEST(Pulses, RickerWaveletsPeakInFrequencyAtOneOverTheirPeriod) {
 
 TEST(Pulses, BadPulsesAreRefusedNamingTheField) {
   const std::vector<std::pair<std::string, std::string>> corpus = {
-      {"pulse-sine:period_s=0.01,dt_s=0.005", "period_s = 0.01"},
-      {"pulse-sine:period_s=-1", "period_s must be positive"},
-      {"ricker:amplitude_g=0", "amplitude_g must be positive"},
-      {"pulse-cycles:cycles=0", "cycles must be at least 1"},
-      {"mavroeidis:gamma=1", "gamma must be above 1"},
+      {"pulse-sine:period_s=0.01,dt_s=0.005", "period_s of pulse-sine = 0.01"},
+      {"pulse-sine:period_s=-1", "period_s of pulse-sine must be positive"},
+      {"ricker:amplitude_g=0", "amplitude_g of ricker must be positive"},
+      {"pulse-cycles:cycles=0", "cycles of pulse-cycles must be at least 1"},
+      {"mavroeidis:gamma=1", "gamma of mavroeidis must be above 1"},
+      // The key as the user wrote it, and the value in full: 1e-07, not 0.000000.
+      {"ricker:period_s=1e-7", "period_s of ricker = 1e-07 s"},
+      {"ricker:period_s=0", "period_s of ricker must be positive and finite, got 0"},
       {"ricker:cycles=2", "unknown key 'cycles' for ricker"},
       {"pulse-square:period_s=1", "unknown kind 'pulse-square'"},
   };

@@ -102,7 +102,7 @@ TEST(SinePulse, InvalidSpecsNameTheField) {
     SinePulseSpec spec;
     c.spoil(spec);
     const std::string m = invalid_argument_message([&] { (void)pcrf::make_sine_pulse_train(spec); });
-    EXPECT_NE(m.find(std::string("SinePulseSpec.") + c.field), std::string::npos) << m;
+    EXPECT_NE(m.find(std::string(c.field) + " of sine"), std::string::npos) << m;
   }
 }
 
@@ -288,7 +288,7 @@ TEST(Stochastic, InvalidSpecsNameTheField) {
     StochasticSpec spec;
     c.spoil(spec);
     const std::string m = invalid_argument_message([&] { (void)pcrf::make_stochastic(spec); });
-    EXPECT_NE(m.find(std::string("StochasticSpec.") + c.field), std::string::npos) << m;
+    EXPECT_NE(m.find(std::string(c.field) + " of stochastic"), std::string::npos) << m;
   }
 }
 
@@ -375,8 +375,8 @@ TEST(MakeSynthetic, ErrorsNameTheProblem) {
       {"sine:cycles=2,,dt_s=0.01", "empty item"},
       {"sine:cycles=2,", "empty item"},
       {"sine:cycles", "expected key=value"},
-      {"sine:period_s=-0.5", "SinePulseSpec.period_s"},
-      {"stochastic:pga_g=0", "StochasticSpec.pga_g"},
+      {"sine:period_s=-0.5", "period_s of sine"},
+      {"stochastic:pga_g=0", "pga_g of stochastic"},
   };
   for (const Case& c : cases) {
     const std::string m = invalid_argument_message([&] { (void)pcrf::make_synthetic(c.text); });

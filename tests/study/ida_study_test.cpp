@@ -12,6 +12,7 @@
 #include <thread>
 
 #include <fstream>
+#include <map>
 #include <regex>
 #include <sstream>
 
@@ -386,6 +387,40 @@ TEST(IdaStudy, ACollapseStatusLeftOutOfTheCollapseSetIsNamedAtTheEndAndByFragili
   const auto plain = run_ida(dir2, ida_study(2, 6), "ida.h5");
   ASSERT_EQ(plain.exit_code, 0) << plain.err;
   EXPECT_EQ(plain.err.find("does not count as collapse"), std::string::npos) << plain.err;
+}
+
+// Issue 29: `cube info` of a finished IDA read "93.1 % complete", its unused slots counted as
+// not_run, and listed one message line per tendon fracture. It counts curves, names the
+// unused slots apart, and counts messages by kind.
+TEST(IdaStudy, CubeInfoOfAFinishedIdaCountsCurvesAndMessagesByKind) {
+  const auto dir = test::scratch_dir("ida_info");
+  std::string text = ida_study(2, 6);
+  text.replace(text.find("max_runs"), 0, "collapse = [\"overturned\"]\n");  // fractures go on: many messages
+  ASSERT_EQ(run_ida(dir, text, "ida.h5").exit_code, 0);
+  cube::CubeReader cube(dir / "ida.h5");
+  const auto status = cube.read_status();
+  const auto unused = std::count(status.begin(), status.end(), cube::kStatusNotRun);
+  const auto notes = cube.read_notes();
+  const auto info = test::run_command(pcrf() + " cube info " + quoted(dir / "ida.h5"));
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_NE(info.out.find("completion: 4/4 curves (100.0 %)"), std::string::npos) << info.out;
+  EXPECT_EQ(info.out.find("not_run"), std::string::npos) << info.out;
+  if (unused > 0) {
+    EXPECT_NE(info.out.find("no_run_slot: " + std::to_string(unused)), std::string::npos) << info.out;
+  }
+  ASSERT_GT(notes.size(), 1u) << "the runs must leave several messages for this test to mean anything";
+  std::map<std::string, long> same;
+  for (const auto& [index, note] : notes) ++same[note];
+  const auto& [most, count] = *std::max_element(same.begin(), same.end(),
+                                               [](const auto& a, const auto& b) { return a.second < b.second; });
+  ASSERT_GT(count, 1) << "no message repeats";
+  // The repeated message is one line with its count, not `count` lines.
+  std::size_t lines = 0;
+  for (std::size_t at = info.out.find(most); at != std::string::npos; at = info.out.find(most, at + 1)) ++lines;
+  EXPECT_EQ(lines, 1u) << info.out;
+  EXPECT_NE(info.out.find(most + " (" + std::to_string(count) + " cases"), std::string::npos) << info.out;
+  const auto json = test::run_command(pcrf() + " cube info --json " + quoted(dir / "ida.h5"));
+  EXPECT_NE(json.out.find("\"completion\": {\"done\": 4, \"total\": 4, \"unit\": \"curves\"}"), std::string::npos) << json.out;
 }
 
 TEST(IdaStudy, UnresolvedRunsAreCountedPerCurveInTheCubeAndOnStderr) {

@@ -72,7 +72,7 @@ TEST(IntensityStudy, BadIntensityStudiesAreRejected) {
       {kTwoPulses + "[intensity]\nmeasure = \"pga\"\n[axes]\nintensity = [1]\n", "intensity.measure: unknown value \"pga\""},
       {kTwoPulses + "[intensity]\nmeasure = \"pga_g\"\n", "an [intensity] table needs [axes] intensity"},
       {"[[records]]\nfile = \"zero.txt\"\n[intensity]\nmeasure = \"pga_g\"\n[axes]\nintensity = [1]\n",
-       "im.toml:2: records: record \"zero\" has pga_g = 0.000000: it cannot be scaled to an intensity"},
+       "im.toml:2: records: record \"zero\" has pga_g = 0: it cannot be scaled to an intensity"},
       {kTwoPulses + "[intensity]\nmeasure = \"pga_g\"\nperiod_s = 1.0\n[axes]\nintensity = [1]\n",
        "im.toml:5: intensity.period_s: pga_g has no oscillator: period_s belongs to sa_g"},
       {kTwoPulses + "[intensity]\nmeasure = \"sa_g\"\nperiod_s = 1e-9\n[axes]\nintensity = [1]\n",

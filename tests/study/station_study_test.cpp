@@ -277,5 +277,45 @@ TEST(StationStudy, ADownwardVerticalIsNegatedToPositiveUp) {
   }
 }
 
+test::CommandResult check(const std::filesystem::path& dir, const std::string& name, const std::string& text) {
+  const auto file = test::write_file(dir, name + ".toml", text);
+  return test::run_command("cd " + quoted(dir) + " && " + pcrf() + " study " + quoted(file) + " --check");
+}
+
+// Issue 29: 3.7 meant as 212° ran at 3.7° without a word. Incidences that all look like
+// radians warn naming the key and its line; warnings_as_errors stops the study. --check
+// also says what the run will cost and how that was measured.
+TEST(StationStudy, IncidencesInRadiansWarnAndCheckEstimatesTheCost) {
+  const auto dir = station_files("station_radians");
+  const std::string records = "[[records]]\nh1 = \"h1.txt\"\nh2 = \"h2.txt\"\nunits = \"m/s2\"\naz1_deg = 0\naz2_deg = 90\n";
+  const auto warned = check(dir, "r", records + kFrame + "incidence_deg = [3.7, 1.2]\n");
+  ASSERT_EQ(warned.exit_code, 0) << warned.err;
+  EXPECT_NE(warned.err.find("r.toml:9: axes.incidence_deg"), std::string::npos) << warned.err;
+  EXPECT_NE(warned.err.find("3.7"), std::string::npos) << warned.err;
+  EXPECT_NE(warned.out.find("cost estimate"), std::string::npos) << warned.out;
+  EXPECT_NE(warned.out.find("sampled cases"), std::string::npos) << warned.out;
+  const auto degrees = check(dir, "d", records + kFrame + "incidence_deg = [212, 30]\n");
+  ASSERT_EQ(degrees.exit_code, 0) << degrees.err;
+  EXPECT_EQ(degrees.err.find("incidence_deg"), std::string::npos) << degrees.err;
+  const auto stopped = check(dir, "e", records + kFrame + "incidence_deg = [3.7]\n[run]\nwarnings_as_errors = true\n");
+  EXPECT_EQ(stopped.exit_code, 2) << stopped.err;
+  EXPECT_NE(stopped.err.find("warnings_as_errors"), std::string::npos) << stopped.err;
+}
+
+// Issue 29: Rinaldi (Northridge 1994) paired with a San Fernando 1971 station was combined
+// silently. The AT2 headers name different events and stations: a warning names both.
+TEST(StationStudy, ComponentsOfTwoStationsWarnNamingBoth) {
+  PCRF_REQUIRE_RECORDS(records);
+  const auto rinaldi = records / "nearfault_vacalderon" / "RSN1063_NORTHR_RRS228.AT2";
+  const auto pel = records / "vertical_sehyeon9121" / "RSN68_SFERN_PEL090.AT2";
+  if (!std::filesystem::exists(rinaldi) || !std::filesystem::exists(pel)) GTEST_SKIP() << "RSN1063 or RSN68 missing";
+  const auto dir = test::scratch_dir("station_two_events");
+  const auto r = check(dir, "p", "[[records]]\nh1 = \"" + rinaldi.string() + "\"\nh2 = \"" + pel.string() + "\"\n" + kFrame);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("Rinaldi Receiving Sta"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("San Fernando"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("warning"), std::string::npos) << r.err;
+}
+
 }  // namespace
 }  // namespace pcrf::study_test

@@ -13,6 +13,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace pcrf::analysis {
@@ -33,5 +34,15 @@ struct SaltelliOutputs {
 /// NaN indices (the output does not vary: nothing to apportion).
 std::vector<SobolIndex> sobol_indices(const SaltelliOutputs& outputs, std::size_t resamples = 1000,
                                       double confidence = 0.9, std::uint64_t seed = 20101);
+
+/// Error of an index estimate that is small enough to read (the scale of sobol_caution).
+inline constexpr double kSobolReadableError = 0.05;
+
+/// A caution when an index estimated from `samples` base samples cannot be right as it
+/// stands: S1 above ST beyond their intervals (S1_low > ST_high; S1 ≤ ST always holds),
+/// or S1 or ST negative beyond its interval (high end < 0). It states the inconsistency m
+/// (S1 − ST, or −S) and the base samples that would bring it under kSobolReadableError if
+/// the error falls as 1/√N: N·(m / 0.05)², rounded up to a power of two. "" otherwise.
+std::string sobol_caution(const SobolIndex& index, std::size_t samples);
 
 }  // namespace pcrf::analysis

@@ -43,9 +43,14 @@ struct RecordInput {
 
 /// One line per record file of `input` (the first horizontal, h2, up) whose measures no
 /// earthquake record has (record_plausibility), naming the file and the likely units: "a.txt:
-/// PGA 501 g is above 3 g: is this file in cm/s2 (PGA 0.511 g)? use --units cm/s2". Empty for
-/// a synthetic motion.
+/// PGA 501 g is above 3 g: is it in cm/s2 (PGA 0.511 g)? use --units cm/s2"; and one line
+/// when the AT2 headers of the components name different events or stations
+/// (different_station). Empty for a synthetic motion.
 std::vector<std::string> implausible_records(const RecordInput& input, const StationRecord& station);
+
+/// The same checks for components given as arrays in g (Python's ground_accel_g): one line
+/// per component whose measures no earthquake record has, named as the station names it.
+std::vector<std::string> implausible_arrays(const StationRecord& station);
 
 /// What a file's header says about the record (title, component, …). \throws InputError.
 RecordMetadata record_metadata(const RecordFileSpec& spec);

@@ -54,7 +54,7 @@ struct Coordinate {
   std::vector<double> numbers;       ///< numeric values, or
   std::vector<std::string> strings;  ///< text values
   bool is_text = false;
-  bool is_index = false;  ///< numbers are 0, 1, 2, … stored as int32
+  bool is_index = false;  ///< numbers are whole (an index 0, 1, 2, …, a sample number) stored as int32
 
   std::size_t size() const { return is_text ? strings.size() : numbers.size(); }
   /// Value i as text ("%.17g" shortest round-trip for numbers).

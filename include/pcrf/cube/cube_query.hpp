@@ -5,6 +5,9 @@
 
 #include <cstddef>
 #include <ostream>
+#include <optional>
+#include <cstdint>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -25,14 +28,36 @@ Selector parse_selector(const std::string& text);
 /// \throws CubeError naming an unknown coordinate or a value that is not on it.
 std::vector<bool> select_cases(const CubeLayout& layout, const std::vector<Selector>& selectors);
 
-/// Axes, metrics, completion, counts by status, first messages; `heading` (a line naming
-/// what the cube holds, from the layer that made it) after the file name, when not empty.
-void print_info(const CubeReader& cube, const std::string& heading, std::ostream& out);
+/// How complete a cube is as the layer that made it counts: `done` of `total` `unit` (an IDA
+/// counts curves: the slots after a curve's end are no runs left to do), and the name shown
+/// for the not-run status in place of "not_run" (empty: "not_run").
+struct Completion {
+  std::int64_t done = 0, total = 0;
+  std::string unit = "cases";
+  std::string not_run_label;
+};
+
+/// Axes, metrics, completion, counts by status, the messages counted by kind (one line per
+/// kind with its count and first case, not one per case); `heading` (a line naming what the
+/// cube holds, from the layer that made it) after the file name, when not empty; the
+/// completion as `completion` says (default: cases with a status of all cases).
+void print_info(const CubeReader& cube, const std::string& heading, std::ostream& out,
+                const std::optional<Completion>& completion = std::nullopt);
 
 /// The same as one JSON object, for scripts: dimensions with their values, auxiliary
 /// coordinates, metrics and side variables with units and long names, status counts,
-/// case count, history groups, global attributes.
-void print_info_json(const CubeReader& cube, std::ostream& out);
+/// completion, case count, history groups, global attributes, messages by kind.
+void print_info_json(const CubeReader& cube, std::ostream& out, const std::optional<Completion>& completion = std::nullopt);
+
+/// Messages of the same kind (the same text once its numbers are set aside: "non-finite
+/// state at t = 3.2 s" and "… t = 4.1 s" are one kind): the first case's text, its case,
+/// and how many cases have one. In order of first appearance.
+struct MessageKind {
+  std::string text;
+  std::int64_t first_case = 0;
+  std::int64_t count = 0;
+};
+std::vector<MessageKind> message_kinds(const std::vector<std::pair<std::int64_t, std::string>>& notes);
 
 /// A CSV field: the text, quoted (with doubled quotes) when it holds a comma, quote or newline.
 std::string csv_field(const std::string& text);

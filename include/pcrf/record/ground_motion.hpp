@@ -63,4 +63,11 @@ class GroundMotion {
   std::vector<double> accel_m_s2_;
 };
 
+/// Relative tolerance within which two sample intervals are the same: intervals computed
+/// from a time column (19.9 s / 1990 steps) differ from the written 0.01 s by an ulp or two.
+inline constexpr double kSameIntervalTolerance = 1e-9;
+
+/// True when `a_s` and `b_s` differ by at most kSameIntervalTolerance relative.
+bool same_sample_interval(double a_s, double b_s);
+
 }  // namespace pcrf

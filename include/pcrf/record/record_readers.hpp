@@ -81,6 +81,11 @@ struct RecordFileSpec {
   std::size_t column = 0;          ///< one-column only: 0 every value, k ≥ 1 the k-th field of a row
 };
 
+/// What is wrong with a record of `samples` samples every `dt_s` seconds ("" when nothing):
+/// fewer than 2 samples, or a dt outside 10 µs–1 s (a unit or header error). The readers
+/// refuse such a file with it; an array given in Python is refused with it too.
+std::string sampling_problem(double dt_s, std::size_t samples);
+
 /// Reads a record by its spec; its name is record_name(spec).
 GroundMotion read_record(const RecordFileSpec& spec);
 
@@ -99,6 +104,17 @@ struct RecordMetadata {
 };
 /// \throws RecordError when an AT2 file cannot be read.
 RecordMetadata read_metadata(const RecordFileSpec& spec);
+
+/// A component file (`label`, for messages) and what its header says.
+struct ComponentHeader {
+  std::string label;
+  RecordMetadata metadata;
+};
+
+/// One line when the headers of two components of one station name different events or
+/// stations, naming both files with their event and station; "" when they name the same
+/// (case and spacing aside) or either header names none (a text file).
+std::string different_station(const ComponentHeader& a, const ComponentHeader& b);
 
 /// A record file read once: its motion (read_record) and what it says about itself
 /// (read_metadata). \throws RecordError as read_record.

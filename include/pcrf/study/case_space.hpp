@@ -50,6 +50,10 @@ class CaseSpace {
   /// `indices` reordered so that the cases of one frame (every record and level) are
   /// adjacent, frames in storage order: a worker then prepares each frame once.
   std::vector<std::int64_t> frame_major(std::vector<std::int64_t> indices) const;
+  /// The case handed out `position`-th: `position` itself (storage order), or when the plan
+  /// hands out by frame (Plan::hands_out_by_frame) frame-major over the whole cube: every
+  /// record, level and incidence of frame 0, then of frame 1, … A bijection of [0, size()).
+  std::int64_t handout_index(std::int64_t position) const;
   /// Distinct frames of the study (every parameter combination), for up-front checks.
   std::vector<SceneSpec> frames() const;
 

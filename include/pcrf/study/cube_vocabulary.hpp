@@ -98,6 +98,10 @@ struct NotRun {
 };
 /// \throws cube::CubeError when the cube cannot be read.
 NotRun not_run(const cube::CubeReader& cube);
+/// What `cube info` reports as complete: cases, or an IDA's curves (not_run), with the IDA
+/// slots no run filled named "no_run_slot" rather than not_run (after a curve's end they are
+/// empty by design). \throws cube::CubeError when the cube cannot be read.
+cube::Completion completion(const cube::CubeReader& cube);
 inline constexpr const char* kCollapses = "collapses";
 
 /// How an IDA cube's curves ended, from its `curve_state` (plan::CurveState codes): how many

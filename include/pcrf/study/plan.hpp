@@ -56,6 +56,12 @@ class Plan {
   /// ...and whole lines (each ending in '\n') that follow the base point's line. Numbers are
   /// written at the stream's precision. Two studies with the same text compute the same frames.
   virtual void describe(std::ostream& out) const = 0;
+
+  /// True when the plan's results are read frame by frame across every record (a Saltelli
+  /// design's base sample is whole once its frames ran for all records): the study hands
+  /// its cases out frame by frame over the whole cube (CaseSpace::handout_index), so that a
+  /// partial cube holds whole base samples. False: in storage order.
+  virtual bool hands_out_by_frame() const { return false; }
 };
 
 /// The names of every plan kind a study file can give ([plan] kind), the default first.

@@ -47,6 +47,7 @@ struct LoadedRecord {
   StationRecord station;  ///< station.h1 is the record itself
   std::string title;
   std::vector<std::string> notes;  ///< alignment and sign notes (make_station)
+  std::vector<std::string> warnings;  ///< components whose headers name other events or stations (different_station)
 };
 
 /// Reads or generates the motion. \throws RecordError or std::invalid_argument.
@@ -77,6 +78,8 @@ class RecordCache {
   const StationRecord& station(std::size_t index);
   /// The notes made when record `index` was put together (padding, a DWN vertical).
   const std::vector<std::string>& notes(std::size_t index);
+  /// The warnings made when record `index` was put together (LoadedRecord::warnings).
+  const std::vector<std::string>& warnings(std::size_t index);
 
   /// The title of record `index` (LoadedRecord::title), loading it on first use.
   const std::string& title(std::size_t index);

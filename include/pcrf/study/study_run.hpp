@@ -68,6 +68,10 @@ struct StudySummary {
   /// still rocking when its tail ended), and collapse statuses that occurred although the
   /// study's [ida] collapse leaves them out.
   std::vector<std::string> verdict_notes;
+  /// --check: what the run will cost, measured on a sample of its cases (CostEstimate::text).
+  std::string cost_estimate;
+  /// The study's warnings (CheckedStudy::warnings), for a front end that did not print them.
+  std::vector<std::string> warnings;
 };
 
 /// "stopped by SIGINT: 120 of 324 cases saved in demo.h5": what a run stopped by a signal

@@ -35,9 +35,17 @@ __version__ = _pcrf.__version__
 _ENVIRONMENT_AT_IMPORT = dict(_os.environ)
 
 
-def _warn_notes(notes):
+class RecordWarning(UserWarning):
+    """A record whose measures no earthquake record has (a PGA above 3 g or below 0.01 g,
+    PGV/PGA outside its range: wrong units or a wrong ``dt_s``), or whose components' headers
+    name different events or stations: the checks ``pcrf run`` makes of a file, made of arrays
+    too. ``warnings_as_errors=True`` (a keyword of ``run`` and ``record_measures``), or
+    ``warnings.simplefilter("error", pcrf.RecordWarning)``, makes them errors."""
+
+
+def _warn_notes(notes, category=UserWarning):
     for note in notes:
-        _warnings.warn(note, stacklevel=3)
+        _warnings.warn(note, category, stacklevel=3)
 
 
 def _history_table(array, history):
@@ -70,13 +78,18 @@ def run(ground_accel_g=None, dt_s=None, *, history=False, **keywords):
 
     ``history``: False (default), True or "numpy" (a structured array), "pandas" (a DataFrame);
     then ``(result, history)`` is returned. ``history_dt_s`` sets its interval.
+
+    A record (array or file) is checked as ``pcrf run`` checks a file: an implausible PGA or
+    PGV/PGA (likely units, a wrong ``dt_s``) or components from different stations give a
+    ``pcrf.RecordWarning``; ``warnings_as_errors=True`` makes them an ``InputError``.
     """
     if ground_accel_g is not None:
         keywords["ground_accel_g"] = ground_accel_g
     if dt_s is not None:
         keywords["dt_s"] = dt_s
-    result, rows, notes = _pcrf.run(history=bool(history), **keywords)
+    result, rows, notes, record_warnings = _pcrf.run(history=bool(history), **keywords)
     _warn_notes(notes)
+    _warn_notes(record_warnings, RecordWarning)
     if not history:
         return result
     return result, _history_table(rows, history)
@@ -142,8 +155,9 @@ def record_measures(record=None, **keywords):
     periods = keywords.get("periods_s")
     if periods is not None and not hasattr(periods, "__len__"):
         keywords["periods_s"] = [periods]
-    text, notes = _pcrf.record_measures(**keywords)
+    text, notes, record_warnings = _pcrf.record_measures(**keywords)
     _warn_notes(notes)
+    _warn_notes(record_warnings, RecordWarning)
     return _json.loads(text)
 
 
@@ -157,7 +171,7 @@ from ._reports import fragility, p695, risk, sensitivity, stats  # noqa: E402
 from ._study import study  # noqa: E402
 
 __all__ = ["run", "Frame", "record_measures", "study", "open_cube", "stats", "fragility", "sensitivity", "p695", "risk",
-           "settings", "InputError", "StudyError"]
+           "settings", "InputError", "StudyError", "RecordWarning"]
 
 import atexit as _atexit  # noqa: E402
 

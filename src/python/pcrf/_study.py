@@ -5,6 +5,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import warnings
 from pathlib import Path
 
 from . import _pcrf
@@ -82,6 +83,11 @@ def study(source, output=None, ranks=1, *, overwrite=False, resume=False, check=
         return None if check else open_cube(cube)
     summary = _pcrf.study(source, output=None if output is None else os.fspath(output), overwrite=overwrite,
                           resume=resume, check=check, progress=progress, **run_settings)
+    if not progress:  # with progress=True they were printed with the progress lines
+        from . import RecordWarning
+
+        for line in summary.get("warnings", []):
+            warnings.warn(line, RecordWarning, stacklevel=2)
     if check:
         return summary
     if summary["error"]:

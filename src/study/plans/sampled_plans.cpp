@@ -129,9 +129,14 @@ class SaltelliPlan final : public SampledPlan {
       : SampledPlan(model, "saltelli", std::move(points), std::move(sampling)), blocks_(std::move(blocks)), samples_(std::move(samples)) {}
 
  protected:
+  bool hands_out_by_frame() const override { return true; }  // frames are base sample by base sample
+
   std::vector<cube::Coordinate> extra_coordinates() const override {
+    auto sample = number_coordinate(vocabulary::kSaltelliSample, vocabulary::kCase, "1",
+                                    "Saltelli base sample the frame belongs to", samples_);
+    sample.is_index = true;  // whole numbers: stored as integers
     return {text_coordinate(vocabulary::kSaltelliBlock, vocabulary::kCase, "Saltelli design block: A, B or AB_<parameter>", blocks_),
-            number_coordinate(vocabulary::kSaltelliSample, vocabulary::kCase, "1", "Saltelli base sample the frame belongs to", samples_)};
+            std::move(sample)};
   }
 
  private:
