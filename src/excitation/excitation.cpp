@@ -25,6 +25,9 @@ Excitation::Excitation(const GroundMotion& horizontal, const GroundMotion* verti
 bool ExcitationCursor::enter(double t_s) {
   const GroundMotion& h = excitation_.horizontal();
   if (!(t_s >= 0.0) || !(t_s < h.duration_s())) return false;
+  // Components whose intervals agree only within the tolerance of same_sample_interval
+  // interpolate each on its own time axis: at() then, to stay bit for bit.
+  if (excitation_.has_vertical() && excitation_.vertical()->dt_s() != h.dt_s()) return false;
   const std::size_t k = h.interval_of(t_s);
   const double dt = h.dt_s();
   lo_s_ = static_cast<double>(k) * dt;
