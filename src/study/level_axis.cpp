@@ -119,7 +119,7 @@ class IdaAxis final : public MeasuredAxis {
     side.push_back({names::kCurveState, "1", curve_state_long_name(), curves, {}});
     side.push_back({names::kUnresolvedRuns, "1",
                     "runs of the curve whose frame was still rocking when its tail ended (rocking_at_end): no verdict, "
-                    "counted as collapses by the search",
+                    "each stops its curve's hunt without counting as a collapse",
                     curves, {}});
     if (!verdict_check_) return;
     side.push_back({names::kUnstableFrom, units_,

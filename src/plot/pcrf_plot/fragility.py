@@ -44,6 +44,7 @@ def draw(args):
     x = np.linspace(top * 1e-3, top * 1.25, 400)
     drawn = [(prefix, fit, r["points"]) for prefix, r in series for fit in r["frames"]]
     counts = {"censored": 0, "unresolved": 0, "no_verdict": 0}
+    banded = False
     for colour, (prefix, fit, points) in zip(style.CYCLE, drawn):
         frame = fit["frame"]
         name = frame if not prefix else prefix if frame in ("all", prefix) else f"{prefix}, {frame}"
@@ -73,6 +74,7 @@ def draw(args):
             ax.plot(x, lognormal_cdf(x, median, beta), "-", color=colour, lw=1.8, label=label)
             low, high = num(fit["median_5%"]), num(fit["median_95%"])
             if math.isfinite(low) and math.isfinite(high):
+                banded = True
                 ax.fill_between(x, lognormal_cdf(x, high, beta), lognormal_cdf(x, low, beta), color=colour,
                                 alpha=0.18, lw=0)
         else:
@@ -91,5 +93,6 @@ def draw(args):
         kind += f"\n{counts['no_verdict']} cases without a verdict (or not run) left out"
     ax.set(xlabel=style.intensity_label(cube, units), ylabel="probability of collapse [–]", ylim=(-0.02, 1.05),
            xlim=(0, x[-1]), title=args.title or f"Collapse fragility: {kind}")
-    ax.legend(loc="lower right", title="lognormal fit (band: 90 % interval of the median)")
+    ax.legend(loc="lower right", title="lognormal fit (band: 90 % interval of the median)" if banded else
+              "lognormal fit (fewer than 10 curves or records: no interval)")
     return fig

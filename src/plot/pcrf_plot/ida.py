@@ -22,9 +22,9 @@ from pcrf_plot.errors import PlotError
 
 
 
-NO_VERDICT_RUNS = "runs without a verdict (no response: at the edge)"
-UNBRACKETED_CURVES = "unbracketed (max_runs ran out): last safe run"
-UNRESOLVED_CURVES = "unresolved (no verdict above): last safe run"
+NO_VERDICT_RUNS = "run without a verdict"
+UNBRACKETED_CURVES = "unbracketed: last safe run"
+UNRESOLVED_CURVES = "unresolved: last safe run"
 
 
 def is_safe(row):
@@ -145,8 +145,7 @@ def draw(args):
             totals[UNRESOLVED_CURVES] = totals.get(UNRESOLVED_CURVES, 0) + unresolved
         counted = f"{len(records)} " + ("curves" if reduced else "records") + \
             (f", {unbracketed} unbracketed" if unbracketed else "") + \
-            (f", {unresolved} unresolved" if unresolved else "") + \
-            (f", {len(no_verdict)} runs without a verdict" if no_verdict else "")
+            (f", {unresolved} unresolved" if unresolved else "")
         ax.set(xlim=(0, edge * 1.03), title=f"{frame} ({counted})",
                xlabel=style.metric_label(metric, cube.variable(metric)))
     for ax in axes.flat[len(frames):]:
@@ -158,6 +157,6 @@ def draw(args):
         for handle, label in zip(*ax.get_legend_handles_labels()):
             legend.setdefault(label, handle)
     labels = [f"{label} ({totals[label]})" if label in totals else label for label in legend]
-    axes.flat[0].legend(legend.values(), labels, loc="lower right")
+    axes.flat[0].legend(legend.values(), labels, loc="lower right", fontsize="small")
     fig.suptitle(args.title or "Incremental dynamic analysis")
     return fig
