@@ -88,6 +88,13 @@ double own_mu_t(const cube::CubeLayout& layout, std::int64_t index, double perio
   return std::max(1.0, p695_ductility(properties, parameters.h_m, period_s).mu_t_capacity);
 }
 
+/// A value for a note: four significant digits.
+std::string short_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", value);
+  return text;
+}
+
 /// Ŝ_CT counted from a frame's fragility data: its IDA curves (collapse intensities, and the
 /// censored, unbracketed and unresolved curves' bounds), or its stripes (the lowest stripe at
 /// which at least half the records with a verdict collapsed).
@@ -141,9 +148,9 @@ P695Report cube_p695(const cube::CubeReader& cube, const std::vector<cube::Selec
     if (counted.bounded > 0)
       report.notes.push_back("frame " + f.frame + ": " + std::to_string(counted.bounded) +
                              " curves without a collapse shown above their last safe intensity (censored, unbracketed or "
-                             "unresolved) count as collapsing there: the counted S_CT " + number_text(counted.low_g) +
+                             "unresolved) count as collapsing there: the counted S_CT " + short_number(counted.low_g) +
                              " g is conservative (" + (std::isnan(counted.high_g) ? std::string("fewer than half collapse otherwise")
-                                                                                    : number_text(counted.high_g) + " g were they never to collapse") + ")");
+                                                                                    : short_number(counted.high_g) + " g were they never to collapse") + ")");
   }
   std::vector<p695::Assessment> all;
   for (const auto& f : report.frames) all.push_back(f.assessment);
@@ -153,7 +160,7 @@ P695Report cube_p695(const cube::CubeReader& cube, const std::vector<cube::Selec
                            "is then that archetype's own; select several frames for a group");
   if (in.default_ratings)
     report.notes.push_back("quality ratings not given: B,B,B (good) by default; give --ratings for design, test data and model "
-                           "(Sections 3.4, 4.4, 5.7)");
+                           "(Sections 3 and 5)");
   return report;
 }
 
