@@ -507,3 +507,27 @@ TEST(IdaStudy, ACurveEndingInFreeFallIsUnresolvedNotSafeAtTheCap) {
 
 }  // namespace
 }  // namespace pcrf::study_test
+
+namespace pcrf::study_test {
+namespace {
+
+TEST(IdaStudy, CasesInFreeFallAreCountedApartByStatsNotInItsPercentiles) {
+  // The same station on a grid: from scale 0.5 up the ground falls (ground_free_fall). Their
+  // θ_max (up to the fall) is no result of the frame: stats count them as unresolved.
+  const auto dir = test::scratch_dir("grid_free_fall");
+  free_fall_station(dir);
+  test::write_file(dir, "grid.toml",
+                                     "[[records]]\nh1 = \"h1.txt\"\nup = \"up.txt\"\nunits = \"g\"\n"
+                                     "[axes]\nscale = [0.2, 0.4, 0.8, 1.0]\n[outputs]\nmetrics = [\"theta_max_rad\"]\n");
+  const auto run = test::run_command("cd " + quoted(dir) + " && " + pcrf() + " study grid.toml -o grid.h5 --progress-interval 0");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.err.find("2 cases ended where the model no longer applies (2 ground_free_fall)"), std::string::npos) << run.err;
+  const auto stats = test::run_command(pcrf() + " cube stats " + quoted(dir / "grid.h5") + " --by scale -m theta_max_rad");
+  ASSERT_EQ(stats.exit_code, 0) << stats.err;
+  EXPECT_NE(stats.out.find("\n0.8,1,0,0,,,,1\n"), std::string::npos) << stats.out;
+  EXPECT_NE(stats.out.find("\n1,1,0,0,,,,1"), std::string::npos) << stats.out;
+  EXPECT_NE(stats.out.find("\n0.4,1,0,1,"), std::string::npos) << stats.out;
+}
+
+}  // namespace
+}  // namespace pcrf::study_test
