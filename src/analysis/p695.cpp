@@ -90,6 +90,27 @@ double acceptable_cmr(double beta_total, double probability) {
   return std::exp(-boost::math::quantile(standard, probability) * beta_total);
 }
 
+CountedMedian counted_median(std::vector<double> collapse_g, std::vector<double> censored_g) {
+  CountedMedian m;
+  m.curves = collapse_g.size() + censored_g.size();
+  if (m.curves == 0) throw std::invalid_argument("no IDA curve to count a median collapse intensity from");
+  const std::size_t k = (m.curves + 1) / 2;  // ⌈N/2⌉
+  const double none = std::nan("");
+  std::sort(collapse_g.begin(), collapse_g.end());
+  m.high_g = collapse_g.size() >= k ? collapse_g[k - 1] : none;
+  std::vector<double> all = collapse_g;
+  for (double bound : censored_g) {
+    // A curve safe up to at least high_g cannot move the count below it.
+    if (!std::isnan(m.high_g) && bound >= m.high_g) continue;
+    all.push_back(bound);
+    ++m.bounded;
+  }
+  std::sort(all.begin(), all.end());
+  m.low_g = all.size() >= k ? all[k - 1] : none;
+  m.s_ct_g = m.low_g;
+  return m;
+}
+
 double archetype_period_s(double cu_ta_s) { return std::max(cu_ta_s, 0.25); }
 
 Assessment assess(double s_ct_g, double period_s, double mu_t, Sdc sdc, char design_rating, char test_rating,

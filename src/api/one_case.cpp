@@ -58,4 +58,17 @@ JsonObject case_json(double scale_factor, const CaseResult& result) {
   return json;
 }
 
+std::string verdict_note(const CaseResult& result, const PhysicsOptions& physics) {
+  const std::string status(status_name(result.status));
+  if (is_unresolved(result.status)) {
+    std::string advice = tail_advice(physics.tail_s);
+    advice.replace(advice.find("resolves them"), 13, "resolves it");
+    return "the frame was still rocking when the case ended (" + status + "): no verdict, neither safe nor collapsed; " +
+           advice;
+  }
+  if (is_outside_model(result.status))
+    return "the case ended " + status + ": the model no longer applies, so it says nothing of the frame, safe or not";
+  return {};
+}
+
 }  // namespace pcrf::api

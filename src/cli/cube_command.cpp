@@ -45,7 +45,8 @@ struct CubeArguments {
   std::string sdc = "Dmax";
   double period_s = 0.0;
   double mu_t = 0.0;  // 0: each frame's own (docs/p695_rocking_frame.md)
-  std::string ratings = "B,B,B";
+  std::string ratings;  // empty: B,B,B, and the report says they are the default
+  std::string s_ct = "counted";
   // cube risk
   std::string hazard;
   std::string tail = "power-law";
@@ -87,7 +88,7 @@ void note_verdicts(const std::string& command, const std::string& file, const cu
   for (const auto& line : v::verdict_notes(reader.read_status(),
                                            ida ? std::optional<std::string>(layout.text_attribute(v::kIdaCollapseAttribute))
                                                : std::nullopt,
-                                           treatment))
+                                           treatment, v::tail_s_of(layout)))
     std::cerr << "pcrf cube " << command << ": " << file << ": " << line << '\n';
 }
 
@@ -332,7 +333,7 @@ void add_sensitivity(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& a
 /// The P-695 inputs of the command line, checked (post::p695_inputs).
 post::P695Inputs p695_inputs(const CubeArguments& args) {
   try {
-    return post::p695_inputs(args.sdc, args.period_s, args.mu_t, args.ratings);
+    return post::p695_inputs(args.sdc, args.period_s, args.mu_t, args.ratings, args.s_ct);
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
@@ -350,10 +351,14 @@ void add_p695(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
                        "period-based ductility mu_T (SSF and beta_RTR); default: each frame's own from its pushover "
                        "curve at --period-s (docs/p695_rocking_frame.md)");
   p695_cmd->add_option("--ratings", args->ratings,
-                       "quality ratings A-D of design requirements, test data and modelling, e.g. B,B,C")
+                       "quality ratings A-D of design requirements, test data and modelling, e.g. B,B,C "
+                       "(default B,B,B, which the report then notes)");
+  p695_cmd->add_option("--s-ct", args->s_ct,
+                       "which median collapse intensity feeds CMR and ACMR: counted (P-695 Sections 6.3-6.4: the "
+                       "intensity at which half the records collapse) or lognormal (the fitted fragility's median)")
       ->capture_default_str();
   add_report_outputs(p695_cmd, *args,
-                     schema("file, sdc, period_s, mu_t, ratings, group_mean_acmr, group_acmr10, group (pass or fail), "
+                     schema("file, sdc, period_s, mu_t, ratings, ratings_source (given or default), s_ct (counted or lognormal), group_mean_acmr, group_acmr10, group (pass or fail), "
                             "measure_problem (empty when the cube is at Sa(T))",
                             {{"frames", post::p695_columns()}}));
   p695_cmd->callback([args] {

@@ -101,6 +101,7 @@ void run(const RunOptions& o) {
       api::solve_one_case(std::move(scene), physics, scaled.excitation->view(), solver, o.history_dt_s, sink);
   if (csv) csv->commit();
   std::cout << api::case_json(scaled.scale_factor, result).str() << std::endl;
+  if (const auto note = api::verdict_note(result, physics); !note.empty()) std::cerr << "pcrf run: note: " << note << '\n';
 }
 
 }  // namespace

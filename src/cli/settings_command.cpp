@@ -12,6 +12,7 @@
 #include "pcrf/json.hpp"
 #include "pcrf/metrics/case_result.hpp"
 #include "pcrf/model/parameters.hpp"
+#include "pcrf/plan/ida_search.hpp"
 #include "pcrf/solver/history.hpp"
 #include "pcrf/study/settings_doc.hpp"
 
@@ -27,7 +28,7 @@ JsonObject status_json(std::string_view name, std::int8_t value, bool collapse, 
 /// The names every script needs besides a cube's own: statuses (with what they say about
 /// the frame), history event flags, the frame parameters in axis order.
 void print_vocabulary_json(std::ostream& out) {
-  std::vector<JsonObject> statuses, events, parameters;
+  std::vector<JsonObject> statuses, events, parameters, curve_states;
   for (CaseStatus s : all_final_statuses())
     statuses.push_back(status_json(status_name(s), static_cast<std::int8_t>(s), is_collapse(s), has_verdict(s)));
   statuses.push_back(status_json(cube::kStatusNotRunName, cube::kStatusNotRun, false, false));
@@ -39,8 +40,12 @@ void print_vocabulary_json(std::ostream& out) {
     parameters.emplace_back();
     parameters.back().text("name", p.name).text("long_name", p.long_name).text("units", p.units);
   }
+  for (const auto& c : plan::kCurveStateNames) {
+    curve_states.emplace_back();
+    curve_states.back().text("name", c.name).integer("value", static_cast<int>(c.value));
+  }
   JsonObject root;
-  root.objects("statuses", statuses).objects("history_events", events).objects("parameters", parameters);
+  root.objects("curve_states", curve_states).objects("statuses", statuses).objects("history_events", events).objects("parameters", parameters);
   out << root.str() << '\n';
 }
 
@@ -53,7 +58,7 @@ void add_settings_command(CLI::App& app) {
                   "each key is also a flag: tail_s -> --tail-s");
   cmd->add_flag("--json", *json,
                 "instead: the engine's vocabulary as one JSON object: statuses [{name, value, kind: survived | collapse | "
-                "no_verdict}], history_events [{name, flag, meaning}], parameters [{name, long_name, units}]");
+                "no_verdict}], history_events [{name, flag, meaning}], parameters [{name, long_name, units}], curve_states [{name, value}] (an IDA cube's curve_state codes)");
   cmd->callback([json] {
     if (*json) print_vocabulary_json(std::cout);
     else std::cout << study::all_settings_markdown();

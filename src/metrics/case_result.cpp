@@ -54,6 +54,12 @@ bool has_verdict(CaseStatus status) {
 
 bool is_unresolved(CaseStatus status) { return status == CaseStatus::kRockingAtEnd; }
 
+bool is_outside_model(CaseStatus status) {
+  return status == CaseStatus::kInvalidFrame || status == CaseStatus::kGroundFreeFall;
+}
+
+bool gives_no_verdict(CaseStatus status) { return is_unresolved(status) || is_outside_model(status); }
+
 Verdict verdict_of(CaseStatus status) {
   switch (status) {
     case CaseStatus::kAtRest:

@@ -22,11 +22,11 @@ IdaPlan::IdaPlan(std::size_t curves, const IdaSearchSettings& settings, Collapse
   for (std::size_t c = 0; c < curves; ++c) refresh(c);
 }
 
-void IdaPlan::replay(std::size_t curve, int point, double intensity, bool collapsed) {
+void IdaPlan::replay(std::size_t curve, int point, double intensity, RunVerdict verdict) {
   if (point != searches_.at(curve).runs())
     throw std::invalid_argument("IDA replay: curve " + std::to_string(curve) + " point " + std::to_string(point) +
                                 " out of order");
-  searches_[curve].add(intensity, collapsed);
+  searches_[curve].add(intensity, verdict);
   refresh(curve);
 }
 

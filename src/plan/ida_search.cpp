@@ -21,29 +21,42 @@ IdaSearch::IdaSearch(const IdaSearchSettings& settings) : settings_(settings) {
   if (settings_.max_runs < 2) throw std::invalid_argument("IDA max_runs must be at least 2");
 }
 
-void IdaSearch::add(double intensity, bool collapsed) { runs_.push_back({intensity, collapsed}); }
+void IdaSearch::add(double intensity, RunVerdict verdict) {
+  runs_.push_back({intensity, verdict != RunVerdict::kSafe, verdict == RunVerdict::kNoVerdict});
+}
 
-double IdaSearch::collapse_intensity() const {
+double IdaSearch::ceiling() const {
   double c = kNaN;
   for (const auto& r : runs_)
     if (r.collapsed && !(r.intensity >= c)) c = r.intensity;
   return c;
 }
 
+bool IdaSearch::ceiling_has_no_verdict() const {
+  const double c = ceiling();
+  return std::any_of(runs_.begin(), runs_.end(), [c](const Run& r) { return r.no_verdict && r.intensity == c; });
+}
+
+double IdaSearch::collapse_intensity() const { return ceiling_has_no_verdict() ? kNaN : ceiling(); }
+
 double IdaSearch::last_safe_intensity() const {
-  const double c = collapse_intensity();
+  const double c = ceiling();
   double s = kNaN;
   for (const auto& r : runs_)
     if (!r.collapsed && (std::isnan(c) || r.intensity < c) && !(r.intensity <= s)) s = r.intensity;
   return s;
 }
 
-bool IdaSearch::bracketed() const { return state() != CurveState::kUnbracketed; }
+bool IdaSearch::bracketed() const {
+  const double c = ceiling(), s = last_safe_intensity();
+  if (std::isnan(c)) return !std::isnan(s) && s >= settings_.max_intensity;
+  return !std::isnan(s) && c / s - 1.0 <= settings_.resolution;
+}
 
 CurveState IdaSearch::state() const {
-  const double c = collapse_intensity(), s = last_safe_intensity();
-  if (std::isnan(c)) return !std::isnan(s) && s >= settings_.max_intensity ? CurveState::kCensored : CurveState::kUnbracketed;
-  return !std::isnan(s) && c / s - 1.0 <= settings_.resolution ? CurveState::kBracketed : CurveState::kUnbracketed;
+  if (ceiling_has_no_verdict()) return CurveState::kUnresolved;
+  if (!bracketed()) return CurveState::kUnbracketed;
+  return std::isnan(ceiling()) ? CurveState::kCensored : CurveState::kBracketed;
 }
 
 std::optional<double> IdaSearch::hunt() const {
@@ -83,7 +96,7 @@ std::optional<double> IdaSearch::fill() const {
 
 std::optional<double> IdaSearch::next() const {
   if (runs() >= settings_.max_runs) return std::nullopt;
-  const double c = collapse_intensity();
+  const double c = ceiling();
   if (std::isnan(c)) return hunt();
   const double s = last_safe_intensity();
   if (std::isnan(s)) return 0.5 * c;  // the first collapse came at once: come down

@@ -2,6 +2,7 @@
 #include "pcrf/post/cube_fragility.hpp"
 
 #include <cmath>
+#include <functional>
 #include <map>
 
 #include "pcrf/metrics/case_result.hpp"
@@ -77,8 +78,25 @@ namespace {
 struct CurveValue {
   double intensity = std::nan("");
   bool censored = false;
+  bool unresolved = false;  ///< censored at the last safe run of an unresolved curve: a bound, never safe beyond
   bool has_value() const { return std::isfinite(intensity); }
 };
+
+/// No interval from a bootstrap over fewer units than this: it cannot tell its own spread.
+/// `fitted`: how many records (IDA: curves with a value) the fit stands on; `units`: how many
+/// the bootstrap resamples.
+std::optional<analysis::BootstrapResult> interval_or_none(
+    std::size_t fitted, std::size_t units,
+    const std::function<std::optional<analysis::Lognormal>(const std::vector<std::size_t>&)>& fit) {
+  if (fitted < kFewestForInterval) return std::nullopt;
+  return analysis::bootstrap(units, fit);
+}
+
+/// The interval columns of a frame without a bootstrap: missing.
+analysis::BootstrapResult no_interval() {
+  const double none = std::nan("");
+  return {{none, none}, {none, none}, 0};
+}
 
 /// IDA cube: each curve's collapse intensity, or (none found) a right-censored value at its
 /// last safe intensity; one fit per frame, the bootstrap resampling records. With a reduction
@@ -111,9 +129,14 @@ std::vector<FrameFragility> ida_fragility(const cube::CubeReader& cube, const st
   const auto unbracketed = [&state](std::size_t curve) {
     return state[curve] == static_cast<double>(plan::CurveState::kUnbracketed);
   };
+  const auto unresolved = [&state](std::size_t curve) {
+    return state[curve] == static_cast<double>(plan::CurveState::kUnresolved);
+  };
+  // An unresolved curve has no collapse intensity: it is censored at its last safe run (a
+  // lower bound), never at max_intensity; with no safe run it has no value.
   const auto value_of = [&](std::size_t curve) {
-    if (std::isfinite(collapse[curve]) && !unbracketed(curve)) return CurveValue{collapse[curve], false};
-    if (std::isfinite(safe[curve])) return CurveValue{safe[curve], true};
+    if (std::isfinite(collapse[curve]) && !unbracketed(curve) && !unresolved(curve)) return CurveValue{collapse[curve], false};
+    if (std::isfinite(safe[curve])) return CurveValue{safe[curve], true, unresolved(curve)};
     return CurveValue{};
   };
   const auto selected = cube::select_cases(layout, selectors);
@@ -127,7 +150,7 @@ std::vector<FrameFragility> ida_fragility(const cube::CubeReader& cube, const st
   struct Frame {
     std::vector<Unit> units;
     std::map<std::int64_t, std::size_t> unit_of;  // curve coordinates with the reduced one at 0 → unit
-    std::size_t not_run = 0, unbracketed = 0;
+    std::size_t not_run = 0, unbracketed = 0, unresolved = 0;
     std::string selection;
     std::int64_t first_case = -1;
   };
@@ -151,6 +174,7 @@ std::vector<FrameFragility> ida_fragility(const cube::CubeReader& cube, const st
       continue;
     }
     if (unbracketed(curve)) ++frame.unbracketed;
+    if (unresolved(curve)) ++frame.unresolved;
     coords.pop_back();
     if (reduced) coords[reduced_dim] = 0;
     const auto key = reduced ? ravel(coords, curve_shape) : static_cast<std::int64_t>(curve);
@@ -168,7 +192,7 @@ std::vector<FrameFragility> ida_fragility(const cube::CubeReader& cube, const st
       (v.censored ? censored : observed).push_back(v.intensity);
     }
     const auto r = cube::reduce_censored(observed, censored, reduction.how);
-    return CurveValue{r.value, r.censored};
+    return CurveValue{r.value, r.censored, false};
   };
   std::vector<FrameFragility> result;
   for (const auto& label : order) {
@@ -187,16 +211,19 @@ std::vector<FrameFragility> ida_fragility(const cube::CubeReader& cube, const st
       return analysis::fit_censored(observed, censored);
     };
     out.unbracketed = frame.unbracketed;
+    out.unresolved = frame.unresolved;
     for (const CurveValue& v : values)
-      if (v.has_value()) (v.censored ? out.censored_intensities : out.collapse_intensities).push_back(v.intensity);
-    out.cases = out.collapse_intensities.size() + out.censored_intensities.size();
+      if (v.has_value())
+        (v.unresolved ? out.unresolved_intensities : v.censored ? out.censored_intensities : out.collapse_intensities)
+            .push_back(v.intensity);
+    out.cases = out.collapse_intensities.size() + out.censored_intensities.size() + out.unresolved_intensities.size();
     out.collapses = static_cast<double>(out.collapse_intensities.size());
     out.not_run = frame.not_run;
     out.failed = values.size() - out.cases;
     std::vector<std::size_t> all(values.size());
     for (std::size_t k = 0; k < all.size(); ++k) all[k] = k;
     out.fit = fit(all);
-    if (out.fit) out.interval = analysis::bootstrap(values.size(), fit);
+    if (out.fit) out.interval = interval_or_none(out.cases, values.size(), fit).value_or(no_interval());
     result.push_back(std::move(out));
   }
   return result;
@@ -279,9 +306,9 @@ std::vector<FrameFragility> cube_fragility(const cube::CubeReader& cube, const s
     out.failed = records * levels.size() - out.cases - out.not_run - out.unresolved;
     out.fit = analysis::fit_stripes(out.stripes);
     if (out.fit)
-      out.interval = analysis::bootstrap(records, [&](const std::vector<std::size_t>& sample) {
-        return analysis::fit_stripes(stripes_of(sample));
-      });
+      out.interval = interval_or_none(records, records, [&](const std::vector<std::size_t>& sample) {
+                       return analysis::fit_stripes(stripes_of(sample));
+                     }).value_or(no_interval());
     result.push_back(std::move(out));
   }
   return result;
@@ -289,11 +316,24 @@ std::vector<FrameFragility> cube_fragility(const cube::CubeReader& cube, const s
 
 std::vector<std::string> unbracketed_warnings(const std::vector<FrameFragility>& frames) {
   std::vector<std::string> lines;
-  for (const auto& f : frames)
+  for (const auto& f : frames) {
     if (f.unbracketed && *f.unbracketed > 0)
       lines.push_back("frame " + f.frame + ": " + std::to_string(*f.unbracketed) +
                       " unbracketed curves (max_runs ran out before the resolution or max_intensity) censored at "
                       "their last safe intensity; raise [ida] max_runs or step_factor");
+    if (f.unbracketed && f.unresolved > 0)
+      lines.push_back("frame " + f.frame + ": " + std::to_string(f.unresolved) +
+                      " unresolved curves (a run without a verdict ended them: still rocking, ground in free fall or "
+                      "invalid frame) bounded at their last safe intensity, never censored at max_intensity" +
+                      (f.unresolved > f.unresolved_intensities.size()
+                           ? "; " + std::to_string(f.unresolved - f.unresolved_intensities.size()) + " without a safe run left out"
+                           : std::string()));
+    const std::size_t units = f.unbracketed ? f.cases : f.records;
+    if (f.fit && units < kFewestForInterval)
+      lines.push_back("frame " + f.frame + ": a fit from " + std::to_string(units) + (f.unbracketed ? " curves" : " records") +
+                      ", fewer than " + std::to_string(kFewestForInterval) +
+                      ": its median and beta are rough, and no bootstrap interval is given");
+  }
   return lines;
 }
 

@@ -88,26 +88,79 @@ double own_mu_t(const cube::CubeLayout& layout, std::int64_t index, double perio
   return std::max(1.0, p695_ductility(properties, parameters.h_m, period_s).mu_t_capacity);
 }
 
+/// A value for a note: four significant digits.
+std::string short_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", value);
+  return text;
+}
+
+/// Ŝ_CT counted from a frame's fragility data: its IDA curves (collapse intensities, and the
+/// censored, unbracketed and unresolved curves' bounds), or its stripes (the lowest stripe at
+/// which at least half the records with a verdict collapsed).
+p695::CountedMedian counted_of(const FrameFragility& f) {
+  if (f.stripes.empty()) {
+    std::vector<double> bounds = f.censored_intensities;
+    bounds.insert(bounds.end(), f.unresolved_intensities.begin(), f.unresolved_intensities.end());
+    return p695::counted_median(f.collapse_intensities, bounds);
+  }
+  p695::CountedMedian m;
+  m.s_ct_g = m.low_g = m.high_g = std::nan("");
+  for (const auto& s : f.stripes)  // in intensity order
+    if (s.trials > 0.0 && 2.0 * s.collapses >= s.trials) {
+      m.s_ct_g = m.low_g = m.high_g = s.intensity;
+      m.curves = static_cast<std::size_t>(s.trials);
+      break;
+    }
+  return m;
+}
+
 }  // namespace
+
+SctFrom parse_s_ct(const std::string& text) {
+  if (text == "counted") return SctFrom::kCounted;
+  if (text == "lognormal") return SctFrom::kLognormal;
+  throw std::invalid_argument("--s-ct: unknown value '" + text + "' (expected counted or lognormal)");
+}
+
+std::string to_string(SctFrom from) { return from == SctFrom::kCounted ? "counted" : "lognormal"; }
 
 P695Report cube_p695(const cube::CubeReader& cube, const std::vector<cube::Selector>& selectors, const P695Inputs& in) {
   if (!(in.period_s > 0.0)) throw std::invalid_argument("--period-s must be positive");
   P695Report report;
   report.measure_problem = measure_problem(cube, in.period_s);
   for (const FrameFragility& f : cube_fragility(cube, selectors)) {
-    if (!f.fit) throw std::invalid_argument("frame " + f.frame + ": no collapse, so no median collapse intensity to assess");
+    const auto counted = counted_of(f);
+    const double lognormal = f.fit ? f.fit->median : std::nan("");
+    const double s_ct = in.s_ct == SctFrom::kCounted ? counted.s_ct_g : lognormal;
+    if (!std::isfinite(s_ct))
+      throw std::invalid_argument("frame " + f.frame + (in.s_ct == SctFrom::kCounted
+                                                            ? ": fewer than half its records collapse, so no counted median collapse intensity to assess"
+                                                            : ": no collapse, so no median collapse intensity to assess"));
     double mu_t = in.mu_t;
     try {
       if (!(mu_t > 0.0)) mu_t = own_mu_t(cube.layout(), f.first_case, in.period_s);
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument("frame " + f.frame + ": " + e.what());
     }
-    report.frames.push_back({f.frame, mu_t, p695::assess(f.fit->median, in.period_s, mu_t, in.sdc, in.design_rating,
-                                                         in.test_rating, in.model_rating)});
+    report.frames.push_back({f.frame, mu_t, counted.s_ct_g, counted.high_g, counted.bounded, lognormal,
+                             p695::assess(s_ct, in.period_s, mu_t, in.sdc, in.design_rating, in.test_rating, in.model_rating)});
+    if (counted.bounded > 0)
+      report.notes.push_back("frame " + f.frame + ": " + std::to_string(counted.bounded) +
+                             " curves without a collapse shown above their last safe intensity (censored, unbracketed or "
+                             "unresolved) count as collapsing there: the counted S_CT " + short_number(counted.low_g) +
+                             " g is conservative (" + (std::isnan(counted.high_g) ? std::string("fewer than half collapse otherwise")
+                                                                                    : short_number(counted.high_g) + " g were they never to collapse") + ")");
   }
   std::vector<p695::Assessment> all;
   for (const auto& f : report.frames) all.push_back(f.assessment);
   report.group = p695::assess_group(all);
+  if (report.frames.size() == 1)
+    report.notes.push_back("a performance group of one archetype: P-695's group test (mean ACMR against ACMR10%, Section 7.6) "
+                           "is then that archetype's own; select several frames for a group");
+  if (in.default_ratings)
+    report.notes.push_back("quality ratings not given: B,B,B (good) by default; give --ratings for design, test data and model "
+                           "(Sections 3 and 5)");
   return report;
 }
 
@@ -124,14 +177,21 @@ void print_p695(const P695Report& report, const P695Inputs& in, std::ostream& ou
                 "SSF = exp(beta1 (eps0 - eps(T))), beta1 = 0.14 (mu_T - 1)^0.42, far-field eps(T) = %.3f, eps0 = %.1f\n",
                 p695::far_field_epsilon(in.period_s), p695::target_epsilon(in.sdc));
   out << line;
-  std::snprintf(line, sizeof line, "%-24s %8s %8s %6s %6s %6s %6s %6s %8s %8s %8s %8s %10s\n", "frame", "S_CT [g]",
-                "S_MT [g]", "CMR", "mu_T", "SSF", "ACMR", "b_RTR", "beta_TOT", "ACMR10%", "ACMR20%", "P(c|MCE)", "ACMR20%?");
+  std::snprintf(line, sizeof line,
+                "S_CT: %s (%s); the other median beside it. Counted: the lowest intensity at which half the records "
+                "collapse (Sections 6.3, 6.4)\n",
+                to_string(in.s_ct).c_str(), in.s_ct == SctFrom::kCounted ? "P-695's own" : "the lognormal fit's median, on request");
+  out << line;
+  std::snprintf(line, sizeof line, "%-24s %8s %9s %9s %8s %6s %6s %6s %6s %6s %8s %8s %8s %8s %10s\n", "frame", "S_CT [g]",
+                "cnt. [g]", "logn. [g]", "S_MT [g]", "CMR", "mu_T", "SSF", "ACMR", "b_RTR", "beta_TOT", "ACMR10%", "ACMR20%",
+                "P(c|MCE)", "ACMR20%?");
   out << line;
   for (const auto& f : report.frames) {
     const auto& a = f.assessment;
-    std::snprintf(line, sizeof line, "%-24s %8.3f %8.3f %6.2f %6.2f %6.2f %6.2f %6.2f %8.3f %8.2f %8.2f %8.3f %10s\n",
-                  f.frame.c_str(), a.s_ct_g, a.s_mt_g, a.cmr, f.mu_t, a.ssf, a.acmr, a.beta_rtr, a.beta_total, a.acmr10,
-                  a.acmr20, a.p_collapse_mce, a.passes_individual ? "pass" : "fail");
+    std::snprintf(line, sizeof line,
+                  "%-24s %8.3f %9.3f %9.3f %8.3f %6.2f %6.2f %6.2f %6.2f %6.2f %8.3f %8.2f %8.2f %8.3f %10s\n",
+                  f.frame.c_str(), a.s_ct_g, f.s_ct_counted_g, f.s_ct_lognormal_g, a.s_mt_g, a.cmr, f.mu_t, a.ssf, a.acmr,
+                  a.beta_rtr, a.beta_total, a.acmr10, a.acmr20, a.p_collapse_mce, a.passes_individual ? "pass" : "fail");
     out << line;
   }
   std::snprintf(line, sizeof line, "group: mean ACMR %.2f against ACMR10%% %.2f, every frame against ACMR20%%: %s\n",

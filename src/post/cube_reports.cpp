@@ -49,7 +49,7 @@ std::vector<ColumnOf<cube::GroupStats>> stats_spec(const std::vector<std::string
                   [](const G& g) { return number_or_missing(g.p16); }});
   spec.push_back({{"p84", "", "84th percentile of the metric (in metric_units)"},
                   [](const G& g) { return number_or_missing(g.p84); }});
-  spec.push_back({{"unresolved", "", "cases whose frame was still rocking at the end (rocking_at_end): no verdict, not in the percentiles"},
+  spec.push_back({{"unresolved", "", "cases without a verdict (still rocking at the end, ground in free fall, invalid frame): not in the percentiles"},
                   [](const G& g) { return count(g.unresolved); }});
   return spec;
 }
@@ -83,6 +83,9 @@ std::vector<ColumnOf<FrameFragility>> fragility_spec(const std::string& units, s
     spec.push_back({{"CMR", "", "collapse margin ratio: median / MCE intensity (--mce)"},
                     [m = *mce](const F& f) { return f.fit ? number_or_missing(f.fit->median / m) : Cell{}; }});
   if (unbracketed)
+    spec.push_back({{"unresolved", "", "IDA curves ended by a run without a verdict (censored at their last safe intensity, a bound)"},
+                    [](const F& f) { return count(f.unresolved); }});
+  if (unbracketed)
     spec.push_back({{"unbracketed", "", "IDA curves whose max_runs ran out before a bracket (censored at their last safe intensity)"},
                     [](const F& f) { return f.unbracketed ? count(*f.unbracketed) : Cell{}; }});
   spec.push_back({{"selection", "", "the frame as -w selectors, comma-separated (empty: all)", "%s", true},
@@ -99,8 +102,9 @@ std::vector<ColumnOf<FragilityPoint>> fragility_point_spec() {
   using P = FragilityPoint;
   return {
       {{"frame", "", "the frame, as in the frames table", "%s"}, [](const P& p) { return Cell{p.frame}; }},
-      {{"kind", "", "stripe (a grid cube's intensity), collapse (an IDA curve's collapse intensity) or censored "
-                    "(an IDA curve safe up to this intensity)", "%s"},
+      {{"kind", "", "stripe (a grid cube's intensity), collapse (an IDA curve's collapse intensity), censored "
+                    "(an IDA curve safe up to this intensity) or unresolved (an IDA curve safe up to this intensity, "
+                    "then without a verdict)", "%s"},
        [](const P& p) { return Cell{p.kind}; }},
       {{"intensity", "", "the intensity (in intensity_units)"}, [](const P& p) { return Cell{p.intensity}; }},
       {{"trials", "", "cases with a verdict at this intensity (1 for an IDA curve)"}, [](const P& p) { return Cell{p.trials}; }},
@@ -114,6 +118,7 @@ std::vector<FragilityPoint> fragility_points(const std::vector<FrameFragility>& 
     for (const auto& s : f.stripes) points.push_back({f.frame, "stripe", s.intensity, s.trials, s.collapses});
     for (double x : f.collapse_intensities) points.push_back({f.frame, "collapse", x, 1.0, 1.0});
     for (double x : f.censored_intensities) points.push_back({f.frame, "censored", x, 1.0, 0.0});
+    for (double x : f.unresolved_intensities) points.push_back({f.frame, "unresolved", x, 1.0, 0.0});
   }
   return points;
 }
@@ -155,7 +160,13 @@ std::vector<ColumnOf<FrameP695>> p695_spec() {
        [](const P& p) { return number_or_missing(p.mu_t); }},
       {{"ssf_beta1", "", "beta1 of the spectral shape factor at that mu_T (Appendix B)"},
        [](const P& p) { return number_or_missing(p695::ssf_beta1(p.mu_t)); }},
-      {{"s_ct_g", "g", "median collapse intensity S_CT (the fragility's median)"}, number(&A::s_ct_g)},
+      {{"s_ct_g", "g", "median collapse intensity S_CT used for CMR and ACMR (the field s_ct says which)"}, number(&A::s_ct_g)},
+      {{"s_ct_counted_g", "g", "S_CT counted: the lowest intensity at which half the records collapse (P-695 6.3, 6.4)"},
+       [](const P& p) { return number_or_missing(p.s_ct_counted_g); }},
+      {{"s_ct_lognormal_g", "g", "median of the fitted lognormal fragility"},
+       [](const P& p) { return number_or_missing(p.s_ct_lognormal_g); }},
+      {{"s_ct_bounded", "", "curves without a collapse shown above a bound below the counted S_CT, counted as collapsing there"},
+       [](const P& p) { return count(p.bounded); }},
       {{"s_mt_g", "g", "MCE intensity S_MT at T (Table 5-1)"}, number(&A::s_mt_g)},
       {{"cmr", "", "collapse margin ratio S_CT / S_MT"}, number(&A::cmr)},
       {{"ssf", "", "spectral shape factor (Appendix B)"}, number(&A::ssf)},
@@ -181,15 +192,19 @@ std::string censored_reduction_note(const cube::CubeReader& cube, const StatsReq
   const auto runs = cube.read_side(vocabulary::kIdaRuns);
   const bool has_states = cube.layout().find_side_variable(vocabulary::kCurveState) != nullptr;
   const auto state = has_states ? cube.read_side(vocabulary::kCurveState) : std::vector<double>(collapse.size(), kNaN);
-  std::size_t left_out = 0, unrefined = 0;
+  std::size_t left_out = 0, unrefined = 0, unresolved = 0;
   for (std::size_t c = 0; c < collapse.size(); ++c) {
     if (!(runs[c] > 0.0)) continue;
-    if (!std::isfinite(collapse[c])) ++left_out;
+    if (state[c] == static_cast<double>(plan::CurveState::kUnresolved)) ++unresolved;
+    else if (!std::isfinite(collapse[c])) ++left_out;
     else if (state[c] == static_cast<double>(plan::CurveState::kUnbracketed)) ++unrefined;
   }
   std::string note;
   if (left_out > 0)
     note = std::to_string(left_out) + " curves without a collapse (censored, or unbracketed before one) are left out of the reduction";
+  if (unresolved > 0)
+    note += (note.empty() ? "" : "; ") + std::to_string(unresolved) +
+            " unresolved curves (a run without a verdict ended them: no collapse intensity) are left out of the reduction";
   if (unrefined > 0)
     note += (note.empty() ? "" : "; ") + std::to_string(unrefined) +
             " unbracketed curves enter the reduction at a collapse not refined to the resolution (an upper bound)";
@@ -289,11 +304,14 @@ Report p695_report(const P695Report& result, const P695Inputs& in, const std::st
                    {"far_field_epsilon", p695::far_field_epsilon(in.period_s)},
                    {"target_epsilon", p695::target_epsilon(in.sdc)},
                    {"ratings", std::string{in.design_rating, in.test_rating, in.model_rating}},
+                   {"ratings_source", std::string(in.default_ratings ? "default" : "given")},
+                   {"s_ct", to_string(in.s_ct)},
                    {"group_mean_acmr", result.group.mean_acmr},
                    {"group_acmr10", result.group.acmr10},
                    {"group", std::string(result.group.passes ? "pass" : "fail")},
                    {"measure_problem", result.measure_problem}};
   if (!result.measure_problem.empty()) report.warnings.push_back(result.measure_problem);
+  for (const auto& note : result.notes) report.warnings.push_back(note);
   report.tables.emplace_back("frames", make_table(p695_spec(), result.frames));
   return report;
 }
@@ -324,9 +342,12 @@ cube::Reduction reduction_of(const std::string& over, const std::string& how, co
   return reduction;
 }
 
-P695Inputs p695_inputs(const std::string& sdc, double period_s, double mu_t, const std::string& ratings) {
+P695Inputs p695_inputs(const std::string& sdc, double period_s, double mu_t, const std::string& ratings,
+                       const std::string& s_ct) {
   P695Inputs in;
-  std::string r = ratings;
+  in.default_ratings = ratings.empty();
+  in.s_ct = parse_s_ct(s_ct);
+  std::string r = ratings.empty() ? std::string("BBB") : ratings;
   std::erase(r, ',');
   if (r.size() != 3) throw std::invalid_argument("--ratings: give three letters A-D, e.g. B,B,C (got '" + ratings + "')");
   in.sdc = p695::parse_sdc(sdc);

@@ -80,12 +80,13 @@ post::Report report(const std::string& kind, const std::string& file, Keywords& 
     const auto period_s = keywords.take_number("period_s");
     const auto sdc = keywords.take_text("sdc").value_or("Dmax");
     const auto mu_t = keywords.take_number("mu_t").value_or(0.0);
-    const auto ratings = keywords.take_text("ratings").value_or("B,B,B");
+    const auto ratings = keywords.take_text("ratings").value_or("");
+    const auto s_ct = keywords.take_text("s_ct").value_or("counted");
     keywords.finish();
     if (!period_s) throw api::InputError("p695 needs period_s, the archetype's period T [s]");
     post::P695Inputs in;
     try {
-      in = post::p695_inputs(sdc, *period_s, mu_t, ratings);
+      in = post::p695_inputs(sdc, *period_s, mu_t, ratings, s_ct);
     } catch (const std::invalid_argument& e) {
       throw api::InputError(e.what());
     }

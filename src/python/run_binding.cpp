@@ -100,6 +100,7 @@ py::tuple run(const py::kwargs& kwargs) {
     if (call.history) sink = [&rows](const HistorySample& s) { rows.push_back(s); };
     result = api::solve_one_case(std::move(call.scene), physics, scaled.excitation->view(), solver,
                                  call.history_dt_s, sink);
+    if (auto note = api::verdict_note(result, physics); !note.empty()) call.notes.push_back(std::move(note));
   }
   py::object history = call.history ? py::object(history_array(rows)) : py::none();
   return py::make_tuple(result_dict(scaled.scale_factor, result), history, py::cast(call.notes), py::cast(call.warnings));

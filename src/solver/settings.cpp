@@ -2,7 +2,10 @@
 #include "pcrf/solver/settings.hpp"
 
 #include <array>
+#include <cmath>
 #include <stdexcept>
+
+#include "pcrf/number_text.hpp"
 
 namespace pcrf {
 
@@ -103,6 +106,13 @@ const SettingTable<SolverSettings>& solver_settings() {
     return t;
   }();
   return table;
+}
+
+std::string tail_advice(double tail_s) {
+  if (std::isnan(tail_s)) return "a longer physics.tail_s (fixed tail) or physics.max_tail_s (until-rest tail) resolves them";
+  if (tail_s == kTailUntilRest) return "a longer physics.max_tail_s resolves them (the until-rest tail stops there)";
+  return "a longer physics.tail_s resolves them (the tail is fixed at " + number_text(tail_s) +
+         " s; physics.max_tail_s caps only an until-rest tail)";
 }
 
 }  // namespace pcrf

@@ -2,9 +2,12 @@
 #include "pcrf/study/cube_vocabulary.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "pcrf/metrics/case_result.hpp"
+#include "pcrf/number_text.hpp"
 #include "pcrf/plan/ida_search.hpp"
+#include "pcrf/solver/settings.hpp"
 
 namespace pcrf::study::vocabulary {
 
@@ -53,7 +56,7 @@ std::vector<std::int8_t> collapse_statuses() {
 std::vector<std::int8_t> unresolved_statuses() {
   std::vector<std::int8_t> codes;
   for (CaseStatus s : all_final_statuses())
-    if (is_unresolved(s)) codes.push_back(static_cast<std::int8_t>(s));
+    if (gives_no_verdict(s)) codes.push_back(static_cast<std::int8_t>(s));
   return codes;
 }
 
@@ -63,10 +66,32 @@ std::int64_t unresolved_count(std::span<const std::int8_t> status) {
   return n;
 }
 
-std::string unresolved_note(std::int64_t count, const std::string& unit, const std::string& what) {
+double tail_s_of(const cube::CubeLayout& layout) {
+  for (const auto& a : layout.attributes)
+    if (a.name == kTailAttribute)
+      if (const double* v = std::get_if<double>(&a.value)) return *v;
+  return std::nan("");
+}
+
+std::string unresolved_note(std::int64_t count, const std::string& unit, const std::string& what, double tail_s) {
   if (count == 0) return {};
-  return std::to_string(count) + " " + unit + " ended with the frame still rocking (rocking_at_end: the tail, at most "
-         "physics.max_tail_s with tail_s = \"until-rest\", ended first): unresolved, " + what;
+  return std::to_string(count) + " " + unit + " ended with the frame still rocking (rocking_at_end: the tail ended "
+         "first): unresolved, " + what + "; " + tail_advice(tail_s);
+}
+
+std::string outside_model_note(const std::vector<std::int8_t>& status, const std::string& unit, const std::string& what) {
+  std::string counts;
+  std::int64_t total = 0;
+  for (CaseStatus s : all_final_statuses()) {
+    if (!is_outside_model(s)) continue;
+    const auto n = std::count(status.begin(), status.end(), static_cast<std::int8_t>(s));
+    if (n == 0) continue;
+    total += n;
+    counts += (counts.empty() ? "" : ", ") + std::to_string(n) + " " + std::string(status_name(s));
+  }
+  if (total == 0) return {};
+  return std::to_string(total) + " " + unit + " ended where the model no longer applies (" + counts + "): no verdict, " +
+         what;
 }
 
 std::vector<std::pair<std::string, std::int64_t>> uncounted_collapses(const std::vector<std::int8_t>& status,
@@ -93,13 +118,15 @@ std::vector<std::string> uncounted_collapse_notes(const std::vector<std::int8_t>
 }
 
 std::vector<std::string> verdict_notes(const std::vector<std::int8_t>& status, const std::optional<std::string>& ida_collapse,
-                                       const std::string& treatment) {
+                                       const std::string& treatment, double tail_s) {
   std::vector<std::string> notes;
-  const std::string note = unresolved_note(
-      unresolved_count(status), ida_collapse ? "runs" : "cases",
-      ida_collapse ? "counted as collapses by the IDA's search (conservative; a longer physics.max_tail_s resolves them)"
-                   : treatment);
+  const std::string unit = ida_collapse ? "runs" : "cases";
+  const std::string ida_treatment = "never safe: each stops its curve's hunt, and a curve whose lowest stopping run is "
+                                    "one is unresolved (no collapse intensity; bounded at its last safe run)";
+  const std::string note = unresolved_note(unresolved_count(status), unit, ida_collapse ? ida_treatment : treatment, tail_s);
   if (!note.empty()) notes.push_back(note);
+  if (auto line = outside_model_note(status, unit, ida_collapse ? ida_treatment : treatment); !line.empty())
+    notes.push_back(std::move(line));
   if (ida_collapse)
     for (auto& line : uncounted_collapse_notes(status, *ida_collapse)) notes.push_back(std::move(line));
   return notes;
@@ -138,6 +165,7 @@ CurveStates curve_states(const cube::CubeReader& cube) {
     if (code == static_cast<double>(plan::CurveState::kBracketed)) ++states.bracketed;
     else if (code == static_cast<double>(plan::CurveState::kCensored)) ++states.censored;
     else if (code == static_cast<double>(plan::CurveState::kUnbracketed)) ++states.unbracketed;
+    else if (code == static_cast<double>(plan::CurveState::kUnresolved)) ++states.unresolved;
     else ++states.unfinished;  // NaN
   }
   return states;
@@ -149,6 +177,9 @@ std::string curve_states_text(const CurveStates& states) {
                      " bracketed to the resolution, " + std::to_string(states.censored) +
                      " right-censored at max_intensity, " + std::to_string(states.unbracketed) +
                      " unbracketed (max_runs ran out)";
+  if (states.unresolved > 0)
+    text += ", " + std::to_string(states.unresolved) +
+            " unresolved (a run without a verdict ended the hunt: no collapse intensity, safe only up to the last safe run)";
   if (states.unfinished > 0) text += ", " + std::to_string(states.unfinished) + " not finished";
   return text;
 }

@@ -13,10 +13,12 @@
 namespace pcrf::study {
 namespace {
 
-/// Which verdicts end a curve's hunt: the [ida] collapse statuses, a failed run (its
-/// response is unknown: conservatively a collapse, as IDA practice counts non-convergence),
-/// an unresolved run (the frame still rocking when its tail ended: never safe, so, for the
-/// same reason, a collapse), and, with theta_limit_rad, a peak rotation at or above it.
+/// What a run tells a curve's search: a collapse for the [ida] collapse statuses, a failed
+/// run (its response is unknown: conservatively a collapse, as IDA practice counts
+/// non-convergence) and, with theta_limit_rad, a peak rotation at or above it; no verdict for
+/// a run the model cannot vouch for (gives_no_verdict: still rocking when its tail ended, a
+/// ground in free fall, an invalid frame), which stops the hunt but is never a collapse nor
+/// safe; else safe.
 class CollapseRule {
  public:
   explicit CollapseRule(const Study& study) : limit_rad_(study.ida->theta_limit_rad) {
@@ -27,11 +29,12 @@ class CollapseRule {
     theta_column_ = column == ResultColumns::npos ? -1 : static_cast<int>(column);
   }
 
-  bool operator()(std::int8_t status, double theta_max_rad) const {
+  plan::RunVerdict operator()(std::int8_t status, double theta_max_rad) const {
     const auto s = static_cast<CaseStatus>(status);
-    if (is_failure(s) || is_unresolved(s) || status == parallel::kEvaluatorThrew) return true;
-    if (std::find(statuses_.begin(), statuses_.end(), status) != statuses_.end()) return true;
-    return limit_rad_ > 0.0 && theta_max_rad >= limit_rad_;
+    if (is_failure(s) || status == parallel::kEvaluatorThrew) return plan::RunVerdict::kCollapse;
+    if (std::find(statuses_.begin(), statuses_.end(), status) != statuses_.end()) return plan::RunVerdict::kCollapse;
+    if (limit_rad_ > 0.0 && theta_max_rad >= limit_rad_) return plan::RunVerdict::kCollapse;
+    return gives_no_verdict(s) ? plan::RunVerdict::kNoVerdict : plan::RunVerdict::kSafe;
   }
   /// θ_max of a row (NaN when not stored).
   double theta(const std::vector<double>& row) const { return theta_column_ < 0 ? std::nan("") : row[static_cast<std::size_t>(theta_column_)]; }

@@ -1,6 +1,8 @@
 // The three second axes of a study (see level_axis.hpp).
 #include "pcrf/study/level_axis.hpp"
 
+#include <iterator>
+
 #include "pcrf/study/cube_vocabulary.hpp"
 #include "pcrf/plan/ida_search.hpp"
 #include "pcrf/study/plan.hpp"
@@ -10,10 +12,14 @@ namespace {
 
 namespace names = vocabulary;
 
-/// "how the curve ended: 0 bracketed (…), 1 censored (…), 2 unbracketed (…); NaN: not finished".
+/// "how the curve ended: 0 bracketed (…), 1 censored (…), 2 unbracketed (…), 3 unresolved (…);
+/// NaN: not finished".
 std::string curve_state_long_name() {
   static const char* const kMeaning[] = {"bracketed to the resolution", "safe at max_intensity: right-censored",
-                                         "max_runs ran out before either"};
+                                         "max_runs ran out before either",
+                                         "a run without a verdict ended the hunt: no collapse intensity, never safe beyond "
+                                         "the last safe run"};
+  static_assert(std::size(kMeaning) == plan::kCurveStateNames.size());
   std::string text = "how the curve ended:";
   for (const auto& n : plan::kCurveStateNames)
     text += " " + std::to_string(static_cast<int>(n.value)) + " " + n.name + " (" + kMeaning[static_cast<int>(n.value)] + "),";
@@ -113,7 +119,7 @@ class IdaAxis final : public MeasuredAxis {
     side.push_back({names::kCurveState, "1", curve_state_long_name(), curves, {}});
     side.push_back({names::kUnresolvedRuns, "1",
                     "runs of the curve whose frame was still rocking when its tail ended (rocking_at_end): no verdict, "
-                    "counted as collapses by the search",
+                    "each stops its curve's hunt without counting as a collapse",
                     curves, {}});
     if (!verdict_check_) return;
     side.push_back({names::kUnstableFrom, units_,

@@ -389,7 +389,7 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
   summary.error_cause = sink.error_cause();
   summary.verdict_notes = vocabulary::verdict_notes(
       m.writer->status(), p.study.ida ? std::optional<std::string>(p.study.ida->collapse) : std::nullopt,
-      "neither safe nor collapsed (a longer physics.max_tail_s resolves them)");
+      "neither safe nor collapsed", p.study.physics.tail_s);
   return summary;
 }
 

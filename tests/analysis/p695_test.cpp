@@ -99,3 +99,41 @@ TEST(P695, AgreesWithTheFemaP695PackagesDocumentedValues) {
   EXPECT_NEAR(pcrf::p695::acceptable_cmr(0.2, 0.1), 1.29215364, 1e-8);
   EXPECT_NEAR(pcrf::p695::acceptable_cmr(0.5, 0.1), 1.89795271, 1e-8);
 }
+
+namespace {
+
+TEST(P695, TheCountedMedianIsTheLowestIntensityAtWhichHalfTheRecordsCollapse) {
+  using pcrf::p695::counted_median;
+  // Even N = 4: at 2 g two of four have collapsed (half): the 2nd smallest, not (2 + 3)/2.
+  const auto even = counted_median({3.0, 1.0, 4.0, 2.0}, {});
+  EXPECT_EQ(even.s_ct_g, 2.0);
+  EXPECT_EQ(even.high_g, 2.0);
+  EXPECT_EQ(even.bounded, 0u);
+  EXPECT_EQ(even.curves, 4u);
+  // Odd N = 5: the middle one (three of five at 3 g).
+  EXPECT_EQ(counted_median({5.0, 1.0, 4.0, 2.0, 3.0}, {}).s_ct_g, 3.0);
+  // N = 44 of FEMA P-695: the 22nd smallest.
+  std::vector<double> set;
+  for (int k = 1; k <= 44; ++k) set.push_back(0.25 * k);
+  EXPECT_EQ(counted_median(set, {}).s_ct_g, 0.25 * 22);
+  // Curves safe at the cap (censored at 8 g) count as not collapsed: N = 5, k = 3.
+  const auto capped = counted_median({1.0, 2.0, 3.0}, {8.0, 8.0});
+  EXPECT_EQ(capped.s_ct_g, 3.0);
+  EXPECT_EQ(capped.bounded, 0u);
+  // A curve bounded at 1.5 g (unresolved above) could collapse before the 3rd collapse at
+  // 3 g: counted as collapsing at 1.5 g, S_CT is 2 g (conservative), 3 g were it never to.
+  const auto bounded = counted_median({1.0, 2.0, 3.0, 4.0}, {1.5});
+  EXPECT_EQ(bounded.s_ct_g, 2.0);
+  EXPECT_EQ(bounded.low_g, 2.0);
+  EXPECT_EQ(bounded.high_g, 3.0);
+  EXPECT_EQ(bounded.bounded, 1u);
+  // Fewer than half collapse at all: no value from the collapses alone; counting the bounds
+  // as collapses gives the lower bound 8 g (S_CT is at least that), all three bounded.
+  const auto few = counted_median({1.0}, {8.0, 8.0, 8.0});
+  EXPECT_TRUE(std::isnan(few.high_g));
+  EXPECT_EQ(few.s_ct_g, 8.0);
+  EXPECT_EQ(few.bounded, 3u);
+  EXPECT_THROW(counted_median({}, {}), std::invalid_argument);
+}
+
+}  // namespace

@@ -10,7 +10,9 @@
 #include <sstream>
 
 #include "pcrf/cube/cube_reader.hpp"
+#include "pcrf/metrics/case_result.hpp"
 #include "pcrf/number_text.hpp"
+#include "pcrf/row_major.hpp"
 #include "pcrf/post/cube_reports.hpp"
 #include "study/study_test_support.hpp"
 
@@ -99,6 +101,41 @@ TEST(CubeOutputs, StatsCsvIsItsDefaultOutputAndAFileCopy) {
   std::stringstream copy;
   copy << in.rdbuf();
   EXPECT_EQ(copy.str(), plain.out);
+}
+
+TEST(CubeOutputs, P695OfStripesCountsTheLowestStripeWhereHalfTheRecordsCollapse) {
+  // P-695 6.3/6.4 on a stripe cube: S_CT is the lowest intensity at which at least half the
+  // records with a verdict collapsed, counted here from the statuses; --s-ct lognormal takes
+  // the fragility's median instead.
+  const cube::CubeReader reader(cubes() / "f.h5");
+  const auto& layout = reader.layout();
+  const auto level = *layout.find_dimension("intensity");
+  const auto& levels = layout.find_coordinate("intensity")->numbers;
+  std::vector<int> trials(levels.size(), 0), collapses(levels.size(), 0);
+  const auto status = reader.read_status();
+  for (std::size_t i = 0; i < status.size(); ++i) {
+    const auto s = static_cast<CaseStatus>(status[i]);
+    if (!has_verdict(s)) continue;
+    const auto l = unravel(static_cast<std::int64_t>(i), layout.shape())[level];
+    ++trials[l];
+    collapses[l] += is_collapse(s) ? 1 : 0;
+  }
+  double counted_g = NAN;
+  for (std::size_t l = 0; l < levels.size() && std::isnan(counted_g); ++l)
+    if (trials[l] > 0 && 2 * collapses[l] >= trials[l]) counted_g = levels[l];
+  ASSERT_TRUE(std::isfinite(counted_g)) << "no stripe where half collapse: raise the intensities";
+  const auto inputs = post::p695_inputs("Dmax", 0.5, 3.0, "B,B,B");
+  const auto report = post::p695_report(reader, {}, inputs);
+  const auto& frames = report.table("frames");
+  ASSERT_EQ(frames.rows.size(), 1u);
+  EXPECT_EQ(std::get<double>(frames.rows[0][frames.column("s_ct_g")]), counted_g);
+  EXPECT_EQ(std::get<double>(frames.rows[0][frames.column("s_ct_counted_g")]), counted_g);
+  const double lognormal_g = std::get<double>(frames.rows[0][frames.column("s_ct_lognormal_g")]);
+  const auto fragility = post::fragility_report(reader, {{}, std::nullopt});
+  EXPECT_EQ(lognormal_g, std::get<double>(fragility.table("frames").rows[0][fragility.table("frames").column("median")]));
+  const auto by_fit = post::p695_report(reader, {}, post::p695_inputs("Dmax", 0.5, 3.0, "B,B,B", "lognormal"));
+  EXPECT_EQ(std::get<double>(by_fit.table("frames").rows[0][by_fit.table("frames").column("s_ct_g")]), lognormal_g);
+  EXPECT_THROW(post::p695_inputs("Dmax", 0.5, 3.0, "B,B,B", "mean"), std::invalid_argument);
 }
 
 TEST(CubeOutputs, FragilityCsvAndJsonCarryFullPrecision) {

@@ -31,6 +31,26 @@ TEST(RunCommand, PrintsOneJsonObjectWithTheResultKeys) {
   EXPECT_NE(r.out.find("\"status\": \"at_rest\""), std::string::npos) << r.out;
 }
 
+TEST(RunCommand, AFrameStillRockingAtItsEndIsNotedOnStderrWithTheSettingThatHelps) {
+  // Issue 29: `pcrf run --tail-s 0` reported rocking_at_end and said nothing. The note names
+  // tail_s for a fixed tail and max_tail_s for an until-rest one; a case at rest says nothing.
+  const std::string base = pcrf() + " run --synthetic 'sine:amplitude_g=1.2,period_s=0.8,cycles=3,duration_s=2.4'";
+  const auto fixed = test::run_command(base + " --tail-s 0");
+  ASSERT_EQ(fixed.exit_code, 0) << fixed.err;
+  ASSERT_NE(fixed.out.find("\"status\": \"rocking_at_end\""), std::string::npos) << fixed.out;
+  EXPECT_NE(fixed.err.find("rocking_at_end"), std::string::npos) << fixed.err;
+  EXPECT_NE(fixed.err.find("a longer physics.tail_s"), std::string::npos) << fixed.err;
+  EXPECT_EQ(fixed.err.find('\n'), fixed.err.size() - 1) << fixed.err;  // one line
+  const auto capped = test::run_command(base + " --max-tail-s 0.01");
+  ASSERT_EQ(capped.exit_code, 0) << capped.err;
+  ASSERT_NE(capped.out.find("\"status\": \"rocking_at_end\""), std::string::npos) << capped.out;
+  EXPECT_NE(capped.err.find("a longer physics.max_tail_s"), std::string::npos) << capped.err;
+  const auto rest = test::run_command(base);
+  ASSERT_EQ(rest.exit_code, 0) << rest.err;
+  ASSERT_NE(rest.out.find("\"status\": \"at_rest\""), std::string::npos) << rest.out;
+  EXPECT_EQ(rest.err, "");
+}
+
 TEST(RunCommand, FrameParametersChangeTheResult) {
   const std::string base = pcrf() + " run --synthetic 'sine:amplitude_g=1.5,period_s=0.5,cycles=2'";
   const auto a = test::run_command(base);

@@ -165,3 +165,43 @@ TEST(IdaSearch, BadSettingsAreRejected) {
 
 }  // namespace
 }  // namespace pcrf::plan
+
+namespace pcrf::plan {
+namespace {
+
+/// A curve's runs on a frame that collapses from `collapse` up and whose runs from `no_verdict`
+/// up give no verdict (the ground falls faster than gravity: every higher scale does too).
+IdaSearch trace_verdicts(const IdaSearchSettings& settings, double collapse, double no_verdict) {
+  IdaSearch search(settings);
+  while (const auto x = search.next())
+    search.add(*x, *x >= collapse ? RunVerdict::kCollapse : *x >= no_verdict ? RunVerdict::kNoVerdict : RunVerdict::kSafe);
+  return search;
+}
+
+TEST(IdaSearch, ACurveStoppedByARunWithoutAVerdictIsUnresolvedNeverCensoredAtTheCap) {
+  // Free fall from 3.3 on, no collapse below the cap: before, the search called those runs
+  // safe and the curve "right-censored, safe at 12"; now it stops there and is unresolved.
+  const auto s = defaults();
+  const auto curve = trace_verdicts(s, INFINITY, 3.3);
+  EXPECT_EQ(curve.state(), CurveState::kUnresolved);
+  EXPECT_EQ(curve_state_name(CurveState::kUnresolved), "unresolved");
+  EXPECT_TRUE(std::isnan(curve.collapse_intensity()));
+  EXPECT_LT(curve.last_safe_intensity(), 3.3);
+  EXPECT_GT(curve.last_safe_intensity(), 3.3 / 1.02 / 1.02);  // bisected down to the resolution
+  EXPECT_NE(curve.last_safe_intensity(), s.max_intensity);
+  // It made the runs a collapse at 3.3 makes: the same hunt and bisection.
+  EXPECT_EQ(curve.runs(), trace(s, [](double x) { return x >= 3.3; }).runs());
+  // A collapse below the runs without a verdict is found and bracketed as usual.
+  const auto below = trace_verdicts(s, 2.2, 3.3);
+  EXPECT_EQ(below.state(), CurveState::kBracketed);
+  EXPECT_GE(below.collapse_intensity(), 2.2);
+  EXPECT_LE(below.collapse_intensity() / below.last_safe_intensity() - 1.0, 0.02);
+  // No verdict at the very first run (an invalid frame): no safe run at all.
+  const auto invalid = trace_verdicts(s, INFINITY, 0.0);
+  EXPECT_EQ(invalid.state(), CurveState::kUnresolved);
+  EXPECT_TRUE(std::isnan(invalid.last_safe_intensity()));
+  EXPECT_TRUE(std::isnan(invalid.collapse_intensity()));
+}
+
+}  // namespace
+}  // namespace pcrf::plan

@@ -113,3 +113,14 @@ def test_a_block_on_a_paper_record(paper):
     record = paper[0]
     expected = cli_json("run", "--record", record, "--scale", "0.5", "--model", "block", "--size-m", "2")
     assert_same_record(pcrf.run(record=record, scale=0.5, model="block", frame={"size_m": 2}), expected)
+
+
+def test_a_frame_still_rocking_at_its_end_warns_naming_the_setting_that_helps():
+    import pytest
+
+    synthetic = "sine:amplitude_g=1.2,period_s=0.8,cycles=3,duration_s=2.4"
+    with pytest.warns(UserWarning, match=r"rocking_at_end.*physics\.tail_s"):
+        fixed = pcrf.run(synthetic=synthetic, tail_s=0)
+    assert fixed["status"] == "rocking_at_end"
+    with pytest.warns(UserWarning, match=r"physics\.max_tail_s"):
+        assert pcrf.run(synthetic=synthetic, max_tail_s=0.01)["status"] == "rocking_at_end"

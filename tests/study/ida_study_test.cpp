@@ -19,6 +19,8 @@
 #include "pcrf/metrics/case_result.hpp"
 #include "pcrf/analysis/fragility.hpp"
 #include "pcrf/cube/cube_reader.hpp"
+#include "pcrf/number_text.hpp"
+#include "pcrf/plan/ida_search.hpp"
 #include "study/study_test_support.hpp"
 
 namespace pcrf::study_test {
@@ -319,18 +321,48 @@ TEST(IdaStudy, P695CarriesTheCollapseIntensityToItsVerdict) {
   for (const char* key : {"\"s_ct_g\": ", "\"s_mt_g\": 1.5", "\"ssf\": ", "\"beta_total\": 0.525", "\"acmr10\": ",
                           "\"p_collapse_mce\": ", "\"group\": "})
     EXPECT_NE(json.out.find(key), std::string::npos) << key << " in " << json.out;
-  // Ŝ_CT is the fragility's median (4 digits in its CSV); CMR = Ŝ_CT / S_MT(0.5 s) = Ŝ_CT / 1.5 g.
+  // Ŝ_CT is counted (P-695 6.3/6.4): of the frame's 6 curves, the 3rd smallest collapse
+  // intensity, computed here from the cube; the lognormal median (the fragility's, 4 digits in
+  // its CSV) is shown beside it, and feeds CMR only with --s-ct lognormal.
+  cube::CubeReader reader(dir / "sa.h5");
+  const auto c = reader.read_side("collapse_intensity"), state = reader.read_side("curve_state");
+  std::vector<double> collapses;
+  for (std::size_t curve = 0; curve < c.size(); curve += 2) {  // kappa = 1.4: the even curves
+    ASSERT_TRUE(state[curve] == 0.0 || state[curve] == 1.0) << "curve " << curve << ": a bound would move the count";
+    if (state[curve] == 0.0) collapses.push_back(c[curve]);
+  }
+  std::sort(collapses.begin(), collapses.end());
+  ASSERT_GE(collapses.size(), 3u);
+  const double counted_g = collapses[2];
   const auto fragility = test::run_command(pcrf() + " cube fragility " + cube + " --csv -");
   ASSERT_EQ(fragility.exit_code, 0) << fragility.err;
   const std::regex row(R"(kappa=1\.4,\d+,\d+,\d+,\d+,([0-9.]+),)");
   std::smatch m;
   ASSERT_TRUE(std::regex_search(fragility.out, m, row)) << fragility.out;
   const double median_g = std::stod(m[1].str());
+  // 6 curves per frame: a caution, and no bootstrap interval (its cells are empty).
+  EXPECT_NE(fragility.err.find("frame kappa=1.4: a fit from 6 curves, fewer than 10"), std::string::npos) << fragility.err;
+  EXPECT_NE(fragility.out.find(m[1].str() + ",,,"), std::string::npos) << fragility.out;
   const std::regex s_ct(
-      R"(\{"frame": "kappa=1\.4", "mu_t": 3, "ssf_beta1": [0-9.e+-]+, "s_ct_g": ([0-9.e+-]+), "s_mt_g": 1\.5, "cmr": ([0-9.e+-]+))");
+      R"(\{"frame": "kappa=1\.4", "mu_t": 3, "ssf_beta1": [0-9.e+-]+, "s_ct_g": ([0-9.e+-]+), "s_ct_counted_g": ([0-9.e+-]+), )"
+      R"("s_ct_lognormal_g": ([0-9.e+-]+), "s_ct_bounded": 0, "s_mt_g": 1\.5, "cmr": ([0-9.e+-]+))");
   ASSERT_TRUE(std::regex_search(json.out, m, s_ct)) << json.out;
+  EXPECT_EQ(std::stod(m[1].str()), counted_g);
+  EXPECT_EQ(std::stod(m[2].str()), counted_g);
+  EXPECT_NEAR(std::stod(m[3].str()), median_g, 5e-4 * median_g);
+  EXPECT_NEAR(std::stod(m[4].str()), counted_g / 1.5, 1e-12);
+  EXPECT_NE(json.out.find("\"s_ct\": \"counted\""), std::string::npos) << json.out;
+  const auto lognormal = test::run_command(pcrf() + " cube p695 " + cube + " --period-s 0.5 --sdc Dmax --mu-t 3 --json --s-ct lognormal");
+  ASSERT_EQ(lognormal.exit_code, 0) << lognormal.err;
+  ASSERT_TRUE(std::regex_search(lognormal.out, m, s_ct)) << lognormal.out;
   EXPECT_NEAR(std::stod(m[1].str()), median_g, 5e-4 * median_g);
-  EXPECT_NEAR(std::stod(m[2].str()), std::stod(m[1].str()) / 1.5, 1e-12);
+  EXPECT_NEAR(std::stod(m[4].str()), std::stod(m[1].str()) / 1.5, 1e-12);
+  // Default ratings and a group of one frame are said; given ratings are not.
+  EXPECT_NE(json.err.find("quality ratings not given"), std::string::npos) << json.err;
+  const auto one = test::run_command(pcrf() + " cube p695 " + cube + " --period-s 0.5 --mu-t 3 --ratings B,B,C -w kappa=1.4");
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  EXPECT_NE(one.err.find("a performance group of one archetype"), std::string::npos) << one.err;
+  EXPECT_EQ(one.err.find("quality ratings not given"), std::string::npos) << one.err;
   const auto other = test::run_command(pcrf() + " cube p695 " + cube + " --period-s 1.0");
   EXPECT_EQ(other.exit_code, 0) << other.err;
   EXPECT_NE(other.err.find("not at the --period-s 1 s"), std::string::npos) << other.err;
@@ -450,6 +482,86 @@ TEST(IdaStudy, UnresolvedRunsAreCountedPerCurveInTheCubeAndOnStderr) {
   const auto info = test::run_command(pcrf() + " cube info " + quoted(dir / "ida.h5"));
   ASSERT_EQ(info.exit_code, 0) << info.err;
   EXPECT_NE(info.err.find(std::to_string(total) + " runs ended with the frame still rocking"), std::string::npos) << info.err;
+}
+
+}  // namespace
+}  // namespace pcrf::study_test
+
+namespace pcrf::study_test {
+namespace {
+
+/// A station whose vertical is twice its horizontal (a sine of period 0.5 s, in g): scaled by
+/// the horizontal's PGA, the ground falls faster than gravity (g + ü_v ≤ 0) from PGA 0.5 g up.
+std::string free_fall_station(const std::filesystem::path& dir) {
+  std::string h1, up;
+  for (int i = 0; i <= 800; ++i) {
+    const double t = 0.005 * i, a = std::sin(2.0 * M_PI * t / 0.5);
+    h1 += number_text(t) + " " + number_text(a) + "\n";
+    up += number_text(t) + " " + number_text(2.0 * a) + "\n";
+  }
+  test::write_file(dir, "h1.txt", h1);
+  test::write_file(dir, "up.txt", up);
+  return "[[records]]\nh1 = \"h1.txt\"\nup = \"up.txt\"\nunits = \"g\"\nname = \"falling\"\n"
+         "[intensity]\nmeasure = \"pga_g\"\n[ida]\nstart = 0.2\nmax_intensity = 10\nmax_runs = 10\n"
+         "[outputs]\nmetrics = [\"theta_max_rad\"]\n";
+}
+
+TEST(IdaStudy, ACurveEndingInFreeFallIsUnresolvedNotSafeAtTheCap) {
+  // Issue 29: free-fall runs were safe to the search, so these curves read "right-censored,
+  // safe at 10 g" and a fragility fitted them there. Now the first free-fall run stops the
+  // hunt, the curve is unresolved with no collapse intensity, its last safe run below 0.5 g.
+  const auto dir = test::scratch_dir("ida_free_fall");
+  const auto run = run_ida(dir, free_fall_station(dir), "ida.h5");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  cube::CubeReader cube(dir / "ida.h5");
+  const auto status = cube.read_status();
+  const auto falls = std::count(status.begin(), status.end(), static_cast<std::int8_t>(CaseStatus::kGroundFreeFall));
+  ASSERT_GT(falls, 0) << "no run fell: the test sees nothing";
+  const auto state = cube.read_side("curve_state"), safe = cube.read_side("last_safe_intensity");
+  const auto collapse = cube.read_side("collapse_intensity");
+  ASSERT_EQ(state.size(), 1u);
+  EXPECT_EQ(state[0], static_cast<double>(plan::CurveState::kUnresolved));
+  EXPECT_TRUE(std::isnan(collapse[0]));
+  EXPECT_LT(safe[0], 0.5);
+  EXPECT_NE(run.err.find(std::to_string(falls) + " ground_free_fall"), std::string::npos) << run.err;
+  const auto info = test::run_command(pcrf() + " cube info " + quoted(dir / "ida.h5"));
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_NE(info.out.find("1 IDA curves: 0 bracketed to the resolution, 0 right-censored at max_intensity, 0 unbracketed"
+                          " (max_runs ran out), 1 unresolved"),
+            std::string::npos)
+      << info.out;
+  // The fragility bounds it at its last safe run, never at the cap, and says so with the count.
+  const auto fragility = test::run_command(pcrf() + " cube fragility " + quoted(dir / "ida.h5") + " --points -");
+  ASSERT_EQ(fragility.exit_code, 0) << fragility.err;
+  EXPECT_NE(fragility.err.find("1 unresolved curves"), std::string::npos) << fragility.err;
+  EXPECT_EQ(fragility.out.find(",censored,"), std::string::npos) << fragility.out;
+  const auto at = fragility.out.find(",unresolved,");
+  ASSERT_NE(at, std::string::npos) << fragility.out;
+  EXPECT_NEAR(std::stod(fragility.out.substr(at + 12)), safe[0], 1e-9 * safe[0]) << fragility.out;
+}
+
+}  // namespace
+}  // namespace pcrf::study_test
+
+namespace pcrf::study_test {
+namespace {
+
+TEST(IdaStudy, CasesInFreeFallAreCountedApartByStatsNotInItsPercentiles) {
+  // The same station on a grid: from scale 0.5 up the ground falls (ground_free_fall). Their
+  // θ_max (up to the fall) is no result of the frame: stats count them as unresolved.
+  const auto dir = test::scratch_dir("grid_free_fall");
+  free_fall_station(dir);
+  test::write_file(dir, "grid.toml",
+                                     "[[records]]\nh1 = \"h1.txt\"\nup = \"up.txt\"\nunits = \"g\"\n"
+                                     "[axes]\nscale = [0.2, 0.4, 0.8, 1.0]\n[outputs]\nmetrics = [\"theta_max_rad\"]\n");
+  const auto run = test::run_command("cd " + quoted(dir) + " && " + pcrf() + " study grid.toml -o grid.h5 --progress-interval 0");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.err.find("2 cases ended where the model no longer applies (2 ground_free_fall)"), std::string::npos) << run.err;
+  const auto stats = test::run_command(pcrf() + " cube stats " + quoted(dir / "grid.h5") + " --by scale -m theta_max_rad");
+  ASSERT_EQ(stats.exit_code, 0) << stats.err;
+  EXPECT_NE(stats.out.find("\n0.8,1,0,0,,,,1\n"), std::string::npos) << stats.out;
+  EXPECT_NE(stats.out.find("\n1,1,0,0,,,,1"), std::string::npos) << stats.out;
+  EXPECT_NE(stats.out.find("\n0.4,1,0,1,"), std::string::npos) << stats.out;
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 /// the methodology's own formula or table, with its section named.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,28 @@ double target_epsilon(Sdc sdc);
 /// Acceptable collapse margin ratio at a collapse probability `p` under the MCE:
 /// exp(−Φ⁻¹(p) β_TOT) (Section 7.4, Table 7-3 lists it for ACMR10% and ACMR20%).
 double acceptable_cmr(double beta_total, double probability);
+
+/// Ŝ_CT as the methodology defines it (Sections 6.3 and 6.4): the intensity at which one
+/// half of the records cause collapse, counted from the records' IDA collapse intensities.
+/// With N curves, it is the lowest intensity at which at least N/2 of them have collapsed:
+/// the k-th smallest collapse intensity, k = ⌈N/2⌉ (N = 44: the 22nd; an even N takes the
+/// lower of the two middle values, not their mean; an odd N the middle one).
+/// A censored curve (no collapse shown above `censored_g`: safe at the cap, or unbracketed or
+/// unresolved and bounded at its last safe run) counts as not collapsed at every intensity up
+/// to its bound and unknown above. When such a bound lies below the k-th collapse, that curve
+/// could have collapsed before it: Ŝ_CT then lies in [low_g, high_g], where low_g counts those
+/// curves as collapsing at their bounds (conservative) and high_g as never collapsing; `s_ct_g`
+/// is low_g, and `bounded` says how many curves moved it. With fewer than k collapses even
+/// counting every bound, Ŝ_CT is above every intensity run: NaN.
+struct CountedMedian {
+  double s_ct_g = 0.0;        ///< the counted Ŝ_CT used (low_g) [g]; NaN when not reached
+  double low_g = 0.0;         ///< bounded curves counted as collapsing at their bounds [g]
+  double high_g = 0.0;        ///< bounded curves counted as never collapsing [g]; NaN when not reached
+  std::size_t curves = 0;     ///< N
+  std::size_t bounded = 0;    ///< curves whose bound lies below high_g (or every censored one when high_g is NaN)
+};
+/// \throws std::invalid_argument for no curve at all.
+CountedMedian counted_median(std::vector<double> collapse_g, std::vector<double> censored_g);
 
 /// The methodology's numbers for one archetype.
 struct Assessment {

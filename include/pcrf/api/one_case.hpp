@@ -52,6 +52,12 @@ ScaledExcitation scaled_excitation(const StationRecord& station, std::optional<d
 CaseResult solve_one_case(std::unique_ptr<Scene> scene, const PhysicsOptions& physics, const Excitation& excitation,
                           const SolverSettings& solver, double history_dt_s, const HistorySink& sink);
 
+/// What the result's status says that its numbers cannot, one line (empty when nothing):
+/// a frame still rocking at its end (rocking_at_end) has no verdict, and the setting that
+/// resolves it is named (tail_advice); a status outside the model (ground_free_fall,
+/// invalid_frame) says nothing of the frame. `pcrf run` prints it on stderr, pcrf.run warns.
+std::string verdict_note(const CaseResult& result, const PhysicsOptions& physics);
+
 /// The result record as `pcrf run` prints it: the scale factor, then every metric, the
 /// status and the message.
 JsonObject case_json(double scale_factor, const CaseResult& result);

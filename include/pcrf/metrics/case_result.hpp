@@ -48,6 +48,13 @@ bool has_verdict(CaseStatus status);
 /// The frame was still rocking when the case ended (the record plus its tail): neither safe
 /// nor collapsed. Counted apart by every summary, never as safe.
 bool is_unresolved(CaseStatus status);
+/// The model no longer applies (an invalid frame, a ground in free fall): the case says
+/// nothing about the frame, whatever the intensity.
+bool is_outside_model(CaseStatus status);
+/// Neither safe nor collapsed, and no failure of the computation: unresolved or outside the
+/// model. An IDA's search stops at such a run without calling it a collapse; a curve whose
+/// lowest stopping run is one is unresolved (plan::CurveState::kUnresolved), never safe.
+bool gives_no_verdict(CaseStatus status);
 /// What a case says about the frame, as verdict checks and benchmarks compare cases.
 enum class Verdict { kSurvived, kTendonFracture, kOverturned, kNone };
 Verdict verdict_of(CaseStatus status);

@@ -2,7 +2,7 @@
 /// \brief The adaptive IDA as a source of work for the scheduler: one IdaSearch per curve
 /// (a record and a frame), each curve's next run made when its previous one comes back, many
 /// curves advancing at once. Knows nothing of physics: the caller says which outcomes are
-/// collapses.
+/// collapses, and which give no verdict.
 ///
 /// Case indices: curve c, point k (the k-th run of the curve) is case c · max_runs + k, so
 /// the runs of a curve are the last axis (`ida_point`) of a cube over the curves' axes.
@@ -22,7 +22,7 @@ namespace pcrf::plan {
 
 class IdaPlan final : public parallel::WorkSource {
  public:
-  using CollapseTest = std::function<bool(const parallel::CaseOutcome&)>;
+  using CollapseTest = std::function<RunVerdict(const parallel::CaseOutcome&)>;
 
   /// \param curves    number of curves
   /// \param workers   workers that will ask (for batch sizes)
@@ -30,7 +30,7 @@ class IdaPlan final : public parallel::WorkSource {
 
   /// Resume: the verdict of point `point` of `curve`, stored by an earlier run. Points must
   /// come in order; a curve's later runs are then those the search makes next.
-  void replay(std::size_t curve, int point, double intensity, bool collapsed);
+  void replay(std::size_t curve, int point, double intensity, RunVerdict verdict);
 
   /// Leaves a curve out of this run (another shard computes it).
   void skip(std::size_t curve);

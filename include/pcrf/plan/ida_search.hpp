@@ -15,8 +15,13 @@
 ///         lowers the collapse and the bracket is refined again; a gap is filled only while
 ///         the runs left could bisect such a new bracket down to `resolution`, so a curve that
 ///         was bracketed stays bracketed.
-/// A finished curve is in one of three states (CurveState): bracketed to `resolution`,
-/// right-censored at `max_intensity`, or unbracketed because `max_runs` ran out first.
+/// A run that gives no verdict (RunVerdict::kNoVerdict: the model no longer applies, or the
+/// frame was still moving when the run ended) stops the hunt and is bisected down to like a
+/// collapse, but it is no collapse: a curve whose lowest stopping run gives no verdict is
+/// unresolved, with no collapse intensity, and it is never censored at `max_intensity`.
+/// A finished curve is in one of four states (CurveState): bracketed to `resolution`,
+/// right-censored at `max_intensity`, unbracketed because `max_runs` ran out first, or
+/// unresolved.
 /// The next intensity depends only on this curve's own results, so a resumed or differently
 /// scheduled search makes the same runs.
 #pragma once
@@ -30,15 +35,23 @@
 
 namespace pcrf::plan {
 
-/// How a curve ended (its value is the cube's `curve_state` code).
+/// How a curve ended (its value is the cube's `curve_state` code: never renumber).
 enum class CurveState {
   kBracketed = 0,   ///< collapse / last safe − 1 ≤ resolution
   kCensored = 1,    ///< safe at max_intensity: right-censored there
   kUnbracketed = 2, ///< max_runs ran out before either
+  /// The lowest run that stopped the hunt gave no verdict (RunVerdict::kNoVerdict): shown
+  /// safe up to its last safe intensity at most, nothing known above.
+  kUnresolved = 3,
 };
-inline constexpr std::array<EnumName<CurveState>, 3> kCurveStateNames{{{CurveState::kBracketed, "bracketed"},
+inline constexpr std::array<EnumName<CurveState>, 4> kCurveStateNames{{{CurveState::kBracketed, "bracketed"},
                                                                        {CurveState::kCensored, "censored"},
-                                                                       {CurveState::kUnbracketed, "unbracketed"}}};
+                                                                       {CurveState::kUnbracketed, "unbracketed"},
+                                                                       {CurveState::kUnresolved, "unresolved"}}};
+
+/// What one run of a curve says: safe, collapsed, or nothing the search may call either
+/// (the caller decides which statuses those are: study/cube_vocabulary.hpp).
+enum class RunVerdict { kSafe, kCollapse, kNoVerdict };
 inline std::string curve_state_name(CurveState state) { return name_of(kCurveStateNames, state); }
 
 /// The hunt's default growth of its steps, measured (studies/README.md, [ida] step_factor).
@@ -60,15 +73,18 @@ class IdaSearch {
   /// Intensity of the next run; nullopt when the curve is done.
   std::optional<double> next() const;
   /// Records the verdict of a run at `intensity` (normally next()).
-  void add(double intensity, bool collapsed);
+  void add(double intensity, RunVerdict verdict);
+  void add(double intensity, bool collapsed) { add(intensity, collapsed ? RunVerdict::kCollapse : RunVerdict::kSafe); }
 
   bool done() const { return !next().has_value(); }
   int runs() const { return static_cast<int>(runs_.size()); }
-  /// Lowest collapsing intensity (NaN: no collapse up to the largest intensity run).
+  /// Lowest collapsing intensity (NaN: no collapse up to the largest intensity run, or a run
+  /// without a verdict below it: an unresolved curve has no collapse intensity).
   double collapse_intensity() const;
-  /// Highest safe intensity below the lowest collapse (NaN: none).
+  /// Highest safe intensity below the lowest run that stopped the hunt (NaN: none).
   double last_safe_intensity() const;
-  /// True when the bracket is within `resolution` (or the curve is censored at the cap).
+  /// True when the bracket below the lowest stopping run is within `resolution` (or the
+  /// curve is censored at the cap).
   bool bracketed() const;
   /// How the curve stands: bracketed, censored at the cap, or (done or not) neither yet.
   CurveState state() const;
@@ -76,8 +92,12 @@ class IdaSearch {
  private:
   struct Run {
     double intensity;
-    bool collapsed;
+    bool collapsed;   ///< stops the hunt: a collapse or no verdict
+    bool no_verdict;
   };
+  /// Lowest intensity of a run that stopped the hunt (NaN: none), and whether it gave no verdict.
+  double ceiling() const;
+  bool ceiling_has_no_verdict() const;
   std::optional<double> hunt() const;
   std::optional<double> fill() const;
 

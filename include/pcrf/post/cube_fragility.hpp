@@ -40,7 +40,9 @@ struct FrameFragility {
   /// none), never fitted as a collapse or as censored at the cap.
   std::optional<std::size_t> unbracketed;
   /// Grid cubes: cases whose frame was still rocking at the end (rocking_at_end), in no
-  /// stripe: neither safe nor collapsed. (An IDA's search counts such runs as collapses.)
+  /// stripe: neither safe nor collapsed. IDA cubes: unresolved curves (curve_state
+  /// unresolved: a run without a verdict ended the hunt), each censored at its last safe
+  /// intensity (a lower bound; left out when it has none), never at max_intensity.
   std::size_t unresolved = 0;
   std::int64_t first_case = -1;   ///< one case of the frame (its parameters), -1 when none was selected
   std::optional<analysis::Lognormal> fit;
@@ -48,10 +50,15 @@ struct FrameFragility {
   /// What was fitted: the stripes (grid cube), or each curve's collapse intensity and the
   /// last safe intensity of curves that never collapsed (IDA cube; right-censored).
   std::vector<analysis::Stripe> stripes;
-  std::vector<double> collapse_intensities, censored_intensities;
+  /// IDA: the last safe intensities at which unresolved curves are censored (fitted as censored).
+  std::vector<double> collapse_intensities, censored_intensities, unresolved_intensities;
 };
 
-/// One line per frame with unbracketed curves, saying how they were fitted (for stderr).
+/// A fit from fewer records (IDA: curves) than this gets a caution and no bootstrap interval.
+inline constexpr std::size_t kFewestForInterval = 10;
+
+/// One line per frame with unbracketed or unresolved curves, saying how they were fitted, and
+/// per frame fitted from fewer than kFewestForInterval records or curves (for stderr).
 std::vector<std::string> unbracketed_warnings(const std::vector<FrameFragility>& frames);
 
 /// One entry per frame of the selected cases. With `reduction.dimension` set (an IDA cube only),

@@ -75,8 +75,10 @@ std::string mce_problem(const std::optional<double>& mce);
 cube::Reduction reduction_of(const std::string& over, const std::string& how, const std::string& default_how);
 
 /// The P-695 inputs from their text forms (the command line's --sdc, --period-s, --mu-t,
-/// --ratings "B,B,C"), checked. \throws std::invalid_argument naming the input.
-P695Inputs p695_inputs(const std::string& sdc, double period_s, double mu_t, const std::string& ratings);
+/// --ratings "B,B,C", empty: B,B,B by default, which the report then says; --s-ct counted or
+/// lognormal), checked. \throws std::invalid_argument naming the input.
+P695Inputs p695_inputs(const std::string& sdc, double period_s, double mu_t, const std::string& ratings,
+                       const std::string& s_ct = "counted");
 
 /// The columns of each table, for --help and the README (units of cube-dependent columns
 /// are left empty here: the JSON's `columns` carries them).

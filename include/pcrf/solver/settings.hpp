@@ -47,6 +47,11 @@ std::string to_string(Integrator i);
 /// tail_s = "until-rest": the free vibration after the record goes on until the frame rests.
 inline constexpr double kTailUntilRest = std::numeric_limits<double>::infinity();
 
+/// The setting that resolves a case still rocking at its end (rocking_at_end) for a tail of
+/// `tail_s` [s]: "a longer physics.tail_s …" when the tail is fixed, "… physics.max_tail_s …"
+/// when it runs until rest (kTailUntilRest); both when NaN (not known).
+std::string tail_advice(double tail_s);
+
 /// What the physics of a case includes. Every member is described (key, unit, default,
 /// check, doc) in physics_settings(); the comments here say only what the code needs.
 struct PhysicsOptions {

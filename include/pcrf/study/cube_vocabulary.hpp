@@ -109,20 +109,29 @@ inline constexpr const char* kCollapses = "collapses";
 /// and not finished (not run, or still running). Empty (total 0) for other cubes and for IDA
 /// cubes written before `curve_state`.
 struct CurveStates {
-  std::int64_t bracketed = 0, censored = 0, unbracketed = 0, unfinished = 0, total = 0;
+  std::int64_t bracketed = 0, censored = 0, unbracketed = 0, unresolved = 0, unfinished = 0, total = 0;
 };
 /// \throws cube::CubeError when the cube cannot be read.
 CurveStates curve_states(const cube::CubeReader& cube);
 /// "132 IDA curves: 120 bracketed to the resolution, 10 right-censored at max_intensity,
 /// 2 unbracketed (max_runs ran out)"; empty when the cube has no curve states.
 std::string curve_states_text(const CurveStates& states);
-/// The statuses of a case without a verdict on a frame still moving (rocking_at_end): its
-/// tail ended before the frame came to rest.
+/// The statuses of a case without a verdict (gives_no_verdict): a frame still moving
+/// (rocking_at_end: its tail ended before the frame came to rest), or outside the model
+/// (ground_free_fall, invalid_frame). Statistics count them apart, never as safe values.
 std::vector<std::int8_t> unresolved_statuses();
-/// Cases (IDA: runs) of `status` that are unresolved.
+/// Cases (IDA: runs) of `status` still rocking at their end (rocking_at_end).
 std::int64_t unresolved_count(std::span<const std::int8_t> status);
-/// "N cases ended still rocking …: unresolved, …" (how `what` treats them), or "" when none.
-std::string unresolved_note(std::int64_t count, const std::string& unit, const std::string& what);
+/// The attribute holding a study's physics.tail_s (inf: until rest).
+inline constexpr const char* kTailAttribute = "physics_tail_s";
+/// A cube's physics.tail_s [s] (inf: until rest; NaN: the cube does not say).
+double tail_s_of(const cube::CubeLayout& layout);
+/// "N cases ended still rocking …: unresolved, …" (how `what` treats them) and the setting
+/// that helps (pcrf::tail_advice), or "" when none.
+std::string unresolved_note(std::int64_t count, const std::string& unit, const std::string& what, double tail_s);
+/// "N cases ended where the model no longer applies (2 ground_free_fall, …): no verdict, …"
+/// (is_outside_model; `what`: how they are treated), or "" when none.
+std::string outside_model_note(const std::vector<std::int8_t>& status, const std::string& unit, const std::string& what);
 
 /// Collapse statuses that occur in `status` but are not in `collapse` (an IDA's [ida]
 /// collapse, comma-separated), with how many cases ended in each.
@@ -132,12 +141,13 @@ std::vector<std::pair<std::string, std::int64_t>> uncounted_collapses(const std:
 /// not count as collapse ([ida] collapse = overturned)".
 std::vector<std::string> uncounted_collapse_notes(const std::vector<std::int8_t>& status, const std::string& collapse);
 /// What a run's or a cube's statuses say that its answers cannot show, one line each: the
-/// unresolved cases (an IDA, `ida_collapse` set to its [ida] collapse: "runs", which its search
-/// counted as collapses; else "cases", treated as `treatment` says), and for an IDA each
+/// unresolved cases and those outside the model (an IDA, `ida_collapse` set to its [ida]
+/// collapse: "runs", which stop their curves as unresolved; else "cases", treated as
+/// `treatment` says; `tail_s` picks the advice, tail_advice), and for an IDA each
 /// collapse status that occurred but its collapse set leaves out. Empty when there is nothing
 /// to say. The end of `pcrf study` and the `pcrf cube` commands print the same lines.
 std::vector<std::string> verdict_notes(const std::vector<std::int8_t>& status, const std::optional<std::string>& ida_collapse,
-                                       const std::string& treatment);
+                                       const std::string& treatment, double tail_s);
 /// The attribute holding an IDA cube's collapse set (the [ida] table's `collapse`).
 inline constexpr const char* kIdaCollapseAttribute = "ida_collapse";
 

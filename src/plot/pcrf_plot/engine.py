@@ -63,6 +63,18 @@ def status_kind(name):
     return next((s["kind"] for s in vocabulary()["statuses"] if s["name"] == name), "no_verdict")
 
 
+def curve_state(name):
+    """The code of an IDA curve state ("bracketed", "censored", "unbracketed", "unresolved") in
+    a cube's ``curve_state``; None when the engine has no such state."""
+    return next((c["value"] for c in vocabulary().get("curve_states", []) if c["name"] == name), None)
+
+
+def no_verdict_statuses():
+    """Statuses that say nothing of the frame: neither safe nor collapsed (still rocking at
+    the end, ground in free fall, invalid frame, failures)."""
+    return {s["name"] for s in vocabulary()["statuses"] if s["kind"] == "no_verdict"}
+
+
 def event_flag(name):
     """The bit of a history event ("impact", "stop")."""
     for e in vocabulary()["history_events"]:

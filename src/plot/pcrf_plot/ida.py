@@ -4,7 +4,11 @@ intensity is a flat line to the panel's edge (the usual IDA flatline);
 runs above it that did not collapse (the curve "resurrects") are open circles. Horizontal lines: the
 median and 16/84 % collapse intensities of the lognormal that `pcrf cube fragility` fits.
 A curve whose runs ran out before it was bracketed (``curve_state`` unbracketed) gets no
-flatline: a triangle at its last safe run says only that it survived there. With --reduce-over
+flatline: a triangle at its last safe run says only that it survived there; nor does an
+unresolved one (a run without a verdict ended it), marked by a hollow square at its last safe
+run. Runs without a verdict (still rocking at their end, ground in free fall, invalid frame, a
+failure) are never drawn as safe points: each is a small hollow square at its response, and
+the legend and the panel title count them. With --reduce-over
 (e.g. incidence_deg), a panel holds every orientation's curve, its flatline unmarked, and the
 crosses and the fitted lines are each record's reduced collapse intensity, as the engine's
 `cube fragility --reduce-over` computes it."""
@@ -16,7 +20,16 @@ import numpy as np
 from pcrf_plot import engine, style
 from pcrf_plot.errors import PlotError
 
-UNBRACKETED = 2  # curve_state: max_runs ran out (plan::CurveState, the cube's long_name)
+
+
+NO_VERDICT_RUNS = "run without a verdict"
+UNBRACKETED_CURVES = "unbracketed: last safe run"
+UNRESOLVED_CURVES = "unresolved: last safe run"
+
+
+def is_safe(row):
+    """A run the frame survived: neither a collapse nor without a verdict."""
+    return engine.status_kind(row["status"]) == "survived"
 
 
 def curves_of(rows, reduced_over):
@@ -42,7 +55,7 @@ def frames_of(cube, metric, where, fits, extra):
 def edge_of(metric, rows):
     """The panel's right edge: beyond every safe run's response, or (every run collapsed)
     beyond every run's."""
-    safe = [engine.number(r[metric]) for r in rows if r["status"] not in engine.collapse_statuses()]
+    safe = [engine.number(r[metric]) for r in rows if is_safe(r)]
     values = [v for v in safe if math.isfinite(v)] or \
              [v for v in (engine.number(r[metric]) for r in rows) if math.isfinite(v)] or [1.0]
     return max(max(values), 1e-12) * 1.15
@@ -65,20 +78,28 @@ def draw(args):
     columns = min(3, len(frames))
     fig, axes = plt.subplots(math.ceil(len(frames) / columns), columns, figsize=(4.4 * columns, 4.2), squeeze=False,
                              sharey=True, constrained_layout=True)
+    unbracketed_code, unresolved_code = engine.curve_state("unbracketed"), engine.curve_state("unresolved")
+    totals = {}  # legend label → how many points of that kind the figure holds
     for ax, (frame, frame_rows) in zip(axes.flat, frames.items()):
-        resurrected, unbracketed = False, 0
+        resurrected, unbracketed, unresolved = False, 0, 0
+        no_verdict = [(engine.number(r["ida_intensity"]), engine.number(r[metric])) for r in frame_rows
+                      if r["ida_intensity"] != "" and engine.status_kind(r["status"]) == "no_verdict"]
         records = curves_of(frame_rows, reduced_over)
         edge = edge_of(metric, frame_rows)
         for record_rows in records.values():
             safe = sorted((engine.number(r["ida_intensity"]), engine.number(r[metric])) for r in record_rows
-                          if r["status"] not in engine.collapse_statuses() and r["ida_intensity"] != ""
-                          and r[metric] != "")
-            if has_states and engine.number(record_rows[0]["curve_state"]) == UNBRACKETED:
-                unbracketed += 1
+                          if is_safe(r) and r["ida_intensity"] != "" and r[metric] != "")
+            state = engine.number(record_rows[0]["curve_state"]) if has_states else math.nan
+            if state in (unbracketed_code, unresolved_code):
+                unbracketed += state == unbracketed_code
+                unresolved += state == unresolved_code
                 if safe:
                     im, edp = zip(*safe)
                     ax.plot(edp, im, "--", color=style.GREY, lw=0.8, alpha=0.8)
-                    ax.plot(safe[-1][1], safe[-1][0], "^", color=style.PURPLE, ms=6)
+                    if state == unbracketed_code:
+                        ax.plot(safe[-1][1], safe[-1][0], "^", color=style.PURPLE, ms=6)
+                    else:
+                        ax.plot(safe[-1][1], safe[-1][0], "s", mfc="none", color=style.BLACK, ms=7, mew=1.4)
                 continue
             collapse = engine.number(record_rows[0]["collapse_intensity"])
             below = [p for p in safe if not p[0] > collapse]  # NaN (censored): every run
@@ -104,16 +125,27 @@ def draw(args):
                                        (median * math.exp(-beta), "--", "16 % / 84 %"),
                                        (median * math.exp(beta), "--", None)):
                 ax.axhline(value, color=style.BLUE, ls=line, lw=1.5, label=label)
-        if not any(r["status"] not in engine.collapse_statuses() for r in frame_rows):
+        drawn = [(im, edp if math.isfinite(edp) else edge) for im, edp in no_verdict]
+        if drawn:
+            ax.plot([p[1] for p in drawn], [p[0] for p in drawn], "s", mfc="none", color=style.SKY_BLUE, ms=4)
+            ax.plot([], [], "s", mfc="none", color=style.SKY_BLUE, ms=4,
+                    label=NO_VERDICT_RUNS)
+            totals[NO_VERDICT_RUNS] = totals.get(NO_VERDICT_RUNS, 0) + len(drawn)
+        if not any(is_safe(r) for r in frame_rows):
             ax.text(0.5, 0.6, "every run collapsed:\nstart the search lower", transform=ax.transAxes, ha="center",
                     color=style.VERMILLION)
         ax.plot([], [], "x", color=style.VERMILLION, label=f"collapse: each record's {reduced}" if reduced else "collapse")
         if resurrected:
             ax.plot([], [], "o", mfc="none", color=style.ORANGE, ms=4, label="safe above its collapse intensity")
         if unbracketed:
-            ax.plot([], [], "^", color=style.PURPLE, ms=6, label="unbracketed (max_runs ran out): last safe run")
+            ax.plot([], [], "^", color=style.PURPLE, ms=6, label=UNBRACKETED_CURVES)
+            totals[UNBRACKETED_CURVES] = totals.get(UNBRACKETED_CURVES, 0) + unbracketed
+        if unresolved:
+            ax.plot([], [], "s", mfc="none", color=style.BLACK, ms=7, mew=1.4, label=UNRESOLVED_CURVES)
+            totals[UNRESOLVED_CURVES] = totals.get(UNRESOLVED_CURVES, 0) + unresolved
         counted = f"{len(records)} " + ("curves" if reduced else "records") + \
-            (f", {unbracketed} unbracketed" if unbracketed else "")
+            (f", {unbracketed} unbracketed" if unbracketed else "") + \
+            (f", {unresolved} unresolved" if unresolved else "")
         ax.set(xlim=(0, edge * 1.03), title=f"{frame} ({counted})",
                xlabel=style.metric_label(metric, cube.variable(metric)))
     for ax in axes.flat[len(frames):]:
@@ -124,6 +156,7 @@ def draw(args):
     for ax in axes.flat[:len(frames)]:
         for handle, label in zip(*ax.get_legend_handles_labels()):
             legend.setdefault(label, handle)
-    axes.flat[0].legend(legend.values(), legend.keys(), loc="lower right")
+    labels = [f"{label} ({totals[label]})" if label in totals else label for label in legend]
+    axes.flat[0].legend(legend.values(), labels, loc="lower right", fontsize="small")
     fig.suptitle(args.title or "Incremental dynamic analysis")
     return fig

@@ -3,7 +3,10 @@ pulse, [axes] pulse_period_s): each curve's collapse amplitude, over the frame's
 threshold, against ω_p/p, one line per pulse shape, one panel per frame. The marker says how
 the run at the collapse amplitude ended: overturned (filled circle) or tendon fracture
 (cross); a curve safe up to max_intensity is a triangle at the cap (its amplitude is above),
-an unbracketed one (max_runs ran out) a hollow triangle at its last safe amplitude."""
+an unbracketed one (max_runs ran out) a hollow triangle at its last safe amplitude, and an
+unresolved one (a run without a verdict ended it: still rocking when its tail ended, ground in
+free fall, invalid frame) a hollow square at its last safe amplitude: its collapse amplitude is
+unknown, above that. Each panel's legend counts the points of each kind."""
 import math
 
 import matplotlib.pyplot as plt
@@ -12,7 +15,6 @@ from matplotlib import ticker
 from pcrf_plot import engine, style
 from pcrf_plot.errors import PlotError
 
-UNBRACKETED, CENSORED = 2, 1  # curve_state (plan::CurveState)
 
 
 def minor_label(value, _position):
@@ -31,6 +33,7 @@ def draw(args):
     names = ["ida_intensity", "collapse_intensity", "last_safe_intensity", "curve_state", "omega_p_over_p",
              "frame_uplift_threshold_g"]
     rows = cube.export(names, args.where)
+    censored, unresolved = engine.curve_state("censored"), engine.curve_state("unresolved")
     if not rows:
         raise PlotError(f"{args.input}: no case matches the selection")
     frame_dims = [d["name"] for d in cube.dimensions if d["name"] not in ("record", "ida_point") and d["size"] > 1]
@@ -41,9 +44,11 @@ def draw(args):
         key = (frame, r["pulse_shape"])
         record = curves.setdefault(key, {}).setdefault(r["record"], {"x": engine.number(r["omega_p_over_p"])})
         collapse, state = engine.number(r["collapse_intensity"]), engine.number(r["curve_state"])
-        if state == CENSORED:
+        if state == censored:
             record["point"] = (engine.number(r["last_safe_intensity"]) / threshold, "censored")
-        elif state == UNBRACKETED or not math.isfinite(collapse):
+        elif state == unresolved:
+            record["point"] = (engine.number(r["last_safe_intensity"]) / threshold, "unresolved")
+        elif not math.isfinite(collapse):
             record["point"] = (engine.number(r["last_safe_intensity"]) / threshold, "unbracketed")
         elif r["ida_intensity"] != "" and engine.number(r["ida_intensity"]) == collapse:
             record["point"] = (collapse / threshold, r["status"])
@@ -53,8 +58,11 @@ def draw(args):
                              constrained_layout=True)
     shapes = sorted({s for _, s in curves})
     markers = {"overturned": ("o", "overturned"), "tendon_fracture": ("x", "tendon fracture"),
-               "censored": ("^", "safe up to max_intensity"), "unbracketed": ("^", "unbracketed: last safe")}
+               "censored": ("^", "safe up to max_intensity"), "unbracketed": ("^", "unbracketed: last safe"),
+               "unresolved": ("s", "unresolved (no verdict above): last safe")}
+    hollow = ("unbracketed", "unresolved")
     for ax, frame in zip(axes.flat, frames):
+        counts = {kind: 0 for kind in markers}
         for colour, shape in zip(style.CYCLE, shapes):
             points = sorted((p["x"], *p["point"]) for p in curves.get((frame, shape), {}).values()
                             if "point" in p and math.isfinite(p["x"]))
@@ -63,11 +71,14 @@ def draw(args):
             ax.plot([p[0] for p in points], [p[1] for p in points], "-", color=colour, lw=1.4, label=shape)
             for kind, (marker, _) in markers.items():
                 chosen = [p for p in points if p[2] == kind]
+                counts[kind] += len(chosen)
                 if chosen:
-                    ax.plot([p[0] for p in chosen], [p[1] for p in chosen], marker, color=colour, ms=5,
-                            mfc="none" if kind in ("unbracketed",) else colour)
+                    ax.plot([p[0] for p in chosen], [p[1] for p in chosen], marker, color=colour,
+                            ms=7 if kind == "unresolved" else 5, mfc="none" if kind in hollow else colour)
         for kind, (marker, label) in markers.items():
-            ax.plot([], [], marker, color=style.GREY, mfc="none" if kind == "unbracketed" else style.GREY, label=label)
+            if counts[kind] or kind in ("overturned", "tendon_fracture"):
+                ax.plot([], [], marker, color=style.GREY, mfc="none" if kind in hollow else style.GREY,
+                        label=f"{label} ({counts[kind]})")
         ax.set_xscale("log")
         ax.set_yscale("log")
         for axis, (low, high) in ((ax.xaxis, ax.get_xlim()), (ax.yaxis, ax.get_ylim())):

@@ -48,10 +48,13 @@ def sensitivity(cube, metric, where=None, by_record=False):
     return _frame("sensitivity", cube, "indices", metric=metric, where=where, by_record=by_record)
 
 
-def p695(cube, period_s, sdc="Dmax", mu_t=0.0, ratings="B,B,B", where=None):
+def p695(cube, period_s, sdc="Dmax", mu_t=0.0, ratings=None, where=None, s_ct="counted"):
     """``pcrf cube p695``: FEMA P-695 per frame; the group's verdict in ``attrs["fields"]``. ``mu_t=0``: each
-    frame's own period-based ductility (docs/p695_rocking_frame.md), as the command line's default."""
-    return _frame("p695", cube, "frames", period_s=period_s, sdc=sdc, mu_t=mu_t, ratings=ratings, where=where)
+    frame's own period-based ductility (docs/p695_rocking_frame.md), as the command line's default.
+    ``ratings=None``: B,B,B, noted in the warnings as the default. ``s_ct``: "counted" (P-695's own,
+    Sections 6.3-6.4) or "lognormal" (the fitted fragility's median) feeds CMR and ACMR."""
+    return _frame("p695", cube, "frames", period_s=period_s, sdc=sdc, mu_t=mu_t, ratings=ratings or "", where=where,
+                  s_ct=s_ct)
 
 
 def risk(cube, hazard, years=50.0, tail="power-law", target_probability=0.01, target_years=50.0, generic_beta=0.6,
