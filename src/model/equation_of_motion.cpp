@@ -168,7 +168,8 @@ double EquationOfMotion::strain_excess(double theta_abs_rad, double fracture_str
   // A tendon with no stiffness is no tendon: it cannot fracture.
   const double none = -std::numeric_limits<double>::infinity();
   const bool has_column = frame_.EA_c > 0.0, has_beam = frame_.EA_b > 0.0;
-  const TendonState t = tendons(-theta_abs_rad, -1);
+  // At rest θ₁ = +0, whose configuration the linkage keeps (−0 gives the same strains).
+  const TendonState t = tendons(theta_abs_rad == 0.0 ? 0.0 : -theta_abs_rad, -1);
   return std::max(has_column ? t.strain_column_max() : none, has_beam ? t.strain_beam : none) - fracture_strain;
 }
 

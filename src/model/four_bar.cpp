@@ -21,9 +21,11 @@ Vec2 operator*(double k, Vec2 a) { return {k * a.x, k * a.y}; }
 FourBar::FourBar(const Frame& frame)
     : f_(frame),
       r_beam_(2.0 * std::hypot(frame.L_b, frame.h_b)),
-      r_right_(2.0 * frame.h) {}
+      r_right_(2.0 * frame.h) {
+  rest_closes_ = solve_at(0.0, rest_);
+}
 
-bool FourBar::solve(double theta1, Configuration& out) const {
+bool FourBar::solve_at(double theta1, Configuration& out) const {
   const double c1 = std::cos(theta1), s1 = std::sin(theta1);
   const Vec2 AB0{2.0 * f_.b, 2.0 * f_.h_prime};
   const Vec2 B = rot(c1, s1, AB0);

@@ -10,16 +10,19 @@
 namespace pcrf {
 namespace {
 
-void require(bool ok, const std::string& what) {
-  if (!ok) throw std::invalid_argument("impossible frame: " + what);
+// A study builds a frame per case: the message is formatted only when a check fails.
+[[noreturn]] void impossible(const std::string& what) { throw std::invalid_argument("impossible frame: " + what); }
+
+void require(bool ok, const char* what) {
+  if (!ok) impossible(what);
 }
 
 void require_finite_positive(double v, const char* name) {
-  require(std::isfinite(v) && v > 0.0, std::string(name) + " must be positive (got " + std::to_string(v) + ")");
+  if (!(std::isfinite(v) && v > 0.0)) impossible(std::string(name) + " must be positive (got " + std::to_string(v) + ")");
 }
 
 void require_finite_non_negative(double v, const char* name) {
-  require(std::isfinite(v) && v >= 0.0, std::string(name) + " must be ≥ 0 (got " + std::to_string(v) + ")");
+  if (!(std::isfinite(v) && v >= 0.0)) impossible(std::string(name) + " must be ≥ 0 (got " + std::to_string(v) + ")");
 }
 
 // Fills every derived field from the primary ones.

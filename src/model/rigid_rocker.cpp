@@ -9,8 +9,9 @@
 namespace pcrf {
 namespace {
 
-void check(bool ok, const char* key, const std::string& problem) {
-  if (!ok) throw std::invalid_argument(std::string(key) + ": " + problem);
+/// `problem(value)` is formatted only when the check fails (a study builds a scene per case).
+void check(bool ok, const char* key, const char* problem, double value) {
+  if (!ok) throw std::invalid_argument(std::string(key) + ": " + problem + ", got " + std::to_string(value));
 }
 
 }  // namespace
@@ -31,15 +32,13 @@ double RigidRocker::restitution_from_momentum(double alpha, double gamma) {
 
 RigidRocker::RigidRocker(const RockerParameters& p) : p_(p) {
   check(p.slenderness_rad > 0.0 && p.slenderness_rad < 0.5 * std::numbers::pi, "slenderness_rad",
-        "must lie between 0 and pi/2 (a column wider than tall is not a rocking column), got " +
-            std::to_string(p.slenderness_rad));
-  check(p.size_m > 0.0 && std::isfinite(p.size_m), "size_m", "must be positive, got " + std::to_string(p.size_m));
-  check(p.beam_mass_ratio >= 0.0 && std::isfinite(p.beam_mass_ratio), "beam_mass_ratio",
-        "must not be negative, got " + std::to_string(p.beam_mass_ratio));
-  check(p.gravity_m_s2 > 0.0, "gravity_m_s2", "must be positive");
+        "must lie between 0 and pi/2 (a column wider than tall is not a rocking column)", p.slenderness_rad);
+  check(p.size_m > 0.0 && std::isfinite(p.size_m), "size_m", "must be positive", p.size_m);
+  check(p.beam_mass_ratio >= 0.0 && std::isfinite(p.beam_mass_ratio), "beam_mass_ratio", "must not be negative",
+        p.beam_mass_ratio);
+  if (!(p.gravity_m_s2 > 0.0)) throw std::invalid_argument("gravity_m_s2: must be positive");
   restitution_ = p.restitution ? *p.restitution : restitution_from_momentum(p.slenderness_rad, p.beam_mass_ratio);
-  check(restitution_ >= 0.0 && restitution_ <= 1.0, "restitution",
-        "must lie in [0, 1], got " + std::to_string(restitution_));
+  check(restitution_ >= 0.0 && restitution_ <= 1.0, "restitution", "must lie in [0, 1]", restitution_);
   settle_rest();
 }
 

@@ -65,9 +65,10 @@ MpiSession::~MpiSession() {
   if (owns_) MPI_Finalize();
 }
 
-void MpiSession::quiet_barrier() const {
-  MPI_Request request;
-  MPI_Ibarrier(MPI_COMM_WORLD, &request);
+namespace {
+
+/// Waits for a non-blocking collective, testing it every 2 ms.
+void wait_quietly(MPI_Request& request) {
   int done = 0;
   for (;;) {
     MPI_Test(&request, &done, MPI_STATUS_IGNORE);
@@ -76,8 +77,18 @@ void MpiSession::quiet_barrier() const {
   }
 }
 
+}  // namespace
+
+void MpiSession::quiet_barrier() const {
+  MPI_Request request;
+  MPI_Ibarrier(MPI_COMM_WORLD, &request);
+  wait_quietly(request);
+}
+
 int MpiSession::broadcast(int value) const {
-  MPI_Bcast(&value, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  MPI_Request request;
+  MPI_Ibcast(&value, 1, MPI_INT, 0, MPI_COMM_WORLD, &request);
+  wait_quietly(request);
   return value;
 }
 

@@ -44,6 +44,9 @@ GroundMotion::GroundMotion(std::string name, double dt_s, std::vector<double> ac
     : name_(std::move(name)), dt_s_(dt_s), inv_dt_(0.0), accel_m_s2_(std::move(accel_m_s2)) {
   validate(name_, dt_s_, accel_m_s2_);
   inv_dt_ = 1.0 / dt_s_;
+  const auto [lo, hi] = std::minmax_element(accel_m_s2_.begin(), accel_m_s2_.end());
+  min_m_s2_ = *lo;
+  max_m_s2_ = *hi;
 }
 
 double GroundMotion::accel_m_s2(double t_s) const {
@@ -62,12 +65,6 @@ double GroundMotion::accel_m_s2(double t_s) const {
   const double frac = (t_s - static_cast<double>(k) * dt_s_) * inv_dt_;
   const double a0 = accel_m_s2_[k];
   return a0 + frac * (accel_m_s2_[k + 1] - a0);
-}
-
-double GroundMotion::pga_m_s2() const {
-  double peak_m_s2 = 0.0;
-  for (double a : accel_m_s2_) peak_m_s2 = std::max(peak_m_s2, std::abs(a));
-  return peak_m_s2;
 }
 
 GroundMotion GroundMotion::scaled(double factor) const {

@@ -18,6 +18,9 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 }  // namespace
 
 double first_exceedance(const GroundMotion& rec, double t_from, double t_end, double threshold_m_s2) {
+  // Most cases of a study never lift their frame: a record whose peak stays below the
+  // threshold (by far more than the rounding of an interpolation between samples) is not scanned.
+  if (rec.pga_m_s2() < threshold_m_s2 * (1.0 - 1e-9)) return kNaN;
   if (std::abs(rec.accel_m_s2(t_from)) > threshold_m_s2) return t_from;
   if (threshold_m_s2 < 0.0) return t_from;
   const auto& a = rec.samples_m_s2();
@@ -40,9 +43,28 @@ double first_exceedance(const GroundMotion& rec, double t_from, double t_end, do
   return kNaN;
 }
 
+namespace {
+
+/// True when the horizontal peak stays below the uplift threshold at every ü_v the vertical
+/// component takes (and at 0, after the record), by more than the rounding of the threshold's
+/// formula (G(g + ü_v) + K)/S: then no sample, and no point between samples, opens the frame.
+/// The threshold is affine in ü_v, so its lowest value over that range is at one end.
+bool never_opens(const Excitation& excitation, const Scene& scene) {
+  const GroundMotion& up = *excitation.vertical();
+  const double v_lo = std::min(up.min_m_s2(), 0.0), v_hi = std::max(up.max_m_s2(), 0.0);
+  const double lowest = std::min(scene.uplift_threshold_m_s2(v_lo), scene.uplift_threshold_m_s2(v_hi));
+  // |G g/S| + |G ü_v/S| + |K/S|: the size of the terms the threshold sums, K/S = threshold(0) − λ_g g.
+  const double lambda = scene.lambda_g(), g = scene.gravity_m_s2();
+  const double terms = std::abs(lambda) * (g + std::max(-v_lo, v_hi)) + std::abs(scene.uplift_threshold_m_s2() - lambda * g);
+  return excitation.horizontal().pga_m_s2() < lowest - 1e-9 * terms;
+}
+
+}  // namespace
+
 double first_opening(const Excitation& excitation, const Scene& scene, double t_from, double t_end) {
   if (!excitation.has_vertical())
     return first_exceedance(excitation.horizontal(), t_from, t_end, scene.uplift_threshold_m_s2());
+  if (never_opens(excitation, scene)) return kNaN;
   // The margin ±ü_h − threshold(ü_v) of each sign is linear between samples (the threshold is
   // affine in ü_v): the first sample interval where one turns positive holds the crossing.
   auto margin = [&](GroundAcceleration a, double sign) {
@@ -72,7 +94,7 @@ double first_opening(const Excitation& excitation, const Scene& scene, double t_
 
 double free_fall_time(const Excitation& excitation, double gravity_m_s2, double t_end) {
   const GroundMotion* vertical = excitation.vertical();
-  if (vertical == nullptr) return kNaN;
+  if (vertical == nullptr || vertical->min_m_s2() > -gravity_m_s2) return kNaN;  // never falls
   const auto& a = vertical->samples_m_s2();
   const double level = -gravity_m_s2, dt = vertical->dt_s();
   for (std::size_t i = 0; i < a.size(); ++i) {
@@ -105,6 +127,7 @@ std::string CaseEnd::message() const {
 double paper_trigger_time(const GroundMotion& rec, double lambda_g) {
   const auto& a = rec.samples_m_s2();
   const double level = lambda_g * kGravity_m_s2;
+  if (rec.pga_m_s2() < level) return kNaN;  // no sample reaches it
   for (std::size_t i = 0; i < a.size(); ++i) {
     if (std::abs(a[i]) >= level) return static_cast<double>(i) * rec.dt_s();
   }

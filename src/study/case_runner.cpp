@@ -2,7 +2,9 @@
 #include "pcrf/study/case_runner.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 namespace pcrf::study {
@@ -13,6 +15,18 @@ void mark_failed(parallel::CaseOutcome& outcome, const ResultColumns& columns, c
   columns.clear_metrics(outcome.row);
   outcome.status = static_cast<std::int8_t>(CaseStatus::kSolverFailure);
   outcome.note = message;
+}
+
+/// Equal for every two scenes same_scene calls the same (0 and −0 alike, every NaN alike):
+/// the cache of prepared frames compares keys before values, so that a study of distinct
+/// frames does not compare every case's values with each frame kept.
+std::uint64_t scene_key(const SceneSpec& scene) {
+  std::uint64_t key = static_cast<std::uint64_t>(reinterpret_cast<std::uintptr_t>(scene.model));
+  for (const double x : scene.values) {
+    const double v = x == 0.0 ? 0.0 : (std::isnan(x) ? std::numeric_limits<double>::quiet_NaN() : x);
+    key = (key ^ std::bit_cast<std::uint64_t>(v)) * 0x100000001b3ULL;  // FNV-1a's prime
+  }
+  return key;
 }
 
 }  // namespace
@@ -27,11 +41,12 @@ CaseRunner::CaseRunner(const Study& study, const CaseSpace& space, RecordCache& 
 
 PreparedFrame& CaseRunner::prepared(const SceneSpec& scene) const {
   std::lock_guard lock(last_mutex_);
-  auto same = [&](const Prepared& p) { return same_scene(p.scene, scene); };
+  const std::uint64_t key = scene_key(scene);
+  auto same = [&](const Prepared& p) { return p.key == key && same_scene(p.scene, scene); };
   auto it = std::find_if(prepared_.begin(), prepared_.end(), same);
   if (it == prepared_.end()) {
     if (prepared_.size() >= kPreparedFrames) prepared_.pop_back();
-    prepared_.insert(prepared_.begin(), {scene, prepare_scene(scene.make(), study_.physics)});
+    prepared_.insert(prepared_.begin(), {scene, key, prepare_scene(scene.make(), study_.physics)});
   } else if (it != prepared_.begin()) {
     std::rotate(prepared_.begin(), it, it + 1);  // most recent first
   }

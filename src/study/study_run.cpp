@@ -74,7 +74,8 @@ void check_output_is_not_an_input(const std::filesystem::path& output, const Stu
 
 MasterSetup prepare_master(const StudyRunOptions& options, const Prepared& p) {
   MasterSetup m;
-  m.checked = check_study(p.study, *p.space, *p.records);
+  m.checked = check_study(p.study, *p.space, *p.records,
+                          options.check_only ? FrameCheck::kEveryFrame : FrameCheck::kWhereNeeded);
   for (const auto& note : m.checked.notes) std::cerr << "pcrf study: note: " << note << '\n';
   if (options.progress != nullptr)
     for (const auto& warning : m.checked.warnings) *options.progress << "pcrf study: warning: " << warning << '\n';

@@ -18,6 +18,11 @@
 #include <sys/wait.h>
 
 #include "pcrf/cube/cube_reader.hpp"
+#include "pcrf/study/case_space.hpp"
+#include "pcrf/study/record_source.hpp"
+#include "pcrf/study/study_check.hpp"
+#include "pcrf/study/study_error.hpp"
+#include "pcrf/study/study_parser.hpp"
 #include "study/study_test_support.hpp"
 
 namespace pcrf::study_test {
@@ -373,6 +378,34 @@ TEST(StudyCommand, InvalidFramesBecomeCasesAndTheStudyGoesOn) {
   const auto single = test::run_command(pcrf() + " run --synthetic '" + kPulse + "' --lambda 2 --tan-alpha 0.8 --lambda-h 0.7");
   EXPECT_EQ(single.exit_code, 2);  // a single run keeps its error
   EXPECT_NE(single.err.find("coefficient of restitution"), std::string::npos) << single.err;
+}
+
+TEST(StudyCommand, ARunBuildsNoFrameUpFrontUnlessItsInputNeedsIt) {
+  // A run leaves the frames to the workers (each built once, by the case that needs it);
+  // --check builds every frame to count the invalid ones; a displaced start checks every
+  // frame's overturning angle before the run, an input error.
+  const std::string text = std::string("[[records]]\nsynthetic = \"") + kPulse + "\"\n[axes]\nscale = [1, 2]\n"
+                           "lambda = [0.1, 2.0]\ntan_alpha = [0.2, 0.8]\nlambda_h = [0.2, 0.7]\n";
+  const study::Study plain = study::parse_study(text, "invalid.toml", ".");
+  const study::CaseSpace space(plain);
+  study::RecordCache records(plain.records);
+  const auto run = study::check_study(plain, space, records, study::FrameCheck::kWhereNeeded);
+  EXPECT_FALSE(run.frames_checked);
+  EXPECT_EQ(run.invalid_frames, 0);
+  const auto every = study::check_study(plain, space, records, study::FrameCheck::kEveryFrame);
+  EXPECT_TRUE(every.frames_checked);
+  EXPECT_EQ(every.invalid_frames, 5);
+  EXPECT_EQ(every.invalid_cases, 10);
+  EXPECT_EQ(every.fingerprint, run.fingerprint);
+  const study::Study displaced = study::parse_study(text + "[physics]\ntheta0_rad = 1.5\n", "displaced.toml", ".");
+  const study::CaseSpace displaced_space(displaced);
+  study::RecordCache displaced_records(displaced.records);
+  try {
+    (void)study::check_study(displaced, displaced_space, displaced_records, study::FrameCheck::kWhereNeeded);
+    ADD_FAILURE() << "a start beyond the overturning angle passed the check of a run";
+  } catch (const study::StudyError& e) {
+    EXPECT_NE(std::string(e.what()).find("displaced.toml:9: physics.theta0_rad:"), std::string::npos) << e.what();
+  }
 }
 
 TEST(StudyCommand, AnOutputIsNeverOneOfTheInputs) {

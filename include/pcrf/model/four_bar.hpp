@@ -14,6 +14,7 @@
 /// above zero (an integrator overshooting an impact) is smooth and harmless.
 #pragma once
 
+#include <cmath>
 #include <optional>
 
 #include "pcrf/model/frame.hpp"
@@ -47,8 +48,17 @@ class FourBar {
   explicit FourBar(const Frame& frame);
 
   /// Solves the linkage at θ₁ (θ₁ ≤ 0 branch). Returns false when the mechanism cannot
-  /// close at that angle (the circles do not meet or the linkage is at a toggle).
-  bool solve(double theta1, Configuration& out) const;
+  /// close at that angle (the circles do not meet or the linkage is at a toggle). The rest
+  /// configuration (θ₁ = +0) is solved once, by the constructor, and copied: building a
+  /// frame and a case at rest ask for it four times (the terms and restitution at rest, the
+  /// initial tendon strains twice), a quarter of a non-lifting case.
+  bool solve(double theta1, Configuration& out) const {
+    if (theta1 == 0.0 && !std::signbit(theta1)) {  // +0 only: −0 may round differently
+      if (rest_closes_) out = rest_;
+      return rest_closes_;
+    }
+    return solve_at(theta1, out);
+  }
 
   /// The most negative θ₁ reached before the linkage stops closing or passes a toggle
   /// (Jacobian sign change), found on first use by a scan and bisection (−1.6002 rad for the
@@ -60,10 +70,13 @@ class FourBar {
 
  private:
   double find_closing_limit() const;
+  bool solve_at(double theta1, Configuration& out) const;
 
   Frame f_;
   double r_beam_;   ///< 2R_b [m]
   double r_right_;  ///< 2h [m]
+  Configuration rest_{};      ///< solve_at(+0)
+  bool rest_closes_ = false;  ///< what solve_at(+0) returned
   mutable std::optional<double> closing_limit_rad_;  ///< not thread-safe: one FourBar per thread
 };
 

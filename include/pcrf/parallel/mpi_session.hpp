@@ -36,7 +36,8 @@ class MpiSession {
   /// cores that the remaining work needs (a plain MPI_Barrier spins in Open MPI).
   void quiet_barrier() const;
 
-  /// Broadcasts an int from rank 0.
+  /// Broadcasts an int from rank 0. Waits as quiet_barrier() does: the other ranks wait here
+  /// while rank 0 checks the study and opens the cube, without spinning in MPI.
   int broadcast(int value) const;
   /// Broadcasts a string from rank 0.
   std::string broadcast(std::string text) const;

@@ -7,6 +7,7 @@
 /// Values are stored in m/s² whatever the units of the file they came from.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -49,8 +50,12 @@ class GroundMotion {
   /// 1/dt [1/s], the factor accel_m_s2 interpolates with.
   double inverse_dt_per_s() const { return inv_dt_; }
 
-  /// Peak absolute acceleration [m/s²].
-  double pga_m_s2() const;
+  /// Peak absolute acceleration [m/s²] (found once, when the record is made).
+  double pga_m_s2() const { return std::max(max_m_s2_, -min_m_s2_); }
+  /// Smallest and largest sample [m/s²] (found once): scans over the record (uplift, free
+  /// fall, the paper's trigger) skip a record whose extremes cannot reach their level.
+  double min_m_s2() const { return min_m_s2_; }
+  double max_m_s2() const { return max_m_s2_; }
 
   /// The same record multiplied by `factor` (a negative factor mirrors it); same name and dt.
   /// \throws std::invalid_argument when factor is not finite or a scaled sample overflows.
@@ -61,6 +66,8 @@ class GroundMotion {
   double dt_s_;
   double inv_dt_;
   std::vector<double> accel_m_s2_;
+  double min_m_s2_ = 0.0;
+  double max_m_s2_ = 0.0;
 };
 
 /// Relative tolerance within which two sample intervals are the same: intervals computed

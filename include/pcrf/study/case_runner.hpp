@@ -67,6 +67,7 @@ class CaseRunner {
   PreparedFrame& prepared(const SceneSpec& scene) const;
   struct Prepared {
     SceneSpec scene;
+    std::uint64_t key;  ///< scene_key(scene), compared first
     std::shared_ptr<PreparedFrame> frame;
   };
   mutable std::vector<Prepared> prepared_;  ///< most recent first

@@ -56,9 +56,12 @@ struct StudySummary {
   std::int64_t failed = 0;
   std::filesystem::path output;
   std::string fingerprint;  ///< the study's fingerprint (also what --check reports)
-  std::int64_t invalid_cases = 0;  ///< cases whose frame the model cannot represent
+  /// Cases whose frame the model cannot represent, their frames, one of them and why: counted
+  /// where every frame was built up front (--check, a displaced start; study_check.hpp,
+  /// FrameCheck), else 0 (a run's cube gives each such case the status invalid_frame).
+  std::int64_t invalid_cases = 0;
   std::int64_t invalid_frames = 0;
-  std::string first_invalid;       ///< one of them and why
+  std::string first_invalid;
   int stopped_by = 0;              ///< the signal that stopped the run early; 0: it ran to the end
   /// A write error that ended the run early (the cube keeps its last complete checkpoint).
   std::string error;
