@@ -20,14 +20,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-Cell count(std::size_t n) { return static_cast<std::int64_t>(n); }
-
-template <class Row>
-std::vector<Column> columns_of(const std::vector<ColumnOf<Row>>& spec) {
-  std::vector<Column> columns;
-  for (const auto& s : spec) columns.push_back(s.column);
-  return columns;
-}
 
 /// `numeric[b]`: the b-th coordinate grouped by holds numbers (its values are written as
 /// numbers, which their labels are the shortest round-trip text of), else texts.

@@ -208,14 +208,6 @@ RiskReport cube_risk(const cube::CubeReader& cube, const std::vector<cube::Selec
 
 namespace {
 
-Cell count(std::size_t n) { return static_cast<std::int64_t>(n); }
-
-template <class Row>
-std::vector<Column> columns_of(const std::vector<ColumnOf<Row>>& spec) {
-  std::vector<Column> columns;
-  for (const auto& s : spec) columns.push_back(s.column);
-  return columns;
-}
 
 struct RiskRow {
   const FrameRisk* frame;

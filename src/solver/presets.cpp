@@ -30,9 +30,9 @@ SolverSettings preset_settings(const std::string& name) {
     s.atol_theta_rad = 1e-6;
     s.atol_omega_rad_s = 1e-5;
   } else if (name == "balanced") {
-    s.rtol = 1e-6;
-    s.atol_theta_rad = 1e-10;
-    s.atol_omega_rad_s = 1e-9;
+    s.rtol = 1e-7;
+    s.atol_theta_rad = 1e-11;
+    s.atol_omega_rad_s = 1e-10;
   } else if (name == "reference") {
     s.integrator = Integrator::kArkodeErk5;  // SUNDIALS: an independent check of the others
     s.rtol = 1e-10;

@@ -45,6 +45,17 @@ struct ColumnOf {
   std::function<Cell(const Row&)> value;
 };
 
+/// The column descriptions of a spec (for --help and schemas).
+template <class Row>
+std::vector<Column> columns_of(const std::vector<ColumnOf<Row>>& spec) {
+  std::vector<Column> columns;
+  for (const auto& s : spec) columns.push_back(s.column);
+  return columns;
+}
+
+/// A count as an integer cell.
+inline Cell count(std::size_t n) { return static_cast<std::int64_t>(n); }
+
 template <class Row>
 Table make_table(const std::vector<ColumnOf<Row>>& spec, const std::vector<Row>& rows) {
   Table table;
