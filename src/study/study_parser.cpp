@@ -18,6 +18,7 @@
 #include "pcrf/study/plan.hpp"
 #include "study/axis_fields.hpp"
 #include "study/plans/plan_support.hpp"
+#include "study/toml_depth.hpp"
 #include "study/toml_fields.hpp"
 
 namespace pcrf::study {
@@ -587,6 +588,7 @@ void read_outputs(const Fields& top, Study& s) {
 
 Study parse_study(const std::string& text, const std::string& file, const std::filesystem::path& base_dir) {
   toml::table root;
+  detail::refuse_deep_keys(text, file);  // before toml++, whose parser would overflow the stack
   try {
     root = toml::parse(text, file);
   } catch (const toml::parse_error& e) {
