@@ -339,10 +339,16 @@ std::vector<std::filesystem::path> resolve_files(const Fields& f, std::string_vi
   }
   if (has_glob(path.parent_path().string())) f.fail(key, "wildcards are allowed in the file name only: " + entry);
   std::vector<std::filesystem::path> matches;
-  std::error_code error;
-  for (const auto& item : std::filesystem::directory_iterator(path.parent_path(), error))
-    if (item.is_regular_file() && ::fnmatch(path.filename().c_str(), item.path().filename().c_str(), 0) == 0)
-      matches.push_back(item.path());
+  // Error codes, not exceptions: an entry that is a link loop (or dangling) is no regular
+  // file; a folder that cannot be opened has no match.
+  std::error_code open_error, step_error;
+  std::filesystem::directory_iterator item(path.parent_path(), open_error), end;
+  for (; !open_error && !step_error && item != end; item.increment(step_error)) {
+    std::error_code type_error;
+    if (item->is_regular_file(type_error) && ::fnmatch(path.filename().c_str(), item->path().filename().c_str(), 0) == 0)
+      matches.push_back(item->path());
+  }
+  if (step_error) f.fail(key, "cannot list " + path.parent_path().string() + ": " + step_error.message());
   if (matches.empty()) f.fail(key, "no file matches " + path.string());
   std::sort(matches.begin(), matches.end(), [](const auto& a, const auto& b) {
     return natural_less(a.filename().string(), b.filename().string());
