@@ -11,6 +11,10 @@ source_dir=$1
 tree=$2
 jobs=${PCRF_SANITIZE_JOBS:-2}
 flags="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined"
+# GCC 12 warns falsely under the sanitizers' instrumentation (std::regex's std::function in
+# libstdc++, which tests use: "may be used uninitialized"); the project builds with -Werror,
+# so the tests of this tree build without that warning (PCRF_TEST_CXX_FLAGS).
+test_flags="-Wno-maybe-uninitialized"
 launcher=""
 if command -v ccache >/dev/null 2>&1; then
   launcher="-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache"
@@ -22,7 +26,7 @@ cmake -S "$source_dir" -B "$tree" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
   -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address,undefined" \
   -DPCRF_BUILD_BENCH=OFF -DPCRF_SANITIZE_TEST=OFF -DCMAKE_DISABLE_FIND_PACKAGE_pybind11=ON \
-  -DPCRF_TEST_TIMEOUT_S=1800 $launcher
+  -DPCRF_TEST_TIMEOUT_S=1800 -DPCRF_TEST_CXX_FLAGS="$test_flags" $launcher
 cmake --build "$tree" -j "$jobs"
 # Leaks are reported too, except those of the MPI and HDF5 runtimes themselves (lsan.supp).
 export ASAN_OPTIONS="halt_on_error=1:abort_on_error=0:detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=0"
