@@ -333,6 +333,8 @@ std::vector<std::filesystem::path> resolve_files(const Fields& f, std::string_vi
     if (has_glob(path.parent_path().string())) f.fail(key, "wildcards are allowed in the file name only: " + entry);
     std::error_code error;
     const auto status = std::filesystem::status(path, error);
+    if (error && status.type() != std::filesystem::file_type::not_found)
+      f.fail(key, "cannot open " + path.string() + ": " + error.message());
     if (!std::filesystem::exists(status)) f.fail(key, "file not found: " + path.string());
     if (!std::filesystem::is_regular_file(status)) f.fail(key, "not a regular file: " + path.string());
     return {path};
@@ -639,6 +641,8 @@ std::string read_text_file(const std::filesystem::path& file) {
 Study load_study(const std::filesystem::path& file) {
   std::error_code error;
   const auto status = std::filesystem::status(file, error);
+  if (error && status.type() != std::filesystem::file_type::not_found)
+    throw StudyError(file.string() + ": cannot open: " + error.message());
   if (!std::filesystem::exists(status)) throw StudyError(file.string() + ": no such study file");
   if (!std::filesystem::is_regular_file(status)) throw StudyError(file.string() + ": not a regular file");
   auto base_dir = std::filesystem::absolute(file).parent_path();

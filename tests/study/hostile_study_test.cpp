@@ -86,5 +86,21 @@ TEST(HostileStudy, AGlobOverALinkLoopTakesTheRegularFilesOnly) {
   EXPECT_NE(r.err.find("loop.toml:2"), std::string::npos) << r.err;
 }
 
+// A link loop named as the study, as a record of a study, or as a record of `pcrf record`:
+// one line saying so, exit 2.
+TEST(HostileStudy, LinkLoopsAsStudyOrRecordFilesAreRefusedInOneLine) {
+  const auto dir = test::scratch_dir("hostile_loops");
+  for (const char* name : {"loop.toml", "loop.AT2"}) std::filesystem::create_symlink(dir / name, dir / name);
+  test::write_file(dir, "record_loop.toml", "[[records]]\nfile = \"loop.AT2\"\n");
+  const std::string pcrf = test::pcrf_executable().string();
+  for (const std::string& command : {pcrf + " study loop.toml --check", pcrf + " study record_loop.toml --check",
+                                     pcrf + " record loop.AT2"}) {
+    const auto r = test::run_command("cd " + dir.string() + " && timeout 60 " + command);
+    EXPECT_EQ(r.exit_code, 2) << command << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << command << ": " << r.err;
+    EXPECT_NE(r.err.find("loop."), std::string::npos) << command << ": " << r.err;
+  }
+}
+
 }  // namespace
 }  // namespace pcrf::study
