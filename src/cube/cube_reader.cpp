@@ -167,48 +167,51 @@ void check_regular_file(const std::filesystem::path& file, const std::string& la
 CubeReader::CubeReader(const std::filesystem::path& file) : file_(file), impl_(std::make_unique<Impl>()) {
   h5::silence_library_errors();
   impl_->label = file.string();
-  check_regular_file(file, impl_->label);
-  if (H5Fis_hdf5(file.c_str()) <= 0) throw CubeError(impl_->what("not an HDF5 file"));
-  impl_->file = h5::file(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), impl_->what("cannot open"));
-  if (H5Lexists(impl_->file, kStatusName, H5P_DEFAULT) <= 0)
-    throw CubeError(impl_->what("not a pcrf result cube (no 'status' variable)"));
-  auto status = impl_->open(kStatusName);
-  const auto dims = h5::extent(status, impl_->what("cannot read 'status'"));
-  const int rank = static_cast<int>(dims.size());
-  for (std::size_t d = 0; d < dims.size(); ++d) {
-    const std::string name = dimension_name(status, static_cast<unsigned>(d));
-    if (name.empty()) throw CubeError(impl_->what("dimension " + std::to_string(d) + " of 'status' has no coordinate"));
-    layout_.dimensions.push_back({name, static_cast<std::size_t>(dims[d])});
-  }
-  // Every case's status is read whole: refused here when the file cannot hold so many.
-  status = impl_->open_checked(kStatusName, {H5T_INTEGER}, dims, 1.0);
-  for (const auto& dimension : layout_.dimensions)
-    layout_.coordinates.push_back(impl_->read_coordinate(dimension.name, layout_.dimensions));
-  for (const auto& name : split_words(h5::read_text_attribute(status, "coordinates")))
-    layout_.coordinates.push_back(impl_->read_coordinate(name, layout_.dimensions));
-  const auto values = impl_->labelled([&] { return h5::read_int8_attribute(status, "flag_values"); });
-  const auto meanings = split_words(h5::read_text_attribute(status, "flag_meanings"));
-  for (std::size_t i = 0; i < values.size() && i < meanings.size(); ++i)
-    layout_.status_flags.push_back({values[i], meanings[i]});
-  // Metrics: float variables with the rank of `status` that are not coordinates.
-  for (const auto& name : link_names(impl_->file)) {
-    if (name == kStatusName || layout_.find_coordinate(name) != nullptr) continue;
-    if (!h5::is_dataset(impl_->file, name)) continue;
-    auto d = impl_->open(name);
-    auto t = h5::type(H5Dget_type(d), impl_->what("cannot read '" + name + "'"));
-    auto ds = h5::space(H5Dget_space(d), impl_->what("cannot read '" + name + "'"));
-    if (H5Tget_class(t) != H5T_FLOAT) continue;
-    const int variable_rank = H5Sget_simple_extent_ndims(ds);
-    if (variable_rank == rank) {
-      layout_.metrics.push_back({name, h5::read_text_attribute(d, "units"), h5::read_text_attribute(d, "long_name")});
-    } else if (variable_rank > 0 && variable_rank < rank) {
-      SideVariable side{name, h5::read_text_attribute(d, "units"), h5::read_text_attribute(d, "long_name"), {}, {}};
-      for (int k = 0; k < variable_rank; ++k) side.dimensions.push_back(dimension_name(d, static_cast<unsigned>(k)));
-      layout_.side_variables.push_back(std::move(side));
+  // Every CubeError, also those of hdf5_util (which name no file), names this file.
+  impl_->labelled([&] {
+    check_regular_file(file, impl_->label);
+    if (H5Fis_hdf5(file.c_str()) <= 0) throw CubeError(impl_->what("not an HDF5 file"));
+    impl_->file = h5::file(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), impl_->what("cannot open"));
+    if (H5Lexists(impl_->file, kStatusName, H5P_DEFAULT) <= 0)
+      throw CubeError(impl_->what("not a pcrf result cube (no 'status' variable)"));
+    auto status = impl_->open(kStatusName);
+    const auto dims = h5::extent(status, impl_->what("cannot read 'status'"));
+    const int rank = static_cast<int>(dims.size());
+    for (std::size_t d = 0; d < dims.size(); ++d) {
+      const std::string name = dimension_name(status, static_cast<unsigned>(d));
+      if (name.empty()) throw CubeError(impl_->what("dimension " + std::to_string(d) + " of 'status' has no coordinate"));
+      layout_.dimensions.push_back({name, static_cast<std::size_t>(dims[d])});
     }
-  }
-  auto root = h5::group(H5Gopen2(impl_->file, "/", H5P_DEFAULT), impl_->what("cannot open the root group"));
-  layout_.attributes = h5::read_attributes(root);
+    // Every case's status is read whole: refused here when the file cannot hold so many.
+    status = impl_->open_checked(kStatusName, {H5T_INTEGER}, dims, 1.0);
+    for (const auto& dimension : layout_.dimensions)
+      layout_.coordinates.push_back(impl_->read_coordinate(dimension.name, layout_.dimensions));
+    for (const auto& name : split_words(h5::read_text_attribute(status, "coordinates")))
+      layout_.coordinates.push_back(impl_->read_coordinate(name, layout_.dimensions));
+    const auto values = h5::read_int8_attribute(status, "flag_values");
+    const auto meanings = split_words(h5::read_text_attribute(status, "flag_meanings"));
+    for (std::size_t i = 0; i < values.size() && i < meanings.size(); ++i)
+      layout_.status_flags.push_back({values[i], meanings[i]});
+    // Metrics: float variables with the rank of `status` that are not coordinates.
+    for (const auto& name : link_names(impl_->file)) {
+      if (name == kStatusName || layout_.find_coordinate(name) != nullptr) continue;
+      if (!h5::is_dataset(impl_->file, name)) continue;
+      auto d = impl_->open(name);
+      auto t = h5::type(H5Dget_type(d), impl_->what("cannot read '" + name + "'"));
+      auto ds = h5::space(H5Dget_space(d), impl_->what("cannot read '" + name + "'"));
+      if (H5Tget_class(t) != H5T_FLOAT) continue;
+      const int variable_rank = H5Sget_simple_extent_ndims(ds);
+      if (variable_rank == rank) {
+        layout_.metrics.push_back({name, h5::read_text_attribute(d, "units"), h5::read_text_attribute(d, "long_name")});
+      } else if (variable_rank > 0 && variable_rank < rank) {
+        SideVariable side{name, h5::read_text_attribute(d, "units"), h5::read_text_attribute(d, "long_name"), {}, {}};
+        for (int k = 0; k < variable_rank; ++k) side.dimensions.push_back(dimension_name(d, static_cast<unsigned>(k)));
+        layout_.side_variables.push_back(std::move(side));
+      }
+    }
+    auto root = h5::group(H5Gopen2(impl_->file, "/", H5P_DEFAULT), impl_->what("cannot open the root group"));
+    layout_.attributes = h5::read_attributes(root);
+  });
 }
 
 CubeReader::~CubeReader() = default;
