@@ -137,7 +137,9 @@ CubeWriter::CubeWriter(std::filesystem::path file, CubeLayout layout, OpenMode m
   h5::silence_library_errors();
   const auto n = static_cast<std::size_t>(impl_->layout.case_count());
   status_.assign(n, kStatusNotRun);
-  const bool exists = std::filesystem::exists(impl_->path);
+  std::error_code error;  // a link loop, a folder that cannot be searched: one line, not an exception
+  const bool exists = std::filesystem::exists(impl_->path, error);
+  if (error) throw CubeError(impl_->what("cannot open: " + error.message()));
   if (mode == OpenMode::kCreate && exists) throw CubeError(impl_->what("already exists"));
   if (mode == OpenMode::kResume && exists) {
     impl_->open_existing(status_);

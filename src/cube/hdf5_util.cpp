@@ -3,8 +3,11 @@
 #include "cube/hdf5_util.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <mutex>
+
+#include "pcrf/machine_memory.hpp"
 
 namespace pcrf::cube::h5 {
 
@@ -14,6 +17,10 @@ void silence_library_errors() {
 }
 
 namespace {
+
+/// The most bytes one attribute may make a reader allocate: far above any text or flag list a
+/// cube holds (a study's whole text is a few kB), far below what could exhaust memory.
+constexpr std::size_t kMaxAttributeBytes = std::size_t{64} << 20;
 
 /// The innermost messages of HDF5's error stack (the library's own reason), e.g.
 /// "unable to open file: ... errno = 28, error message = 'No space left on device'".
@@ -48,6 +55,62 @@ hid_t check(hid_t id, const std::string& what) {
   if (id >= 0) return id;
   const std::string reason = library_reason();
   throw CubeError(reason.empty() ? what : what + " (" + reason + ")", CubeError::cause_of(quoted_os_error(reason)));
+}
+
+std::vector<hsize_t> extent(hid_t dataset, const std::string& what) {
+  auto s = space(H5Dget_space(dataset), what);
+  const int rank = H5Sget_simple_extent_ndims(s);
+  if (rank < 0) check(rank, what);
+  std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
+  if (rank > 0) check(H5Sget_simple_extent_dims(s, dims.data(), nullptr), what);
+  return dims;
+}
+
+std::string shape_text(const std::vector<hsize_t>& dims) {
+  if (dims.empty()) return "1";
+  std::string text;
+  for (auto n : dims) text += (text.empty() ? "" : "×") + std::to_string(n);
+  return text;
+}
+
+namespace {
+
+/// How a dataset's values are stored: whole and unfiltered (contiguous or compact), or not
+/// (chunked: unwritten chunks hold the fill value and take no room in the file).
+bool stored_whole(hid_t dataset) {
+  auto dcpl = plist(H5Dget_create_plist(dataset), "cannot read a dataset's storage");
+  const H5D_layout_t layout = H5Pget_layout(dcpl);
+  return layout == H5D_CONTIGUOUS || layout == H5D_COMPACT;
+}
+
+double file_size_of(hid_t object) {
+  Handle file(check(H5Iget_file_id(object), "cannot find a dataset's file"), H5Fclose);
+  hsize_t size = 0;
+  check(H5Fget_filesize(file, &size), "cannot read the file's size");
+  return static_cast<double>(size);
+}
+
+}  // namespace
+
+void check_readable(hid_t dataset, double values, double bytes_each, const std::string& name) {
+  char text[320];
+  const double bytes = values * bytes_each, memory = machine_memory_bytes();
+  if (bytes > kUsableMemoryShare * memory) {
+    std::snprintf(text, sizeof text,
+                  "'%s' declares %.4g values (%.3g GB in memory), more than %.0f %% of this machine's %.3g GB: "
+                  "a damaged cube, or one too large for this machine",
+                  name.c_str(), values, bytes / 1e9, 100.0 * kUsableMemoryShare, memory / 1e9);
+    throw CubeError(text);
+  }
+  if (!stored_whole(dataset)) return;
+  auto t = type(H5Dget_type(dataset), "cannot read the type of '" + name + "'");
+  const double stored = values * static_cast<double>(H5Tget_size(t)), file_size = file_size_of(dataset);
+  if (stored > file_size) {
+    std::snprintf(text, sizeof text,
+                  "'%s' declares %.4g values (%.4g bytes stored whole), more than the file's %.4g bytes: a damaged cube",
+                  name.c_str(), values, stored, file_size);
+    throw CubeError(text);
+  }
 }
 
 bool is_dataset(hid_t location, const std::string& name) {
@@ -128,6 +191,10 @@ std::string read_text_attribute(hid_t object, const std::string& name) {
   auto a = attribute(H5Aopen(object, name.c_str(), H5P_DEFAULT), "cannot open attribute " + name);
   auto t = type(H5Aget_type(a), "cannot read attribute " + name);
   if (H5Tget_class(t) != H5T_STRING) throw CubeError("attribute " + name + " is not text");
+  // One text: the buffers below hold one value, whatever the attribute declares.
+  auto s = space(H5Aget_space(a), "cannot read attribute " + name);
+  if (const auto n = H5Sget_simple_extent_npoints(s); n == 0) return {};
+  else if (n != 1) throw CubeError("attribute " + name + " holds " + std::to_string(n) + " texts, not one");
   if (H5Tis_variable_str(t) > 0) {
     char* value = nullptr;
     auto memory = vlen_string_type();
@@ -137,6 +204,7 @@ std::string read_text_attribute(hid_t object, const std::string& name) {
     return text;
   }
   const std::size_t size = H5Tget_size(t);
+  if (size > kMaxAttributeBytes) throw CubeError("attribute " + name + " declares " + std::to_string(size) + " bytes of text");
   std::string text(size, '\0');
   check(H5Aread(a, t, text.data()), "cannot read attribute " + name);
   text.resize(text.find('\0') == std::string::npos ? size : text.find('\0'));
@@ -147,7 +215,9 @@ std::vector<std::int8_t> read_int8_attribute(hid_t object, const std::string& na
   auto a = attribute(H5Aopen(object, name.c_str(), H5P_DEFAULT), "cannot open attribute " + name);
   auto s = space(H5Aget_space(a), "cannot read attribute " + name);
   const auto n = H5Sget_simple_extent_npoints(s);
-  std::vector<std::int8_t> values(static_cast<std::size_t>(std::max<hssize_t>(n, 0)));
+  if (n < 0 || static_cast<std::size_t>(n) > kMaxAttributeBytes)
+    throw CubeError("attribute " + name + " declares " + std::to_string(n) + " values");
+  std::vector<std::int8_t> values(static_cast<std::size_t>(n));
   check(H5Aread(a, H5T_NATIVE_INT8, values.data()), "cannot read attribute " + name);
   return values;
 }
@@ -163,7 +233,7 @@ herr_t collect_attribute(hid_t object, const char* name, const H5A_info_t*, void
     const bool scalar = H5Sget_simple_extent_npoints(s) == 1;
     switch (H5Tget_class(t)) {
       case H5T_STRING:
-        out.push_back({name, read_text_attribute(object, name)});
+        if (scalar) out.push_back({name, read_text_attribute(object, name)});
         break;
       case H5T_FLOAT:
         if (scalar) {
@@ -212,13 +282,16 @@ void write_strings(hid_t dataset, const std::vector<std::string>& values) {
         "cannot write text values");
 }
 
-std::vector<std::string> read_strings(hid_t dataset) {
+std::vector<std::string> read_strings(hid_t dataset, const std::string& name) {
   auto s = space(H5Dget_space(dataset), "cannot read a dataspace");
   const auto n = static_cast<std::size_t>(std::max<hssize_t>(H5Sget_simple_extent_npoints(s), 0));
   auto file_type = type(H5Dget_type(dataset), "cannot read a type");
+  if (H5Tget_class(file_type) != H5T_STRING) throw CubeError("'" + name + "' is not text");
+  const bool variable = H5Tis_variable_str(file_type) > 0;
+  check_readable(dataset, static_cast<double>(n), variable ? sizeof(char*) : static_cast<double>(H5Tget_size(file_type)), name);
   std::vector<std::string> values;
   values.reserve(n);
-  if (H5Tis_variable_str(file_type) > 0) {
+  if (variable) {
     std::vector<char*> pointers(n, nullptr);
     auto t = vlen_string_type();
     check(H5Dread(dataset, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, pointers.data()), "cannot read text values");

@@ -64,6 +64,18 @@ inline Handle type(hid_t id, const std::string& what) { return {check(id, what),
 inline Handle plist(hid_t id, const std::string& what) { return {check(id, what), H5Pclose}; }
 inline Handle attribute(hid_t id, const std::string& what) { return {check(id, what), H5Aclose}; }
 
+/// Dimensions of a dataset (empty for a scalar). \throws CubeError(what) when unreadable.
+std::vector<hsize_t> extent(hid_t dataset, const std::string& what);
+
+/// "2×3×4" (a scalar: "1").
+std::string shape_text(const std::vector<hsize_t>& dims);
+
+/// Refuses (CubeError "<name> declares …") to read `values` values of a dataset into memory
+/// at `bytes_each` bytes each when the file cannot hold them: more than kUsableMemoryShare of
+/// this machine's memory, or, for data stored whole and unfiltered (contiguous or compact),
+/// more bytes than the file has. Declared sizes are untrusted: checked before allocating.
+void check_readable(hid_t dataset, double values, double bytes_each, const std::string& name);
+
 /// Whether the link `name` of `location` leads to a dataset; false when it cannot be read.
 bool is_dataset(hid_t location, const std::string& name);
 
@@ -86,6 +98,7 @@ std::vector<Attribute> read_attributes(hid_t object);
 
 // ---- string datasets ----
 void write_strings(hid_t dataset, const std::vector<std::string>& values);
-std::vector<std::string> read_strings(hid_t dataset);
+/// Every value of a 1-D (or any-rank) text dataset; checked with check_readable() first.
+std::vector<std::string> read_strings(hid_t dataset, const std::string& name = "text values");
 
 }  // namespace pcrf::cube::h5

@@ -111,6 +111,7 @@ bool parse_integer(std::string_view token, long long& value) {
 std::string read_text(const std::filesystem::path& file) {
   std::error_code ec;
   const auto status = std::filesystem::status(file, ec);
+  if (ec && status.type() != std::filesystem::file_type::not_found) fail_file(file, "cannot open: " + ec.message());
   if (!std::filesystem::exists(status)) fail_file(file, "no such file");
   if (!std::filesystem::is_regular_file(status)) fail_file(file, "not a regular file");
   std::ifstream in(file, std::ios::binary);

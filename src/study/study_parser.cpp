@@ -18,6 +18,7 @@
 #include "pcrf/study/plan.hpp"
 #include "study/axis_fields.hpp"
 #include "study/plans/plan_support.hpp"
+#include "study/toml_depth.hpp"
 #include "study/toml_fields.hpp"
 
 namespace pcrf::study {
@@ -333,16 +334,24 @@ std::vector<std::filesystem::path> resolve_files(const Fields& f, std::string_vi
     if (has_glob(path.parent_path().string())) f.fail(key, "wildcards are allowed in the file name only: " + entry);
     std::error_code error;
     const auto status = std::filesystem::status(path, error);
+    if (error && status.type() != std::filesystem::file_type::not_found)
+      f.fail(key, "cannot open " + path.string() + ": " + error.message());
     if (!std::filesystem::exists(status)) f.fail(key, "file not found: " + path.string());
     if (!std::filesystem::is_regular_file(status)) f.fail(key, "not a regular file: " + path.string());
     return {path};
   }
   if (has_glob(path.parent_path().string())) f.fail(key, "wildcards are allowed in the file name only: " + entry);
   std::vector<std::filesystem::path> matches;
-  std::error_code error;
-  for (const auto& item : std::filesystem::directory_iterator(path.parent_path(), error))
-    if (item.is_regular_file() && ::fnmatch(path.filename().c_str(), item.path().filename().c_str(), 0) == 0)
-      matches.push_back(item.path());
+  // Error codes, not exceptions: an entry that is a link loop (or dangling) is no regular
+  // file; a folder that cannot be opened has no match.
+  std::error_code open_error, step_error;
+  std::filesystem::directory_iterator item(path.parent_path(), open_error), end;
+  for (; !open_error && !step_error && item != end; item.increment(step_error)) {
+    std::error_code type_error;
+    if (item->is_regular_file(type_error) && ::fnmatch(path.filename().c_str(), item->path().filename().c_str(), 0) == 0)
+      matches.push_back(item->path());
+  }
+  if (step_error) f.fail(key, "cannot list " + path.parent_path().string() + ": " + step_error.message());
   if (matches.empty()) f.fail(key, "no file matches " + path.string());
   std::sort(matches.begin(), matches.end(), [](const auto& a, const auto& b) {
     return natural_less(a.filename().string(), b.filename().string());
@@ -588,6 +597,7 @@ void read_outputs(const Fields& top, Study& s) {
 
 Study parse_study(const std::string& text, const std::string& file, const std::filesystem::path& base_dir) {
   toml::table root;
+  detail::refuse_deep_keys(text, file);  // before toml++, whose parser would overflow the stack
   try {
     root = toml::parse(text, file);
   } catch (const toml::parse_error& e) {
@@ -632,6 +642,8 @@ std::string read_text_file(const std::filesystem::path& file) {
 Study load_study(const std::filesystem::path& file) {
   std::error_code error;
   const auto status = std::filesystem::status(file, error);
+  if (error && status.type() != std::filesystem::file_type::not_found)
+    throw StudyError(file.string() + ": cannot open: " + error.message());
   if (!std::filesystem::exists(status)) throw StudyError(file.string() + ": no such study file");
   if (!std::filesystem::is_regular_file(status)) throw StudyError(file.string() + ": not a regular file");
   auto base_dir = std::filesystem::absolute(file).parent_path();

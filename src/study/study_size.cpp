@@ -1,10 +1,9 @@
 // How big a study is (see study_size.hpp).
 #include "pcrf/study/study_size.hpp"
 
-#include <unistd.h>
-
 #include <cstdio>
 
+#include "pcrf/machine_memory.hpp"
 #include "pcrf/study/plan.hpp"
 #include "pcrf/study/study_error.hpp"
 
@@ -21,10 +20,6 @@ double frames_of(const Study& study) {
   double frames = 1.0;
   for (const auto& d : study.plan->dimensions()) frames *= static_cast<double>(d.size);
   return frames;
-}
-
-double memory_bytes() {
-  return static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGE_SIZE));
 }
 
 std::string line_of(const Study& study, const std::string& key) {
@@ -48,8 +43,8 @@ void check_study_size(const Study& study) {
                      " runs per curve, got " + std::to_string(study.ida->max_runs));
   const StudySize size = study_size(study);
   const double needed = kFrameBytes * size.frames + 1.0 * size.cases + static_cast<double>(kPendingResultsBytes);
-  const double memory = memory_bytes();
-  if (needed <= 0.8 * memory) return;
+  const double memory = machine_memory_bytes();
+  if (needed <= kUsableMemoryShare * memory) return;
   // The key to change: an IDA's runs, else the plan's size (the axes, or the samples).
   const bool sampled = study.setting_lines.count("plan.samples") > 0;
   const std::string key = study.ida ? "ida.max_runs" : sampled ? "plan.samples" : "axes";
@@ -64,8 +59,8 @@ void check_study_size(const Study& study) {
 
 void check_frame_count(double frames, const std::string& where, const std::string& key) {
   const double needed = kFrameBytes * frames + static_cast<double>(kPendingResultsBytes);
-  const double memory = memory_bytes();
-  if (needed <= 0.8 * memory) return;
+  const double memory = machine_memory_bytes();
+  if (needed <= kUsableMemoryShare * memory) return;
   char text[300];
   std::snprintf(text, sizeof text,
                 ": %s: %.4g frames need about %.3g GB on rank 0 (%.0f bytes a frame), more than 80 %% of this machine's "
