@@ -175,10 +175,12 @@ TEST(RunCommandSettings, FlagsTakeEffectAndOlderSpellingsStillWork) {
   ASSERT_EQ(base.exit_code, 0) << base.err;
   EXPECT_DOUBLE_EQ(json_number(tail.out, "t_end_s"), json_number(base.out, "t_end_s") + 1.5);
   EXPECT_EQ(json_number(tail_old.out, "t_end_s"), json_number(tail.out, "t_end_s"));
-  // Without stops at the record samples the integrator takes fewer, longer steps.
+  // Without stops at the record samples the integrator steps across them: other steps (with
+  // dopri5 more of them on this pulse, the error test rejecting steps over the kinks; with
+  // ARKODE fewer). Either spelling of the flag takes effect, and the same.
   const auto no_stop = test::run_command(pcrf() + kPulse + " --tail-s 0 --no-stop-at-samples");
   const auto no_stop_eq = test::run_command(pcrf() + kPulse + " --tail-s 0 --stop-at-samples=false");
-  EXPECT_LT(json_number(no_stop.out, "steps"), json_number(base.out, "steps"));
+  EXPECT_NE(json_number(no_stop.out, "steps"), json_number(base.out, "steps"));
   EXPECT_EQ(json_number(no_stop_eq.out, "steps"), json_number(no_stop.out, "steps"));
   // The preset applies before single values, whatever the order on the command line.
   const auto loose = test::run_command(pcrf() + kPulse + " --rtol 1e-3 --preset reference");

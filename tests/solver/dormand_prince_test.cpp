@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <ostream>
 #include <memory>
 #include <numbers>
 #include <string>
@@ -213,6 +214,8 @@ std::shared_ptr<PreparedFrame> rocking_frame_scene(const PhysicsOptions& physics
 }
 
 std::string scene_name(const ::testing::TestParamInfo<SceneCase>& param) { return param.param.name; }
+/// gtest prints a parameter by this, not by its bytes (whose padding valgrind flags).
+void PrintTo(const SceneCase& c, std::ostream* os) { *os << c.name; }
 
 class OnEveryScene : public ::testing::TestWithParam<SceneCase> {
  protected:
