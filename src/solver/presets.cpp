@@ -1,19 +1,18 @@
 // Accuracy presets. The values come from the work-precision study
 // (bench/work_precision, docs/work_precision.md); change them only with new measurements.
 //
-// Measured on 210 cases (7 frames × 13 paper records ×2/×3 and 4 synthetic motions; 161
-// rock), errors in θ_max against an ARKODE ERK8 rtol 1e-14 reference; "worst" over the 151
-// well-conditioned cases; median wall time per case on the 2-core development box (median
-// of 3 runs each):
-//   fast       ERK5 rtol 1e-4:  median 1.3e-7, 90th pct 1.6e-4, worst 5.5e-4; 0.85 ms.
-//   balanced   ERK5 rtol 1e-6, atol 1e-4·rtol: median 4.9e-8, 90th pct 1.3e-6, worst 5.0e-6;
-//              1.9 ms.
-//   reference  ERK5 rtol 1e-10, atol 1e-4·rtol: median 2.8e-11, 90th pct 2.3e-9, worst
-//              4.8e-8; 3.4 ms.
-// All three stop at every record sample: ü_g has a kink there, and stepping across it
-// costs accuracy and, at loose tolerances, robustness (docs/work_precision.md). ERK5 beats
-// ERK8, CVODE Adams and BDF at every accuracy in this problem: the steps are bounded by the
-// sample spacing, so the cheaper stages win.
+// Measured on 210 cases (7 frames x 13 paper records x2/x3 and 4 synthetic motions; 161
+// rock), errors in theta_max against an ARKODE ERK8 rtol 1e-14 reference; median wall time
+// per case on the 2-core development box (one run per case, another build running):
+//   fast       dopri5 rtol 1e-4, atol 1e-6 / 1e-5: median 6.8e-8, 90th pct 6.8e-5; 0.24 ms
+//              (before: ARKODE ERK5, same tolerances: 1.3e-7, 1.6e-4; 0.99 ms).
+//   balanced   dopri5 rtol 1e-7, atol 1e-4 rtol / 1e-3 rtol: median 8.3e-9, 90th pct 1.5e-7;
+//              0.44 ms (before: ARKODE ERK5 rtol 1e-6: 4.9e-8, 1.3e-6; 2.51 ms). At rtol 1e-6
+//              dopri5's 90th percentile (1.7e-6) was above the old preset's.
+//   reference  ARKODE ERK5 rtol 1e-10, atol 1e-4 rtol: median 2.8e-11, 90th pct 2.3e-9; 5.0 ms.
+//              SUNDIALS on purpose: the reference is an engine independent of the other two.
+// Every preset ends every case in the reference's final status. All stop at every record
+// sample: u_g has a kink there (dopri5 keeps the samples as breakpoints of its own).
 #include <stdexcept>
 
 #include "pcrf/solver/settings.hpp"
