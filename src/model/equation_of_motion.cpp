@@ -3,12 +3,12 @@
 
 #include <algorithm>
 #include <array>
-#include <cstdint>
-
-#include <boost/math/tools/toms748_solve.hpp>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
+
+#include <boost/math/tools/toms748_solve.hpp>
 
 #include "pcrf/model/impact.hpp"
 #include "pcrf/units.hpp"

@@ -44,7 +44,11 @@ double root_tolerance(double t, double h) { return 100.0 * kEps * (std::abs(t) +
 
 DormandPrinceIntegrator::DormandPrinceIntegrator(const SolverSettings& settings, OdeProblem& problem,
                                                  SampleGrid breakpoints)
-    : settings_(settings), problem_(problem), grid_(breakpoints), nroots_(problem.root_count()) {
+    : settings_(settings),
+      problem_(problem),
+      grid_(breakpoints),
+      nroots_(problem.root_count()),
+      atol_{settings.atol_theta_rad, settings.atol_omega_rad_s} {
   if (nroots_ < 0 || nroots_ > kMaxRoots) throw IntegratorError("dopri5: too many root functions");
 }
 
@@ -93,13 +97,12 @@ void DormandPrinceIntegrator::restart(double t0, const double* y0, const int* ro
 
 double DormandPrinceIntegrator::initial_step() {
   // Hairer, Nørsett & Wanner §II.4, "Starting step size" (DOPRI5's HINIT), order 5.
-  const double atol[2] = {settings_.atol_theta_rad, settings_.atol_omega_rad_s};
   double hmax = t_stop_ - t0_;
   if (settings_.max_step_s > 0.0) hmax = std::min(hmax, settings_.max_step_s);
   if (!(hmax > 0.0)) return 0.0;
   double dnf = 0.0, dny = 0.0;
   for (int i = 0; i < 2; ++i) {
-    const double sk = atol[i] + settings_.rtol * std::abs(y0_[i]);
+    const double sk = weight(i, std::abs(y0_[i]));
     dnf += (k1_[i] / sk) * (k1_[i] / sk);
     dny += (y0_[i] / sk) * (y0_[i] / sk);
   }
@@ -111,25 +114,13 @@ double DormandPrinceIntegrator::initial_step() {
   if (problem_.rhs(t0_ + h, y1.data(), f1.data()) != 0) return h;
   double der2 = 0.0;
   for (int i = 0; i < 2; ++i) {
-    const double sk = atol[i] + settings_.rtol * std::abs(y0_[i]);
+    const double sk = weight(i, std::abs(y0_[i]));
     der2 += ((f1[i] - k1_[i]) / sk) * ((f1[i] - k1_[i]) / sk);
   }
   der2 = std::sqrt(der2 / 2.0) / h;
   const double der12 = std::max(std::abs(der2), std::sqrt(dnf / 2.0));
   const double h1 = der12 <= 1e-15 ? std::max(1e-6, std::abs(h) * 1e-3) : std::pow(0.01 / der12, 0.2);
   return std::min({100.0 * h, h1, hmax});
-}
-
-double DormandPrinceIntegrator::next_breakpoint(double t) const {
-  constexpr double kInf = std::numeric_limits<double>::infinity();
-  if (grid_.count == 0 || !(grid_.dt_s > 0.0)) return kInf;
-  // The next sample strictly after t; one a hair ahead (a root may leave t just below a
-  // sample) is passed over, as the SUNDIALS path's stop times are.
-  double k = std::floor(t / grid_.dt_s) + 1.0;
-  if (k < 1.0) k = 1.0;
-  double tb = k * grid_.dt_s;
-  while (tb <= t || tb - t < 1e-9 * grid_.dt_s) tb = ++k * grid_.dt_s;
-  return k <= static_cast<double>(grid_.count - 1) ? tb : kInf;
 }
 
 bool DormandPrinceIntegrator::try_step(double h, Vec& y1, Vec& k7, double& err) {
@@ -155,11 +146,10 @@ bool DormandPrinceIntegrator::try_step(double h, Vec& y1, Vec& k7, double& err) 
   for (int i = 0; i < 2; ++i) y1[i] = y[i] + h * (a71 * k1[i] + a73 * k3_[i] + a74 * k4_[i] + a75 * k5_[i] + a76 * k6_[i]);
   s = y1;
   if (!f(1.0, k7)) return false;
-  const double atol[2] = {settings_.atol_theta_rad, settings_.atol_omega_rad_s};
   double sum = 0.0;
   for (int i = 0; i < 2; ++i) {
     const double e = h * (e1 * k1[i] + e3 * k3_[i] + e4 * k4_[i] + e5 * k5_[i] + e6 * k6_[i] + e7 * k7[i]);
-    const double sk = atol[i] + settings_.rtol * std::max(std::abs(y[i]), std::abs(y1[i]));
+    const double sk = weight(i, std::max(std::abs(y[i]), std::abs(y1[i])));
     sum += (e / sk) * (e / sk);
   }
   err = std::sqrt(sum / 2.0);
@@ -171,7 +161,7 @@ bool DormandPrinceIntegrator::step() {
   y0_ = y1_;
   k1_ = k7_;
   if (!std::isfinite(k1_[0]) || !std::isfinite(k1_[1])) return fail(error_.empty() ? "dopri5: non-finite derivative" : error_);
-  const double limit = std::min(next_breakpoint(t0_), t_stop_);
+  const double limit = std::min(grid_.next_after(t0_), t_stop_);
   double h = h_;
   if (settings_.max_step_s > 0.0) h = std::min(h, settings_.max_step_s);
   bool rejected = false;
@@ -212,8 +202,7 @@ bool DormandPrinceIntegrator::step() {
     }
     log_err_old_ = std::max(log_err, kLogErrFloor);
     const double h1 = h_try;
-    t1_ = t0_ + h1;
-    if (clamped) t1_ = limit;
+    t1_ = clamped ? limit : t0_ + h1;
     y1_ = y1;
     k7_ = k7;
     // The continuous extension's coefficients.
@@ -239,14 +228,20 @@ void DormandPrinceIntegrator::dense(double t, Vec& y) const {
     y = y1_;
     return;
   }
-  const double s = (t - t0_) / h_step_, s1 = 1.0 - s;
-  for (int i = 0; i < 2; ++i)
-    y[i] = cont_[0][i] + s * (cont_[1][i] + s1 * (cont_[2][i] + s * (cont_[3][i] + s1 * cont_[4][i])));
+  for (int i = 0; i < 2; ++i) y[i] = dense_component(t, i);
 }
 
 double DormandPrinceIntegrator::dense_component(double t, int i) const {
   const double s = (t - t0_) / h_step_, s1 = 1.0 - s;
   return cont_[0][i] + s * (cont_[1][i] + s1 * (cont_[2][i] + s * (cont_[3][i] + s1 * cont_[4][i])));
+}
+
+double DormandPrinceIntegrator::dense_slope(double t, int i) const {
+  // d/dt of c₀ + s c₁ + s s₁ c₂ + s² s₁ c₃ + s² s₁² c₄, s = (t − t₀)/h, s₁ = 1 − s.
+  const double s = (t - t0_) / h_step_, s1 = 1.0 - s;
+  const auto& c = cont_;
+  return (c[1][i] + (1.0 - 2.0 * s) * c[2][i] + s * (2.0 - 3.0 * s) * c[3][i] + 2.0 * s * s1 * (s1 - s) * c[4][i]) /
+         h_step_;
 }
 
 void DormandPrinceIntegrator::locate_on_interpolant(int component, double& lo, double& glo, double& hi, double& ghi,
@@ -257,13 +252,7 @@ void DormandPrinceIntegrator::locate_on_interpolant(int component, double& lo, d
   double t = hi - ghi * (hi - lo) / (ghi - glo);
   for (int it = 0; it < 100 && hi - lo > ttol && ghi != 0.0; ++it) {
     t = std::clamp(t, lo + 0.25 * ttol, hi - 0.25 * ttol);
-    const double s = (t - t0_) / h_step_, s1 = 1.0 - s;
-    const auto& c = cont_;
-    const int j = component;
-    const double v = c[0][j] + s * (c[1][j] + s1 * (c[2][j] + s * (c[3][j] + s1 * c[4][j])));
-    const double slope =
-        (c[1][j] + (1.0 - 2.0 * s) * c[2][j] + s * (2.0 - 3.0 * s) * c[3][j] + 2.0 * s * s1 * (s1 - s) * c[4][j]) /
-        h_step_;
+    const double v = dense_component(t, component), slope = dense_slope(t, component);
     if (v == 0.0) {
       hi = t, ghi = 0.0;
       break;

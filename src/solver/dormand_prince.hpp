@@ -65,8 +65,6 @@ class DormandPrinceIntegrator final : public OdeIntegrator {
   bool step();
   /// The starting step of Hairer, Nørsett & Wanner §II.4.
   double initial_step();
-  /// The next breakpoint strictly after t (or +∞).
-  double next_breakpoint(double t) const;
   /// Looks for the earliest root crossing in (a, b] of the current step, from g_a at a.
   /// Fills root_time_ and found_ and returns true when one exists.
   bool find_roots(double a, const double* g_a, double b, const double* g_b);
@@ -76,14 +74,18 @@ class DormandPrinceIntegrator final : public OdeIntegrator {
   /// g at time t of the current step, from the dense output.
   bool roots_at(double t, double* g);
   void dense(double t, Vec& y) const;
-  /// Component i of the dense output at t (within a step).
+  /// Component i of the dense output at t (within a step), and its time derivative.
   double dense_component(double t, int i) const;
+  double dense_slope(double t, int i) const;
+  /// The error weight atol_i + rtol·magnitude of component i.
+  double weight(int i, double magnitude) const { return atol_[static_cast<std::size_t>(i)] + settings_.rtol * magnitude; }
   bool fail(const std::string& text);
 
   SolverSettings settings_;
   OdeProblem& problem_;
   SampleGrid grid_;
   int nroots_;
+  std::array<double, 2> atol_;  ///< atol_θ [rad], atol_ω [rad/s]
   std::array<int, kMaxRoots> dirs_{};
   double t_stop_ = 0.0;
 

@@ -9,7 +9,10 @@
 /// sundials_compat.hpp.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -29,6 +32,16 @@ class IntegratorError : public std::runtime_error {
 struct SampleGrid {
   double dt_s = 0.0;
   std::size_t count = 0;  ///< 0: none
+
+  /// The next sample strictly after t, +∞ when none is left. One a hair ahead of t (a root
+  /// may leave t just below a sample) is passed over: no step that short is worth taking.
+  double next_after(double t) const {
+    if (count == 0 || !(dt_s > 0.0)) return std::numeric_limits<double>::infinity();
+    double k = std::max(std::floor(t / dt_s) + 1.0, 1.0);
+    double tb = k * dt_s;
+    while (tb <= t || tb - t < 1e-9 * dt_s) tb = ++k * dt_s;
+    return k <= static_cast<double>(count - 1) ? tb : std::numeric_limits<double>::infinity();
+  }
 };
 
 /// The ODE y' = f(t, y), y ∈ ℝ², with root functions g(t, y) ∈ ℝⁿ.

@@ -118,7 +118,8 @@ class CaseRun {
         restitution_(frame.restitution()),
         stop_(frame.stop_angles()),
         problem_(frame.table(), excitation_, stop_.stop_rad(), request.omega_peak),
-        integrator_(detail::make_integrator(solver, problem_, {excitation.dt_s(), excitation.horizontal().size()})),
+        samples_{excitation.dt_s(), excitation.horizontal().size()},
+        integrator_(detail::make_integrator(solver, problem_, samples_)),
         end_(excitation, frame.scene().gravity_m_s2(), physics_),
         t_end_(end_.t_end_s) {}
 
@@ -154,6 +155,7 @@ class CaseRun {
   double restitution_;
   detail::StopAngles stop_;
   FlightProblem problem_;
+  detail::SampleGrid samples_;  // the record's samples: kinks of ü_g
   std::unique_ptr<detail::OdeIntegrator> integrator_;
   detail::CaseEnd end_;
   double t_end_;
@@ -250,7 +252,9 @@ void CaseRun::fly() {
   if (integrator_->steps_between_samples()) {
     // It stops at the samples itself, without returning.
   } else if (solver_.stop_at_samples && t_ < excitation_.duration_s()) {
-    // The next sample strictly after t (a root may leave t a hair below a sample).
+    // The next sample strictly after t (a root may leave t a hair below a sample). Not
+    // SampleGrid::next_after: past a sample a hair ahead this stops at k·dt + dt, not
+    // (k+1)·dt, an ulp apart, and the SUNDIALS answers depend on it at 1e-10.
     double next = (std::floor(t_ / dt) + 1.0) * dt;
     if (next - t_ < 1e-9 * dt) next += dt;
     tout = std::min(tout, next);

@@ -62,7 +62,6 @@ class ExcitationCursor {
     const double frac = (t_s - lo_s_) * inv_dt_per_s_;
     return {h0_ + frac * dh_, v0_ + frac * dv_};
   }
-  const Excitation& excitation() const { return excitation_; }
 
  private:
   /// Remembers the interval holding t; false outside the record (before, at or after its
