@@ -231,19 +231,6 @@ void DormandPrinceIntegrator::dense(double t, Vec& y) const {
   for (int i = 0; i < 2; ++i) y[i] = dense_component(t, i);
 }
 
-double DormandPrinceIntegrator::dense_component(double t, int i) const {
-  const double s = (t - t0_) / h_step_, s1 = 1.0 - s;
-  return cont_[0][i] + s * (cont_[1][i] + s1 * (cont_[2][i] + s * (cont_[3][i] + s1 * cont_[4][i])));
-}
-
-double DormandPrinceIntegrator::dense_slope(double t, int i) const {
-  // d/dt of c₀ + s c₁ + s s₁ c₂ + s² s₁ c₃ + s² s₁² c₄, s = (t − t₀)/h, s₁ = 1 − s.
-  const double s = (t - t0_) / h_step_, s1 = 1.0 - s;
-  const auto& c = cont_;
-  return (c[1][i] + (1.0 - 2.0 * s) * c[2][i] + s * (2.0 - 3.0 * s) * c[3][i] + 2.0 * s * s1 * (s1 - s) * c[4][i]) /
-         h_step_;
-}
-
 void DormandPrinceIntegrator::locate_on_interpolant(int component, double& lo, double& glo, double& hi, double& ghi,
                                                     double ttol) const {
   // Newton on the interpolant's polynomial, kept inside the bracket (bisection where it

@@ -74,9 +74,21 @@ class DormandPrinceIntegrator final : public OdeIntegrator {
   /// g at time t of the current step, from the dense output.
   bool roots_at(double t, double* g);
   void dense(double t, Vec& y) const;
-  /// Component i of the dense output at t (within a step), and its time derivative.
-  double dense_component(double t, int i) const;
-  double dense_slope(double t, int i) const;
+  /// Component i of the dense output at t (within a step), and its time derivative: the
+  /// polynomial c₀ + s c₁ + s s₁ c₂ + s² s₁ c₃ + s² s₁² c₄, s = (t − t₀)/h, s₁ = 1 − s.
+  /// Defined here: they sit in the root search's inner loop.
+  double dense_component(double t, int i) const {
+    const double s = (t - t0_) / h_step_, s1 = 1.0 - s;
+    const auto k = static_cast<std::size_t>(i);
+    return cont_[0][k] + s * (cont_[1][k] + s1 * (cont_[2][k] + s * (cont_[3][k] + s1 * cont_[4][k])));
+  }
+  double dense_slope(double t, int i) const {
+    const double s = (t - t0_) / h_step_, s1 = 1.0 - s;
+    const auto k = static_cast<std::size_t>(i);
+    return (cont_[1][k] + (1.0 - 2.0 * s) * cont_[2][k] + s * (2.0 - 3.0 * s) * cont_[3][k] +
+            2.0 * s * s1 * (s1 - s) * cont_[4][k]) /
+           h_step_;
+  }
   /// The error weight atol_i + rtol·magnitude of component i.
   double weight(int i, double magnitude) const { return atol_[static_cast<std::size_t>(i)] + settings_.rtol * magnitude; }
   bool fail(const std::string& text);
