@@ -21,8 +21,6 @@ Two measures, as a shared and loaded machine requires:
 Without valgrind the instruction columns are left out, with a note.
 """
 import argparse
-import json
-import math
 import os
 import re
 import shutil
@@ -32,26 +30,14 @@ import sys
 import tempfile
 from pathlib import Path
 
-ALPHA_RAD = math.atan(0.2)
-P_RAD_S = 2.12
-SCENES = {
-    "pcrf": [],
-    "block": ["--model", "block", "--slenderness-rad", repr(ALPHA_RAD), "--frequency-parameter-rad-s", repr(P_RAD_S)],
-}
-RECORDS = ["ER1_MUL279", "ER3_BOL090", "ER7_CAP000", "ER10_RIO360"]
-PGA_OVER_THRESHOLD = 1.2
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+# The scenes, records and level of the scene-cost bench, and its way of calling pcrf.
+from scene_cost import RECORD_PGA_OVER_THRESHOLD as PGA_OVER_THRESHOLD  # noqa: E402
+from scene_cost import RECORDS, pcrf_json as run_json, uplift_threshold_g as threshold_g  # noqa: E402
+from scene_cost import SCENES as ALL_SCENES  # noqa: E402
+
+SCENES = {name: ALL_SCENES[name] for name in ("pcrf", "block")}
 TOGGLE = "pcrf::solve_case(pcrf::PreparedFrame&*"
-
-
-def run_json(command):
-    out = subprocess.run(command, capture_output=True, text=True)
-    if out.returncode != 0:
-        sys.exit(f"case_cost: {' '.join(command)} failed:\n{out.stderr}")
-    return json.loads(out.stdout)
-
-
-def threshold_g(pcrf, scene):
-    return run_json([pcrf, "frame", "--json", *SCENES[scene]])["uplift_threshold_g"]
 
 
 def case_command(pcrf, scene, record, thr_g):

@@ -46,8 +46,8 @@ RECORD_PGA_OVER_THRESHOLD = 1.2
 
 def pcrf_json(command):
     out = subprocess.run(command, capture_output=True, text=True)
-    if out.returncode != 0:
-        sys.exit(f"scene_cost: {' '.join(command)} failed:\n{out.stderr}")
+    if out.returncode != 0:  # named after the bench that runs (case_cost.py imports this)
+        sys.exit(f"{Path(sys.argv[0]).stem}: {' '.join(command)} failed:\n{out.stderr}")
     return json.loads(out.stdout)
 
 

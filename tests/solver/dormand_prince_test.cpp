@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <ostream>
 #include <memory>
 #include <numbers>
@@ -58,6 +59,22 @@ SolverSettings tolerances(double rtol) {
   return s;
 }
 
+/// Integrates the oscillator from y = 1 at rest (y = cos ωt) to t_end, going on past every
+/// root (both directions reported; `on_root` sees each); returns y at t_end. h0 > 0 fixes the
+/// first step.
+double run_cosine(DormandPrinceIntegrator& integ, double t_end, double h0 = 0.0,
+                  const std::function<void(double)>& on_root = {}) {
+  const double y0[2] = {1.0, 0.0};
+  const int dirs[2] = {0, 0};
+  integ.restart(0.0, y0, dirs, t_end, h0);
+  double t = 0.0, y[2];
+  while (integ.advance(t_end, t, y, false) == OdeIntegrator::Outcome::kRoot) {
+    if (on_root) on_root(t);
+  }
+  EXPECT_DOUBLE_EQ(t, t_end);
+  return y[0];
+}
+
 /// Error at t = 3 of the oscillator integrated with fixed steps h (tolerances so loose that
 /// no step is rejected, the step forced by a breakpoint grid of spacing h).
 double fixed_step_error(double h) {
@@ -65,15 +82,7 @@ double fixed_step_error(double h) {
   SolverSettings s = tolerances(1e-1);
   s.atol_theta_rad = s.atol_omega_rad_s = 1e3;  // never reject: the grid sets the step
   DormandPrinceIntegrator integ(s, p, SampleGrid{h, static_cast<std::size_t>(3.0 / h) + 1});
-  const double y0[2] = {1.0, 0.0};
-  const int dirs[2] = {0, 0};
-  integ.restart(0.0, y0, dirs, 3.0, h);
-  double t = 0.0, y[2];
-  // The roots do not stop the integration: go on past each until the end.
-  while (integ.advance(3.0, t, y, false) == OdeIntegrator::Outcome::kRoot) {
-  }
-  EXPECT_DOUBLE_EQ(t, 3.0);
-  return std::abs(y[0] - std::cos(2.0 * 3.0));
+  return std::abs(run_cosine(integ, 3.0, h) - std::cos(2.0 * 3.0));
 }
 
 TEST(DormandPrince, IsFifthOrder) {
@@ -89,13 +98,7 @@ TEST(DormandPrince, ErrorFallsAsTheToleranceTightens) {
   for (double rtol : {1e-4, 1e-6, 1e-8, 1e-10}) {
     Oscillator p;
     DormandPrinceIntegrator integ(tolerances(rtol), p, {});
-    const double y0[2] = {1.0, 0.0};
-    const int dirs[2] = {0, 0};
-    integ.restart(0.0, y0, dirs, 10.0, 0.0);
-    double t = 0.0, y[2];
-    while (integ.advance(10.0, t, y, false) == OdeIntegrator::Outcome::kRoot) {
-    }
-    const double err = std::abs(y[0] - std::cos(20.0));
+    const double err = std::abs(run_cosine(integ, 10.0) - std::cos(20.0));
     EXPECT_LT(err, 200.0 * rtol) << rtol;
     EXPECT_LT(err, last) << rtol;
     last = err;
@@ -106,17 +109,13 @@ TEST(DormandPrince, LocatesRootsOnItsDenseOutputAndReturnsEach) {
   // Roots of cos 2t at (2k+1)π/4 (y = 0) and of its derivative at kπ/2 (y' = 0).
   Oscillator p;
   DormandPrinceIntegrator integ(tolerances(1e-10), p, {});
-  const double y0[2] = {1.0, 0.0};
-  const int dirs[2] = {0, 0};
-  integ.restart(0.0, y0, dirs, 4.0, 0.0);
-  double t = 0.0, y[2];
   std::vector<double> zeros, peaks;
-  while (integ.advance(4.0, t, y, false) == OdeIntegrator::Outcome::kRoot) {
+  run_cosine(integ, 4.0, 0.0, [&](double t) {
     int found[2] = {0, 0};
     integ.root_info(found);
     if (found[0]) zeros.push_back(t);
     if (found[1]) peaks.push_back(t);
-  }
+  });
   // Zeros at π/4, 3π/4, 5π/4 (3.93 < 4); peaks at π/2, π (the one at t = 0 is not a crossing).
   ASSERT_EQ(zeros.size(), 3u);
   ASSERT_EQ(peaks.size(), 2u);
@@ -131,12 +130,8 @@ TEST(DormandPrince, StateRootsCostNoRightHandSideCallPerProbe) {
   // roots that are state components, however many there are.
   Oscillator p;
   DormandPrinceIntegrator integ(tolerances(1e-8), p, {});
-  const double y0[2] = {1.0, 0.0};
-  const int dirs[2] = {0, 0};
-  integ.restart(0.0, y0, dirs, 20.0, 0.0);
-  double t = 0.0, y[2];
   int roots = 0;
-  while (integ.advance(20.0, t, y, false) == OdeIntegrator::Outcome::kRoot) ++roots;
+  run_cosine(integ, 20.0, 0.0, [&](double) { ++roots; });
   EXPECT_GT(roots, 20);
   const SolverCounts c = integ.counts();
   EXPECT_EQ(p.rhs_calls, c.rhs_evals);
@@ -151,13 +146,7 @@ TEST(DormandPrince, NoStepCrossesABreakpoint) {
   const double dt = 0.013;
   const std::size_t samples = 200;  // breakpoints up to 199 dt = 2.587 s, none after
   DormandPrinceIntegrator integ(tolerances(1e-3), p, SampleGrid{dt, samples});
-  const double y0[2] = {1.0, 0.0};
-  const int dirs[2] = {0, 0};
-  integ.restart(0.0, y0, dirs, 3.0, 0.0);
-  double t = 0.0, y[2];
-  while (integ.advance(3.0, t, y, false) == OdeIntegrator::Outcome::kRoot) {
-  }
-  EXPECT_DOUBLE_EQ(t, 3.0);
+  run_cosine(integ, 3.0);
   for (std::size_t k = 1; k < samples; ++k) {
     const double tb = static_cast<double>(k) * dt;
     const bool hit = std::any_of(p.rhs_times.begin(), p.rhs_times.end(),
