@@ -12,10 +12,11 @@
 /// Variables are chunked (each chunk one contiguous range of cases) and deflated.
 ///
 /// Memory: the status of every case (1 byte each) and the values stored since the last
-/// flush, chunk by chunk; nothing else of the cube. flush() writes a checkpoint: the last
-/// one copied to <file>.partial, the chunks stored since written into it (laid over what it
-/// holds), synced, and renamed over the file. A process killed at any moment leaves the
-/// last complete checkpoint.
+/// flush, chunk by chunk; nothing else of the cube. flush() writes a checkpoint by the one
+/// atomic-file rule (io::AtomicFile, as every output): the last one copied to <file>.partial,
+/// the chunks stored since written into it (laid over what it holds), synced, and renamed
+/// over the file. A process killed at any moment leaves the last complete checkpoint. The
+/// copy makes a checkpoint's cost grow with the whole cube (docs/checkpoint.md).
 #pragma once
 
 #include <cstdint>

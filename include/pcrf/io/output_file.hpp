@@ -3,10 +3,11 @@
 /// cubes, figures): an output never is one of the command's inputs, an existing file is
 /// replaced only when asked, and the file appears complete or not at all.
 ///
-/// The file is written to a temporary beside the target (so on the same file system) and
-/// renamed over it by commit(): a failed or interrupted write leaves any old file intact.
-/// Files get the user's umask (0666 & ~umask), as the shell's redirections do. An existing
-/// output that is not a regular file (/dev/null, a pipe) is written in place.
+/// The file is written by the one atomic-file rule (io::AtomicFile, which cube checkpoints
+/// follow too): a temporary beside the target, synced and renamed over it by commit(), so a
+/// failed or interrupted write leaves any old file intact. Files get the user's umask
+/// (0666 & ~umask). An existing output that is not a regular file (/dev/null, a pipe) is
+/// written in place.
 #pragma once
 
 #include <filesystem>
@@ -15,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "pcrf/io/atomic_file.hpp"
 #include "pcrf/io/checked_stream.hpp"
 
 namespace pcrf::io {
@@ -34,7 +36,7 @@ class OutputFile {
   /// \throws OutputError naming the target and the reason.
   OutputFile(std::filesystem::path target, const std::vector<std::filesystem::path>& inputs, bool overwrite);
   /// Removes the temporary unless commit() succeeded.
-  ~OutputFile();
+  ~OutputFile() = default;
   OutputFile(const OutputFile&) = delete;
   OutputFile& operator=(const OutputFile&) = delete;
 
@@ -42,8 +44,8 @@ class OutputFile {
   std::ostream& stream() { return stream_; }
   /// Where the content is written until commit(): for writers that take a path (a cube
   /// writer); they may replace the file there.
-  const std::filesystem::path& temporary() const { return temporary_; }
-  const std::filesystem::path& target() const { return target_; }
+  const std::filesystem::path& temporary() const { return file_.temporary(); }
+  const std::filesystem::path& target() const { return file_.target(); }
 
   /// Writes what is buffered, syncs, and renames the temporary over the target (refused if
   /// a file appeared there meanwhile and `overwrite` was false).
@@ -51,18 +53,7 @@ class OutputFile {
   void commit();
 
  private:
-  struct Opened {
-    std::filesystem::path temporary;
-    int fd;
-  };
-  static Opened open(const std::filesystem::path& target, const std::vector<std::filesystem::path>& inputs, bool overwrite);
-  OutputFile(std::filesystem::path target, bool overwrite, Opened opened);
-
-  std::filesystem::path target_;
-  std::filesystem::path temporary_;  ///< empty: the target is written in place
-  bool overwrite_;
-  int fd_ = -1;
-  bool committed_ = false;
+  AtomicFile file_;
   CheckedStreamBuf buffer_;
   std::ostream stream_;
 };
