@@ -101,7 +101,7 @@ parallel::CaseOutcome CaseRunner::run(const parallel::WorkItem& item, const Hist
   return outcome;
 }
 
-std::shared_ptr<const FrameExcitation> CaseRunner::excitation(std::size_t record, std::optional<double> incidence_deg,
+std::shared_ptr<const ScaledExcitation> CaseRunner::excitation(std::size_t record, std::optional<double> incidence_deg,
                                                               double scale) const {
   std::lock_guard lock(last_mutex_);
   auto it = std::find_if(scaled_.begin(), scaled_.end(), [&](const LastScaled& s) {
@@ -110,7 +110,7 @@ std::shared_ptr<const FrameExcitation> CaseRunner::excitation(std::size_t record
   if (it == scaled_.end()) {
     if (scaled_.size() >= kScaledRecords) scaled_.pop_back();
     scaled_.insert(scaled_.begin(),
-                   {record, incidence_deg, scale, std::make_shared<const FrameExcitation>(records_.station(record), incidence_deg, scale)});
+                   {record, incidence_deg, scale, std::make_shared<const ScaledExcitation>(frame_excitation(records_.station(record), incidence_deg, scale))});
     it = scaled_.begin();
   }
   return it->motion;

@@ -35,13 +35,8 @@ struct Scaling {
 /// from station_intensity (a RotD measure without a pair).
 double scale_factor(const Scaling& scaling, const StationRecord& station, std::optional<double> incidence_deg);
 
-/// What a frame feels, and the factor its record was scaled by.
-struct ScaledExcitation {
-  double scale_factor = 1.0;
-  std::unique_ptr<FrameExcitation> excitation;
-};
-
-/// The station's components at the frame's incidence, scaled as `scaling` says.
+/// The station's components at the frame's incidence, scaled as `scaling` says (with the
+/// factor: ScaledExcitation::factor).
 /// \throws InputError (an incidence without a pair, a scale that overflows, see scale_factor).
 ScaledExcitation scaled_excitation(const StationRecord& station, std::optional<double> incidence_deg,
                                    const Scaling& scaling);

@@ -74,20 +74,28 @@ class ExcitationCursor {
   double h0_ = 0.0, dh_ = 0.0, v0_ = 0.0, dv_ = 0.0;  ///< samples k and their differences [m/s²]
 };
 
-/// Owns copies of an excitation's components, every one multiplied by `factor` (the
-/// perturbed twins of the verdict check scale the whole ground motion).
+/// The one owner of a scaled excitation: copies of the components, every one multiplied
+/// by `factor`, and the factor. What `pcrf run`, pcrf.run and a study's case shake a frame
+/// with (frame_excitation(), station_record.hpp), and the verdict check's perturbed twins
+/// (the whole ground motion scaled). Movable, not copyable (a copy would double the series);
+/// a view() taken before a move points into the moved-from object.
 class ScaledExcitation {
  public:
+  /// `of`'s components scaled by `factor`.
   /// \throws std::invalid_argument as GroundMotion::scaled.
   ScaledExcitation(const Excitation& of, double factor);
-  ScaledExcitation(const ScaledExcitation&) = delete;  // the view points into this object
-  ScaledExcitation& operator=(const ScaledExcitation&) = delete;
+  ScaledExcitation(ScaledExcitation&&) = default;
+  ScaledExcitation& operator=(ScaledExcitation&&) = default;
 
   Excitation view() const { return {horizontal_, vertical_ ? &*vertical_ : nullptr}; }
+  const GroundMotion& horizontal() const { return horizontal_; }
+  /// The factor every component was scaled by.
+  double factor() const { return factor_; }
 
  private:
   GroundMotion horizontal_;
   std::optional<GroundMotion> vertical_;
+  double factor_;
 };
 
 }  // namespace pcrf

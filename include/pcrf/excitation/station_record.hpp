@@ -56,25 +56,14 @@ StationRecord make_station(StationComponent h1, std::optional<double> az1_deg, s
                            std::optional<double> az2_deg, std::optional<StationComponent> up,
                            std::vector<std::string>& notes);
 
-/// What a frame at `incidence_deg` feels from `record` scaled by `factor`; owns its series.
-class FrameExcitation {
- public:
-  /// \throws std::invalid_argument when an incidence is given without both horizontal
-  /// components and their azimuths, or the components are not aligned (StationRecord::align).
-  FrameExcitation(const StationRecord& record, std::optional<double> incidence_deg, double factor);
-  FrameExcitation(const FrameExcitation&) = delete;  // the view points into this object
-  FrameExcitation& operator=(const FrameExcitation&) = delete;
-
-  Excitation view() const { return {horizontal_, vertical_ ? &*vertical_ : nullptr}; }
-  const GroundMotion& horizontal() const { return horizontal_; }
-
- private:
-  GroundMotion horizontal_;
-  std::optional<GroundMotion> vertical_;
-};
+/// What a frame at `incidence_deg` feels from `record` scaled by `factor`: the in-plane
+/// horizontal (in_plane_motion) and the vertical, each scaled.
+/// \throws std::invalid_argument when an incidence is given without both horizontal
+/// components and their azimuths, or the components are not aligned (StationRecord::align).
+ScaledExcitation frame_excitation(const StationRecord& record, std::optional<double> incidence_deg, double factor);
 
 /// The in-plane horizontal motion of a frame at `incidence_deg` (unscaled), for intensity
-/// measures of what the frame feels. \throws as FrameExcitation.
+/// measures of what the frame feels. \throws as frame_excitation.
 GroundMotion in_plane_motion(const StationRecord& record, std::optional<double> incidence_deg);
 
 /// The station's value of an intensity measure: for a RotD measure of its horizontal pair

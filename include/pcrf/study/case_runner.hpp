@@ -38,11 +38,11 @@ class CaseRunner {
 
  private:
   /// What a case's frame feels: the record's components at the case's incidence, scaled
-  /// (FrameExcitation, as `pcrf run` makes it). The cases of a frame come together
+  /// (frame_excitation, as `pcrf run` makes it). The cases of a frame come together
   /// (CaseSpace::frame_major), one per record, incidence and level, so the excitations of
   /// the last few dozen are kept: cheap cases (a frame that never lifts off) would
   /// otherwise spend their time copying records.
-  std::shared_ptr<const FrameExcitation> excitation(std::size_t record, std::optional<double> incidence_deg,
+  std::shared_ptr<const ScaledExcitation> excitation(std::size_t record, std::optional<double> incidence_deg,
                                                     double scale) const;
   /// The level of a case: its axis value, or in an IDA the intensity its work item carries.
   static double level_of(const CaseSpec& spec, const parallel::WorkItem& item);
@@ -56,7 +56,7 @@ class CaseRunner {
     std::size_t record = static_cast<std::size_t>(-1);
     std::optional<double> incidence_deg;
     double scale = 0.0;
-    std::shared_ptr<const FrameExcitation> motion;
+    std::shared_ptr<const ScaledExcitation> motion;
   };
   mutable std::mutex last_mutex_;
   mutable std::vector<LastScaled> scaled_;  ///< most recent first
