@@ -12,7 +12,7 @@
 #include "pcrf/json.hpp"
 #include "pcrf/metrics/case_result.hpp"
 #include "pcrf/model/parameters.hpp"
-#include "pcrf/plan/ida_search.hpp"
+#include "pcrf/ida/ida_search.hpp"
 #include "pcrf/solver/history.hpp"
 #include "pcrf/study/settings_doc.hpp"
 

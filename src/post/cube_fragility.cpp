@@ -6,9 +6,9 @@
 #include <map>
 
 #include "pcrf/metrics/case_result.hpp"
-#include "pcrf/plan/ida_search.hpp"
+#include "pcrf/ida/ida_search.hpp"
 #include "pcrf/row_major.hpp"
-#include "pcrf/study/cube_vocabulary.hpp"
+#include "pcrf/schema/cube_vocabulary.hpp"
 
 namespace pcrf::post {
 

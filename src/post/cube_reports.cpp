@@ -10,8 +10,8 @@
 
 #include "pcrf/post/cube_fragility.hpp"
 #include "pcrf/post/cube_sensitivity.hpp"
-#include "pcrf/plan/ida_search.hpp"
-#include "pcrf/study/cube_vocabulary.hpp"
+#include "pcrf/ida/ida_search.hpp"
+#include "pcrf/schema/cube_vocabulary.hpp"
 
 namespace pcrf::post {
 

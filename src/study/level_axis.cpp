@@ -3,8 +3,8 @@
 
 #include <iterator>
 
-#include "pcrf/study/cube_vocabulary.hpp"
-#include "pcrf/plan/ida_search.hpp"
+#include "pcrf/schema/cube_vocabulary.hpp"
+#include "pcrf/ida/ida_search.hpp"
 #include "pcrf/study/plan.hpp"
 
 namespace pcrf::study {

@@ -10,7 +10,7 @@
 #include <numbers>
 
 #include "pcrf/analysis/sobol_indices.hpp"
-#include "pcrf/plan/sampling.hpp"
+#include "pcrf/study/sampling.hpp"
 
 namespace pcrf::analysis {
 namespace {

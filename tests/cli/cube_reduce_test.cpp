@@ -16,7 +16,7 @@
 #include "pcrf/cube/cube_query.hpp"
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/row_major.hpp"
-#include "pcrf/study/cube_vocabulary.hpp"
+#include "pcrf/schema/cube_vocabulary.hpp"
 #include "study/study_test_support.hpp"
 
 namespace pcrf {

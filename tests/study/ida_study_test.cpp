@@ -20,7 +20,7 @@
 #include "pcrf/analysis/fragility.hpp"
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/number_text.hpp"
-#include "pcrf/plan/ida_search.hpp"
+#include "pcrf/ida/ida_search.hpp"
 #include "study/study_test_support.hpp"
 
 namespace pcrf::study_test {

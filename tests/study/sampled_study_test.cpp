@@ -9,7 +9,7 @@
 
 #include "pcrf/analysis/sobol_indices.hpp"
 #include "pcrf/cube/cube_reader.hpp"
-#include "pcrf/plan/sampling.hpp"
+#include "pcrf/study/sampling.hpp"
 #include "study/study_test_support.hpp"
 
 namespace pcrf::study_test {

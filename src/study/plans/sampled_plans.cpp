@@ -7,8 +7,8 @@
 #include <memory>
 #include <optional>
 
-#include "pcrf/plan/sampling.hpp"
-#include "pcrf/study/cube_vocabulary.hpp"
+#include "pcrf/study/sampling.hpp"
+#include "pcrf/schema/cube_vocabulary.hpp"
 #include "pcrf/study/study_size.hpp"
 #include "study/axis_fields.hpp"
 #include "study/plans/plan_support.hpp"
