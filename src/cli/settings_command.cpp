@@ -40,7 +40,7 @@ void print_vocabulary_json(std::ostream& out) {
     parameters.emplace_back();
     parameters.back().text("name", p.name).text("long_name", p.long_name).text("units", p.units);
   }
-  for (const auto& c : plan::kCurveStateNames) {
+  for (const auto& c : ida::kCurveStateNames) {
     curve_states.emplace_back();
     curve_states.back().text("name", c.name).integer("value", static_cast<int>(c.value));
   }

@@ -6,7 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
-namespace pcrf::plan {
+namespace pcrf::ida {
 namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 }
@@ -104,4 +104,4 @@ std::optional<double> IdaSearch::next() const {
   return fill();
 }
 
-}  // namespace pcrf::plan
+}  // namespace pcrf::ida

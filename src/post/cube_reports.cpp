@@ -187,9 +187,9 @@ std::string censored_reduction_note(const cube::CubeReader& cube, const StatsReq
   std::size_t left_out = 0, unrefined = 0, unresolved = 0;
   for (std::size_t c = 0; c < collapse.size(); ++c) {
     if (!(runs[c] > 0.0)) continue;
-    if (state[c] == static_cast<double>(plan::CurveState::kUnresolved)) ++unresolved;
+    if (state[c] == static_cast<double>(ida::CurveState::kUnresolved)) ++unresolved;
     else if (!std::isfinite(collapse[c])) ++left_out;
-    else if (state[c] == static_cast<double>(plan::CurveState::kUnbracketed)) ++unrefined;
+    else if (state[c] == static_cast<double>(ida::CurveState::kUnbracketed)) ++unrefined;
   }
   std::string note;
   if (left_out > 0)

@@ -29,12 +29,12 @@ class CollapseRule {
     theta_column_ = column == ResultColumns::npos ? -1 : static_cast<int>(column);
   }
 
-  plan::RunVerdict operator()(std::int8_t status, double theta_max_rad) const {
+  ida::RunVerdict operator()(std::int8_t status, double theta_max_rad) const {
     const auto s = static_cast<CaseStatus>(status);
-    if (is_failure(s) || status == parallel::kEvaluatorThrew) return plan::RunVerdict::kCollapse;
-    if (std::find(statuses_.begin(), statuses_.end(), status) != statuses_.end()) return plan::RunVerdict::kCollapse;
-    if (limit_rad_ > 0.0 && theta_max_rad >= limit_rad_) return plan::RunVerdict::kCollapse;
-    return gives_no_verdict(s) ? plan::RunVerdict::kNoVerdict : plan::RunVerdict::kSafe;
+    if (is_failure(s) || status == parallel::kEvaluatorThrew) return ida::RunVerdict::kCollapse;
+    if (std::find(statuses_.begin(), statuses_.end(), status) != statuses_.end()) return ida::RunVerdict::kCollapse;
+    if (limit_rad_ > 0.0 && theta_max_rad >= limit_rad_) return ida::RunVerdict::kCollapse;
+    return gives_no_verdict(s) ? ida::RunVerdict::kNoVerdict : ida::RunVerdict::kSafe;
   }
   /// θ_max of a row (NaN when not stored).
   double theta(const std::vector<double>& row) const { return theta_column_ < 0 ? std::nan("") : row[static_cast<std::size_t>(theta_column_)]; }
@@ -48,10 +48,10 @@ class CollapseRule {
 
 }  // namespace
 
-std::unique_ptr<plan::IdaPlan> make_ida_plan(const Study& study, const CaseSpace& space, const cube::CubeWriter& writer,
-                                             int workers) {
+std::unique_ptr<ida::IdaCurves> make_ida_curves(const Study& study, const CaseSpace& space, const cube::CubeWriter& writer,
+                                                int workers) {
   const CollapseRule rule(study);
-  auto plan = std::make_unique<plan::IdaPlan>(
+  auto curves = std::make_unique<ida::IdaCurves>(
       static_cast<std::size_t>(space.curves()), study.ida->search(),
       [rule](const parallel::CaseOutcome& o) { return rule(o.status, rule.theta(o.row)); }, workers);
   // Resume: each curve's stored runs, in order, up to the first one not stored (a curve has
@@ -65,21 +65,21 @@ std::unique_ptr<plan::IdaPlan> make_ida_plan(const Study& study, const CaseSpace
     for (std::int64_t k = 0; k < runs; ++k) {
       const auto i = static_cast<std::size_t>(c * runs + k);
       if (status[i] == cube::kStatusNotRun) break;
-      plan->replay(static_cast<std::size_t>(c), static_cast<int>(k), intensity[i],
+      curves->replay(static_cast<std::size_t>(c), static_cast<int>(k), intensity[i],
                    rule(status[i], theta ? (*theta)[i] : std::nan("")));
     }
   }
-  return plan;
+  return curves;
 }
 
-void store_ida_summaries(const Study& study, const plan::IdaPlan& plan, cube::CubeWriter& writer) {
+void store_ida_summaries(const Study& study, const ida::IdaCurves& curves, cube::CubeWriter& writer) {
   std::vector<double> collapse, safe, runs, state, unresolved;
   const double none = std::nan("");  // a curve another shard computes: nothing known here
   const auto& status = writer.status();
-  const auto points = static_cast<std::size_t>(plan.max_runs());
-  for (std::size_t c = 0; c < plan.curves(); ++c) {
-    const bool here = !plan.skipped(c);
-    const auto& curve = plan.curve(c);
+  const auto points = static_cast<std::size_t>(curves.max_runs());
+  for (std::size_t c = 0; c < curves.curves(); ++c) {
+    const bool here = !curves.skipped(c);
+    const auto& curve = curves.curve(c);
     collapse.push_back(here ? curve.collapse_intensity() : none);
     safe.push_back(here ? curve.last_safe_intensity() : none);
     runs.push_back(here ? static_cast<double>(curve.runs()) : none);
@@ -97,8 +97,8 @@ void store_ida_summaries(const Study& study, const plan::IdaPlan& plan, cube::Cu
   // The band of intensities whose verdicts failed the perturbation test, per curve.
   const auto stable = writer.read_values(std::string(metric::status_stable().name));
   const auto intensity = writer.read_values(vocabulary::kIdaIntensity);
-  std::vector<double> from(plan.curves(), std::nan("")), to(plan.curves(), std::nan(""));
-  for (std::size_t c = 0; c < plan.curves(); ++c)
+  std::vector<double> from(curves.curves(), std::nan("")), to(curves.curves(), std::nan(""));
+  for (std::size_t c = 0; c < curves.curves(); ++c)
     for (std::size_t k = 0; k < points; ++k) {
       const std::size_t i = c * points + k;
       if (stable[i] != 0.0) continue;

@@ -348,12 +348,12 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
   std::unique_ptr<parallel::WorkSource> work;
   std::function<void()> before_flush;
   if (p.study.ida) {
-    auto ida = make_ida_plan(p.study, *p.space, *m.writer, parallel::worker_count(mpi.comm()));
+    auto ida = make_ida_curves(p.study, *p.space, *m.writer, parallel::worker_count(mpi.comm()));
     const auto [first, last] = shard_range(p.space->curves(), options.shard_index, options.shard_count);
     for (std::int64_t c = 0; c < p.space->curves(); ++c)
       if (c < first || c >= last) ida->skip(static_cast<std::size_t>(c));
-    before_flush = [&study = p.study, plan = ida.get(), writer = m.writer.get()] {
-      store_ida_summaries(study, *plan, *writer);
+    before_flush = [&study = p.study, curves = ida.get(), writer = m.writer.get()] {
+      store_ida_summaries(study, *curves, *writer);
     };
     work = std::move(ida);
   } else {

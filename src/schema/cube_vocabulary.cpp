@@ -162,10 +162,10 @@ CurveStates curve_states(const cube::CubeReader& cube) {
   if (cube.layout().find_side_variable(kCurveState) == nullptr) return states;
   for (double code : cube.read_side(kCurveState)) {
     ++states.total;
-    if (code == static_cast<double>(plan::CurveState::kBracketed)) ++states.bracketed;
-    else if (code == static_cast<double>(plan::CurveState::kCensored)) ++states.censored;
-    else if (code == static_cast<double>(plan::CurveState::kUnbracketed)) ++states.unbracketed;
-    else if (code == static_cast<double>(plan::CurveState::kUnresolved)) ++states.unresolved;
+    if (code == static_cast<double>(ida::CurveState::kBracketed)) ++states.bracketed;
+    else if (code == static_cast<double>(ida::CurveState::kCensored)) ++states.censored;
+    else if (code == static_cast<double>(ida::CurveState::kUnbracketed)) ++states.unbracketed;
+    else if (code == static_cast<double>(ida::CurveState::kUnresolved)) ++states.unresolved;
     else ++states.unfinished;  // NaN
   }
   return states;

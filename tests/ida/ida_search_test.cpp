@@ -9,7 +9,7 @@
 
 #include "pcrf/ida/ida_search.hpp"
 
-namespace pcrf::plan {
+namespace pcrf::ida {
 namespace {
 
 IdaSearchSettings defaults() {
@@ -164,9 +164,9 @@ TEST(IdaSearch, BadSettingsAreRejected) {
 }
 
 }  // namespace
-}  // namespace pcrf::plan
+}  // namespace pcrf::ida
 
-namespace pcrf::plan {
+namespace pcrf::ida {
 namespace {
 
 /// A curve's runs on a frame that collapses from `collapse` up and whose runs from `no_verdict`
@@ -204,4 +204,4 @@ TEST(IdaSearch, ACurveStoppedByARunWithoutAVerdictIsUnresolvedNeverCensoredAtThe
 }
 
 }  // namespace
-}  // namespace pcrf::plan
+}  // namespace pcrf::ida

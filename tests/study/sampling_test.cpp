@@ -9,7 +9,7 @@
 
 #include "pcrf/study/sampling.hpp"
 
-namespace pcrf::plan {
+namespace pcrf::study {
 namespace {
 
 TEST(Sampling, LatinHypercubePutsOneValueInEachStratum) {
@@ -74,4 +74,4 @@ TEST(Sampling, SaltelliBlocksMixAAndB) {
 }
 
 }  // namespace
-}  // namespace pcrf::plan
+}  // namespace pcrf::study

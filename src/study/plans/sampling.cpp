@@ -7,7 +7,7 @@
 #include <numeric>
 #include <random>
 
-namespace pcrf::plan {
+namespace pcrf::study {
 namespace {
 
 constexpr double kTwoTo32 = 4294967296.0;
@@ -89,4 +89,4 @@ SaltelliDesign saltelli_design(std::size_t n, std::size_t d, bool scramble, std:
   return design;
 }
 
-}  // namespace pcrf::plan
+}  // namespace pcrf::study

@@ -33,7 +33,7 @@
 
 #include "pcrf/setting.hpp"
 
-namespace pcrf::plan {
+namespace pcrf::ida {
 
 /// How a curve ended (its value is the cube's `curve_state` code: never renumber).
 enum class CurveState {
@@ -105,4 +105,4 @@ class IdaSearch {
   std::vector<Run> runs_;
 };
 
-}  // namespace pcrf::plan
+}  // namespace pcrf::ida

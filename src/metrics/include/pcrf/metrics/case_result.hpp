@@ -53,7 +53,7 @@ bool is_unresolved(CaseStatus status);
 bool is_outside_model(CaseStatus status);
 /// Neither safe nor collapsed, and no failure of the computation: unresolved or outside the
 /// model. An IDA's search stops at such a run without calling it a collapse; a curve whose
-/// lowest stopping run is one is unresolved (plan::CurveState::kUnresolved), never safe.
+/// lowest stopping run is one is unresolved (ida::CurveState::kUnresolved), never safe.
 bool gives_no_verdict(CaseStatus status);
 /// What a case says about the frame, as verdict checks and benchmarks compare cases.
 enum class Verdict { kSurvived, kTendonFracture, kOverturned, kNone };

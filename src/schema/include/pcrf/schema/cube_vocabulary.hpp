@@ -104,7 +104,7 @@ NotRun not_run(const cube::CubeReader& cube);
 cube::Completion completion(const cube::CubeReader& cube);
 inline constexpr const char* kCollapses = "collapses";
 
-/// How an IDA cube's curves ended, from its `curve_state` (plan::CurveState codes): how many
+/// How an IDA cube's curves ended, from its `curve_state` (ida::CurveState codes): how many
 /// are bracketed to the resolution, censored at max_intensity, unbracketed (max_runs ran out),
 /// and not finished (not run, or still running). Empty (total 0) for other cubes and for IDA
 /// cubes written before `curve_state`.

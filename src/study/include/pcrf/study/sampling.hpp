@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace pcrf::plan {
+namespace pcrf::study {
 
 /// N points, row-major: point j, dimension i at [j * d + i].
 using UnitPoints = std::vector<double>;
@@ -37,4 +37,4 @@ struct SaltelliDesign {
 };
 SaltelliDesign saltelli_design(std::size_t n, std::size_t d, bool scramble, std::uint64_t seed);
 
-}  // namespace pcrf::plan
+}  // namespace pcrf::study

@@ -57,18 +57,18 @@ struct RunOptions {
 const SettingTable<RunOptions>& run_settings();
 
 /// The [ida] table: an adaptive search of each record's collapse intensity, per frame.
-/// Described in ida_settings(); the search itself is plan::IdaSearch.
+/// Described in ida_settings(); the search itself is ida::IdaSearch.
 struct IdaOptions {
   double start = 0.0;
   double step = 0.0;
-  double step_factor = plan::kDefaultStepFactor;
+  double step_factor = ida::kDefaultStepFactor;
   double resolution = 0.02;
   double max_intensity = 0.0;
   long max_runs = 16;
   std::string collapse = "tendon_fracture,overturned";
   double theta_limit_rad = 0.0;
 
-  plan::IdaSearchSettings search() const {
+  ida::IdaSearchSettings search() const {
     return {start, step, step_factor, resolution, max_intensity, static_cast<int>(max_runs)};
   }
 };

@@ -1,17 +1,17 @@
-// The adaptive IDA as a work source (see ida_plan.hpp).
-#include "pcrf/ida/ida_plan.hpp"
+// The adaptive IDA as a work source (see ida_curves.hpp).
+#include "pcrf/ida/ida_curves.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
-namespace pcrf::plan {
+namespace pcrf::ida {
 namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 }
 
-IdaPlan::IdaPlan(std::size_t curves, const IdaSearchSettings& settings, CollapseTest collapsed, int workers)
+IdaCurves::IdaCurves(std::size_t curves, const IdaSearchSettings& settings, CollapseTest collapsed, int workers)
     : settings_(settings),
       collapsed_(std::move(collapsed)),
       workers_(std::max(workers, 1)),
@@ -22,7 +22,7 @@ IdaPlan::IdaPlan(std::size_t curves, const IdaSearchSettings& settings, Collapse
   for (std::size_t c = 0; c < curves; ++c) refresh(c);
 }
 
-void IdaPlan::replay(std::size_t curve, int point, double intensity, RunVerdict verdict) {
+void IdaCurves::replay(std::size_t curve, int point, double intensity, RunVerdict verdict) {
   if (point != searches_.at(curve).runs())
     throw std::invalid_argument("IDA replay: curve " + std::to_string(curve) + " point " + std::to_string(point) +
                                 " out of order");
@@ -30,12 +30,12 @@ void IdaPlan::replay(std::size_t curve, int point, double intensity, RunVerdict 
   refresh(curve);
 }
 
-void IdaPlan::skip(std::size_t curve) {
+void IdaCurves::skip(std::size_t curve) {
   skipped_.at(curve) = true;
   refresh(curve);
 }
 
-void IdaPlan::refresh(std::size_t curve) {
+void IdaCurves::refresh(std::size_t curve) {
   const bool wants = !skipped_[curve] && searches_[curve].next().has_value() && std::isnan(in_flight_[curve]);
   // Constant time whatever the number of curves: a curve leaves the queue by its flag, and
   // take() drops the stale entry when it reaches it.
@@ -49,7 +49,7 @@ void IdaPlan::refresh(std::size_t curve) {
   }
 }
 
-parallel::WorkBatch IdaPlan::take(bool) {
+parallel::WorkBatch IdaCurves::take(bool) {
   // Guided: a share of the ready curves, so every worker gets some while many are ready.
   const std::size_t share = 4 * static_cast<std::size_t>(workers_);
   const std::size_t n = std::clamp<std::size_t>((ready_count_ + share - 1) / share, 1, 64);
@@ -69,7 +69,7 @@ parallel::WorkBatch IdaPlan::take(bool) {
   return batch;
 }
 
-void IdaPlan::completed(const parallel::CaseOutcome& outcome) {
+void IdaCurves::completed(const parallel::CaseOutcome& outcome) {
   const auto c = static_cast<std::size_t>(outcome.case_index / settings_.max_runs);
   if (c >= searches_.size() || std::isnan(in_flight_[c])) return;  // not one of ours
   searches_[c].add(in_flight_[c], collapsed_(outcome));
@@ -78,10 +78,10 @@ void IdaPlan::completed(const parallel::CaseOutcome& outcome) {
   refresh(c);
 }
 
-bool IdaPlan::exhausted() const { return ready_count_ == 0 && running_ == 0; }
+bool IdaCurves::exhausted() const { return ready_count_ == 0 && running_ == 0; }
 
-std::size_t IdaPlan::finished_curves() const {
+std::size_t IdaCurves::finished_curves() const {
   return static_cast<std::size_t>(std::count_if(searches_.begin(), searches_.end(), [](const IdaSearch& s) { return s.done(); }));
 }
 
-}  // namespace pcrf::plan
+}  // namespace pcrf::ida

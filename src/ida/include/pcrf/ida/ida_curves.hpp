@@ -1,4 +1,4 @@
-/// \file ida_plan.hpp
+/// \file ida_curves.hpp
 /// \brief The adaptive IDA as a source of work for the scheduler: one IdaSearch per curve
 /// (a record and a frame), each curve's next run made when its previous one comes back, many
 /// curves advancing at once. Knows nothing of physics: the caller says which outcomes are
@@ -18,15 +18,15 @@
 #include "pcrf/parallel/work_source.hpp"
 #include "pcrf/ida/ida_search.hpp"
 
-namespace pcrf::plan {
+namespace pcrf::ida {
 
-class IdaPlan final : public parallel::WorkSource {
+class IdaCurves final : public parallel::WorkSource {
  public:
   using CollapseTest = std::function<RunVerdict(const parallel::CaseOutcome&)>;
 
   /// \param curves    number of curves
   /// \param workers   workers that will ask (for batch sizes)
-  IdaPlan(std::size_t curves, const IdaSearchSettings& settings, CollapseTest collapsed, int workers);
+  IdaCurves(std::size_t curves, const IdaSearchSettings& settings, CollapseTest collapsed, int workers);
 
   /// Resume: the verdict of point `point` of `curve`, stored by an earlier run. Points must
   /// come in order; a curve's later runs are then those the search makes next.
@@ -60,4 +60,4 @@ class IdaPlan final : public parallel::WorkSource {
   std::vector<bool> skipped_;          ///< curves another shard computes
 };
 
-}  // namespace pcrf::plan
+}  // namespace pcrf::ida
