@@ -40,7 +40,18 @@ std::string module_folder() {
   const char* old_path = std::getenv("PYTHONPATH");
   const std::string path = folder + (old_path != nullptr && *old_path != '\0' ? ":" + std::string(old_path) : "");
   setenv("PYTHONPATH", path.c_str(), 1);
-  std::vector<std::string> words{python, "-m", "pcrf.plot"};
+  // python3 -m pcrf.plot, but a module that does not import (built for another Python, or
+  // not built) is one line and exit code 2, as every failure of pcrf plot.
+  const std::string start =
+      "import sys\n"
+      "try:\n"
+      "    from pcrf.plot.cli import main\n"
+      "except ImportError as e:\n"
+      "    print(f'pcrf plot: error: cannot import the Python module pcrf from " + folder + " with {sys.executable}: {e}',\n"
+      "          file=sys.stderr)\n"
+      "    sys.exit(2)\n"
+      "sys.exit(main(sys.argv[1:]))\n";
+  std::vector<std::string> words{python, "-c", start};
   words.insert(words.end(), arguments.begin(), arguments.end());
   std::vector<char*> argv;
   for (auto& w : words) argv.push_back(w.data());
