@@ -38,7 +38,11 @@ const fs::path& folder() {
     test::write_file(d, "i.toml", records(12) + "[ida]\nstart = 0.5\nmax_intensity = 8\n");
     test::write_file(d, "f.toml", records(6) + "[axes]\nintensity = [1, 1.5, 2, 3, 4.5, 6]\n");
     test::write_file(d, "h.csv", kHazard);
-    for (const char* name : {"i", "f"}) {
+    // Hazard-consistent stripes: the intensities of six return periods on the same power law
+    // sampled up to 10 g (0.57 to 8.3 g).
+    test::write_file(d, "wide.csv", "pga_g,annual_rate_per_yr\n0.05,0.178885\n0.3,0.00202837\n1,0.0001\n3,6.415e-06\n10,3.16228e-07\n");
+    test::write_file(d, "t.toml", records(6) + "hazard = \"wide.csv\"\nreturn_periods_yr = [2475, 10000, 50000, 200000, 600000, 2000000]\n");
+    for (const char* name : {"i", "f", "t"}) {
       const auto r = test::run_command("cd " + quoted(d) + " && " + pcrf() + " study " + name + ".toml -o " + name +
                                        ".h5 --progress-interval 0");
       EXPECT_EQ(r.exit_code, 0) << r.err;
@@ -143,6 +147,43 @@ TEST(CubeRisk, FewCollapsesAreWarnedOf) {
   const auto ida = risk_command("i.h5 --hazard h.csv");
   ASSERT_EQ(ida.exit_code, 0) << ida.err;
   EXPECT_EQ(ida.err.find("fewer than 10"), std::string::npos) << ida.err;
+}
+
+TEST(CubeRisk, ReadsACubeOfHazardConsistentStripes) {
+  const cube::CubeReader reader(folder() / "t.h5");
+  const auto& layout = reader.layout();
+  const auto* periods = layout.find_coordinate("return_period_yr");
+  ASSERT_NE(periods, nullptr);
+  EXPECT_EQ(periods->dimension, "intensity");
+  EXPECT_EQ(periods->units, "yr");
+  EXPECT_EQ(layout.text_attribute("intensity_hazard"), "wide.csv");
+  const auto& levels = layout.find_coordinate("intensity")->numbers;
+  const auto hazard = post::read_hazard_file(folder() / "wide.csv", risk::Tail::kPowerLaw);
+  ASSERT_EQ(levels.size(), 6u);
+  for (std::size_t j = 0; j < levels.size(); ++j) {
+    EXPECT_NEAR(levels[j], hazard.curve.intensity_at_rate(1.0 / periods->numbers[j]), 1e-12 * levels[j]) << j;
+    EXPECT_NEAR(hazard.curve.rate_per_yr(levels[j]) * periods->numbers[j], 1.0, 1e-9) << j;
+  }
+  // The stripes' binomial fit feeds cube risk; the empirical rate of stripes at return periods
+  // T_j is exactly sum_j (P_j - P_j-1) / T_j, the curve's rate at each stripe being 1/T_j.
+  const auto r = risk_command("t.h5 --hazard wide.csv --csv -");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto row = only_row(r.out);
+  const auto frames = post::cube_fragility(reader, {});
+  ASSERT_EQ(frames.size(), 1u);
+  double expected = 0.0, before = 0.0;
+  for (std::size_t j = 0; j < levels.size(); ++j) {
+    const auto& s = frames.front().stripes[j];
+    ASSERT_DOUBLE_EQ(s.intensity, levels[j]);
+    const double p = s.trials > 0.0 ? s.collapses / s.trials : before;
+    expected += (p - before) / periods->numbers[j];
+    before = p;
+  }
+  EXPECT_GT(frames.front().collapses, 0.0);  // the stripes reach collapses: the rate is not 0 = 0
+  EXPECT_NEAR(std::stod(row["lambda_collapse_empirical_per_yr"]), expected, 1e-9 * expected);
+  ASSERT_TRUE(frames.front().fit);
+  EXPECT_NEAR(std::stod(row["lambda_collapse_per_yr"]) / risk::collapse_rate(hazard.curve, *frames.front().fit).lambda_per_yr,
+              1.0, 1e-6);
 }
 
 }  // namespace
