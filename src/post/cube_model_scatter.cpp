@@ -106,7 +106,7 @@ std::string model_scatter_warning(const std::optional<ModelScatter>& scatter) {
          "beta_rtr and beta_medians leave them out, the pooled fit keeps their data";
 }
 
-void print_model_scatter(const Report& report, std::ostream& out) {
+void print_model_scatter(const Report& report, const std::string& units, std::ostream& out) {
   const Cell frames = report.field("model_frames");
   if (std::holds_alternative<std::monostate>(frames)) return;
   auto number = [&](const char* name) {
@@ -117,7 +117,7 @@ void print_model_scatter(const Report& report, std::ostream& out) {
     return std::string(text);
   };
   out << "modelling uncertainty measured over " << std::get<std::int64_t>(frames) << " sampled frames: pooled median "
-      << number("model_pooled_median") << ", beta " << number("model_beta_pooled") << " = sqrt(beta_rtr "
+      << number("model_pooled_median") << " " << units << ", beta " << number("model_beta_pooled") << " = sqrt(beta_rtr "
       << number("model_beta_rtr") << "^2 + beta_model " << number("model_beta_model") << "^2) (frames' medians scatter "
       << number("model_beta_medians") << "); the rating's beta_MDL " << number("model_beta_mdl_rated") << "\n"
       << "beta_TOT with the modelling term measured " << number("model_beta_total_measured") << ", rated "

@@ -12,6 +12,7 @@
 #include "pcrf/analysis/p695.hpp"
 #include "pcrf/number_text.hpp"
 #include "pcrf/post/cube_fragility.hpp"
+#include "pcrf/record/intensity.hpp"
 
 namespace pcrf::post {
 namespace {
@@ -41,6 +42,15 @@ std::string check_measure(const cube::CubeReader& cube, const HazardFile& hazard
         throw HazardFileError(where + "the curve is at period_s = " + number_text(*hazard.period_s) + " s, the cube's Sa at " +
                               number_text(*stored) + " s");
   return measure;
+}
+
+/// The units of a measure as a study spells it ("pga_g": "g", "pgv_m_s": "m/s"); "" when none.
+std::string units_of(const std::string& measure) {
+  try {
+    return measure.empty() ? "" : std::string(pcrf::intensity_units(parse_intensity_measure(measure)));
+  } catch (const std::invalid_argument&) {
+    return "";
+  }
 }
 
 /// Deaggregation bin edges, 10 per decade on round values, covering the curve and (power
@@ -377,7 +387,7 @@ Report risk_report(const RiskReport& result, const RiskInputs& in, const std::st
   report.warnings = result.warnings;
   std::vector<RiskRow> rows;
   for (const auto& f : result.frames) rows.push_back({&f, in.years, in.ratings_beta()});
-  const std::string im_units = result.hazard.measure.empty() ? "" : result.hazard.measure.substr(result.hazard.measure.rfind('_') + 1);
+  const std::string im_units = units_of(result.hazard.measure);
   report.tables.emplace_back("frames", make_table(risk_spec(im_units), rows));
   report.tables.emplace_back("deaggregation", make_table(bin_spec(im_units), bin_rows(result)));
   std::vector<Point> curve, steps;
@@ -427,7 +437,7 @@ void print_risk(const Report& report, std::ostream& out) {
     out << "group of " << text("group_frames") << " frames: mean lambda_c " << text("group_lambda_collapse_per_yr")
         << " /yr (p in " << text("years") << " years " << text("group_p_collapse_in_years") << "), largest "
         << text("group_lambda_collapse_max_per_yr") << " /yr\n";
-  print_model_scatter(report, out);
+  print_model_scatter(report, units_of(text("measure")), out);
   if (text("model_lambda_pooled_per_yr") != "none")
     out << "lambda_c of the pooled median: with beta_pooled " << text("model_lambda_pooled_per_yr")
         << " /yr; with beta_TOT measured " << text("model_lambda_measured_per_yr") << " /yr, rated "

@@ -52,7 +52,7 @@ std::string model_field_names();
 /// A line for stderr when sampled frames had no fit of their own; empty otherwise.
 std::string model_scatter_warning(const std::optional<ModelScatter>& scatter);
 
-/// Text: what was measured, one paragraph (nothing when there is no scatter).
-void print_model_scatter(const Report& report, std::ostream& out);
+/// Text: what was measured, two lines (nothing when there is no scatter); `units` of the median.
+void print_model_scatter(const Report& report, const std::string& units, std::ostream& out);
 
 }  // namespace pcrf::post
