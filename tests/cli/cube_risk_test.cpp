@@ -52,12 +52,15 @@ const fs::path& folder() {
     // Modelling uncertainty: four frames drawn by LHS (tan_alpha, kappa), an IDA of each.
     test::write_file(d, "m.toml", records(6) + "[plan]\nkind = \"lhs\"\nsamples = 4\nseed = 3\n[axes]\n"
                      "tan_alpha = {from = 0.17, to = 0.25}\nkappa = {from = 1.5, to = 2.1}\n[ida]\nstart = 0.5\nmax_intensity = 8\n");
+    // One record at one Sa(0.5 s) stripe: a cube whose measure has a period.
+    test::write_file(d, "s.toml", "[[records]]\nsynthetic = \"stochastic:seed=1,pga_g=1,duration_s=6\"\n[intensity]\n"
+                     "measure = \"sa_g\"\nperiod_s = 0.5\n[axes]\nintensity = [1]\n");
     return d;
   }();
   return dir;
 }
 
-/// The cube of study `name` (i, f, t or m), run on first use.
+/// The cube of study `name` (i, f, t, m or s), run on first use.
 fs::path cube(const std::string& name) {
   static std::map<std::string, fs::path> made;
   if (const auto it = made.find(name); it != made.end()) return it->second;
@@ -110,6 +113,12 @@ TEST(CubeRisk, HazardFileRefusalsNameFileLineAndProblem) {
     EXPECT_NE(r.err.find(message), std::string::npos) << text << "\n" << r.err;
     EXPECT_EQ(r.out, "") << text;
   }
+  // An Sa curve at another period than the cube's Sa.
+  test::write_file(folder(), "sa1.csv", "# period_s = 1.0\nsa_g,annual_rate_per_yr\n0.1,1e-2\n1,1e-4\n");
+  const auto period = risk_command("s.h5 --hazard sa1.csv");
+  EXPECT_EQ(period.exit_code, 2);
+  EXPECT_NE(period.err.find("sa1.csv:2: the curve is at period_s = 1 s, the cube's Sa at 0.5 s"), std::string::npos) << period.err;
+  EXPECT_EQ(period.out, "");
   const auto missing = risk_command("i.h5 --hazard none.csv");
   EXPECT_EQ(missing.exit_code, 2);
   EXPECT_NE(missing.err.find("none.csv: no such file"), std::string::npos) << missing.err;
@@ -164,6 +173,31 @@ TEST(CubeRisk, FewCollapsesAreWarnedOf) {
   const auto ida = risk_command("i.h5 --hazard h.csv");
   ASSERT_EQ(ida.exit_code, 0) << ida.err;
   EXPECT_EQ(ida.err.find("fewer than 10"), std::string::npos) << ida.err;
+}
+
+TEST(CubeRisk, ALowerTailThatDecidesTheRateIsWarnedOf) {
+  // A steep hazard (lambda ~ x^-20) puts the collapses' weight far below the fragility's
+  // median: most of lambda_c then comes from below the lowest collapse seen.
+  std::string steep = "pga_g,annual_rate_per_yr\n";
+  for (double x : {0.25, 0.5, 1.0, 2.0, 4.0, 8.0}) steep += number_text(x) + "," + number_text(1e-4 * std::pow(x, -20.0)) + "\n";
+  test::write_file(folder(), "steep.csv", steep);
+  post::RiskInputs in;
+  in.hazard = folder() / "steep.csv";
+  const cube::CubeReader reader(cube("i"));
+  const auto report = post::cube_risk(reader, {}, in);
+  ASSERT_EQ(report.frames.size(), 1u);
+  const auto& f = report.frames.front();
+  ASSERT_TRUE(f.lognormal);
+  const auto hazard = post::read_hazard_file(in.hazard, in.tail).curve;
+  const auto split = risk::collapse_rate(hazard, *f.fit, {f.lowest_collapse});
+  EXPECT_GT(f.lower_tail_share, 0.5);
+  EXPECT_NEAR(f.lower_tail_share, split.rate_below(f.lowest_collapse) / split.lambda_per_yr, 1e-6);
+  const auto r = risk_command("i.h5 --hazard steep.csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("of the lognormal lambda_c comes from intensities below the lowest collapse seen"), std::string::npos)
+      << r.err;
+  // Under the gentle curve (x^-2.5) the tail does not decide it: no such warning.
+  EXPECT_EQ(risk_command("i.h5 --hazard h.csv").err.find("below the lowest collapse"), std::string::npos);
 }
 
 TEST(CubeRisk, ReadsACubeOfHazardConsistentStripes) {
@@ -245,6 +279,14 @@ TEST(CubeRisk, SampledFramesMeasureTheModellingDispersion) {
   EXPECT_NEAR(report.model_rated->lambda_per_yr / rate(report.model->beta_total_rated), 1.0, 1e-12);
   // Wider dispersion, more collapses from the weaker ground motions under this hazard.
   EXPECT_GT(report.model_rated->lambda_per_yr, report.model_measured->lambda_per_yr);
+
+  // The group of frames: their mean lambda_c (which the pooled fragility's estimates too) and the largest.
+  const auto fields = post::risk_report(report, in, "m.h5");
+  double sum = 0.0, most = 0.0;
+  for (const auto& f : report.frames) sum += f.lognormal->lambda_per_yr, most = std::max(most, f.lognormal->lambda_per_yr);
+  EXPECT_DOUBLE_EQ(std::get<double>(fields.field("group_lambda_collapse_per_yr")), sum / 4.0);
+  EXPECT_DOUBLE_EQ(std::get<double>(fields.field("group_lambda_collapse_max_per_yr")), most);
+  EXPECT_NEAR(report.model_pooled->lambda_per_yr / (sum / 4.0), 1.0, 0.05);
 
   // The command shows the same numbers; a cube whose frames are not sampled has none.
   const auto json = risk_command("m.h5 --hazard h.csv --json");
