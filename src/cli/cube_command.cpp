@@ -355,7 +355,8 @@ void add_p695(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
       ->capture_default_str();
   add_report_outputs(p695_cmd, *args,
                      schema("file, sdc, period_s, mu_t, ratings, ratings_source (given or default), s_ct (counted or lognormal), group_mean_acmr, group_acmr10, group (pass or fail), "
-                            "measure_problem (empty when the cube is at Sa(T))",
+                            "measure_problem (empty when the cube is at Sa(T)), " + post::model_field_names() +
+                                ", model_p_collapse_mce_measured, model_p_collapse_mce_rated",
                             {{"frames", post::p695_columns()}}));
   p695_cmd->callback([args] {
     guarded(args->file, [&] {
@@ -408,8 +409,10 @@ void add_risk(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
                             "target_rate_per_yr, generic_beta, generic_collapse_probability, risk_targeted_intensity, "
                             "ratings, ratings_beta, "
                             "uniform_hazard_intensity_2pct_50yr, risk_coefficient, group_frames, "
-                            "group_lambda_collapse_per_yr, group_p_collapse_in_years, group_lambda_collapse_max_per_yr; "
-                            "tables hazard (the curve read) and empirical (each frame's step fragility) for figures",
+                            "group_lambda_collapse_per_yr, group_p_collapse_in_years, group_lambda_collapse_max_per_yr, " +
+                                post::model_field_names() +
+                                ", model_lambda_pooled_per_yr, model_lambda_measured_per_yr, model_lambda_rated_per_yr; "
+                                "tables hazard (the curve read) and empirical (each frame's step fragility) for figures",
                             {{"frames", post::risk_columns()}, {"deaggregation", post::risk_deaggregation_columns()}}));
   risk_cmd->callback([args] {
     guarded(args->file, [&] {
