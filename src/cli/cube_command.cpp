@@ -14,6 +14,7 @@
 #include "pcrf/io/output_file.hpp"
 #include "pcrf/io/run_lock.hpp"
 #include "pcrf/post/cube_fragility.hpp"
+#include "pcrf/post/cube_notes.hpp"
 #include "pcrf/post/cube_p695.hpp"
 #include "pcrf/post/cube_reports.hpp"
 #include "pcrf/post/cube_risk.hpp"
@@ -60,21 +61,16 @@ std::vector<cube::Selector> selectors(const std::vector<std::string>& texts) {
   return result;
 }
 
-/// A cube that a study run is writing is read as its last complete checkpoint (each is
-/// renamed into place whole); says so on stderr.
+/// A cube that a study run is writing is read as its last complete checkpoint; says so on stderr.
 void note_running(const std::string& file) {
-  const std::string who = io::RunLock::holder(file);
-  if (!who.empty())
-    std::cerr << "pcrf cube: " << file << ": a run holds it (" << who << "): read as its last complete checkpoint\n";
+  if (const auto note = post::running_note(file); !note.empty()) std::cerr << "pcrf cube: " << note << '\n';
 }
 
-/// A cube with cases never run (stopped early, merged from some shards): says how many on
-/// stderr, since what is printed covers the cases run only.
+/// A cube with cases never run: says how many on stderr, since what is printed covers the
+/// cases run only.
 void note_partial(const std::string& command, const std::string& file, const cube::CubeReader& reader) {
-  const auto missing = study::vocabulary::not_run(reader);
-  if (missing.count > 0)
-    std::cerr << "pcrf cube " << command << ": " << file << ": " << missing.count << " of " << missing.total << " "
-              << missing.unit << " not run (a partial cube): left out\n";
+  if (const auto note = post::partial_note(file, reader); !note.empty())
+    std::cerr << "pcrf cube " << command << ": " << note << '\n';
 }
 
 /// What the cube's statuses say that the printed answer cannot show (vocabulary::verdict_notes:

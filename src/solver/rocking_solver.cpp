@@ -195,7 +195,7 @@ CaseResult CaseRun::run() {
 }
 
 void CaseRun::rest_until_uplift() {
-  // Both criteria open the frame where the net force at θ₁ = 0 does (see README,
+  // Both criteria open the frame where the net force at θ₁ = 0 does (see docs/physics.md,
   // "Uplift criteria"): a unilateral contact pushes, it never pulls, so after the paper's
   // trigger a frame still held by its prestress stays closed.
   const double t_stop = end_.rest_end_s(t_);
