@@ -24,7 +24,7 @@ void add_frame_command(CLI::App& app);  ///< `pcrf frame`: a frame's properties 
 void add_record_command(CLI::App& app); ///< `pcrf record FILE`: intensity measures, JSON on stdout
 void add_study_command(CLI::App& app);  ///< `pcrf study FILE`: a parametric study (MPI)
 void add_cube_command(CLI::App& app);   ///< `pcrf cube info|export|stats|fragility|sensitivity|merge`
-void add_plot_command(CLI::App& app);   ///< `pcrf plot KIND INPUT -o FILE`: figures (src/plot, matplotlib)
+void add_plot_command(CLI::App& app);   ///< `pcrf plot KIND INPUT -o FILE`: figures (pcrf.plot of the Python module, matplotlib)
 void add_settings_command(CLI::App& app);  ///< `pcrf settings`: every setting, as Markdown
 
 }  // namespace pcrf::cli

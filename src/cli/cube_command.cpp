@@ -14,6 +14,7 @@
 #include "pcrf/io/output_file.hpp"
 #include "pcrf/io/run_lock.hpp"
 #include "pcrf/post/cube_fragility.hpp"
+#include "pcrf/post/cube_notes.hpp"
 #include "pcrf/post/cube_p695.hpp"
 #include "pcrf/post/cube_reports.hpp"
 #include "pcrf/post/cube_risk.hpp"
@@ -60,21 +61,16 @@ std::vector<cube::Selector> selectors(const std::vector<std::string>& texts) {
   return result;
 }
 
-/// A cube that a study run is writing is read as its last complete checkpoint (each is
-/// renamed into place whole); says so on stderr.
+/// A cube that a study run is writing is read as its last complete checkpoint; says so on stderr.
 void note_running(const std::string& file) {
-  const std::string who = io::RunLock::holder(file);
-  if (!who.empty())
-    std::cerr << "pcrf cube: " << file << ": a run holds it (" << who << "): read as its last complete checkpoint\n";
+  if (const auto note = post::running_note(file); !note.empty()) std::cerr << "pcrf cube: " << note << '\n';
 }
 
-/// A cube with cases never run (stopped early, merged from some shards): says how many on
-/// stderr, since what is printed covers the cases run only.
+/// A cube with cases never run: says how many on stderr, since what is printed covers the
+/// cases run only.
 void note_partial(const std::string& command, const std::string& file, const cube::CubeReader& reader) {
-  const auto missing = study::vocabulary::not_run(reader);
-  if (missing.count > 0)
-    std::cerr << "pcrf cube " << command << ": " << file << ": " << missing.count << " of " << missing.total << " "
-              << missing.unit << " not run (a partial cube): left out\n";
+  if (const auto note = post::partial_note(file, reader); !note.empty())
+    std::cerr << "pcrf cube " << command << ": " << note << '\n';
 }
 
 /// What the cube's statuses say that the printed answer cannot show (vocabulary::verdict_notes:
@@ -359,7 +355,8 @@ void add_p695(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
       ->capture_default_str();
   add_report_outputs(p695_cmd, *args,
                      schema("file, sdc, period_s, mu_t, ratings, ratings_source (given or default), s_ct (counted or lognormal), group_mean_acmr, group_acmr10, group (pass or fail), "
-                            "measure_problem (empty when the cube is at Sa(T))",
+                            "measure_problem (empty when the cube is at Sa(T)), " + post::model_field_names() +
+                                ", model_p_collapse_mce_measured, model_p_collapse_mce_rated",
                             {{"frames", post::p695_columns()}}));
   p695_cmd->callback([args] {
     guarded(args->file, [&] {
@@ -412,8 +409,10 @@ void add_risk(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
                             "target_rate_per_yr, generic_beta, generic_collapse_probability, risk_targeted_intensity, "
                             "ratings, ratings_beta, "
                             "uniform_hazard_intensity_2pct_50yr, risk_coefficient, group_frames, "
-                            "group_lambda_collapse_per_yr, group_p_collapse_in_years, group_lambda_collapse_max_per_yr; "
-                            "tables hazard (the curve read) and empirical (each frame's step fragility) for figures",
+                            "group_lambda_collapse_per_yr, group_p_collapse_in_years, group_lambda_collapse_max_per_yr, " +
+                                post::model_field_names() +
+                                ", model_lambda_pooled_per_yr, model_lambda_measured_per_yr, model_lambda_rated_per_yr; "
+                                "tables hazard (the curve read) and empirical (each frame's step fragility) for figures",
                             {{"frames", post::risk_columns()}, {"deaggregation", post::risk_deaggregation_columns()}}));
   risk_cmd->callback([args] {
     guarded(args->file, [&] {

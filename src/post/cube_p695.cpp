@@ -115,6 +115,17 @@ p695::CountedMedian counted_of(const FrameFragility& f) {
   return m;
 }
 
+/// The measured modelling scatter of sampled frames and the P(collapse | MCE) each total implies.
+void add_model_scatter(const cube::CubeReader& cube, const std::vector<FrameFragility>& frames, const P695Inputs& in,
+                       P695Report& report) {
+  report.model = model_scatter(cube, frames, in.design_rating, in.test_rating, in.model_rating);
+  if (!report.model) return;
+  const double s_mt = p695::mce_spectrum(in.sdc).at(in.period_s), median = report.model->dispersion.pooled.median;
+  report.model_p_collapse_mce_measured = analysis::normal_cdf(std::log(s_mt / median) / report.model->beta_total_measured);
+  report.model_p_collapse_mce_rated = analysis::normal_cdf(std::log(s_mt / median) / report.model->beta_total_rated);
+  if (const auto warning = model_scatter_warning(report.model); !warning.empty()) report.notes.push_back(warning);
+}
+
 }  // namespace
 
 SctFrom parse_s_ct(const std::string& text) {
@@ -129,7 +140,8 @@ P695Report cube_p695(const cube::CubeReader& cube, const std::vector<cube::Selec
   if (!(in.period_s > 0.0)) throw std::invalid_argument("--period-s must be positive");
   P695Report report;
   report.measure_problem = measure_problem(cube, in.period_s);
-  for (const FrameFragility& f : cube_fragility(cube, selectors)) {
+  const auto frames = cube_fragility(cube, selectors);
+  for (const FrameFragility& f : frames) {
     const auto counted = counted_of(f);
     const double lognormal = f.fit ? f.fit->median : std::nan("");
     const double s_ct = in.s_ct == SctFrom::kCounted ? counted.s_ct_g : lognormal;
@@ -152,6 +164,7 @@ P695Report cube_p695(const cube::CubeReader& cube, const std::vector<cube::Selec
                              " g is conservative (" + (std::isnan(counted.high_g) ? std::string("fewer than half collapse otherwise")
                                                                                     : short_number(counted.high_g) + " g were they never to collapse") + ")");
   }
+  add_model_scatter(cube, frames, in, report);
   std::vector<p695::Assessment> all;
   for (const auto& f : report.frames) all.push_back(f.assessment);
   report.group = p695::assess_group(all);
@@ -196,6 +209,19 @@ void print_p695(const P695Report& report, const P695Inputs& in, std::ostream& ou
   }
   std::snprintf(line, sizeof line, "group: mean ACMR %.2f against ACMR10%% %.2f, every frame against ACMR20%%: %s\n",
                 report.group.mean_acmr, report.group.acmr10, report.group.passes ? "PASS" : "FAIL");
+  out << line;
+  if (!report.model) return;
+  const auto& m = *report.model;
+  std::snprintf(line, sizeof line,
+                "modelling uncertainty measured over %zu sampled frames: pooled median %.3g g, beta %.3g = sqrt(beta_rtr "
+                "%.3g^2 + beta_model %.3g^2); the rating's beta_MDL %.3g\n",
+                m.dispersion.frames, m.dispersion.pooled.median, m.dispersion.pooled.beta, m.dispersion.beta_rtr,
+                m.dispersion.beta_model, m.beta_mdl_rated);
+  out << line;
+  std::snprintf(line, sizeof line,
+                "beta_TOT with the modelling term measured %.3f (P(c|MCE) %.3f at the pooled median), rated %.3f (%.3f)\n",
+                m.beta_total_measured, report.model_p_collapse_mce_measured, m.beta_total_rated,
+                report.model_p_collapse_mce_rated);
   out << line;
 }
 

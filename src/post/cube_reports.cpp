@@ -302,6 +302,10 @@ Report p695_report(const P695Report& result, const P695Inputs& in, const std::st
                    {"group_acmr10", result.group.acmr10},
                    {"group", std::string(result.group.passes ? "pass" : "fail")},
                    {"measure_problem", result.measure_problem}};
+  const bool model = result.model.has_value();
+  for (auto& field : model_fields(result.model, {{"model_p_collapse_mce_measured", model ? Cell{result.model_p_collapse_mce_measured} : Cell{}},
+                                                 {"model_p_collapse_mce_rated", model ? Cell{result.model_p_collapse_mce_rated} : Cell{}}}))
+    report.fields.push_back(std::move(field));
   if (!result.measure_problem.empty()) report.warnings.push_back(result.measure_problem);
   for (const auto& note : result.notes) report.warnings.push_back(note);
   report.tables.emplace_back("frames", make_table(p695_spec(), result.frames));

@@ -19,4 +19,6 @@ PYBIND11_MODULE(_pcrf, m) {
   pcrf::python::bind_study(m);
   pcrf::python::bind_settings(m);
   pcrf::python::bind_cube(m);
+  pcrf::python::bind_cube_read(m);
+  pcrf::python::bind_output(m);
 }

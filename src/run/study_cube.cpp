@@ -180,6 +180,7 @@ std::vector<Attribute> global_attributes(const Study& study, const std::string& 
       {names::kPlan, std::string(study.plan->name())},
   };
   if (study.intensity) add_settings(a, intensity_settings(), *study.intensity);
+  if (study.hazard_stripes) a.push_back({names::kIntensityHazard, study.hazard_stripes->hazard});
   if (study.ida) add_settings(a, ida_settings(), *study.ida);
   add_settings(a, physics_settings(), study.physics);
   add_settings(a, solver_settings(), study.solver);

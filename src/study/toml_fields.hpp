@@ -75,15 +75,17 @@ using pcrf::closest_word;  // "did you mean" hints (pcrf/closest_word.hpp)
 
 /// Reads the table `table.name` of `top` into `target` (starting from table.defaults):
 /// every key must be described, values are checked and applied in description order.
-/// `lines` receives "FILE:LINE" of each key given, by "table.key".
+/// `lines` receives "FILE:LINE" of each key given, by "table.key". `other_keys` are keys the
+/// table may also hold that the caller reads itself (no setting of Target).
 template <class Target>
 void read_setting_table(const Fields& top, const SettingTable<Target>& table, Target& target,
-                        std::map<std::string, std::string>& lines) {
+                        std::map<std::string, std::string>& lines, std::vector<std::string_view> other_keys = {}) {
   target = table.defaults;
   const toml::table* node = top.subtable(table.name);
   if (node == nullptr) return;
   std::vector<std::string_view> keys;
   for (const auto& s : table.settings) keys.push_back(s.key);
+  keys.insert(keys.end(), other_keys.begin(), other_keys.end());
   const Fields fields(*node, std::string(table.name), top.file(), keys);
   for (const auto& s : table.settings) {
     if (auto value = fields.setting(s)) {

@@ -81,7 +81,7 @@ def test_frame_points_and_fracture_strain():
 
 
 def test_basic_model_numbers():
-    """README: p = 2.12 rad/s, uplift threshold 1.021 g for the basic model."""
+    """docs/commands/frame.md: p = 2.12 rad/s, uplift threshold 1.021 g for the basic model."""
     frame = pcrf.Frame()
     assert round(frame.frequency_parameter_rad_s, 2) == 2.12
     assert round(frame.threshold, 3) == 1.021

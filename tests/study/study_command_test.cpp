@@ -534,6 +534,9 @@ TEST(StudyCommand, PaperStudiesFindTheirRecords) {
       {"ida.toml", ": ok, "},
       {"fema_p695_ida.toml", ": ok, " + std::to_string(far_field_components * 3 * 16) + " cases"},
       {"sensitivity.toml", ": ok, 33280 cases"},   // 13 records × 256 × (8 + 2) frames
+      {"risk.toml", ": ok, " + std::to_string(far_field_components * 2 * 10) + " cases"},
+      {"risk_stripes.toml", ": ok, " + std::to_string(far_field_components * 6) + " cases"},  // six return periods
+      {"model_uncertainty.toml", ": ok, " + std::to_string(far_field_components * 16 * 10) + " cases"},  // 16 LHS frames
       {"numerics_audit/exact.toml", ": ok, 11 cases"},
       {"numerics_audit/fixed_rk4_h1e-2.toml", ": ok, 11 cases"},
       {"numerics_audit/fixed_rk4_h1e-3.toml", ": ok, 11 cases"},

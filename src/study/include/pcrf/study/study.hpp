@@ -99,6 +99,16 @@ struct Study {
   /// intensity / IM(record)).
   std::vector<double> levels{1.0};
   std::optional<IntensitySpec> intensity;  ///< the [intensity] table, when given
+  /// [intensity] hazard and return_periods_yr: hazard-consistent stripes (multiple-stripe
+  /// analysis). `levels` are then the intensities whose mean annual rate of exceedance on the
+  /// site's hazard curve is 1/T for each return period T, interpolated log-log
+  /// (risk::HazardCurve::intensity_at_rate), in the order the return periods are given.
+  struct HazardStripes {
+    std::string hazard;                     ///< the hazard file as the study gives it
+    std::filesystem::path file;             ///< resolved against base_dir
+    std::vector<double> return_periods_yr;  ///< T [yr], one per level
+  };
+  std::optional<HazardStripes> hazard_stripes;
   /// The [ida] table, when given: the intensity axis becomes a search, `levels` is unused.
   std::optional<IdaOptions> ida;
   /// The scene ([frame] model; the prestressed frame by default) and its base point (the

@@ -1,5 +1,5 @@
 // A hazard curve from CSV (see hazard_file.hpp).
-#include "pcrf/post/hazard_file.hpp"
+#include "pcrf/hazard/hazard_file.hpp"
 
 #include <cerrno>
 #include <cmath>
