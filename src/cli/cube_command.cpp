@@ -96,7 +96,7 @@ void guarded(const std::string& file, Action action) {
     action();
   } catch (const cube::CubeError& e) {
     const std::string text = e.what();
-    throw UsageError(text.rfind(file, 0) == 0 ? text : file + ": " + text);
+    throw UserError(text.rfind(file, 0) == 0 ? text : file + ": " + text);
   }
 }
 
@@ -156,7 +156,7 @@ void write_report(const post::Report& report, const std::string& table, const Cu
 
 /// Refuses --json with `--csv -` (both are stdout) and a CSV output that is the cube.
 void check_report_outputs(const CubeArguments& args) {
-  if (args.json && args.csv == "-") throw UsageError("--json and --csv - both write to stdout: choose one");
+  if (args.json && args.csv == "-") throw UserError("--json and --csv - both write to stdout: choose one");
   check_output(args.csv, {args.file}, args.overwrite);
 }
 
@@ -176,11 +176,7 @@ void add_reduction(CLI::App* cmd, CubeArguments& args, const std::string& over_h
 
 /// The reduction asked for, `default_how` unless --reduce says (post::reduction_of).
 cube::Reduction reduction_of(const CubeArguments& args, const std::string& default_how) {
-  try {
-    return post::reduction_of(args.reduce_over, args.reduce_how, default_how);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
+  return post::reduction_of(args.reduce_over, args.reduce_how, default_how);
 }
 
 void add_info(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
@@ -202,7 +198,7 @@ void add_info(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
       const auto damage = reader.damage();
       if (!damage.empty()) {
         for (const auto& d : damage) std::cout << "DAMAGED: " << d << '\n';
-        throw UsageError(args->file + ": damaged: " + std::to_string(damage.size()) +
+        throw UserError(args->file + ": damaged: " + std::to_string(damage.size()) +
                          " variables cannot be read; --resume cannot continue it");
       }
     });
@@ -287,7 +283,7 @@ void add_fragility(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& arg
                                                            {"points", post::fragility_point_columns()}}));
   fragility->callback([args] {
     guarded(args->file, [&] {
-      if (const auto problem = post::mce_problem(args->mce); !problem.empty()) throw UsageError(problem);
+      post::check_mce(args->mce);
       check_report_outputs(*args);
       const std::vector<std::filesystem::path> csv_inputs{args->file}, points_inputs{args->file, args->csv};
       check_output(args->points, is_stdout(args->csv) ? csv_inputs : points_inputs, args->overwrite);
@@ -316,7 +312,7 @@ void add_sensitivity(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& a
   sensitivity->callback([args] {
     guarded(args->file, [&] {
       const bool by_record = !args->by.empty();
-      if (args->by.size() > 1 || (by_record && args->by.front() != "record")) throw UsageError("--by takes `record` only");
+      if (args->by.size() > 1 || (by_record && args->by.front() != "record")) throw UserError("--by takes `record` only");
       check_report_outputs(*args);
       cube::CubeReader reader(args->file);
       note_partial("sensitivity", args->file, reader);
@@ -328,11 +324,7 @@ void add_sensitivity(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& a
 
 /// The P-695 inputs of the command line, checked (post::p695_inputs).
 post::P695Inputs p695_inputs(const CubeArguments& args) {
-  try {
-    return post::p695_inputs(args.sdc, args.period_s, args.mu_t, args.ratings, args.s_ct);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
+  return post::p695_inputs(args.sdc, args.period_s, args.mu_t, args.ratings, args.s_ct);
 }
 
 void add_p695(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
@@ -365,12 +357,7 @@ void add_p695(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
       cube::CubeReader reader(args->file);
       note_partial("p695", args->file, reader);
       note_verdicts("p695", args->file, reader, "counted in no stripe (neither safe nor collapsed)");
-      post::P695Report result;
-      try {
-        result = post::cube_p695(reader, selectors(args->where), in);
-      } catch (const std::invalid_argument& e) {
-        throw UsageError(e.what());
-      }
+      const post::P695Report result = post::cube_p695(reader, selectors(args->where), in);
       write_report(post::p695_report(result, in, args->file), "frames", *args, "warning: ",
                    [&](std::ostream& out) { post::print_p695(result, in, out); });
     });
@@ -421,18 +408,14 @@ void add_risk(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
       in.years = args->years;
       in.target = args->target;
       post::Report report;
-      try {
-        in.tail = risk::parse_tail(args->tail);
-        const auto ratings = post::p695_inputs("Dmax", 1.0, 0.0, args->ratings);  // the ratings checked as p695 checks them
-        in.design_rating = ratings.design_rating, in.test_rating = ratings.test_rating, in.model_rating = ratings.model_rating;
-        check_report_outputs(*args);
-        cube::CubeReader reader(args->file);
-        note_partial("risk", args->file, reader);
-        note_verdicts("risk", args->file, reader, "counted in no stripe (neither safe nor collapsed)");
-        report = post::risk_report(post::cube_risk(reader, selectors(args->where), in), in, args->file);
-      } catch (const std::invalid_argument& e) {  // a HazardFileError names the file and line
-        throw UsageError(e.what());
-      }
+      in.tail = risk::parse_tail(args->tail);
+      const auto ratings = post::p695_inputs("Dmax", 1.0, 0.0, args->ratings);  // the ratings checked as p695 checks them
+      in.design_rating = ratings.design_rating, in.test_rating = ratings.test_rating, in.model_rating = ratings.model_rating;
+      check_report_outputs(*args);
+      cube::CubeReader reader(args->file);
+      note_partial("risk", args->file, reader);
+      note_verdicts("risk", args->file, reader, "counted in no stripe (neither safe nor collapsed)");
+      report = post::risk_report(post::cube_risk(reader, selectors(args->where), in), in, args->file);
       write_report(report, "frames", *args, "warning: ", [&](std::ostream& out) { post::print_risk(report, out); });
     });
   });
@@ -450,7 +433,7 @@ void add_merge(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
       std::vector<std::filesystem::path> parts(args->parts.begin(), args->parts.end());
       for (const auto& part : args->parts) note_running(part);
       if (const auto who = io::RunLock::holder(args->output); !who.empty())
-        throw UsageError(args->output + ": in use by a run (" + who + "); give another -o");
+        throw UserError(args->output + ": in use by a run (" + who + "); give another -o");
       const auto merged = cube::merge_cubes(parts, args->output, args->overwrite, study::vocabulary::kIdaRuns,
                                             args->allow_missing);
       if (merged.missing > 0)

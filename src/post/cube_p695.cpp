@@ -1,6 +1,8 @@
 // FEMA P-695 from a cube (see cube_p695.hpp).
 #include "pcrf/post/cube_p695.hpp"
 
+#include "pcrf/user_error.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -52,15 +54,15 @@ std::string scene_of_case(const cube::CubeLayout& layout, std::int64_t index) {
 
 /// The frame parameters of case `index`: the study's base point, overridden by every
 /// parameter coordinate the cube has (a grid's axes, a list's or sample's per-case values).
-/// \throws std::invalid_argument for a case of another scene than the prestressed frame.
+/// \throws UserError for a case of another scene than the prestressed frame.
 FrameParameters parameters_of_case(const cube::CubeLayout& layout, std::int64_t index) {
   if (const auto scene = scene_of_case(layout, index); scene != "pcrf")
-    throw std::invalid_argument("a " + scene + " scene has no engine convention for mu_T (docs/p695_rocking_frame.md is the prestressed frame's): give --mu-t");
+    throw UserError(Where{}, "a " + scene + " scene has no engine convention for mu_T (docs/p695_rocking_frame.md is the prestressed frame's): give {}", {"mu_t"});
   auto attribute = [&](const std::string& name) {
     for (const auto& a : layout.attributes)
       if (a.name == name)
         if (const double* v = std::get_if<double>(&a.value)) return *v;
-    throw std::invalid_argument("the cube has no attribute " + name + ": give --mu-t");
+    throw UserError(Where{}, "the cube has no attribute " + name + ": give {}", {"mu_t"});
   };
   FrameParameters p;
   for (const auto& info : all_parameters()) p.*info.member = attribute("base_" + std::string(info.name));
@@ -131,13 +133,13 @@ void add_model_scatter(const cube::CubeReader& cube, const std::vector<FrameFrag
 SctFrom parse_s_ct(const std::string& text) {
   if (text == "counted") return SctFrom::kCounted;
   if (text == "lognormal") return SctFrom::kLognormal;
-  throw std::invalid_argument("--s-ct: unknown value '" + text + "' (expected counted or lognormal)");
+  throw UserError("s_ct", "unknown value '" + text + "' (expected counted or lognormal)");
 }
 
 std::string to_string(SctFrom from) { return from == SctFrom::kCounted ? "counted" : "lognormal"; }
 
 P695Report cube_p695(const cube::CubeReader& cube, const std::vector<cube::Selector>& selectors, const P695Inputs& in) {
-  if (!(in.period_s > 0.0)) throw std::invalid_argument("--period-s must be positive");
+  if (!(in.period_s > 0.0)) throw UserError("period_s", "must be positive");
   P695Report report;
   report.measure_problem = measure_problem(cube, in.period_s);
   const auto frames = cube_fragility(cube, selectors);
@@ -146,14 +148,14 @@ P695Report cube_p695(const cube::CubeReader& cube, const std::vector<cube::Selec
     const double lognormal = f.fit ? f.fit->median : std::nan("");
     const double s_ct = in.s_ct == SctFrom::kCounted ? counted.s_ct_g : lognormal;
     if (!std::isfinite(s_ct))
-      throw std::invalid_argument("frame " + f.frame + (in.s_ct == SctFrom::kCounted
+      throw UserError("frame " + f.frame + (in.s_ct == SctFrom::kCounted
                                                             ? ": fewer than half its records collapse, so no counted median collapse intensity to assess"
                                                             : ": no collapse, so no median collapse intensity to assess"));
     double mu_t = in.mu_t;
     try {
       if (!(mu_t > 0.0)) mu_t = own_mu_t(cube.layout(), f.first_case, in.period_s);
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument("frame " + f.frame + ": " + e.what());
+    } catch (const UserError& e) {  // which frame
+      throw UserError(e.where(), "frame " + f.frame + ": " + e.problem(Dialect::kKey));
     }
     report.frames.push_back({f.frame, mu_t, counted.s_ct_g, counted.high_g, counted.bounded, lognormal,
                              p695::assess(s_ct, in.period_s, mu_t, in.sdc, in.design_rating, in.test_rating, in.model_rating)});

@@ -1,6 +1,8 @@
 // The annual collapse rate of a cube's frames at a site (see cube_risk.hpp).
 #include "pcrf/post/cube_risk.hpp"
 
+#include "pcrf/user_error.hpp"
+
 #include <algorithm>
 #include <functional>
 #include <random>
@@ -28,18 +30,18 @@ constexpr double kFragilityAtLowest = 1e-3; // P(C) at the curve's start above w
 std::string check_measure(const cube::CubeReader& cube, const HazardFile& hazard) {
   const auto& layout = cube.layout();
   const std::string measure = layout.text_attribute("intensity_measure");
-  const std::string where = hazard.file.string() + ":" + std::to_string(hazard.header_line) + ": ";
+  const Where where{{}, hazard.file.string(), static_cast<int>(hazard.header_line)};
   if (measure.empty())
-    throw HazardFileError(where + "the cube " + cube.file().string() + " records no intensity measure to match " +
+    throw UserError(where, "the cube " + cube.file().string() + " records no intensity measure to match " +
                           hazard.measure + " against");
   if (measure != hazard.measure)
-    throw HazardFileError(where + "the curve's measure is " + hazard.measure + ", the cube's (" + cube.file().string() +
+    throw UserError(where, "the curve's measure is " + hazard.measure + ", the cube's (" + cube.file().string() +
                           ") is " + measure);
   if (!hazard.period_s) return measure;
   for (const auto& a : layout.attributes)
     if (a.name == "intensity_period_s")
       if (const double* stored = std::get_if<double>(&a.value); stored && std::abs(*stored - *hazard.period_s) > 1e-9 * *stored)
-        throw HazardFileError(where + "the curve is at period_s = " + number_text(*hazard.period_s) + " s, the cube's Sa at " +
+        throw UserError(where, "the curve is at period_s = " + number_text(*hazard.period_s) + " s, the cube's Sa at " +
                               number_text(*stored) + " s");
   return measure;
 }
@@ -184,7 +186,7 @@ double RiskInputs::ratings_beta() const {
 }
 
 RiskReport cube_risk(const cube::CubeReader& cube, const std::vector<cube::Selector>& selectors, const RiskInputs& in) {
-  if (!(in.years > 0.0) || !std::isfinite(in.years)) throw std::invalid_argument("--years must be positive");
+  if (!(in.years > 0.0) || !std::isfinite(in.years)) throw UserError("years", "must be positive");
   risk::check(in.target);
   (void)in.ratings_beta();  // an unknown rating throws before anything is read
   RiskReport report{read_hazard_file(in.hazard, in.tail), "", {}, {}, kNaN, kNaN, {}, {}, {}, {}, {}};

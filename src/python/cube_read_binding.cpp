@@ -9,25 +9,26 @@
 #include <vector>
 
 #include "bindings.hpp"
-#include "pcrf/api/input_error.hpp"
 #include "pcrf/cube/cube_query.hpp"
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/post/cube_notes.hpp"
 #include "pcrf/schema/cube_vocabulary.hpp"
+#include "pcrf/user_error.hpp"
 
 namespace pcrf::python {
 namespace {
 
-/// Runs `read` on the cube at `file`; a cube problem is an InputError naming the file first,
-/// as the command line names it.
+/// Runs `read` on the cube at `file`; a cube problem is a UserError of that file, as the
+/// command line reports it.
 template <class Read>
 auto reading(const std::string& file, Read read) {
   try {
     const cube::CubeReader reader(file);
     return read(reader);
   } catch (const cube::CubeError& e) {
-    const std::string text = e.what();
-    throw api::InputError(text.rfind(file, 0) == 0 ? text : file + ": " + text);
+    std::string problem = e.what();
+    if (problem.rfind(file + ": ", 0) == 0) problem.erase(0, file.size() + 2);
+    throw UserError(Where{{}, file, 0}, problem);
   }
 }
 

@@ -73,7 +73,7 @@ parallel::CaseOutcome CaseRunner::run(const parallel::WorkItem& item, const Hist
     PreparedFrame* frame = nullptr;
     try {
       frame = &prepared(spec.frame);
-    } catch (const std::invalid_argument& e) {  // make_frame's geometry, or InvalidFrame
+    } catch (const std::invalid_argument& e) {  // make_frame's geometry, or outside the model's domain
       outcome.status = static_cast<std::int8_t>(CaseStatus::kInvalidFrame);
       outcome.note = std::string("invalid frame: ") + e.what();
       return outcome;

@@ -77,7 +77,7 @@ std::vector<RecordSource> read_pulse_entry(const Fields& f, const Study& s) {
     if (axis.key == "pulse_period_s")
       for (double t : axis.values)
         if (t < 4.0 * dt_s)
-          throw StudyError(axis.declared_at + ": axes.pulse_period_s: value " + number_text(t) + " is below 4 dt = " +
+          throw UserError(axis.declared_at + ": axes.pulse_period_s: value " + number_text(t) + " is below 4 dt = " +
                            number_text(4.0 * dt_s) + " s of the pulse records (" + f.where("pulse") + ")");
   std::vector<RecordSource> sources;
   for (PulseShape shape : shapes) {
@@ -187,7 +187,7 @@ void read_base(const Fields& top, Study& s) {
     if (const auto* model = detail::read_model(f)) {
       s.model = model;
       s.base = s.model->defaults();
-      if (s.model->name != "pcrf") s.setting_lines["frame.model"] = f.where("model");
+      if (s.model != &default_scene_model()) s.setting_lines["frame.model"] = f.where("model");
     }
     read_parameters(f, *s.model, s.base, false);
   }
@@ -209,7 +209,7 @@ void check_ida_outputs(const Fields& top, const Study& s) {
   const bool theta_stored = std::find(s.metrics.begin(), s.metrics.end(), metric::theta_max().name) != s.metrics.end();
   if (s.ida->theta_limit_rad > 0.0 && !theta_stored) {
     const auto line = s.setting_lines.find("ida.theta_limit_rad");
-    throw StudyError((line != s.setting_lines.end() ? line->second : top.where("ida")) +
+    throw UserError((line != s.setting_lines.end() ? line->second : top.where("ida")) +
                      ": ida.theta_limit_rad: needs theta_max_rad among [outputs] metrics");
   }
 }
@@ -233,7 +233,7 @@ post::HazardFile read_stripe_hazard(const Fields& f, const Study::HazardStripes&
   std::optional<post::HazardFile> read;
   try {
     read = post::read_hazard_file(h.file, risk::Tail::kCutOff);  // cut off: no return period beyond the curve
-  } catch (const post::HazardFileError& e) {
+  } catch (const UserError& e) {
     f.fail(kHazardKey, e.what());
   }
   const std::string where = read->file.string() + ":" + std::to_string(read->header_line) + ": ";
@@ -282,7 +282,7 @@ void read_intensity(const Fields& top, Study& s) {
   detail::read_setting_table(top, intensity_settings(), spec, s.setting_lines, {kHazardKey, kReturnPeriodsKey});
   if (const auto problem = intensity_spec_problem(spec); !problem.empty()) {
     const auto line = s.setting_lines.find("intensity.period_s");
-    throw StudyError((line != s.setting_lines.end() ? line->second : top.where("intensity")) + ": intensity.period_s: " + problem);
+    throw UserError((line != s.setting_lines.end() ? line->second : top.where("intensity")) + ": intensity.period_s: " + problem);
   }
   s.intensity = spec;
   std::vector<std::string_view> keys{kHazardKey, kReturnPeriodsKey};
@@ -299,7 +299,7 @@ void read_ida(const Fields& top, Study& s) {
   if (!s.intensity)
     top.fail("ida", "an IDA needs an intensity measure: add an [intensity] table (measure = \"pga_g\", \"pgv_m_s\" or \"sa_g\")");
   if (s.hazard_stripes)
-    throw StudyError(s.setting_lines.at("intensity.return_periods_yr") +
+    throw UserError(s.setting_lines.at("intensity.return_periods_yr") +
                      ": intensity.return_periods_yr: with [ida] the search chooses the intensities: give no return periods");
   if (!f.has("start")) f.fail("start", "required: the first intensity of every curve");
   if (!f.has("max_intensity")) f.fail("max_intensity", "required: the largest intensity the search may run");
@@ -562,7 +562,7 @@ void check_station_needs(const Fields& f, const Study& s, const RecordSource& so
 void check_pulse_axes_used(const Study& s) {
   const bool pulses = std::any_of(s.records.begin(), s.records.end(), [](const RecordSource& r) { return !r.pulse_shape.empty(); });
   if (!pulses && !s.pulse_axes.empty())
-    throw StudyError(s.pulse_axes.front().declared_at + ": axes." + s.pulse_axes.front().key +
+    throw UserError(s.pulse_axes.front().declared_at + ": axes." + s.pulse_axes.front().key +
                      ": needs a [[records]] pulse entry (pulse = \"ricker\", …) to vary");
 }
 
@@ -676,7 +676,7 @@ Study parse_study(const std::string& text, const std::string& file, const std::f
   try {
     root = toml::parse(text, file);
   } catch (const toml::parse_error& e) {
-    throw StudyError(file + ":" + std::to_string(e.source().begin.line) + ": not valid TOML: " +
+    throw UserError(file + ":" + std::to_string(e.source().begin.line) + ": not valid TOML: " +
                      std::string(e.description()));
   }
   return parse_study_table(root, text, file, base_dir);
@@ -708,7 +708,7 @@ Study parse_study_table(const toml::table& root, const std::string& text, const 
 
 std::string read_text_file(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
-  if (!in) throw StudyError(file.string() + ": cannot read the file: " + std::strerror(errno));
+  if (!in) throw UserError(file.string() + ": cannot read the file: " + std::strerror(errno));
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
@@ -718,9 +718,9 @@ Study load_study(const std::filesystem::path& file) {
   std::error_code error;
   const auto status = std::filesystem::status(file, error);
   if (error && status.type() != std::filesystem::file_type::not_found)
-    throw StudyError(file.string() + ": cannot open: " + error.message());
-  if (!std::filesystem::exists(status)) throw StudyError(file.string() + ": no such study file");
-  if (!std::filesystem::is_regular_file(status)) throw StudyError(file.string() + ": not a regular file");
+    throw UserError(file.string() + ": cannot open: " + error.message());
+  if (!std::filesystem::exists(status)) throw UserError(file.string() + ": no such study file");
+  if (!std::filesystem::is_regular_file(status)) throw UserError(file.string() + ": not a regular file");
   auto base_dir = std::filesystem::absolute(file).parent_path();
   return parse_study(read_text_file(file), file.string(), base_dir);
 }

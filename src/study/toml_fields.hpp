@@ -1,5 +1,5 @@
 // Checked access to the keys of one TOML table: unknown keys, wrong types and bad values
-// become StudyError messages "FILE:LINE: dotted.key: problem".
+// become UserError messages "FILE:LINE: dotted.key: problem".
 #pragma once
 
 #include <toml++/toml.h>
@@ -35,7 +35,7 @@ class Fields {
   const toml::table* subtable(std::string_view key) const;
   const toml::array* array(std::string_view key) const;
   /// The value of a described setting, checked against its description (nullopt when the
-  /// key is absent). \throws StudyError naming the key and the problem.
+  /// key is absent). \throws UserError naming the key and the problem.
   template <class Target>
   std::optional<SettingValue> setting(const Setting<Target>& s) const {
     const toml::node* n = node(s.key);
@@ -56,7 +56,7 @@ class Fields {
   [[noreturn]] static void fail_at(const std::string& file, const toml::node* node,
                                    const std::string& path, const std::string& problem);
   static std::string where_at(const std::string& file, const toml::node* node);
-  /// A finite number from an integer or float node. \throws StudyError.
+  /// A finite number from an integer or float node. \throws UserError.
   static double number_at(const std::string& file, const toml::node& node, const std::string& path);
   static std::string type_name(const toml::node& node);
 

@@ -39,7 +39,7 @@ Study parse(const std::string& text) { return parse_study(text, "t.toml", folder
 std::string error_of(const std::string& text) {
   try {
     parse(text);
-  } catch (const StudyError& e) {
+  } catch (const UserError& e) {
     return e.what();
   }
   return "";

@@ -21,7 +21,7 @@
 #include "pcrf/study/case_space.hpp"
 #include "pcrf/study/record_source.hpp"
 #include "pcrf/study/study_check.hpp"
-#include "pcrf/study/study_error.hpp"
+#include "pcrf/user_error.hpp"
 #include "pcrf/study/study_parser.hpp"
 #include "study/study_test_support.hpp"
 
@@ -404,7 +404,7 @@ TEST(StudyCommand, ARunBuildsNoFrameUpFrontUnlessItsInputNeedsIt) {
   try {
     (void)study::check_study(displaced, displaced_space, displaced_records, study::FrameCheck::kWhereNeeded);
     ADD_FAILURE() << "a start beyond the overturning angle passed the check of a run";
-  } catch (const study::StudyError& e) {
+  } catch (const UserError& e) {
     EXPECT_NE(std::string(e.what()).find("displaced.toml:9: physics.theta0_rad:"), std::string::npos) << e.what();
   }
 }

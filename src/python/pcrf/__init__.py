@@ -1,8 +1,8 @@
 """pcrf in Python: the engine in process.
 
 Every function calls the C++ that the ``pcrf`` command line calls, so a result is the
-command line's, bit for bit, and a bad input raises ``ValueError`` with the command line's
-message.
+command line's, bit for bit, and a bad input raises ``pcrf.InputError`` (a ``ValueError``) with
+the command line's message, its keys spelt as keywords (``tail_s=: must be positive``).
 
 >>> import numpy as np, pcrf
 >>> t = np.arange(0, 4, 0.01)
@@ -30,7 +30,8 @@ import os as _os
 import warnings as _warnings
 
 from . import _pcrf
-from ._pcrf import InputError, OutputError, StudyError  # ValueError, OSError, ValueError
+from ._pcrf import InputError  # a ValueError naming the keyword (its .key), or file and line
+from ._pcrf import OutputError  # an OSError: an output the never-destroy rule refused or that failed
 
 __version__ = _pcrf.__version__
 
@@ -197,7 +198,7 @@ from ._reports import fragility, p695, risk, sensitivity, stats  # noqa: E402
 from ._study import study  # noqa: E402
 
 __all__ = ["run", "Frame", "record_measures", "study", "open_cube", "stats", "fragility", "sensitivity", "p695", "risk",
-           "settings", "vocabulary", "check_output", "write_output", "InputError", "StudyError", "OutputError",
+           "settings", "vocabulary", "check_output", "write_output", "InputError", "OutputError",
            "RecordWarning"]
 
 import atexit as _atexit  # noqa: E402

@@ -9,9 +9,9 @@ from .. import _pcrf
 from .._reports import report as _report
 from .errors import PlotError
 
-# What a bad input raises in the engine (pcrf.InputError, pcrf.StudyError: ValueError) and a
+# What a bad input raises in the engine (pcrf.InputError, a ValueError) and a
 # failure no check foresaw (RuntimeError): either is the figure's one-line error.
-ENGINE_ERRORS = (_pcrf.InputError, _pcrf.StudyError, RuntimeError)
+ENGINE_ERRORS = (_pcrf.InputError, RuntimeError)
 
 
 def call(function, *args, **keywords):

@@ -24,7 +24,7 @@ enum class SctFrom {
   kCounted,    ///< the intensity at which half the records collapse (P-695 Sections 6.3, 6.4)
   kLognormal,  ///< the median of the fitted lognormal fragility
 };
-/// "counted", "lognormal". \throws std::invalid_argument for another word.
+/// "counted", "lognormal". \throws UserError for another word.
 SctFrom parse_s_ct(const std::string& text);
 std::string to_string(SctFrom from);
 
@@ -71,7 +71,7 @@ struct P695Report {
   double model_p_collapse_mce_rated = 0.0;
 };
 
-/// \throws cube::CubeError as cube_fragility; std::invalid_argument for a frame without a
+/// \throws cube::CubeError as cube_fragility; UserError for a frame without a
 /// fitted median (no collapse at all) or bad inputs.
 P695Report cube_p695(const cube::CubeReader& cube, const std::vector<cube::Selector>& selectors, const P695Inputs& inputs);
 

@@ -72,8 +72,8 @@ struct RiskReport {
   std::optional<risk::RateResult> model_pooled, model_measured, model_rated;
 };
 
-/// \throws HazardFileError (file and line) for a bad file or a measure (or Sa period) other
-/// than the cube's; cube::CubeError as cube_fragility; std::invalid_argument for bad inputs.
+/// \throws UserError (file and line) for a bad file or a measure (or Sa period) other
+/// than the cube's; cube::CubeError as cube_fragility; UserError for bad inputs.
 RiskReport cube_risk(const cube::CubeReader& cube, const std::vector<cube::Selector>& selectors, const RiskInputs& inputs);
 
 /// The report as tables: `frames`, `deaggregation`, `hazard` (the curve as read) and

@@ -113,8 +113,8 @@ struct Study {
   std::optional<IdaOptions> ida;
   /// The scene ([frame] model; the prestressed frame by default) and its base point (the
   /// [frame] or [base] values, every other parameter at its default): every frame starts there.
-  const SceneModel* model = &scene_model("pcrf");
-  ScenePoint base = scene_model("pcrf").defaults();
+  const SceneModel* model = &default_scene_model();
+  ScenePoint base = default_scene_model().defaults();
   /// [axes] incidence_deg: the azimuths of the frames' plane [deg], a dimension of its own
   /// after the level axis; empty: no such axis, every frame lies along its record's first
   /// component (and feels it bit for bit as if the others did not exist).
