@@ -1,5 +1,5 @@
 // One case: rest → uplift → rocking with impacts → rest or failure, to the end of the
-// record (plus tail). See include/pcrf/solver/rocking_solver.hpp for the method.
+// record (plus tail). See pcrf/solver/rocking_solver.hpp for the method.
 #include "pcrf/solver/rocking_solver.hpp"
 
 #include <algorithm>
