@@ -11,7 +11,9 @@
 #include <cmath>
 #include <cstddef>
 
+#ifdef PCRF_HAVE_XSIMD
 #include <xsimd/xsimd.hpp>
+#endif
 
 #include "dopri5_tableau.hpp"
 #include "lane_arrays.hpp"
@@ -34,6 +36,7 @@ struct ScalarPack {
   static void sincos(P x, P& s, P& c) { s = std::sin(x), c = std::cos(x); }
 };
 
+#ifdef PCRF_HAVE_XSIMD
 /// The same over an xsimd batch; `Trig` gives sin and cos of a whole register.
 template <class Batch, class Trig>
 struct VectorPack {
@@ -66,6 +69,8 @@ struct LibmTrig {
     s = Batch::load_unaligned(sv), c = Batch::load_unaligned(cv);
   }
 };
+
+#endif  // PCRF_HAVE_XSIMD
 
 /// Lanes o … o + kLanes − 1 of the batch.
 template <class Pack>

@@ -1,9 +1,13 @@
 // Run-time choice of the kernel set: the CPU's instruction sets (xsimd's cpuid), never the
 // build machine's. The default build is portable; each kernel file carries its own flags.
+// Without xsimd (libxsimd-dev) the build has the scalar kernels alone.
 #include <stdexcept>
 #include <string>
+#include <vector>
 
+#ifdef PCRF_HAVE_XSIMD
 #include <xsimd/xsimd.hpp>
+#endif
 
 #include "lane_arrays.hpp"
 
@@ -17,14 +21,17 @@ struct Candidate {
 };
 
 std::vector<Candidate> candidates() {
+  std::vector<Candidate> all;
+#ifdef PCRF_HAVE_XSIMD
   const auto cpu = xsimd::available_architectures();
-  std::vector<Candidate> all = {
+  all = {
       {avx512_kernels(), cpu.avx512f != 0},
       {avx2_kernels(), cpu.fma3_avx2 != 0},
       {sse2_kernels(), cpu.sse2 != 0},
       {neon64_kernels(), cpu.neon64 != 0},
-      {scalar_kernels(), true},
   };
+#endif
+  all.push_back({scalar_kernels(), true});
   std::erase_if(all, [](const Candidate& c) { return c.set.libm_trig == nullptr; });
   return all;
 }
