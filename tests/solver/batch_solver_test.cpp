@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <memory>
+#include <ostream>
 #include <random>
 #include <string>
 #include <vector>
@@ -121,6 +122,9 @@ struct Variant {
   SceneKind kind;
   const char* scene;
 };
+
+/// gtest prints a parameter by this, not by its bytes (whose padding valgrind flags).
+void PrintTo(const Variant& v, std::ostream* os) { *os << v.scene; }
 
 class BatchOnEveryScene : public ::testing::TestWithParam<Variant> {};
 

@@ -32,7 +32,9 @@
 namespace pcrf {
 
 struct BatchOptions {
-  int lanes = 4;  ///< W, cases in flight together (1 … 64)
+  /// W, cases in flight together (1 … 64). 8: the fastest measured with exact answers
+  /// (docs/batches.md), and two registers where AVX-512 is absent.
+  int lanes = 8;
   /// Kernel set: "" the widest this CPU runs whose register holds at most `lanes` doubles;
   /// else "scalar", "sse2", "avx2", "avx512f" or "neon64".
   std::string kernels;
