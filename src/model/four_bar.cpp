@@ -123,6 +123,7 @@ double FourBar::find_closing_limit() const {
       double good = t + step, bad = t;
       for (int i = 0; i < 60; ++i) {
         const double mid = 0.5 * (good + bad);
+        if (mid == good || mid == bad) break;  // adjacent doubles: nothing left to halve
         (size(mid) >= 0.0 ? good : bad) = mid;
       }
       return good;

@@ -39,6 +39,8 @@ RigidRocker::RigidRocker(const RockerParameters& p) : p_(p) {
   if (!(p.gravity_m_s2 > 0.0)) throw std::invalid_argument("gravity_m_s2: must be positive");
   restitution_ = p.restitution ? *p.restitution : restitution_from_momentum(p.slenderness_rad, p.beam_mass_ratio);
   check(restitution_ >= 0.0 && restitution_ <= 1.0, "restitution", "must lie in [0, 1]", restitution_);
+  inertia_m2_ = p.size_m * p.size_m * (4.0 / 3.0 + 4.0 * p.beam_mass_ratio);
+  moment_over_inertia_per_m_ = (1.0 + 2.0 * p.beam_mass_ratio) * p.size_m / inertia_m2_;
   settle_rest();
 }
 
@@ -46,12 +48,24 @@ bool RigidRocker::terms(double theta1, int side, EomTerms& out) const {
   // The branch θ ≤ 0 at φ = θ (side −1) or φ = −θ (side +1), then the odd mirror.
   const double phi = side < 0 ? theta1 : -theta1;
   const double c = 1.0 + 2.0 * p_.beam_mass_ratio, R = p_.size_m;
-  out.I = R * R * (4.0 / 3.0 + 4.0 * p_.beam_mass_ratio);
+  out.I = inertia_m2_;
   out.J = 0.0;
   out.K = 0.0;
   out.G = -c * R * std::sin(p_.slenderness_rad + phi);
   out.S = -c * R * std::cos(p_.slenderness_rad + phi);
   if (side > 0) out.G = -out.G;
+  return true;
+}
+
+bool RigidRocker::acceleration(double theta1, double, GroundAcceleration ground, int side,
+                               double& theta1_ddot) const {
+  // (S ü_h − G (g + ü_v)) / I with S = −c R cos(α + φ) and G = ∓c R sin(α + φ) (terms()):
+  // the odd mirror flips the sign of the gravity term only, exactly.
+  const double phi = side < 0 ? theta1 : -theta1;
+  const double sin_a = std::sin(p_.slenderness_rad + phi), cos_a = std::cos(p_.slenderness_rad + phi);
+  const double sigma = side < 0 ? 1.0 : -1.0;
+  theta1_ddot = moment_over_inertia_per_m_ *
+                (sigma * sin_a * (p_.gravity_m_s2 + ground.vertical_m_s2) - cos_a * ground.horizontal_m_s2);
   return true;
 }
 

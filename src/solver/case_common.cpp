@@ -25,22 +25,28 @@ double first_exceedance(const GroundMotion& rec, double t_from, double t_end, do
   if (threshold_m_s2 < 0.0) return t_from;
   const auto& a = rec.samples_m_s2();
   const double dt = rec.dt_s();
+  // Sample a1 ends an interval that crosses `level` (upwards for +threshold, downwards for
+  // −threshold).
+  auto crosses = [](double level, double a1) { return level > 0 ? a1 > level : a1 < level; };
+  auto exceeds = [&](double a1) { return crosses(threshold_m_s2, a1) || crosses(-threshold_m_s2, a1); };
   std::size_t i = static_cast<std::size_t>(std::max(0.0, std::floor(t_from / dt)));
-  for (; i + 1 < a.size(); ++i) {
-    const double t0 = static_cast<double>(i) * dt;
-    if (t0 > t_end) break;
-    const double a0 = a[i], a1 = a[i + 1];
-    double best = kNaN;
-    for (const double level : {threshold_m_s2, -threshold_m_s2}) {
-      const bool up = level > 0 ? a1 > level : a1 < level;
-      if (!up) continue;
-      const double s = std::clamp((level - a0) / (a1 - a0), 0.0, 1.0);
-      const double tc = std::max(t0 + s * dt, t_from);
-      if (std::isnan(best) || tc < best) best = tc;
-    }
-    if (!std::isnan(best)) return best <= t_end ? best : kNaN;
+  // The first interval whose end exceeds the threshold, by a plain scan (no interval before
+  // it crosses, so the loop below would pass them all by).
+  std::size_t end = i + 1;
+  while (end < a.size() && !exceeds(a[end])) ++end;
+  if (end >= a.size()) return kNaN;
+  i = end - 1;
+  const double t0 = static_cast<double>(i) * dt;
+  if (t0 > t_end) return kNaN;
+  const double a0 = a[i], a1 = a[i + 1];
+  double best = kNaN;
+  for (const double level : {threshold_m_s2, -threshold_m_s2}) {
+    if (!crosses(level, a1)) continue;
+    const double s = std::clamp((level - a0) / (a1 - a0), 0.0, 1.0);
+    const double tc = std::max(t0 + s * dt, t_from);
+    if (std::isnan(best) || tc < best) best = tc;
   }
-  return kNaN;
+  return best <= t_end ? best : kNaN;
 }
 
 namespace {

@@ -5,11 +5,18 @@
 /// G(g + ü_v) + K = Q + G·ü_v: a case without a vertical component never evaluates G, and
 /// gets bit for bit what it got before G was tabulated). Evaluating them exactly costs a
 /// loop closure and ~16 transcendental functions; they are smooth in θ₁, so this class
-/// samples them once per cell of width `cell_rad` at 10 Chebyshev nodes and evaluates the
-/// degree-9 interpolant (Clenshaw) afterwards. Cells are built on first use, so a case pays
-/// only for the range it visits. Each cell checks itself against the exact terms at two
-/// interior points when it is built; a cell that misses 1e-11 relative (near the linkage's
-/// closing limit, where derivatives blow up) falls back to exact evaluation.
+/// samples them once per cell of width `cell_rad` at 10 Chebyshev nodes. What it
+/// interpolates are the ratios the right-hand side needs,
+///   A = S/I,  B = J/I,  C = Q/I,  D = G/I,   θ̈₁ = A ü_h − s (B θ̇₁² + C + D ü_v)
+/// (s = −1 on side −1, +1 on side +1): no division per call, and four series rather than
+/// five. Each is the degree-9 Chebyshev interpolant, converted once to powers of the cell's
+/// coordinate x ∈ [−1, 1] and evaluated by Horner's rule, the four in the lanes of one loop.
+/// (The conversion costs nothing in accuracy here: the series' coefficients fall off fast
+/// over a 0.02 rad cell, and the self-check below evaluates the converted form.)
+/// Cells are built on first use, so a case pays only for the range it visits. Each cell
+/// checks itself against the exact terms at two interior points when it is built; a cell
+/// that misses 1e-11 of each term's scale (near the linkage's closing limit, where
+/// derivatives blow up) falls back to exact evaluation.
 ///
 /// Not thread-safe (cells are filled lazily): one table per case.
 #pragma once
@@ -26,7 +33,8 @@ class EomTable {
   /// A scene not worth tabulating (Scene::worth_tabulating) is evaluated exactly throughout.
   explicit EomTable(const Scene& scene, double cell_rad = 0.02);
 
-  /// θ̈₁ [rad/s²] as EquationOfMotion::acceleration, from the tabulated terms.
+  /// θ̈₁ [rad/s²] as EquationOfMotion::acceleration, from the tabulated terms. Inline: it
+  /// is the integrator's right-hand side.
   bool acceleration(double theta1, double omega1, GroundAcceleration ground, int side, double& theta1_ddot) const;
 
   /// θ̈₁ and its partial derivatives ∂θ̈₁/∂θ₁ [1/s²] and ∂θ̈₁/∂θ̇₁ [1/s], for implicit
@@ -41,17 +49,15 @@ class EomTable {
 
  private:
   static constexpr int kNodes = 10;
-  struct Coefficients {
-    std::array<double, kNodes> I, J, Q, S, G;
-  };
+  /// Power-series coefficients in x of A, B, C, D (lanes 0…3), lowest degree first.
+  struct alignas(32) Lanes4 : std::array<double, 4> {};
+  using Series4 = std::array<Lanes4, kNodes>;
   struct Cell {
     // User-provided: a vector of cells is not zero-filled first (a frame's table holds ~80
-    // cells of 1 kB, and a case visits a few); build() fills what it uses.
+    // cells, and a case visits a few); build() fills what it uses.
     Cell() {}  // NOLINT(modernize-use-equals-default)
     enum class State : char { kEmpty, kTabulated, kExact } state = State::kEmpty;
-    Coefficients c;   ///< the series
-    Coefficients dc;  ///< the series of their x-derivatives
-    std::array<std::array<double, 4>, kNodes> ijqs;  ///< c.I, c.J, c.Q, c.S interleaved (clenshaw4)
+    Series4 abcd;
   };
 
   /// The cell holding θ₁ on `side` (built on first use) and the local coordinate
@@ -68,8 +74,58 @@ class EomTable {
   const Scene& eom_;
   double cell_rad_;
   double inv_cell_;
+  double cell_count_ = 0.0;  ///< cells_.size(), as the bound locate() compares with
   mutable std::vector<Cell> cells_;
   mutable int built_ = 0;
 };
+
+namespace detail {
+
+// Four power series at once by Horner's rule, as two pairs of lanes (GCC's and Clang's vector
+// extension: two doubles per SSE2 register on any x86-64, NEON on arm64; compilers do not
+// vectorize this recurrence across the series by themselves).
+template <class Row, std::size_t N>
+std::array<double, 4> horner4(const std::array<Row, N>& m, double x) {
+  using Pair = double __attribute__((vector_size(16)));
+  static_assert(alignof(Row) >= alignof(Pair) && sizeof(Row) == 2 * sizeof(Pair));
+  Pair ab = {0.0, 0.0}, cd = {0.0, 0.0};
+  for (std::size_t k = N; k-- > 0;) {
+    const auto* row = reinterpret_cast<const Pair*>(m[k].data());
+    ab = ab * x + row[0];
+    cd = cd * x + row[1];
+  }
+  return {ab[0], ab[1], cd[0], cd[1]};
+}
+
+}  // namespace detail
+
+inline const EomTable::Cell* EomTable::locate(double theta1, int side, double& x) const {
+  const double u = side < 0 ? -theta1 : theta1;  // distance into the branch
+  const double v = u * inv_cell_;
+  if (!(v >= -1.0 && v < cell_count_)) return nullptr;  // also NaN
+  // floor(v) + 1 without a libm call: truncation, one down for a negative fraction.
+  auto whole = static_cast<long>(v);
+  whole -= static_cast<long>(v < static_cast<double>(whole));
+  const long index = whole + 1;
+  if (index < 0 || index >= static_cast<long>(cells_.size())) return nullptr;
+  Cell& cell = cells_[static_cast<std::size_t>(index)];
+  if (cell.state == Cell::State::kEmpty) [[unlikely]] build(cell, static_cast<int>(index));
+  if (cell.state == Cell::State::kExact) return nullptr;
+  x = 2.0 * (u - static_cast<double>(index - 1) * cell_rad_) * inv_cell_ - 1.0;
+  return &cell;
+}
+
+inline bool EomTable::acceleration(double theta1, double omega1, GroundAcceleration ground, int side,
+                                  double& theta1_ddot) const {
+  double x = 0;
+  const Cell* cell = locate(theta1, side, x);
+  if (cell == nullptr) return eom_.acceleration(theta1, omega1, ground, side, theta1_ddot);
+  const std::array<double, 4> v = detail::horner4(cell->abcd, x);
+  // Side +1 is the odd mirror: J, G, K change sign, I and S do not (equation_of_motion.hpp).
+  // Without vertical shaking D·ü_v is a signed zero and C + D·ü_v is C bit for bit.
+  const double s = side < 0 ? 1.0 : -1.0;
+  theta1_ddot = v[0] * ground.horizontal_m_s2 - s * (v[1] * omega1 * omega1 + (v[2] + v[3] * ground.vertical_m_s2));
+  return true;
+}
 
 }  // namespace pcrf

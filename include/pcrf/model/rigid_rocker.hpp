@@ -61,6 +61,9 @@ class RigidRocker final : public Scene {
   const RockerParameters& parameters() const { return p_; }
 
   bool terms(double theta1, int side, EomTerms& out) const override;
+  /// Eq. (31) with I, J = K = 0, G and S of a rigid rocker: one sincos.
+  bool acceleration(double theta1, double omega1, GroundAcceleration ground, int side,
+                    double& theta1_ddot) const override;
   double gravity_m_s2() const override { return p_.gravity_m_s2; }
   double restitution() const override { return restitution_; }
   /// π/2: fallen on its side.
@@ -74,6 +77,8 @@ class RigidRocker final : public Scene {
  private:
   RockerParameters p_;
   double restitution_;
+  double inertia_m2_;          ///< I = R²(4/3 + 4γ) per unit column mass [m²]
+  double moment_over_inertia_per_m_;  ///< (1 + 2γ) R / I [1/m]
 };
 
 }  // namespace pcrf

@@ -83,9 +83,12 @@ class Scene {
   double rest_acceleration(GroundAcceleration ground, int side) const;
   /// True while the net force at rest holds the scene closed on both sides.
   bool holds_closed(GroundAcceleration ground) const;
-  /// θ̈₁ [rad/s²] for state (θ₁, θ̇₁) on `side` under `ground`, from the exact terms.
+  /// θ̈₁ [rad/s²] for state (θ₁, θ̇₁) on `side` under `ground`, from the exact terms:
+  /// (S ü_h − J θ̇₁² − G (g + ü_v) − K) / I. A scene whose terms reduce to fewer operations
+  /// overrides it (the right-hand side of an untabulated scene calls it at every stage).
   /// Returns false where the mechanism does not exist.
-  bool acceleration(double theta1, double omega1, GroundAcceleration ground, int side, double& theta1_ddot) const;
+  virtual bool acceleration(double theta1, double omega1, GroundAcceleration ground, int side,
+                            double& theta1_ddot) const;
 
  protected:
   /// Derived classes call this once their terms can be evaluated.
