@@ -162,18 +162,15 @@ class Attempt {
     if (!block_) return by_lane(ts, th, om, good);
     P ah, av;
     ground(ts, ah, av);
-    // RigidRocker::terms and Scene::acceleration: φ = θ₁ on side −1, −θ₁ on side +1;
-    // G = −(1+2γ)R sin(α + φ) (negated on side +1), S = −(1+2γ)R cos(α + φ), J = K = 0.
+    // RigidRocker::acceleration: φ = θ₁ on side −1, −θ₁ on side +1, σ = ∓1 with the side;
+    // θ̈₁ = ((1 + 2γ) R / I) (σ sin(α + φ) (g + ü_v) − cos(α + φ) ü_h).
     const P side = ld(L_.side);
-    const P phi = Pack::select(side < P(0.0), th, -th);
+    const M left = side < P(0.0);
+    const P phi = Pack::select(left, th, -th);
     P sn, cs;
     Pack::sincos(ld(L_.alpha) + phi, sn, cs);
-    const P mcr = ld(L_.minus_cR);
-    P G = mcr * sn;
-    const P S = mcr * cs;
-    G = Pack::select(side > P(0.0), -G, G);
-    const P zero(0.0);
-    const P acc = (S * ah - zero * om * om - G * (ld(L_.gravity) + av) - zero) / ld(L_.inertia);
+    const P sigma = Pack::select(left, P(1.0), P(-1.0));
+    const P acc = ld(L_.moment_over_inertia) * (sigma * sn * (ld(L_.gravity) + av) - cs * ah);
     good = Pack::finite(acc);
     return acc;
   }

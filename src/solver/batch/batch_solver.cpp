@@ -833,11 +833,11 @@ void Driver::set_block_parameters(int lane, const Scene& scene) {
   const auto* rocker = dynamic_cast<const RigidRocker*>(&scene);
   if (rocker == nullptr) return;
   const RockerParameters& p = rocker->parameters();
-  const double c = 1.0 + 2.0 * p.beam_mass_ratio, R = p.size_m;
+  // As RigidRocker's constructor computes them.
+  const double inertia_m2 = p.size_m * p.size_m * (4.0 / 3.0 + 4.0 * p.beam_mass_ratio);
   const auto l = static_cast<std::size_t>(lane);
   arrays_.alpha[l] = p.slenderness_rad;
-  arrays_.minus_cR[l] = -c * R;
-  arrays_.inertia[l] = R * R * (4.0 / 3.0 + 4.0 * p.beam_mass_ratio);
+  arrays_.moment_over_inertia[l] = (1.0 + 2.0 * p.beam_mass_ratio) * p.size_m / inertia_m2;
   arrays_.gravity[l] = p.gravity_m_s2;
 }
 

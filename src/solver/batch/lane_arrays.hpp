@@ -47,7 +47,7 @@ class LaneArrays {
     for (auto& row : cont)
       for (auto& v : row) v.assign(static_cast<std::size_t>(capacity), 0.0);
     for (std::size_t l = 0; l < static_cast<std::size_t>(capacity); ++l) {
-      side[l] = -1.0, inertia[l] = 1.0, hi[l] = -1.0;  // inert padding: no NaN, no division by 0
+      side[l] = -1.0, hi[l] = -1.0;  // inert padding: no NaN
     }
   }
   int capacity() const { return capacity_; }
@@ -60,8 +60,8 @@ class LaneArrays {
   // the right-hand-side calls made, and the continuous extension's coefficients.
   std::vector<double> theta1, omega1, k7_theta, k7_omega, err, ok, evals;
   std::vector<double> cont[5][2];
-  // The flight: side (−1/+1). Rigid-rocker terms: α [rad], −(1 + 2γ)R [m], I [m²] and g [m/s²].
-  std::vector<double> side, alpha, minus_cR, inertia, gravity;
+  // The flight: side (−1/+1). Rigid-rocker terms: α [rad], (1 + 2γ)R/I [1/m], g [m/s²].
+  std::vector<double> side, alpha, moment_over_inertia, gravity;
   // The record cursor of each lane (ExcitationCursor's fields): the interval [lo, hi), 1/dt,
   // the samples at lo and their differences.
   std::vector<double> lo, hi, inv_dt, h0, dh, v0, dv;
@@ -69,7 +69,7 @@ class LaneArrays {
  private:
   std::vector<std::vector<double>*> all() {
     return {&t0,     &h,        &theta0,   &omega0, &k1_theta, &k1_omega, &theta1, &omega1, &k7_theta,
-            &k7_omega, &err,    &ok,       &evals,  &side,     &alpha,    &minus_cR, &inertia, &gravity,
+            &k7_omega, &err,    &ok,       &evals,  &side,     &alpha,    &moment_over_inertia, &gravity,
             &lo,     &hi,       &inv_dt,   &h0,     &dh,       &v0,       &dv};
   }
   int capacity_;
