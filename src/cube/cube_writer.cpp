@@ -27,7 +27,9 @@ namespace {
 
 constexpr const char* kMessagesGroup = "messages";
 constexpr const char* kHistoriesGroup = "histories";
-constexpr unsigned kDeflateLevel = 4;
+// zlib level 1 (its fast path): against level 4, 11 % fewer instructions per non-lifting
+// case (31.2 k -> 27.8 k) for a cube 0.5 % larger (docs/throughput.md).
+constexpr unsigned kDeflateLevel = 1;
 constexpr hsize_t kNotesChunk = 256;
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 
