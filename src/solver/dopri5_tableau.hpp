@@ -1,12 +1,12 @@
 /// \file dopri5_tableau.hpp
 /// \brief The coefficients of Dormand–Prince 5(4) and of its continuous extension, and the
-/// constants of the step-size control, as DormandPrinceIntegrator uses them (see
-/// dormand_prince.hpp for the sources). Private to the solver.
+/// constants of the step-size control (see dormand_prince.hpp for the sources): the one-case
+/// integrator's and the batch kernels'. Private to the solver.
 #pragma once
 
 #include <limits>
 
-namespace pcrf::detail::batch {
+namespace pcrf::detail {
 
 inline constexpr double kEps = std::numeric_limits<double>::epsilon();
 
@@ -35,4 +35,4 @@ inline constexpr double kSafety = 0.9;
 inline constexpr double kFacMin = 0.2, kFacMax = 10.0;  // bounds of h_new/h
 inline constexpr int kMaxFailures = 50;                 // consecutive rejected or failed attempts
 
-}  // namespace pcrf::detail::batch
+}  // namespace pcrf::detail
