@@ -1,5 +1,6 @@
 // One case: rest → uplift → rocking with impacts → rest or failure, to the end of the
-// record (plus tail). See include/pcrf/solver/rocking_solver.hpp for the method.
+// record (plus tail). See include/pcrf/solver/rocking_solver.hpp for the method. The event
+// handlers are `inline`, so that fly() holds them (-fPIC inlines no interposable function).
 #include "case_run.hpp"
 
 #include <algorithm>
@@ -90,7 +91,7 @@ void CaseRun::start_displaced() {
   start_flight(0.0, y0, kEventUplift);
 }
 
-void CaseRun::start_flight(double t, const double* y, std::uint32_t events) {
+inline void CaseRun::start_flight(double t, const double* y, std::uint32_t events) {
   const auto dirs = problem_.directions();
   // A flight leaving θ₁ = 0 with speed v against a closing acceleration a lasts 2v/a.
   // Short flights (late in a Zeno sequence) are shorter than the integrator's own first
@@ -161,7 +162,7 @@ bool CaseRun::fly() {
   return true;
 }
 
-bool CaseRun::handle_roots(double t, double* y) {
+inline bool CaseRun::handle_roots(double t, double* y) {
   int found[kRootCount] = {0, 0, 0, 0};
   integrator_->root_info(found);
   if (found[kThetaPeak]) {
@@ -193,7 +194,7 @@ bool CaseRun::handle_roots(double t, double* y) {
   return false;
 }
 
-void CaseRun::impact(double t, double* y) {
+inline void CaseRun::impact(double t, double* y) {
   const double omega_before = y[1];
   if (request_.omega_peak) note_omega(t, omega_before);
   emit(t, 0.0, omega_before, kEventImpact);
@@ -216,7 +217,7 @@ void CaseRun::impact(double t, double* y) {
 //  - T ≤ zeno_time_s: the sequence is over within a negligible time, or
 //  - the flight rises less than ten times the absolute tolerance on θ₁: no integrator
 //    run at that tolerance resolves it (its computed θ and θ̇ are noise).
-bool CaseRun::returns_to_rest(double t, double omega_after) const {
+inline bool CaseRun::returns_to_rest(double t, double omega_after) const {
   if (!holds_closed(t) || restitution_ >= 1.0) return false;
   const GroundAcceleration a = excitation_.at(t);
   const double a_min = std::min(std::abs(scene_.rest_acceleration(a, -1)), std::abs(scene_.rest_acceleration(a, +1)));
@@ -226,37 +227,37 @@ bool CaseRun::returns_to_rest(double t, double omega_after) const {
   return remaining_s <= physics_.zeno_time_s || rise_rad <= 10.0 * solver_.atol_theta_rad;
 }
 
-bool CaseRun::holds_closed(double t) const {
+inline bool CaseRun::holds_closed(double t) const {
   return scene_.holds_closed(excitation_.at(t));
 }
 
-void CaseRun::settle(double t) {
+inline void CaseRun::settle(double t) {
   at_rest_ = true;
   t_ = t;
   emit(t, 0.0, 0.0, kEventRest);
 }
 
-void CaseRun::note_theta(double t, double theta) {
+inline void CaseRun::note_theta(double t, double theta) {
   if (std::abs(theta) > result_.theta_max_rad) {
     result_.theta_max_rad = std::abs(theta);
     result_.t_theta_max_s = t;
   }
 }
 
-void CaseRun::note_omega(double t, double omega) {
+inline void CaseRun::note_omega(double t, double omega) {
   if (std::abs(omega) > result_.omega_max_rad_s) {
     result_.omega_max_rad_s = std::abs(omega);
     result_.t_omega_max_s = t;
   }
 }
 
-void CaseRun::emit(double t, double theta, double omega, std::uint32_t events) {
+inline void CaseRun::emit(double t, double theta, double omega, std::uint32_t events) {
   if (!history_.wanted()) return;
   history_.add(t, theta, omega, problem_.side, events);
   while (next_history_time() <= t) ++next_history_sample_;
 }
 
-void CaseRun::emit_dense_before(double t_until) {
+inline void CaseRun::emit_dense_before(double t_until) {
   if (!history_.wanted()) return;
   double y[2];
   while (next_history_time() < t_until) {
@@ -279,7 +280,7 @@ void CaseRun::finish(CaseStatus status, std::string message) {
   done_ = true;
 }
 
-bool CaseRun::over_time() const {
+inline bool CaseRun::over_time() const {
   if (solver_.wall_time_limit_s <= 0.0) return false;
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count() > solver_.wall_time_limit_s;
 }

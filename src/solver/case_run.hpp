@@ -84,7 +84,7 @@ class FlightProblem final : public detail::OdeProblem {
   /// θ̈₁ at (t, y). With the θ̈₁ root, remembering the last evaluation: the root functions
   /// are evaluated at step ends, where the right-hand side has just been evaluated (FSAL
   /// methods, CVODE's corrector), so that root costs almost nothing.
-  bool acceleration(double t, const double* y, double& acc) {
+  [[gnu::always_inline]] bool acceleration(double t, const double* y, double& acc) {
     if (!omega_peak_) return table_.acceleration(y[0], y[1], forcing_.at(t), side, acc) && std::isfinite(acc);
     if (t == last_t_ && y[0] == last_y_[0] && y[1] == last_y_[1] && side == last_side_) {
       acc = last_acc_;
@@ -152,7 +152,8 @@ class CaseRun {
                                                         SampleGrid samples, bool lockstep);
   void rest_until_uplift();
   void start_displaced();
-  bool fly();  ///< false: a lockstep attempt is pending
+  /// One advance of the integrator and what it met; false: a lockstep attempt is pending.
+  bool fly();
   bool handle_roots(double t, double* y);
   void impact(double t, double* y);
   bool returns_to_rest(double t, double omega_after) const;

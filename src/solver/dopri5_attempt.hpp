@@ -22,12 +22,14 @@ struct Dopri5Stages {
 /// One attempt from (t, y0) with k1 = f(t, y0) and step h. `f(ts, s, k, alive)` sets
 /// k = f(ts, s) and clears `alive` where that fails (it need not evaluate where `alive` is
 /// already clear). Weights atol_i + rtol·max(|y0_i|, |y1_i|). Returns the mask of lanes
-/// whose every stage succeeded and whose error and solution are finite.
+/// whose every stage succeeded and whose error and solution are finite; when no lane is
+/// left alive after a stage, at once (`out` then partly unset).
 ///
 /// `Ops` gives the number type's operations: P (the number), M (its mask), select(m, a, b),
-/// finite(p), abs(p), sqrt(p).
+/// finite(p), abs(p), sqrt(p), none(m). Always inlined: it is the body of the integrator's
+/// inner loop, and a call would keep the stages' numbers in memory.
 template <class Ops, class F>
-typename Ops::M dopri5_attempt(const typename Ops::P& t, const typename Ops::P& h, const typename Ops::P (&y0)[2],
+[[gnu::always_inline]] inline typename Ops::M dopri5_attempt(const typename Ops::P& t, const typename Ops::P& h, const typename Ops::P (&y0)[2],
                                const typename Ops::P (&k1)[2], const typename Ops::P (&atol)[2],
                                const typename Ops::P& rtol, F&& f, Dopri5Stages<typename Ops::P>& out) {
   using P = typename Ops::P;
@@ -35,18 +37,24 @@ typename Ops::M dopri5_attempt(const typename Ops::P& t, const typename Ops::P& 
   P s[2], k2[2], k3[2], k4[2], k5[2], k6[2];
   for (int i = 0; i < 2; ++i) s[i] = y0[i] + h * a21 * k1[i];
   f(t + c2 * h, s, k2, alive);
+  if (Ops::none(alive)) return alive;
   for (int i = 0; i < 2; ++i) s[i] = y0[i] + h * (a31 * k1[i] + a32 * k2[i]);
   f(t + c3 * h, s, k3, alive);
+  if (Ops::none(alive)) return alive;
   for (int i = 0; i < 2; ++i) s[i] = y0[i] + h * (a41 * k1[i] + a42 * k2[i] + a43 * k3[i]);
   f(t + c4 * h, s, k4, alive);
+  if (Ops::none(alive)) return alive;
   for (int i = 0; i < 2; ++i) s[i] = y0[i] + h * (a51 * k1[i] + a52 * k2[i] + a53 * k3[i] + a54 * k4[i]);
   f(t + c5 * h, s, k5, alive);
+  if (Ops::none(alive)) return alive;
   for (int i = 0; i < 2; ++i)
     s[i] = y0[i] + h * (a61 * k1[i] + a62 * k2[i] + a63 * k3[i] + a64 * k4[i] + a65 * k5[i]);
   f(t + 1.0 * h, s, k6, alive);
+  if (Ops::none(alive)) return alive;
   for (int i = 0; i < 2; ++i)
     out.y1[i] = y0[i] + h * (a71 * k1[i] + a73 * k3[i] + a74 * k4[i] + a75 * k5[i] + a76 * k6[i]);
   f(t + 1.0 * h, out.y1, out.k7, alive);
+  if (Ops::none(alive)) return alive;
   const P* k7 = out.k7;
   P sum(0.0);
   for (int i = 0; i < 2; ++i) {

@@ -1,4 +1,6 @@
 // Dormand–Prince 5(4) with dense output, breakpoints and events (see dormand_prince.hpp).
+// The parts of a step are `inline`: the library is built with -fPIC, where GCC inlines no
+// function that could be interposed, and a step is the hot loop of every case.
 #include "dormand_prince.hpp"
 
 #include <algorithm>
@@ -109,22 +111,24 @@ struct ScalarOps {
   static M finite(P v) { return std::isfinite(v); }
   static P abs(P v) { return std::abs(v); }
   static P sqrt(P v) { return std::sqrt(v); }
+  static bool none(M m) { return !m; }
 };
 
 }  // namespace
 
-void DormandPrinceIntegrator::try_step() {
-  Dopri5Attempt& a = attempt_;
-  a.evals = 0;
-  auto f = [&](double t, const double* s, double* k, bool& alive) {
-    if (alive) {
-      ++a.evals;
-      alive = problem_.rhs(t, s, k) == 0;
-    }
-    if (!alive) k[0] = k[1] = std::nan("");
-  };
+inline void DormandPrinceIntegrator::try_step() {
+  // Inputs in locals: the right-hand side is a virtual call, after which members would be
+  // read again.
+  const double t = attempt_.t0, h = attempt_.h;
+  const double y0[2] = {attempt_.y0[0], attempt_.y0[1]}, k1[2] = {attempt_.k1[0], attempt_.k1[1]};
   const double atol[2] = {atol_[0], atol_[1]};
-  a.ok = dopri5_attempt<ScalarOps>(a.t0, a.h, a.y0, a.k1, atol, settings_.rtol, f, a.out);
+  long evals = 0;
+  auto f = [&](double ts, const double* s, double* k, bool& alive) {  // called while alive
+    ++evals;
+    alive = problem_.rhs(ts, s, k) == 0;
+  };
+  attempt_.ok = dopri5_attempt<ScalarOps>(t, h, y0, k1, atol, settings_.rtol, f, attempt_.out);
+  attempt_.evals = evals;
 }
 
 bool DormandPrinceIntegrator::step() {
@@ -140,7 +144,7 @@ bool DormandPrinceIntegrator::step() {
   return attempt_until_accepted();
 }
 
-bool DormandPrinceIntegrator::attempt_until_accepted() {
+inline bool DormandPrinceIntegrator::attempt_until_accepted() {
   for (;;) {
     if (!prepare_attempt()) return false;
     if (lockstep_) {
@@ -152,21 +156,25 @@ bool DormandPrinceIntegrator::attempt_until_accepted() {
   }
 }
 
-bool DormandPrinceIntegrator::prepare_attempt() {
-  if (failures_ > kMaxFailures)
-    return fail("dopri5: " + std::to_string(kMaxFailures) + " failed step attempts in a row at t = " + number_text(t0_) + " s");
+inline bool DormandPrinceIntegrator::prepare_attempt() {
+  if (failures_ > kMaxFailures) return fail_attempt();
   // Land on the breakpoint (or stop time) when the step would reach it or nearly so.
   clamped_ = t0_ + 1.01 * h_trial_ >= limit_;
   h_try_ = clamped_ ? limit_ - t0_ : h_trial_;
-  if (!(h_try_ > 16.0 * kEps * std::abs(t0_)) || !(h_try_ > 0.0))
-    return fail("dopri5: step size " + number_text(h_try_) + " s too small at t = " + number_text(t0_) + " s");
+  if (!(h_try_ > 16.0 * kEps * std::abs(t0_)) || !(h_try_ > 0.0)) return fail_attempt();
   attempt_.t0 = t0_, attempt_.h = h_try_;
   attempt_.y0[0] = y0_[0], attempt_.y0[1] = y0_[1];
   attempt_.k1[0] = k1_[0], attempt_.k1[1] = k1_[1];
   return true;
 }
 
-bool DormandPrinceIntegrator::conclude_attempt() {
+bool DormandPrinceIntegrator::fail_attempt() {
+  if (failures_ > kMaxFailures)
+    return fail("dopri5: " + std::to_string(kMaxFailures) + " failed step attempts in a row at t = " + number_text(t0_) + " s");
+  return fail("dopri5: step size " + number_text(h_try_) + " s too small at t = " + number_text(t0_) + " s");
+}
+
+inline bool DormandPrinceIntegrator::conclude_attempt() {
   counts_.rhs_evals += attempt_.evals;
   const double err = attempt_.out.err;
   if (!attempt_.ok) {  // the mechanism does not exist at a stage: shrink
@@ -193,7 +201,7 @@ void DormandPrinceIntegrator::take_attempt() {
   if (!attempt_until_accepted()) attempt_failed_ = true;
 }
 
-void DormandPrinceIntegrator::accept() {
+inline void DormandPrinceIntegrator::accept() {
   // A step cut short by a breakpoint says little about the step the solution allows: the
   // one the controller proposed before it is kept unless the PI control of this step
   // proposes a longer one, which it cannot when even its largest growth (kFacMax) stays
@@ -214,7 +222,6 @@ void DormandPrinceIntegrator::accept() {
   t1_ = clamped_ ? limit_ : t0_ + h_try_;
   y1_ = {attempt_.out.y1[0], attempt_.out.y1[1]};
   k7_ = {attempt_.out.k7[0], attempt_.out.k7[1]};
-  for (std::size_t j = 0; j < 5; ++j) cont_[j] = {attempt_.out.cont[j][0], attempt_.out.cont[j][1]};
   h_step_ = h_try_;
   have_step_ = true;
   ++counts_.steps;

@@ -98,6 +98,8 @@ class DormandPrinceIntegrator final : public OdeIntegrator {
   bool attempt_until_accepted();
   /// Sets the next attempt's inputs from h_trial_; false on failure (error_ set).
   bool prepare_attempt();
+  /// prepare_attempt's failure: too many attempts, or a step too small.
+  [[gnu::cold, gnu::noinline]] bool fail_attempt();
   /// The attempt's outcome: accepted (true), or rejected with h_trial_ shrunk (false).
   bool conclude_attempt();
   void accept();
@@ -118,13 +120,14 @@ class DormandPrinceIntegrator final : public OdeIntegrator {
   double dense_component(double t, int i) const {
     const double s = (t - t0_) / h_step_, s1 = 1.0 - s;
     const auto k = static_cast<std::size_t>(i);
-    return cont_[0][k] + s * (cont_[1][k] + s1 * (cont_[2][k] + s * (cont_[3][k] + s1 * cont_[4][k])));
+    const auto& c = attempt_.out.cont;
+    return c[0][k] + s * (c[1][k] + s1 * (c[2][k] + s * (c[3][k] + s1 * c[4][k])));
   }
   double dense_slope(double t, int i) const {
     const double s = (t - t0_) / h_step_, s1 = 1.0 - s;
     const auto k = static_cast<std::size_t>(i);
-    return (cont_[1][k] + (1.0 - 2.0 * s) * cont_[2][k] + s * (2.0 - 3.0 * s) * cont_[3][k] +
-            2.0 * s * s1 * (s1 - s) * cont_[4][k]) /
+    const auto& c = attempt_.out.cont;
+    return (c[1][k] + (1.0 - 2.0 * s) * c[2][k] + s * (2.0 - 3.0 * s) * c[3][k] + 2.0 * s * s1 * (s1 - s) * c[4][k]) /
            h_step_;
   }
   /// The error weight atol_i + rtol·magnitude of component i.
@@ -142,7 +145,6 @@ class DormandPrinceIntegrator final : public OdeIntegrator {
   // The current step [t0_, t1_] and its dense output; the position tcur_ within it.
   double t0_ = 0.0, t1_ = 0.0, tcur_ = 0.0;
   Vec y0_{}, y1_{}, k1_{}, k7_{};
-  std::array<Vec, 5> cont_{};  ///< coefficients of the continuous extension
   double h_step_ = 0.0;        ///< t1_ − t0_
   bool have_step_ = false;
   std::array<double, kMaxRoots> g_cur_{};  ///< root functions at tcur_
@@ -157,7 +159,8 @@ class DormandPrinceIntegrator final : public OdeIntegrator {
   std::string error_;
 
   // The step being attempted: the breakpoint or stop time it may not cross, the step the
-  // controller wants, the one tried (shortened to land on the limit: clamped).
+  // controller wants, the one tried (shortened to land on the limit: clamped). Once
+  // accepted, its continuous extension is the dense output until the next step.
   Dopri5Attempt attempt_;
   double limit_ = 0.0, h_trial_ = 0.0, h_try_ = 0.0;
   bool clamped_ = false, rejected_ = false;

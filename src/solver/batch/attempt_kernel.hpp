@@ -31,6 +31,7 @@ struct ScalarPack {
   static P select(M m, P a, P b) { return m ? a : b; }
   static M finite(P v) { return std::isfinite(v); }
   static bool all(M m) { return m; }
+  static bool none(M m) { return !m; }
   static bool lane(M m, int) { return m; }
   static P abs(P v) { return std::abs(v); }
   static P sqrt(P v) { return std::sqrt(v); }
@@ -49,6 +50,7 @@ struct VectorPack {
   static P select(const M& m, const P& a, const P& b) { return xsimd::select(m, a, b); }
   static M finite(const P& v) { return xsimd::isfinite(v); }
   static bool all(const M& m) { return xsimd::all(m); }
+  static bool none(const M& m) { return xsimd::none(m); }
   static bool lane(const M& m, int j) {
     bool b[kLanes];
     m.store_unaligned(b);
@@ -98,7 +100,7 @@ class Attempt {
       evals = evals + Pack::select(alive, P(1.0), P(0.0));
       alive = alive & good;
     };
-    Dopri5Stages<P> out;
+    Dopri5Stages<P> out{};
     const M ok = dopri5_attempt<Pack>(t, h, y0, k1, atol, P(L_.rtol), f, out);
     st(L_.theta1, out.y1[0]), st(L_.omega1, out.y1[1]), st(L_.k7_theta, out.k7[0]), st(L_.k7_omega, out.k7[1]);
     st(L_.err, out.err), st(L_.ok, Pack::select(ok, P(1.0), P(0.0))), st(L_.evals, evals);
