@@ -10,9 +10,13 @@
 
 #include <cmath>
 #include <cstddef>
+#include <type_traits>
 
 #ifdef PCRF_HAVE_XSIMD
 #include <xsimd/xsimd.hpp>
+#endif
+#ifdef PCRF_HAVE_SLEEF
+#include <sleef.h>
 #endif
 
 #include "../dopri5_attempt.hpp"
@@ -70,6 +74,24 @@ struct LibmTrig {
     x.store_unaligned(v);
     for (std::size_t j = 0; j < n; ++j) sv[j] = std::sin(v[j]), cv[j] = std::cos(v[j]);
     s = Batch::load_unaligned(sv), c = Batch::load_unaligned(cv);
+  }
+};
+
+/// sin and cos of xsimd.
+template <class Batch>
+struct XsimdTrig {
+  static void sincos(const Batch& x, Batch& s, Batch& c) {
+    auto sc = xsimd::sincos(x);
+    s = sc.first, c = sc.second;
+  }
+};
+
+/// sin and cos of SLEEF's function F for one register (its result's x and y).
+template <class Batch, auto F>
+struct SleefTrig {
+  static void sincos(const Batch& x, Batch& s, Batch& c) {
+    const auto sc = F(x);
+    s = Batch(sc.x), c = Batch(sc.y);
   }
 };
 
@@ -158,5 +180,21 @@ template <class Pack>
 void attempt_all(LaneArrays& lanes, LaneCallbacks& callbacks, bool block) {
   for (int o = 0; o < lanes.capacity(); o += Pack::kLanes) Attempt<Pack>(lanes, callbacks, block, o).run();
 }
+
+#ifdef PCRF_HAVE_XSIMD
+/// The kernels of the instruction set Arch (an xsimd architecture); `Sleef` the SLEEF
+/// sin/cos of its registers (a SleefTrig), or void where SLEEF is not built or lacks one.
+template <class Arch, class Sleef = void>
+KernelSet vector_kernels(const char* name) {
+  using Batch = xsimd::batch<double, Arch>;
+  KernelSet k;
+  k.name = name;
+  k.register_lanes = static_cast<int>(Batch::size);
+  k.libm_trig = &attempt_all<VectorPack<Batch, LibmTrig<Batch>>>;
+  k.xsimd_trig = &attempt_all<VectorPack<Batch, XsimdTrig<Batch>>>;
+  if constexpr (!std::is_void_v<Sleef>) k.sleef_trig = &attempt_all<VectorPack<Batch, Sleef>>;
+  return k;
+}
+#endif
 
 }  // namespace pcrf::detail::batch

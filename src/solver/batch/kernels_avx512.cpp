@@ -1,52 +1,18 @@
-// The avx512 kernels (8 lanes a register; see attempt_kernel.hpp). Compiled with this
+// The avx512f kernels (8 lanes a register; see attempt_kernel.hpp). Compiled with this
 // instruction set's flags; run only where the CPU has it (choose_kernels).
-#if defined(__x86_64__) || defined(__i386__)
-#include <xsimd/xsimd.hpp>
-
 #include "attempt_kernel.hpp"
-#ifdef PCRF_HAVE_SLEEF
-#include <sleef.h>
-#endif
 
 namespace pcrf::detail::batch {
-namespace {
-
-using Batch = xsimd::batch<double, xsimd::avx512f>;
-
-struct XsimdTrig {
-  static void sincos(const Batch& x, Batch& s, Batch& c) {
-    auto sc = xsimd::sincos(x);
-    s = sc.first, c = sc.second;
-  }
-};
-
-#ifdef PCRF_HAVE_SLEEF
-struct SleefTrig {
-  static void sincos(const Batch& x, Batch& s, Batch& c) {
-    const auto sc = Sleef_sincosd8_u10avx512f(x);
-    s = Batch(sc.x), c = Batch(sc.y);
-  }
-};
-#endif
-
-}  // namespace
-
+#if defined(__x86_64__) || defined(__i386__)
 KernelSet avx512_kernels() {
-  KernelSet k;
-  k.name = "avx512f";
-  k.register_lanes = 8;
-  k.libm_trig = &attempt_all<VectorPack<Batch, LibmTrig<Batch>>>;
-  k.xsimd_trig = &attempt_all<VectorPack<Batch, XsimdTrig>>;
+  using Arch = xsimd::avx512f;
 #ifdef PCRF_HAVE_SLEEF
-  k.sleef_trig = &attempt_all<VectorPack<Batch, SleefTrig>>;
-#endif
-  return k;
-}
-
-}  // namespace pcrf::detail::batch
+  return vector_kernels<Arch, SleefTrig<xsimd::batch<double, Arch>, &Sleef_sincosd8_u10avx512f>>("avx512f");
 #else
-#include "lane_arrays.hpp"
-namespace pcrf::detail::batch {
-KernelSet avx512_kernels() { return {}; }  // not an x86 build
-}  // namespace pcrf::detail::batch
+  return vector_kernels<Arch>("avx512f");
 #endif
+}
+#else
+KernelSet avx512_kernels() { return {}; }  // not an x86 build
+#endif
+}  // namespace pcrf::detail::batch
