@@ -1,7 +1,7 @@
 // Lockstep batches (include/pcrf/solver/batch_solver.hpp): the same answers as the one-case
 // solver for every case of a random design of each scene, at W = 1, 2, 4 and 8, with every
 // kernel set this CPU runs and both vectorised sin/cos. Short synthetic records keep it to
-// seconds; the 10³-frame designs under three PEER records are bench/batch_cost.py's.
+// seconds; the 10³-frame designs under three PEER records are tests/batch_long's (opt-in).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,75 +11,16 @@
 #include <string>
 #include <vector>
 
-#include "pcrf/model/frame.hpp"
-#include "pcrf/model/rigid_rocker.hpp"
+#include "batch_design.hpp"
 #include "pcrf/solver/batch_solver.hpp"
-#include "solver/prepared_frame.hpp"  // private to the solver: the test reads the scene
 #include "solver_test_support.hpp"
 
 namespace pcrf {
 namespace {
 
-/// A Latin hypercube of n points in [0, 1)^d.
-std::vector<std::vector<double>> latin_hypercube(std::size_t n, std::size_t d, std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  std::vector<std::vector<double>> points(n, std::vector<double>(d));
-  for (std::size_t j = 0; j < d; ++j) {
-    std::vector<std::size_t> order(n);
-    for (std::size_t i = 0; i < n; ++i) order[i] = i;
-    std::shuffle(order.begin(), order.end(), rng);
-    for (std::size_t i = 0; i < n; ++i) points[i][j] = (static_cast<double>(order[i]) + u(rng)) / static_cast<double>(n);
-  }
-  return points;
-}
-
-double between(double lo, double hi, double x) { return lo + (hi - lo) * x; }
-
-enum class SceneKind { kBlock, kRockingFrame, kPrestressedFrame };
-
-/// n distinct prepared frames of one scene from a Latin hypercube.
-std::vector<std::shared_ptr<PreparedFrame>> design(SceneKind kind, std::size_t n, const PhysicsOptions& physics) {
-  std::vector<std::shared_ptr<PreparedFrame>> frames;
-  for (const auto& x : latin_hypercube(n, 3, 17 + static_cast<std::uint64_t>(kind))) {
-    if (kind == SceneKind::kPrestressedFrame) {
-      FrameParameters p;
-      p.tan_alpha = between(0.15, 0.3, x[0]);
-      p.pi_sigma_c = between(0.0, 10.0, x[1]);
-      p.kappa = between(0.5, 3.0, x[2]);
-      frames.push_back(prepare_frame(make_frame(p), physics));
-    } else {
-      RockerParameters p;
-      p.slenderness_rad = between(0.12, 0.3, x[0]);
-      p.size_m = between(0.4, 3.0, x[1]);
-      p.beam_mass_ratio = kind == SceneKind::kBlock ? 0.0 : between(0.2, 2.0, x[2]);
-      frames.push_back(prepare_scene(std::make_unique<RigidRocker>(p), physics));
-    }
-  }
-  return frames;
-}
-
-/// |a − b| ≤ tol·max(|a|, |b|), NaN matching NaN.
-::testing::AssertionResult close(const char* name, double a, double b, double tol) {
-  if (std::isnan(a) && std::isnan(b)) return ::testing::AssertionSuccess();
-  if (a == b || std::abs(a - b) <= tol * std::max(std::abs(a), std::abs(b))) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << name << ": batch " << a << ", one case " << b << " (relative "
-                                       << std::abs(a - b) / std::max(std::abs(a), std::abs(b)) << ")";
-}
-
-/// Every metric of `batch` against `one`: to `tol` relative, or bit for bit (tol 0, counts too).
-void expect_same(const CaseResult& batch, const CaseResult& one, double tol, const std::string& where) {
-  SCOPED_TRACE(where);
-  EXPECT_EQ(batch.status, one.status) << batch.message << " | " << one.message;
-  EXPECT_EQ(batch.impacts, one.impacts);
-  EXPECT_EQ(batch.message, one.message);
-  for (const MetricInfo& m : all_metrics()) {
-    if (m.name == "wall_time_s") continue;
-    const bool counter = m.is_count && m.name != "impacts";
-    if (counter && tol > 0.0) continue;  // solver counters: equal only bit for bit
-    EXPECT_TRUE(close(std::string(m.name).c_str(), m.get(batch), m.get(one), tol));
-  }
-}
+using test::design;
+using test::expect_same;
+using test::SceneKind;
 
 struct Design {
   SceneKind kind;
