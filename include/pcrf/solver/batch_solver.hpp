@@ -32,7 +32,7 @@
 namespace pcrf {
 
 struct BatchOptions {
-  /// W, cases in flight together (1 … 64). 8: the fastest measured with exact answers
+  /// W, cases in flight together (≥ 1). 8: the fastest measured with exact answers
   /// (docs/batches.md), and two registers where AVX-512 is absent.
   int lanes = 8;
   /// Kernel set: "" the widest this CPU runs whose register holds at most `lanes` doubles;
