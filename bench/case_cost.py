@@ -17,12 +17,19 @@ Two measures, as a shared and loaded machine requires:
   scene's terms, the record, sincos) -- what is left when the integrator's own work is small;
 - time: the solver's own wall_time_s, the two builds run in turn (A B A B ...), median of
   --repeat runs each, and the ratio old/new taken pair by pair (median of the pair ratios).
+  On a loaded machine a long case is preempted more often than a short one, which inflates
+  that ratio; so, with --old, also
+- CPU per case in a study: the frame under the four records at 100 PGAs within ±0.5 % of
+  1.2x its threshold (400 rocking cases, one rank, `pcrf study`), the process's user +
+  system time, less that of the same study at one PGA (start-up, records, cube), over 396;
+  the two builds in turn, median of --repeat runs each.
 
 Without valgrind the instruction columns are left out, with a note.
 """
 import argparse
 import os
 import re
+import resource
 import shutil
 import statistics
 import subprocess
@@ -66,6 +73,40 @@ def instructions(command):
 
 def wall_s(command):
     return run_json(command)["wall_time_s"]
+
+
+def child_cpu_s(command):
+    """User + system seconds of one finished child process."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    done = subprocess.run(command, capture_output=True, text=True)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if done.returncode != 0:
+        sys.exit(f"case_cost: {' '.join(command)} failed:\n{done.stderr[-2000:]}")
+    return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+
+
+def study_cpu_per_case(builds, paper, thr_g, repeat):
+    """{tag: median CPU seconds per rocking case} of a study (see the module's doc)."""
+    records = "".join(f'[[records]]\nname = "{rec}"\nfile = "{paper / (rec + ".AT2")}"\n' for rec in RECORDS)
+    levels = {"many": [PGA_OVER_THRESHOLD * thr_g * (0.995 + 0.0001 * i) for i in range(100)],
+              "one": [PGA_OVER_THRESHOLD * thr_g]}
+    with tempfile.TemporaryDirectory() as tmp:
+        studies = {}
+        for name, values in levels.items():
+            studies[name] = os.path.join(tmp, f"{name}.toml")
+            with open(studies[name], "w") as f:
+                f.write(f'[study]\nname = "case_cost"\n[intensity]\nmeasure = "pga_g"\n[axes]\n'
+                        f'intensity = [{", ".join(repr(v) for v in values)}]\n'
+                        f'[outputs]\nmetrics = ["theta_max_rad", "impacts"]\n{records}')
+        cpu = {(tag, name): [] for tag, _ in builds for name in studies}
+        for _ in range(repeat):
+            for name, study in studies.items():
+                for tag, pcrf in builds:
+                    cube = os.path.join(tmp, f"{tag}_{name}.h5")
+                    cpu[(tag, name)].append(child_cpu_s([pcrf, "study", study, "-o", cube, "--overwrite"]))
+        extra = len(levels["many"]) * len(RECORDS) - len(RECORDS)
+        return {tag: (statistics.median(cpu[(tag, "many")]) - statistics.median(cpu[(tag, "one")])) / extra
+                for tag, _ in builds}
 
 
 def median_ratio(a, b):
@@ -129,6 +170,10 @@ def main():
                 old = sum(i["old"][0] for i, _ in rows)
                 new = sum(i["new"][0] for i, _ in rows)
                 print(f"{scene}: old/new instructions summed over the records: {old / new:.1f}x")
+    if a.old:
+        cpu = study_cpu_per_case(builds, paper, threshold_g(a.pcrf, "pcrf"), a.repeat)
+        print(f"\nCPU per rocking frame case in a study (400 cases, one rank, median of {a.repeat}): "
+              f"new {1e3 * cpu['new']:.3f} ms, old {1e3 * cpu['old']:.3f} ms, old/new {cpu['old'] / cpu['new']:.1f}x")
     return 0
 
 

@@ -213,7 +213,7 @@ def write_markdown(path, rows, evidence, published):
     add("")
     add("## 4. The paper's procedure reproduces its numbers only at one step size")
     add("")
-    add("`uplift = \"paper-procedure\"` (non-physical, README \"Uplift criteria\") starts the motion at "
+    add("`uplift = \"paper-procedure\"` (non-physical, docs/physics.md \"Uplift criteria\") starts the motion at "
         "t_RI with no contact condition and integrates with a fixed-step RK4 that keeps the side over a "
         "step and applies r at the end of a step with a sign change of θ₁. Its θ_max against the paper's:")
     add("")
@@ -232,7 +232,7 @@ def write_markdown(path, rows, evidence, published):
     add("The answer depends on h and does not converge: at 5 ms it is of the paper's order, at 1 ms a "
         "tenth of it. A step that crosses θ₁ = 0 integrates the old side's equation beyond zero, where "
         "the step force of gravity and prestress pushes outwards, and applies the impact late; each "
-        "crossing pumps energy in (README, \"Numerics audit\"). With the contact condition the motion "
+        "crossing pumps energy in (docs/results.md, \"Numerics audit\"). With the contact condition the motion "
         "does not start at all (section 2). An independent implementation of the same scheme measured a "
         "median ratio of 1.13 at 5 ms (8 of 13 within 30 %), 0.48 at 2.5 ms and 0.095 at 1 ms, and 1 of "
         "13 peak times within 0.1 s; the engine's numbers above differ in detail (where the first step "

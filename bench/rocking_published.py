@@ -164,8 +164,9 @@ def figure(engine, path, slender):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     from matplotlib import ticker
-    sys.path.insert(0, str(__import__("pathlib").Path(__file__).resolve().parents[1] / "src" / "plot"))
-    from pcrf_plot import style
+    # The figures' style (pcrf.plot.style) from the module built beside the engine (build/python).
+    sys.path.insert(0, str(__import__("pathlib").Path(engine.pcrf).resolve().parent / "python"))
+    from pcrf.plot import style
 
     alpha, p, r = 0.25, 2.14, 0.9
     ratios = [1.5, 2, 2.5, 3, 3.5, 4, 4.5, 5, 5.5, 6, 6.5, 7, 7.34, 7.5, 8, 9, 10]

@@ -59,7 +59,7 @@ for a, theta in zip(amplitudes_g[::5], peaks[::5]):
     print(f"  {a:.2f} g -> theta_max {theta:.4g} rad")
 
 # %% [markdown]
-# ## A bad keyword or value: the command line's message, as ValueError
+# ## A bad keyword or value: pcrf.InputError (a ValueError) naming the keyword
 
 # %%
 for bad in ({"tail_s": -1}, {"preset": "fastest"}, {"rtoll": 1e-6}):

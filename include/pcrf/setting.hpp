@@ -14,6 +14,7 @@
 #pragma once
 
 #include "pcrf/number_text.hpp"
+#include "pcrf/user_error.hpp"
 
 #include <array>
 #include <charconv>
@@ -86,12 +87,6 @@ struct SettingTable {
   }
 };
 
-/// The command-line flag of a key: "tail_s" → "--tail-s", "pi_e_c" → "--pi-e-c".
-inline std::string flag_name(std::string_view key) {
-  std::string flag = "--";
-  for (char c : key) flag += c == '_' ? '-' : c;
-  return flag;
-}
 
 // ---- values as text ------------------------------------------------------------------------
 

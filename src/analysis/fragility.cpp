@@ -3,6 +3,8 @@
 // log-likelihoods, no derivatives to get wrong.
 #include "pcrf/analysis/fragility.hpp"
 
+#include "pcrf/user_error.hpp"
+
 #include "pcrf/analysis/percentile.hpp"
 
 #include <algorithm>

@@ -1,6 +1,8 @@
 // FEMA P-695 from the median collapse intensity to the verdict (see p695.hpp).
 #include "pcrf/analysis/p695.hpp"
 
+#include "pcrf/user_error.hpp"
+
 #include <boost/math/distributions/normal.hpp>
 
 #include <algorithm>
@@ -42,7 +44,7 @@ std::string lower(std::string s) {
 Sdc parse_sdc(const std::string& text) {
   for (const SdcRow& r : kSdcs)
     if (lower(text) == lower(r.name)) return r.sdc;
-  throw std::invalid_argument("unknown seismic design category '" + text + "' (expected Dmax, Dmin, Cmax, Cmin, Bmax or Bmin)");
+  throw UserError("unknown seismic design category '" + text + "' (expected Dmax, Dmin, Cmax, Cmin, Bmax or Bmin)");
 }
 
 std::string to_string(Sdc sdc) { return row_of(sdc).name; }
@@ -60,7 +62,7 @@ double rating_beta(char rating) {
     case 'B': return 0.20;
     case 'C': return 0.35;
     case 'D': return 0.50;
-    default: throw std::invalid_argument(std::string("unknown quality rating '") + rating + "' (expected A, B, C or D)");
+    default: throw UserError(std::string("unknown quality rating '") + rating + "' (expected A, B, C or D)");
   }
 }
 
@@ -74,8 +76,8 @@ double beta_total(double mu_t, char design_rating, char test_rating, char model_
 }
 
 double spectral_shape_factor(double period_s, double mu_t, Sdc sdc) {
-  if (!(mu_t >= 1.0)) throw std::invalid_argument("the period-based ductility mu_T must be at least 1");
-  if (!(period_s > 0.0)) throw std::invalid_argument("the period must be positive");
+  if (!(mu_t >= 1.0)) throw UserError("the period-based ductility mu_T must be at least 1");
+  if (!(period_s > 0.0)) throw UserError("the period must be positive");
   return std::exp(ssf_beta1(mu_t) * (target_epsilon(sdc) - far_field_epsilon(period_s)));
 }
 
@@ -93,7 +95,7 @@ double acceptable_cmr(double beta_total, double probability) {
 CountedMedian counted_median(std::vector<double> collapse_g, std::vector<double> censored_g) {
   CountedMedian m;
   m.curves = collapse_g.size() + censored_g.size();
-  if (m.curves == 0) throw std::invalid_argument("no IDA curve to count a median collapse intensity from");
+  if (m.curves == 0) throw UserError("no IDA curve to count a median collapse intensity from");
   const std::size_t k = (m.curves + 1) / 2;  // ⌈N/2⌉
   const double none = std::nan("");
   std::sort(collapse_g.begin(), collapse_g.end());
@@ -131,7 +133,7 @@ Assessment assess(double s_ct_g, double period_s, double mu_t, Sdc sdc, char des
 }
 
 GroupVerdict assess_group(const std::vector<Assessment>& archetypes) {
-  if (archetypes.empty()) throw std::invalid_argument("a performance group needs at least one archetype");
+  if (archetypes.empty()) throw UserError("a performance group needs at least one archetype");
   GroupVerdict v{};
   for (const Assessment& a : archetypes) v.mean_acmr += a.acmr / static_cast<double>(archetypes.size());
   // One β_TOT per performance group (Section 7.6): the largest of its archetypes'.

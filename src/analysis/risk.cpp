@@ -1,6 +1,8 @@
 // Annual collapse rate from a hazard curve and a fragility (see risk.hpp).
 #include "pcrf/analysis/risk.hpp"
 
+#include "pcrf/user_error.hpp"
+
 #include <boost/math/distributions/normal.hpp>
 
 #include <algorithm>
@@ -25,8 +27,8 @@ double lognormal_cdf(const analysis::Lognormal& f, double x) {
 }
 
 void check_fragility(const analysis::Lognormal& f) {
-  if (!(f.median > 0.0) || !std::isfinite(f.median)) throw std::invalid_argument("fragility median must be positive");
-  if (!(f.beta > 0.0) || !std::isfinite(f.beta)) throw std::invalid_argument("fragility beta must be positive");
+  if (!(f.median > 0.0) || !std::isfinite(f.median)) throw UserError("fragility median must be positive");
+  if (!(f.beta > 0.0) || !std::isfinite(f.beta)) throw UserError("fragility beta must be positive");
 }
 
 /// Simpson's rule in u = ln x over [a, b] with `steps` (even) steps of ∫ P(x) k λ(x) du,
@@ -64,19 +66,19 @@ std::string to_string(Tail tail) { return tail == Tail::kCutOff ? "cut-off" : "p
 Tail parse_tail(const std::string& text) {
   if (text == "cut-off" || text == "cutoff") return Tail::kCutOff;
   if (text == "power-law") return Tail::kPowerLaw;
-  throw std::invalid_argument("unknown hazard tail '" + text + "' (expected cut-off or power-law)");
+  throw UserError("unknown hazard tail '" + text + "' (expected cut-off or power-law)");
 }
 
 HazardCurve::HazardCurve(std::vector<double> intensity, std::vector<double> rate_per_yr, Tail tail)
     : x_(std::move(intensity)), rate_(std::move(rate_per_yr)), tail_(tail) {
-  if (x_.size() != rate_.size()) throw std::invalid_argument("a hazard curve needs as many rates as intensities");
-  if (x_.size() < 2) throw std::invalid_argument("a hazard curve needs at least two points");
+  if (x_.size() != rate_.size()) throw UserError("a hazard curve needs as many rates as intensities");
+  if (x_.size() < 2) throw UserError("a hazard curve needs at least two points");
   for (std::size_t i = 0; i < x_.size(); ++i) {
     const std::string point = "point " + std::to_string(i) + ": ";
-    if (!(x_[i] > 0.0) || !std::isfinite(x_[i])) throw std::invalid_argument(point + "intensity must be positive");
-    if (!(rate_[i] > 0.0) || !std::isfinite(rate_[i])) throw std::invalid_argument(point + "rate must be positive");
-    if (i > 0 && !(x_[i] > x_[i - 1])) throw std::invalid_argument(point + "intensities must increase");
-    if (i > 0 && !(rate_[i] < rate_[i - 1])) throw std::invalid_argument(point + "the rate must decrease");
+    if (!(x_[i] > 0.0) || !std::isfinite(x_[i])) throw UserError(point + "intensity must be positive");
+    if (!(rate_[i] > 0.0) || !std::isfinite(rate_[i])) throw UserError(point + "rate must be positive");
+    if (i > 0 && !(x_[i] > x_[i - 1])) throw UserError(point + "intensities must increase");
+    if (i > 0 && !(rate_[i] < rate_[i - 1])) throw UserError(point + "the rate must decrease");
   }
 }
 
@@ -118,7 +120,7 @@ double HazardCurve::intensity_at_rate(double r) const {
 }
 
 HazardCurve power_law_curve(double k0_per_yr, double k, double low, double high, std::size_t points, Tail tail) {
-  if (points < 2 || !(low > 0.0) || !(high > low)) throw std::invalid_argument("power_law_curve: bad range");
+  if (points < 2 || !(low > 0.0) || !(high > low)) throw UserError("power_law_curve: bad range");
   std::vector<double> x(points), r(points);
   for (std::size_t i = 0; i < points; ++i) {
     x[i] = low * std::pow(high / low, static_cast<double>(i) / static_cast<double>(points - 1));
@@ -183,12 +185,12 @@ RateResult collapse_rate(const HazardCurve& h, const analysis::Lognormal& f, con
 
 RateResult collapse_rate_steps(const HazardCurve& h, const std::vector<double>& intensity,
                                const std::vector<double>& probability, const std::vector<double>& breakpoints) {
-  if (intensity.size() != probability.size()) throw std::invalid_argument("a step fragility needs a probability per intensity");
+  if (intensity.size() != probability.size()) throw UserError("a step fragility needs a probability per intensity");
   for (std::size_t j = 0; j < intensity.size(); ++j) {
     if (!(intensity[j] > 0.0) || (j > 0 && !(intensity[j] > intensity[j - 1])))
-      throw std::invalid_argument("a step fragility's intensities must be positive and increase");
+      throw UserError("a step fragility's intensities must be positive and increase");
     if (!(probability[j] >= 0.0 && probability[j] <= 1.0))
-      throw std::invalid_argument("a step fragility's probabilities must lie in [0, 1]");
+      throw UserError("a step fragility's probabilities must lie in [0, 1]");
   }
   RateResult out;
   if (intensity.empty()) return out;
@@ -232,7 +234,7 @@ void empirical_ida_steps(std::vector<double> collapses, std::size_t curves, std:
 }
 
 std::vector<double> deaggregate(const std::vector<RatePiece>& pieces, const std::vector<double>& edges) {
-  if (edges.size() < 2) throw std::invalid_argument("deaggregate needs at least two bin edges");
+  if (edges.size() < 2) throw UserError("deaggregate needs at least two bin edges");
   std::vector<double> bins(edges.size() - 1, 0.0);
   for (const auto& p : pieces) {
     const double at = p.high > p.low ? std::sqrt(p.low * p.high) : p.low;
@@ -281,11 +283,11 @@ analysis::Lognormal RiskTarget::fragility_at(double intensity) const {
 
 void check(const RiskTarget& t) {
   if (!(t.target_probability > 0.0 && t.target_probability < 1.0))
-    throw std::invalid_argument("the target collapse probability must lie in (0, 1)");
+    throw UserError("the target collapse probability must lie in (0, 1)");
   if (!(t.collapse_probability > 0.0 && t.collapse_probability < 1.0))
-    throw std::invalid_argument("the collapse probability at the risk-targeted intensity must lie in (0, 1)");
-  if (!(t.years > 0.0) || !std::isfinite(t.years)) throw std::invalid_argument("the target's years must be positive");
-  if (!(t.beta > 0.0) || !std::isfinite(t.beta)) throw std::invalid_argument("the generic fragility's beta must be positive");
+    throw UserError("the collapse probability at the risk-targeted intensity must lie in (0, 1)");
+  if (!(t.years > 0.0) || !std::isfinite(t.years)) throw UserError("the target's years must be positive");
+  if (!(t.beta > 0.0) || !std::isfinite(t.beta)) throw UserError("the generic fragility's beta must be positive");
 }
 
 double risk_targeted_intensity(const HazardCurve& h, const RiskTarget& t) {

@@ -1,6 +1,8 @@
 // Sobol' indices from a Saltelli design (see sobol_indices.hpp).
 #include "pcrf/analysis/sobol_indices.hpp"
 
+#include "pcrf/user_error.hpp"
+
 #include "pcrf/analysis/percentile.hpp"
 
 #include <algorithm>

@@ -1,7 +1,7 @@
 // One case as the command line and the Python module solve it (see one_case.hpp).
 #include "pcrf/api/one_case.hpp"
 
-#include "pcrf/api/input_error.hpp"
+#include "pcrf/user_error.hpp"
 #include "pcrf/solver/rocking_solver.hpp"
 
 namespace pcrf::api {
@@ -9,46 +9,39 @@ namespace pcrf::api {
 double scale_factor(const Scaling& scaling, const StationRecord& station, std::optional<double> incidence_deg) {
   const GroundMotion& motion = station.h1;
   if (!scaling.intensity) {
-    if (!scaling.measure.empty()) throw InputError("--measure, --period-s and --damping go with --intensity VALUE");
+    if (!scaling.measure.empty())
+      throw UserError(Where{}, "{}, {} and {} go with {} VALUE", {"measure", "period_s", "damping", "intensity"});
     return scaling.scale;
   }
-  if (scaling.scale_given) throw InputError("give either --scale or --intensity, not both");
-  if (!(*scaling.intensity > 0.0)) throw InputError("--intensity must be positive");
+  if (scaling.scale_given) throw UserError(Where{}, "give either {} or {}, not both", {"scale", "intensity"});
+  if (!(*scaling.intensity > 0.0)) throw UserError("intensity", "must be positive");
   const IntensitySpec spec = resolve_settings(intensity_settings(), scaling.measure);
-  if (const auto problem = intensity_spec_problem(spec); !problem.empty()) throw InputError("--period-s: " + problem);
+  if (const auto problem = intensity_spec_problem(spec); !problem.empty()) throw UserError("period_s", problem);
   if (spec.normalise != SetNormalisation::kNone)
-    throw InputError("--normalise applies to a study's record set, not to one record: scale it with --scale");
+    throw UserError("normalise", "applies to a study's record set, not to one record: scale it with {}", {"scale"});
   if (component_measure(spec.measure) == IntensityMeasure::kSa)
     if (const auto problem = sa_period_problem(spec.period_s, motion.dt_s()); !problem.empty())
-      throw InputError("--period-s: " + problem + " (" + motion.name() + ")");
-  if (const auto problem = measures_problem(motion); !problem.empty()) throw InputError(motion.name() + ": " + problem);
+      throw UserError("period_s", problem + " (" + motion.name() + ")");
+  if (const auto problem = measures_problem(motion); !problem.empty()) throw UserError(motion.name() + ": " + problem);
   const double im = station_intensity(station, incidence_deg, spec);
-  if (!(im > 0.0)) throw InputError(motion.name() + ": its " + to_string(spec.measure) + " is 0: it cannot be scaled");
+  if (!(im > 0.0)) throw UserError(motion.name() + ": its " + to_string(spec.measure) + " is 0: it cannot be scaled");
   return intensity_scale_factor(*scaling.intensity, im);
 }
 
 ScaledExcitation scaled_excitation(const StationRecord& station, std::optional<double> incidence_deg,
                                    const Scaling& scaling) {
-  try {
-    ScaledExcitation scaled;
-    scaled.scale_factor = scale_factor(scaling, station, incidence_deg);
-    scaled.excitation = std::make_unique<FrameExcitation>(station, incidence_deg, scaled.scale_factor);
-    return scaled;
-  } catch (const std::invalid_argument& e) {  // an incidence without a pair, a scale that overflows
-    throw InputError(e.what());
-  }
+  ScaledExcitation scaled;
+  scaled.scale_factor = scale_factor(scaling, station, incidence_deg);
+  scaled.excitation = std::make_unique<FrameExcitation>(station, incidence_deg, scaled.scale_factor);
+  return scaled;
 }
 
 CaseResult solve_one_case(std::unique_ptr<Scene> scene, const PhysicsOptions& physics, const Excitation& excitation,
                           const SolverSettings& solver, double history_dt_s, const HistorySink& sink) {
-  try {
-    OutputRequest request;
-    request.history_dt_s = history_dt_s;
-    const auto prepared = prepare_scene(std::move(scene), physics);
-    return solve_case(*prepared, excitation, solver, request, sink);
-  } catch (const std::invalid_argument& e) {
-    throw InputError(e.what());
-  }
+  OutputRequest request;
+  request.history_dt_s = history_dt_s;
+  const auto prepared = prepare_scene(std::move(scene), physics);
+  return solve_case(*prepared, excitation, solver, request, sink);
 }
 
 JsonObject case_json(double scale_factor, const CaseResult& result) {

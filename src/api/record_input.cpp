@@ -1,7 +1,7 @@
 // One ground motion as a user names it (see record_input.hpp).
 #include "pcrf/api/record_input.hpp"
 
-#include "pcrf/api/input_error.hpp"
+#include "pcrf/user_error.hpp"
 #include "pcrf/record/intensity.hpp"
 #include "pcrf/record/synthetic.hpp"
 
@@ -10,30 +10,21 @@ namespace pcrf::api {
 RecordFileSpec RecordInput::spec() const {
   RecordFileSpec spec;
   spec.path = file;
-  try {
-    spec.format = format.empty() ? guess_record_format(spec.path) : parse_record_format(format);
-    spec.unit = parse_accel_unit(units);
-  } catch (const std::invalid_argument& e) {
-    throw InputError(e.what());
-  }
+  spec.format = format.empty() ? guess_record_format(spec.path) : parse_record_format(format);
+  spec.unit = parse_accel_unit(units);
   spec.dt_s = dt_s;
   spec.skip_rows = skip_rows;
   spec.column = column;
-  if (column > 0 && spec.format != RecordFormat::kOneColumn) throw InputError("--column applies to one-column records only");
-  if (spec.format == RecordFormat::kOneColumn && !(dt_s > 0)) throw InputError("--dt is required (and > 0) for a one-column record");
+  if (column > 0 && spec.format != RecordFormat::kOneColumn) throw UserError("column", "applies to one-column records only");
+  if (spec.format == RecordFormat::kOneColumn && !(dt_s > 0)) throw UserError("dt_s", "is required (and > 0) for a one-column record");
   return spec;
 }
 
 GroundMotion RecordInput::load() const {
-  if (file.empty() == synthetic.empty()) throw InputError("give exactly one of --record FILE or --synthetic SPEC");
-  try {
-    if (!synthetic.empty()) return make_synthetic(synthetic);
-    return read_record(spec());
-  } catch (const RecordError& e) {
-    throw InputError(e.what());
-  } catch (const std::invalid_argument& e) {
-    throw InputError(e.what());
-  }
+  if (file.empty() == synthetic.empty())
+    throw UserError(Where{}, "give exactly one of {} FILE or {} SPEC", {"record", "synthetic"});
+  if (!synthetic.empty()) return make_synthetic(synthetic);
+  return read_record(spec());
 }
 
 RecordInput RecordInput::component(const std::string& path) const {
@@ -44,11 +35,7 @@ RecordInput RecordInput::component(const std::string& path) const {
 }
 
 RecordMetadata record_metadata(const RecordFileSpec& spec) {
-  try {
-    return read_metadata(spec);
-  } catch (const RecordError& e) {
-    throw InputError(e.what());
-  }
+  return read_metadata(spec);
 }
 
 namespace {
@@ -69,11 +56,7 @@ StationRecord RecordInput::load_station(std::vector<std::string>& notes) const {
   std::optional<StationComponent> h2, up;
   if (!file_h2.empty()) h2 = part(component(file_h2));
   if (!file_up.empty()) up = part(component(file_up));
-  try {
-    return make_station(part(*this), az1_deg, std::move(h2), az2_deg, std::move(up), notes);
-  } catch (const std::invalid_argument& e) {
-    throw InputError(e.what());
-  }
+  return make_station(part(*this), az1_deg, std::move(h2), az2_deg, std::move(up), notes);
 }
 
 std::vector<std::string> implausible_records(const RecordInput& input, const StationRecord& station) {

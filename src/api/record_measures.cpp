@@ -4,7 +4,7 @@
 #include <string>
 #include <utility>
 
-#include "pcrf/api/input_error.hpp"
+#include "pcrf/user_error.hpp"
 #include "pcrf/record/horizontal_pair.hpp"
 #include "pcrf/record/intensity.hpp"
 #include "pcrf/record/rotd.hpp"
@@ -13,12 +13,12 @@ namespace pcrf::api {
 namespace {
 
 /// The measures of one component, and what its file says about itself.
-/// \throws InputError for values that overflow the measures or a period below 2·dt.
+/// \throws UserError for values that overflow the measures or a period below 2·dt.
 JsonObject measures(const GroundMotion& motion, const RecordMetadata& meta, const MeasureRequest& args) {
-  if (const auto problem = measures_problem(motion); !problem.empty()) throw InputError(motion.name() + ": " + problem);
+  if (const auto problem = measures_problem(motion); !problem.empty()) throw UserError(motion.name() + ": " + problem);
   for (double t : args.periods_s)
     if (const auto problem = sa_period_problem(t, motion.dt_s()); !problem.empty())
-      throw InputError("--period: " + problem + " (" + motion.name() + ")");
+      throw UserError("periods_s", problem + " (" + motion.name() + ")");
   const auto peak = peak_acceleration(motion);
   std::vector<double> sa_g;
   for (double t : args.periods_s) sa_g.push_back(spectral_acceleration_g(motion, t, args.damping));
@@ -72,22 +72,18 @@ RecordMetadata metadata_of_file(const RecordInput& input, const std::string& fil
 }  // namespace
 
 void check_measure_request(const MeasureRequest& request) {
-  if (!(request.damping >= 0.0 && request.damping < 1.0)) throw InputError("--damping must be in [0, 1)");
+  if (!(request.damping >= 0.0 && request.damping < 1.0)) throw UserError("damping", "must be in [0, 1)");
   for (double t : request.periods_s)
-    if (const auto problem = sa_period_problem(t, 0.0); !problem.empty()) throw InputError("--period: " + problem);
+    if (const auto problem = sa_period_problem(t, 0.0); !problem.empty()) throw UserError("periods_s", problem);
 }
 
 JsonObject record_measures(const StationRecord& station, const RecordInput& input, const MeasureRequest& request) {
   JsonObject json = measures(station.h1, metadata_of_file(input, input.file), request);
   if (station.h2) {
     if (!station.az1_deg || !station.az2_deg)
-      throw InputError("the azimuth of '" + (station.az1_deg ? station.h2->name() : station.h1.name()) +
-                       "' is not stated by its header: give " + (station.az1_deg ? "--h2-azimuth-deg" : "--azimuth-deg"));
-    try {
-      add_rotd(json, HorizontalPair{station.h1, *station.az1_deg, *station.h2, *station.az2_deg}, request);
-    } catch (const std::invalid_argument& e) {
-      throw InputError(e.what());
-    }
+      throw UserError(Where{}, "the azimuth of '" + (station.az1_deg ? station.h2->name() : station.h1.name()) +
+                       "' is not stated by its header: give {}", {station.az1_deg ? "h2_azimuth_deg" : "azimuth_deg"});
+    add_rotd(json, HorizontalPair{station.h1, *station.az1_deg, *station.h2, *station.az2_deg}, request);
     json.object("pair", measures(*station.h2, metadata_of_file(input, input.file_h2), request));
   }
   if (station.up) json.object("up", measures(*station.up, metadata_of_file(input, input.file_up), request));

@@ -14,6 +14,7 @@
 #include "pcrf/io/output_file.hpp"
 #include "pcrf/io/run_lock.hpp"
 #include "pcrf/post/cube_fragility.hpp"
+#include "pcrf/post/cube_notes.hpp"
 #include "pcrf/post/cube_p695.hpp"
 #include "pcrf/post/cube_reports.hpp"
 #include "pcrf/post/cube_risk.hpp"
@@ -60,21 +61,16 @@ std::vector<cube::Selector> selectors(const std::vector<std::string>& texts) {
   return result;
 }
 
-/// A cube that a study run is writing is read as its last complete checkpoint (each is
-/// renamed into place whole); says so on stderr.
+/// A cube that a study run is writing is read as its last complete checkpoint; says so on stderr.
 void note_running(const std::string& file) {
-  const std::string who = io::RunLock::holder(file);
-  if (!who.empty())
-    std::cerr << "pcrf cube: " << file << ": a run holds it (" << who << "): read as its last complete checkpoint\n";
+  if (const auto note = post::running_note(file); !note.empty()) std::cerr << "pcrf cube: " << note << '\n';
 }
 
-/// A cube with cases never run (stopped early, merged from some shards): says how many on
-/// stderr, since what is printed covers the cases run only.
+/// A cube with cases never run: says how many on stderr, since what is printed covers the
+/// cases run only.
 void note_partial(const std::string& command, const std::string& file, const cube::CubeReader& reader) {
-  const auto missing = study::vocabulary::not_run(reader);
-  if (missing.count > 0)
-    std::cerr << "pcrf cube " << command << ": " << file << ": " << missing.count << " of " << missing.total << " "
-              << missing.unit << " not run (a partial cube): left out\n";
+  if (const auto note = post::partial_note(file, reader); !note.empty())
+    std::cerr << "pcrf cube " << command << ": " << note << '\n';
 }
 
 /// What the cube's statuses say that the printed answer cannot show (vocabulary::verdict_notes:
@@ -100,7 +96,7 @@ void guarded(const std::string& file, Action action) {
     action();
   } catch (const cube::CubeError& e) {
     const std::string text = e.what();
-    throw UsageError(text.rfind(file, 0) == 0 ? text : file + ": " + text);
+    throw UserError(text.rfind(file, 0) == 0 ? text : file + ": " + text);
   }
 }
 
@@ -160,7 +156,7 @@ void write_report(const post::Report& report, const std::string& table, const Cu
 
 /// Refuses --json with `--csv -` (both are stdout) and a CSV output that is the cube.
 void check_report_outputs(const CubeArguments& args) {
-  if (args.json && args.csv == "-") throw UsageError("--json and --csv - both write to stdout: choose one");
+  if (args.json && args.csv == "-") throw UserError("--json and --csv - both write to stdout: choose one");
   check_output(args.csv, {args.file}, args.overwrite);
 }
 
@@ -180,11 +176,7 @@ void add_reduction(CLI::App* cmd, CubeArguments& args, const std::string& over_h
 
 /// The reduction asked for, `default_how` unless --reduce says (post::reduction_of).
 cube::Reduction reduction_of(const CubeArguments& args, const std::string& default_how) {
-  try {
-    return post::reduction_of(args.reduce_over, args.reduce_how, default_how);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
+  return post::reduction_of(args.reduce_over, args.reduce_how, default_how);
 }
 
 void add_info(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
@@ -206,7 +198,7 @@ void add_info(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
       const auto damage = reader.damage();
       if (!damage.empty()) {
         for (const auto& d : damage) std::cout << "DAMAGED: " << d << '\n';
-        throw UsageError(args->file + ": damaged: " + std::to_string(damage.size()) +
+        throw UserError(args->file + ": damaged: " + std::to_string(damage.size()) +
                          " variables cannot be read; --resume cannot continue it");
       }
     });
@@ -291,7 +283,7 @@ void add_fragility(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& arg
                                                            {"points", post::fragility_point_columns()}}));
   fragility->callback([args] {
     guarded(args->file, [&] {
-      if (const auto problem = post::mce_problem(args->mce); !problem.empty()) throw UsageError(problem);
+      post::check_mce(args->mce);
       check_report_outputs(*args);
       const std::vector<std::filesystem::path> csv_inputs{args->file}, points_inputs{args->file, args->csv};
       check_output(args->points, is_stdout(args->csv) ? csv_inputs : points_inputs, args->overwrite);
@@ -320,7 +312,7 @@ void add_sensitivity(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& a
   sensitivity->callback([args] {
     guarded(args->file, [&] {
       const bool by_record = !args->by.empty();
-      if (args->by.size() > 1 || (by_record && args->by.front() != "record")) throw UsageError("--by takes `record` only");
+      if (args->by.size() > 1 || (by_record && args->by.front() != "record")) throw UserError("--by takes `record` only");
       check_report_outputs(*args);
       cube::CubeReader reader(args->file);
       note_partial("sensitivity", args->file, reader);
@@ -332,11 +324,7 @@ void add_sensitivity(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& a
 
 /// The P-695 inputs of the command line, checked (post::p695_inputs).
 post::P695Inputs p695_inputs(const CubeArguments& args) {
-  try {
-    return post::p695_inputs(args.sdc, args.period_s, args.mu_t, args.ratings, args.s_ct);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
+  return post::p695_inputs(args.sdc, args.period_s, args.mu_t, args.ratings, args.s_ct);
 }
 
 void add_p695(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
@@ -359,7 +347,8 @@ void add_p695(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
       ->capture_default_str();
   add_report_outputs(p695_cmd, *args,
                      schema("file, sdc, period_s, mu_t, ratings, ratings_source (given or default), s_ct (counted or lognormal), group_mean_acmr, group_acmr10, group (pass or fail), "
-                            "measure_problem (empty when the cube is at Sa(T))",
+                            "measure_problem (empty when the cube is at Sa(T)), " + post::model_field_names() +
+                                ", model_p_collapse_mce_measured, model_p_collapse_mce_rated",
                             {{"frames", post::p695_columns()}}));
   p695_cmd->callback([args] {
     guarded(args->file, [&] {
@@ -368,12 +357,7 @@ void add_p695(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
       cube::CubeReader reader(args->file);
       note_partial("p695", args->file, reader);
       note_verdicts("p695", args->file, reader, "counted in no stripe (neither safe nor collapsed)");
-      post::P695Report result;
-      try {
-        result = post::cube_p695(reader, selectors(args->where), in);
-      } catch (const std::invalid_argument& e) {
-        throw UsageError(e.what());
-      }
+      const post::P695Report result = post::cube_p695(reader, selectors(args->where), in);
       write_report(post::p695_report(result, in, args->file), "frames", *args, "warning: ",
                    [&](std::ostream& out) { post::print_p695(result, in, out); });
     });
@@ -412,8 +396,10 @@ void add_risk(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
                             "target_rate_per_yr, generic_beta, generic_collapse_probability, risk_targeted_intensity, "
                             "ratings, ratings_beta, "
                             "uniform_hazard_intensity_2pct_50yr, risk_coefficient, group_frames, "
-                            "group_lambda_collapse_per_yr, group_p_collapse_in_years, group_lambda_collapse_max_per_yr; "
-                            "tables hazard (the curve read) and empirical (each frame's step fragility) for figures",
+                            "group_lambda_collapse_per_yr, group_p_collapse_in_years, group_lambda_collapse_max_per_yr, " +
+                                post::model_field_names() +
+                                ", model_lambda_pooled_per_yr, model_lambda_measured_per_yr, model_lambda_rated_per_yr; "
+                                "tables hazard (the curve read) and empirical (each frame's step fragility) for figures",
                             {{"frames", post::risk_columns()}, {"deaggregation", post::risk_deaggregation_columns()}}));
   risk_cmd->callback([args] {
     guarded(args->file, [&] {
@@ -422,18 +408,14 @@ void add_risk(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
       in.years = args->years;
       in.target = args->target;
       post::Report report;
-      try {
-        in.tail = risk::parse_tail(args->tail);
-        const auto ratings = post::p695_inputs("Dmax", 1.0, 0.0, args->ratings);  // the ratings checked as p695 checks them
-        in.design_rating = ratings.design_rating, in.test_rating = ratings.test_rating, in.model_rating = ratings.model_rating;
-        check_report_outputs(*args);
-        cube::CubeReader reader(args->file);
-        note_partial("risk", args->file, reader);
-        note_verdicts("risk", args->file, reader, "counted in no stripe (neither safe nor collapsed)");
-        report = post::risk_report(post::cube_risk(reader, selectors(args->where), in), in, args->file);
-      } catch (const std::invalid_argument& e) {  // a HazardFileError names the file and line
-        throw UsageError(e.what());
-      }
+      in.tail = risk::parse_tail(args->tail);
+      const auto ratings = post::p695_inputs("Dmax", 1.0, 0.0, args->ratings);  // the ratings checked as p695 checks them
+      in.design_rating = ratings.design_rating, in.test_rating = ratings.test_rating, in.model_rating = ratings.model_rating;
+      check_report_outputs(*args);
+      cube::CubeReader reader(args->file);
+      note_partial("risk", args->file, reader);
+      note_verdicts("risk", args->file, reader, "counted in no stripe (neither safe nor collapsed)");
+      report = post::risk_report(post::cube_risk(reader, selectors(args->where), in), in, args->file);
       write_report(report, "frames", *args, "warning: ", [&](std::ostream& out) { post::print_risk(report, out); });
     });
   });
@@ -451,7 +433,7 @@ void add_merge(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
       std::vector<std::filesystem::path> parts(args->parts.begin(), args->parts.end());
       for (const auto& part : args->parts) note_running(part);
       if (const auto who = io::RunLock::holder(args->output); !who.empty())
-        throw UsageError(args->output + ": in use by a run (" + who + "); give another -o");
+        throw UserError(args->output + ": in use by a run (" + who + "); give another -o");
       const auto merged = cube::merge_cubes(parts, args->output, args->overwrite, study::vocabulary::kIdaRuns,
                                             args->allow_missing);
       if (merged.missing > 0)

@@ -2,6 +2,7 @@
 // text or one JSON object.
 #include <CLI/CLI.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -77,13 +78,17 @@ void print_text(const FrameProperties& p) {
 void describe(const FrameOptions& o) {
   api::check_pushover_points(o.points);
   const PhysicsOptions physics = o.physics->resolve();
-  const auto scene = o.scene.scene();
+  ScenePoint point;
+  const auto scene = o.scene.scene(&point);
   const FrameProperties p = frame_properties(*scene, physics.fracture_strain, o.points);
   std::optional<P695Ductility> ductility;
   if (o.period_s != 0.0) {
-    if (!(o.period_s > 0.0)) throw UsageError("--period-s must be positive");
-    if (o.scene.model != "pcrf") throw UsageError("--period-s: the P-695 ductility needs the frame's height (--model pcrf)");
-    ductility = p695_ductility(frame_properties(*scene, physics.fracture_strain, kDuctilityPoints), o.scene.frame.h_m, o.period_s);
+    if (!(o.period_s > 0.0)) throw UserError("period_s", "must be positive");
+    // The roof displacement needs a height: a scene whose table has h_m.
+    const SceneSpec spec{&scene_model(o.scene.model), point};
+    if (std::isnan(spec.value("h_m")))
+      throw UserError("period_s", "the P-695 ductility needs the frame's height {} (" + models_taking("h_m") + ")", {"h_m"});
+    ductility = p695_ductility(frame_properties(*scene, physics.fracture_strain, kDuctilityPoints), spec.value("h_m"), o.period_s);
   }
   if (o.json) {
     JsonObject json = as_json(p);

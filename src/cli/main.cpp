@@ -93,8 +93,8 @@ int run(CLI::App& app, int argc, char** argv, pcrf::io::CheckedStdout& out) {
   } catch (const CLI::ParseError& e) {
     if (const auto unknown = unknown_flag_message(app); !unknown.empty()) return fail(unknown, 2);
     return fail("pcrf: error: " + pcrf::printable(e.what()) + " (see pcrf --help)", 2);
-  } catch (const pcrf::cli::UsageError& e) {
-    return fail("pcrf: error: " + pcrf::printable(e.what()), 2);
+  } catch (const pcrf::UserError& e) {
+    return fail("pcrf: error: " + pcrf::printable(e.message(pcrf::Dialect::kFlag)), 2);
   } catch (const pcrf::io::OutputError& e) {
     return fail("pcrf: error: " + pcrf::printable(e.what()), 2);
   } catch (const std::exception& e) {

@@ -34,7 +34,7 @@ void add_record_command(CLI::App& app) {
   auto args = std::make_shared<RecordArguments>();
   auto* cmd = app.add_subcommand("record", "Intensity measures and header metadata of a record, as one JSON object");
   args->record.add_to(cmd, true, false);
-  cmd->add_option("--period", args->request.periods_s, "oscillator period for Sa [s] (repeatable)");
+  cmd->add_option("--periods-s,--period", args->request.periods_s, "oscillator period for Sa [s] (repeatable)");
   cmd->add_option("--damping", args->request.damping, "damping ratio of the oscillator [-]")->capture_default_str();
   // --pair adds the second horizontal's measures and RotD50/RotD100 of PGA, PGV and Sa.
   args->record.add_components_to(cmd, "--pair", "--up");

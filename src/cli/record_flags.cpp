@@ -12,7 +12,7 @@ void RecordFlags::add_to(CLI::App* cmd, bool file_positional, bool synthetic_all
     cmd->add_option("--record", file, "ground-motion file (.AT2, two-column or one-column text)")->group(group);
   cmd->add_option("--format", format, "record format: at2, two-column, one-column (default: from extension)")->group(group);
   cmd->add_option("--units", units, "acceleration units of a text record: g, m/s2, cm/s2")->capture_default_str()->group(group);
-  cmd->add_option("--dt", dt_s, "sample interval of a one-column record [s]")->group(group);
+  cmd->add_option("--dt-s,--dt", dt_s, "sample interval of a one-column record [s]")->group(group);
   cmd->add_option("--skip-rows", skip_rows, "text records: lines to drop at the top (headers, an added leading sample)")
       ->group(group);
   cmd->add_option("--column", column,

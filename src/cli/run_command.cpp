@@ -54,7 +54,7 @@ api::ScaledExcitation load_excitation(const RunOptions& o) {
 }
 
 /// Writes the history as CSV, one row per history row, a header of column names (their
-/// units are in the names; README "pcrf run" lists them), by the one output rule
+/// units are in the names; docs/commands/run.md lists them), by the one output rule
 /// (io::OutputFile: never the record read, complete or not at all).
 class CsvHistory {
  public:

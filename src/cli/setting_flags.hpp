@@ -38,7 +38,7 @@ class SettingFlags {
   }
 
   /// The values given on the command line, checked, in table order.
-  /// \throws UsageError "--flag: problem".
+  /// \throws UserError "--flag: problem".
   api::GivenSettings<Target> given() const {
     api::GivenSettings<Target> values;
     for (const Entry& e : entries_)
@@ -46,7 +46,7 @@ class SettingFlags {
     return values;
   }
 
-  /// table.defaults with every given value applied. \throws UsageError.
+  /// table.defaults with every given value applied. \throws UserError.
   Target resolve() const { return api::resolve_settings(table_, given()); }
 
  private:

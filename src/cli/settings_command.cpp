@@ -8,48 +8,10 @@
 #include <memory>
 
 #include "cli/commands.hpp"
-#include "pcrf/cube/cube_layout.hpp"
-#include "pcrf/json.hpp"
-#include "pcrf/metrics/case_result.hpp"
-#include "pcrf/model/parameters.hpp"
-#include "pcrf/plan/ida_search.hpp"
-#include "pcrf/solver/history.hpp"
+#include "pcrf/post/script_vocabulary.hpp"
 #include "pcrf/study/settings_doc.hpp"
 
 namespace pcrf::cli {
-namespace {
-
-JsonObject status_json(std::string_view name, std::int8_t value, bool collapse, bool verdict) {
-  JsonObject o;
-  o.text("name", name).integer("value", value).text("kind", collapse ? "collapse" : verdict ? "survived" : "no_verdict");
-  return o;
-}
-
-/// The names every script needs besides a cube's own: statuses (with what they say about
-/// the frame), history event flags, the frame parameters in axis order.
-void print_vocabulary_json(std::ostream& out) {
-  std::vector<JsonObject> statuses, events, parameters, curve_states;
-  for (CaseStatus s : all_final_statuses())
-    statuses.push_back(status_json(status_name(s), static_cast<std::int8_t>(s), is_collapse(s), has_verdict(s)));
-  statuses.push_back(status_json(cube::kStatusNotRunName, cube::kStatusNotRun, false, false));
-  for (const auto& e : history_events()) {
-    events.emplace_back();
-    events.back().text("name", e.name).integer("flag", e.flag).text("meaning", e.meaning);
-  }
-  for (const auto& p : all_parameters()) {
-    parameters.emplace_back();
-    parameters.back().text("name", p.name).text("long_name", p.long_name).text("units", p.units);
-  }
-  for (const auto& c : plan::kCurveStateNames) {
-    curve_states.emplace_back();
-    curve_states.back().text("name", c.name).integer("value", static_cast<int>(c.value));
-  }
-  JsonObject root;
-  root.objects("curve_states", curve_states).objects("statuses", statuses).objects("history_events", events).objects("parameters", parameters);
-  out << root.str() << '\n';
-}
-
-}  // namespace
 
 void add_settings_command(CLI::App& app) {
   auto json = std::make_shared<bool>(false);
@@ -60,7 +22,7 @@ void add_settings_command(CLI::App& app) {
                 "instead: the engine's vocabulary as one JSON object: statuses [{name, value, kind: survived | collapse | "
                 "no_verdict}], history_events [{name, flag, meaning}], parameters [{name, long_name, units}], curve_states [{name, value}] (an IDA cube's curve_state codes)");
   cmd->callback([json] {
-    if (*json) print_vocabulary_json(std::cout);
+    if (*json) std::cout << post::script_vocabulary_json() << '\n';
     else std::cout << study::all_settings_markdown();
   });
 }

@@ -39,10 +39,10 @@ extern "C" void on_stop_signal(int number) { stop_signal.store(number); }
 /// that a typo (a pasted size, a negative number read as a huge one) is caught.
 constexpr std::size_t kMaxShards = 1000000;
 
-/// "K/N" with digits only and 1 ≤ K ≤ N ≤ kMaxShards. \throws UsageError otherwise.
+/// "K/N" with digits only and 1 ≤ K ≤ N ≤ kMaxShards. \throws UserError otherwise.
 std::pair<std::size_t, std::size_t> parse_shard(const std::string& text) {
-  auto fail = [&text]() -> UsageError {
-    return UsageError("--shard '" + text + "': expected K/N with 1 ≤ K ≤ N ≤ " + std::to_string(kMaxShards) + ", e.g. 3/8");
+  auto fail = [&text]() -> UserError {
+    return UserError("--shard '" + text + "': expected K/N with 1 ≤ K ≤ N ≤ " + std::to_string(kMaxShards) + ", e.g. 3/8");
   };
   const auto slash = text.find('/');
   if (slash == std::string::npos) throw fail();
@@ -94,16 +94,16 @@ void run_study_command(StudyArguments& args) {
   args.run.progress = &std::cerr;
   args.run.stop_signal = &stop_signal;
 
-  if (const auto problem = parallel::MpiSession::startup_problem(); !problem.empty()) throw UsageError(problem);
+  if (const auto problem = parallel::MpiSession::startup_problem(); !problem.empty()) throw UserError(problem);
   parallel::MpiSession mpi;
   catch_stop_signals();
   std::optional<study::StudySummary> summary;
   try {
     summary = study::run_study(args.run, mpi);
-  } catch (const study::StudyError& e) {
-    // Nothing has started. Report here, before MPI_Finalize, and not through UsageError in
+  } catch (const UserError& e) {
+    // Nothing has started. Report here, before MPI_Finalize, and not through UserError in
     // main(): once another rank has exited with code 2, mpirun may end this one at any time.
-    std::cerr << "pcrf: error: " << printable(e.what()) << std::endl;
+    std::cerr << "pcrf: error: " << printable(e.message(Dialect::kFlag)) << std::endl;
     mpi.quiet_barrier();  // the other ranks wait for this line before they leave
     exit_code() = 2;
     return;

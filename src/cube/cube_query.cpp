@@ -13,6 +13,7 @@
 #include <cmath>
 #include <limits>
 #include <cctype>
+#include <functional>
 #include <map>
 
 namespace pcrf::cube {
@@ -295,8 +296,8 @@ void export_history_csv(const CubeReader& cube, const std::string& name, std::os
   }
 }
 
-void export_csv(const CubeReader& cube, const std::vector<std::string>& metrics,
-                const std::vector<Selector>& selectors, std::ostream& out, const std::vector<std::string>& leave_out) {
+void export_rows(const CubeReader& cube, const std::vector<std::string>& metrics, const std::vector<Selector>& selectors,
+                 const std::function<void(const std::vector<std::string>&)>& row, const std::vector<std::string>& leave_out) {
   const auto& layout = cube.layout();
   std::vector<std::string> names = metrics;
   if (names.empty()) {
@@ -309,25 +310,38 @@ void export_csv(const CubeReader& cube, const std::vector<std::string>& metrics,
   const auto status = cube.read_status();
   std::vector<const Coordinate*> shown;
   std::vector<std::size_t> coordinate_dims;
+  std::vector<std::string> fields;
   for (const auto& c : layout.coordinates) {
     if (std::find(leave_out.begin(), leave_out.end(), c.name) != leave_out.end()) continue;
     shown.push_back(&c);
     coordinate_dims.push_back(dimension_index(layout, c.dimension));
-    out << csv_field(c.name) << ',';
+    fields.push_back(c.name);
   }
-  out << "status";
-  for (const auto& name : names) out << ',' << name;
-  out << '\n';
+  fields.emplace_back("status");
+  fields.insert(fields.end(), names.begin(), names.end());
+  row(fields);
   const auto shape = layout.shape();
   for (std::int64_t i = 0; i < layout.case_count(); ++i) {
     const auto k = static_cast<std::size_t>(i);
     if (!selected[k]) continue;
     const auto coords = unravel(i, shape);
-    for (std::size_t c = 0; c < shown.size(); ++c) out << csv_field(shown[c]->label(coords[coordinate_dims[c]])) << ',';
-    out << status_text(layout, status[k]);
-    for (const auto& v : values) out << ',' << csv_number(v[k]);
-    out << '\n';
+    fields.clear();
+    for (std::size_t c = 0; c < shown.size(); ++c) fields.push_back(shown[c]->label(coords[coordinate_dims[c]]));
+    fields.push_back(status_text(layout, status[k]));
+    for (const auto& v : values) fields.push_back(csv_number(v[k]));
+    row(fields);
   }
+}
+
+void export_csv(const CubeReader& cube, const std::vector<std::string>& metrics,
+                const std::vector<Selector>& selectors, std::ostream& out, const std::vector<std::string>& leave_out) {
+  export_rows(
+      cube, metrics, selectors,
+      [&out](const std::vector<std::string>& fields) {
+        for (std::size_t f = 0; f < fields.size(); ++f) out << (f ? "," : "") << csv_field(fields[f]);
+        out << '\n';
+      },
+      leave_out);
 }
 
 namespace {

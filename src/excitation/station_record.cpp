@@ -1,6 +1,8 @@
 // A station's components put together for a frame (see station_record.hpp).
 #include "pcrf/excitation/station_record.hpp"
 
+#include "pcrf/user_error.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <stdexcept>
@@ -18,7 +20,7 @@ std::vector<std::string> StationRecord::align() {
   std::size_t longest = 0;
   for (GroundMotion* g : parts) {
     if (!same_sample_interval(g->dt_s(), h1.dt_s()))
-      throw std::invalid_argument("components '" + h1.name() + "' and '" + g->name() + "' are sampled at different intervals (" +
+      throw UserError("components '" + h1.name() + "' and '" + g->name() + "' are sampled at different intervals (" +
                                   number_text(h1.dt_s()) + " s and " + number_text(g->dt_s()) + " s)");
     // The same interval up to rounding (19.9 s / 1990 steps against 0.01 s): h1's, bit for bit.
     if (g->dt_s() != h1.dt_s()) *g = GroundMotion(g->name(), h1.dt_s(), g->samples_m_s2());
@@ -45,7 +47,7 @@ namespace {
 
 std::optional<double> stated_azimuth(const StationComponent& part, const char* role) {
   if (is_vertical_component(part.component))
-    throw std::invalid_argument(part.label + ": its header names a vertical component ('" + part.component + "'), given as " +
+    throw UserError(part.label + ": its header names a vertical component ('" + part.component + "'), given as " +
                                 role);
   return azimuth_of_component(part.component);
 }
@@ -63,7 +65,7 @@ StationRecord make_station(StationComponent h1, std::optional<double> az1_deg, s
   }
   if (up) {
     if (!up->component.empty() && azimuth_of_component(up->component))
-      throw std::invalid_argument(up->label + ": its header names a horizontal component ('" + up->component +
+      throw UserError(up->label + ": its header names a horizontal component ('" + up->component +
                                   "'), given as the vertical");
     if (is_downward_component(up->component)) {
       notes.push_back("vertical component '" + up->component + "' (" + up->label +
@@ -80,10 +82,10 @@ StationRecord make_station(StationComponent h1, std::optional<double> az1_deg, s
 GroundMotion in_plane_motion(const StationRecord& record, std::optional<double> incidence_deg) {
   if (!incidence_deg) return record.h1;
   if (!record.h2 || !record.az1_deg || !record.az2_deg)
-    throw std::invalid_argument("an incidence needs both horizontal components and their azimuths ('" + record.h1.name() +
+    throw UserError("an incidence needs both horizontal components and their azimuths ('" + record.h1.name() +
                                 "' " + (record.h2 ? "has no azimuth" : "has no second component") + ")");
   if (record.h2->size() != record.h1.size())
-    throw std::invalid_argument("the components of '" + record.h1.name() + "' are not aligned");
+    throw UserError("the components of '" + record.h1.name() + "' are not aligned");
   return project(HorizontalPair{record.h1, *record.az1_deg, *record.h2, *record.az2_deg}, *incidence_deg);
 }
 
@@ -91,7 +93,7 @@ FrameExcitation::FrameExcitation(const StationRecord& record, std::optional<doub
     : horizontal_(in_plane_motion(record, incidence_deg).scaled(factor)) {
   if (record.up) {
     if (record.up->size() != horizontal_.size())
-      throw std::invalid_argument("the vertical component '" + record.up->name() + "' is not aligned with '" +
+      throw UserError("the vertical component '" + record.up->name() + "' is not aligned with '" +
                                   record.h1.name() + "'");
     vertical_.emplace(record.up->scaled(factor));
   }
@@ -101,7 +103,7 @@ double station_intensity(const StationRecord& record, std::optional<double> inci
   const int percentile = rotd_percentile(spec.measure);
   if (percentile == 0) return intensity_of(in_plane_motion(record, incidence_deg), spec);
   if (!record.h2 || !record.az1_deg || !record.az2_deg)
-    throw std::invalid_argument(to_string(spec.measure) + " needs both horizontal components and their azimuths ('" +
+    throw UserError(to_string(spec.measure) + " needs both horizontal components and their azimuths ('" +
                                 record.h1.name() + "' " + (record.h2 ? "has no azimuth" : "has no second component") + ")");
   const RotD both = rotd(HorizontalPair{record.h1, *record.az1_deg, *record.h2, *record.az2_deg}, spec);
   return percentile == 50 ? both.rotd50 : both.rotd100;

@@ -92,7 +92,7 @@ bool EomTable::negative_branch(double phi, Terms& out) const {
     const double u = u0 + 0.5 * (x + 1.0) * cell_rad_;
     Terms t{};
     if (!negative_branch(-u, t)) return;
-    const std::array<double, 4> v = detail::horner4(cell.abcd, x);
+    const std::array<double, 4> v = detail::power_series4(cell.abcd, x);
     auto close = [](double a, double b, double scale) { return std::abs(a - b) <= 1e-11 * scale; };
     const double g = eom_.gravity_m_s2(), I = std::abs(t.I);
     const double qs = (std::abs(t.Q) + std::abs(t.S) * g) / I;
@@ -124,7 +124,7 @@ bool EomTable::acceleration_jacobian(double theta1, double omega1, GroundAcceler
   }
   const double s = side < 0 ? 1.0 : -1.0;
   const double a_h = ground.horizontal_m_s2, a_v = ground.vertical_m_s2;
-  const std::array<double, 4> v = detail::horner4(cell->abcd, x), dv = horner4_derivative(cell->abcd, x);
+  const std::array<double, 4> v = detail::power_series4(cell->abcd, x), dv = horner4_derivative(cell->abcd, x);
   theta1_ddot = v[0] * a_h - s * (v[1] * omega1 * omega1 + (v[2] + v[3] * a_v));
   // d/du = (2/w) d/dx, and u = −θ₁ on side −1, +θ₁ on side +1.
   const double du_dx = 2.0 * inv_cell_ * (side < 0 ? -1.0 : 1.0);

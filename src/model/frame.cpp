@@ -6,12 +6,13 @@
 #include <string>
 
 #include "pcrf/units.hpp"
+#include "pcrf/user_error.hpp"
 
 namespace pcrf {
 namespace {
 
 // A study builds a frame per case: the message is formatted only when a check fails.
-[[noreturn]] void impossible(const std::string& what) { throw std::invalid_argument("impossible frame: " + what); }
+[[noreturn]] void impossible(const std::string& what) { throw UserError("impossible frame: " + what); }
 
 void require(bool ok, const char* what) {
   if (!ok) impossible(what);

@@ -6,24 +6,17 @@
 #include <stdexcept>
 #include <string>
 
+#include "pcrf/user_error.hpp"
+
 namespace pcrf {
 namespace {
 
 /// `problem(value)` is formatted only when the check fails (a study builds a scene per case).
 void check(bool ok, const char* key, const char* problem, double value) {
-  if (!ok) throw std::invalid_argument(std::string(key) + ": " + problem + ", got " + std::to_string(value));
+  if (!ok) throw UserError(key, problem + (", got " + std::to_string(value)));
 }
 
 }  // namespace
-
-const std::array<RockerParameterInfo, 3>& rocker_parameters() {
-  static const std::array<RockerParameterInfo, 3> parameters{{
-      {"slenderness_rad", "slenderness alpha of the columns, tan alpha = b/h", "rad", &RockerParameters::slenderness_rad},
-      {"size_m", "half-diagonal R of the columns", "m", &RockerParameters::size_m},
-      {"beam_mass_ratio", "beam to columns mass ratio gamma (rocking-frame only)", "1", &RockerParameters::beam_mass_ratio},
-  }};
-  return parameters;
-}
 
 double RigidRocker::restitution_from_momentum(double alpha, double gamma) {
   const double s = std::sin(alpha);
@@ -36,7 +29,7 @@ RigidRocker::RigidRocker(const RockerParameters& p) : p_(p) {
   check(p.size_m > 0.0 && std::isfinite(p.size_m), "size_m", "must be positive", p.size_m);
   check(p.beam_mass_ratio >= 0.0 && std::isfinite(p.beam_mass_ratio), "beam_mass_ratio", "must not be negative",
         p.beam_mass_ratio);
-  if (!(p.gravity_m_s2 > 0.0)) throw std::invalid_argument("gravity_m_s2: must be positive");
+  if (!(p.gravity_m_s2 > 0.0)) throw UserError("gravity_m_s2", "must be positive");
   restitution_ = p.restitution ? *p.restitution : restitution_from_momentum(p.slenderness_rad, p.beam_mass_ratio);
   check(restitution_ >= 0.0 && restitution_ <= 1.0, "restitution", "must lie in [0, 1]", restitution_);
   inertia_m2_ = p.size_m * p.size_m * (4.0 / 3.0 + 4.0 * p.beam_mass_ratio);

@@ -1,6 +1,8 @@
 // What every scene shares: the decisions derived from its terms at rest (see scene.hpp).
 #include "pcrf/model/scene.hpp"
 
+#include "pcrf/user_error.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -24,7 +26,7 @@ bool Scene::configuration(double, int, double& theta2, double& theta3) const {
 }
 
 void Scene::settle_rest() {
-  if (!terms(0.0, -1, rest_)) throw std::invalid_argument("impossible frame: the linkage does not close at rest");
+  if (!terms(0.0, -1, rest_)) throw UserError("impossible frame: the linkage does not close at rest");
   lambda_g_ = rest_.G / rest_.S;
   uplift_threshold_m_s2_ = uplift_threshold_m_s2(0.0);
 }

@@ -12,6 +12,7 @@
 #include "pcrf/model/parameters.hpp"
 #include "pcrf/model/rigid_rocker.hpp"
 #include "pcrf/number_text.hpp"
+#include "pcrf/user_error.hpp"
 
 namespace pcrf {
 namespace {
@@ -54,6 +55,8 @@ std::vector<SceneParameter> pcrf_parameters() {
     table.push_back({info.name, info.long_name, info.units, basic.*info.member, true, problem_of(info.domain)});
   for (const auto& info : size_parameters())
     table.push_back({info.name, info.long_name, info.units, basic.*info.member, false, problem_of(info.domain)});
+  for (auto& p : table)
+    if (p.name == "m_c_kg") p.aliases = {"--mc"};
   return table;
 }
 
@@ -78,7 +81,7 @@ std::vector<SceneParameter> rocker_table(bool with_beam) {
        "rad/s", kAbsent, true, positive},
       // Not "restitution": that is the metric of the r a case used, whichever way it came.
       {"given_restitution", "coefficient of restitution given instead of the one from angular momentum", "1", kAbsent,
-       true, unit_closed},
+       true, unit_closed, {"--restitution"}},
   };
   if (with_beam)
     table.push_back({"beam_mass_ratio", "beam to columns mass ratio gamma", "1", d.beam_mass_ratio, true, non_negative});
@@ -93,7 +96,7 @@ std::unique_ptr<Scene> make_rocker(std::span<const double> values) {
   if (!std::isnan(values[kFrequency])) {
     // p̂² = (3g/4R)(1 + 2γ)/(1 + 3γ), the block's p² = 3g/4R at γ = 0.
     const double w = values[kFrequency], gamma = p.beam_mass_ratio;
-    if (!(w > 0.0)) throw std::invalid_argument("frequency_parameter_rad_s: must be positive");
+    if (!(w > 0.0)) throw UserError("frequency_parameter_rad_s", "must be positive");
     p.size_m = 3.0 * p.gravity_m_s2 * (1.0 + 2.0 * gamma) / (4.0 * w * w * (1.0 + 3.0 * gamma));
   }
   if (!std::isnan(values[kRestitution])) p.restitution = values[kRestitution];
@@ -137,7 +140,7 @@ const SceneModel& scene_model(std::string_view name) {
   std::string expected;
   for (std::size_t i = 0; i < models.size(); ++i)
     expected += (i == 0 ? "" : i + 1 == models.size() ? " or " : ", ") + std::string(models[i].name);
-  throw std::invalid_argument("unknown scene '" + std::string(name) + "' (expected " + expected + ")");
+  throw UserError("model", "unknown scene '" + std::string(name) + "' (expected " + expected + ")");
 }
 
 std::string models_taking(std::string_view key) {
@@ -163,31 +166,35 @@ double SceneSpec::value(std::string_view key) const {
 
 bool same_scene(const SceneSpec& a, const SceneSpec& b) { return a.model == b.model && same_point(a.values, b.values); }
 
-std::unique_ptr<Scene> make_scene(std::string_view model_name, const std::map<std::string, double, std::less<>>& values) {
-  const SceneModel& model = scene_model(model_name);
-  return model.make(scene_point(model, values));
-}
-
 ScenePoint scene_point(const SceneModel& model, const std::map<std::string, double, std::less<>>& values) {
   ScenePoint point = model.defaults();
   for (const auto& [key, value] : values) {
     const std::size_t k = model.index(key);
     if (k == std::string::npos) {
       const auto owners = models_taking(key);
-      throw std::invalid_argument(key + " does not apply to model \"" + std::string(model.name) + "\"" +
-                                  (owners.empty() ? " (its parameters: " + model.keys_text() + ")"
-                                                  : " (it is a parameter of " + owners + ")"));
+      if (!owners.empty())
+        throw UserError(key, "does not apply to model \"" + std::string(model.name) + "\" (it is a parameter of " + owners + ")");
+      std::vector<std::string> keys;
+      for (const auto& p : model.parameters) keys.emplace_back(p.name);
+      std::string list;
+      for (std::size_t i = 0; i < keys.size(); ++i) list += i == 0 ? "{}" : ", {}";
+      throw UserError(key, "does not apply to model \"" + std::string(model.name) + "\" (its parameters: " + list + ")",
+                      keys);
     }
     if (const auto problem = model.parameters[k].problem(value); !problem.empty())
-      throw std::invalid_argument(key + ": " + problem + ", got " + number_text(value));
+      throw UserError(key, problem + ", got " + number_text(value));
     point[k] = value;
   }
   std::size_t given = 0;
   for (auto key : model.exclusive) given += values.count(key);
   if (given > 1) {
-    std::string keys;
-    for (auto key : model.exclusive) keys += (keys.empty() ? "" : " or ") + std::string(key);
-    throw std::invalid_argument("give either " + keys + ", not both");
+    std::string list;
+    std::vector<std::string> keys;
+    for (auto key : model.exclusive) {
+      list += keys.empty() ? "{}" : " or {}";
+      keys.emplace_back(key);
+    }
+    throw UserError(Where{}, "give either " + list + ", not both", keys);
   }
   if (given == 1)
     for (auto key : model.exclusive)

@@ -1,6 +1,8 @@
 // FEMA P-695 from a cube (see cube_p695.hpp).
 #include "pcrf/post/cube_p695.hpp"
 
+#include "pcrf/user_error.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -52,15 +54,15 @@ std::string scene_of_case(const cube::CubeLayout& layout, std::int64_t index) {
 
 /// The frame parameters of case `index`: the study's base point, overridden by every
 /// parameter coordinate the cube has (a grid's axes, a list's or sample's per-case values).
-/// \throws std::invalid_argument for a case of another scene than the prestressed frame.
+/// \throws UserError for a case of another scene than the prestressed frame.
 FrameParameters parameters_of_case(const cube::CubeLayout& layout, std::int64_t index) {
   if (const auto scene = scene_of_case(layout, index); scene != "pcrf")
-    throw std::invalid_argument("a " + scene + " scene has no engine convention for mu_T (docs/p695_rocking_frame.md is the prestressed frame's): give --mu-t");
+    throw UserError(Where{}, "a " + scene + " scene has no engine convention for mu_T (docs/p695_rocking_frame.md is the prestressed frame's): give {}", {"mu_t"});
   auto attribute = [&](const std::string& name) {
     for (const auto& a : layout.attributes)
       if (a.name == name)
         if (const double* v = std::get_if<double>(&a.value)) return *v;
-    throw std::invalid_argument("the cube has no attribute " + name + ": give --mu-t");
+    throw UserError(Where{}, "the cube has no attribute " + name + ": give {}", {"mu_t"});
   };
   FrameParameters p;
   for (const auto& info : all_parameters()) p.*info.member = attribute("base_" + std::string(info.name));
@@ -115,33 +117,45 @@ p695::CountedMedian counted_of(const FrameFragility& f) {
   return m;
 }
 
+/// The measured modelling scatter of sampled frames and the P(collapse | MCE) each total implies.
+void add_model_scatter(const cube::CubeReader& cube, const std::vector<FrameFragility>& frames, const P695Inputs& in,
+                       P695Report& report) {
+  report.model = model_scatter(cube, frames, in.design_rating, in.test_rating, in.model_rating);
+  if (!report.model) return;
+  const double s_mt = p695::mce_spectrum(in.sdc).at(in.period_s), median = report.model->dispersion.pooled.median;
+  report.model_p_collapse_mce_measured = analysis::normal_cdf(std::log(s_mt / median) / report.model->beta_total_measured);
+  report.model_p_collapse_mce_rated = analysis::normal_cdf(std::log(s_mt / median) / report.model->beta_total_rated);
+  if (const auto warning = model_scatter_warning(report.model); !warning.empty()) report.notes.push_back(warning);
+}
+
 }  // namespace
 
 SctFrom parse_s_ct(const std::string& text) {
   if (text == "counted") return SctFrom::kCounted;
   if (text == "lognormal") return SctFrom::kLognormal;
-  throw std::invalid_argument("--s-ct: unknown value '" + text + "' (expected counted or lognormal)");
+  throw UserError("s_ct", "unknown value '" + text + "' (expected counted or lognormal)");
 }
 
 std::string to_string(SctFrom from) { return from == SctFrom::kCounted ? "counted" : "lognormal"; }
 
 P695Report cube_p695(const cube::CubeReader& cube, const std::vector<cube::Selector>& selectors, const P695Inputs& in) {
-  if (!(in.period_s > 0.0)) throw std::invalid_argument("--period-s must be positive");
+  if (!(in.period_s > 0.0)) throw UserError("period_s", "must be positive");
   P695Report report;
   report.measure_problem = measure_problem(cube, in.period_s);
-  for (const FrameFragility& f : cube_fragility(cube, selectors)) {
+  const auto frames = cube_fragility(cube, selectors);
+  for (const FrameFragility& f : frames) {
     const auto counted = counted_of(f);
     const double lognormal = f.fit ? f.fit->median : std::nan("");
     const double s_ct = in.s_ct == SctFrom::kCounted ? counted.s_ct_g : lognormal;
     if (!std::isfinite(s_ct))
-      throw std::invalid_argument("frame " + f.frame + (in.s_ct == SctFrom::kCounted
+      throw UserError("frame " + f.frame + (in.s_ct == SctFrom::kCounted
                                                             ? ": fewer than half its records collapse, so no counted median collapse intensity to assess"
                                                             : ": no collapse, so no median collapse intensity to assess"));
     double mu_t = in.mu_t;
     try {
       if (!(mu_t > 0.0)) mu_t = own_mu_t(cube.layout(), f.first_case, in.period_s);
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument("frame " + f.frame + ": " + e.what());
+    } catch (const UserError& e) {  // which frame
+      throw UserError(e.where(), "frame " + f.frame + ": " + e.problem(Dialect::kKey));
     }
     report.frames.push_back({f.frame, mu_t, counted.s_ct_g, counted.high_g, counted.bounded, lognormal,
                              p695::assess(s_ct, in.period_s, mu_t, in.sdc, in.design_rating, in.test_rating, in.model_rating)});
@@ -152,6 +166,7 @@ P695Report cube_p695(const cube::CubeReader& cube, const std::vector<cube::Selec
                              " g is conservative (" + (std::isnan(counted.high_g) ? std::string("fewer than half collapse otherwise")
                                                                                     : short_number(counted.high_g) + " g were they never to collapse") + ")");
   }
+  add_model_scatter(cube, frames, in, report);
   std::vector<p695::Assessment> all;
   for (const auto& f : report.frames) all.push_back(f.assessment);
   report.group = p695::assess_group(all);
@@ -196,6 +211,19 @@ void print_p695(const P695Report& report, const P695Inputs& in, std::ostream& ou
   }
   std::snprintf(line, sizeof line, "group: mean ACMR %.2f against ACMR10%% %.2f, every frame against ACMR20%%: %s\n",
                 report.group.mean_acmr, report.group.acmr10, report.group.passes ? "PASS" : "FAIL");
+  out << line;
+  if (!report.model) return;
+  const auto& m = *report.model;
+  std::snprintf(line, sizeof line,
+                "modelling uncertainty measured over %zu sampled frames: pooled median %.3g g, beta %.3g = sqrt(beta_rtr "
+                "%.3g^2 + beta_model %.3g^2); the rating's beta_MDL %.3g\n",
+                m.dispersion.frames, m.dispersion.pooled.median, m.dispersion.pooled.beta, m.dispersion.beta_rtr,
+                m.dispersion.beta_model, m.beta_mdl_rated);
+  out << line;
+  std::snprintf(line, sizeof line,
+                "beta_TOT with the modelling term measured %.3f (P(c|MCE) %.3f at the pooled median), rated %.3f (%.3f)\n",
+                m.beta_total_measured, report.model_p_collapse_mce_measured, m.beta_total_rated,
+                report.model_p_collapse_mce_rated);
   out << line;
 }
 

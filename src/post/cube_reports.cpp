@@ -2,6 +2,8 @@
 // a result struct: a new field needs one line here to reach text, CSV, JSON and Python.
 #include "pcrf/post/cube_reports.hpp"
 
+#include "pcrf/user_error.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -302,6 +304,10 @@ Report p695_report(const P695Report& result, const P695Inputs& in, const std::st
                    {"group_acmr10", result.group.acmr10},
                    {"group", std::string(result.group.passes ? "pass" : "fail")},
                    {"measure_problem", result.measure_problem}};
+  const bool model = result.model.has_value();
+  for (auto& field : model_fields(result.model, {{"model_p_collapse_mce_measured", model ? Cell{result.model_p_collapse_mce_measured} : Cell{}},
+                                                 {"model_p_collapse_mce_rated", model ? Cell{result.model_p_collapse_mce_rated} : Cell{}}}))
+    report.fields.push_back(std::move(field));
   if (!result.measure_problem.empty()) report.warnings.push_back(result.measure_problem);
   for (const auto& note : result.notes) report.warnings.push_back(note);
   report.tables.emplace_back("frames", make_table(p695_spec(), result.frames));
@@ -318,18 +324,18 @@ std::vector<Column> fragility_point_columns() { return columns_of(fragility_poin
 std::vector<Column> sensitivity_columns() { return columns_of(sensitivity_spec()); }
 std::vector<Column> p695_columns() { return columns_of(p695_spec()); }
 
-std::string mce_problem(const std::optional<double>& mce) {
-  return mce && !(*mce > 0.0) ? "--mce must be positive" : "";
+void check_mce(const std::optional<double>& mce) {
+  if (mce && !(*mce > 0.0)) throw UserError("mce", "must be positive");
 }
 
 cube::Reduction reduction_of(const std::string& over, const std::string& how, const std::string& default_how) {
-  if (over.empty() && !how.empty()) throw std::invalid_argument("--reduce goes with --reduce-over DIMENSION");
+  if (over.empty() && !how.empty()) throw UserError("reduce", "goes with {} DIMENSION", {"reduce_over"});
   if (over.empty()) return {};
   cube::Reduction reduction{over, how.empty() ? default_how : how};
   try {
     cube::check_reduction(reduction.how);
   } catch (const cube::CubeError& e) {
-    throw std::invalid_argument(std::string("--reduce: ") + e.what());
+    throw UserError("reduce", e.what());
   }
   return reduction;
 }
@@ -341,10 +347,10 @@ P695Inputs p695_inputs(const std::string& sdc, double period_s, double mu_t, con
   in.s_ct = parse_s_ct(s_ct);
   std::string r = ratings.empty() ? std::string("BBB") : ratings;
   std::erase(r, ',');
-  if (r.size() != 3) throw std::invalid_argument("--ratings: give three letters A-D, e.g. B,B,C (got '" + ratings + "')");
+  if (r.size() != 3) throw UserError("ratings", "give three letters A-D, e.g. B,B,C (got '" + ratings + "')");
   in.sdc = p695::parse_sdc(sdc);
   for (const char c : r) (void)p695::rating_beta(c);
-  if (!(mu_t >= 1.0 || mu_t == 0.0)) throw std::invalid_argument("--mu-t must be at least 1 (0: each frame's own)");
+  if (!(mu_t >= 1.0 || mu_t == 0.0)) throw UserError("mu_t", "must be at least 1 (0: each frame's own)");
   in.period_s = p695::archetype_period_s(period_s);
   in.mu_t = mu_t;
   in.design_rating = r[0], in.test_rating = r[1], in.model_rating = r[2];

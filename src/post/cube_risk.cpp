@@ -1,6 +1,8 @@
 // The annual collapse rate of a cube's frames at a site (see cube_risk.hpp).
 #include "pcrf/post/cube_risk.hpp"
 
+#include "pcrf/user_error.hpp"
+
 #include <algorithm>
 #include <functional>
 #include <random>
@@ -12,6 +14,7 @@
 #include "pcrf/analysis/p695.hpp"
 #include "pcrf/number_text.hpp"
 #include "pcrf/post/cube_fragility.hpp"
+#include "pcrf/record/intensity.hpp"
 
 namespace pcrf::post {
 namespace {
@@ -27,20 +30,29 @@ constexpr double kFragilityAtLowest = 1e-3; // P(C) at the curve's start above w
 std::string check_measure(const cube::CubeReader& cube, const HazardFile& hazard) {
   const auto& layout = cube.layout();
   const std::string measure = layout.text_attribute("intensity_measure");
-  const std::string where = hazard.file.string() + ":" + std::to_string(hazard.header_line) + ": ";
+  const Where where{{}, hazard.file.string(), static_cast<int>(hazard.header_line)};
   if (measure.empty())
-    throw HazardFileError(where + "the cube " + cube.file().string() + " records no intensity measure to match " +
+    throw UserError(where, "the cube " + cube.file().string() + " records no intensity measure to match " +
                           hazard.measure + " against");
   if (measure != hazard.measure)
-    throw HazardFileError(where + "the curve's measure is " + hazard.measure + ", the cube's (" + cube.file().string() +
+    throw UserError(where, "the curve's measure is " + hazard.measure + ", the cube's (" + cube.file().string() +
                           ") is " + measure);
   if (!hazard.period_s) return measure;
   for (const auto& a : layout.attributes)
     if (a.name == "intensity_period_s")
       if (const double* stored = std::get_if<double>(&a.value); stored && std::abs(*stored - *hazard.period_s) > 1e-9 * *stored)
-        throw HazardFileError(where + "the curve is at period_s = " + number_text(*hazard.period_s) + " s, the cube's Sa at " +
+        throw UserError(where, "the curve is at period_s = " + number_text(*hazard.period_s) + " s, the cube's Sa at " +
                               number_text(*stored) + " s");
   return measure;
+}
+
+/// The units of a measure as a study spells it ("pga_g": "g", "pgv_m_s": "m/s"); "" when none.
+std::string units_of(const std::string& measure) {
+  try {
+    return measure.empty() ? "" : std::string(pcrf::intensity_units(parse_intensity_measure(measure)));
+  } catch (const std::invalid_argument&) {
+    return "";
+  }
 }
 
 /// Deaggregation bin edges, 10 per decade on round values, covering the curve and (power
@@ -153,6 +165,19 @@ void warn(const FrameRisk& r, const RiskReport& report, const std::string& units
                        units + ", " + risk::to_string(report.hazard.curve.tail()) + " tail)");
 }
 
+/// The measured modelling scatter of sampled frames and the λ_c each total implies.
+void add_model_scatter(const cube::CubeReader& cube, const std::vector<FrameFragility>& frames, const RiskInputs& in,
+                       RiskReport& report) {
+  report.model = model_scatter(cube, frames, in.design_rating, in.test_rating, in.model_rating);
+  if (!report.model) return;
+  const auto& hazard = report.hazard.curve;
+  const double median = report.model->dispersion.pooled.median;
+  report.model_pooled = risk::collapse_rate(hazard, report.model->dispersion.pooled);
+  report.model_measured = risk::collapse_rate(hazard, {median, report.model->beta_total_measured});
+  report.model_rated = risk::collapse_rate(hazard, {median, report.model->beta_total_rated});
+  if (const auto warning = model_scatter_warning(report.model); !warning.empty()) report.warnings.push_back(warning);
+}
+
 }  // namespace
 
 double RiskInputs::ratings_beta() const {
@@ -161,10 +186,10 @@ double RiskInputs::ratings_beta() const {
 }
 
 RiskReport cube_risk(const cube::CubeReader& cube, const std::vector<cube::Selector>& selectors, const RiskInputs& in) {
-  if (!(in.years > 0.0) || !std::isfinite(in.years)) throw std::invalid_argument("--years must be positive");
+  if (!(in.years > 0.0) || !std::isfinite(in.years)) throw UserError("years", "must be positive");
   risk::check(in.target);
   (void)in.ratings_beta();  // an unknown rating throws before anything is read
-  RiskReport report{read_hazard_file(in.hazard, in.tail), "", {}, {}, kNaN, kNaN, {}};
+  RiskReport report{read_hazard_file(in.hazard, in.tail), "", {}, {}, kNaN, kNaN, {}, {}, {}, {}, {}};
   report.cube_measure = check_measure(cube, report.hazard);
   const auto& hazard = report.hazard.curve;
   const std::string units = intensity_units(cube);
@@ -198,6 +223,7 @@ RiskReport cube_risk(const cube::CubeReader& cube, const std::vector<cube::Selec
     warn(r, report, units, report.warnings);
     report.frames.push_back(std::move(r));
   }
+  add_model_scatter(cube, frames, in, report);
   report.risk_targeted_intensity = risk::risk_targeted_intensity(hazard, in.target);
   report.uniform_hazard_intensity = hazard.intensity_at_rate(risk::rate_for_probability(0.02, 50.0));
   if (!std::isfinite(report.risk_targeted_intensity))
@@ -355,10 +381,15 @@ Report risk_report(const RiskReport& result, const RiskInputs& in, const std::st
       {"group_p_collapse_in_years", number_or_missing(risk::probability_in_years(mean, in.years))},
       {"group_lambda_collapse_max_per_yr", fitted > 0 ? Cell{most} : Cell{}},
   };
+  auto rate = [](const std::optional<risk::RateResult>& r) { return r ? number_or_missing(r->lambda_per_yr) : Cell{}; };
+  for (auto& field : model_fields(result.model, {{"model_lambda_pooled_per_yr", rate(result.model_pooled)},
+                                                 {"model_lambda_measured_per_yr", rate(result.model_measured)},
+                                                 {"model_lambda_rated_per_yr", rate(result.model_rated)}}))
+    report.fields.push_back(std::move(field));
   report.warnings = result.warnings;
   std::vector<RiskRow> rows;
   for (const auto& f : result.frames) rows.push_back({&f, in.years, in.ratings_beta()});
-  const std::string im_units = result.hazard.measure.empty() ? "" : result.hazard.measure.substr(result.hazard.measure.rfind('_') + 1);
+  const std::string im_units = units_of(result.hazard.measure);
   report.tables.emplace_back("frames", make_table(risk_spec(im_units), rows));
   report.tables.emplace_back("deaggregation", make_table(bin_spec(im_units), bin_rows(result)));
   std::vector<Point> curve, steps;
@@ -408,6 +439,11 @@ void print_risk(const Report& report, std::ostream& out) {
     out << "group of " << text("group_frames") << " frames: mean lambda_c " << text("group_lambda_collapse_per_yr")
         << " /yr (p in " << text("years") << " years " << text("group_p_collapse_in_years") << "), largest "
         << text("group_lambda_collapse_max_per_yr") << " /yr\n";
+  print_model_scatter(report, units_of(text("measure")), out);
+  if (text("model_lambda_pooled_per_yr") != "none")
+    out << "lambda_c of the pooled median: with beta_pooled " << text("model_lambda_pooled_per_yr")
+        << " /yr; with beta_TOT measured " << text("model_lambda_measured_per_yr") << " /yr, rated "
+        << text("model_lambda_rated_per_yr") << " /yr\n";
 }
 
 std::vector<Column> risk_columns() { return columns_of(risk_spec("")); }

@@ -1,6 +1,8 @@
 // A hazard curve from CSV (see hazard_file.hpp).
 #include "pcrf/post/hazard_file.hpp"
 
+#include "pcrf/user_error.hpp"
+
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -40,7 +42,7 @@ class Reader {
   explicit Reader(std::filesystem::path file) : file_(std::move(file)) {}
 
   [[noreturn]] void fail(std::size_t line, const std::string& problem) const {
-    throw HazardFileError(file_.string() + (line > 0 ? ":" + std::to_string(line) : "") + ": " + problem);
+    throw UserError(Where{{}, file_.string(), static_cast<int>(line)}, problem);
   }
 
   /// `# period_s = 1.0`: the period of an sa measure.

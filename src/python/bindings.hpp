@@ -15,5 +15,7 @@ void bind_record(py::module_& m);    ///< record_measures(**keywords): as `pcrf 
 void bind_study(py::module_& m);     ///< study(source, **keywords): a study in process, as `pcrf study`
 void bind_settings(py::module_& m);  ///< settings(): every setting's description, as `pcrf settings`
 void bind_cube(py::module_& m);      ///< cube_report(kind, file, **keywords): as `pcrf cube KIND --json`
+void bind_cube_read(py::module_& m); ///< cube_info, cube_export, cube_history: as `pcrf cube info --json`, `cube export`
+void bind_output(py::module_& m);    ///< check_output, write_output: the rule of every output file (io::OutputFile)
 
 }  // namespace pcrf::python

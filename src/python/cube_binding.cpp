@@ -9,7 +9,7 @@
 
 #include "bindings.hpp"
 #include "keywords.hpp"
-#include "pcrf/api/input_error.hpp"
+#include "pcrf/user_error.hpp"
 #include "pcrf/cube/cube_query.hpp"
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/post/cube_reports.hpp"
@@ -44,11 +44,7 @@ std::vector<cube::Selector> selectors(const std::optional<py::object>& where) {
 cube::Reduction reduction_of(Keywords& keywords, const std::string& default_how) {
   const auto over = keywords.take_text("reduce_over").value_or("");
   const auto how = keywords.take_text("reduce").value_or("");
-  try {
-    return post::reduction_of(over, how, default_how);
-  } catch (const std::invalid_argument& e) {
-    throw api::InputError(e.what());
-  }
+  return post::reduction_of(over, how, default_how);
 }
 
 post::Report report(const std::string& kind, const std::string& file, Keywords& keywords) {
@@ -65,7 +61,7 @@ post::Report report(const std::string& kind, const std::string& file, Keywords& 
     const auto mce = keywords.take_number("mce");
     const auto reduction = reduction_of(keywords, post::kFragilityReduction);
     keywords.finish();
-    if (const auto problem = post::mce_problem(mce); !problem.empty()) throw api::InputError(problem);
+    post::check_mce(mce);
     const cube::CubeReader reader(file);
     return post::fragility_report(reader, {where, mce}, reduction);
   }
@@ -83,19 +79,10 @@ post::Report report(const std::string& kind, const std::string& file, Keywords& 
     const auto ratings = keywords.take_text("ratings").value_or("");
     const auto s_ct = keywords.take_text("s_ct").value_or("counted");
     keywords.finish();
-    if (!period_s) throw api::InputError("p695 needs period_s, the archetype's period T [s]");
-    post::P695Inputs in;
-    try {
-      in = post::p695_inputs(sdc, *period_s, mu_t, ratings, s_ct);
-    } catch (const std::invalid_argument& e) {
-      throw api::InputError(e.what());
-    }
+    if (!period_s) throw UserError(Where{}, "p695 needs {}, the archetype's period T [s]", {"period_s"});
+    const post::P695Inputs in = post::p695_inputs(sdc, *period_s, mu_t, ratings, s_ct);
     const cube::CubeReader reader(file);
-    try {
-      return post::p695_report(reader, where, in);
-    } catch (const std::invalid_argument& e) {
-      throw api::InputError(e.what());
-    }
+    return post::p695_report(reader, where, in);
   }
   if (kind == "risk") {
     post::RiskInputs in;
@@ -108,19 +95,15 @@ post::Report report(const std::string& kind, const std::string& file, Keywords& 
     in.target.collapse_probability = keywords.take_number("generic_probability").value_or(in.target.collapse_probability);
     const auto ratings = keywords.take_text("ratings").value_or("B,B,B");
     keywords.finish();
-    if (!hazard) throw api::InputError("risk needs hazard, the hazard curve's CSV file");
+    if (!hazard) throw UserError(Where{}, "risk needs {}, the hazard curve's CSV file", {"hazard"});
     in.hazard = *hazard;
-    try {
-      in.tail = risk::parse_tail(tail);
-      const auto checked = post::p695_inputs("Dmax", 1.0, 0.0, ratings);  // the ratings checked as p695 checks them
-      in.design_rating = checked.design_rating, in.test_rating = checked.test_rating, in.model_rating = checked.model_rating;
-      const cube::CubeReader reader(file);
-      return post::risk_report(post::cube_risk(reader, where, in), in, file);
-    } catch (const std::invalid_argument& e) {  // a HazardFileError names the file and line
-      throw api::InputError(e.what());
-    }
+    in.tail = risk::parse_tail(tail);
+    const auto checked = post::p695_inputs("Dmax", 1.0, 0.0, ratings);  // the ratings checked as p695 checks them
+    in.design_rating = checked.design_rating, in.test_rating = checked.test_rating, in.model_rating = checked.model_rating;
+    const cube::CubeReader reader(file);
+    return post::risk_report(post::cube_risk(reader, where, in), in, file);
   }
-  throw api::InputError("unknown report '" + kind + "' (expected stats, fragility, sensitivity, p695 or risk)");
+  throw UserError("unknown report '" + kind + "' (expected stats, fragility, sensitivity, p695 or risk)");
 }
 
 std::string cube_report(const std::string& kind, const std::string& file, const py::kwargs& kwargs) {
@@ -130,7 +113,7 @@ std::string cube_report(const std::string& kind, const std::string& file, const 
     post::write_json(report(kind, file, keywords), json);
   } catch (const cube::CubeError& e) {  // named as the command line names it: the file first
     const std::string text = e.what();
-    throw api::InputError(text.rfind(file, 0) == 0 ? text : file + ": " + text);
+    throw UserError(text.rfind(file, 0) == 0 ? text : file + ": " + text);
   }
   return json.str();
 }

@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string_view>
 
-#include "pcrf/api/input_error.hpp"
+#include "pcrf/user_error.hpp"
 #include "pcrf/model/scene_catalog.hpp"
 #include "pcrf/record/intensity.hpp"
 #include "pcrf/record/record_readers.hpp"
@@ -34,7 +34,7 @@ SettingValue setting_value(const Setting<Target>& s, const py::handle& value) {
   } else if (PyFloat_Check(value.ptr()) || py::hasattr(value, "__float__")) {
     v = py::float_(py::reinterpret_borrow<py::object>(value)).cast<double>();
   } else {
-    throw api::InputError(flag_name(s.key) + ": expected " + setting_kind_text(s));
+    throw UserError(std::string(s.key), "expected " + setting_kind_text(s));
   }
   return api::checked_setting(s, std::move(v));
 }
@@ -64,7 +64,7 @@ std::optional<double> Keywords::take_number(const std::string& key) {
   try {
     return py::float_(*value).cast<double>();
   } catch (const py::error_already_set&) {
-    throw api::InputError(key + ": expected a number");
+    throw UserError(key, "expected a number");
   }
 }
 
@@ -72,7 +72,7 @@ std::optional<std::string> Keywords::take_text(const std::string& key) {
   const auto value = take(key);
   if (!value) return std::nullopt;
   if (py::hasattr(*value, "__fspath__")) return py::str(value->attr("__fspath__")()).cast<std::string>();
-  if (!py::isinstance<py::str>(*value)) throw api::InputError(key + ": expected a string or a path");
+  if (!py::isinstance<py::str>(*value)) throw UserError(key, "expected a string or a path");
   return value->cast<std::string>();
 }
 
@@ -82,7 +82,7 @@ std::vector<double> to_doubles(const py::handle& value, const std::string& what)
     array = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
   } catch (const py::error_already_set&) {
   }
-  if (!array || array.ndim() != 1) throw api::InputError(what + ": expected a one-dimensional array of numbers");
+  if (!array || array.ndim() != 1) throw UserError(what, "expected a one-dimensional array of numbers");
   return std::vector<double>(array.data(), array.data() + array.size());
 }
 
@@ -94,11 +94,7 @@ GroundMotion motion_in_g(const std::string& name, double dt_s, const std::vector
   std::vector<double> accel_m_s2(accel_g.size());
   const double factor = to_m_s2(AccelUnit::kG);
   std::transform(accel_g.begin(), accel_g.end(), accel_m_s2.begin(), [factor](double a) { return a * factor; });
-  try {
-    return GroundMotion(name, dt_s, std::move(accel_m_s2));
-  } catch (const std::invalid_argument& e) {
-    throw api::InputError(name + ": " + e.what());
-  }
+  return GroundMotion(name, dt_s, std::move(accel_m_s2));
 }
 
 }  // namespace
@@ -108,7 +104,7 @@ namespace {
 /// An array's dt, checked as a reader checks a file's (sampling_problem).
 void check_array_sampling(const std::string& name, double dt_s, std::size_t samples) {
   if (const auto problem = sampling_problem(dt_s, samples); !problem.empty())
-    throw api::InputError(name + ": dt_s: " + problem);
+    throw UserError("dt_s", problem + " (" + name + ")");
 }
 
 }  // namespace
@@ -121,24 +117,20 @@ StationRecord Keywords::take_station(std::vector<std::string>& notes, api::Recor
   input.az2_deg = take_number("h2_azimuth_deg");
   const auto dt_s = take_number("dt_s");
   if (h1) {
-    if (!dt_s) throw api::InputError("ground_accel_g needs dt_s, its sample interval [s]");
+    if (!dt_s) throw UserError("ground_accel_g", "needs {}, its sample interval [s]", {"dt_s"});
     for (const char* file_key : {"record", "record_h2", "record_up", "synthetic"})
-      if (take(file_key)) throw api::InputError(std::string("give either ground_accel_g or ") + file_key + ", not both");
+      if (take(file_key)) throw UserError(Where{}, "give either {} or {}, not both", {"ground_accel_g", file_key});
     const std::string name = take_text("name").value_or("ground_accel_g");
     StationRecord station{motion_in_g(name, *dt_s, to_doubles(*h1, "ground_accel_g")), input.az1_deg, std::nullopt,
                           input.az2_deg, std::nullopt};
     if (h2) station.h2 = motion_in_g(name + " (h2)", *dt_s, to_doubles(*h2, "ground_accel_h2_g"));
     if (up) station.up = motion_in_g(name + " (up)", *dt_s, to_doubles(*up, "ground_accel_up_g"));
-    try {
-      notes = station.align();
-    } catch (const std::invalid_argument& e) {
-      throw api::InputError(e.what());
-    }
+    notes = station.align();
     check_array_sampling(name, *dt_s, station.h1.size());
     if (warnings != nullptr) add_warnings(api::implausible_arrays(station), *warnings);
     return station;
   }
-  if (h2 || up) throw api::InputError("ground_accel_h2_g and ground_accel_up_g go with ground_accel_g");
+  if (h2 || up) throw UserError(Where{}, "{} and {} go with {}", {"ground_accel_h2_g", "ground_accel_up_g", "ground_accel_g"});
   input.file = take_text("record").value_or("");
   input.file_h2 = take_text("record_h2").value_or("");
   input.file_up = take_text("record_up").value_or("");
@@ -164,11 +156,11 @@ std::unique_ptr<Scene> Keywords::take_scene() {
   if (const auto frame = take("frame")) {
     py::object parameters = *frame;
     if (!py::isinstance<py::dict>(parameters)) {
-      if (!py::hasattr(parameters, "parameters")) throw api::InputError("frame: expected a dict of parameters or a pcrf.Frame");
+      if (!py::hasattr(parameters, "parameters")) throw UserError("frame", "expected a dict of parameters or a pcrf.Frame");
       // A pcrf.Frame carries its model: model= may only repeat it.
-      const auto frame_model = py::str(py::getattr(parameters, "model", py::str("pcrf"))).cast<std::string>();
+      const auto frame_model = py::str(py::getattr(parameters, "model", py::str(std::string(default_scene_model().name)))).cast<std::string>();
       if (model && *model != frame_model)
-        throw api::InputError("model: '" + *model + "' but frame= is a pcrf.Frame of model '" + frame_model + "'");
+        throw UserError("model", "'" + *model + "' but {} is a pcrf.Frame of model '" + frame_model + "'", {"frame"});
       request.model = frame_model;
       parameters = parameters.attr("parameters");
     }
@@ -177,7 +169,7 @@ std::unique_ptr<Scene> Keywords::take_scene() {
       try {
         request.values[name] = py::float_(py::reinterpret_borrow<py::object>(value)).cast<double>();
       } catch (const py::error_already_set&) {
-        throw api::InputError("frame: " + name + ": expected a number");
+        throw UserError(Where{{"frame", name}, {}, 0}, "expected a number");
       }
     }
   }
@@ -203,7 +195,7 @@ void Keywords::add_warnings(std::vector<std::string> found, std::vector<std::str
     const auto value = take("warnings_as_errors");
     warnings_as_errors_ = value && py::bool_(*value);
   }
-  if (*warnings_as_errors_ && !found.empty()) throw api::InputError(found.front() + " (warnings_as_errors)");
+  if (*warnings_as_errors_ && !found.empty()) throw UserError(found.front() + " (warnings_as_errors)");
   for (auto& line : found) warnings.push_back(std::move(line));
 }
 
@@ -212,7 +204,8 @@ void Keywords::finish() const {
   const std::string& key = given_.begin()->first;
   const std::vector<std::string_view> known(known_.begin(), known_.end());
   const std::string hint = closest_word(key, known);
-  throw api::InputError("unknown keyword '" + key + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
+  if (hint.empty()) throw UserError(key, "unknown keyword");
+  throw UserError(key, "unknown keyword (did you mean {}?)", {hint});
 }
 
 }  // namespace pcrf::python

@@ -23,18 +23,18 @@ namespace pcrf::python {
 namespace py = pybind11;
 
 /// A Python value as a setting of `s` takes it: booleans, integers, floats as they are,
-/// text as the command line reads it, a list of words joined. \throws api::InputError.
+/// text as the command line reads it, a list of words joined. \throws UserError.
 template <class Target>
 SettingValue setting_value(const Setting<Target>& s, const py::handle& value);
 
 /// A scene as keywords name it: the catalogue's model name and the values given by its keys.
 struct SceneRequest {
-  std::string model = "pcrf";
+  std::string model = std::string(default_scene_model().name);
   std::map<std::string, double, std::less<>> values;
 };
 
 /// The scene of the catalogue and the point it was made from (when not null), through
-/// api::scene_of: the command line's checks and messages. \throws api::InputError.
+/// api::scene_of: the command line's checks and messages. \throws UserError.
 std::unique_ptr<Scene> scene_of(const SceneRequest& request, ScenePoint* point = nullptr);
 
 class Keywords {
@@ -60,22 +60,22 @@ class Keywords {
   /// `pcrf run` reads its files; the azimuths; the notes of padding in `notes`; how the files
   /// were named in `input` (when not null); the record warnings (implausible_records for
   /// files, implausible_arrays for arrays) in `warnings` (when not null) by add_warnings.
-  /// \throws api::InputError.
+  /// \throws UserError.
   StationRecord take_station(std::vector<std::string>& notes, api::RecordInput* input = nullptr,
                              std::vector<std::string>* warnings = nullptr);
   /// The scene of `model=` (pcrf, block, rocking-frame; default pcrf) with the parameters of
   /// `frame=` (a dict by the model's keys, or a pcrf.Frame), every other one at its default,
-  /// built as `pcrf run --model` builds it (model/scene_catalog.hpp). \throws api::InputError.
+  /// built as `pcrf run --model` builds it (model/scene_catalog.hpp). \throws UserError.
   std::unique_ptr<Scene> take_scene();
   /// `model=` and every parameter of a scene given as a keyword by its catalogue key
   /// (pcrf.Frame(model="block", slenderness_rad=0.2)); checked by scene_of().
   SceneRequest take_scene_parameters();
 
   /// Adds `found` (lines of a check that warns) to `warnings`; with the keyword
-  /// warnings_as_errors true the first is an api::InputError instead.
+  /// warnings_as_errors true the first is an UserError instead.
   void add_warnings(std::vector<std::string> found, std::vector<std::string>& warnings);
 
-  /// \throws api::InputError "unknown keyword 'x' (did you mean 'y'?)" for one not taken.
+  /// \throws UserError "unknown keyword 'x' (did you mean 'y'?)" for one not taken.
   void finish() const;
 
  private:
@@ -84,7 +84,7 @@ class Keywords {
   std::optional<bool> warnings_as_errors_;
 };
 
-/// A numpy float array as doubles. \throws api::InputError naming `what`.
+/// A numpy float array as doubles. \throws UserError naming `what`.
 std::vector<double> to_doubles(const py::handle& value, const std::string& what);
 
 }  // namespace pcrf::python

@@ -79,7 +79,7 @@ CaseCall read_call(const py::kwargs& kwargs) {
   call.solver = keywords.take_settings(solver_settings());
   if (const auto history = keywords.take("history")) call.history = py::bool_(*history);
   if (const auto dt = keywords.take_number("history_dt_s")) {
-    if (!(*dt > 0.0)) throw api::InputError("history_dt_s must be positive");
+    if (!(*dt > 0.0)) throw UserError("history_dt_s", "must be positive");
     call.history_dt_s = *dt;
   }
   keywords.finish();

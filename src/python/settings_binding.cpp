@@ -2,6 +2,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
+#include "pcrf/post/script_vocabulary.hpp"
 #include "pcrf/record/intensity.hpp"
 #include "pcrf/solver/settings.hpp"
 #include "pcrf/study/study.hpp"
@@ -38,6 +39,8 @@ void bind_settings(py::module_& m) {
   m.def("settings", &settings,
         "Every setting (table, key, kind, unit, default, doc): the [physics] and [solver] keys pcrf.run takes, "
         "the intensity keys (with intensity=), the [run] keys pcrf.study takes.");
+  m.def("vocabulary", &post::script_vocabulary_json,
+        "The JSON of `pcrf settings --json`: statuses with their kind, history event flags, frame parameters, curve states.");
 }
 
 }  // namespace pcrf::python

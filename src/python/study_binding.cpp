@@ -14,9 +14,9 @@
 
 #include "bindings.hpp"
 #include "keywords.hpp"
-#include "pcrf/api/input_error.hpp"
+#include "pcrf/user_error.hpp"
 #include "pcrf/parallel/mpi_session.hpp"
-#include "pcrf/study/study_error.hpp"
+#include "pcrf/user_error.hpp"
 #include "pcrf/study/study_parser.hpp"
 #include "pcrf/study/study_run.hpp"
 
@@ -27,7 +27,7 @@ namespace {
 constexpr const char* kDictSource = "study";
 
 [[noreturn]] void refuse(const py::handle& value, const std::string& path) {
-  throw study::StudyError(std::string(kDictSource) + ": " + path + ": a " +
+  throw UserError(std::string(kDictSource) + ": " + path + ": a " +
                           py::str(value.get_type().attr("__name__")).cast<std::string>() +
                           " cannot be a study value (expected a dict, list, bool, int, float or str)");
 }
@@ -70,7 +70,7 @@ toml::array toml_array(const py::handle& list, const std::string& path) {
   return array;
 }
 
-/// The dict as a study, read by the study parser (StudyError naming the key path); the cube
+/// The dict as a study, read by the study parser (UserError naming the key path); the cube
 /// keeps its TOML text.
 study::Study parsed_study(const py::dict& study) {
   const toml::table table = toml_table(study, "");
@@ -126,13 +126,13 @@ py::dict study(const py::object& source, const py::kwargs& kwargs) {
   if (const auto flag = keywords.take("overwrite")) options.overwrite = py::bool_(*flag);
   if (const auto flag = keywords.take("resume")) options.resume = py::bool_(*flag);
   if (const auto flag = keywords.take("check")) options.check_only = py::bool_(*flag);
-  if (options.resume && options.overwrite) throw api::InputError("give either resume or overwrite, not both");
+  if (options.resume && options.overwrite) throw UserError(Where{}, "give either {} or {}, not both", {"resume", "overwrite"});
   const auto progress = keywords.take("progress");
   if (progress && py::bool_(*progress)) options.progress = &std::cerr;
   options.run_overrides = keywords.take_settings(study::run_settings());
   keywords.finish();
   if (options.study && options.output.empty() && !options.check_only)
-    throw api::InputError("a study given as a dict needs output= (the cube's path)");
+    throw UserError(Where{}, "a study given as a dict needs {} (the cube's path)", {"output"});
 
   std::optional<study::StudySummary> summary;
   Interrupt interrupt;  // outside the released block: its exception is let go with the GIL held
@@ -141,7 +141,7 @@ py::dict study(const py::object& source, const py::kwargs& kwargs) {
   {
     py::gil_scoped_release released;
     if (!mpi_session()) {
-      if (const auto problem = parallel::MpiSession::startup_problem(); !problem.empty()) throw api::InputError(problem);
+      if (const auto problem = parallel::MpiSession::startup_problem(); !problem.empty()) throw UserError(problem);
       mpi_session() = std::make_unique<parallel::MpiSession>();
     }
     summary = study::run_study(options, *mpi_session());
@@ -173,7 +173,7 @@ py::dict study(const py::object& source, const py::kwargs& kwargs) {
 void bind_study(py::module_& m) {
   m.def("study", &study, py::arg("source"), "A study in process on one rank; see pcrf.study.");
   m.def("study_text", &checked_study_text, py::arg("study"),
-        "A dict study as TOML text, checked as a study file is (StudyError naming the key path).");
+        "A dict study as TOML text, checked as a study file is (UserError naming the key path).");
   m.def("finalize_mpi", [] { mpi_session().reset(); }, "Ends this process's MPI session (at exit).");
 }
 

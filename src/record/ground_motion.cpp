@@ -6,6 +6,8 @@
 
 #include "pcrf/record/ground_motion.hpp"
 
+#include "pcrf/user_error.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -24,15 +26,15 @@ std::string record_label(const std::string& name) {
 
 void validate(const std::string& name, double dt_s, const std::vector<double>& accel_m_s2) {
   if (!(dt_s > 0.0) || !std::isfinite(dt_s)) {
-    throw std::invalid_argument(record_label(name) + "dt_s must be positive and finite, got " +
+    throw UserError(record_label(name) + "dt_s must be positive and finite, got " +
                                 number_text(dt_s));
   }
   if (accel_m_s2.empty()) {
-    throw std::invalid_argument(record_label(name) + "no samples");
+    throw UserError(record_label(name) + "no samples");
   }
   for (std::size_t i = 0; i < accel_m_s2.size(); ++i) {
     if (!std::isfinite(accel_m_s2[i])) {
-      throw std::invalid_argument(record_label(name) + "sample " + std::to_string(i) +
+      throw UserError(record_label(name) + "sample " + std::to_string(i) +
                                   " is not finite");
     }
   }
@@ -69,7 +71,7 @@ double GroundMotion::accel_m_s2(double t_s) const {
 
 GroundMotion GroundMotion::scaled(double factor) const {
   if (!std::isfinite(factor)) {
-    throw std::invalid_argument(record_label(name_) + "scale factor must be finite, got " +
+    throw UserError(record_label(name_) + "scale factor must be finite, got " +
                                 number_text(factor));
   }
   std::vector<double> out_m_s2(accel_m_s2_);

@@ -1,6 +1,8 @@
 // Projections of a horizontal pair on any azimuth (see horizontal_pair.hpp).
 #include "pcrf/record/horizontal_pair.hpp"
 
+#include "pcrf/user_error.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -54,13 +56,13 @@ ProjectionWeights ordered_weights(double az1_deg, double az2_deg, double phi_deg
 
 ProjectionWeights projection_weights(double az1_deg, double az2_deg, double phi_deg) {
   if (!std::isfinite(az1_deg) || !std::isfinite(az2_deg) || !std::isfinite(phi_deg))
-    throw std::invalid_argument("azimuths must be finite numbers of degrees");
+    throw UserError("azimuths must be finite numbers of degrees");
   if (std::abs(std::sin(radians(az2_deg - az1_deg))) < std::sin(radians(1.0))) {
     char text[160];
     std::snprintf(text, sizeof text,
                   "components recorded along %g° and %g° are parallel: they do not give the horizontal motion",
                   az1_deg, az2_deg);
-    throw std::invalid_argument(text);
+    throw UserError(text);
   }
   // The same arithmetic whichever component comes first, so that the projection (w₁ a₁ + w₂ a₂,
   // an addition that commutes exactly) does not depend on the order the pair is given in.
@@ -80,7 +82,7 @@ GroundMotion padded(const GroundMotion& record, std::size_t samples) {
 
 GroundMotion project(const HorizontalPair& pair, double phi_deg) {
   if (!same_sample_interval(pair.h1.dt_s(), pair.h2.dt_s()))
-    throw std::invalid_argument("the horizontal components '" + pair.h1.name() + "' and '" + pair.h2.name() +
+    throw UserError("the horizontal components '" + pair.h1.name() + "' and '" + pair.h2.name() +
                                 "' are sampled at different intervals (" + number_text(pair.h1.dt_s()) + " s, " +
                                 number_text(pair.h2.dt_s()) + " s)");
   const ProjectionWeights w = projection_weights(pair.az1_deg, pair.az2_deg, phi_deg);

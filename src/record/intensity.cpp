@@ -13,6 +13,8 @@
 /// instead of transcribing its closed-form coefficients.
 #include "pcrf/record/intensity.hpp"
 
+#include "pcrf/user_error.hpp"
+
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include <Eigen/Dense>
@@ -102,9 +104,9 @@ double circular_frequency(double period_s) { return 2.0 * std::numbers::pi / per
 /// period and damping.
 std::vector<double> oscillator_displacement_m(const GroundMotion& record, double period_s, double damping) {
   if (!(period_s > 0.0) || !std::isfinite(period_s))
-    throw std::invalid_argument("spectral acceleration: the period must be positive, got " + std::to_string(period_s));
+    throw UserError("spectral acceleration: the period must be positive, got " + std::to_string(period_s));
   if (!(damping >= 0.0 && damping < 1.0))
-    throw std::invalid_argument("spectral acceleration: the damping ratio must be in [0, 1), got " +
+    throw UserError("spectral acceleration: the damping ratio must be in [0, 1), got " +
                                 std::to_string(damping));
   const double omega = circular_frequency(period_s);
   const double dt = record.dt_s();
@@ -220,7 +222,7 @@ double intensity_of(const GroundMotion& record, const IntensitySpec& spec) {
     case IntensityMeasure::kSa: return spectral_acceleration_g(record, spec.period_s, spec.damping);
     default: break;
   }
-  throw std::invalid_argument(to_string(spec.measure) + " is a measure of a horizontal pair: '" + record.name() +
+  throw UserError(to_string(spec.measure) + " is a measure of a horizontal pair: '" + record.name() +
                               "' needs its second horizontal component");
 }
 

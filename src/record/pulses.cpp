@@ -1,6 +1,8 @@
 // Closed-form acceleration pulses (see pulses.hpp for the formulas and references).
 #include "pcrf/record/pulses.hpp"
 
+#include "pcrf/user_error.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -23,7 +25,7 @@ constexpr double kMaxSamples = 1e8;
 
 /// "period_s of ricker must be …": the key and the kind as a synthetic string names them.
 [[noreturn]] void bad(const PulseSpec& p, const char* field, const std::string& problem) {
-  throw std::invalid_argument(std::string(field) + " of " + pulse_kind(p.shape) + " " + problem);
+  throw UserError(std::string(field) + " of " + pulse_kind(p.shape) + " " + problem);
 }
 
 void validate(const PulseSpec& p) {
@@ -119,7 +121,7 @@ UnitPulse unit_pulse(const PulseSpec& p) {
       return {[p, scale](double t) { return scale * mp_accel(p, t); }, -half, half, peak};
     }
   }
-  throw std::invalid_argument("pulse shape: unknown value");
+  throw UserError("pulse shape: unknown value");
 }
 
 }  // namespace
@@ -138,7 +140,7 @@ std::string pulse_kind(PulseShape shape) { return name_of(kPulseNames, shape); }
 std::vector<PulseShape> pulse_shapes() { return values_of(kPulseNames); }
 
 double cycles_pulse_phase_rad(int cycles) {
-  if (cycles < 1) throw std::invalid_argument("cycles of pulse-cycles must be at least 1");
+  if (cycles < 1) throw UserError("cycles of pulse-cycles must be at least 1");
   // 2 cos φ − ((2n + 1)π − 2φ) sin φ falls from 2 at φ = 0 to −2nπ at φ = π/2.
   const auto residual = [cycles](double phi) {
     return 2.0 * std::cos(phi) - ((2.0 * cycles + 1.0) * kPi - 2.0 * phi) * std::sin(phi);

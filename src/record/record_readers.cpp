@@ -1,11 +1,13 @@
 /// \file record_readers.cpp
 /// \brief Readers for ground-motion files: PEER NGA `.AT2`, two-column and one-column text.
 ///
-/// Every problem with a file becomes a RecordError "path:LINE: problem" (or "path: problem"
+/// Every problem with a file becomes a UserError "path:LINE: problem" (or "path: problem"
 /// when no single line is to blame). Nothing is guessed or silently repaired: a value that
 /// does not parse, a count that does not match NPTS or an uneven time step stops the read.
 
 #include "pcrf/record/record_readers.hpp"
+
+#include "pcrf/user_error.hpp"
 
 #include <array>
 
@@ -36,11 +38,11 @@ namespace {
 
 [[noreturn]] void fail_at(const std::filesystem::path& file, std::size_t line_number,
                           const std::string& problem) {
-  throw RecordError(file.string() + ":" + std::to_string(line_number) + ": " + problem);
+  throw UserError(Where{{}, file.string(), static_cast<int>(line_number)}, problem);
 }
 
 [[noreturn]] void fail_file(const std::filesystem::path& file, const std::string& problem) {
-  throw RecordError(file.string() + ": " + problem);
+  throw UserError(Where{{}, file.string(), 0}, problem);
 }
 
 bool is_space(char c) {
@@ -107,7 +109,7 @@ bool parse_integer(std::string_view token, long long& value) {
 }
 
 /// The whole file as text. A missing file, a folder or a FIFO, an unreadable file, a UTF-16
-/// file and a binary file (a NUL byte) are RecordErrors.
+/// file and a binary file (a NUL byte) are UserErrors.
 std::string read_text(const std::filesystem::path& file) {
   std::error_code ec;
   const auto status = std::filesystem::status(file, ec);
@@ -384,7 +386,7 @@ AccelUnit parse_accel_unit(const std::string& text) {
   if (key == "g") return AccelUnit::kG;
   if (key == "m/s2" || key == "m/s^2" || key == "mps2") return AccelUnit::kMeterPerSecond2;
   if (key == "cm/s2" || key == "cm/s^2" || key == "gal") return AccelUnit::kCentimeterPerSecond2;
-  throw std::invalid_argument("unknown acceleration unit " + quote_token(text) +
+  throw UserError("unknown acceleration unit " + quote_token(text) +
                               " (expected g, m/s2, m/s^2, mps2, cm/s2, cm/s^2 or gal)");
 }
 
@@ -403,7 +405,7 @@ double to_m_s2(AccelUnit unit) {
     case AccelUnit::kMeterPerSecond2: return 1.0;
     case AccelUnit::kCentimeterPerSecond2: return 0.01;
   }
-  throw std::invalid_argument("invalid AccelUnit value");
+  throw UserError("invalid AccelUnit value");
 }
 
 namespace {

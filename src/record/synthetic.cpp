@@ -9,6 +9,8 @@
 
 #include "pcrf/record/synthetic.hpp"
 
+#include "pcrf/user_error.hpp"
+
 #include "pcrf/number_text.hpp"
 #include "pcrf/record/pulses.hpp"
 
@@ -38,7 +40,7 @@ constexpr double kMaxSamples = 1e8;
 /// names them (`spec` is the kind: "sine", "stochastic"), the value in full.
 [[noreturn]] void bad_field(const char* spec, const char* field, const std::string& requirement,
                             double value) {
-  throw std::invalid_argument(std::string(field) + " of " + spec + " " + requirement + ", got " +
+  throw UserError(std::string(field) + " of " + spec + " " + requirement + ", got " +
                               number_text(value));
 }
 
@@ -219,7 +221,7 @@ void scale_to_peak(std::vector<double>& accel, double target_peak) {
     if (std::abs(accel[i]) > std::abs(accel[peak_index])) peak_index = i;
   }
   const double peak = std::abs(accel[peak_index]);
-  if (!(peak > 0.0)) throw std::invalid_argument("stochastic: the record is identically zero");
+  if (!(peak > 0.0)) throw UserError("stochastic: the record is identically zero");
   const double factor = target_peak / peak;
   for (double& a : accel) {
     a *= factor;
@@ -274,7 +276,7 @@ template <typename Spec>
 void apply_assignments(const std::string& text, std::string_view kind, std::string_view list,
                        const std::vector<Field<Spec>>& fields, Spec& spec) {
   const auto error = [&](const std::string& problem) {
-    return std::invalid_argument("synthetic record '" + text + "': " + problem);
+    return UserError("synthetic record '" + text + "': " + problem);
   };
   std::vector<std::string_view> seen;
   if (trim(list).empty()) return;  // "sine" or "sine:" → all defaults
@@ -380,7 +382,7 @@ GroundMotion make_synthetic(const std::string& text) {
     try {
       return renamed(make(), text);
     } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument("synthetic record '" + text + "': " + e.what());
+      throw UserError("synthetic record '" + text + "': " + e.what());
     }
   };
   if (kind == "sine") {
@@ -402,7 +404,7 @@ GroundMotion make_synthetic(const std::string& text) {
   }
   std::string kinds = "sine, stochastic";
   for (const PulseShape shape : pulse_shapes()) kinds += ", " + pulse_kind(shape);
-  throw std::invalid_argument("synthetic record '" + text + "': unknown kind '" + std::string(kind) + "' (expected " +
+  throw UserError("synthetic record '" + text + "': unknown kind '" + std::string(kind) + "' (expected " +
                               kinds + ")");
 }
 

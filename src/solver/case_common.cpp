@@ -1,6 +1,8 @@
 // Record scanning at rest and record-independent parts of the result record.
 #include "case_common.hpp"
 
+#include "pcrf/user_error.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -149,7 +151,7 @@ void validate_table(const SettingTable<Target>& table, const Target& values) {
     if (!setting.in_fingerprint) continue;  // the preset name only says where the values came from
     SettingValue value = setting.get(values);
     if (const auto problem = check_setting(setting, value); !problem.empty())
-      throw std::invalid_argument(std::string(table.name) + " setting " + std::string(setting.key) + " " + problem);
+      throw UserError(std::string(setting.key), problem);
   }
 }
 
@@ -162,7 +164,7 @@ void validate(const SolverSettings& s, const PhysicsOptions& p) {
   validate_table(solver_settings(), s);
   validate_table(physics_settings(), p);
   if (p.uplift == UpliftCriterion::kPaperProcedure && s.integrator != Integrator::kFixedRk4SignChange)
-    throw std::invalid_argument(
+    throw UserError(
         "physics setting uplift = \"paper-procedure\" reproduces the paper's fixed-step procedure: it needs solver "
         "setting integrator = \"fixed-rk4\" (and a fixed_step_s)");
   last_valid.emplace(s, p);

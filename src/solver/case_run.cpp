@@ -60,7 +60,7 @@ CaseResult CaseRun::end() {
 }
 
 void CaseRun::rest_until_uplift() {
-  // Both criteria open the frame where the net force at θ₁ = 0 does (see README,
+  // Both criteria open the frame where the net force at θ₁ = 0 does (see docs/physics.md,
   // "Uplift criteria"): a unilateral contact pushes, it never pulls, so after the paper's
   // trigger a frame still held by its prestress stays closed.
   const double t_stop = end_.rest_end_s(t_);
@@ -165,6 +165,16 @@ bool CaseRun::fly() {
 inline bool CaseRun::handle_roots(double t, double* y) {
   int found[kRootCount] = {0, 0, 0, 0};
   integrator_->root_info(found);
+  if (found[kThetaPeak] && !found[kLimit] && std::abs(y[0]) >= stop_.stop_rad()) {
+    // A peak beyond the stop angle: |θ₁| crossed it and came back within one step, unseen
+    // by the root search (dopri5 checks for this; SUNDIALS' search finds it only when a
+    // probe lands beyond). The frame reached the stop angle: never reported as safe.
+    const double at_stop = std::copysign(stop_.stop_rad(), y[0]);
+    note_theta(t, at_stop);
+    emit(t, at_stop, y[1], kEventStop);
+    finish(stop_.status(), stop_.message());
+    return true;
+  }
   if (found[kThetaPeak]) {
     note_theta(t, y[0]);
     emit(t, y[0], y[1], kEventThetaPeak);

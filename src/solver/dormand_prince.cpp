@@ -274,6 +274,43 @@ bool DormandPrinceIntegrator::roots_at(double t, double* g) {
   return problem_.roots(t, y.data(), g) == 0;
 }
 
+bool DormandPrinceIntegrator::illinois(int i, double& lo, double& glo, double& hi, double& ghi, double ttol) {
+  // Regula falsi that halves the stale end's value when an end repeats.
+  std::array<double, kMaxRoots> g;  // NOLINT: filled by roots_at before use
+  const auto k = static_cast<std::size_t>(i);
+  int last = 0;
+  for (int it = 0; it < 200 && hi - lo > ttol && ghi != 0.0; ++it) {
+    double t = hi - ghi * (hi - lo) / (ghi - glo);
+    const double margin = 0.5 * ttol;
+    t = std::clamp(t, lo + margin, hi - margin);
+    if (!roots_at(t, g.data())) return false;
+    const double gt = g[k];
+    if (gt == 0.0) {
+      hi = t;
+      ghi = 0.0;
+    } else if ((gt > 0.0) == (glo > 0.0)) {
+      lo = t, glo = gt;
+      if (last == -1) ghi *= 0.5;
+      last = -1;
+    } else {
+      hi = t, ghi = gt;
+      if (last == 1) glo *= 0.5;
+      last = 1;
+    }
+  }
+  return true;
+}
+
+void DormandPrinceIntegrator::locate(int i, double& lo, double& glo, double& hi, double& ghi, double ttol) {
+  // A root that is a state component: Newton on the interpolant, no call of the problem.
+  const int component = problem_.root_state_index(i);
+  if (component >= 0) {
+    locate_on_interpolant(component, lo, glo, hi, ghi, ttol);
+  } else {
+    illinois(i, lo, glo, hi, ghi, ttol);
+  }
+}
+
 bool DormandPrinceIntegrator::find_roots(double a, const double* g_a, double b, const double* g_b) {
   bool candidate = false;  // most steps cross nothing: leave at once
   for (int i = 0; i < nroots_; ++i) candidate = candidate || (g_a[i] != 0.0 && g_a[i] * g_b[i] <= 0.0);
@@ -291,40 +328,31 @@ bool DormandPrinceIntegrator::find_roots(double a, const double* g_a, double b, 
     if (ga == 0.0 || ga * gb > 0.0) continue;     // inactive, or no sign change
     if (dirs_[k] != 0 && dirs_[k] * ga > 0.0) continue;  // crosses against its direction
     double lo = a, glo = ga, hi = b, ghi = gb;
-    const int component = problem_.root_state_index(i);
-    if (component >= 0) {
-      locate_on_interpolant(component, lo, glo, hi, ghi, ttol);
-      when[k] = hi;
-      earliest = std::min(earliest, hi);
-      any = true;
-      continue;
-    }
-    // Illinois: regula falsi that halves the stale end's value when an end repeats.
-    int last = 0;
-    for (int it = 0; it < 200 && hi - lo > ttol && ghi != 0.0; ++it) {
-      double t = hi - ghi * (hi - lo) / (ghi - glo);
-      const double margin = 0.5 * ttol;
-      t = std::clamp(t, lo + margin, hi - margin);
-      if (!roots_at(t, g.data())) break;
-      const double gt = g[k];
-      if (gt == 0.0) {
-        hi = t;
-        ghi = 0.0;
-      } else if ((gt > 0.0) == (glo > 0.0)) {
-        lo = t, glo = gt;
-        if (last == -1) ghi *= 0.5;
-        last = -1;
-      } else {
-        hi = t, ghi = gt;
-        if (last == 1) glo *= 0.5;
-        last = 1;
-      }
-    }
+    locate(i, lo, glo, hi, ghi, ttol);
     when[k] = hi;
     earliest = std::min(earliest, hi);
     any = true;
   }
   if (!any) return false;
+  // A function with the same sign at both ends of the step may still cross before the
+  // earliest root and back: the stop angle exceeded at a θ peak inside the step, where
+  // |θ₁| is largest. At the earliest root, any function whose sign differs from its sign at
+  // `a` crossed before it: locate that crossing, and check again at the new earliest.
+  for (int pass = 0; pass < nroots_; ++pass) {
+    if (!roots_at(earliest, g.data())) break;
+    bool moved = false;
+    for (int i = 0; i < nroots_; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      const double ga = g_a[i], gm = g[k];
+      if (when[k] <= earliest || ga == 0.0 || !(ga * gm < 0.0)) continue;
+      if (dirs_[k] != 0 && dirs_[k] * ga > 0.0) continue;
+      double lo = a, glo = ga, hi = earliest, ghi = gm;
+      locate(i, lo, glo, hi, ghi, ttol);
+      when[k] = hi;
+      if (hi < earliest) earliest = hi, moved = true;
+    }
+    if (!moved) break;
+  }
   std::fill(found_.begin(), found_.end(), 0);
   for (int i = 0; i < nroots_; ++i) {
     const auto k = static_cast<std::size_t>(i);

@@ -111,6 +111,12 @@ class DormandPrinceIntegrator final : public OdeIntegrator {
   /// Narrows [lo, hi] (values glo, ghi of opposite signs) around the root of dense
   /// component `component` to ttol.
   void locate_on_interpolant(int component, double& lo, double& glo, double& hi, double& ghi, double ttol) const;
+  /// Narrows [lo, hi] (values glo, ghi of opposite signs) around the root of function i to
+  /// ttol: locate_on_interpolant for a state component, else illinois.
+  void locate(int i, double& lo, double& glo, double& hi, double& ghi, double ttol);
+  /// Narrows [lo, hi] around the root of function i by the Illinois method (g on the dense
+  /// output); false when the problem's root functions failed.
+  bool illinois(int i, double& lo, double& glo, double& hi, double& ghi, double ttol);
   /// g at time t of the current step, from the dense output.
   bool roots_at(double t, double* g);
   void dense(double t, Vec& y) const;

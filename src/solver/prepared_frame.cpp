@@ -25,29 +25,25 @@ void check_domain(const Scene& eom, double restitution) {
     std::snprintf(text, sizeof text,
                   "the ground cannot rock this frame: its uplift coefficient G/S = %.4g is not positive (a beam this "
                   "deep turns the linkage against the ground motion)", eom.lambda_g());
-    throw InvalidFrame(text);
+    throw UserError(text);
   }
   const double threshold_g = eom.uplift_threshold_m_s2() / kGravity_m_s2;
   if (!(threshold_g > 0.0)) {
     std::snprintf(text, sizeof text,
                   "the frame cannot stand at rest: its uplift threshold is %.4g g (gravity and prestress do not hold "
                   "it closed)", threshold_g);
-    throw InvalidFrame(text);
+    throw UserError(text);
   }
   if (!(restitution >= 0.0 && restitution <= 1.0)) {
     std::snprintf(text, sizeof text,
                   "coefficient of restitution r = %.4g is outside [0, 1]: the impacts are not rocking impacts "
                   "(the beam is too deep or the span too short for its columns)", restitution);
-    throw InvalidFrame(text);
+    throw UserError(text);
   }
 }
 
 std::unique_ptr<Scene> equation_of(const Frame& frame) {
-  try {
-    return std::make_unique<EquationOfMotion>(frame);
-  } catch (const std::invalid_argument& e) {
-    throw InvalidFrame(e.what());
-  }
+  return std::make_unique<EquationOfMotion>(frame);
 }
 
 }  // namespace

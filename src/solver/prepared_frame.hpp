@@ -13,9 +13,9 @@ namespace pcrf {
 
 class PreparedFrame {
  public:
-  /// The prestressed rocking frame. \throws InvalidFrame.
+  /// The prestressed rocking frame. \throws UserError.
   PreparedFrame(const Frame& frame, const PhysicsOptions& physics);
-  /// Any scene. \throws InvalidFrame when it lies outside the model's domain.
+  /// Any scene. \throws UserError when it lies outside the model's domain.
   PreparedFrame(std::unique_ptr<Scene> scene, const PhysicsOptions& physics);
 
   const PhysicsOptions& physics() const { return physics_; }

@@ -15,6 +15,8 @@
 // sample: u_g has a kink there (dopri5 keeps the samples as breakpoints of its own).
 #include <stdexcept>
 
+#include "pcrf/user_error.hpp"
+
 #include "pcrf/solver/settings.hpp"
 
 namespace pcrf {
@@ -38,7 +40,7 @@ SolverSettings preset_settings(const std::string& name) {
     s.atol_theta_rad = 1e-14;
     s.atol_omega_rad_s = 1e-13;
   } else {
-    throw std::invalid_argument("unknown preset '" + name + "' (expected fast, balanced or reference)");
+    throw UserError("unknown preset '" + name + "' (expected fast, balanced or reference)");
   }
   return s;
 }

@@ -22,10 +22,10 @@ void check_initial_state(const Scene& eom, const PhysicsOptions& physics) {
   if (!(std::fabs(physics.theta0_rad) < eom.overturn_angle_rad())) {
     char text[256];
     std::snprintf(text, sizeof text,
-                  "theta0_rad: |θ₀| = %.6g rad is not below this frame's overturning angle %.6g rad "
+                  "|θ₀| = %.6g rad is not below this frame's overturning angle %.6g rad "
                   "(95 %% of its closing limit %.6g rad)",
                   std::fabs(physics.theta0_rad), eom.overturn_angle_rad(), eom.closing_limit_rad());
-    throw std::invalid_argument(text);
+    throw UserError("theta0_rad", text);
   }
 }
 

@@ -41,7 +41,7 @@ const SettingTable<PhysicsOptions>& physics_settings() {
     auto& s = t.settings;
     s.push_back(choice_setting("uplift", &P::uplift, values_of(kUpliftNames),
                                &to_string, &parse_uplift_criterion,
-                               "uplift criterion (README, \"Uplift criteria\"); paper-procedure is NON-PHYSICAL "
+                               "uplift criterion (docs/physics.md, \"Uplift criteria\"); paper-procedure is NON-PHYSICAL "
                                "(motion from the paper's t_RI, no contact condition; with integrator fixed-rk4)"));
     s.back().aliases = {"--criterion"};
     s.push_back(number_setting("fracture_strain", &P::fracture_strain, "1", Bound::kPositive,
@@ -53,7 +53,7 @@ const SettingTable<PhysicsOptions>& physics_settings() {
     s.push_back(number_setting("max_tail_s", &P::max_tail_s, "s", Bound::kPositive,
                                "longest until-rest tail; a frame still rocking then is rocking_at_end, unresolved"));
     s.push_back(number_setting("zeno_time_s", &P::zeno_time_s, "s", Bound::kPositive,
-                               "return-to-rest time scale (README, \"Return to rest\")"));
+                               "return-to-rest time scale (docs/physics.md, \"Return to rest\")"));
     s.back().aliases = {"--zeno-time"};
     s.push_back(number_setting("theta0_rad", &P::theta0_rad, "rad", Bound::kAny,
                                "initial rotation θ₁ (0: the frame starts at rest); within the closing limit"));

@@ -63,8 +63,8 @@ const SceneModel* read_model(const Fields& fields) {
   if (!name) return nullptr;
   try {
     return &scene_model(*name);
-  } catch (const std::invalid_argument& e) {
-    fields.fail("model", e.what());
+  } catch (const UserError& e) {  // the file and line of the key
+    fields.fail("model", e.problem(Dialect::kKey));
   }
 }
 

@@ -41,7 +41,7 @@ void check_axis(const Fields& fields, std::string_view key, const std::vector<do
                 const SceneParameter* parameter);
 
 /// The scene model `fields` names by its key `model`, or nullptr when it names none.
-/// \throws StudyError "FILE:LINE: t.model: unknown scene 'x' (expected pcrf, block or rocking-frame)".
+/// \throws UserError "FILE:LINE: t.model: unknown scene 'x' (expected pcrf, block or rocking-frame)".
 const SceneModel* read_model(const Fields& fields);
 
 /// Reads every parameter of `model` that `fields` gives into `point` ([frame] or [base]: all;

@@ -89,7 +89,7 @@ std::optional<CaseRunner::Ready> CaseRunner::set_up(const parallel::WorkItem& it
   Ready ready;
   try {
     ready.frame = prepared(spec.frame);
-  } catch (const std::invalid_argument& e) {  // make_frame's geometry, or InvalidFrame
+  } catch (const std::invalid_argument& e) {  // make_frame's geometry, or outside the model's domain
     outcome.status = static_cast<std::int8_t>(CaseStatus::kInvalidFrame);
     outcome.note = std::string("invalid frame: ") + e.what();
     return std::nullopt;

@@ -6,7 +6,7 @@
 
 #include "pcrf/row_major.hpp"
 #include "pcrf/study/cube_vocabulary.hpp"
-#include "pcrf/study/study_error.hpp"
+#include "pcrf/user_error.hpp"
 
 namespace pcrf::study {
 

@@ -70,7 +70,7 @@ std::string canonical_description(const Study& study, const CaseSpace& space, Re
   out << "\nbase";
   detail::describe_parameters(out, *study.model, study.base);
   out << '\n';
-  if (study.model->name != "pcrf") out << "scene " << study.model->name << '\n';  // the frame's fingerprints unchanged
+  if (study.model != &default_scene_model()) out << "scene " << study.model->name << '\n';  // the frame's fingerprints unchanged
   study.plan->describe(out);
   describe_settings(out, physics_settings(), study.physics);
   describe_settings(out, solver_settings(), study.solver);

@@ -2,6 +2,7 @@
 #include "pcrf/study/level_axis.hpp"
 
 #include <iterator>
+#include <optional>
 
 #include "pcrf/study/cube_vocabulary.hpp"
 #include "pcrf/plan/ida_search.hpp"
@@ -65,16 +66,25 @@ class MeasuredAxis : public LevelAxis {
   std::string long_name_;
 };
 
+/// Stripes at given intensities, or (hazard-consistent) at the intensities of given return
+/// periods on a site's hazard curve, recorded beside them as `return_period_yr`.
 class IntensityStripes final : public MeasuredAxis {
  public:
-  IntensityStripes(const IntensitySpec& measure, std::vector<double> intensities)
-      : MeasuredAxis(measure), intensities_(std::move(intensities)) {}
+  IntensityStripes(const IntensitySpec& measure, std::vector<double> intensities,
+                   const std::optional<Study::HazardStripes>& hazard)
+      : MeasuredAxis(measure), intensities_(std::move(intensities)), hazard_(hazard) {}
 
   std::vector<cube::Dimension> leading_dimensions() const override { return {{names::kIntensity, intensities_.size()}}; }
   const std::vector<double>& levels() const override { return intensities_; }
   void add_leading(cube::CubeLayout& layout, RecordCache& records) const override {
     add_unscaled(layout, records);
     layout.coordinates.push_back(number_coordinate(names::kIntensity, names::kIntensity, units_, long_name_, intensities_));
+    if (hazard_)
+      layout.coordinates.push_back(number_coordinate(
+          names::kReturnPeriod, names::kIntensity, "yr",
+          "return period of the stripe's intensity on the hazard curve " + hazard_->hazard +
+              " (1 / its mean annual rate of exceedance, the curve interpolated log-log)",
+          hazard_->return_periods_yr));
     cube::SideVariable factor{names::kScaleFactor, "1", "factor applied to the record's accelerations to reach the intensity",
                               {names::kRecord, names::kIntensity}, {}};
     for (std::size_t r = 0; r < records.size(); ++r)
@@ -84,10 +94,14 @@ class IntensityStripes final : public MeasuredAxis {
   void describe(std::ostream& out) const override {
     out << "intensity";
     for (double s : intensities_) out << ' ' << s;
+    if (!hazard_) return;
+    out << " return_periods_yr";
+    for (double t : hazard_->return_periods_yr) out << ' ' << t;
   }
 
  private:
   std::vector<double> intensities_;
+  std::optional<Study::HazardStripes> hazard_;
 };
 
 class IdaAxis final : public MeasuredAxis {
@@ -150,7 +164,7 @@ std::shared_ptr<const LevelAxis> make_level_axis(const Study& study) {
   if (study.ida)
     return std::make_shared<IdaAxis>(*study.intensity, static_cast<std::size_t>(study.ida->max_runs), study.solver.verdict_check,
                                      study.levels);
-  if (study.intensity) return std::make_shared<IntensityStripes>(*study.intensity, study.levels);
+  if (study.intensity) return std::make_shared<IntensityStripes>(*study.intensity, study.levels, study.hazard_stripes);
   return std::make_shared<ScaleAxis>(study.levels);
 }
 

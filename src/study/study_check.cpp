@@ -11,7 +11,7 @@
 #include "pcrf/record/horizontal_pair.hpp"
 #include "pcrf/study/fingerprint.hpp"
 #include "pcrf/solver/rocking_solver.hpp"
-#include "pcrf/study/study_error.hpp"
+#include "pcrf/user_error.hpp"
 
 namespace pcrf::study {
 namespace {
@@ -24,24 +24,24 @@ void check_records(const Study& study, RecordCache& records, std::vector<std::st
       records.get(r);  // loaded once, here, so that a bad record fails up front
       for (const auto& note : records.notes(r)) notes.push_back("record \"" + source.name + "\": " + note);
     } catch (const std::exception& e) {
-      throw StudyError(source.declared_at + ": records: cannot load record \"" + source.name + "\" (" +
+      throw UserError(source.declared_at + ": records: cannot load record \"" + source.name + "\" (" +
                        source.describe() + "): " + e.what());
     }
     if (const auto problem = measures_problem(records.get(r)); !problem.empty())
-      throw StudyError(source.declared_at + ": records: record \"" + source.name + "\": " + problem);
+      throw UserError(source.declared_at + ": records: record \"" + source.name + "\": " + problem);
     std::vector<std::string> found;
     if (auto warning = record_warning(study, r, records.get(r)); !warning.empty()) found.push_back(std::move(warning));
     for (const auto& line : records.warnings(r))
       found.push_back(source.declared_at + ": records: record \"" + source.name + "\": " + line);
     for (auto& warning : found) {
-      if (study.run.warnings_as_errors) throw StudyError(warning + " ([run] warnings_as_errors)");
+      if (study.run.warnings_as_errors) throw UserError(warning + " ([run] warnings_as_errors)");
       warnings.push_back(std::move(warning));
     }
     if (!study.intensity) continue;
     if (component_measure(study.intensity->measure) == IntensityMeasure::kSa)
       if (const auto problem = sa_period_problem(study.intensity->period_s, records.get(r).dt_s()); !problem.empty()) {
         const auto line = study.setting_lines.find("intensity.period_s");
-        throw StudyError((line != study.setting_lines.end() ? line->second : study.file) + ": intensity.period_s: " + problem +
+        throw UserError((line != study.setting_lines.end() ? line->second : study.file) + ": intensity.period_s: " + problem +
                          " (record \"" + source.name + "\")");
       }
     double im = 0.0;
@@ -50,12 +50,12 @@ void check_records(const Study& study, RecordCache& records, std::vector<std::st
     } catch (const std::invalid_argument& e) {
       if (study.intensity->normalise != SetNormalisation::kNone) {  // normalise = "p695" over records that are not pairs
         const auto line = study.setting_lines.find("intensity.normalise");
-        throw StudyError((line != study.setting_lines.end() ? line->second : study.file) + ": intensity.normalise: " + e.what());
+        throw UserError((line != study.setting_lines.end() ? line->second : study.file) + ": intensity.normalise: " + e.what());
       }
-      throw StudyError(source.declared_at + ": records: record \"" + source.name + "\": " + e.what());
+      throw UserError(source.declared_at + ": records: record \"" + source.name + "\": " + e.what());
     }
     if (!(im > 0.0) || !std::isfinite(im))
-      throw StudyError(source.declared_at + ": records: record \"" + source.name + "\" has " +
+      throw UserError(source.declared_at + ": records: record \"" + source.name + "\" has " +
                        to_string(study.intensity->measure) + " = " + number_text(im) +
                        ": it cannot be scaled to an intensity");
   }
@@ -82,7 +82,7 @@ void check_frames(const Study& study, const CaseSpace& space, CheckedStudy& chec
       auto made = spec.make();
       frame = made.get();
       prepared = prepare_scene(std::move(made), study.physics);
-    } catch (const std::invalid_argument& e) {  // impossible geometry, or InvalidFrame
+    } catch (const std::invalid_argument& e) {  // impossible geometry, or outside the model's domain
       if (checked.invalid_frames++ == 0) checked.first_invalid = describe(study, spec) + ": " + e.what();
       checked.invalid_cases += cases_per_frame;
       continue;
@@ -91,7 +91,7 @@ void check_frames(const Study& study, const CaseSpace& space, CheckedStudy& chec
       check_initial_state(*frame, study.physics);
     } catch (const std::invalid_argument& e) {
       const auto line = study.setting_lines.find("physics.theta0_rad");
-      throw StudyError((line != study.setting_lines.end() ? line->second : study.file) + ": physics." + e.what() +
+      throw UserError((line != study.setting_lines.end() ? line->second : study.file) + ": physics." + e.what() +
                        " (frame " + describe(study, spec) + ")");
     }
   }
@@ -104,7 +104,7 @@ void check_incidence(const Study& study, std::vector<std::string>& warnings) {
   if (line == study.setting_lines.end()) return;
   auto warning = radians_warning(line->second + ": axes.incidence_deg", study.incidence_deg);
   if (warning.empty()) return;
-  if (study.run.warnings_as_errors) throw StudyError(warning + " ([run] warnings_as_errors)");
+  if (study.run.warnings_as_errors) throw UserError(warning + " ([run] warnings_as_errors)");
   warnings.push_back(std::move(warning));
 }
 
@@ -136,7 +136,7 @@ CheckedStudy check_study(const Study& study, const CaseSpace& space, RecordCache
     const std::int64_t index = space.resolve(h);
     for (std::size_t k = 0; k < checked.history_cases.size(); ++k)
       if (checked.history_cases[k] == index)
-        throw StudyError(h.declared_at + ": outputs.histories \"" + h.label + "\": names the same case as \"" +
+        throw UserError(h.declared_at + ": outputs.histories \"" + h.label + "\": names the same case as \"" +
                          study.histories[k].label + "\"");
     checked.history_cases.push_back(index);
   }

@@ -180,11 +180,12 @@ std::vector<Attribute> global_attributes(const Study& study, const std::string& 
       {names::kPlan, std::string(study.plan->name())},
   };
   if (study.intensity) add_settings(a, intensity_settings(), *study.intensity);
+  if (study.hazard_stripes) a.push_back({names::kIntensityHazard, study.hazard_stripes->hazard});
   if (study.ida) add_settings(a, ida_settings(), *study.ida);
   add_settings(a, physics_settings(), study.physics);
   add_settings(a, solver_settings(), study.solver);
   const auto& parameters = study.model->parameters;
-  if (study.model->name != "pcrf" && !mixed_scenes) a.push_back({names::kSceneModel, std::string(study.model->name)});
+  if (study.model != &default_scene_model() && !mixed_scenes) a.push_back({names::kSceneModel, std::string(study.model->name)});
   for (std::size_t k = 0; k < parameters.size(); ++k)  // set once for every case: h_m, m_c_kg
     if (!parameters[k].axis) a.push_back({"frame_" + std::string(parameters[k].name), study.base[k]});
   a.push_back({"gravity_m_s2", kGravity_m_s2});

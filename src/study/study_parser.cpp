@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <cctype>
 #include <cmath>
@@ -13,6 +14,7 @@
 #include <sstream>
 
 #include "pcrf/metrics/case_result.hpp"
+#include "pcrf/post/hazard_file.hpp"
 #include "pcrf/record/pulses.hpp"
 #include "pcrf/study/cube_vocabulary.hpp"
 #include "pcrf/study/plan.hpp"
@@ -75,7 +77,7 @@ std::vector<RecordSource> read_pulse_entry(const Fields& f, const Study& s) {
     if (axis.key == "pulse_period_s")
       for (double t : axis.values)
         if (t < 4.0 * dt_s)
-          throw StudyError(axis.declared_at + ": axes.pulse_period_s: value " + number_text(t) + " is below 4 dt = " +
+          throw UserError(axis.declared_at + ": axes.pulse_period_s: value " + number_text(t) + " is below 4 dt = " +
                            number_text(4.0 * dt_s) + " s of the pulse records (" + f.where("pulse") + ")");
   std::vector<RecordSource> sources;
   for (PulseShape shape : shapes) {
@@ -185,7 +187,7 @@ void read_base(const Fields& top, Study& s) {
     if (const auto* model = detail::read_model(f)) {
       s.model = model;
       s.base = s.model->defaults();
-      if (s.model->name != "pcrf") s.setting_lines["frame.model"] = f.where("model");
+      if (s.model != &default_scene_model()) s.setting_lines["frame.model"] = f.where("model");
     }
     read_parameters(f, *s.model, s.base, false);
   }
@@ -207,20 +209,85 @@ void check_ida_outputs(const Fields& top, const Study& s) {
   const bool theta_stored = std::find(s.metrics.begin(), s.metrics.end(), metric::theta_max().name) != s.metrics.end();
   if (s.ida->theta_limit_rad > 0.0 && !theta_stored) {
     const auto line = s.setting_lines.find("ida.theta_limit_rad");
-    throw StudyError((line != s.setting_lines.end() ? line->second : top.where("ida")) +
+    throw UserError((line != s.setting_lines.end() ? line->second : top.where("ida")) +
                      ": ida.theta_limit_rad: needs theta_max_rad among [outputs] metrics");
   }
 }
 
+// ---- intensity ----------------------------------------------------------------------------
+
+/// [intensity] keys besides the measure's settings: hazard-consistent stripes.
+constexpr std::string_view kHazardKey = "hazard";
+constexpr std::string_view kReturnPeriodsKey = "return_periods_yr";
+
+/// A number for a message, to four significant digits.
+std::string four_digits(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", value);
+  return text;
+}
+
+/// The hazard curve of hazard-consistent stripes, read and checked against the study's
+/// measure; its refusals name the study's key and the hazard file's line.
+post::HazardFile read_stripe_hazard(const Fields& f, const Study::HazardStripes& h, const IntensitySpec& spec) {
+  std::optional<post::HazardFile> read;
+  try {
+    read = post::read_hazard_file(h.file, risk::Tail::kCutOff);  // cut off: no return period beyond the curve
+  } catch (const post::HazardFileError& e) {
+    f.fail(kHazardKey, e.what());
+  }
+  const std::string where = read->file.string() + ":" + std::to_string(read->header_line) + ": ";
+  if (read->measure != to_string(spec.measure))
+    f.fail(kHazardKey, where + "the curve's measure is " + read->measure + ", the study's [intensity] measure is " +
+                           to_string(spec.measure));
+  if (read->period_s && std::abs(*read->period_s - spec.period_s) > 1e-9 * spec.period_s)
+    f.fail(kHazardKey, where + "the curve is at period_s = " + number_text(*read->period_s) + " s, the study's Sa at " +
+                           number_text(spec.period_s) + " s");
+  return std::move(*read);
+}
+
+/// [intensity] hazard = "FILE" and return_periods_yr = [...]: the stripes' intensities, each
+/// the curve's intensity at the annual rate 1/T (Study::HazardStripes).
+void read_hazard_stripes(const Fields& f, const IntensitySpec& spec, Study& s) {
+  if (!f.has(kHazardKey) && !f.has(kReturnPeriodsKey)) return;
+  if (!f.has(kReturnPeriodsKey))
+    f.fail(kHazardKey, "a hazard curve sets the stripes' intensities: give return_periods_yr = [...] beside it");
+  if (!f.has(kHazardKey))
+    f.fail(kReturnPeriodsKey, "needs hazard = \"FILE\", the site's hazard curve (a CSV, docs/risk.md), to turn return periods into intensities");
+  Study::HazardStripes h;
+  h.hazard = *f.text(kHazardKey);
+  h.file = s.base_dir / h.hazard;
+  h.return_periods_yr = read_values(f, kReturnPeriodsKey);
+  check_axis(f, kReturnPeriodsKey, h.return_periods_yr, nullptr);
+  const post::HazardFile hazard = read_stripe_hazard(f, h, spec);
+  const auto& rates = hazard.curve.rates_per_yr();
+  std::vector<double> intensities;
+  for (double period_yr : h.return_periods_yr) {
+    const double x = hazard.curve.intensity_at_rate(1.0 / period_yr);
+    if (!std::isfinite(x))
+      f.fail(kReturnPeriodsKey, "return period " + number_text(period_yr) + " yr is outside the hazard curve " + h.hazard +
+                                    ", whose rates span return periods from " + four_digits(1.0 / rates.front()) + " to " +
+                                    four_digits(1.0 / rates.back()) + " yr");
+    intensities.push_back(x);
+  }
+  s.levels = std::move(intensities);
+  s.setting_lines["intensity.return_periods_yr"] = f.where(kReturnPeriodsKey);
+  s.hazard_stripes = std::move(h);
+}
+
 void read_intensity(const Fields& top, Study& s) {
-  if (top.subtable(intensity_settings().name) == nullptr) return;
+  const toml::table* table = top.subtable(intensity_settings().name);
+  if (table == nullptr) return;
   IntensitySpec spec;
-  detail::read_setting_table(top, intensity_settings(), spec, s.setting_lines);
+  detail::read_setting_table(top, intensity_settings(), spec, s.setting_lines, {kHazardKey, kReturnPeriodsKey});
   if (const auto problem = intensity_spec_problem(spec); !problem.empty()) {
     const auto line = s.setting_lines.find("intensity.period_s");
-    throw StudyError((line != s.setting_lines.end() ? line->second : top.where("intensity")) + ": intensity.period_s: " + problem);
+    throw UserError((line != s.setting_lines.end() ? line->second : top.where("intensity")) + ": intensity.period_s: " + problem);
   }
   s.intensity = spec;
+  std::vector<std::string_view> keys{kHazardKey, kReturnPeriodsKey};
+  for (const auto& setting : intensity_settings().settings) keys.push_back(setting.key);
+  read_hazard_stripes(Fields(*table, "intensity", s.file, keys), spec, s);
 }
 
 void read_ida(const Fields& top, Study& s) {
@@ -231,6 +298,9 @@ void read_ida(const Fields& top, Study& s) {
   const Fields f(*table, "ida", s.file, {"start", "step", "step_factor", "resolution", "max_intensity", "max_runs", "collapse", "theta_limit_rad"});
   if (!s.intensity)
     top.fail("ida", "an IDA needs an intensity measure: add an [intensity] table (measure = \"pga_g\", \"pgv_m_s\" or \"sa_g\")");
+  if (s.hazard_stripes)
+    throw UserError(s.setting_lines.at("intensity.return_periods_yr") +
+                     ": intensity.return_periods_yr: with [ida] the search chooses the intensities: give no return periods");
   if (!f.has("start")) f.fail("start", "required: the first intensity of every curve");
   if (!f.has("max_intensity")) f.fail("max_intensity", "required: the largest intensity the search may run");
   if (ida.max_intensity < ida.start)
@@ -272,9 +342,14 @@ void read_axes(const Fields& top, Study& s) {
     Fields(*table, "axes", s.file, axes_keys())
         .fail(table->contains("intensity") ? "intensity" : "scale",
               "with [ida] the search chooses the intensities: give no intensity or scale axis");
-  if (s.intensity && !s.ida && !has_intensity_axis)
+  if (s.hazard_stripes && table != nullptr && (table->contains("intensity") || table->contains("scale")))
+    Fields(*table, "axes", s.file, axes_keys())
+        .fail(table->contains("intensity") ? "intensity" : "scale",
+              "[intensity] return_periods_yr (" + s.setting_lines.at("intensity.return_periods_yr") +
+                  ") sets the stripes' intensities: give either it or this axis, not both");
+  if (s.intensity && !s.ida && !has_intensity_axis && !s.hazard_stripes)
     top.fail("intensity", "an [intensity] table needs [axes] intensity = [...] (values in " +
-                              std::string(intensity_units(s.intensity->measure)) + ")");
+                              std::string(intensity_units(s.intensity->measure)) + "), or return_periods_yr with a hazard curve");
   std::optional<Fields> axes;
   if (table != nullptr) {
     axes.emplace(*table, "axes", s.file, axes_keys());
@@ -487,7 +562,7 @@ void check_station_needs(const Fields& f, const Study& s, const RecordSource& so
 void check_pulse_axes_used(const Study& s) {
   const bool pulses = std::any_of(s.records.begin(), s.records.end(), [](const RecordSource& r) { return !r.pulse_shape.empty(); });
   if (!pulses && !s.pulse_axes.empty())
-    throw StudyError(s.pulse_axes.front().declared_at + ": axes." + s.pulse_axes.front().key +
+    throw UserError(s.pulse_axes.front().declared_at + ": axes." + s.pulse_axes.front().key +
                      ": needs a [[records]] pulse entry (pulse = \"ricker\", …) to vary");
 }
 
@@ -601,7 +676,7 @@ Study parse_study(const std::string& text, const std::string& file, const std::f
   try {
     root = toml::parse(text, file);
   } catch (const toml::parse_error& e) {
-    throw StudyError(file + ":" + std::to_string(e.source().begin.line) + ": not valid TOML: " +
+    throw UserError(file + ":" + std::to_string(e.source().begin.line) + ": not valid TOML: " +
                      std::string(e.description()));
   }
   return parse_study_table(root, text, file, base_dir);
@@ -633,7 +708,7 @@ Study parse_study_table(const toml::table& root, const std::string& text, const 
 
 std::string read_text_file(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
-  if (!in) throw StudyError(file.string() + ": cannot read the file: " + std::strerror(errno));
+  if (!in) throw UserError(file.string() + ": cannot read the file: " + std::strerror(errno));
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
@@ -643,9 +718,9 @@ Study load_study(const std::filesystem::path& file) {
   std::error_code error;
   const auto status = std::filesystem::status(file, error);
   if (error && status.type() != std::filesystem::file_type::not_found)
-    throw StudyError(file.string() + ": cannot open: " + error.message());
-  if (!std::filesystem::exists(status)) throw StudyError(file.string() + ": no such study file");
-  if (!std::filesystem::is_regular_file(status)) throw StudyError(file.string() + ": not a regular file");
+    throw UserError(file.string() + ": cannot open: " + error.message());
+  if (!std::filesystem::exists(status)) throw UserError(file.string() + ": no such study file");
+  if (!std::filesystem::is_regular_file(status)) throw UserError(file.string() + ": not a regular file");
   auto base_dir = std::filesystem::absolute(file).parent_path();
   return parse_study(read_text_file(file), file.string(), base_dir);
 }

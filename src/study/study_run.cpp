@@ -66,11 +66,11 @@ void apply_overrides(const StudyRunOptions& options, RunOptions& run) {
 void check_output_is_not_an_input(const std::filesystem::path& output, const StudyRunOptions& options, const Study& study) {
   using io::same_file;  // the one rule of every command's outputs (symbolic and hard links)
   if (same_file(output, options.study_file))
-    throw StudyError(output.string() + ": -o names the study file itself; choose another output (--overwrite does not apply to inputs)");
+    throw UserError(output.string() + ": -o names the study file itself; choose another output (--overwrite does not apply to inputs)");
   for (const auto& r : study.records)
     for (const auto* file : {&r.file, &r.h2, &r.up})
       if (*file && same_file(output, (*file)->path))
-        throw StudyError(output.string() + ": -o names the record file of \"" + r.name +
+        throw UserError(output.string() + ": -o names the record file of \"" + r.name +
                          "\"; choose another output (--overwrite does not apply to inputs)");
 }
 
@@ -87,7 +87,7 @@ MasterSetup prepare_master(const StudyRunOptions& options, const Prepared& p) {
   try {  // before anything looks at the cube: a second run, even --overwrite, leaves the first alone
     m.lock = std::make_unique<io::RunLock>(m.output);
   } catch (const io::OutputError& e) {
-    throw StudyError(e.what());
+    throw UserError(e.what());
   }
   const std::string shard = options.shard_count > 1 ? std::to_string(options.shard_index + 1) + "/" +
                                                            std::to_string(options.shard_count) : "";
@@ -95,13 +95,13 @@ MasterSetup prepare_master(const StudyRunOptions& options, const Prepared& p) {
     try {
       const std::string theirs = cube::CubeReader(m.output).layout().text_attribute(cube::kShardName);
       if (theirs != shard)
-        throw StudyError(m.output.string() + ": is shard \"" + (theirs.empty() ? "none" : theirs) +
+        throw UserError(m.output.string() + ": is shard \"" + (theirs.empty() ? "none" : theirs) +
                          "\" of the study; this run is shard \"" + (shard.empty() ? "none" : shard) + "\"");
     } catch (const cube::CubeError&) {  // not readable: CubeWriter says why
     }
   }
   if (std::filesystem::exists(m.output) && !options.resume && !options.overwrite)
-    throw StudyError(m.output.string() + ": already exists; use --resume to continue it or --overwrite to replace it");
+    throw UserError(m.output.string() + ": already exists; use --resume to continue it or --overwrite to replace it");
   const auto mode = options.resume ? cube::OpenMode::kResume
                                    : (options.overwrite ? cube::OpenMode::kOverwrite : cube::OpenMode::kCreate);
   try {
@@ -109,7 +109,7 @@ MasterSetup prepare_master(const StudyRunOptions& options, const Prepared& p) {
     if (!shard.empty()) layout.attributes.push_back({cube::kShardName, shard});
     m.writer = std::make_unique<cube::CubeWriter>(m.output, std::move(layout), mode);
   } catch (const cube::CubeError& e) {
-    throw StudyError(e.what());
+    throw UserError(e.what());
   }
   return m;
 }
@@ -460,12 +460,12 @@ std::optional<StudySummary> run_study(const StudyRunOptions& options, const para
       prepared = std::make_unique<Prepared>(options.study ? *options.study : load_study(options.study_file));
       apply_overrides(options, prepared->study.run);
       setup = prepare_master(options, *prepared);
-    } catch (const StudyError& e) {
+    } catch (const UserError& e) {
       error = e.what();
     }
   }
   if (mpi.broadcast(error.empty() ? 1 : 0) == 0) {
-    if (mpi.is_master()) throw StudyError(error);  // the caller reports it, then joins the barrier
+    if (mpi.is_master()) throw UserError(error);  // the caller reports it, then joins the barrier
     mpi.quiet_barrier();
     return std::nullopt;
   }

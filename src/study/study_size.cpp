@@ -5,7 +5,7 @@
 
 #include "pcrf/machine_memory.hpp"
 #include "pcrf/study/plan.hpp"
-#include "pcrf/study/study_error.hpp"
+#include "pcrf/user_error.hpp"
 
 namespace pcrf::study {
 namespace {
@@ -39,7 +39,7 @@ StudySize study_size(const Study& study) {
 
 void check_study_size(const Study& study) {
   if (study.ida && study.ida->max_runs > kMaxIdaRuns)
-    throw StudyError(line_of(study, "ida.max_runs") + ": ida.max_runs: at most " + std::to_string(kMaxIdaRuns) +
+    throw UserError(line_of(study, "ida.max_runs") + ": ida.max_runs: at most " + std::to_string(kMaxIdaRuns) +
                      " runs per curve, got " + std::to_string(study.ida->max_runs));
   const StudySize size = study_size(study);
   const double needed = kFrameBytes * size.frames + 1.0 * size.cases + static_cast<double>(kPendingResultsBytes);
@@ -54,7 +54,7 @@ void check_study_size(const Study& study) {
                 "and 0.27 GB of results between checkpoints), more than 80 %% of this machine's %.3g GB (every shard "
                 "holds them all); make the study smaller",
                 key.c_str(), size.frames, size.cases, needed / 1e9, kFrameBytes, memory / 1e9);
-  throw StudyError(line_of(study, key) + text);
+  throw UserError(line_of(study, key) + text);
 }
 
 void check_frame_count(double frames, const std::string& where, const std::string& key) {
@@ -66,7 +66,7 @@ void check_frame_count(double frames, const std::string& where, const std::strin
                 ": %s: %.4g frames need about %.3g GB on rank 0 (%.0f bytes a frame), more than 80 %% of this machine's "
                 "%.3g GB; make the study smaller",
                 key.c_str(), frames, needed / 1e9, kFrameBytes, memory / 1e9);
-  throw StudyError(where + text);
+  throw UserError(where + text);
 }
 
 }  // namespace pcrf::study

@@ -11,7 +11,7 @@ namespace pcrf::study::detail {
 /// Parts a dotted key or table header may have ("a.b.c" has 3).
 inline constexpr std::size_t kMaxKeyParts = 64;
 
-/// \throws StudyError "FILE:LINE: ..." at the first dotted name of more than kMaxKeyParts
+/// \throws UserError "FILE:LINE: ..." at the first dotted name of more than kMaxKeyParts
 /// parts (dots outside strings and comments, between two of `= [ ] { } ,` or line ends).
 void refuse_deep_keys(const std::string& text, const std::string& file);
 

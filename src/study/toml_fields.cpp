@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "pcrf/study/study_error.hpp"
+#include "pcrf/user_error.hpp"
 
 namespace pcrf::study::detail {
 namespace {
@@ -53,7 +53,8 @@ std::string Fields::where_at(const std::string& file, const toml::node* node) {
 
 void Fields::fail_at(const std::string& file, const toml::node* node, const std::string& path,
                      const std::string& problem) {
-  throw StudyError(where_at(file, node) + ": " + path + ": " + problem);
+  const int line = node != nullptr ? static_cast<int>(node->source().begin.line) : 0;
+  throw UserError(Where{{path}, file, line}, problem);
 }
 
 std::string Fields::where(std::string_view key) const {
@@ -63,7 +64,8 @@ std::string Fields::where(std::string_view key) const {
 }
 
 void Fields::fail(std::string_view key, const std::string& problem) const {
-  throw StudyError(where(key) + ": " + path(key) + ": " + problem);
+  const toml::node* n = node(key);
+  fail_at(file_, n != nullptr ? n : (prefix_.empty() ? nullptr : &table_), path(key), problem);
 }
 
 double Fields::number_at(const std::string& file, const toml::node& node, const std::string& path) {

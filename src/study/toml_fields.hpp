@@ -1,5 +1,5 @@
 // Checked access to the keys of one TOML table: unknown keys, wrong types and bad values
-// become StudyError messages "FILE:LINE: dotted.key: problem".
+// become UserError messages "FILE:LINE: dotted.key: problem".
 #pragma once
 
 #include <toml++/toml.h>
@@ -35,7 +35,7 @@ class Fields {
   const toml::table* subtable(std::string_view key) const;
   const toml::array* array(std::string_view key) const;
   /// The value of a described setting, checked against its description (nullopt when the
-  /// key is absent). \throws StudyError naming the key and the problem.
+  /// key is absent). \throws UserError naming the key and the problem.
   template <class Target>
   std::optional<SettingValue> setting(const Setting<Target>& s) const {
     const toml::node* n = node(s.key);
@@ -56,7 +56,7 @@ class Fields {
   [[noreturn]] static void fail_at(const std::string& file, const toml::node* node,
                                    const std::string& path, const std::string& problem);
   static std::string where_at(const std::string& file, const toml::node* node);
-  /// A finite number from an integer or float node. \throws StudyError.
+  /// A finite number from an integer or float node. \throws UserError.
   static double number_at(const std::string& file, const toml::node& node, const std::string& path);
   static std::string type_name(const toml::node& node);
 
@@ -75,15 +75,17 @@ using pcrf::closest_word;  // "did you mean" hints (pcrf/closest_word.hpp)
 
 /// Reads the table `table.name` of `top` into `target` (starting from table.defaults):
 /// every key must be described, values are checked and applied in description order.
-/// `lines` receives "FILE:LINE" of each key given, by "table.key".
+/// `lines` receives "FILE:LINE" of each key given, by "table.key". `other_keys` are keys the
+/// table may also hold that the caller reads itself (no setting of Target).
 template <class Target>
 void read_setting_table(const Fields& top, const SettingTable<Target>& table, Target& target,
-                        std::map<std::string, std::string>& lines) {
+                        std::map<std::string, std::string>& lines, std::vector<std::string_view> other_keys = {}) {
   target = table.defaults;
   const toml::table* node = top.subtable(table.name);
   if (node == nullptr) return;
   std::vector<std::string_view> keys;
   for (const auto& s : table.settings) keys.push_back(s.key);
+  keys.insert(keys.end(), other_keys.begin(), other_keys.end());
   const Fields fields(*node, std::string(table.name), top.file(), keys);
   for (const auto& s : table.settings) {
     if (auto value = fields.setting(s)) {

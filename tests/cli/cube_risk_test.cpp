@@ -9,7 +9,12 @@
 
 #include "pcrf/analysis/risk.hpp"
 #include "pcrf/cube/cube_reader.hpp"
+#include "pcrf/analysis/p695.hpp"
+#include "pcrf/number_text.hpp"
 #include "pcrf/post/cube_fragility.hpp"
+#include "pcrf/post/cube_p695.hpp"
+#include "pcrf/post/cube_reports.hpp"
+#include "pcrf/post/cube_risk.hpp"
 #include "pcrf/post/hazard_file.hpp"
 #include "study/study_test_support.hpp"
 
@@ -25,7 +30,9 @@ constexpr const char* kHazard =
     "# synthetic power law lambda = 1e-4 x^-2.5\npga_g,annual_rate_per_yr\n0.05,0.178885\n0.1,0.0316228\n"
     "0.3,0.00202837\n1,0.0001\n3,6.415e-06\n";
 
-/// An IDA of 12 stochastic records (one frame) and a 6-record stripe cube, made once per process.
+/// The studies' folder: an IDA of 12 stochastic records (one frame, i), a 6-record stripe
+/// cube (f), hazard-consistent stripes (t) and four LHS-sampled frames (m); each cube is run
+/// when a test first asks for it (cube()), once per process.
 const fs::path& folder() {
   static const fs::path dir = [] {
     const auto d = test::scratch_dir(std::string("cube_risk_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
@@ -38,17 +45,34 @@ const fs::path& folder() {
     test::write_file(d, "i.toml", records(12) + "[ida]\nstart = 0.5\nmax_intensity = 8\n");
     test::write_file(d, "f.toml", records(6) + "[axes]\nintensity = [1, 1.5, 2, 3, 4.5, 6]\n");
     test::write_file(d, "h.csv", kHazard);
-    for (const char* name : {"i", "f"}) {
-      const auto r = test::run_command("cd " + quoted(d) + " && " + pcrf() + " study " + name + ".toml -o " + name +
-                                       ".h5 --progress-interval 0");
-      EXPECT_EQ(r.exit_code, 0) << r.err;
-    }
+    // Hazard-consistent stripes: the intensities of six return periods on the same power law
+    // sampled up to 10 g (0.57 to 8.3 g).
+    test::write_file(d, "wide.csv", "pga_g,annual_rate_per_yr\n0.05,0.178885\n0.3,0.00202837\n1,0.0001\n3,6.415e-06\n10,3.16228e-07\n");
+    test::write_file(d, "t.toml", records(6) + "hazard = \"wide.csv\"\nreturn_periods_yr = [2475, 10000, 50000, 200000, 600000, 2000000]\n");
+    // Modelling uncertainty: four frames drawn by LHS (tan_alpha, kappa), an IDA of each.
+    test::write_file(d, "m.toml", records(6) + "[plan]\nkind = \"lhs\"\nsamples = 4\nseed = 3\n[axes]\n"
+                     "tan_alpha = {from = 0.17, to = 0.25}\nkappa = {from = 1.5, to = 2.1}\n[ida]\nstart = 0.5\nmax_intensity = 8\n");
+    // One record at one Sa(0.5 s) stripe: a cube whose measure has a period.
+    test::write_file(d, "s.toml", "[[records]]\nsynthetic = \"stochastic:seed=1,pga_g=1,duration_s=6\"\n[intensity]\n"
+                     "measure = \"sa_g\"\nperiod_s = 0.5\n[axes]\nintensity = [1]\n");
     return d;
   }();
   return dir;
 }
 
+/// The cube of study `name` (i, f, t, m or s), run on first use.
+fs::path cube(const std::string& name) {
+  static std::map<std::string, fs::path> made;
+  if (const auto it = made.find(name); it != made.end()) return it->second;
+  const auto r = test::run_command("cd " + quoted(folder()) + " && " + pcrf() + " study " + name + ".toml -o " + name +
+                                   ".h5 --progress-interval 0");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return made[name] = folder() / (name + ".h5");
+}
+
+/// `pcrf cube risk ARGS`, ARGS starting with the cube (X.h5), run first when needed.
 test::CommandResult risk_command(const std::string& args) {
+  (void)cube(args.substr(0, args.find(".h5")));
   return test::run_command("cd " + quoted(folder()) + " && " + pcrf() + " cube risk " + args);
 }
 
@@ -89,6 +113,12 @@ TEST(CubeRisk, HazardFileRefusalsNameFileLineAndProblem) {
     EXPECT_NE(r.err.find(message), std::string::npos) << text << "\n" << r.err;
     EXPECT_EQ(r.out, "") << text;
   }
+  // An Sa curve at another period than the cube's Sa.
+  test::write_file(folder(), "sa1.csv", "# period_s = 1.0\nsa_g,annual_rate_per_yr\n0.1,1e-2\n1,1e-4\n");
+  const auto period = risk_command("s.h5 --hazard sa1.csv");
+  EXPECT_EQ(period.exit_code, 2);
+  EXPECT_NE(period.err.find("sa1.csv:2: the curve is at period_s = 1 s, the cube's Sa at 0.5 s"), std::string::npos) << period.err;
+  EXPECT_EQ(period.out, "");
   const auto missing = risk_command("i.h5 --hazard none.csv");
   EXPECT_EQ(missing.exit_code, 2);
   EXPECT_NE(missing.err.find("none.csv: no such file"), std::string::npos) << missing.err;
@@ -98,7 +128,7 @@ TEST(CubeRisk, RatesAreTheFragilitysIntegratedAgainstTheCurve) {
   const auto r = risk_command("i.h5 --hazard h.csv --years 10 --tail cut-off --csv -");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   auto row = only_row(r.out);
-  const cube::CubeReader reader(folder() / "i.h5");
+  const cube::CubeReader reader(cube("i"));
   const auto frames = post::cube_fragility(reader, {});
   ASSERT_EQ(frames.size(), 1u);
   const auto& f = frames.front();
@@ -143,6 +173,148 @@ TEST(CubeRisk, FewCollapsesAreWarnedOf) {
   const auto ida = risk_command("i.h5 --hazard h.csv");
   ASSERT_EQ(ida.exit_code, 0) << ida.err;
   EXPECT_EQ(ida.err.find("fewer than 10"), std::string::npos) << ida.err;
+}
+
+TEST(CubeRisk, ALowerTailThatDecidesTheRateIsWarnedOf) {
+  // A steep hazard (lambda ~ x^-20) puts the collapses' weight far below the fragility's
+  // median: most of lambda_c then comes from below the lowest collapse seen.
+  std::string steep = "pga_g,annual_rate_per_yr\n";
+  for (double x : {0.25, 0.5, 1.0, 2.0, 4.0, 8.0}) steep += number_text(x) + "," + number_text(1e-4 * std::pow(x, -20.0)) + "\n";
+  test::write_file(folder(), "steep.csv", steep);
+  post::RiskInputs in;
+  in.hazard = folder() / "steep.csv";
+  const cube::CubeReader reader(cube("i"));
+  const auto report = post::cube_risk(reader, {}, in);
+  ASSERT_EQ(report.frames.size(), 1u);
+  const auto& f = report.frames.front();
+  ASSERT_TRUE(f.lognormal);
+  const auto hazard = post::read_hazard_file(in.hazard, in.tail).curve;
+  const auto split = risk::collapse_rate(hazard, *f.fit, {f.lowest_collapse});
+  EXPECT_GT(f.lower_tail_share, 0.5);
+  EXPECT_NEAR(f.lower_tail_share, split.rate_below(f.lowest_collapse) / split.lambda_per_yr, 1e-6);
+  const auto r = risk_command("i.h5 --hazard steep.csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("of the lognormal lambda_c comes from intensities below the lowest collapse seen"), std::string::npos)
+      << r.err;
+  // Under the gentle curve (x^-2.5) the tail does not decide it: no such warning.
+  EXPECT_EQ(risk_command("i.h5 --hazard h.csv").err.find("below the lowest collapse"), std::string::npos);
+}
+
+TEST(CubeRisk, ReadsACubeOfHazardConsistentStripes) {
+  const cube::CubeReader reader(cube("t"));
+  const auto& layout = reader.layout();
+  const auto* periods = layout.find_coordinate("return_period_yr");
+  ASSERT_NE(periods, nullptr);
+  EXPECT_EQ(periods->dimension, "intensity");
+  EXPECT_EQ(periods->units, "yr");
+  EXPECT_EQ(layout.text_attribute("intensity_hazard"), "wide.csv");
+  const auto& levels = layout.find_coordinate("intensity")->numbers;
+  const auto hazard = post::read_hazard_file(folder() / "wide.csv", risk::Tail::kPowerLaw);
+  ASSERT_EQ(levels.size(), 6u);
+  for (std::size_t j = 0; j < levels.size(); ++j) {
+    EXPECT_NEAR(levels[j], hazard.curve.intensity_at_rate(1.0 / periods->numbers[j]), 1e-12 * levels[j]) << j;
+    EXPECT_NEAR(hazard.curve.rate_per_yr(levels[j]) * periods->numbers[j], 1.0, 1e-9) << j;
+  }
+  // The stripes' binomial fit feeds cube risk; the empirical rate of stripes at return periods
+  // T_j is exactly sum_j (P_j - P_j-1) / T_j, the curve's rate at each stripe being 1/T_j.
+  const auto r = risk_command("t.h5 --hazard wide.csv --csv -");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto row = only_row(r.out);
+  const auto frames = post::cube_fragility(reader, {});
+  ASSERT_EQ(frames.size(), 1u);
+  double expected = 0.0, before = 0.0;
+  for (std::size_t j = 0; j < levels.size(); ++j) {
+    const auto& s = frames.front().stripes[j];
+    ASSERT_DOUBLE_EQ(s.intensity, levels[j]);
+    const double p = s.trials > 0.0 ? s.collapses / s.trials : before;
+    expected += (p - before) / periods->numbers[j];
+    before = p;
+  }
+  EXPECT_GT(frames.front().collapses, 0.0);  // the stripes reach collapses: the rate is not 0 = 0
+  EXPECT_NEAR(std::stod(row["lambda_collapse_empirical_per_yr"]), expected, 1e-9 * expected);
+  ASSERT_TRUE(frames.front().fit);
+  EXPECT_NEAR(std::stod(row["lambda_collapse_per_yr"]) / risk::collapse_rate(hazard.curve, *frames.front().fit).lambda_per_yr,
+              1.0, 1e-6);
+}
+
+TEST(CubeRisk, SampledFramesMeasureTheModellingDispersion) {
+  const cube::CubeReader reader(cube("m"));
+  const auto frames = post::cube_fragility(reader, {});
+  ASSERT_EQ(frames.size(), 4u);
+  post::RiskInputs in;
+  in.hazard = folder() / "h.csv";
+  const auto report = post::cube_risk(reader, {}, in);
+  ASSERT_TRUE(report.model);
+  const auto& d = report.model->dispersion;
+  // The pooled fit: every frame's curves fitted as one; beta_rtr: the frames' own betas' root
+  // mean square; beta_model the rest of the pooled variance.
+  std::vector<double> observed, censored;
+  double sum_beta2 = 0.0;
+  for (const auto& f : frames) {
+    ASSERT_TRUE(f.fit);
+    observed.insert(observed.end(), f.collapse_intensities.begin(), f.collapse_intensities.end());
+    censored.insert(censored.end(), f.censored_intensities.begin(), f.censored_intensities.end());
+    censored.insert(censored.end(), f.unresolved_intensities.begin(), f.unresolved_intensities.end());
+    sum_beta2 += f.fit->beta * f.fit->beta;
+  }
+  const auto pooled = analysis::fit_censored(observed, censored);
+  ASSERT_TRUE(pooled);
+  EXPECT_EQ(d.frames, 4u);
+  EXPECT_DOUBLE_EQ(d.pooled.median, pooled->median);
+  EXPECT_DOUBLE_EQ(d.pooled.beta, pooled->beta);
+  EXPECT_NEAR(d.beta_rtr, std::sqrt(sum_beta2 / 4.0), 1e-15);
+  EXPECT_GT(d.beta_model, 0.0);
+  EXPECT_NEAR(d.beta_rtr * d.beta_rtr + d.beta_model * d.beta_model, pooled->beta * pooled->beta, 1e-12);
+  // Every curve collapsed (no censoring): the pooled variance is the frames' own plus their
+  // medians' scatter exactly (total variance), so beta_model is the medians' scatter.
+  ASSERT_TRUE(censored.empty());
+  EXPECT_NEAR(d.beta_model, d.beta_medians, 1e-6);
+  // The totals with ratings B, B, B (0.2 each), and the rates they imply at the pooled median.
+  EXPECT_NEAR(report.model->beta_total_measured, std::sqrt(pooled->beta * pooled->beta + 0.08), 1e-12);
+  EXPECT_NEAR(report.model->beta_total_rated, std::sqrt(sum_beta2 / 4.0 + 0.12), 1e-12);
+  const auto hazard = post::read_hazard_file(in.hazard, in.tail).curve;
+  auto rate = [&](double beta) { return risk::collapse_rate(hazard, {pooled->median, beta}).lambda_per_yr; };
+  EXPECT_NEAR(report.model_pooled->lambda_per_yr / rate(pooled->beta), 1.0, 1e-12);
+  EXPECT_NEAR(report.model_measured->lambda_per_yr / rate(report.model->beta_total_measured), 1.0, 1e-12);
+  EXPECT_NEAR(report.model_rated->lambda_per_yr / rate(report.model->beta_total_rated), 1.0, 1e-12);
+  // Wider dispersion, more collapses from the weaker ground motions under this hazard.
+  EXPECT_GT(report.model_rated->lambda_per_yr, report.model_measured->lambda_per_yr);
+
+  // The group of frames: their mean lambda_c (which the pooled fragility's estimates too) and the largest.
+  const auto fields = post::risk_report(report, in, "m.h5");
+  double sum = 0.0, most = 0.0;
+  for (const auto& f : report.frames) sum += f.lognormal->lambda_per_yr, most = std::max(most, f.lognormal->lambda_per_yr);
+  EXPECT_DOUBLE_EQ(std::get<double>(fields.field("group_lambda_collapse_per_yr")), sum / 4.0);
+  EXPECT_DOUBLE_EQ(std::get<double>(fields.field("group_lambda_collapse_max_per_yr")), most);
+  EXPECT_NEAR(report.model_pooled->lambda_per_yr / (sum / 4.0), 1.0, 0.05);
+
+  // The command shows the same numbers; a cube whose frames are not sampled has none.
+  const auto json = risk_command("m.h5 --hazard h.csv --json");
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  EXPECT_NE(json.out.find("\"model_beta_model\": " + number_text(d.beta_model) + ","), std::string::npos) << json.out;
+  std::ostringstream text;
+  post::print_risk(post::risk_report(report, in, "m.h5"), text);
+  EXPECT_NE(text.str().find("modelling uncertainty measured over 4 sampled frames"), std::string::npos) << text.str();
+  const cube::CubeReader grid(cube("i"));
+  const auto grid_risk = post::cube_risk(grid, {}, in);
+  EXPECT_FALSE(grid_risk.model);
+  const auto grid_report = post::risk_report(grid_risk, in, "i.h5");
+  EXPECT_TRUE(std::holds_alternative<std::monostate>(grid_report.field("model_beta_model")));
+
+  // cube p695: the same dispersion, and P(collapse | MCE) at the pooled median with each total.
+  const auto p695_in = post::p695_inputs("Dmax", 0.5, 0.0, "B,B,C");
+  const auto p695 = post::cube_p695(reader, {}, p695_in);
+  ASSERT_TRUE(p695.model);
+  EXPECT_DOUBLE_EQ(p695.model->dispersion.beta_model, d.beta_model);
+  EXPECT_NEAR(p695.model->beta_total_rated, std::sqrt(sum_beta2 / 4.0 + 0.08 + 0.35 * 0.35), 1e-12);
+  const double s_mt = p695::mce_spectrum(p695::Sdc::kDmax).at(0.5);
+  EXPECT_NEAR(p695.model_p_collapse_mce_measured,
+              analysis::normal_cdf(std::log(s_mt / pooled->median) / p695.model->beta_total_measured), 1e-15);
+  EXPECT_NEAR(p695.model_p_collapse_mce_rated,
+              analysis::normal_cdf(std::log(s_mt / pooled->median) / p695.model->beta_total_rated), 1e-15);
+  const auto p695_text = test::run_command("cd " + quoted(folder()) + " && " + pcrf() + " cube p695 m.h5 --period-s 0.5 --json");
+  ASSERT_EQ(p695_text.exit_code, 0) << p695_text.err;
+  EXPECT_NE(p695_text.out.find("\"model_p_collapse_mce_rated\": "), std::string::npos) << p695_text.out;
 }
 
 }  // namespace

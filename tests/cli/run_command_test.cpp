@@ -126,7 +126,7 @@ INSTANTIATE_TEST_SUITE_P(
                       BadArgs{"--synthetic 'sine:amplitude_g=1' --kappa abc", "kappa"},
                       BadArgs{"--synthetic 'sine:amplitude_g=1' --no-such-option", "no-such-option"},
                       BadArgs{"--record /tmp", "/tmp: not a regular file"},
-                      BadArgs{"--synthetic 'sine:amplitude_g=1' --theta0-rad 100", "theta0_rad: |θ₀| = 100 rad"},
+                      BadArgs{"--synthetic 'sine:amplitude_g=1' --theta0-rad 100", "--theta0-rad: |θ₀| = 100 rad"},
                       BadArgs{"--synthetic 'sine:amplitude_g=1' --history /no/such/dir/h.csv",
                               "/no/such/dir/h.csv: cannot create a file in /no/such/dir: No such file or directory"},
                       BadArgs{"--synthetic 'sine:amplitude_g=1' --zeno-time-s 0", "--zeno-time-s: must be positive"},
@@ -213,10 +213,10 @@ TEST(RecordCommand, PrintsTheIntensityMeasuresAsJson) {
   EXPECT_NE(skipped.out.find("\"t_pga_s\": 0.02"), std::string::npos) << skipped.out;
   EXPECT_NE(skipped.out.find("\"npts\": 3"), std::string::npos) << skipped.out;
   for (const auto& [period, says] : std::vector<std::pair<std::string, std::string>>{
-           {"0", "--period: the oscillator period must be above 0 s and at most 100 s, got 0 s"},
-           {"inf", "--period: the oscillator period must be above 0 s and at most 100 s, got inf s"},
+           {"0", "--periods-s: the oscillator period must be above 0 s and at most 100 s, got 0 s"},
+           {"inf", "--periods-s: the oscillator period must be above 0 s and at most 100 s, got inf s"},
            {"1e300", "at most 100 s, got 1e+300 s"},
-           {"1e-9", "--period: an oscillator period of 1e-09 s is below 2·dt = 0.02 s of the record"}}) {
+           {"1e-9", "--periods-s: an oscillator period of 1e-09 s is below 2·dt = 0.02 s of the record"}}) {
     const auto bad = test::run_command(pcrf() + " record " + file.string() + " --period " + period);
     EXPECT_EQ(bad.exit_code, 2) << period << "\n" << bad.err;
     EXPECT_NE(bad.err.find(says), std::string::npos) << bad.err;
@@ -297,7 +297,7 @@ TEST(FrameCommand, PrintsThePropertiesAndThePushoverCurve) {
   EXPECT_NE(json.out.find("\"pushover_theta_rad\": [0, "), std::string::npos) << json.out;
   const auto bad = test::run_command(pcrf() + " frame --points 1");
   EXPECT_EQ(bad.exit_code, 2);
-  EXPECT_NE(bad.err.find("--points must be at least 2"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("--points: must be at least 2"), std::string::npos) << bad.err;
   const auto impossible = test::run_command(pcrf() + " frame --lambda-h 1.5");
   EXPECT_EQ(impossible.exit_code, 2);
   EXPECT_NE(impossible.err.find("--lambda-h"), std::string::npos) << impossible.err;
@@ -372,12 +372,12 @@ TEST(RunCommand, SolvesTheCanonicalScenes) {
               1e-5 * json_number(frame.out, "theta_max_rad"));  // r passes through 6 printed digits
   const std::vector<std::pair<std::string, std::string>> bad = {
       // The scene catalogue's messages (the Python module's too), naming the flag given.
-      {" --model block --kappa 2", "error: --kappa does not apply to model \"block\" (it is a parameter of model \"pcrf\")"},
-      {" --size-m 2", "error: --size-m does not apply to model \"pcrf\""},
+      {" --model block --kappa 2", "error: --kappa: does not apply to model \"block\" (it is a parameter of model \"pcrf\")"},
+      {" --size-m 2", "error: --size-m: does not apply to model \"pcrf\""},
       {" --model block --slenderness-rad 1.6", "error: --slenderness-rad: must lie between 0 and pi/2"},
-      {" --model block --beam-mass-ratio 1", "error: --beam-mass-ratio does not apply to model \"block\" (it is a parameter of model \"rocking-frame\")"},
-      {" --model block --restitution 1.5", "error: --restitution: must lie in [0, 1]"},
-      {" --model pcrf --restitution 0.9", "error: --restitution does not apply to model \"pcrf\""},
+      {" --model block --beam-mass-ratio 1", "error: --beam-mass-ratio: does not apply to model \"block\" (it is a parameter of model \"rocking-frame\")"},
+      {" --model block --restitution 1.5", "error: --given-restitution: must lie in [0, 1]"},
+      {" --model pcrf --restitution 0.9", "error: --given-restitution: does not apply to model \"pcrf\""},
       {" --model cylinder", "unknown scene 'cylinder'"}};
   for (const auto& [flags, message] : bad) {
     const auto r = test::run_command(pcrf() + " run" + pulse + flags);

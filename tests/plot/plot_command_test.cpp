@@ -307,5 +307,23 @@ TEST(PlotCommand, AMissingMatplotlibIsNamedWithItsPackage) {
   EXPECT_FALSE(std::filesystem::exists(dir / "h.png"));
 }
 
+TEST(PlotCommand, AModuleThatIsMissingOrDoesNotImportIsOneLine) {
+  const auto dir = test::scratch_dir("plot_no_module");
+  // A folder whose pcrf package lacks the figures' code: Python cannot import it.
+  std::filesystem::create_directories(dir / "broken" / "pcrf" / "plot");
+  test::write_file(dir / "broken" / "pcrf", "__init__.py", "");
+  test::write_file(dir / "broken" / "pcrf" / "plot", "__main__.py", "");
+  const auto csv = test::write_file(dir, "h.csv", "t_s\n0\n");
+  for (const auto& [folder, message] : {std::pair{dir / "nowhere", "the Python module's figures are missing"},
+                                        std::pair{dir / "broken", "cannot import the Python module pcrf from "}}) {
+    const auto r = test::run_command("cd " + quoted(dir) + " && PCRF_MODULE_DIR=" + quoted(folder) + " " + pcrf() +
+                                     " plot history h.csv -o h.png");
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "h.png"));
+  }
+}
+
 }  // namespace
 }  // namespace pcrf

@@ -75,3 +75,11 @@ def same_value(a, b):
     if a is None:
         return isinstance(b, float) and b != b
     return a == b
+
+
+def in_keywords(message, *keys):
+    """A command-line message as Python spells it: the flag of each key (--reduce-over) as
+    its keyword (reduce_over=), the problem itself the same."""
+    for key in sorted(keys, key=len, reverse=True):
+        message = message.replace("--" + key.replace("_", "-"), key + "=")
+    return message

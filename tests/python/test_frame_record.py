@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import pcrf
-from conftest import cli_error, cli_json, same_value
+from conftest import cli_error, cli_json, same_value, in_keywords
 
 
 @pytest.mark.parametrize("parameters", [{}, {"kappa": 2.5, "tan_alpha": 0.25}, {"pi_e_c": 0.0}])
@@ -63,13 +63,13 @@ def test_a_frame_of_any_scene_solves_as_that_scene():
     ("block", {"kappa": 2}), ("pcrf", {"size_m": 1}), ("rocking-frame", {"beam_mass_ratio": -1}),
     ("block", {"beam_mass_ratio": 0.5}), ("block", {"slenderness_rad": 1.6}), ("block", {"given_restitution": 1.5}),
     ("block", {"size_m": 1, "frequency_parameter_rad_s": 2}), ("pcrf", {"kappa": -1})])
-def test_a_bad_scene_parameter_is_the_command_lines_message(model, parameters):
+def test_a_bad_scene_parameter_is_the_command_lines_message_naming_the_keyword(model, parameters):
     flags = flags_of(parameters)
-    flags = [f if f != "--given-restitution" else "--restitution" for f in flags]
+    flags = [f if f != "--given-restitution" else "--restitution" for f in flags]  # the older spelling
     expected = cli_error("frame", "--model", model, *flags)
-    with pytest.raises(ValueError) as error:
+    with pytest.raises(pcrf.InputError) as error:
         pcrf.Frame(model=model, **parameters)
-    assert str(error.value) == expected
+    assert str(error.value) == in_keywords(expected, *parameters) != expected
 
 
 def test_frame_points_and_fracture_strain():
@@ -81,7 +81,7 @@ def test_frame_points_and_fracture_strain():
 
 
 def test_basic_model_numbers():
-    """README: p = 2.12 rad/s, uplift threshold 1.021 g for the basic model."""
+    """docs/commands/frame.md: p = 2.12 rad/s, uplift threshold 1.021 g for the basic model."""
     frame = pcrf.Frame()
     assert round(frame.frequency_parameter_rad_s, 2) == 2.12
     assert round(frame.threshold, 3) == 1.021

@@ -67,7 +67,7 @@ def test_a_study_file_error_is_the_command_lines(tmp_path):
 
 def test_more_ranks_start_mpirun(tmp_path, monkeypatch, capfd):
     monkeypatch.chdir(tmp_path)
-    if os.geteuid() == 0:  # Open MPI refuses root unless told (README, set-up)
+    if os.geteuid() == 0:  # Open MPI refuses root unless told (README, set-up; docs/setup.md)
         monkeypatch.setenv("OMPI_ALLOW_RUN_AS_ROOT", "1")
         monkeypatch.setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
     cube = pcrf.study(STUDY, output=tmp_path / "two.h5", ranks=2)

@@ -66,7 +66,7 @@ TEST(RecordPlausibility, EverySharedRecordReadInItsUnitsPasses) {
     GroundMotion motion("none", 1.0, {0.0});
     try {
       motion = read_record(spec);
-    } catch (const RecordError&) {  // a text layout of its own (MANIFEST.csv's format column): not a two-column file
+    } catch (const UserError&) {  // a text layout of its own (MANIFEST.csv's format column): not a two-column file
       ++other_layout;
       continue;
     }

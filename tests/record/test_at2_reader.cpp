@@ -17,7 +17,7 @@ namespace {
 using pcrf::test::write_file;
 
 using pcrf::kGravity_m_s2;
-using pcrf::RecordError;
+using pcrf::UserError;
 
 std::string with_crlf(const std::string& lf_text) {
   std::string out;
@@ -218,14 +218,14 @@ std::vector<Malformed> malformed_corpus() {
   };
 }
 
-/// Runs read_at2 and returns the RecordError message ("" and a failure if none was thrown).
+/// Runs read_at2 and returns the UserError message ("" and a failure if none was thrown).
 std::string at2_error(const std::filesystem::path& file) {
   try {
     (void)pcrf::read_at2(file);
-  } catch (const RecordError& e) {
+  } catch (const UserError& e) {
     return e.what();
   }
-  ADD_FAILURE() << "no RecordError for " << file;
+  ADD_FAILURE() << "no UserError for " << file;
   return "";
 }
 
@@ -244,7 +244,7 @@ TEST(ReadAt2, MalformedFilesNameFileAndLine) {
   }
 }
 
-TEST(ReadAt2, MissingFileIsRecordError) {
+TEST(ReadAt2, MissingFileIsUserError) {
   const auto dir = pcrf::test::scratch_dir("at2_missing");
   const auto file = dir / "does_not_exist.AT2";
   const std::string message = at2_error(file);

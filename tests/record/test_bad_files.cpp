@@ -1,6 +1,6 @@
 /// \file test_bad_files.cpp
 /// \brief Files that are not ground-motion records: folders, FIFOs, binary and UTF-16 files,
-/// absurd sample intervals, single samples, values that overflow. Each is a RecordError
+/// absurd sample intervals, single samples, values that overflow. Each is a UserError
 /// naming the file (and the line), and no message carries raw bytes to the terminal.
 
 #include <gtest/gtest.h>
@@ -18,7 +18,7 @@ namespace {
 std::string error_of(const RecordFileSpec& spec) {
   try {
     (void)read_record(spec);
-  } catch (const RecordError& e) {
+  } catch (const UserError& e) {
     return e.what();
   }
   return "";

@@ -126,7 +126,7 @@ TEST(RecordMetadata, ReadOnceWithTheMotionAsEachAlone) {
   EXPECT_EQ(read_record_file(RecordFileSpec{at2}).metadata.station, "El Centro Array #11");
   // A bad record fails as read_record does.
   const auto bad = test::write_file(dir, "bad.AT2", "a\nb\nc\nNPTS=   3, DT=   .0050 SEC,\n 0.1 0.2\n");
-  EXPECT_THROW(read_record_file(RecordFileSpec{bad}), RecordError);
+  EXPECT_THROW(read_record_file(RecordFileSpec{bad}), UserError);
 }
 
 TEST(RecordHandling, SkipRowsDropsTheFemaFilesAddedLeadingSample) {

@@ -20,16 +20,16 @@ using pcrf::test::write_file;
 
 using pcrf::AccelUnit;
 using pcrf::kGravity_m_s2;
-using pcrf::RecordError;
+using pcrf::UserError;
 
 template <typename Read>
 std::string record_error(Read&& read) {
   try {
     (void)read();
-  } catch (const RecordError& e) {
+  } catch (const UserError& e) {
     return e.what();
   }
-  ADD_FAILURE() << "no RecordError";
+  ADD_FAILURE() << "no UserError";
   return "";
 }
 
@@ -261,7 +261,7 @@ TEST(ReadRecord, DispatchesOnFormat) {
   EXPECT_DOUBLE_EQ(g.samples_m_s2()[0], 1.0);
 
   spec.dt_s = 0.0;  // one-column without dt
-  EXPECT_THROW(pcrf::read_record(spec), RecordError);
+  EXPECT_THROW(pcrf::read_record(spec), UserError);
 }
 
 }  // namespace

@@ -36,7 +36,7 @@ double crossing(double lo, double hi, const std::function<double(double)>& f) {
 std::string verdict(double lambda_h) {
   try {
     (void)prepare_frame(make_frame(deep_beam(lambda_h)), PhysicsOptions{});
-  } catch (const InvalidFrame& e) {
+  } catch (const UserError& e) {
     return e.what();
   }
   return "valid";
@@ -75,7 +75,7 @@ TEST(ModelDomain, TheBasicModelAndThePaperRangesAreValid) {
 
 TEST(ModelDomain, ASingleRunRefusesAnInvalidFrame) {
   const GroundMotion quiet("quiet", 0.01, std::vector<double>(100, 0.0));
-  EXPECT_THROW(solve_case(make_frame(deep_beam(0.7)), quiet, PhysicsOptions{}, preset_settings("balanced")), InvalidFrame);
+  EXPECT_THROW(solve_case(make_frame(deep_beam(0.7)), quiet, PhysicsOptions{}, preset_settings("balanced")), UserError);
 }
 
 }  // namespace

@@ -125,6 +125,49 @@ TEST(DormandPrince, LocatesRootsOnItsDenseOutputAndReturnsEach) {
     EXPECT_NEAR(peaks[k], (static_cast<double>(k) + 1.0) * std::numbers::pi / 2.0, 1e-9);
 }
 
+/// The oscillator with a third root function |y| − level (only upwards, not a state
+/// component): the rocking problem's stop angle.
+class OscillatorWithLimit final : public detail::OdeProblem {
+ public:
+  double level = 0.999;
+  int rhs(double, const double* y, double* ydot) override {
+    ydot[0] = y[1];
+    ydot[1] = -4.0 * y[0];
+    return 0;
+  }
+  int roots(double, const double* y, double* g) override {
+    g[0] = y[0];
+    g[1] = y[1];
+    g[2] = std::abs(y[0]) - level;
+    return 0;
+  }
+  int root_count() const override { return 3; }
+  int root_state_index(int i) const override { return i < 2 ? i : -1; }
+};
+
+TEST(DormandPrince, ALevelCrossedAndLeftWithinOneStepIsFound) {
+  // y = sin 2t rises through 0.999 at t = asin(0.999)/2 and falls back 0.045 s later, around
+  // its peak at π/4. Steps of 0.3 s (loose tolerances, a breakpoint grid) hold both crossings
+  // in one step: |y| − 0.999 has the same sign at the step's ends. The peak inside the step
+  // is a root; the level must be found before it, where it is crossed, not passed by.
+  OscillatorWithLimit p;
+  SolverSettings s = tolerances(1e-1);
+  s.atol_theta_rad = s.atol_omega_rad_s = 1e3;
+  DormandPrinceIntegrator integ(s, p, SampleGrid{0.3, 10});
+  const double y0[2] = {0.0, 2.0};
+  const int dirs[3] = {0, -1, 1};
+  integ.restart(0.0, y0, dirs, 3.0, 0.3);
+  double t = 0.0, y[2];
+  ASSERT_EQ(integ.advance(3.0, t, y, false), OdeIntegrator::Outcome::kRoot);
+  int found[3] = {0, 0, 0};
+  integ.root_info(found);
+  EXPECT_EQ(found[2], 1) << "t = " << t;
+  EXPECT_EQ(found[1], 0);
+  // On the dense output of a 0.3 s step: the level's time to a few 1e-4 s.
+  EXPECT_NEAR(t, 0.5 * std::asin(0.999), 2e-3);
+  EXPECT_LT(t, std::numbers::pi / 4.0);
+}
+
 TEST(DormandPrince, StateRootsCostNoRightHandSideCallPerProbe) {
   // Six right-hand sides per step (first same as last), two at the start, none for the
   // roots that are state components, however many there are.

@@ -92,7 +92,7 @@ TEST(RockingSolver, RestingFrameUnderLongSubThresholdMotionStaysClosed) {
 }
 
 TEST(RockingSolver, PaperAndPhysicalCriteriaGiveTheSameMotion) {
-  // README "Uplift criteria": after the paper's trigger the prestress still holds the
+  // docs/physics.md "Uplift criteria": after the paper's trigger the prestress still holds the
   // frame closed and the contact cannot pull, so the motion is the same.
   const Frame frame = basic_frame();
   const GroundMotion rec = test::strong_record(11);
@@ -110,7 +110,7 @@ TEST(RockingSolver, PaperAndPhysicalCriteriaGiveTheSameMotion) {
 TEST(RockingSolver, ThetaMaxConvergesAsToleranceTightens) {
   // A two-cycle pulse: θ_max comes in the first excursions, before the response has had
   // time to amplify perturbations (long random records are ill-conditioned: a 1e-8
-  // relative change of the record moves θ_max by ~1e-4; see README, "Accuracy").
+  // relative change of the record moves θ_max by ~1e-4; see docs/results.md, "Speed and accuracy").
   const Frame frame = basic_frame();
   SinePulseSpec pulse;
   pulse.amplitude_g = 1.5;

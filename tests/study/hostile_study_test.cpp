@@ -23,7 +23,7 @@ std::string dotted(std::size_t parts) {
 std::string error_of(const std::string& text) {
   try {
     parse_study(text, "deep.toml", test::source_dir());
-  } catch (const StudyError& e) {
+  } catch (const UserError& e) {
     return e.what();
   }
   return "";

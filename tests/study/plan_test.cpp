@@ -100,14 +100,14 @@ TEST(Plan, AKeyOfAnotherPlanNamesThePlansThatTakeIt) {
   try {
     parse("[plan]\nkind = \"lhs\"\nsamples = 4\nscramble = true\n[axes]\nkappa = {from = 1, to = 2}\n");
     FAIL() << "scramble accepted by lhs";
-  } catch (const StudyError& e) {
+  } catch (const UserError& e) {
     EXPECT_NE(std::string(e.what()).find("t.toml:6: plan.scramble: only applies to plans \"sobol\" and \"saltelli\""), std::string::npos)
         << e.what();
   }
   try {
     parse("[[cases]]\nkappa = 2\n");
     FAIL() << "[[cases]] accepted by grid";
-  } catch (const StudyError& e) {
+  } catch (const UserError& e) {
     EXPECT_NE(std::string(e.what()).find("cases: only applies to plan \"list\""), std::string::npos) << e.what();
   }
 }

@@ -21,7 +21,7 @@
 #include "pcrf/study/case_space.hpp"
 #include "pcrf/study/record_source.hpp"
 #include "pcrf/study/study_check.hpp"
-#include "pcrf/study/study_error.hpp"
+#include "pcrf/user_error.hpp"
 #include "pcrf/study/study_parser.hpp"
 #include "study/study_test_support.hpp"
 
@@ -417,7 +417,7 @@ TEST(StudyCommand, ARunBuildsNoFrameUpFrontUnlessItsInputNeedsIt) {
   try {
     (void)study::check_study(displaced, displaced_space, displaced_records, study::FrameCheck::kWhereNeeded);
     ADD_FAILURE() << "a start beyond the overturning angle passed the check of a run";
-  } catch (const study::StudyError& e) {
+  } catch (const UserError& e) {
     EXPECT_NE(std::string(e.what()).find("displaced.toml:9: physics.theta0_rad:"), std::string::npos) << e.what();
   }
 }
@@ -547,6 +547,9 @@ TEST(StudyCommand, PaperStudiesFindTheirRecords) {
       {"ida.toml", ": ok, "},
       {"fema_p695_ida.toml", ": ok, " + std::to_string(far_field_components * 3 * 16) + " cases"},
       {"sensitivity.toml", ": ok, 33280 cases"},   // 13 records × 256 × (8 + 2) frames
+      {"risk.toml", ": ok, " + std::to_string(far_field_components * 2 * 10) + " cases"},
+      {"risk_stripes.toml", ": ok, " + std::to_string(far_field_components * 6) + " cases"},  // six return periods
+      {"model_uncertainty.toml", ": ok, " + std::to_string(far_field_components * 16 * 10) + " cases"},  // 16 LHS frames
       {"numerics_audit/exact.toml", ": ok, 11 cases"},
       {"numerics_audit/fixed_rk4_h1e-2.toml", ": ok, 11 cases"},
       {"numerics_audit/fixed_rk4_h1e-3.toml", ": ok, 11 cases"},

@@ -26,11 +26,11 @@ cube::Coordinate coordinate(const Study& s, const std::string& name) {
   return {};
 }
 
-/// The message of the StudyError a text raises ("" if none).
+/// The message of the UserError a text raises ("" if none).
 std::string error_of(const std::string& text) {
   try {
     parse(text);
-  } catch (const StudyError& e) {
+  } catch (const UserError& e) {
     return e.what();
   }
   return "";
@@ -324,7 +324,7 @@ TEST(CaseSpace, HistoryRequestsNameExactlyOneCase) {
   try {
     space.resolve(s.histories[1]);
     FAIL() << "ambiguous request accepted";
-  } catch (const StudyError& e) {
+  } catch (const UserError& e) {
     EXPECT_NE(std::string(e.what()).find("the kappa axis has 2 values: give `kappa`"), std::string::npos) << e.what();
   }
 }

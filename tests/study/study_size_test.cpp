@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "pcrf/parallel/mpi_session.hpp"
-#include "pcrf/study/study_error.hpp"
+#include "pcrf/user_error.hpp"
 #include "pcrf/study/study_parser.hpp"
 #include "pcrf/study/study_run.hpp"
 #include "pcrf/study/study_size.hpp"
@@ -80,7 +80,7 @@ std::string check_in_process(const std::filesystem::path& dir, const std::string
   try {
     (void)study::run_study(options, mpi);
     return "";
-  } catch (const study::StudyError& e) {
+  } catch (const UserError& e) {
     const std::string message = e.what();
     EXPECT_EQ(message.find('\n'), std::string::npos) << what << ": " << message;
     return message;

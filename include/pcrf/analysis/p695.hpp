@@ -15,7 +15,7 @@ namespace pcrf::p695 {
 
 /// Seismic design categories of the methodology's Table 5-1 (maximum and minimum of each).
 enum class Sdc { kDmax, kDmin, kCmax, kCmin, kBmax, kBmin };
-/// "Dmax", "Dmin", … (case ignored). \throws std::invalid_argument listing the names.
+/// "Dmax", "Dmin", … (case ignored). \throws UserError listing the names.
 Sdc parse_sdc(const std::string& text);
 std::string to_string(Sdc sdc);
 
@@ -43,7 +43,7 @@ double beta_total(double mu_t, char design_rating, char test_rating, char model_
 /// β₁ = 0.14 (μ_T − 1)^0.42, the far-field set's ε̄(T) = 0.6 (1.5 − T) for 0.5 ≤ T ≤ 1.5 s
 /// (T clamped to that range, as Table 7-1 does) and the target ε̄₀ = 1.5 for SDC Dmax,
 /// 1.0 for the others; μ_T above 8 counts as 8. Equals Tables 7-1a/7-1b to their two decimals.
-/// \throws std::invalid_argument for μ_T < 1 or T ≤ 0.
+/// \throws UserError for μ_T < 1 or T ≤ 0.
 double spectral_shape_factor(double period_s, double mu_t, Sdc sdc);
 /// The three pieces of the SSF: β₁(μ_T) (Eq. B-3, μ_T above 8 as 8), the far-field set's
 /// ε̄(T) (Eq. B-1, Figure B-3) and the target ε̄₀ of the SDC (Section B.3.2).
@@ -74,7 +74,7 @@ struct CountedMedian {
   std::size_t curves = 0;     ///< N
   std::size_t bounded = 0;    ///< curves whose bound lies below high_g (or every censored one when high_g is NaN)
 };
-/// \throws std::invalid_argument for no curve at all.
+/// \throws UserError for no curve at all.
 CountedMedian counted_median(std::vector<double> collapse_g, std::vector<double> censored_g);
 
 /// The methodology's numbers for one archetype.
@@ -105,7 +105,7 @@ struct GroupVerdict {
   double acmr10;
   bool passes;
 };
-/// \throws std::invalid_argument for an empty group.
+/// \throws UserError for an empty group.
 GroupVerdict assess_group(const std::vector<Assessment>& archetypes);
 
 /// The fundamental period the methodology uses: max(C_u T_a, 0.25 s) (Section 5.2.5) [s].

@@ -28,14 +28,14 @@ namespace pcrf::risk {
 
 /// What the hazard curve does beyond its last point.
 enum class Tail { kCutOff, kPowerLaw };
-/// "cut-off", "power-law". parse_tail also takes "cutoff". \throws std::invalid_argument.
+/// "cut-off", "power-law". parse_tail also takes "cutoff". \throws UserError.
 std::string to_string(Tail tail);
 Tail parse_tail(const std::string& text);
 
 /// Mean annual rate of exceedance λ(x) [1/yr] of an intensity x (in the measure's units).
 class HazardCurve {
  public:
-  /// \throws std::invalid_argument naming the point (0-based) for fewer than two points,
+  /// \throws UserError naming the point (0-based) for fewer than two points,
   /// an intensity ≤ 0 or not increasing, a rate ≤ 0 or not decreasing, or sizes that differ.
   HazardCurve(std::vector<double> intensity, std::vector<double> rate_per_yr, Tail tail);
   /// λ(x) [1/yr]: log-log between points; λ(x₀) below the first; beyond the last, 0
@@ -82,7 +82,7 @@ struct RateResult {
 /// λ_c of a lognormal fragility: composite Simpson in ln x over each piece between the
 /// hazard points and `breakpoints` (deaggregation bin edges, the lowest collapse seen …),
 /// the number of steps doubled until λ_c changes by less than 1e-7 of itself.
-/// \throws std::invalid_argument for θ ≤ 0 or β ≤ 0; std::runtime_error when the integral
+/// \throws UserError for θ ≤ 0 or β ≤ 0; std::runtime_error when the integral
 /// does not settle to 1e-3 (0.1 %) within 2^16 steps per piece.
 RateResult collapse_rate(const HazardCurve& hazard, const analysis::Lognormal& fragility,
                          const std::vector<double>& breakpoints = {});
@@ -92,7 +92,7 @@ RateResult collapse_rate(const HazardCurve& hazard, const analysis::Lognormal& f
 /// exact: between consecutive edges (the steps, the hazard points, `breakpoints`) P is
 /// constant and the piece is P(a) (λ(a) − λ(b)); beyond the last edge, P λ(last edge). The
 /// pieces are the deaggregation by ground-motion intensity, as for the lognormal; their sum
-/// equals Σ_j λ(x_j) (P_j − P_{j−1}). \throws std::invalid_argument for sizes that differ,
+/// equals Σ_j λ(x_j) (P_j − P_{j−1}). \throws UserError for sizes that differ,
 /// intensities not increasing or ≤ 0, probabilities outside [0, 1].
 RateResult collapse_rate_steps(const HazardCurve& hazard, const std::vector<double>& intensity,
                                const std::vector<double>& probability, const std::vector<double>& breakpoints = {});
@@ -137,7 +137,7 @@ struct RiskTarget {
   /// The generic fragility anchored at `intensity`: θ = intensity · exp(−Φ⁻¹(p) β).
   analysis::Lognormal fragility_at(double intensity) const;
 };
-/// \throws std::invalid_argument for a probability outside (0, 1), years or β ≤ 0.
+/// \throws UserError for a probability outside (0, 1), years or β ≤ 0.
 void check(const RiskTarget& target);
 
 /// The risk-targeted intensity: the x whose generic fragility (RiskTarget::fragility_at) has

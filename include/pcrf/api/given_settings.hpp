@@ -1,15 +1,16 @@
 /// \file given_settings.hpp
 /// \brief Settings a user gave by name (a command-line flag, a Python keyword), checked
 /// against their description and applied in table order, so that a setting which replaces
-/// others (the solver `preset`) comes first whatever the order they were given in. Messages
-/// name the setting by its flag ("--tail-s: must be positive (got -1)") in every front end.
+/// others (the solver `preset`) comes first whatever the order they were given in. A bad value
+/// is a UserError at the setting's key, which each front end spells its own way
+/// ("--tail-s: must be positive (got -1)", "tail_s=: must be positive (got -1)").
 #pragma once
 
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "pcrf/api/input_error.hpp"
+#include "pcrf/user_error.hpp"
 #include "pcrf/setting.hpp"
 
 namespace pcrf::api {
@@ -18,21 +19,21 @@ template <class Target>
 using GivenSettings = std::vector<std::pair<const Setting<Target>*, SettingValue>>;
 
 /// `value` checked (and converted: a whole number for an integer) for `s`.
-/// \throws InputError "--flag: problem".
+/// \throws UserError at the setting's key.
 template <class Target>
 SettingValue checked_setting(const Setting<Target>& s, SettingValue value) {
-  if (const auto problem = check_setting(s, value); !problem.empty()) throw InputError(flag_name(s.key) + ": " + problem);
+  if (const auto problem = check_setting(s, value); !problem.empty()) throw UserError(std::string(s.key), problem);
   return value;
 }
 
-/// `text` (as a command line gives it) read and checked for `s`. \throws InputError.
+/// `text` (as a command line gives it) read and checked for `s`. \throws UserError.
 template <class Target>
 SettingValue checked_setting_text(const Setting<Target>& s, const std::string& text) {
   SettingValue value;
   try {
     value = parse_setting_text(s, text);
   } catch (const std::invalid_argument& error) {
-    throw InputError(flag_name(s.key) + ": " + error.what());
+    throw UserError(std::string(s.key), error.what());
   }
   return checked_setting(s, std::move(value));
 }

@@ -30,7 +30,7 @@ struct Scaling {
 
 /// The factor the record is scaled by: `scale`, or `intensity` over the station's measure (of
 /// the in-plane motion at `incidence_deg`, or of the horizontal pair for a RotD measure).
-/// \throws InputError (a measure without an intensity, both a scale and an intensity, a
+/// \throws UserError (a measure without an intensity, both a scale and an intensity, a
 /// period the record cannot resolve, a record whose measure is 0); std::invalid_argument
 /// from station_intensity (a RotD measure without a pair).
 double scale_factor(const Scaling& scaling, const StationRecord& station, std::optional<double> incidence_deg);
@@ -42,13 +42,13 @@ struct ScaledExcitation {
 };
 
 /// The station's components at the frame's incidence, scaled as `scaling` says.
-/// \throws InputError (an incidence without a pair, a scale that overflows, see scale_factor).
+/// \throws UserError (an incidence without a pair, a scale that overflows, see scale_factor).
 ScaledExcitation scaled_excitation(const StationRecord& station, std::optional<double> incidence_deg,
                                    const Scaling& scaling);
 
 /// Solves `scene` shaken by `excitation`; each history row (every `history_dt_s`, 0: the
 /// record's dt, plus the events) goes to `sink` when it is not empty.
-/// \throws InputError for settings the scene or the record refuse (e.g. theta0_rad).
+/// \throws UserError for settings the scene or the record refuse (e.g. theta0_rad).
 CaseResult solve_one_case(std::unique_ptr<Scene> scene, const PhysicsOptions& physics, const Excitation& excitation,
                           const SolverSettings& solver, double history_dt_s, const HistorySink& sink);
 

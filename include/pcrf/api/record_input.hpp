@@ -23,9 +23,9 @@ struct RecordInput {
   std::size_t column = 0;
   std::string synthetic;
 
-  /// The file's spec. \throws InputError for a bad format, unit or missing --dt.
+  /// The file's spec. \throws UserError for a bad format, unit or missing --dt.
   RecordFileSpec spec() const;
-  /// The motion, unscaled. \throws InputError with the reader's message.
+  /// The motion, unscaled. \throws UserError with the reader's message.
   GroundMotion load() const;
 
   // The station's other components (files read like the first one).
@@ -34,7 +34,7 @@ struct RecordInput {
   std::optional<double> az1_deg;
   std::optional<double> az2_deg;
   /// Every component given, aligned (the notes of padding in `notes`), the azimuths given or
-  /// read from the AT2 headers' component names. \throws InputError: different dt, a
+  /// read from the AT2 headers' component names. \throws UserError: different dt, a
   /// vertical given as a horizontal or the other way round.
   StationRecord load_station(std::vector<std::string>& notes) const;
   /// The same input naming another file (of the same format and units) as its first component.
@@ -52,7 +52,7 @@ std::vector<std::string> implausible_records(const RecordInput& input, const Sta
 /// per component whose measures no earthquake record has, named as the station names it.
 std::vector<std::string> implausible_arrays(const StationRecord& station);
 
-/// What a file's header says about the record (title, component, …). \throws InputError.
+/// What a file's header says about the record (title, component, …). \throws UserError.
 RecordMetadata record_metadata(const RecordFileSpec& spec);
 
 }  // namespace pcrf::api

@@ -17,11 +17,11 @@ struct MeasureRequest {
   double damping = 0.05;
 };
 
-/// \throws InputError for a damping outside [0, 1) or a period that is not positive.
+/// \throws UserError for a damping outside [0, 1) or a period that is not positive.
 void check_measure_request(const MeasureRequest& request);
 
 /// The measures of `station` (loaded from `input`, which names its files' headers).
-/// \throws InputError for values that overflow the measures, a period below 2·dt, or a pair
+/// \throws UserError for values that overflow the measures, a period below 2·dt, or a pair
 /// whose azimuths are not known.
 JsonObject record_measures(const StationRecord& station, const RecordInput& input, const MeasureRequest& request);
 

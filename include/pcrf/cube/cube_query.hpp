@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <ostream>
 #include <optional>
 #include <cstdint>
@@ -69,9 +70,16 @@ void print_table(const std::vector<std::vector<std::string>>& rows, bool csv, st
 /// \throws CubeError naming the group when it does not exist.
 void export_history_csv(const CubeReader& cube, const std::string& name, std::ostream& out);
 
-/// One row per selected case: every coordinate but those in `leave_out`, the status, and
-/// the named metrics or side variables (all of both when `metrics` is empty; a side variable
-/// repeats over the dimensions it lacks). NaN is written as an empty field.
+/// One row per selected case, handed to `row` as its fields after a first call with the
+/// header: every coordinate but those in `leave_out` (its value's label), the status (its
+/// name), and the named metrics or side variables (all of both when `metrics` is empty; a side
+/// variable repeats over the dimensions it lacks) as the shortest text of each number, empty for
+/// NaN. \throws CubeError naming an unknown metric, coordinate or value.
+void export_rows(const CubeReader& cube, const std::vector<std::string>& metrics, const std::vector<Selector>& selectors,
+                 const std::function<void(const std::vector<std::string>&)>& row,
+                 const std::vector<std::string>& leave_out = {});
+
+/// export_rows() as CSV: a header, then one line per selected case.
 void export_csv(const CubeReader& cube, const std::vector<std::string>& metrics,
                 const std::vector<Selector>& selectors, std::ostream& out,
                 const std::vector<std::string>& leave_out = {});

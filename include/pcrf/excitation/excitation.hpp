@@ -27,7 +27,7 @@ class Excitation {
       : horizontal_(&horizontal) {}
 
   /// A horizontal and a vertical (positive up) motion; `vertical` may be null.
-  /// \throws std::invalid_argument when the two differ in dt or in number of samples.
+  /// \throws UserError when the two differ in dt or in number of samples.
   Excitation(const GroundMotion& horizontal, const GroundMotion* vertical);
 
   /// The ground acceleration at t [m/s²]; each component exactly as GroundMotion::accel_m_s2.
@@ -84,7 +84,7 @@ class ExcitationCursor {
 /// perturbed twins of the verdict check scale the whole ground motion).
 class ScaledExcitation {
  public:
-  /// \throws std::invalid_argument as GroundMotion::scaled.
+  /// \throws UserError as GroundMotion::scaled.
   ScaledExcitation(const Excitation& of, double factor);
   ScaledExcitation(const ScaledExcitation&) = delete;  // the view points into this object
   ScaledExcitation& operator=(const ScaledExcitation&) = delete;

@@ -29,7 +29,7 @@ struct StationRecord {
 
   /// Brings the components to one time axis: the shorter ones are padded with zeros to the
   /// longest (a note for each, naming it and both lengths).
-  /// \throws std::invalid_argument naming the components when their dt differ.
+  /// \throws UserError naming the components when their dt differ.
   std::vector<std::string> align();
 };
 
@@ -51,7 +51,7 @@ bool is_downward_component(const std::string& component);
 /// given, a vertical channel given as a horizontal (or a horizontal as the vertical)
 /// refused, a `DWN` vertical negated to positive up (with a note), the components aligned
 /// (align(); its notes appended to `notes`).
-/// \throws std::invalid_argument naming the file and the problem.
+/// \throws UserError naming the file and the problem.
 StationRecord make_station(StationComponent h1, std::optional<double> az1_deg, std::optional<StationComponent> h2,
                            std::optional<double> az2_deg, std::optional<StationComponent> up,
                            std::vector<std::string>& notes);
@@ -59,7 +59,7 @@ StationRecord make_station(StationComponent h1, std::optional<double> az1_deg, s
 /// What a frame at `incidence_deg` feels from `record` scaled by `factor`; owns its series.
 class FrameExcitation {
  public:
-  /// \throws std::invalid_argument when an incidence is given without both horizontal
+  /// \throws UserError when an incidence is given without both horizontal
   /// components and their azimuths, or the components are not aligned (StationRecord::align).
   FrameExcitation(const StationRecord& record, std::optional<double> incidence_deg, double factor);
   FrameExcitation(const FrameExcitation&) = delete;  // the view points into this object
@@ -79,7 +79,7 @@ GroundMotion in_plane_motion(const StationRecord& record, std::optional<double> 
 
 /// The station's value of an intensity measure: for a RotD measure of its horizontal pair
 /// (rotd.hpp: the frame's orientation plays no part), else of the in-plane motion at
-/// `incidence_deg` (in_plane_motion). \throws std::invalid_argument when a RotD measure
+/// `incidence_deg` (in_plane_motion). \throws UserError when a RotD measure
 /// has no pair or no azimuths, or as in_plane_motion.
 double station_intensity(const StationRecord& record, std::optional<double> incidence_deg, const IntensitySpec& spec);
 

@@ -10,7 +10,7 @@
 ///   A = S/I,  B = J/I,  C = Q/I,  D = G/I,   θ̈₁ = A ü_h − s (B θ̇₁² + C + D ü_v)
 /// (s = −1 on side −1, +1 on side +1): no division per call, and four series rather than
 /// five. Each is the degree-9 Chebyshev interpolant, converted once to powers of the cell's
-/// coordinate x ∈ [−1, 1] and evaluated by Horner's rule, the four in the lanes of one loop.
+/// coordinate x ∈ [−1, 1] and evaluated by Estrin's scheme, the four in two pairs of lanes.
 /// (The conversion costs nothing in accuracy here: the series' coefficients fall off fast
 /// over a 0.02 rad cell, and the self-check below evaluates the converted form.)
 /// Cells are built on first use, so a case pays only for the range it visits. Each cell
@@ -81,19 +81,25 @@ class EomTable {
 
 namespace detail {
 
-// Four power series at once by Horner's rule, as two pairs of lanes (GCC's and Clang's vector
+// Four power series of degree 9 at once, as two pairs of lanes (GCC's and Clang's vector
 // extension: two doubles per SSE2 register on any x86-64, NEON on arm64; compilers do not
-// vectorize this recurrence across the series by themselves).
+// vectorize across the series by themselves), by Estrin's scheme: the pairs c_k + c_{k+1} x
+// and the powers x², x⁴, x⁸ are independent, so the dependent chain is four multiply-adds
+// deep instead of Horner's nine (the right-hand side waits on it at every stage).
 template <class Row, std::size_t N>
-std::array<double, 4> horner4(const std::array<Row, N>& m, double x) {
+std::array<double, 4> power_series4(const std::array<Row, N>& m, double x) {
+  static_assert(N == 10, "Estrin's scheme below is written out for degree 9");
   using Pair = double __attribute__((vector_size(16)));
   static_assert(alignof(Row) >= alignof(Pair) && sizeof(Row) == 2 * sizeof(Pair));
-  Pair ab = {0.0, 0.0}, cd = {0.0, 0.0};
-  for (std::size_t k = N; k-- > 0;) {
-    const auto* row = reinterpret_cast<const Pair*>(m[k].data());
-    ab = ab * x + row[0];
-    cd = cd * x + row[1];
-  }
+  const double x2 = x * x, x4 = x2 * x2, x8 = x4 * x4;
+  auto lanes = [&](std::size_t k, int half) { return reinterpret_cast<const Pair*>(m[k].data())[half]; };
+  auto series = [&](int half) {
+    const Pair q01 = lanes(0, half) + x * lanes(1, half), q23 = lanes(2, half) + x * lanes(3, half);
+    const Pair q45 = lanes(4, half) + x * lanes(5, half), q67 = lanes(6, half) + x * lanes(7, half);
+    const Pair q89 = lanes(8, half) + x * lanes(9, half);
+    return (q01 + x2 * q23) + x4 * (q45 + x2 * q67) + x8 * q89;
+  };
+  const Pair ab = series(0), cd = series(1);
   return {ab[0], ab[1], cd[0], cd[1]};
 }
 
@@ -111,7 +117,8 @@ inline const EomTable::Cell* EomTable::locate(double theta1, int side, double& x
   Cell& cell = cells_[static_cast<std::size_t>(index)];
   if (cell.state == Cell::State::kEmpty) [[unlikely]] build(cell, static_cast<int>(index));
   if (cell.state == Cell::State::kExact) return nullptr;
-  x = 2.0 * (u - static_cast<double>(index - 1) * cell_rad_) * inv_cell_ - 1.0;
+  // v − ⌊v⌋ is the fraction of the cell: x = 2·fraction − 1, without going back to u.
+  x = 2.0 * (v - static_cast<double>(whole)) - 1.0;
   return &cell;
 }
 
@@ -120,7 +127,7 @@ inline bool EomTable::acceleration(double theta1, double omega1, GroundAccelerat
   double x = 0;
   const Cell* cell = locate(theta1, side, x);
   if (cell == nullptr) return eom_.acceleration(theta1, omega1, ground, side, theta1_ddot);
-  const std::array<double, 4> v = detail::horner4(cell->abcd, x);
+  const std::array<double, 4> v = detail::power_series4(cell->abcd, x);
   // Side +1 is the odd mirror: J, G, K change sign, I and S do not (equation_of_motion.hpp).
   // Without vertical shaking D·ü_v is a signed zero and C + D·ü_v is C bit for bit.
   const double s = side < 0 ? 1.0 : -1.0;

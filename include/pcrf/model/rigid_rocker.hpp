@@ -25,9 +25,7 @@
 /// as overturned when the block has fallen over, |θ| = π/2.
 #pragma once
 
-#include <array>
 #include <optional>
-#include <string_view>
 
 #include "pcrf/model/scene.hpp"
 #include "pcrf/units.hpp"
@@ -41,16 +39,6 @@ struct RockerParameters {
   std::optional<double> restitution;   ///< r in [0, 1]; empty: from momentum (see above)
   double gravity_m_s2 = kGravity_m_s2; ///< the gravity it stands in [m/s²]
 };
-
-/// A rocker parameter by name: the keys of `pcrf run --model block` flags (and study keys).
-struct RockerParameterInfo {
-  std::string_view name;       ///< e.g. "size_m"
-  std::string_view long_name;  ///< e.g. "half-diagonal R of the columns"
-  std::string_view units;      ///< UDUNITS
-  double RockerParameters::*member;
-};
-/// slenderness_rad, size_m, beam_mass_ratio (the restitution is optional: its own key).
-const std::array<RockerParameterInfo, 3>& rocker_parameters();
 
 /// θ̈₁ of a rigid rocker, eq. (31) with I, J = K = 0 and the G, S above:
 ///
@@ -72,7 +60,7 @@ T rigid_rocker_acceleration(const T& moment_over_inertia_per_m, const T& slender
 
 class RigidRocker final : public Scene {
  public:
-  /// \throws std::invalid_argument naming the parameter: α outside (0, π/2), R ≤ 0, γ < 0,
+  /// \throws UserError naming the parameter: α outside (0, π/2), R ≤ 0, γ < 0,
   /// a restitution outside [0, 1], a gravity ≤ 0.
   explicit RigidRocker(const RockerParameters& parameters);
 

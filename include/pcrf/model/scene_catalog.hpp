@@ -9,7 +9,8 @@
 ///   rocking-frame  the Makris–Vassiliou frame: the block's keys and beam_mass_ratio
 ///
 /// A scene's values are a ScenePoint: one number per parameter of its table, in table order,
-/// NaN for an optional parameter not given. Adding a scene: its class, and one entry here.
+/// NaN for an optional parameter not given. Adding a scene: its class, and one entry here;
+/// the command line's flags and Python's keywords follow from the entry.
 #pragma once
 
 #include <cstddef>
@@ -27,8 +28,8 @@ namespace pcrf {
 /// One value per parameter of a SceneModel, in its table's order.
 using ScenePoint = std::vector<double>;
 
-/// One parameter of a scene model, spelled as study keys, cube coordinates and (with dashes)
-/// `pcrf run` flags.
+/// One parameter of a scene model, spelled as study keys, cube coordinates, Python keywords
+/// and (with dashes) `pcrf run|frame` flags.
 struct SceneParameter {
   std::string_view name;       ///< e.g. "slenderness_rad"
   std::string_view long_name;  ///< e.g. "slenderness alpha of the columns"
@@ -37,13 +38,15 @@ struct SceneParameter {
   bool axis;                   ///< may be a study axis (false: the base point sets it for every case)
   /// Why `value` is outside the parameter's domain on its own ("must be positive"); empty when inside.
   std::string (*problem)(double value);
+  std::vector<std::string_view> aliases = {};  ///< older command-line spellings ("--mc")
 };
 
 struct SceneModel {
   std::string_view name;
   std::string_view description;
   std::vector<SceneParameter> parameters;
-  /// The scene at `values`. \throws std::invalid_argument "key: problem" (one line).
+  /// The scene at `values`. \throws UserError at a key, or std::invalid_argument "impossible
+  /// frame: …" for values each in its domain that together make no scene.
   std::unique_ptr<Scene> (*make)(std::span<const double> values);
   /// Keys of which at most one may be given (the block's size_m and frequency_parameter_rad_s).
   std::vector<std::string_view> exclusive;
@@ -58,8 +61,10 @@ struct SceneModel {
 
 /// The scene models, the default (pcrf) first.
 const std::vector<SceneModel>& scene_models();
+/// The model a study, `pcrf run` or pcrf.run solves when none is named: the first.
+inline const SceneModel& default_scene_model() { return scene_models().front(); }
 
-/// \throws std::invalid_argument "unknown scene 'x' (expected pcrf, block or rocking-frame)".
+/// \throws UserError at `model`: "unknown scene 'x' (expected pcrf, block or rocking-frame)".
 const SceneModel& scene_model(std::string_view name);
 
 /// The names of the models that take `key`, "model \"block\" or \"rocking-frame\"", for
@@ -84,17 +89,12 @@ struct SceneSpec {
 /// The same model at the same point (same_point).
 bool same_scene(const SceneSpec& a, const SceneSpec& b);
 
-/// The plain entry point (command line, Python): a model's name and the values given by
-/// key, every other parameter at its default. \throws std::invalid_argument with a one-line
-/// message naming the key: an unknown model, a key of another model ("kappa does not apply
-/// to model \"block\" (it is a parameter of model \"pcrf\")"), an unknown key, a value outside
-/// its domain, two exclusive keys both given, an impossible scene.
-std::unique_ptr<Scene> make_scene(std::string_view model, const std::map<std::string, double, std::less<>>& values);
-
-/// The point make_scene() builds its scene from: every parameter at its default, the given
-/// values set, and of a model's exclusive keys only the one given (the others absent, NaN), so
-/// that the point's values that are not NaN, given again, make the same scene.
-/// \throws std::invalid_argument as make_scene().
+/// The point a model's values given by key (the command line's flags, Python's keywords) make:
+/// every parameter at its default, the given values set, and of a model's exclusive keys only
+/// the one given (the others absent, NaN), so that the point's values that are not NaN, given
+/// again, make the same scene. \throws UserError at the key: a key of another model ("does
+/// not apply to model \"block\" (it is a parameter of model \"pcrf\")"), an unknown key, a value
+/// outside its domain; or two exclusive keys both given.
 ScenePoint scene_point(const SceneModel& model, const std::map<std::string, double, std::less<>>& values);
 
 }  // namespace pcrf

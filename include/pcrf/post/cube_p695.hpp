@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -14,6 +15,7 @@
 #include "pcrf/analysis/p695.hpp"
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/post/cube_fragility.hpp"
+#include "pcrf/post/cube_model_scatter.hpp"
 
 namespace pcrf::post {
 
@@ -22,7 +24,7 @@ enum class SctFrom {
   kCounted,    ///< the intensity at which half the records collapse (P-695 Sections 6.3, 6.4)
   kLognormal,  ///< the median of the fitted lognormal fragility
 };
-/// "counted", "lognormal". \throws std::invalid_argument for another word.
+/// "counted", "lognormal". \throws UserError for another word.
 SctFrom parse_s_ct(const std::string& text);
 std::string to_string(SctFrom from);
 
@@ -61,9 +63,15 @@ struct P695Report {
   /// What the verdict stands on that the table cannot show, one line each: counted medians
   /// moved by bounded curves, a group of one archetype, default quality ratings.
   std::vector<std::string> notes;
+  /// Modelling uncertainty measured (a cube of sampled frames, cube_model_scatter.hpp), and
+  /// the collapse probability at the MCE, Φ(ln(S_MT / θ) / β), of the pooled median θ with
+  /// the total of the measured modelling term and with that of the rated one.
+  std::optional<ModelScatter> model;
+  double model_p_collapse_mce_measured = 0.0;
+  double model_p_collapse_mce_rated = 0.0;
 };
 
-/// \throws cube::CubeError as cube_fragility; std::invalid_argument for a frame without a
+/// \throws cube::CubeError as cube_fragility; UserError for a frame without a
 /// fitted median (no collapse at all) or bad inputs.
 P695Report cube_p695(const cube::CubeReader& cube, const std::vector<cube::Selector>& selectors, const P695Inputs& inputs);
 

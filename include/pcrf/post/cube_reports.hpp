@@ -61,22 +61,22 @@ struct SensitivityRequest {
 Report sensitivity_report(const cube::CubeReader& cube, const SensitivityRequest& request);
 
 /// FEMA P-695 per frame and the group's verdict (cube_p695.hpp). Warning: the measure problem.
-/// \throws std::invalid_argument as cube_p695().
+/// \throws UserError as cube_p695().
 Report p695_report(const cube::CubeReader& cube, const std::vector<cube::Selector>& where, const P695Inputs& inputs);
 /// The same from an assessment already made (the text report needs it too).
 Report p695_report(const P695Report& result, const P695Inputs& inputs, const std::string& file);
 
-/// Why `mce` cannot be a fragility's MCE intensity ("--mce must be positive"); empty when it can.
-std::string mce_problem(const std::optional<double>& mce);
+/// \throws UserError at `mce` when it cannot be a fragility's MCE intensity (not positive).
+void check_mce(const std::optional<double>& mce);
 
 /// The reduction that --reduce-over `over` and --reduce `how` ask for (`how` empty:
-/// `default_how`); none when `over` is empty. \throws std::invalid_argument for a `how`
-/// without `over` ("--reduce goes with --reduce-over DIMENSION") or other than max, min or median.
+/// `default_how`); none when `over` is empty. \throws UserError for a `how`
+/// without `over` ("goes with --reduce-over DIMENSION") or other than max, min or median.
 cube::Reduction reduction_of(const std::string& over, const std::string& how, const std::string& default_how);
 
 /// The P-695 inputs from their text forms (the command line's --sdc, --period-s, --mu-t,
 /// --ratings "B,B,C", empty: B,B,B by default, which the report then says; --s-ct counted or
-/// lognormal), checked. \throws std::invalid_argument naming the input.
+/// lognormal), checked. \throws UserError naming the input.
 P695Inputs p695_inputs(const std::string& sdc, double period_s, double mu_t, const std::string& ratings,
                        const std::string& s_ct = "counted");
 

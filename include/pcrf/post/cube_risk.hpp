@@ -14,6 +14,7 @@
 #include "pcrf/analysis/risk.hpp"
 #include "pcrf/cube/cube_query.hpp"
 #include "pcrf/cube/cube_reader.hpp"
+#include "pcrf/post/cube_model_scatter.hpp"
 #include "pcrf/post/hazard_file.hpp"
 #include "pcrf/post/table.hpp"
 
@@ -64,10 +65,15 @@ struct RiskReport {
   double risk_targeted_intensity = 0.0;
   double uniform_hazard_intensity = 0.0;  ///< at 2 % in 50 years (ASCE 7's MCE_G return period)
   std::vector<std::string> warnings;
+  /// Modelling uncertainty measured (a cube of sampled frames, cube_model_scatter.hpp) and the
+  /// λ_c of the pooled median with β_pooled, with the total of the measured modelling term and
+  /// with that of the rated one.
+  std::optional<ModelScatter> model;
+  std::optional<risk::RateResult> model_pooled, model_measured, model_rated;
 };
 
-/// \throws HazardFileError (file and line) for a bad file or a measure (or Sa period) other
-/// than the cube's; cube::CubeError as cube_fragility; std::invalid_argument for bad inputs.
+/// \throws UserError (file and line) for a bad file or a measure (or Sa period) other
+/// than the cube's; cube::CubeError as cube_fragility; UserError for bad inputs.
 RiskReport cube_risk(const cube::CubeReader& cube, const std::vector<cube::Selector>& selectors, const RiskInputs& inputs);
 
 /// The report as tables: `frames`, `deaggregation`, `hazard` (the curve as read) and

@@ -1,7 +1,7 @@
 /// \file hazard_file.hpp
 /// \brief A site's hazard curve read from CSV: intensity against mean annual rate of
 /// exceedance [1/yr]. The file is untrusted: every refusal names the file, the line and the
-/// problem (HazardFileError), and nothing is allocated by a size the file gives.
+/// problem (a UserError at the file and line), and nothing is allocated by a size the file gives.
 ///
 /// Layout (docs/risk.md):
 ///     # any comment; blank lines are skipped
@@ -19,14 +19,9 @@
 #include <string>
 
 #include "pcrf/analysis/risk.hpp"
+#include "pcrf/user_error.hpp"
 
 namespace pcrf::post {
-
-/// "FILE:LINE: problem" (LINE left out for a problem of the whole file).
-class HazardFileError : public std::invalid_argument {
- public:
-  using std::invalid_argument::invalid_argument;
-};
 
 struct HazardFile {
   std::filesystem::path file;
@@ -36,7 +31,7 @@ struct HazardFile {
   risk::HazardCurve curve;
 };
 
-/// Reads and checks the file. \throws HazardFileError.
+/// Reads and checks the file. \throws UserError at the file and line.
 HazardFile read_hazard_file(const std::filesystem::path& file, risk::Tail tail);
 
 /// The largest file read (bytes) and the most points taken: a hazard curve has tens.

@@ -21,7 +21,7 @@ class GroundMotion {
   /// \param name     label used in results and error messages
   /// \param dt_s     sample interval [s], > 0
   /// \param accel_m_s2 samples [m/s²], at least one; all finite
-  /// \throws std::invalid_argument when dt ≤ 0, no samples, or a non-finite sample
+  /// \throws UserError when dt ≤ 0, no samples, or a non-finite sample
   GroundMotion(std::string name, double dt_s, std::vector<double> accel_m_s2);
 
   const std::string& name() const { return name_; }
@@ -58,7 +58,7 @@ class GroundMotion {
   double max_m_s2() const { return max_m_s2_; }
 
   /// The same record multiplied by `factor` (a negative factor mirrors it); same name and dt.
-  /// \throws std::invalid_argument when factor is not finite or a scaled sample overflows.
+  /// \throws UserError when factor is not finite or a scaled sample overflows.
   GroundMotion scaled(double factor) const;
 
  private:

@@ -28,7 +28,7 @@ struct ProjectionWeights {
   double w1;
   double w2;
 };
-/// \throws std::invalid_argument when the two azimuths are parallel (within 1°: the pair
+/// \throws UserError when the two azimuths are parallel (within 1°: the pair
 /// does not span the plane) or any azimuth is not finite.
 ProjectionWeights projection_weights(double az1_deg, double az2_deg, double phi_deg);
 
@@ -43,7 +43,7 @@ struct HorizontalPair {
 /// The acceleration along `phi_deg`, sample by sample; the shorter component is taken as
 /// zero after its end (the record is as long as the longer one). Named
 /// "<h1 name>@<phi>deg".
-/// \throws std::invalid_argument when the components' dt differ (naming both), or as
+/// \throws UserError when the components' dt differ (naming both), or as
 /// projection_weights().
 GroundMotion project(const HorizontalPair& pair, double phi_deg);
 

@@ -44,7 +44,7 @@ double arias_intensity_m_s(const GroundMotion& record);
 double significant_duration_s(const GroundMotion& record);
 
 /// 5 %-damped (or `damping`) pseudo-spectral acceleration at `period_s` [g].
-/// \throws std::invalid_argument when period_s ≤ 0 or damping is not in [0, 1).
+/// \throws UserError when period_s ≤ 0 or damping is not in [0, 1).
 double spectral_acceleration_g(const GroundMotion& record, double period_s, double damping = 0.05);
 
 /// A measure a study can scale records to: "pga_g", "pgv_m_s" or "sa_g" of one component,
@@ -55,7 +55,7 @@ enum class IntensityMeasure { kPga, kPgv, kSa, kPgaRotD50, kPgaRotD100, kPgvRotD
 IntensityMeasure component_measure(IntensityMeasure measure);
 /// 50 or 100 for a RotD measure, 0 for a measure of one component.
 int rotd_percentile(IntensityMeasure measure);
-IntensityMeasure parse_intensity_measure(const std::string& text);  ///< \throws std::invalid_argument
+IntensityMeasure parse_intensity_measure(const std::string& text);  ///< \throws UserError
 std::string to_string(IntensityMeasure measure);
 /// UDUNITS of a measure's values: "g" ("9.81 m s-2" is spelled out in cube attributes), "m/s".
 std::string_view intensity_units(IntensityMeasure measure);
@@ -82,7 +82,7 @@ struct IntensitySpec {
   SetNormalisation normalise = SetNormalisation::kNone;  ///< studies only (the record set)
 };
 /// The record's value of the measure, in its units.
-/// \throws std::invalid_argument for a RotD measure (it needs a pair: station_intensity()).
+/// \throws UserError for a RotD measure (it needs a pair: station_intensity()).
 double intensity_of(const GroundMotion& record, const IntensitySpec& spec);
 /// The factor that brings a record whose measure is `record_intensity` to `target_intensity`:
 /// every measure here is linear in the accelerations, so the ratio (infinite or NaN when

@@ -59,11 +59,11 @@ std::string pulse_kind(PulseShape shape);
 std::vector<PulseShape> pulse_shapes();
 
 /// The record of a pulse.
-/// \throws std::invalid_argument naming the field (period_s ≤ 0 or below 4 dt, a non-positive
+/// \throws UserError naming the field (period_s ≤ 0 or below 4 dt, a non-positive
 /// or non-finite amplitude or dt, cycles < 1, γ ≤ 1, a non-finite ν, more than 1e8 samples).
 GroundMotion make_pulse(const PulseSpec& spec);
 
-/// φ of the Cₙ pulse with n cycles [rad] (see above). \throws std::invalid_argument for n < 1.
+/// φ of the Cₙ pulse with n cycles [rad] (see above). \throws UserError for n < 1.
 double cycles_pulse_phase_rad(int cycles);
 
 /// The peak ground velocity of the continuous pulse, from its formula [m/s].

@@ -1,7 +1,7 @@
 /// \file record_readers.hpp
 /// \brief Readers for ground-motion files: PEER NGA `.AT2`, two-column and one-column text.
 ///
-/// Every reader returns a GroundMotion in m/s². Errors throw RecordError whose
+/// Every reader returns a GroundMotion in m/s². Errors throw UserError (at the file and line) whose
 /// message names the file and, where it applies, the line: "file.AT2:4: cannot read
 /// NPTS/DT header".
 #pragma once
@@ -11,34 +11,29 @@
 #include <string>
 
 #include "pcrf/record/ground_motion.hpp"
+#include "pcrf/user_error.hpp"
 
 namespace pcrf {
-
-/// A ground-motion file could not be read; what() names the file and line.
-class RecordError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 /// Units of acceleration values in a text file.
 enum class AccelUnit { kG, kMeterPerSecond2, kCentimeterPerSecond2 };
 
 /// Parses "g", "m/s2" (also "m/s^2", "mps2"), "cm/s2" (also "cm/s^2", "gal"); case and
 /// surrounding blanks are ignored.
-/// \throws std::invalid_argument naming the bad text.
+/// \throws UserError naming the bad text.
 AccelUnit parse_accel_unit(const std::string& text);
 
 /// "g", "m/s2" or "cm/s2": the spelling parse_accel_unit takes and messages suggest.
 std::string to_string(AccelUnit unit);
 
 /// Factor that converts a value in `unit` to m/s² (g → pcrf::kGravity_m_s2).
-/// \throws std::invalid_argument for a value outside the enumeration.
+/// \throws UserError for a value outside the enumeration.
 double to_m_s2(AccelUnit unit);
 
 /// File layouts the engine reads.
 enum class RecordFormat { kAt2, kTwoColumn, kOneColumn };
 
-/// Parses "at2", "two-column", "one-column" (case ignored). \throws std::invalid_argument.
+/// Parses "at2", "two-column", "one-column" (case ignored). \throws UserError.
 RecordFormat parse_record_format(const std::string& text);
 
 /// PEER NGA `.AT2`: four header lines, the fourth giving NPTS and DT in either form
@@ -63,7 +58,7 @@ GroundMotion read_two_column(const std::filesystem::path& file, AccelUnit unit, 
 
 /// One value a line (or several per line), acceleration in `unit`, sampled every dt_s.
 /// Same comment and separator rules as read_two_column. A dt_s that is not positive and
-/// finite, or a file without values, is a RecordError.
+/// finite, or a file without values, is a UserError (at the file and line).
 /// `column` = 0 reads every value in reading order. `column` = k ≥ 1 reads the k-th field of
 /// every row, for a file that holds several series side by side (e.g. N-S and E-W, no time
 /// column); then every row needs at least k fields, and the record's name is the file stem
@@ -102,7 +97,7 @@ struct RecordMetadata {
   std::string component;
   std::string rsn;
 };
-/// \throws RecordError when an AT2 file cannot be read.
+/// \throws UserError (at the file and line) when an AT2 file cannot be read.
 RecordMetadata read_metadata(const RecordFileSpec& spec);
 
 /// A component file (`label`, for messages) and what its header says.
@@ -117,7 +112,7 @@ struct ComponentHeader {
 std::string different_station(const ComponentHeader& a, const ComponentHeader& b);
 
 /// A record file read once: its motion (read_record) and what it says about itself
-/// (read_metadata). \throws RecordError as read_record.
+/// (read_metadata). \throws UserError (at the file and line) as read_record.
 struct RecordFile {
   GroundMotion motion;
   RecordMetadata metadata;

@@ -21,7 +21,7 @@ struct RotD {
 };
 
 /// RotD50 and RotD100 of `spec`'s measure for the pair.
-/// \throws std::invalid_argument as project() and spectral_acceleration_g().
+/// \throws UserError as project() and spectral_acceleration_g().
 RotD rotd(const HorizontalPair& pair, const IntensitySpec& spec);
 
 }  // namespace pcrf

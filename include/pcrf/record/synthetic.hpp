@@ -25,7 +25,7 @@ struct SinePulseSpec {
 /// Samples at t = i·dt for i = 0 … duration/dt (a duration within 1e-9 relative of a whole
 /// number of steps ends on a sample). The record's name is the spec in make_synthetic's
 /// text form.
-/// \throws std::invalid_argument naming the field ("SinePulseSpec.period_s ...") when
+/// \throws UserError naming the field ("SinePulseSpec.period_s ...") when
 /// amplitude_g, period_s or dt_s is not positive and finite, cycles < 1,
 /// period_s < 4·dt_s, duration_s < cycles·period_s, or the record would exceed 1e8 samples.
 GroundMotion make_sine_pulse_train(const SinePulseSpec& spec);
@@ -48,7 +48,7 @@ struct StochasticSpec {
 /// transition over dt for unit-variance noise held constant over each step; the record is
 /// envelope(t) · (−2ζω x' − ω² x), so its first sample is 0. After scaling the peak |a| is
 /// pga_g · kGravity_m_s2 bit for bit. Samples and name as for make_sine_pulse_train.
-/// \throws std::invalid_argument naming the field when pga_g, duration_s, dt_s,
+/// \throws UserError naming the field when pga_g, duration_s, dt_s,
 /// ground_freq_hz or ground_damping is not positive and finite, rise_s, strong_s or
 /// decay_per_s is negative or not finite, duration_s < dt_s, ground_freq_hz ≥ 0.5/dt_s
 /// (Nyquist), or the record would exceed 1e8 samples.
@@ -63,7 +63,7 @@ GroundMotion make_stochastic(const StochasticSpec& spec);
 /// are ignored; a key given twice, an empty item or a value that is not a whole number
 /// (cycles, seed) or a finite number (the rest) is an error. The record's name is the text
 /// itself.
-/// \throws std::invalid_argument naming the unknown kind, key or bad value.
+/// \throws UserError naming the unknown kind, key or bad value.
 GroundMotion make_synthetic(const std::string& text);
 
 }  // namespace pcrf

@@ -27,6 +27,7 @@
 #include "pcrf/model/scene.hpp"
 #include "pcrf/solver/history.hpp"
 #include "pcrf/solver/settings.hpp"
+#include "pcrf/user_error.hpp"
 
 namespace pcrf {
 
@@ -46,14 +47,6 @@ void check_initial_state(const Frame& frame, const PhysicsOptions& physics);
 /// The same for any scene.
 void check_initial_state(const Scene& scene, const PhysicsOptions& physics);
 
-/// A frame that the rigid-body rocking model cannot represent: its geometry is impossible,
-/// it cannot stand at rest (uplift threshold ≤ 0) or its impacts would not be dissipative
-/// rocking impacts (coefficient of restitution outside [0, 1]). what() says which.
-class InvalidFrame : public std::invalid_argument {
- public:
-  using std::invalid_argument::invalid_argument;
-};
-
 /// A frame prepared for solving under fixed physics options. Only what a case needs is
 /// computed, when it first needs it, and kept for every later case of the same frame: the
 /// uplift threshold and restitution at once; the closing limit, the fracture angle and the
@@ -61,11 +54,11 @@ class InvalidFrame : public std::invalid_argument {
 /// one per thread.
 class PreparedFrame;
 
-/// \throws InvalidFrame naming the failed condition.
+/// \throws UserError naming the failed condition (a frame the rigid-body rocking model cannot represent).
 std::shared_ptr<PreparedFrame> prepare_frame(const Frame& frame, const PhysicsOptions& physics);
 
 /// The same for any rocking scene (scene.hpp: the rigid block, the Makris–Vassiliou frame).
-/// \throws InvalidFrame naming the failed condition.
+/// \throws UserError naming the failed condition (a frame the rigid-body rocking model cannot represent).
 std::shared_ptr<PreparedFrame> prepare_scene(std::unique_ptr<Scene> scene, const PhysicsOptions& physics);
 
 /// Solves one case. Never throws for a physical or numerical failure: the result's
@@ -74,7 +67,7 @@ std::shared_ptr<PreparedFrame> prepare_scene(std::unique_ptr<Scene> scene, const
 CaseResult solve_case(PreparedFrame& frame, const Excitation& excitation, const SolverSettings& solver,
                       const OutputRequest& request = {}, const HistorySink& history = {});
 
-/// The same for a frame used once. \throws InvalidFrame as prepare_frame().
+/// The same for a frame used once. \throws UserError as prepare_frame().
 CaseResult solve_case(const Frame& frame, const Excitation& excitation,
                       const PhysicsOptions& physics, const SolverSettings& solver,
                       const OutputRequest& request = {}, const HistorySink& history = {});

@@ -82,7 +82,7 @@ class CaseRunner {
   static constexpr std::size_t kScaledRecords = 64;
 
   /// The frame of a case, prepared once and kept for the next cases of the same frame (a
-  /// grid hands out every record and level of a frame together). \throws InvalidFrame.
+  /// grid hands out every record and level of a frame together). \throws UserError.
   std::shared_ptr<PreparedFrame> prepared(const SceneSpec& scene) const;
   struct Prepared {
     SceneSpec scene;

@@ -73,7 +73,7 @@ class CaseSpace {
   /// Number of curves of an IDA (records × frames).
   std::int64_t curves() const { return ida_runs_ > 0 ? size_ / static_cast<std::int64_t>(ida_runs_) : 0; }
 
-  /// The single case a history request names. \throws StudyError naming the request.
+  /// The single case a history request names. \throws UserError naming the request.
   std::int64_t resolve(const HistoryRequest& request) const;
 
  private:

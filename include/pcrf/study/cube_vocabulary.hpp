@@ -24,6 +24,8 @@ inline constexpr const char* kRecordSource = "record_source";
 inline constexpr const char* kScale = "scale";
 inline constexpr const char* kIntensity = "intensity";
 inline constexpr const char* kScaleFactor = "scale_factor";
+/// Hazard-consistent stripes: each intensity's return period on the site's hazard curve [yr].
+inline constexpr const char* kReturnPeriod = "return_period_yr";
 inline constexpr const char* kRecordTitle = "record_title";
 inline constexpr const char* kIdaPoint = "ida_point";
 inline constexpr const char* kIdaIntensity = "ida_intensity";
@@ -53,6 +55,8 @@ inline constexpr const char* kSceneModel = "scene_model";
 inline constexpr const char* kStudyName = "study_name";
 inline constexpr const char* kPlan = "plan";
 inline constexpr const char* kPcrfVersion = "pcrf_version";
+/// The hazard file of hazard-consistent stripes, as the study gives it.
+inline constexpr const char* kIntensityHazard = "intensity_hazard";
 
 /// A pulse parameter a study may put on its axes ([axes] pulse_period_s, …): the key,
 /// "pulse_" + the pulse's own key (record/pulses.hpp), and the shapes that take it (empty:

@@ -44,7 +44,7 @@ class Plan {
   virtual std::vector<cube::Coordinate> coordinates() const = 0;
 
   /// The coordinates of the frame a history request names (every frame dimension of more
-  /// than one value must be given). \throws StudyError naming the request (fail_history).
+  /// than one value must be given). \throws UserError naming the request (fail_history).
   virtual std::vector<std::size_t> locate(const HistoryRequest& request) const = 0;
 
   /// Why a history's key `key` (`case`, or a parameter's name) cannot select a frame of this
@@ -67,7 +67,7 @@ class Plan {
 /// The names of every plan kind a study file can give ([plan] kind), the default first.
 std::vector<std::string_view> plan_kinds();
 
-/// \throws StudyError "<declared_at>: outputs.histories \"<label>\": <problem>".
+/// \throws UserError "<declared_at>: outputs.histories \"<label>\": <problem>".
 [[noreturn]] void fail_history(const HistoryRequest& request, const std::string& problem);
 
 /// 0 when an axis has a single value; otherwise fail_history asking for `key`.

@@ -50,7 +50,7 @@ struct LoadedRecord {
   std::vector<std::string> warnings;  ///< components whose headers name other events or stations (different_station)
 };
 
-/// Reads or generates the motion. \throws RecordError or std::invalid_argument.
+/// Reads or generates the motion. \throws UserError.
 LoadedRecord load_record(const RecordSource& source);
 
 /// The station of a record for FEMA P-695's pairs: its name up to the last '_'

@@ -100,12 +100,22 @@ struct Study {
   /// intensity / IM(record)).
   std::vector<double> levels{1.0};
   std::optional<IntensitySpec> intensity;  ///< the [intensity] table, when given
+  /// [intensity] hazard and return_periods_yr: hazard-consistent stripes (multiple-stripe
+  /// analysis). `levels` are then the intensities whose mean annual rate of exceedance on the
+  /// site's hazard curve is 1/T for each return period T, interpolated log-log
+  /// (risk::HazardCurve::intensity_at_rate), in the order the return periods are given.
+  struct HazardStripes {
+    std::string hazard;                     ///< the hazard file as the study gives it
+    std::filesystem::path file;             ///< resolved against base_dir
+    std::vector<double> return_periods_yr;  ///< T [yr], one per level
+  };
+  std::optional<HazardStripes> hazard_stripes;
   /// The [ida] table, when given: the intensity axis becomes a search, `levels` is unused.
   std::optional<IdaOptions> ida;
   /// The scene ([frame] model; the prestressed frame by default) and its base point (the
   /// [frame] or [base] values, every other parameter at its default): every frame starts there.
-  const SceneModel* model = &scene_model("pcrf");
-  ScenePoint base = scene_model("pcrf").defaults();
+  const SceneModel* model = &default_scene_model();
+  ScenePoint base = default_scene_model().defaults();
   /// [axes] incidence_deg: the azimuths of the frames' plane [deg], a dimension of its own
   /// after the level axis; empty: no such axis, every frame lies along its record's first
   /// component (and feels it bit for bit as if the others did not exist).

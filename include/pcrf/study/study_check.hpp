@@ -23,7 +23,7 @@ struct CheckedStudy {
   std::vector<std::string> notes;           ///< "record \"R\": …" for each record's alignment and sign notes
   /// Record files whose measures no earthquake record has (record_plausibility), one line
   /// each naming the study line, the record and the likely `units`. With [run]
-  /// warnings_as_errors they are a StudyError instead.
+  /// warnings_as_errors they are a UserError instead.
   std::vector<std::string> warnings;
 };
 
@@ -42,7 +42,7 @@ enum class FrameCheck {
 /// Loads every record into `records` (so they are read once), builds the frames `frames`
 /// asks for (an invalid one is counted, not an error: its cases end as invalid_frame) and
 /// resolves the history requests. Runs before any work starts and before the output file is
-/// created. \throws StudyError naming the file, the key and the problem.
+/// created. \throws UserError naming the file, the key and the problem.
 CheckedStudy check_study(const Study& study, const CaseSpace& space, RecordCache& records,
                          FrameCheck frames = FrameCheck::kEveryFrame);
 

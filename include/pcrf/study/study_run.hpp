@@ -85,7 +85,7 @@ std::string stop_report(const StudySummary& summary);
 std::filesystem::path default_output(const std::filesystem::path& study_file);
 
 /// Runs on every rank. A study that cannot run (bad file, unreadable record, output exists,
-/// other study's cube) throws StudyError on rank 0 before any work and before the output is
+/// other study's cube) throws UserError on rank 0 before any work and before the output is
 /// created; the other ranks then wait in MpiSession::quiet_barrier() and return std::nullopt
 /// (the caller exits with code 2). Rank 0's caller reports the error, then joins the barrier.
 /// Errors after work has started propagate on rank 0 (the caller must abort MPI).

@@ -1,8 +1,8 @@
 """pcrf in Python: the engine in process.
 
 Every function calls the C++ that the ``pcrf`` command line calls, so a result is the
-command line's, bit for bit, and a bad input raises ``ValueError`` with the command line's
-message.
+command line's, bit for bit, and a bad input raises ``pcrf.InputError`` (a ``ValueError``) with
+the command line's message, its keys spelt as keywords (``tail_s=: must be positive``).
 
 >>> import numpy as np, pcrf
 >>> t = np.arange(0, 4, 0.01)
@@ -17,7 +17,10 @@ message.
 - ``study(dict or path, output=...)``: a study, returned as an xarray.Dataset (``pcrf study``).
 - ``open_cube(path)``: a result cube as an xarray.Dataset, ``status`` as integer flags.
 - ``stats``, ``fragility``, ``sensitivity``, ``p695``, ``risk``: ``pcrf cube``'s reports as DataFrames.
-- ``settings()``: every [physics] / [solver] / intensity / [run] key, with unit and default.
+- ``settings()``: every [physics] / [solver] / intensity / [run] key, with unit and default;
+  ``vocabulary()``: the statuses, history events, parameters (``pcrf settings --json``).
+- ``write_output(path, bytes)``, ``check_output(path)``: the rule of every file pcrf writes.
+- ``pcrf.plot.figure(kind, input, ...)``: the figures of ``pcrf plot`` (matplotlib).
 
 The compiled part releases the GIL while it computes: a thread pool over cases uses every core.
 """
@@ -27,7 +30,8 @@ import os as _os
 import warnings as _warnings
 
 from . import _pcrf
-from ._pcrf import InputError, StudyError  # both are ValueError
+from ._pcrf import InputError  # a ValueError naming the keyword (its .key), or file and line
+from ._pcrf import OutputError  # an OSError: an output the never-destroy rule refused or that failed
 
 __version__ = _pcrf.__version__
 
@@ -166,12 +170,36 @@ def settings():
     return _pcrf.settings()
 
 
+def vocabulary():
+    """The engine's names, as ``pcrf settings --json`` prints them: ``statuses`` (name, value,
+    kind: survived, collapse or no_verdict), ``history_events`` (name, flag, meaning),
+    ``parameters`` (the frame's, in axis order: name, long_name, units), ``curve_states`` (an
+    IDA cube's curve_state codes)."""
+    return _json.loads(_pcrf.vocabulary())
+
+
+def check_output(path, inputs=(), overwrite=False):
+    """Refuses ``path`` now as ``write_output`` would (``pcrf.OutputError``, an OSError): when
+    it is, or resolves to, one of ``inputs`` (whatever ``overwrite`` says), is a folder, or
+    exists and ``overwrite`` is false."""
+    _pcrf.check_output(_os.fspath(path), [_os.fspath(p) for p in inputs], overwrite)
+
+
+def write_output(path, content, inputs=(), overwrite=False):
+    """Writes the bytes ``content`` to ``path`` by the rule of every file pcrf writes: never one
+    of ``inputs``, an existing file replaced only with ``overwrite``, written beside it and
+    renamed over it when complete (a failed write leaves any old file as it was), with the
+    user's umask. A refusal or a failed write raises ``pcrf.OutputError`` naming the file."""
+    _pcrf.write_output(_os.fspath(path), bytes(content), [_os.fspath(p) for p in inputs], overwrite)
+
+
 from ._cube import open_cube  # noqa: E402
 from ._reports import fragility, p695, risk, sensitivity, stats  # noqa: E402
 from ._study import study  # noqa: E402
 
 __all__ = ["run", "Frame", "record_measures", "study", "open_cube", "stats", "fragility", "sensitivity", "p695", "risk",
-           "settings", "InputError", "StudyError", "RecordWarning"]
+           "settings", "vocabulary", "check_output", "write_output", "InputError", "OutputError",
+           "RecordWarning"]
 
 import atexit as _atexit  # noqa: E402
 

@@ -7,18 +7,23 @@ import os
 from . import _pcrf
 
 
+def report(kind, cube, **keywords):
+    """The object ``pcrf cube KIND CUBE --json`` writes (the same C++), as dicts and lists."""
+    return json.loads(_pcrf.cube_report(kind, os.fspath(cube), **keywords))
+
+
 def _frame(kind, cube, table, **keywords):
     """The report's table `table` as a DataFrame; ``attrs`` holds the report's fields, its
     warnings, the columns' units and descriptions, and its other tables (as DataFrames)."""
     import pandas
 
-    report = json.loads(_pcrf.cube_report(kind, os.fspath(cube), **keywords))
-    columns = report.pop("columns")
-    tables = {name: pandas.DataFrame(report.pop(name), columns=[c["name"] for c in spec])
+    answer = report(kind, cube, **keywords)
+    columns = answer.pop("columns")
+    tables = {name: pandas.DataFrame(answer.pop(name), columns=[c["name"] for c in spec])
               for name, spec in columns.items()}
     result = tables.pop(table)
     result.attrs.update(
-        command=report.pop("command"), warnings=report.pop("warnings", []), fields=report,
+        command=answer.pop("command"), warnings=answer.pop("warnings", []), fields=answer,
         units={c["name"]: c["units"] for c in columns[table]},
         descriptions={c["name"]: c["description"] for c in columns[table]}, tables=tables)
     return result

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "pcrf/study/cube_vocabulary.hpp"
-#include "pcrf/study/study_error.hpp"
+#include "pcrf/user_error.hpp"
 #include "study/axis_fields.hpp"
 
 namespace pcrf::study {
@@ -16,7 +16,7 @@ std::string Plan::canonical_heading() const {
 }
 
 void fail_history(const HistoryRequest& request, const std::string& problem) {
-  throw StudyError(request.declared_at + ": outputs.histories \"" + request.label + "\": " + problem);
+  throw UserError(request.declared_at + ": outputs.histories \"" + request.label + "\": " + problem);
 }
 
 std::size_t pick_single(const HistoryRequest& request, std::size_t size, const std::string& key) {

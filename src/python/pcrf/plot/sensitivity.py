@@ -3,8 +3,8 @@ the 90 % bootstrap intervals that `pcrf cube sensitivity` estimates."""
 import matplotlib.pyplot as plt
 import numpy as np
 
-from pcrf_plot import engine, style
-from pcrf_plot.errors import PlotError
+from . import engine, style
+from .errors import PlotError
 
 
 def draw(args):

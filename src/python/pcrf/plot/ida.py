@@ -17,8 +17,8 @@ import math
 import matplotlib.pyplot as plt
 import numpy as np
 
-from pcrf_plot import engine, style
-from pcrf_plot.errors import PlotError
+from . import engine, style
+from .errors import PlotError
 
 
 
@@ -67,7 +67,7 @@ def draw(args):
         raise PlotError(f"{args.input}: not an IDA cube (no collapse_intensity): run a study with an [ida] table")
     metric = args.metric or "theta_max_rad"
     cube.require_metric(metric, "ida")
-    report = cube.fragility(args.where, engine.reduction_args(args))
+    report = cube.fragility(args.where, engine.reduction(args))
     fits = {f["frame"]: f for f in report["frames"]}
     reduced_over, reduced = report.get("reduced_over"), engine.reduced_text(report)
     has_states = cube.variable("curve_state") is not None  # cubes from before it have none

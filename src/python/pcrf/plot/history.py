@@ -9,17 +9,17 @@ import matplotlib.pyplot as plt
 import matplotlib.ticker as ticker
 import numpy as np
 
-from pcrf_plot import engine, style
-from pcrf_plot.errors import PlotError
+from . import engine, style
+from .errors import PlotError
 
 COLUMNS = ("t_s", "theta1_rad", "omega1_rad_s", "omega1_after_rad_s", "ground_accel_g", "event")
 
 
 def read(args):
-    """The history rows as arrays, and a title."""
+    """The history's columns as arrays, and a title."""
     if os.path.splitext(args.input)[1].lower() in (".csv", ".txt"):
-        with open(args.input, encoding="utf-8") as f:
-            rows = engine.table(f.read())
+        rows = engine.read_csv(args.input)
+        columns = {c: [engine.number(r[c]) for r in rows] for c in COLUMNS if rows and c in rows[0]}
         name = os.path.basename(args.input)
     else:
         cube = engine.Cube(args.input)
@@ -29,16 +29,16 @@ def read(args):
         label = args.group or (groups[0] if len(groups) == 1 else None)
         if label is None:
             raise PlotError(f"{args.input}: several histories ({', '.join(groups)}): choose one with --group")
-        rows = cube.history(label)
+        columns = cube.history(label)
+        rows = next(iter(columns.values()), [])
         name = f"{os.path.basename(args.input)}: {label}"
-    if not rows:
+    if not len(rows):
         raise PlotError(f"{args.input}: the history is empty")
-    missing = [c for c in COLUMNS if c not in rows[0]]
+    missing = [c for c in COLUMNS if c not in columns]
     if missing:
         raise PlotError(f"{args.input}: not a pcrf history (no column {', '.join(missing)}); "
                         "write one with pcrf run --history")
-    data = {c: np.array([engine.number(r[c]) for r in rows]) for c in COLUMNS}
-    return data, name
+    return {c: np.asarray(columns[c], dtype=float) for c in COLUMNS}, name
 
 
 def with_jumps(t, before, after):

@@ -12,8 +12,8 @@ import math
 import matplotlib.pyplot as plt
 from matplotlib import ticker
 
-from pcrf_plot import engine, style
-from pcrf_plot.errors import PlotError
+from . import engine, style
+from .errors import PlotError
 
 
 

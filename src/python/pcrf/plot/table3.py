@@ -6,8 +6,8 @@ import matplotlib.pyplot as plt
 import matplotlib.ticker as ticker
 import numpy as np
 
-from pcrf_plot import engine, style
-from pcrf_plot.errors import PlotError
+from . import engine, style
+from .errors import PlotError
 
 STEPS = (("5", style.ORANGE, "s"), ("2.5", style.SKY_BLUE, "^"), ("1", style.BLUE, "v"))
 NEEDED = ("record", "paper_t_RI_s", "engine_t_RI_s", "paper_theta_max_rad", "paper_omega_max_rad_s",
@@ -16,8 +16,7 @@ NEEDED = ("record", "paper_t_RI_s", "engine_t_RI_s", "paper_theta_max_rad", "pap
 
 
 def read(path):
-    with open(path, encoding="utf-8") as f:
-        rows = engine.table(f.read())
+    rows = engine.read_csv(path)
     missing = [c for c in NEEDED if not rows or c not in rows[0]]
     if missing:
         raise PlotError(f"{path}: not a paper comparison table (no column {', '.join(missing)}; "

@@ -6,8 +6,8 @@ import math
 import matplotlib.pyplot as plt
 import numpy as np
 
-from pcrf_plot import engine, style
-from pcrf_plot.errors import PlotError
+from . import engine, style
+from .errors import PlotError
 
 def varied_parameters(cube, metric, where):
     """The parameters the cube varies (one-at-a-time: its varied_parameter values; a grid:
@@ -35,7 +35,7 @@ def draw(args):
                              sharey=True, constrained_layout=True)
     pooled_over, reduced = set(), ""
     for ax, parameter in zip(axes.flat, parameters):
-        stats, pooled, reduced = cube.stats(parameter, metric, args.where, engine.reduction_args(args))
+        stats, pooled, reduced = cube.stats(parameter, metric, args.where, engine.reduction(args))
         pooled_over.update(pooled)
         x = np.array([engine.number(r[parameter]) for r in stats])
         median = np.array([engine.number(r["median"]) for r in stats])

@@ -7,14 +7,13 @@ import math
 import matplotlib.pyplot as plt
 import numpy as np
 
-from pcrf_plot import engine, style
-from pcrf_plot.errors import PlotError
-from pcrf_plot.fragility import lognormal_cdf
+from . import engine, style
+from .errors import PlotError
+from .fragility import lognormal_cdf
 
 
 def report(args):
-    flags = ["--hazard", args.hazard, "--tail", args.tail, "--years", str(args.years)]
-    return engine.run_json("cube", "risk", args.input, "--json", *flags, *engine.where_args(args.where))
+    return engine.report("risk", args.input, hazard=args.hazard, tail=args.tail, years=args.years, where=args.where)
 
 
 def draw_hazard(ax, r, units):

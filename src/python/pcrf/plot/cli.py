@@ -2,9 +2,10 @@
 
 Every failure is one line on stderr and exit code 2, and then nothing is written; an
 unexpected exception too (its kind, the figure kind and the input named). The
-output is pcrf's to write, by the rule of every pcrf output (never the input, replaced only
-with --overwrite, written beside it and renamed into place when complete): ``pcrf output
-check`` before drawing, ``pcrf output write`` with the figure's bytes.
+output is written by the rule of every pcrf output (io::OutputFile, through
+``pcrf.check_output`` before drawing and ``pcrf.write_output`` with the figure's bytes: never
+the input, replaced only with --overwrite, written beside it and renamed into place when
+complete, no success for a failed write).
 """
 import argparse
 import difflib
@@ -13,13 +14,13 @@ import io
 import os
 import sys
 
-from pcrf_plot import engine
-from pcrf_plot.errors import PlotError
+from .. import _pcrf
+from .errors import PlotError
 
 FORMATS = (".png", ".pdf", ".svg")
 
 
-# The one list of kinds: name → what it draws. Each is the module pcrf_plot.<name>, whose
+# The one list of kinds: name → what it draws. Each is the module pcrf.plot.<name>, whose
 # draw(args) returns a matplotlib figure.
 KINDS = {
     "history": "θ₁, θ̇₁ and ü_g against t, and the phase portrait (a cube's history group or a "
@@ -91,8 +92,6 @@ def parser():
     return p
 
 
-def output_args(args):
-    return [args.output, "--input", args.input] + (["--overwrite"] if args.overwrite else [])
 
 
 def check_reduction(args):
@@ -110,14 +109,14 @@ def check_paths(args):
     ext = os.path.splitext(args.output)[1].lower()
     if ext not in FORMATS:
         raise PlotError(f"{args.output}: the output must end in .png, .pdf or .svg")
-    engine.run("output", "check", *output_args(args))
+    _pcrf.check_output(args.output, [args.input], args.overwrite)
 
 
 def save(figure, args):
-    """The figure's bytes, written by pcrf: complete or not at all."""
+    """The figure's bytes, written by the engine's output rule: complete or not at all."""
     image = io.BytesIO()
     figure.savefig(image, format=os.path.splitext(args.output)[1].lower()[1:], bbox_inches="tight")
-    engine.run("output", "write", *output_args(args), stdin=image.getvalue())
+    _pcrf.write_output(args.output, image.getvalue(), [args.input], args.overwrite)
 
 
 def main(argv):
@@ -133,14 +132,14 @@ def main(argv):
         except ImportError as e:
             package = "python3-numpy" if "numpy" in str(e) else "python3-matplotlib"
             raise PlotError(f"{e.name or 'matplotlib'} not found: apt-get install {package}") from e
-        from pcrf_plot import style
+        from . import style
         style.apply()
-        figure = importlib.import_module(f"pcrf_plot.{args.kind}").draw(args)
+        figure = importlib.import_module(f".{args.kind}", __package__).draw(args)
         save(figure, args)
         panels = len(figure.axes)
         print(f"pcrf plot: wrote {args.output} ({args.kind}, {panels} panel{'' if panels == 1 else 's'})")
         return 0
-    except PlotError as e:
+    except (PlotError, _pcrf.OutputError) as e:  # an OutputError names the file and what went wrong
         print(f"pcrf plot: error: {e}", file=sys.stderr)
         return 2
     except OSError as e:

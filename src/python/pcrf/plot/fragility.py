@@ -11,8 +11,8 @@ import math
 import matplotlib.pyplot as plt
 import numpy as np
 
-from pcrf_plot import engine, style
-from pcrf_plot.errors import PlotError
+from . import engine, style
+from .errors import PlotError
 
 
 def lognormal_cdf(x, median, beta):
@@ -23,7 +23,7 @@ def series_of(cube, args):
     """(label prefix, cube fragility report) of each fit drawn: the selection, reduced once per
     --reduce (or not), then each --compare-where selection, not reduced."""
     reductions = args.reduce or [None]
-    series = [("", cube.fragility(args.where, engine.reduction_args(args, how))) for how in reductions]
+    series = [("", cube.fragility(args.where, engine.reduction(args, how))) for how in reductions]
     if len(series) > 1 or args.compare_where:
         series = [(engine.reduced_text(r) or "all", r) for _, r in series]
     series += [(w, cube.fragility(args.where + [w])) for w in args.compare_where]

@@ -1,0 +1,22 @@
+/// \file cube_notes.hpp
+/// \brief What a reader of a cube should know before trusting what it read, one line each,
+/// naming the file first: the command line prints them on stderr after its own prefix, the
+/// figures after theirs.
+#pragma once
+
+#include <string>
+
+#include "pcrf/cube/cube_reader.hpp"
+
+namespace pcrf::post {
+
+/// "FILE: a run holds it (WHO): read as its last complete checkpoint" while a study run
+/// writes `file` (each checkpoint is renamed into place whole); empty otherwise.
+std::string running_note(const std::string& file);
+
+/// "FILE: N of M cases not run (a partial cube): left out" (an IDA counts curves) for a cube
+/// stopped early or merged from some shards; empty for a complete one.
+/// \throws cube::CubeError when the cube cannot be read.
+std::string partial_note(const std::string& file, const cube::CubeReader& reader);
+
+}  // namespace pcrf::post

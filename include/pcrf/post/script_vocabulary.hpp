@@ -1,0 +1,16 @@
+/// \file script_vocabulary.hpp
+/// \brief The names every script and figure needs besides a cube's own, as one JSON object
+/// (`pcrf settings --json`, `pcrf.vocabulary()`): the statuses with what they say about the
+/// frame, the history event flags, the frame parameters in axis order, an IDA's curve states.
+#pragma once
+
+#include <string>
+
+namespace pcrf::post {
+
+/// {"curve_states": [{name, value}], "statuses": [{name, value, kind: survived | collapse |
+/// no_verdict}], "history_events": [{name, flag, meaning}], "parameters": [{name, long_name,
+/// units}]}, the not-run status included, on one line.
+std::string script_vocabulary_json();
+
+}  // namespace pcrf::post
