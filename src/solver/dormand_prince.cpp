@@ -338,8 +338,10 @@ bool DormandPrinceIntegrator::find_roots(double a, const double* g_a, double b, 
   // earliest root and back: the stop angle exceeded at a θ peak inside the step, where
   // |θ₁| is largest. At the earliest root, any function whose sign differs from its sign at
   // `a` crossed before it: locate that crossing, and check again at the new earliest.
+  bool current = false;  // g holds the functions at `earliest`
   for (int pass = 0; pass < nroots_; ++pass) {
     if (!roots_at(earliest, g.data())) break;
+    current = true;
     bool moved = false;
     for (int i = 0; i < nroots_; ++i) {
       const auto k = static_cast<std::size_t>(i);
@@ -349,9 +351,15 @@ bool DormandPrinceIntegrator::find_roots(double a, const double* g_a, double b, 
       double lo = a, glo = ga, hi = earliest, ghi = gm;
       locate(i, lo, glo, hi, ghi, ttol);
       when[k] = hi;
-      if (hi < earliest) earliest = hi, moved = true;
+      if (hi < earliest) earliest = hi, moved = true, current = false;
     }
     if (!moved) break;
+  }
+  // The functions at the root, for the search that resumes there (advance()).
+  if (current) {
+    g_root_ = g;
+  } else if (!roots_at(earliest, g_root_.data())) {
+    std::fill(g_root_.begin(), g_root_.end(), 0.0);
   }
   std::fill(found_.begin(), found_.end(), 0);
   for (int i = 0; i < nroots_; ++i) {
@@ -397,7 +405,7 @@ OdeIntegrator::Outcome DormandPrinceIntegrator::advance(double tout, double& t, 
       Vec yr{};
       dense(root_time_, yr);
       tcur_ = root_time_;
-      roots_at(tcur_, g_cur_.data());
+      g_cur_ = g_root_;
       ++tally_.roots;
       t = tcur_;
       y[0] = yr[0], y[1] = yr[1];

@@ -155,6 +155,7 @@ class DormandPrinceIntegrator final : public OdeIntegrator {
   bool have_step_ = false;
   std::array<double, kMaxRoots> g_cur_{};  ///< root functions at tcur_
   std::array<double, kMaxRoots> g_end_{};  ///< root functions at t1_
+  std::array<double, kMaxRoots> g_root_{};  ///< root functions at root_time_
 
   double h_ = 0.0;        ///< the step the controller proposes next
   double log_err_old_ = 0.0;  ///< log of the previous accepted error norm (PI control)

@@ -233,7 +233,7 @@ post::HazardFile read_stripe_hazard(const Fields& f, const Study::HazardStripes&
   std::optional<post::HazardFile> read;
   try {
     read = post::read_hazard_file(h.file, risk::Tail::kCutOff);  // cut off: no return period beyond the curve
-  } catch (const post::HazardFileError& e) {
+  } catch (const UserError& e) {
     f.fail(kHazardKey, e.what());
   }
   const std::string where = read->file.string() + ":" + std::to_string(read->header_line) + ": ";
