@@ -92,7 +92,7 @@ def study_seconds(pcrf, toml, lanes, ranks, out):
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.monotonic()
     subprocess.run(["mpirun", "--oversubscribe", "-n", str(ranks), str(pcrf), "study", str(toml), "-o", str(out),
-                    "--lanes", str(lanes), "--progress-interval", "0", "--force"],
+                    "--lanes", str(lanes), "--progress-interval", "0", "--overwrite"],
                    capture_output=True, text=True, check=True, env=env)
     wall = time.monotonic() - start
     after = resource.getrusage(resource.RUSAGE_CHILDREN)

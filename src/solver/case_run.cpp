@@ -10,6 +10,60 @@
 
 namespace pcrf::detail {
 
+// The flight problem's members: here, not in the header, so that the right-hand side is
+// compiled as one function with the table's polynomial in it.
+
+inline bool FlightProblem::acceleration(double t, const double* y, double& acc) {
+  if (!omega_peak_) return table_.acceleration(y[0], y[1], forcing_.at(t), side, acc) && std::isfinite(acc);
+  if (t == last_t_ && y[0] == last_y_[0] && y[1] == last_y_[1] && side == last_side_) {
+    acc = last_acc_;
+    return true;
+  }
+  if (!table_.acceleration(y[0], y[1], forcing_.at(t), side, acc) || !std::isfinite(acc)) return false;
+  last_t_ = t;
+  last_y_[0] = y[0];
+  last_y_[1] = y[1];
+  last_side_ = side;
+  last_acc_ = acc;
+  return true;
+}
+
+int FlightProblem::rhs(double t, const double* y, double* ydot) {
+  double acc = 0;
+  if (!acceleration(t, y, acc)) return 1;
+  ydot[0] = y[1];
+  ydot[1] = acc;
+  return 0;
+}
+
+int FlightProblem::roots(double t, const double* y, double* g) {
+  g[kImpact] = y[0];
+  g[kThetaPeak] = y[1];
+  g[kOmegaPeak] = 1.0;  // inactive unless requested
+  if (omega_peak_ && !acceleration(t, y, g[kOmegaPeak])) return 1;
+  g[kLimit] = std::abs(y[0]) - theta_stop_rad_;
+  return 0;
+}
+
+int FlightProblem::jacobian(double t, const double* y, double* dfdy) {
+  double acc = 0, d_theta = 0, d_omega = 0;
+  if (!table_.acceleration_jacobian(y[0], y[1], forcing_.at(t), side, acc, d_theta, d_omega)) return 1;
+  dfdy[0] = 0.0;
+  dfdy[1] = 1.0;
+  dfdy[2] = d_theta;
+  dfdy[3] = d_omega;
+  return 0;
+}
+
+void FlightProblem::evaluated(double t, const double* y, const double* ydot) {
+  if (!omega_peak_) return;
+  last_t_ = t;
+  last_y_[0] = y[0];
+  last_y_[1] = y[1];
+  last_side_ = side;
+  last_acc_ = ydot[1];
+}
+
 std::unique_ptr<OdeIntegrator> CaseRun::make_integrator(const SolverSettings& solver, FlightProblem& problem,
                                                         SampleGrid samples, bool lockstep) {
   if (!lockstep) return detail::make_integrator(solver, problem, samples);

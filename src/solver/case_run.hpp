@@ -34,45 +34,15 @@ class FlightProblem final : public detail::OdeProblem {
 
   int side = -1;
 
-  int rhs(double t, const double* y, double* ydot) override {
-    double acc = 0;
-    if (!acceleration(t, y, acc)) return 1;
-    ydot[0] = y[1];
-    ydot[1] = acc;
-    return 0;
-  }
-
-  int roots(double t, const double* y, double* g) override {
-    g[kImpact] = y[0];
-    g[kThetaPeak] = y[1];
-    g[kOmegaPeak] = 1.0;  // inactive unless requested
-    if (omega_peak_ && !acceleration(t, y, g[kOmegaPeak])) return 1;
-    g[kLimit] = std::abs(y[0]) - theta_stop_rad_;
-    return 0;
-  }
+  int rhs(double t, const double* y, double* ydot) override;
+  int roots(double t, const double* y, double* g) override;
 
   int root_count() const override { return kRootCount; }
   int root_state_index(int i) const override { return i == kImpact ? 0 : i == kThetaPeak ? 1 : -1; }
 
   bool has_jacobian() const override { return true; }
-  int jacobian(double t, const double* y, double* dfdy) override {
-    double acc = 0, d_theta = 0, d_omega = 0;
-    if (!table_.acceleration_jacobian(y[0], y[1], forcing_.at(t), side, acc, d_theta, d_omega)) return 1;
-    dfdy[0] = 0.0;
-    dfdy[1] = 1.0;
-    dfdy[2] = d_theta;
-    dfdy[3] = d_omega;
-    return 0;
-  }
-
-  void evaluated(double t, const double* y, const double* ydot) override {
-    if (!omega_peak_) return;
-    last_t_ = t;
-    last_y_[0] = y[0];
-    last_y_[1] = y[1];
-    last_side_ = side;
-    last_acc_ = ydot[1];
-  }
+  int jacobian(double t, const double* y, double* dfdy) override;
+  void evaluated(double t, const double* y, const double* ydot) override;
 
   /// Root directions for the current side: the impact only while closing, θ peaks only
   /// where |θ| is maximal, the limit only while opening.
@@ -84,20 +54,7 @@ class FlightProblem final : public detail::OdeProblem {
   /// θ̈₁ at (t, y). With the θ̈₁ root, remembering the last evaluation: the root functions
   /// are evaluated at step ends, where the right-hand side has just been evaluated (FSAL
   /// methods, CVODE's corrector), so that root costs almost nothing.
-  [[gnu::always_inline]] bool acceleration(double t, const double* y, double& acc) {
-    if (!omega_peak_) return table_.acceleration(y[0], y[1], forcing_.at(t), side, acc) && std::isfinite(acc);
-    if (t == last_t_ && y[0] == last_y_[0] && y[1] == last_y_[1] && side == last_side_) {
-      acc = last_acc_;
-      return true;
-    }
-    if (!table_.acceleration(y[0], y[1], forcing_.at(t), side, acc) || !std::isfinite(acc)) return false;
-    last_t_ = t;
-    last_y_[0] = y[0];
-    last_y_[1] = y[1];
-    last_side_ = side;
-    last_acc_ = acc;
-    return true;
-  }
+  bool acceleration(double t, const double* y, double& acc);
 
   const EomTable& table_;  // the prepared frame's: built once for every case of the frame
   ExcitationCursor forcing_;  // linear between samples: most stages fall in the last interval
