@@ -154,9 +154,11 @@ parallel::ResultBatch CaseRunner::run(std::span<const parallel::WorkItem> items)
       frames.push_back(ready[k].frame.get());
     }
     std::vector<CaseResult> results;
-    if (group.size() > 1 && options.lanes > 1 && batch_integrates(study_.solver)) {
+    BatchOptions group_options = options;  // no wider than the group: no lane left idle throughout
+    group_options.lanes = std::min(options.lanes, static_cast<int>(group.size()));
+    if (group_options.lanes > 1 && batch_integrates(study_.solver)) {
       try {
-        results = solve_batch(frames, ready[first].motion->view(), study_.solver, request_, options);
+        results = solve_batch(frames, ready[first].motion->view(), study_.solver, request_, group_options);
       } catch (const std::exception&) {
         results.clear();  // a case the solver refuses: each one alone, with its own message
       }
