@@ -30,10 +30,7 @@ double scale_factor(const Scaling& scaling, const StationRecord& station, std::o
 
 ScaledExcitation scaled_excitation(const StationRecord& station, std::optional<double> incidence_deg,
                                    const Scaling& scaling) {
-  ScaledExcitation scaled;
-  scaled.scale_factor = scale_factor(scaling, station, incidence_deg);
-  scaled.excitation = std::make_unique<FrameExcitation>(station, incidence_deg, scaled.scale_factor);
-  return scaled;
+  return frame_excitation(station, incidence_deg, scale_factor(scaling, station, incidence_deg));
 }
 
 CaseResult solve_one_case(std::unique_ptr<Scene> scene, const PhysicsOptions& physics, const Excitation& excitation,

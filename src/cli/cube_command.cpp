@@ -19,7 +19,7 @@
 #include "pcrf/post/cube_reports.hpp"
 #include "pcrf/post/cube_risk.hpp"
 #include "pcrf/post/cube_sensitivity.hpp"
-#include "pcrf/study/cube_vocabulary.hpp"
+#include "pcrf/schema/cube_vocabulary.hpp"
 
 namespace pcrf::cli {
 namespace {

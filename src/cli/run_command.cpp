@@ -37,7 +37,7 @@ struct RunOptions {
 
 /// What the frame feels: the station's components at the frame's incidence, scaled by
 /// --scale or to --intensity of the in-plane horizontal motion.
-api::ScaledExcitation load_excitation(const RunOptions& o) {
+ScaledExcitation load_excitation(const RunOptions& o) {
   std::vector<std::string> notes;
   const StationRecord station = o.record.load_station(notes);
   for (const auto& note : notes) std::cerr << "pcrf run: note: " << note << '\n';
@@ -84,7 +84,7 @@ class CsvHistory {
 };
 
 void run(const RunOptions& o) {
-  const api::ScaledExcitation scaled = load_excitation(o);
+  const ScaledExcitation scaled = load_excitation(o);
   const PhysicsOptions physics = o.physics->resolve();
   const SolverSettings solver = o.solver->resolve();
   std::unique_ptr<Scene> scene = o.scene.scene();
@@ -98,9 +98,9 @@ void run(const RunOptions& o) {
     sink = [&csv](const HistorySample& s) { (*csv)(s); };
   }
   const CaseResult result =
-      api::solve_one_case(std::move(scene), physics, scaled.excitation->view(), solver, o.history_dt_s, sink);
+      api::solve_one_case(std::move(scene), physics, scaled.view(), solver, o.history_dt_s, sink);
   if (csv) csv->commit();
-  std::cout << api::case_json(scaled.scale_factor, result).str() << std::endl;
+  std::cout << api::case_json(scaled.factor(), result).str() << std::endl;
   if (const auto note = api::verdict_note(result, physics); !note.empty()) std::cerr << "pcrf run: note: " << note << '\n';
 }
 

@@ -15,7 +15,7 @@
 #include "pcrf/parallel/mpi_session.hpp"
 #include "pcrf/printable.hpp"
 #include "pcrf/study/study_parser.hpp"
-#include "pcrf/study/study_run.hpp"
+#include "pcrf/run/study_run.hpp"
 
 namespace pcrf::cli {
 namespace {

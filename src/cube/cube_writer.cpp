@@ -2,9 +2,7 @@
 // memory and writes the chunks that changed at each flush.
 #include "pcrf/cube/cube_writer.hpp"
 
-#include <fcntl.h>
 #include <sys/stat.h>
-#include <unistd.h>
 
 #include <cerrno>
 #include <cstdio>
@@ -21,6 +19,8 @@
 #include "cube/hdf5_util.hpp"
 #include "pcrf/cube/chunk_grid.hpp"
 #include "pcrf/cube/cube_reader.hpp"
+#include "pcrf/io/atomic_file.hpp"
+#include "pcrf/io/checked_stream.hpp"
 
 namespace pcrf::cube {
 namespace {
@@ -118,11 +118,12 @@ struct CubeWriter::Impl {
 
   void create(const std::filesystem::path& target);
   void checkpoint(const std::vector<std::int8_t>& status);
-  void write_new_file(const std::filesystem::path& target);
+  void write_new_file(io::AtomicFile& target);
   void update(const std::filesystem::path& target, const std::vector<std::int8_t>& status);
   void check_free_space(const std::filesystem::path& target) const;
   void remember_identity();
   void check_identity() const;
+  [[noreturn]] void fail(const CubeError& error) const;
   void close_handles();
   void open_existing(std::vector<std::int8_t>& status);
   h5::Handle create_cube_variable(const std::string& name, hid_t file_type, hid_t memory_type,
@@ -474,52 +475,17 @@ void CubeWriter::Impl::close_handles() {
   file.reset();
 }
 
-/// Writes `image` to `target` (the checkpoint syncs it once complete). \throws CubeError
-/// naming the file and the OS reason (a full disk: "No space left on device").
-void write_image(const std::filesystem::path& target, const std::vector<char>& image, const std::string& cube) {
-  auto fail = [&](const std::string& what) {
-    const int error = errno;
-    throw CubeError(cube + ": " + what + " " + target.string() + ": " + std::strerror(error), CubeError::cause_of(error));
-  };
-  const int fd = ::open(target.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0666);  // the umask decides, as for every output
-  if (fd < 0) fail("cannot create");
-  std::size_t done = 0;
-  while (done < image.size()) {
-    const ssize_t n = ::write(fd, image.data() + done, image.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      const int saved = errno;
-      ::close(fd);
-      errno = saved == 0 ? EIO : saved;
-      fail("cannot write");
-    }
-    done += static_cast<std::size_t>(n);
-  }
-  if (::close(fd) != 0) fail("cannot close");
-}
-
 /// The folder that holds a file ("." for a bare name).
 std::filesystem::path folder_of(const std::filesystem::path& file) {
   return file.parent_path().empty() ? std::filesystem::path(".") : file.parent_path();
 }
 
-/// fsync of a file or folder; false with errno set on failure.
-bool sync_path(const std::filesystem::path& p, bool directory) {
-  const int fd = ::open(p.c_str(), directory ? O_RDONLY | O_DIRECTORY : O_RDONLY);
-  if (fd < 0) return false;
-  const bool ok = ::fsync(fd) == 0;
-  const int saved = errno;
-  ::close(fd);
-  errno = saved;
-  return ok;
-}
-
 /// A new cube with its coordinates, attributes and empty variables: built in memory (the
-/// core driver) and written by us, so that a full disk is a write() error of ours.
-void CubeWriter::Impl::write_new_file(const std::filesystem::path& target) {
+/// core driver) and written by us into `target`, so that a full disk is a write() error of ours.
+void CubeWriter::Impl::write_new_file(io::AtomicFile& target) {
   std::vector<char> image;
   try {
-    create(target);
+    create(target.temporary());
     h5::check(H5Fflush(file, H5F_SCOPE_GLOBAL), what("cannot flush"));
     const ssize_t size = H5Fget_file_image(file, nullptr, 0);
     if (size <= 0) throw CubeError(what("cannot take the file's image"));
@@ -530,7 +496,7 @@ void CubeWriter::Impl::write_new_file(const std::filesystem::path& target) {
     close_handles();
     throw;
   }
-  write_image(target, image, path.string());
+  target.write(image.data(), image.size());
 }
 
 /// Writes what changed since the last checkpoint into `target` (a copy of it, or a new cube).
@@ -598,53 +564,42 @@ void CubeWriter::Impl::check_identity() const {
                     CubeError::Cause::kReplaced);
 }
 
+/// Throws `error`, or the cube's own problem when the write failed because the cube or its
+/// folder went away, whether or not the reason quotes the system's error (HDF5 1.14's
+/// "can't retrieve stat info for file" does not).
+void CubeWriter::Impl::fail(const CubeError& error) const {
+  if (on_disk && error.cause() == CubeError::Cause::kOther) check_identity();
+  throw error;
+}
+
 void CubeWriter::Impl::checkpoint(const std::vector<std::int8_t>& status) {
   // Nothing new: the cube on disk is already this state.
   if (on_disk && pending_chunks.empty() && pending_notes.empty() && pending_histories.empty() && !sides_changed) return;
-  // A complete new file beside the cube — a copy of the last checkpoint with what changed
-  // written into it, or a new cube — synced, then renamed over it: a process killed at any
-  // moment, or a disk that fills, leaves the last complete cube (and perhaps a stray
-  // .partial file, replaced by the next checkpoint). Memory: only what changed.
-  const std::filesystem::path partial = path.string() + ".partial";
+  // By the one atomic-file rule (io::AtomicFile): a complete new file beside the cube — a
+  // copy of the last checkpoint with what changed written into it, or a new cube — synced,
+  // then renamed over it. A process killed at any moment, or a disk that fills, leaves the
+  // last complete cube (and perhaps a stray .partial file, reused by the next checkpoint).
+  // On failure the cube itself is untouched: only the new file goes. Memory: what changed.
   if (on_disk) check_identity();
-  check_free_space(partial);
-  // On failure the cube itself is untouched: only the new file goes.
-  const auto discard_partial = [&partial] {
-    std::error_code ignored;
-    std::filesystem::remove(partial, ignored);
-  };
   try {
+    io::AtomicFile next(path, true, io::AtomicFile::Temporary::kPartial);
+    check_free_space(next.temporary());
     if (on_disk) {
-      std::error_code ec;
-      std::filesystem::copy_file(path, partial, std::filesystem::copy_options::overwrite_existing, ec);
-      if (ec) throw CubeError(what("cannot write " + partial.string() + ": " + ec.message()), CubeError::cause_of(ec.value()));
+      next.copy_from(path);
       check_identity();  // what was copied is this writer's cube, not a file put there meanwhile
     } else {
-      write_new_file(partial);
+      write_new_file(next);
     }
-    update(partial, status);
-    if (!sync_path(partial, false)) {
-      const int error = errno;
-      throw CubeError(what("cannot sync " + partial.string() + ": " + std::strerror(error)), CubeError::cause_of(error));
-    }
+    next.close();
+    update(next.temporary(), status);
+    next.sync();
     if (on_disk) check_identity();  // the checkpoint took time: nothing took the cube's place since
-    if (std::rename(partial.c_str(), path.c_str()) != 0) {
-      const int error = errno;
-      throw CubeError(what("cannot replace the cube with its new checkpoint: " + std::string(std::strerror(error))),
-                      CubeError::cause_of(error));
-    }
+    next.commit();
+  } catch (const io::OutputError& e) {
+    fail(CubeError(e.what(), CubeError::cause_of(e.os_error())));
   } catch (const CubeError& e) {
-    discard_partial();
-    // A write that failed because the cube or its folder went away says so, whether or not
-    // the library's reason quotes the system's error (HDF5 1.14's "can't retrieve stat info
-    // for file" does not).
-    if (on_disk && e.cause() == CubeError::Cause::kOther) check_identity();
-    throw;
-  } catch (...) {
-    discard_partial();
-    throw;
+    fail(e);
   }
-  (void)sync_path(folder_of(path), true);
   on_disk = true;
   remember_identity();
   pending_chunks.clear();

@@ -45,7 +45,7 @@ bool ExcitationCursor::enter(double t_s) {
 }
 
 ScaledExcitation::ScaledExcitation(const Excitation& of, double factor)
-    : horizontal_(of.horizontal().scaled(factor)) {
+    : horizontal_(of.horizontal().scaled(factor)), factor_(factor) {
   if (of.vertical() != nullptr) vertical_.emplace(of.vertical()->scaled(factor));
 }
 

@@ -89,14 +89,12 @@ GroundMotion in_plane_motion(const StationRecord& record, std::optional<double> 
   return project(HorizontalPair{record.h1, *record.az1_deg, *record.h2, *record.az2_deg}, *incidence_deg);
 }
 
-FrameExcitation::FrameExcitation(const StationRecord& record, std::optional<double> incidence_deg, double factor)
-    : horizontal_(in_plane_motion(record, incidence_deg).scaled(factor)) {
-  if (record.up) {
-    if (record.up->size() != horizontal_.size())
-      throw UserError("the vertical component '" + record.up->name() + "' is not aligned with '" +
-                                  record.h1.name() + "'");
-    vertical_.emplace(record.up->scaled(factor));
-  }
+ScaledExcitation frame_excitation(const StationRecord& record, std::optional<double> incidence_deg, double factor) {
+  const GroundMotion horizontal = in_plane_motion(record, incidence_deg);
+  if (!record.up) return ScaledExcitation(Excitation(horizontal), factor);
+  if (record.up->size() != horizontal.size())
+    throw UserError("the vertical component '" + record.up->name() + "' is not aligned with '" + record.h1.name() + "'");
+  return ScaledExcitation(Excitation(horizontal, &*record.up), factor);
 }
 
 double station_intensity(const StationRecord& record, std::optional<double> incidence_deg, const IntensitySpec& spec) {

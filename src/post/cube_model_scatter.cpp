@@ -6,7 +6,7 @@
 #include <ostream>
 
 #include "pcrf/analysis/p695.hpp"
-#include "pcrf/study/cube_vocabulary.hpp"
+#include "pcrf/schema/cube_vocabulary.hpp"
 
 namespace pcrf::post {
 namespace {

@@ -2,7 +2,7 @@
 #include "pcrf/post/cube_notes.hpp"
 
 #include "pcrf/io/run_lock.hpp"
-#include "pcrf/study/cube_vocabulary.hpp"
+#include "pcrf/schema/cube_vocabulary.hpp"
 
 namespace pcrf::post {
 

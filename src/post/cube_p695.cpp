@@ -17,7 +17,7 @@
 #include "pcrf/record/intensity.hpp"
 #include "pcrf/row_major.hpp"
 #include "pcrf/solver/settings.hpp"
-#include "pcrf/study/cube_vocabulary.hpp"
+#include "pcrf/schema/cube_vocabulary.hpp"
 
 namespace pcrf::post {
 namespace {

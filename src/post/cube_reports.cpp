@@ -12,8 +12,8 @@
 
 #include "pcrf/post/cube_fragility.hpp"
 #include "pcrf/post/cube_sensitivity.hpp"
-#include "pcrf/plan/ida_search.hpp"
-#include "pcrf/study/cube_vocabulary.hpp"
+#include "pcrf/ida/ida_search.hpp"
+#include "pcrf/schema/cube_vocabulary.hpp"
 
 namespace pcrf::post {
 
@@ -189,9 +189,9 @@ std::string censored_reduction_note(const cube::CubeReader& cube, const StatsReq
   std::size_t left_out = 0, unrefined = 0, unresolved = 0;
   for (std::size_t c = 0; c < collapse.size(); ++c) {
     if (!(runs[c] > 0.0)) continue;
-    if (state[c] == static_cast<double>(plan::CurveState::kUnresolved)) ++unresolved;
+    if (state[c] == static_cast<double>(ida::CurveState::kUnresolved)) ++unresolved;
     else if (!std::isfinite(collapse[c])) ++left_out;
-    else if (state[c] == static_cast<double>(plan::CurveState::kUnbracketed)) ++unrefined;
+    else if (state[c] == static_cast<double>(ida::CurveState::kUnbracketed)) ++unrefined;
   }
   std::string note;
   if (left_out > 0)

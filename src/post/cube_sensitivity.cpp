@@ -8,7 +8,7 @@
 
 #include "pcrf/metrics/case_result.hpp"
 #include "pcrf/row_major.hpp"
-#include "pcrf/study/cube_vocabulary.hpp"
+#include "pcrf/schema/cube_vocabulary.hpp"
 
 namespace pcrf::post {
 

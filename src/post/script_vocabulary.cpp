@@ -9,7 +9,7 @@
 #include "pcrf/json.hpp"
 #include "pcrf/metrics/case_result.hpp"
 #include "pcrf/model/parameters.hpp"
-#include "pcrf/plan/ida_search.hpp"
+#include "pcrf/ida/ida_search.hpp"
 #include "pcrf/solver/history.hpp"
 
 namespace pcrf::post {
@@ -36,7 +36,7 @@ std::string script_vocabulary_json() {
     parameters.emplace_back();
     parameters.back().text("name", p.name).text("long_name", p.long_name).text("units", p.units);
   }
-  for (const auto& c : plan::kCurveStateNames) {
+  for (const auto& c : ida::kCurveStateNames) {
     curve_states.emplace_back();
     curve_states.back().text("name", c.name).integer("value", static_cast<int>(c.value));
   }

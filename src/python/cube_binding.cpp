@@ -14,7 +14,7 @@
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/post/cube_reports.hpp"
 #include "pcrf/post/cube_risk.hpp"
-#include "pcrf/study/cube_vocabulary.hpp"
+#include "pcrf/schema/cube_vocabulary.hpp"
 
 namespace pcrf::python {
 namespace {

@@ -12,7 +12,7 @@
 #include "pcrf/cube/cube_query.hpp"
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/post/cube_notes.hpp"
-#include "pcrf/study/cube_vocabulary.hpp"
+#include "pcrf/schema/cube_vocabulary.hpp"
 #include "pcrf/user_error.hpp"
 
 namespace pcrf::python {

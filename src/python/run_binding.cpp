@@ -89,21 +89,22 @@ CaseCall read_call(const py::kwargs& kwargs) {
 py::tuple run(const py::kwargs& kwargs) {
   CaseCall call = read_call(kwargs);
   std::vector<HistorySample> rows;
-  api::ScaledExcitation scaled;
+  double scale_factor = 1.0;
   CaseResult result;
   {
     py::gil_scoped_release released;  // the case is pure C++: other Python threads run meanwhile
-    scaled = api::scaled_excitation(call.station, call.incidence_deg, call.scaling);
+    const ScaledExcitation scaled = api::scaled_excitation(call.station, call.incidence_deg, call.scaling);
+    scale_factor = scaled.factor();
     const PhysicsOptions physics = api::resolve_settings(physics_settings(), call.physics);
     const SolverSettings solver = api::resolve_settings(solver_settings(), call.solver);
     HistorySink sink;
     if (call.history) sink = [&rows](const HistorySample& s) { rows.push_back(s); };
-    result = api::solve_one_case(std::move(call.scene), physics, scaled.excitation->view(), solver,
+    result = api::solve_one_case(std::move(call.scene), physics, scaled.view(), solver,
                                  call.history_dt_s, sink);
     if (auto note = api::verdict_note(result, physics); !note.empty()) call.notes.push_back(std::move(note));
   }
   py::object history = call.history ? py::object(history_array(rows)) : py::none();
-  return py::make_tuple(result_dict(scaled.scale_factor, result), history, py::cast(call.notes), py::cast(call.warnings));
+  return py::make_tuple(result_dict(scale_factor, result), history, py::cast(call.notes), py::cast(call.warnings));
 }
 
 }  // namespace

@@ -18,7 +18,7 @@
 #include "pcrf/parallel/mpi_session.hpp"
 #include "pcrf/user_error.hpp"
 #include "pcrf/study/study_parser.hpp"
-#include "pcrf/study/study_run.hpp"
+#include "pcrf/run/study_run.hpp"
 
 namespace pcrf::python {
 namespace {

@@ -1,5 +1,5 @@
 // One case: rest → uplift → rocking with impacts → rest or failure, to the end of the
-// record (plus tail). See include/pcrf/solver/rocking_solver.hpp for the method. The event
+// record (plus tail). See pcrf/solver/rocking_solver.hpp for the method. The event
 // handlers are `inline`, so that fly() holds them (-fPIC inlines no interposable function).
 #include "case_run.hpp"
 

@@ -1,6 +1,6 @@
 /// \file case_run.hpp
 /// \brief One case under the dopri5 or SUNDIALS integrators: the flight problem and the
-/// case's state machine (see include/pcrf/solver/rocking_solver.hpp for the method). The
+/// case's state machine (see pcrf/solver/rocking_solver.hpp for the method). The
 /// one-case solver (rocking_solver.cpp) runs it start to end; the batch (batch/) runs many,
 /// each stopping at every step attempt. Private to the solver.
 #pragma once

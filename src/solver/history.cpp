@@ -1,4 +1,4 @@
-// The columns of a time history (see include/pcrf/solver/history.hpp).
+// The columns of a time history (see pcrf/solver/history.hpp).
 #include "pcrf/solver/history.hpp"
 
 namespace pcrf {

@@ -1,6 +1,6 @@
 // One case: rest → uplift → rocking with impacts → rest or failure, to the end of the
-// record (plus tail). See include/pcrf/solver/rocking_solver.hpp for the method; the case's
-// state machine is case_run.hpp's.
+// record (plus tail). See pcrf/solver/rocking_solver.hpp for the method; the case's state
+// machine is case_run.hpp's.
 #include "pcrf/solver/rocking_solver.hpp"
 
 #include <algorithm>

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "pcrf/row_major.hpp"
-#include "pcrf/study/cube_vocabulary.hpp"
+#include "pcrf/schema/cube_vocabulary.hpp"
 #include "pcrf/user_error.hpp"
 
 namespace pcrf::study {

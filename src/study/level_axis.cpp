@@ -4,8 +4,8 @@
 #include <iterator>
 #include <optional>
 
-#include "pcrf/study/cube_vocabulary.hpp"
-#include "pcrf/plan/ida_search.hpp"
+#include "pcrf/schema/cube_vocabulary.hpp"
+#include "pcrf/ida/ida_search.hpp"
 #include "pcrf/study/plan.hpp"
 
 namespace pcrf::study {
@@ -20,9 +20,9 @@ std::string curve_state_long_name() {
                                          "max_runs ran out before either",
                                          "a run without a verdict ended the hunt: no collapse intensity, never safe beyond "
                                          "the last safe run"};
-  static_assert(std::size(kMeaning) == plan::kCurveStateNames.size());
+  static_assert(std::size(kMeaning) == ida::kCurveStateNames.size());
   std::string text = "how the curve ended:";
-  for (const auto& n : plan::kCurveStateNames)
+  for (const auto& n : ida::kCurveStateNames)
     text += " " + std::to_string(static_cast<int>(n.value)) + " " + n.name + " (" + kMeaning[static_cast<int>(n.value)] + "),";
   return text + " NaN not finished";
 }

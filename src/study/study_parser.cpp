@@ -14,9 +14,9 @@
 #include <sstream>
 
 #include "pcrf/metrics/case_result.hpp"
-#include "pcrf/post/hazard_file.hpp"
+#include "pcrf/hazard/hazard_file.hpp"
 #include "pcrf/record/pulses.hpp"
-#include "pcrf/study/cube_vocabulary.hpp"
+#include "pcrf/schema/cube_vocabulary.hpp"
 #include "pcrf/study/plan.hpp"
 #include "study/axis_fields.hpp"
 #include "study/plans/plan_support.hpp"

@@ -10,7 +10,7 @@
 #include <numbers>
 
 #include "pcrf/analysis/sobol_indices.hpp"
-#include "pcrf/plan/sampling.hpp"
+#include "pcrf/study/sampling.hpp"
 
 namespace pcrf::analysis {
 namespace {
@@ -18,13 +18,13 @@ namespace {
 /// Evaluates f on a Saltelli design over [lo, hi]^d.
 SaltelliOutputs evaluate(std::size_t n, std::size_t d, double lo, double hi,
                          const std::function<double(const std::vector<double>&)>& f) {
-  const auto design = plan::saltelli_design(n, d, true, 17);
+  const auto design = study::saltelli_design(n, d, true, 17);
   SaltelliOutputs o{std::vector<double>(n), std::vector<double>(n), std::vector<std::vector<double>>(d, std::vector<double>(n))};
   std::vector<double> x(d);
   for (std::size_t row = 0; row < n * (d + 2); ++row) {
     for (std::size_t i = 0; i < d; ++i) x[i] = lo + (hi - lo) * design.points[row * d + i];
     const double y = f(x);
-    const std::size_t j = plan::SaltelliDesign::sample(row, d), block = plan::SaltelliDesign::block(row, d);
+    const std::size_t j = study::SaltelliDesign::sample(row, d), block = study::SaltelliDesign::block(row, d);
     if (block == 0) o.f_a[j] = y;
     else if (block == 1) o.f_b[j] = y;
     else o.f_ab[block - 2][j] = y;

@@ -16,7 +16,7 @@
 #include "pcrf/cube/cube_query.hpp"
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/row_major.hpp"
-#include "pcrf/study/cube_vocabulary.hpp"
+#include "pcrf/schema/cube_vocabulary.hpp"
 #include "study/study_test_support.hpp"
 
 namespace pcrf {
@@ -180,7 +180,7 @@ TEST(CubeReduce, StatsNameTheUnbracketedCollapsesTheyReduce) {
   cube::CubeReader cube(dir / "short.h5");
   const auto ci = cube.read_side("collapse_intensity"), state = cube.read_side("curve_state");
   std::size_t unrefined = 0;
-  for (std::size_t c = 0; c < ci.size(); ++c) unrefined += std::isfinite(ci[c]) && state[c] == 2.0;  // plan::CurveState::kUnbracketed
+  for (std::size_t c = 0; c < ci.size(); ++c) unrefined += std::isfinite(ci[c]) && state[c] == 2.0;  // ida::CurveState::kUnbracketed
   ASSERT_GT(unrefined, 0u) << "no curve found a collapse it could not refine: the test sees too little";
   r = test::run_command("cd " + quoted(dir) + " && " + pcrf() +
                         " cube stats short.h5 --by kappa -m collapse_intensity --reduce-over incidence_deg --reduce min");

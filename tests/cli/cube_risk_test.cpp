@@ -15,7 +15,7 @@
 #include "pcrf/post/cube_p695.hpp"
 #include "pcrf/post/cube_reports.hpp"
 #include "pcrf/post/cube_risk.hpp"
-#include "pcrf/post/hazard_file.hpp"
+#include "pcrf/hazard/hazard_file.hpp"
 #include "study/study_test_support.hpp"
 
 namespace pcrf {

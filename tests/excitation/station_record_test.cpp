@@ -29,7 +29,8 @@ StationRecord pair(double az1, double az2) {
 
 TEST(StationRecord, AtTheFirstAzimuthTheFrameFeelsTheFirstComponentBitForBit) {
   const StationRecord station = pair(260.0, 345.0);
-  const FrameExcitation along(station, 260.0, 1.3), alone(StationRecord{station.h1, {}, {}, {}, {}}, {}, 1.3);
+  const ScaledExcitation along = frame_excitation(station, 260.0, 1.3),
+                         alone = frame_excitation(StationRecord{station.h1, {}, {}, {}, {}}, {}, 1.3);
   EXPECT_EQ(along.horizontal().samples_m_s2(), alone.horizontal().samples_m_s2());
   const CaseResult a = solve_case(basic_frame(), along.view(), {}, {});
   const CaseResult b = solve_case(basic_frame(), station.h1.scaled(1.3), {}, {});
@@ -42,8 +43,8 @@ TEST(StationRecord, AtTheFirstAzimuthTheFrameFeelsTheFirstComponentBitForBit) {
 TEST(StationRecord, AHalfTurnMirrorsTheResponse) {
   const StationRecord station = pair(140.0, 230.0);
   for (const double phi : {140.0, 171.0, 300.0}) {
-    const CaseResult a = solve_case(basic_frame(), FrameExcitation(station, phi, 1.2).view(), {}, {});
-    const CaseResult b = solve_case(basic_frame(), FrameExcitation(station, phi + 180.0, 1.2).view(), {}, {});
+    const CaseResult a = solve_case(basic_frame(), frame_excitation(station, phi, 1.2).view(), {}, {});
+    const CaseResult b = solve_case(basic_frame(), frame_excitation(station, phi + 180.0, 1.2).view(), {}, {});
     EXPECT_EQ(a.theta_max_rad, b.theta_max_rad) << phi;
     EXPECT_EQ(a.impacts, b.impacts) << phi;
   }
@@ -55,7 +56,7 @@ TEST(StationRecord, TheOrderOfTheComponentsDoesNotMatter) {
   for (const double phi : {0.0, 47.0, 300.5}) {
     // Bit for bit: rocking is sensitive enough that a last-digit difference in the record
     // moved θ_max by 2.6 % here before the weights were made order-independent.
-    const FrameExcitation a(station, phi, 1.3), b(swapped, phi, 1.3);
+    const ScaledExcitation a = frame_excitation(station, phi, 1.3), b = frame_excitation(swapped, phi, 1.3);
     EXPECT_EQ(a.horizontal().samples_m_s2(), b.horizontal().samples_m_s2()) << phi;
     const CaseResult ra = solve_case(basic_frame(), a.view(), {}, {}), rb = solve_case(basic_frame(), b.view(), {}, {});
     EXPECT_EQ(ra.theta_max_rad, rb.theta_max_rad) << phi;
@@ -74,7 +75,7 @@ TEST(StationRecord, ComponentsAreAlignedOrRefused) {
   EXPECT_THROW(coarse.align(), std::invalid_argument);
   const StationRecord single{stochastic(3, 1.0), 0.0, std::nullopt, std::nullopt, std::nullopt};
   try {
-    FrameExcitation(single, 30.0, 1.0);
+    frame_excitation(single, 30.0, 1.0);
     FAIL() << "an incidence without a pair accepted";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("has no second component"), std::string::npos) << e.what();
@@ -115,7 +116,7 @@ TEST(StationRecord, TextComponentsOfDifferentLengthsArePadded) {
   ASSERT_EQ(notes.size(), 1u);
   EXPECT_NE(notes[0].find("padded with zeros to 1991"), std::string::npos) << notes[0];
   // A frame at an incidence and a vertical see one time axis.
-  const FrameExcitation excitation(station, 30.0, 1.0);
+  const ScaledExcitation excitation = frame_excitation(station, 30.0, 1.0);
   EXPECT_EQ(excitation.horizontal().size(), 1991u);
 }
 

@@ -1,4 +1,4 @@
-// Lockstep batches (include/pcrf/solver/batch_solver.hpp): the same answers as the one-case
+// Lockstep batches (pcrf/solver/batch_solver.hpp): the same answers as the one-case
 // solver for every case of a random design of each scene, at W = 1, 2, 4 and 8, with every
 // kernel set this CPU runs and both vectorised sin/cos. Short synthetic records keep it to
 // seconds; the 10³-frame designs under three PEER records are tests/batch_long's (opt-in).

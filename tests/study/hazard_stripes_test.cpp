@@ -6,7 +6,7 @@
 #include <cmath>
 #include <map>
 
-#include "pcrf/post/hazard_file.hpp"
+#include "pcrf/hazard/hazard_file.hpp"
 #include "pcrf/study/level_axis.hpp"
 #include "pcrf/study/study_parser.hpp"
 #include "study/study_test_support.hpp"

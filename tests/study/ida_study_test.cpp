@@ -20,7 +20,7 @@
 #include "pcrf/analysis/fragility.hpp"
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/number_text.hpp"
-#include "pcrf/plan/ida_search.hpp"
+#include "pcrf/ida/ida_search.hpp"
 #include "study/study_test_support.hpp"
 
 namespace pcrf::study_test {
@@ -520,7 +520,7 @@ TEST(IdaStudy, ACurveEndingInFreeFallIsUnresolvedNotSafeAtTheCap) {
   const auto state = cube.read_side("curve_state"), safe = cube.read_side("last_safe_intensity");
   const auto collapse = cube.read_side("collapse_intensity");
   ASSERT_EQ(state.size(), 1u);
-  EXPECT_EQ(state[0], static_cast<double>(plan::CurveState::kUnresolved));
+  EXPECT_EQ(state[0], static_cast<double>(ida::CurveState::kUnresolved));
   EXPECT_TRUE(std::isnan(collapse[0]));
   EXPECT_LT(safe[0], 0.5);
   EXPECT_NE(run.err.find(std::to_string(falls) + " ground_free_fall"), std::string::npos) << run.err;

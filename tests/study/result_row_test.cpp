@@ -6,8 +6,8 @@
 #include <cmath>
 
 #include "pcrf/study/case_space.hpp"
-#include "pcrf/study/result_row.hpp"
-#include "pcrf/study/study_cube.hpp"
+#include "pcrf/run/result_row.hpp"
+#include "pcrf/run/study_cube.hpp"
 #include "pcrf/study/study_parser.hpp"
 #include "study/study_test_support.hpp"
 

@@ -9,7 +9,7 @@
 
 #include "pcrf/analysis/sobol_indices.hpp"
 #include "pcrf/cube/cube_reader.hpp"
-#include "pcrf/plan/sampling.hpp"
+#include "pcrf/study/sampling.hpp"
 #include "study/study_test_support.hpp"
 
 namespace pcrf::study_test {
@@ -31,7 +31,7 @@ TEST(SampledStudy, LatinHypercubeFramesFillTheRanges) {
   const auto& layout = cube.layout();
   EXPECT_EQ(layout.dimensions.back().name, "case");
   EXPECT_EQ(layout.dimensions.back().size, 20u);
-  const auto unit = plan::latin_hypercube(20, 2, 4);
+  const auto unit = study::latin_hypercube(20, 2, 4);
   const auto* kappa = layout.find_coordinate("kappa");
   const auto* pi_e_c = layout.find_coordinate("pi_e_c");
   for (std::size_t j = 0; j < 20; ++j) {

@@ -10,7 +10,7 @@
 #include "pcrf/study/case_space.hpp"
 #include "pcrf/study/fingerprint.hpp"
 #include "pcrf/study/settings_doc.hpp"
-#include "pcrf/study/study_cube.hpp"
+#include "pcrf/run/study_cube.hpp"
 #include "pcrf/study/study_parser.hpp"
 #include "support/setting_values.hpp"
 #include "support/test_support.hpp"

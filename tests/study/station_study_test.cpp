@@ -1,4 +1,4 @@
-// Studies of stations: [[records]] h1/h2/up through the same StationRecord/FrameExcitation
+// Studies of stations: [[records]] h1/h2/up through the same StationRecord/frame_excitation
 // code as `pcrf run`; the incidence axis (h1 alone at φ = az₁ bit for bit, a half turn
 // mirrors, the components' order does not matter); RotD measures; a DWN vertical's sign;
 // `pcrf cube stats --reduce-over incidence_deg`; one-line errors for bad stations.

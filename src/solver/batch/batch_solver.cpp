@@ -1,4 +1,4 @@
-// Lockstep batches of cases under one excitation (see include/pcrf/solver/batch_solver.hpp).
+// Lockstep batches of cases under one excitation (see pcrf/solver/batch_solver.hpp).
 //
 // Each lane holds a case: the one-case solver's state machine (case_run.hpp) over its dopri5
 // integrator in lockstep (dormand_prince.hpp), which stops at every step attempt. The driver

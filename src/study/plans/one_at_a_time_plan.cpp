@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <memory>
 
-#include "pcrf/study/cube_vocabulary.hpp"
+#include "pcrf/schema/cube_vocabulary.hpp"
 #include "study/plans/plan_support.hpp"
 
 namespace pcrf::study::detail {

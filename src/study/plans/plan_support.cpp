@@ -5,7 +5,7 @@
 #include <charconv>
 #include <cmath>
 
-#include "pcrf/study/cube_vocabulary.hpp"
+#include "pcrf/schema/cube_vocabulary.hpp"
 #include "pcrf/user_error.hpp"
 #include "study/axis_fields.hpp"
 

@@ -7,8 +7,8 @@
 #include <memory>
 #include <optional>
 
-#include "pcrf/plan/sampling.hpp"
-#include "pcrf/study/cube_vocabulary.hpp"
+#include "pcrf/study/sampling.hpp"
+#include "pcrf/schema/cube_vocabulary.hpp"
 #include "pcrf/study/study_size.hpp"
 #include "study/axis_fields.hpp"
 #include "study/plans/plan_support.hpp"
@@ -89,7 +89,7 @@ void check_drawable(const PlanInput& input, const Sampling& s, double frames_per
 }
 
 /// Unit points (row-major, one row per frame) mapped onto the ranges; labels "s<row>".
-std::vector<PointPlan::Point> map_points(const plan::UnitPoints& unit, const Sampling& s, const ScenePoint& base) {
+std::vector<PointPlan::Point> map_points(const study::UnitPoints& unit, const Sampling& s, const ScenePoint& base) {
   const auto varied = s.varied();
   const std::size_t d = varied.size();
   std::vector<PointPlan::Point> points(unit.size() / d);
@@ -149,14 +149,14 @@ class SaltelliPlan final : public SampledPlan {
 std::shared_ptr<const Plan> read_lhs_plan(const PlanInput& input) {
   const Sampling s = read_sampling(input);
   check_drawable(input, s, 1.0);
-  auto points = map_points(plan::latin_hypercube(s.samples, s.varied().size(), s.seed), s, input.base);
+  auto points = map_points(study::latin_hypercube(s.samples, s.varied().size(), s.seed), s, input.base);
   return std::make_shared<SampledPlan>(input.model, "lhs", std::move(points), s);
 }
 
 std::shared_ptr<const Plan> read_sobol_plan(const PlanInput& input) {
   const Sampling s = read_sampling(input);
   check_drawable(input, s, 1.0);
-  auto points = map_points(plan::sobol_points(s.samples, s.varied().size(), s.scramble, s.seed), s, input.base);
+  auto points = map_points(study::sobol_points(s.samples, s.varied().size(), s.scramble, s.seed), s, input.base);
   return std::make_shared<SampledPlan>(input.model, "sobol", std::move(points), s);
 }
 
@@ -166,12 +166,12 @@ std::shared_ptr<const Plan> read_saltelli_plan(const PlanInput& input) {
   const std::size_t d = varied.size();
   if (d < 2) input.top.fail("axes", "plan \"saltelli\" needs at least two varied parameters (sensitivity apportions variance among them)");
   check_drawable(input, s, static_cast<double>(d + 2));
-  auto points = map_points(plan::saltelli_design(s.samples, d, s.scramble, s.seed).points, s, input.base);
+  auto points = map_points(study::saltelli_design(s.samples, d, s.scramble, s.seed).points, s, input.base);
   std::vector<std::string> blocks;
   std::vector<double> samples;
   for (std::size_t row = 0; row < points.size(); ++row) {
-    const std::size_t block = plan::SaltelliDesign::block(row, d);
-    const std::size_t sample = plan::SaltelliDesign::sample(row, d);
+    const std::size_t block = study::SaltelliDesign::block(row, d);
+    const std::size_t sample = study::SaltelliDesign::sample(row, d);
     blocks.push_back(block == 0 ? "A" : block == 1 ? "B" : "AB_" + std::string(input.model.parameters[varied[block - 2]].name));
     samples.push_back(static_cast<double>(sample));
     points[row].label = "s" + std::to_string(sample) + ":" + blocks.back();

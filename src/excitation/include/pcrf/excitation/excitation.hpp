@@ -1,0 +1,107 @@
+/// \file excitation.hpp
+/// \brief What one case is shaken by: the in-plane horizontal ground acceleration and,
+/// optionally, the vertical one, as functions of time.
+///
+/// An Excitation is a view: it refers to records that the caller owns and keeps alive while
+/// the view is used (the records a study or `pcrf run` loaded, scaled and combined). Its
+/// components share one time axis, t = i·dt from 0: the same dt and the same number of
+/// samples (components of different lengths are padded with zeros where they are put
+/// together). After the last sample every component is zero (the free-vibration tail).
+///
+/// The solver evaluates it once per right-hand-side evaluation (at()) and hands the value
+/// to the model; it never reads a record itself.
+#pragma once
+
+#include <optional>
+
+#include "pcrf/ground_acceleration.hpp"
+#include "pcrf/record/ground_motion.hpp"
+
+namespace pcrf {
+
+class Excitation {
+ public:
+  /// A horizontal motion alone (in the frame's plane). Implicit: every place that solved a
+  /// case under one record keeps doing so.
+  Excitation(const GroundMotion& horizontal)  // NOLINT: implicit by design
+      : horizontal_(&horizontal) {}
+
+  /// A horizontal and a vertical (positive up) motion; `vertical` may be null.
+  /// \throws UserError when the two differ in dt or in number of samples.
+  Excitation(const GroundMotion& horizontal, const GroundMotion* vertical);
+
+  /// The ground acceleration at t [m/s²]; each component exactly as GroundMotion::accel_m_s2.
+  GroundAcceleration at(double t_s) const {
+    return {horizontal_->accel_m_s2(t_s), vertical_ != nullptr ? vertical_->accel_m_s2(t_s) : 0.0};
+  }
+
+  const GroundMotion& horizontal() const { return *horizontal_; }
+  /// The vertical component, or null when there is none.
+  const GroundMotion* vertical() const { return vertical_; }
+  bool has_vertical() const { return vertical_ != nullptr; }
+
+  /// The common sample interval [s].
+  double dt_s() const { return horizontal_->dt_s(); }
+  /// Time of the last sample [s].
+  double duration_s() const { return horizontal_->duration_s(); }
+
+ private:
+  const GroundMotion* horizontal_;
+  const GroundMotion* vertical_ = nullptr;
+};
+
+/// Evaluates an excitation at times that mostly fall in one sample interval (an
+/// integrator's stages between two samples, where the record is linear): it remembers the
+/// interval, so such a time costs a multiply-add. Bit for bit Excitation::at().
+class ExcitationCursor {
+ public:
+  explicit ExcitationCursor(const Excitation& excitation) : excitation_(excitation) {}
+
+  GroundAcceleration at(double t_s) {
+    if (!(t_s >= i_.lo_s && t_s < i_.hi_s) && !enter(t_s)) return excitation_.at(t_s);
+    const double frac = (t_s - i_.lo_s) * i_.inv_dt_per_s;
+    return {i_.h0 + frac * i_.dh, i_.v0 + frac * i_.dv};
+  }
+
+  /// The record interval the cursor is in: at(t) inside it is h0 + (t − lo)/dt · dh (and v).
+  struct Interval {
+    double lo_s = 0.0, hi_s = 0.0;  ///< [k·dt, (k+1)·dt); empty at first
+    double inv_dt_per_s = 0.0;
+    double h0 = 0.0, dh = 0.0, v0 = 0.0, dv = 0.0;  ///< samples k and their differences [m/s²]
+  };
+  const Interval& interval() const { return i_; }
+
+ private:
+  /// Remembers the interval holding t; false outside the record (before, at or after its
+  /// last sample, or NaN).
+  bool enter(double t_s);
+
+  Excitation excitation_;
+  Interval i_;
+};
+
+/// The one owner of a scaled excitation: copies of the components, every one multiplied
+/// by `factor`, and the factor. What `pcrf run`, pcrf.run and a study's case shake a frame
+/// with (frame_excitation(), station_record.hpp), and the verdict check's perturbed twins
+/// (the whole ground motion scaled). Movable, not copyable (a copy would double the series);
+/// a view() taken before a move points into the moved-from object.
+class ScaledExcitation {
+ public:
+  /// `of`'s components scaled by `factor`.
+  /// \throws UserError as GroundMotion::scaled.
+  ScaledExcitation(const Excitation& of, double factor);
+  ScaledExcitation(ScaledExcitation&&) = default;
+  ScaledExcitation& operator=(ScaledExcitation&&) = default;
+
+  Excitation view() const { return {horizontal_, vertical_ ? &*vertical_ : nullptr}; }
+  const GroundMotion& horizontal() const { return horizontal_; }
+  /// The factor every component was scaled by.
+  double factor() const { return factor_; }
+
+ private:
+  GroundMotion horizontal_;
+  std::optional<GroundMotion> vertical_;
+  double factor_;
+};
+
+}  // namespace pcrf

@@ -1,0 +1,201 @@
+// One case of a study, from index to result row (see case_runner.hpp).
+#include "pcrf/run/case_runner.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "pcrf/solver/batch_solver.hpp"
+
+namespace pcrf::study {
+namespace {
+
+/// A failed case: its metrics NaN (an IDA's intensity and factor columns stay).
+void mark_failed(parallel::CaseOutcome& outcome, const ResultColumns& columns, const std::string& message) {
+  columns.clear_metrics(outcome.row);
+  outcome.status = static_cast<std::int8_t>(CaseStatus::kSolverFailure);
+  outcome.note = message;
+}
+
+/// Equal for every two scenes same_scene calls the same (0 and −0 alike, every NaN alike):
+/// the cache of prepared frames compares keys before values, so that a study of distinct
+/// frames does not compare every case's values with each frame kept.
+std::uint64_t scene_key(const SceneSpec& scene) {
+  std::uint64_t key = static_cast<std::uint64_t>(reinterpret_cast<std::uintptr_t>(scene.model));
+  for (const double x : scene.values) {
+    const double v = x == 0.0 ? 0.0 : (std::isnan(x) ? std::numeric_limits<double>::quiet_NaN() : x);
+    key = (key ^ std::bit_cast<std::uint64_t>(v)) * 0x100000001b3ULL;  // FNV-1a's prime
+  }
+  return key;
+}
+
+/// Runs `f`; an exception marks `outcome` failed with its text.
+template <class F>
+void guarded(parallel::CaseOutcome& outcome, const ResultColumns& columns, F&& f) noexcept {
+  try {
+    f();
+  } catch (const std::exception& e) {
+    mark_failed(outcome, columns, e.what());
+  } catch (...) {
+    mark_failed(outcome, columns, "unknown exception");
+  }
+}
+
+}  // namespace
+
+CaseRunner::CaseRunner(const Study& study, const CaseSpace& space, RecordCache& records)
+    : study_(study), space_(space), records_(records), columns_(study) {
+  // Compute only what is asked: the exact angular-velocity peak costs an extra root.
+  request_.omega_peak = false;
+  for (const auto* m : columns_.metrics())
+    if (m == &metric::omega_max() || m == &metric::t_omega_max()) request_.omega_peak = true;
+}
+
+std::shared_ptr<PreparedFrame> CaseRunner::prepared(const SceneSpec& scene) const {
+  std::lock_guard lock(last_mutex_);
+  const std::uint64_t key = scene_key(scene);
+  auto same = [&](const Prepared& p) { return p.key == key && same_scene(p.scene, scene); };
+  auto it = std::find_if(prepared_.begin(), prepared_.end(), same);
+  if (it == prepared_.end()) {
+    if (prepared_.size() >= kPreparedFrames) prepared_.pop_back();
+    prepared_.insert(prepared_.begin(), {scene, key, prepare_scene(scene.make(), study_.physics)});
+  } else if (it != prepared_.begin()) {
+    std::rotate(prepared_.begin(), it, it + 1);  // most recent first
+  }
+  return prepared_.front().frame;
+}
+
+double CaseRunner::level_of(const CaseSpec& spec, const parallel::WorkItem& item) {
+  return std::isnan(spec.level) ? item.argument : spec.level;
+}
+
+parallel::CaseOutcome CaseRunner::empty_outcome(std::int64_t index) const {
+  return {index, static_cast<std::int8_t>(CaseStatus::kSolverFailure), columns_.empty_row(), {}};
+}
+
+std::optional<CaseRunner::Ready> CaseRunner::set_up(const parallel::WorkItem& item,
+                                                    parallel::CaseOutcome& outcome) const {
+  CaseSpec spec = space_.case_at(item.case_index);
+  spec.level = level_of(spec, item);
+  const double factor = records_.scale_factor(spec.record, spec.level, study_.intensity);
+  if (study_.ida) {  // the run's intensity and factor travel with it, whatever happens next
+    outcome.row[columns_.ida_intensity_column()] = spec.level;
+    outcome.row[columns_.scale_factor_column()] = factor;
+  }
+  Ready ready;
+  try {
+    ready.frame = prepared(spec.frame);
+  } catch (const std::invalid_argument& e) {  // make_frame's geometry, or outside the model's domain
+    outcome.status = static_cast<std::int8_t>(CaseStatus::kInvalidFrame);
+    outcome.note = std::string("invalid frame: ") + e.what();
+    return std::nullopt;
+  }
+  ready.motion = excitation(spec.record, spec.incidence_deg, factor);
+  return ready;
+}
+
+void CaseRunner::conclude(const CaseResult& result, parallel::CaseOutcome& outcome) const {
+  outcome.status = static_cast<std::int8_t>(result.status);
+  const auto& metrics = columns_.metrics();
+  for (std::size_t m = 0; m < metrics.size(); ++m) {
+    const double value = metrics[m]->get(result);
+    if (std::isinf(value)) {
+      mark_failed(outcome, columns_,
+                  "case " + std::to_string(outcome.case_index) + ": non-finite " + std::string(metrics[m]->name));
+      return;
+    }
+    outcome.row[m] = value;
+  }
+  outcome.note = result.message;
+}
+
+parallel::CaseOutcome CaseRunner::run(const parallel::WorkItem& item, const HistorySink& history,
+                                      double history_dt_s) const noexcept {
+  parallel::CaseOutcome outcome = empty_outcome(item.case_index);
+  guarded(outcome, columns_, [&] {
+    const auto ready = set_up(item, outcome);
+    if (!ready) return;
+    OutputRequest request = request_;
+    request.history_dt_s = history_dt_s;
+    conclude(solve_case(*ready->frame, ready->motion->view(), study_.solver, request, history), outcome);
+  });
+  return outcome;
+}
+
+parallel::ResultBatch CaseRunner::run(std::span<const parallel::WorkItem> items) const noexcept {
+  parallel::ResultBatch outcomes;
+  std::vector<std::size_t> waiting;  // set up, in order; solved below by excitation
+  std::vector<Ready> ready;
+  for (const parallel::WorkItem& item : items) {
+    outcomes.push_back(empty_outcome(item.case_index));
+    guarded(outcomes.back(), columns_, [&] {
+      if (auto r = set_up(item, outcomes.back())) {
+        waiting.push_back(outcomes.size() - 1);
+        ready.push_back(std::move(*r));
+      }
+    });
+  }
+  BatchOptions options;
+  options.lanes = static_cast<int>(study_.run.lanes);
+  std::vector<bool> done(waiting.size(), false);
+  for (std::size_t first = 0; first < waiting.size(); ++first) {
+    if (done[first]) continue;
+    // The cases of first's excitation (the same object: the excitation cache hands it out).
+    std::vector<std::size_t> group;
+    std::vector<PreparedFrame*> frames;
+    for (std::size_t k = first; k < waiting.size(); ++k) {
+      if (done[k] || ready[k].motion != ready[first].motion) continue;
+      done[k] = true;
+      group.push_back(k);
+      frames.push_back(ready[k].frame.get());
+    }
+    std::vector<CaseResult> results;
+    BatchOptions group_options = options;  // no wider than the group: no lane left idle throughout
+    group_options.lanes = std::min(options.lanes, static_cast<int>(group.size()));
+    if (group_options.lanes > 1 && batch_integrates(study_.solver)) {
+      try {
+        results = solve_batch(frames, ready[first].motion->view(), study_.solver, request_, group_options);
+      } catch (const std::exception&) {
+        results.clear();  // a case the solver refuses: each one alone, with its own message
+      }
+    }
+    for (std::size_t j = 0; j < group.size(); ++j) {
+      parallel::CaseOutcome& outcome = outcomes[waiting[group[j]]];
+      const Ready& r = ready[group[j]];
+      guarded(outcome, columns_, [&] {
+        conclude(results.empty() ? solve_case(*r.frame, r.motion->view(), study_.solver, request_) : results[j], outcome);
+      });
+    }
+  }
+  return outcomes;
+}
+
+std::shared_ptr<const ScaledExcitation> CaseRunner::excitation(std::size_t record, std::optional<double> incidence_deg,
+                                                              double scale) const {
+  std::lock_guard lock(last_mutex_);
+  auto it = std::find_if(scaled_.begin(), scaled_.end(), [&](const LastScaled& s) {
+    return s.record == record && s.incidence_deg == incidence_deg && s.scale == scale;
+  });
+  if (it == scaled_.end()) {
+    if (scaled_.size() >= kScaledRecords) scaled_.pop_back();
+    scaled_.insert(scaled_.begin(),
+                   {record, incidence_deg, scale, std::make_shared<const ScaledExcitation>(frame_excitation(records_.station(record), incidence_deg, scale))});
+    it = scaled_.begin();
+  }
+  return it->motion;
+}
+
+CaseStatus outcome_status(const parallel::CaseOutcome& outcome) {
+  if (outcome.status == parallel::kEvaluatorThrew) return CaseStatus::kSolverFailure;
+  return static_cast<CaseStatus>(outcome.status);
+}
+
+bool is_failure(CaseStatus status) {
+  return status == CaseStatus::kSolverFailure || status == CaseStatus::kTimeLimit;
+}
+
+}  // namespace pcrf::study

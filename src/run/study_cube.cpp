@@ -1,0 +1,240 @@
+// Mapping of a study onto its result cube (see study_cube.hpp).
+#include "pcrf/run/study_cube.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <ctime>
+#include <type_traits>
+#include <variant>
+
+#include "pcrf/metrics/case_result.hpp"
+#include "pcrf/model/frame_properties.hpp"
+#include "pcrf/schema/cube_vocabulary.hpp"
+#include "pcrf/run/result_row.hpp"
+#include "pcrf/version.hpp"
+
+namespace pcrf::study {
+namespace {
+
+using cube::Attribute;
+namespace names = vocabulary;
+
+std::string utc_now() {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char buffer[32];
+  std::strftime(buffer, sizeof buffer, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return buffer;
+}
+
+void add_components(const Study& study, RecordCache& records, cube::CubeLayout& layout);
+
+/// The record axis (names, sources, titles), then the level axis' coordinates along it and
+/// along its own dimensions (level_axis.hpp).
+void add_record_and_level(const Study& study, const CaseSpace& space, RecordCache& records,
+                          cube::CubeLayout& layout) {
+  auto& coords = layout.coordinates;
+  coords.push_back(text_coordinate(names::kRecord, names::kRecord, "ground motion record", space.record_names()));
+  std::vector<std::string> sources, titles;
+  for (std::size_t r = 0; r < study.records.size(); ++r) {
+    sources.push_back(study.records[r].describe());
+    titles.push_back(records.title(r));
+  }
+  coords.push_back(text_coordinate(names::kRecordSource, names::kRecord, "where the record comes from", sources));
+  coords.push_back(text_coordinate(names::kRecordTitle, names::kRecord, "the record's own title (AT2 header)", titles));
+  add_components(study, records, layout);
+  space.level_axis().add_leading(layout, records);
+}
+
+/// Records with components: the azimuths each horizontal was recorded along (from its
+/// header or given) and the fault's strike, NaN where there is none; the component files are
+/// in record_source. Nothing for studies of single records (their cubes as they were).
+void add_components(const Study& study, RecordCache& records, cube::CubeLayout& layout) {
+  const bool components = std::any_of(study.records.begin(), study.records.end(),
+                                      [](const RecordSource& r) { return r.has_components() || r.strike_deg; });
+  if (!components) return;
+  const double none = std::nan("");
+  std::vector<double> az1, az2, strike;
+  for (std::size_t r = 0; r < study.records.size(); ++r) {
+    const StationRecord& station = records.station(r);
+    az1.push_back(station.az1_deg.value_or(none));
+    az2.push_back(station.az2_deg.value_or(none));
+    strike.push_back(study.records[r].strike_deg.value_or(none));
+  }
+  auto& coords = layout.coordinates;
+  coords.push_back(number_coordinate("record_azimuth_h1_deg", names::kRecord, "degree",
+                                     "azimuth of the first horizontal component, clockwise from north", az1));
+  coords.push_back(number_coordinate("record_azimuth_h2_deg", names::kRecord, "degree",
+                                     "azimuth of the second horizontal component, clockwise from north", az2));
+  coords.push_back(number_coordinate("record_strike_deg", names::kRecord, "degree", "strike of the fault, clockwise from north", strike));
+}
+
+/// The incidence axis: its values as the study gives them, and where they count from
+/// another direction than north, each record's frame azimuth.
+void add_incidence(const Study& study, const CaseSpace& space, cube::CubeLayout& layout) {
+  if (space.incidences().empty()) return;
+  const bool north = study.incidence_reference == "north";
+  layout.coordinates.push_back(number_coordinate(
+      names::kIncidenceDeg, names::kIncidenceDeg, "degree",
+      north ? "azimuth of the frame's plane, clockwise from north"
+            : "angle of the frame's plane from the record's " + study.incidence_reference + " direction, clockwise",
+      space.incidences()));
+  if (north) return;
+  cube::SideVariable azimuth{names::kFrameAzimuthDeg, "degree", "azimuth of the frame's plane, clockwise from north",
+                             {names::kRecord, names::kIncidenceDeg}, {}};
+  for (std::size_t r = 0; r < space.record_names().size(); ++r)
+    for (double incidence : space.incidences()) azimuth.values.push_back(space.frame_azimuth_deg(r, incidence));
+  layout.side_variables.push_back(std::move(azimuth));
+}
+
+/// Pulse records ([[records]] pulse): their shape and [axes] pulse values along `record` (""
+/// and NaN for other records); each frame's frequency parameter p and uplift threshold over
+/// the frame dimensions, and ω_p/p = 2π/(T_p p) over record and frame, so that spectra of
+/// different frames share axes (a_p over the uplift threshold: the intensity over
+/// uplift_threshold_g).
+void add_pulse_coordinates(const Study& study, const CaseSpace& space, cube::CubeLayout& layout) {
+  if (study.pulse_axes.empty() && std::none_of(study.records.begin(), study.records.end(),
+                                               [](const RecordSource& r) { return !r.pulse_shape.empty(); }))
+    return;
+  std::vector<std::string> shapes;
+  for (const auto& r : study.records) shapes.push_back(r.pulse_shape);
+  layout.coordinates.push_back(text_coordinate(names::kPulseShape, names::kRecord, "pulse of the record (empty: not a pulse)", shapes));
+  std::vector<double> periods;
+  for (const auto& axis : study.pulse_axes) {
+    std::vector<double> values;
+    for (const auto& r : study.records) {
+      const auto it = std::find_if(r.pulse_values.begin(), r.pulse_values.end(), [&](const auto& kv) { return kv.first == axis.key; });
+      values.push_back(it == r.pulse_values.end() ? std::nan("") : it->second);
+    }
+    const auto units = axis.key.substr(axis.key.rfind('_') + 1);
+    layout.coordinates.push_back(number_coordinate(axis.key, names::kRecord,
+                                                   units == "s" ? "s" : units == "g" ? "g" : units == "deg" ? "degree" : "1",
+                                                   "pulse parameter " + axis.key.substr(6) + " (record/pulses.hpp)", values));
+    if (axis.key == names::kPulsePeriod) periods = values;
+  }
+  std::vector<std::string> frame_dimensions;
+  for (const auto& d : space.plan().dimensions()) frame_dimensions.push_back(d.name);
+  cube::SideVariable p{names::kFrequencyParameter, "rad/s", "frequency parameter p of the frame (docs/frequency_parameter.md)",
+                       frame_dimensions, {}};
+  cube::SideVariable threshold{names::kUpliftThreshold, "g", "ground acceleration that uplifts the frame at rest",
+                               frame_dimensions, {}};
+  for (const auto& point : space.frames()) {
+    double p_rad_s = std::nan(""), threshold_g = std::nan("");
+    try {
+      const auto scene = point.make();
+      const auto properties = frame_properties(*scene, study.physics.fracture_strain, 2);
+      p_rad_s = properties.frequency_parameter_rad_s;
+      threshold_g = properties.uplift_threshold_g;
+    } catch (const std::invalid_argument&) {  // an invalid frame: its cases say so
+    }
+    p.values.push_back(p_rad_s);
+    threshold.values.push_back(threshold_g);
+  }
+  if (!periods.empty()) {
+    std::vector<std::string> dimensions{names::kRecord};
+    dimensions.insert(dimensions.end(), frame_dimensions.begin(), frame_dimensions.end());
+    cube::SideVariable ratio{names::kOmegaOverP, "1", "pulse frequency over the frame's frequency parameter, 2 pi / (T_p p)",
+                             dimensions, {}};
+    for (double t : periods)
+      for (double frame_p : p.values) ratio.values.push_back(2.0 * std::numbers::pi / (t * frame_p));
+    layout.side_variables.push_back(std::move(ratio));
+  }
+  layout.side_variables.push_back(std::move(p));
+  layout.side_variables.push_back(std::move(threshold));
+}
+
+/// One attribute "<table>_<key>" per setting: numbers as float64, integers and flags as
+/// int64 (flags 0/1), choices as text.
+template <class Target>
+void add_settings(std::vector<Attribute>& attributes, const SettingTable<Target>& table, const Target& values) {
+  for (const auto& setting : table.settings) {
+    const std::string name = std::string(table.name) + "_" + std::string(setting.key);
+    std::visit(
+        [&](const auto& v) {
+          using V = std::decay_t<decltype(v)>;
+          if constexpr (std::is_same_v<V, bool>)
+            attributes.push_back({name, static_cast<std::int64_t>(v ? 1 : 0)});
+          else
+            attributes.push_back({name, v});
+        },
+        setting.get(values));
+  }
+}
+
+/// `mixed_scenes`: the frames are of several models (a `scene_model` coordinate says which).
+std::vector<Attribute> global_attributes(const Study& study, const std::string& fingerprint, bool mixed_scenes) {
+  std::vector<Attribute> a{
+      {"Conventions", std::string("CF-1.8")},
+      {"title", "pcrf study " + study.name},
+      {"source", std::string("pcrf ") + kVersion},
+      {names::kPcrfVersion, std::string(kVersion)},
+      {"date_created", utc_now()},
+      {names::kStudyName, study.name},
+      {"study_description", study.description},
+      {"study_file", study.file},
+      {"study_text", study.text},
+      {cube::kFingerprintName, fingerprint},
+      {names::kPlan, std::string(study.plan->name())},
+  };
+  if (study.intensity) add_settings(a, intensity_settings(), *study.intensity);
+  if (study.hazard_stripes) a.push_back({names::kIntensityHazard, study.hazard_stripes->hazard});
+  if (study.ida) add_settings(a, ida_settings(), *study.ida);
+  add_settings(a, physics_settings(), study.physics);
+  add_settings(a, solver_settings(), study.solver);
+  const auto& parameters = study.model->parameters;
+  if (study.model != &default_scene_model() && !mixed_scenes) a.push_back({names::kSceneModel, std::string(study.model->name)});
+  for (std::size_t k = 0; k < parameters.size(); ++k)  // set once for every case: h_m, m_c_kg
+    if (!parameters[k].axis) a.push_back({"frame_" + std::string(parameters[k].name), study.base[k]});
+  a.push_back({"gravity_m_s2", kGravity_m_s2});
+  for (std::size_t k = 0; k < parameters.size(); ++k)
+    if (parameters[k].axis) a.push_back({"base_" + std::string(parameters[k].name), study.base[k]});
+  return a;
+}
+
+}  // namespace
+
+cube::CubeLayout make_cube_layout(const Study& study, const CaseSpace& space, RecordCache& records,
+                                  const std::string& fingerprint) {
+  cube::CubeLayout layout;
+  for (std::size_t d = 0; d < space.shape().size(); ++d)
+    layout.dimensions.push_back({space.dimension_names()[d], space.shape()[d]});
+  add_record_and_level(study, space, records, layout);
+  add_incidence(study, space, layout);
+  add_pulse_coordinates(study, space, layout);
+  for (auto& c : space.plan().coordinates()) layout.coordinates.push_back(std::move(c));
+  layout.metrics = ResultColumns(study).variables();
+  const auto& names = space.dimension_names();
+  const auto trailing = static_cast<std::ptrdiff_t>(space.level_axis().trailing_dimensions().size());
+  space.level_axis().add_trailing(layout, {names.begin(), names.end() - trailing});
+  for (CaseStatus status : all_final_statuses())
+    layout.status_flags.push_back({static_cast<std::int8_t>(status), std::string(status_name(status))});
+  layout.attributes = global_attributes(study, fingerprint, layout.find_coordinate(names::kSceneModel) != nullptr);
+  return layout;
+}
+
+cube::HistoryTable make_history_table(const std::string& label, std::int64_t case_index, const Study& study,
+                                      const CaseSpace& space, const std::vector<HistorySample>& samples) {
+  cube::HistoryTable table;
+  table.name = label;
+  for (const auto& c : history_columns()) {
+    table.columns.push_back({std::string(c.name), std::string(c.units), std::string(c.long_name)});
+    std::vector<double> values;
+    values.reserve(samples.size());
+    for (const auto& s : samples) values.push_back(s.*c.member);
+    table.values.push_back(std::move(values));
+  }
+  const CaseSpec spec = space.case_at(case_index);
+  table.attributes = {{"case_index", static_cast<std::int64_t>(case_index)},
+                      {names::kRecord, study.records[spec.record].name},
+                      {space.dimension_names()[1], spec.level}};
+  const auto& parameters = spec.frame.model->parameters;
+  if (spec.frame.model != study.model) table.attributes.push_back({names::kSceneModel, std::string(spec.frame.model->name)});
+  for (std::size_t k = 0; k < parameters.size(); ++k)
+    if (parameters[k].axis) table.attributes.push_back({std::string(parameters[k].name), spec.frame.values[k]});
+  return table;
+}
+
+}  // namespace pcrf::study

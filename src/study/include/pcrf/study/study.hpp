@@ -1,0 +1,136 @@
+/// \file study.hpp
+/// \brief A parametric study as a study file defines it: the record and scale axes, the
+/// scene and the plan over its parameters, physics and solver settings, and what to keep.
+///
+/// A Study is plain data; study_parser.hpp makes one from TOML and checks every value that
+/// can be checked alone. studies/README.md documents every key.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstddef>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "pcrf/model/frame.hpp"
+#include "pcrf/model/parameters.hpp"
+#include "pcrf/model/scene_catalog.hpp"
+#include "pcrf/ida/ida_search.hpp"
+#include "pcrf/record/intensity.hpp"
+#include "pcrf/setting.hpp"
+#include "pcrf/solver/settings.hpp"
+#include "pcrf/study/record_source.hpp"
+
+namespace pcrf::study {
+
+class Plan;  // plan.hpp: how the frames are laid out
+
+/// A case whose time history is wanted. Each given selector must match an axis value;
+/// every axis with more than one value must be given, so that exactly one case matches.
+struct HistoryRequest {
+  std::string label;                      ///< group name under /histories
+  std::optional<std::string> record;      ///< record axis value (its name)
+  std::optional<double> scale;
+  std::optional<double> incidence_deg;    ///< incidence axis value (as the study gives it)
+  std::optional<std::string> case_label;  ///< plans with a `case` dimension
+  std::vector<std::optional<double>> parameters;  ///< plans with parameter dimensions (grid), by the scene's table
+  double dt_s = 0.0;                      ///< output interval [s]; 0: the record's dt
+  std::string declared_at;                ///< "study.toml:40", for messages
+};
+
+/// How a run behaves; not part of what the study computes (not in its fingerprint).
+/// Described in run_settings().
+struct RunOptions {
+  double flush_interval_s = 30.0;
+  double progress_interval_s = 5.0;
+  std::size_t batch_size = 0;
+  std::size_t lanes = 8;  ///< cases of one excitation integrated together (docs/batches.md)
+  bool warnings_as_errors = false;  ///< a record warning (implausible PGA, units, PGV/PGA) stops the study
+};
+
+/// The [run] table; `pcrf study` also takes each key as a flag (`--flush-interval-s`).
+const SettingTable<RunOptions>& run_settings();
+
+/// The [ida] table: an adaptive search of each record's collapse intensity, per frame.
+/// Described in ida_settings(); the search itself is ida::IdaSearch.
+struct IdaOptions {
+  double start = 0.0;
+  double step = 0.0;
+  double step_factor = ida::kDefaultStepFactor;
+  double resolution = 0.02;
+  double max_intensity = 0.0;
+  long max_runs = 16;
+  std::string collapse = "tendon_fracture,overturned";
+  double theta_limit_rad = 0.0;
+
+  ida::IdaSearchSettings search() const {
+    return {start, step, step_factor, resolution, max_intensity, static_cast<int>(max_runs)};
+  }
+};
+const SettingTable<IdaOptions>& ida_settings();
+
+struct Study {
+  std::string name;
+  std::string description;
+  std::string file;                 ///< the study file as given (messages, attributes)
+  std::filesystem::path base_dir;   ///< relative record paths resolve against this
+  std::string text;                 ///< the study file's text (stored in the cube)
+
+  /// The frames and how they are laid out ([plan], the parameter keys of [axes], [[cases]]);
+  /// parse_study always sets it.
+  std::shared_ptr<const Plan> plan;
+
+  std::vector<RecordSource> records;
+  /// [axes] pulse_period_s, pulse_amplitude_g, …: each [[records]] pulse entry becomes one
+  /// record per combination of these values (in this order, the last varying fastest).
+  struct PulseAxis {
+    std::string key;             ///< "pulse_period_s"
+    std::vector<double> values;
+    std::string declared_at;     ///< "study.toml:7"
+  };
+  std::vector<PulseAxis> pulse_axes;
+  /// The values of the second axis: scale factors of the records (`scale`), or, when
+  /// `intensity` is set, intensities in the measure's units (each record gets its own factor
+  /// intensity / IM(record)).
+  std::vector<double> levels{1.0};
+  std::optional<IntensitySpec> intensity;  ///< the [intensity] table, when given
+  /// [intensity] hazard and return_periods_yr: hazard-consistent stripes (multiple-stripe
+  /// analysis). `levels` are then the intensities whose mean annual rate of exceedance on the
+  /// site's hazard curve is 1/T for each return period T, interpolated log-log
+  /// (risk::HazardCurve::intensity_at_rate), in the order the return periods are given.
+  struct HazardStripes {
+    std::string hazard;                     ///< the hazard file as the study gives it
+    std::filesystem::path file;             ///< resolved against base_dir
+    std::vector<double> return_periods_yr;  ///< T [yr], one per level
+  };
+  std::optional<HazardStripes> hazard_stripes;
+  /// The [ida] table, when given: the intensity axis becomes a search, `levels` is unused.
+  std::optional<IdaOptions> ida;
+  /// The scene ([frame] model; the prestressed frame by default) and its base point (the
+  /// [frame] or [base] values, every other parameter at its default): every frame starts there.
+  const SceneModel* model = &default_scene_model();
+  ScenePoint base = default_scene_model().defaults();
+  /// [axes] incidence_deg: the azimuths of the frames' plane [deg], a dimension of its own
+  /// after the level axis; empty: no such axis, every frame lies along its record's first
+  /// component (and feels it bit for bit as if the others did not exist).
+  std::vector<double> incidence_deg;
+  /// What incidence_deg counts from ([axes] incidence): north (the values are azimuths),
+  /// or each record's fault-normal (strike + 90°) or fault-parallel (strike) direction.
+  std::string incidence_reference = "north";
+
+  PhysicsOptions physics;
+  SolverSettings solver = preset_settings("balanced");
+  /// "FILE:LINE" of each setting the file gives, by "table.key" (for later checks' messages).
+  std::map<std::string, std::string> setting_lines;
+  std::vector<std::string> metrics;  ///< metric names to store, in all_metrics() order
+  std::vector<HistoryRequest> histories;
+  RunOptions run;
+};
+
+}  // namespace pcrf::study
