@@ -32,14 +32,14 @@ bool ExcitationCursor::enter(double t_s) {
   if (excitation_.has_vertical() && excitation_.vertical()->dt_s() != h.dt_s()) return false;
   const std::size_t k = h.interval_of(t_s);
   const double dt = h.dt_s();
-  lo_s_ = static_cast<double>(k) * dt;
-  hi_s_ = static_cast<double>(k + 1) * dt;
-  inv_dt_per_s_ = h.inverse_dt_per_s();
+  i_.lo_s = static_cast<double>(k) * dt;
+  i_.hi_s = static_cast<double>(k + 1) * dt;
+  i_.inv_dt_per_s = h.inverse_dt_per_s();
   const auto& a = h.samples_m_s2();
-  h0_ = a[k], dh_ = a[k + 1] - a[k];
+  i_.h0 = a[k], i_.dh = a[k + 1] - a[k];
   if (const GroundMotion* v = excitation_.vertical()) {
     const auto& b = v->samples_m_s2();
-    v0_ = b[k], dv_ = b[k + 1] - b[k];
+    i_.v0 = b[k], i_.dv = b[k + 1] - b[k];
   }
   return true;
 }

@@ -50,15 +50,20 @@ bool RigidRocker::terms(double theta1, int side, EomTerms& out) const {
   return true;
 }
 
+namespace {
+
+/// rigid_rocker_acceleration's operations on one double.
+struct ScalarOps {
+  static double select(bool m, double a, double b) { return m ? a : b; }
+  static void sincos(double x, double& s, double& c) { s = std::sin(x), c = std::cos(x); }
+};
+
+}  // namespace
+
 bool RigidRocker::acceleration(double theta1, double, GroundAcceleration ground, int side,
                                double& theta1_ddot) const {
-  // (S ü_h − G (g + ü_v)) / I with S = −c R cos(α + φ) and G = ∓c R sin(α + φ) (terms()):
-  // the odd mirror flips the sign of the gravity term only, exactly.
-  const double phi = side < 0 ? theta1 : -theta1;
-  const double sin_a = std::sin(p_.slenderness_rad + phi), cos_a = std::cos(p_.slenderness_rad + phi);
-  const double sigma = side < 0 ? 1.0 : -1.0;
-  theta1_ddot = moment_over_inertia_per_m_ *
-                (sigma * sin_a * (p_.gravity_m_s2 + ground.vertical_m_s2) - cos_a * ground.horizontal_m_s2);
+  theta1_ddot = rigid_rocker_acceleration<ScalarOps>(moment_over_inertia_per_m_, p_.slenderness_rad, p_.gravity_m_s2,
+                                                     theta1, side < 0, ground.horizontal_m_s2, ground.vertical_m_s2);
   return true;
 }
 

@@ -5,6 +5,7 @@
 //                                 one item of index kWaitIndex "nothing ready: report and ask again"
 #include "pcrf/parallel/scheduler.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <list>
 #include <optional>
@@ -23,6 +24,9 @@ using detail::LocalChannel;
 constexpr int kTagRequest = 101;
 constexpr int kTagFinish = 102;
 constexpr int kTagBatch = 103;
+
+/// Cases a worker computes per evaluator call (at least 1).
+std::size_t together(const ScheduleOptions& options) { return std::max<std::size_t>(options.evaluate_together, 1); }
 
 /// Short sleep used while waiting for a message that is not there yet.
 void nap() { std::this_thread::sleep_for(std::chrono::microseconds(100)); }
@@ -130,10 +134,11 @@ class Master {
       : options_(options), work_(work), remote_(comm, options.row_width), active_workers_(ranks),
         in_flight_(static_cast<std::size_t>(ranks), 0) {}
 
-  void run(const CaseEvaluator& evaluate, const OutcomeHandler& on_outcomes,
+  void run(const CasesEvaluator& evaluate, const OutcomeHandler& on_outcomes,
            const IdleHandler& on_idle) {
     std::thread local_worker([&] {
-      detail::worker_loop(local_, evaluate, options_.row_width, local_.stop_flag(), options_.interrupt);
+      detail::worker_loop(local_, evaluate, options_.row_width, together(options_), local_.stop_flag(),
+                          options_.interrupt);
     });
     try {
       loop(on_outcomes, on_idle);
@@ -216,15 +221,37 @@ int worker_count(MPI_Comm comm) {
 }
 
 void run_master(MPI_Comm comm, WorkSource& work, const ScheduleOptions& options,
-                const CaseEvaluator& evaluate, const OutcomeHandler& on_outcomes,
+                const CasesEvaluator& evaluate, const OutcomeHandler& on_outcomes,
                 const IdleHandler& on_idle) {
   Master master(comm, work, options, worker_count(comm));
   master.run(evaluate, on_outcomes, on_idle);
 }
 
-void run_worker(MPI_Comm comm, const ScheduleOptions& options, const CaseEvaluator& evaluate) {
+void run_master(MPI_Comm comm, WorkSource& work, const ScheduleOptions& options,
+                const CaseEvaluator& evaluate, const OutcomeHandler& on_outcomes,
+                const IdleHandler& on_idle) {
+  ScheduleOptions one = options;
+  one.evaluate_together = 1;
+  run_master(comm, work, one, one_by_one(evaluate), on_outcomes, on_idle);
+}
+
+void run_worker(MPI_Comm comm, const ScheduleOptions& options, const CasesEvaluator& evaluate) {
   MpiMasterLink link(comm, options.row_width);
-  detail::worker_loop(link, evaluate, options.row_width, nullptr, options.interrupt);
+  detail::worker_loop(link, evaluate, options.row_width, together(options), nullptr, options.interrupt);
+}
+
+void run_worker(MPI_Comm comm, const ScheduleOptions& options, const CaseEvaluator& evaluate) {
+  ScheduleOptions one = options;
+  one.evaluate_together = 1;
+  run_worker(comm, one, one_by_one(evaluate));
+}
+
+CasesEvaluator one_by_one(CaseEvaluator evaluate) {
+  return [evaluate = std::move(evaluate)](std::span<const WorkItem> items) {
+    ResultBatch outcomes;
+    for (const WorkItem& item : items) outcomes.push_back(evaluate(item));
+    return outcomes;
+  };
 }
 
 }  // namespace pcrf::parallel

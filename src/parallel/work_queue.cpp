@@ -42,8 +42,18 @@ std::size_t WorkQueue::batch_size() const {
 WorkBatch WorkQueue::take(bool in_process_worker) {
   std::size_t n = batch_size();
   WorkBatch batch;
+  std::int64_t group = 0;
+  auto same_group = [&](std::int64_t index) {
+    if (!group_of_) return true;
+    if (batch.empty()) group = group_of_(index);
+    return group_of_(index) == group;
+  };
   auto move_from = [&](std::deque<std::int64_t>& source) {
     while (n > 0 && !source.empty()) {
+      if (!same_group(source.front())) {
+        n = 0;  // the batch ends with its group
+        return;
+      }
       batch.push_back({source.front(), 0.0});
       source.pop_front();
       --n;

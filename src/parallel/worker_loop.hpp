@@ -2,11 +2,14 @@
 // Used by MPI worker ranks and by the worker thread inside rank 0 alike.
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <exception>
 #include <limits>
+#include <span>
+#include <string>
 #include <vector>
 
 #include "pcrf/parallel/scheduler.hpp"
@@ -32,27 +35,39 @@ class MasterLink {
   virtual void finish(ResultBatch finished) = 0;
 };
 
-inline CaseOutcome evaluate_guarded(const CaseEvaluator& evaluate, const WorkItem& item, std::size_t row_width) {
+/// The outcomes of `items`; an exception from `evaluate` marks every one of them.
+inline ResultBatch evaluate_guarded(const CasesEvaluator& evaluate, std::span<const WorkItem> items,
+                                    std::size_t row_width) {
+  auto threw = [&](const std::string& what) {
+    ResultBatch outcomes;
+    for (const WorkItem& item : items)
+      outcomes.push_back({item.case_index, kEvaluatorThrew,
+                          std::vector<double>(row_width, std::numeric_limits<double>::quiet_NaN()), what});
+    return outcomes;
+  };
   try {
-    return evaluate(item);
+    ResultBatch outcomes = evaluate(items);
+    if (outcomes.size() != items.size()) return threw("the evaluator returned " + std::to_string(outcomes.size()) +
+                                                      " outcomes for " + std::to_string(items.size()) + " cases");
+    return outcomes;
   } catch (const std::exception& e) {
-    return {item.case_index, kEvaluatorThrew, std::vector<double>(row_width, std::numeric_limits<double>::quiet_NaN()),
-            e.what()};
+    return threw(e.what());
   } catch (...) {
-    return {item.case_index, kEvaluatorThrew, std::vector<double>(row_width, std::numeric_limits<double>::quiet_NaN()),
-            "unknown exception"};
+    return threw("unknown exception");
   }
 }
 
 /// Request, compute, report — with one request always in flight so that the next batch
 /// is on its way while the current one is computed. When the master has nothing ready it
 /// answers "wait": the worker then reports what it computed (an adaptive plan may need it to
-/// make new work) and asks again. `stop` (optional) abandons the work between two cases
-/// without reporting (the master is failing). `interrupt` (optional) ends the loop between
-/// two cases too, but reports the cases done: a run stopped by a signal keeps them even when
-/// the rest of the batch would outlast the time the launcher gives before SIGKILL.
-inline void worker_loop(MasterLink& link, const CaseEvaluator& evaluate, std::size_t row_width,
-                        const std::atomic<bool>* stop = nullptr, const std::atomic<int>* interrupt = nullptr) {
+/// make new work) and asks again. A batch is computed `together` cases per call of
+/// `evaluate`. `stop` (optional) abandons the work between two calls without reporting (the
+/// master is failing). `interrupt` (optional) ends the loop between two calls too, but
+/// reports the cases done: a run stopped by a signal keeps them even when the rest of the
+/// batch would outlast the time the launcher gives before SIGKILL.
+inline void worker_loop(MasterLink& link, const CasesEvaluator& evaluate, std::size_t row_width,
+                        std::size_t together, const std::atomic<bool>* stop = nullptr,
+                        const std::atomic<int>* interrupt = nullptr) {
   auto stopping = [stop] { return stop != nullptr && stop->load(); };
   auto interrupted = [interrupt] { return interrupt != nullptr && interrupt->load() != 0; };
   link.request({});
@@ -62,14 +77,16 @@ inline void worker_loop(MasterLink& link, const CaseEvaluator& evaluate, std::si
     link.request(std::move(finished));  // prefetch the next batch (or, after "wait", report)
     finished.clear();
     if (!is_wait(batch)) {
-      for (const WorkItem& item : batch) {
+      const std::span<const WorkItem> items(batch);
+      for (std::size_t first = 0; first < items.size(); first += together) {
         if (stopping()) return;
         if (interrupted()) {
           (void)link.receive_batch();  // the prefetched answer: its cases stay not run
           link.finish(std::move(finished));
           return;
         }
-        finished.push_back(evaluate_guarded(evaluate, item, row_width));
+        for (CaseOutcome& outcome : evaluate_guarded(evaluate, items.subspan(first, std::min(together, items.size() - first)), row_width))
+          finished.push_back(std::move(outcome));
       }
     }
     batch = link.receive_batch();

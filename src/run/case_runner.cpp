@@ -6,6 +6,10 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "pcrf/solver/batch_solver.hpp"
 
 namespace pcrf::study {
 namespace {
@@ -29,6 +33,18 @@ std::uint64_t scene_key(const SceneSpec& scene) {
   return key;
 }
 
+/// Runs `f`; an exception marks `outcome` failed with its text.
+template <class F>
+void guarded(parallel::CaseOutcome& outcome, const ResultColumns& columns, F&& f) noexcept {
+  try {
+    f();
+  } catch (const std::exception& e) {
+    mark_failed(outcome, columns, e.what());
+  } catch (...) {
+    mark_failed(outcome, columns, "unknown exception");
+  }
+}
+
 }  // namespace
 
 CaseRunner::CaseRunner(const Study& study, const CaseSpace& space, RecordCache& records)
@@ -39,7 +55,7 @@ CaseRunner::CaseRunner(const Study& study, const CaseSpace& space, RecordCache& 
     if (m == &metric::omega_max() || m == &metric::t_omega_max()) request_.omega_peak = true;
 }
 
-PreparedFrame& CaseRunner::prepared(const SceneSpec& scene) const {
+std::shared_ptr<PreparedFrame> CaseRunner::prepared(const SceneSpec& scene) const {
   std::lock_guard lock(last_mutex_);
   const std::uint64_t key = scene_key(scene);
   auto same = [&](const Prepared& p) { return p.key == key && same_scene(p.scene, scene); };
@@ -50,55 +66,112 @@ PreparedFrame& CaseRunner::prepared(const SceneSpec& scene) const {
   } else if (it != prepared_.begin()) {
     std::rotate(prepared_.begin(), it, it + 1);  // most recent first
   }
-  return *prepared_.front().frame;
+  return prepared_.front().frame;
 }
 
 double CaseRunner::level_of(const CaseSpec& spec, const parallel::WorkItem& item) {
   return std::isnan(spec.level) ? item.argument : spec.level;
 }
 
+parallel::CaseOutcome CaseRunner::empty_outcome(std::int64_t index) const {
+  return {index, static_cast<std::int8_t>(CaseStatus::kSolverFailure), columns_.empty_row(), {}};
+}
+
+std::optional<CaseRunner::Ready> CaseRunner::set_up(const parallel::WorkItem& item,
+                                                    parallel::CaseOutcome& outcome) const {
+  CaseSpec spec = space_.case_at(item.case_index);
+  spec.level = level_of(spec, item);
+  const double factor = records_.scale_factor(spec.record, spec.level, study_.intensity);
+  if (study_.ida) {  // the run's intensity and factor travel with it, whatever happens next
+    outcome.row[columns_.ida_intensity_column()] = spec.level;
+    outcome.row[columns_.scale_factor_column()] = factor;
+  }
+  Ready ready;
+  try {
+    ready.frame = prepared(spec.frame);
+  } catch (const std::invalid_argument& e) {  // make_frame's geometry, or outside the model's domain
+    outcome.status = static_cast<std::int8_t>(CaseStatus::kInvalidFrame);
+    outcome.note = std::string("invalid frame: ") + e.what();
+    return std::nullopt;
+  }
+  ready.motion = excitation(spec.record, spec.incidence_deg, factor);
+  return ready;
+}
+
+void CaseRunner::conclude(const CaseResult& result, parallel::CaseOutcome& outcome) const {
+  outcome.status = static_cast<std::int8_t>(result.status);
+  const auto& metrics = columns_.metrics();
+  for (std::size_t m = 0; m < metrics.size(); ++m) {
+    const double value = metrics[m]->get(result);
+    if (std::isinf(value)) {
+      mark_failed(outcome, columns_,
+                  "case " + std::to_string(outcome.case_index) + ": non-finite " + std::string(metrics[m]->name));
+      return;
+    }
+    outcome.row[m] = value;
+  }
+  outcome.note = result.message;
+}
+
 parallel::CaseOutcome CaseRunner::run(const parallel::WorkItem& item, const HistorySink& history,
                                       double history_dt_s) const noexcept {
-  const std::int64_t index = item.case_index;
-  parallel::CaseOutcome outcome{index, static_cast<std::int8_t>(CaseStatus::kSolverFailure),
-                                columns_.empty_row(), {}};
-  try {
-    CaseSpec spec = space_.case_at(index);
-    spec.level = level_of(spec, item);
-    const double factor = records_.scale_factor(spec.record, spec.level, study_.intensity);
-    if (study_.ida) {  // the run's intensity and factor travel with it, whatever happens next
-      outcome.row[columns_.ida_intensity_column()] = spec.level;
-      outcome.row[columns_.scale_factor_column()] = factor;
-    }
-    PreparedFrame* frame = nullptr;
-    try {
-      frame = &prepared(spec.frame);
-    } catch (const std::invalid_argument& e) {  // make_frame's geometry, or outside the model's domain
-      outcome.status = static_cast<std::int8_t>(CaseStatus::kInvalidFrame);
-      outcome.note = std::string("invalid frame: ") + e.what();
-      return outcome;
-    }
-    const auto motion = excitation(spec.record, spec.incidence_deg, factor);
+  parallel::CaseOutcome outcome = empty_outcome(item.case_index);
+  guarded(outcome, columns_, [&] {
+    const auto ready = set_up(item, outcome);
+    if (!ready) return;
     OutputRequest request = request_;
     request.history_dt_s = history_dt_s;
-    const CaseResult result = solve_case(*frame, motion->view(), study_.solver, request, history);
-    outcome.status = static_cast<std::int8_t>(result.status);
-    const auto& metrics = columns_.metrics();
-    for (std::size_t m = 0; m < metrics.size(); ++m) {
-      const double value = metrics[m]->get(result);
-      if (std::isinf(value)) {
-        mark_failed(outcome, columns_, "case " + std::to_string(index) + ": non-finite " + std::string(metrics[m]->name));
-        return outcome;
-      }
-      outcome.row[m] = value;
-    }
-    outcome.note = result.message;
-  } catch (const std::exception& e) {
-    mark_failed(outcome, columns_, e.what());
-  } catch (...) {
-    mark_failed(outcome, columns_, "unknown exception");
-  }
+    conclude(solve_case(*ready->frame, ready->motion->view(), study_.solver, request, history), outcome);
+  });
   return outcome;
+}
+
+parallel::ResultBatch CaseRunner::run(std::span<const parallel::WorkItem> items) const noexcept {
+  parallel::ResultBatch outcomes;
+  std::vector<std::size_t> waiting;  // set up, in order; solved below by excitation
+  std::vector<Ready> ready;
+  for (const parallel::WorkItem& item : items) {
+    outcomes.push_back(empty_outcome(item.case_index));
+    guarded(outcomes.back(), columns_, [&] {
+      if (auto r = set_up(item, outcomes.back())) {
+        waiting.push_back(outcomes.size() - 1);
+        ready.push_back(std::move(*r));
+      }
+    });
+  }
+  BatchOptions options;
+  options.lanes = static_cast<int>(study_.run.lanes);
+  std::vector<bool> done(waiting.size(), false);
+  for (std::size_t first = 0; first < waiting.size(); ++first) {
+    if (done[first]) continue;
+    // The cases of first's excitation (the same object: the excitation cache hands it out).
+    std::vector<std::size_t> group;
+    std::vector<PreparedFrame*> frames;
+    for (std::size_t k = first; k < waiting.size(); ++k) {
+      if (done[k] || ready[k].motion != ready[first].motion) continue;
+      done[k] = true;
+      group.push_back(k);
+      frames.push_back(ready[k].frame.get());
+    }
+    std::vector<CaseResult> results;
+    BatchOptions group_options = options;  // no wider than the group: no lane left idle throughout
+    group_options.lanes = std::min(options.lanes, static_cast<int>(group.size()));
+    if (group_options.lanes > 1 && batch_integrates(study_.solver)) {
+      try {
+        results = solve_batch(frames, ready[first].motion->view(), study_.solver, request_, group_options);
+      } catch (const std::exception&) {
+        results.clear();  // a case the solver refuses: each one alone, with its own message
+      }
+    }
+    for (std::size_t j = 0; j < group.size(); ++j) {
+      parallel::CaseOutcome& outcome = outcomes[waiting[group[j]]];
+      const Ready& r = ready[group[j]];
+      guarded(outcome, columns_, [&] {
+        conclude(results.empty() ? solve_case(*r.frame, r.motion->view(), study_.solver, request_) : results[j], outcome);
+      });
+    }
+  }
+  return outcomes;
 }
 
 std::shared_ptr<const ScaledExcitation> CaseRunner::excitation(std::size_t record, std::optional<double> incidence_deg,

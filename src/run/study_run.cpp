@@ -10,6 +10,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <span>
 
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/cube/cube_writer.hpp"
@@ -17,6 +18,7 @@
 #include "pcrf/io/run_lock.hpp"
 #include "pcrf/parallel/scheduler.hpp"
 #include "pcrf/parallel/work_queue.hpp"
+#include "pcrf/solver/batch_solver.hpp"
 #include "pcrf/run/case_runner.hpp"
 #include "pcrf/run/cost_estimate.hpp"
 #include "pcrf/schema/cube_vocabulary.hpp"
@@ -129,12 +131,22 @@ class HistoryInbox {
   std::vector<cube::HistoryTable> tables_;
 };
 
+/// Frames whose cases of one excitation a worker is handed together, to solve in lockstep
+/// lanes (CaseRunner::run of many cases): the hand-out order takes tiles of this many frames,
+/// every excitation of a tile in turn; the master's blocks never mix two excitations; a
+/// signal stops a worker between two such blocks.
+constexpr std::int64_t kFramesTogether = 64;
+
+/// True when the study's cases go to workers in blocks of one excitation (docs/batches.md).
+bool in_lanes(const Study& study) { return study.run.lanes > 1 && batch_integrates(study.solver) && !study.ida; }
+
 /// `stop_signal`: a signal stops the workers between two cases, reporting the ones done.
 parallel::ScheduleOptions schedule_options(const Study& study, const CaseRunner& runner, const std::atomic<int>* stop_signal) {
   parallel::ScheduleOptions options;
   options.row_width = runner.row_width();
   options.fixed_batch = study.run.batch_size;
   options.interrupt = stop_signal;
+  if (in_lanes(study)) options.evaluate_together = kFramesTogether;
   return options;
 }
 
@@ -283,7 +295,8 @@ constexpr std::int64_t kWindowCases = 65536;
 /// storage order, or a Saltelli design's base sample by base sample; never the whole list):
 /// the chunks of a window finish together and the cube writer releases them at its next
 /// checkpoint. Inside a window the cases of a frame come together (CaseSpace::frame_major),
-/// so a worker prepares each frame once per window. Cases with a history stay on rank 0.
+/// so a worker prepares each frame once per window; in lanes, those of a tile of frames, an
+/// excitation at a time, in blocks of one excitation. Cases with a history stay on rank 0.
 parallel::WorkQueue pending_cases(const cube::CubeWriter& writer, const std::map<std::int64_t, const HistoryRequest*>& histories,
                                   const Study& study, const CaseSpace& space, const parallel::MpiSession& mpi,
                                   const StudyRunOptions& options) {
@@ -299,7 +312,8 @@ parallel::WorkQueue pending_cases(const cube::CubeWriter& writer, const std::map
     else ++shared_total;
   }
   // Positions in the hand-out order (storage order, or a Saltelli design's frame by frame).
-  auto next_window = [pending, &histories, &space, cursor = first, last = last]() mutable {
+  const bool lanes = in_lanes(study);
+  auto next_window = [pending, &histories, &space, lanes, cursor = first, last = last]() mutable {
     std::vector<std::int64_t> window;
     while (window.empty() && cursor < last) {
       const std::int64_t end = std::min(last, cursor + kWindowCases);
@@ -307,10 +321,12 @@ parallel::WorkQueue pending_cases(const cube::CubeWriter& writer, const std::map
         if (const std::int64_t i = space.handout_index(k); pending(i) && !histories.count(i)) window.push_back(i);
       cursor = end;
     }
-    return space.frame_major(std::move(window));
+    return space.frame_major(std::move(window), lanes ? kFramesTogether : 1);
   };
-  return parallel::WorkQueue(std::move(next_window), shared_total, std::move(pinned),
-                             parallel::worker_count(mpi.comm()), study.run.batch_size);
+  parallel::WorkQueue queue(std::move(next_window), shared_total, std::move(pinned), parallel::worker_count(mpi.comm()),
+                            study.run.batch_size);
+  if (lanes) queue.group_by([&space](std::int64_t i) { return space.excitation_of(i); });
+  return queue;
 }
 
 /// A work source that runs dry when a stop signal arrives or the cube cannot be written: the
@@ -364,14 +380,22 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
   sink.guard_with(m.lock.get(), m.output.string());
 
   // Runs in rank 0's worker thread; the only place where histories are recorded.
-  auto evaluate = [&](const parallel::WorkItem& item) {
-    const std::int64_t index = item.case_index;
-    const auto request = history_requests.find(index);
-    if (request == history_requests.end()) return runner.run(item);
-    std::vector<HistorySample> samples;
-    auto outcome = runner.run(item, [&samples](const HistorySample& s) { samples.push_back(s); }, request->second->dt_s);
-    inbox.push(make_history_table(request->second->label, index, p.study, *p.space, samples));
-    return outcome;
+  auto evaluate = [&](std::span<const parallel::WorkItem> items) {
+    const auto history = [&](const parallel::WorkItem& item) { return history_requests.count(item.case_index) > 0; };
+    if (std::none_of(items.begin(), items.end(), history)) return runner.run(items);
+    parallel::ResultBatch outcomes;
+    for (const parallel::WorkItem& item : items) {
+      const auto request = history_requests.find(item.case_index);
+      if (request == history_requests.end()) {
+        outcomes.push_back(runner.run(item));
+        continue;
+      }
+      std::vector<HistorySample> samples;
+      outcomes.push_back(
+          runner.run(item, [&samples](const HistorySample& s) { samples.push_back(s); }, request->second->dt_s));
+      inbox.push(make_history_table(request->second->label, item.case_index, p.study, *p.space, samples));
+    }
+    return outcomes;
   };
   StopOnSignal stoppable(*work, stop_signal);
   sink.on_error([&stoppable] { stoppable.fail(); });
@@ -397,7 +421,7 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
 void run_worker_rank(const Prepared& p, const parallel::MpiSession& mpi, const std::atomic<int>* stop_signal) {
   CaseRunner runner(p.study, *p.space, *p.records);
   parallel::run_worker(mpi.comm(), schedule_options(p.study, runner, stop_signal),
-                       [&runner](const parallel::WorkItem& item) { return runner.run(item); });
+                       [&runner](std::span<const parallel::WorkItem> items) { return runner.run(items); });
 }
 
 /// Workers parse the study text rank 0 checked (same base folder for relative records).

@@ -1,4 +1,6 @@
 // Dormand–Prince 5(4) with dense output, breakpoints and events (see dormand_prince.hpp).
+// The parts of a step are `inline`: the library is built with -fPIC, where GCC inlines no
+// function that could be interposed, and a step is the hot loop of every case.
 #include "dormand_prince.hpp"
 
 #include <algorithm>
@@ -10,32 +12,7 @@
 namespace pcrf::detail {
 namespace {
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
-
-// The tableau (Dormand & Prince 1980, Table 2; Hairer, Nørsett & Wanner, Table II.5.2).
-constexpr double c2 = 1.0 / 5, c3 = 3.0 / 10, c4 = 4.0 / 5, c5 = 8.0 / 9;
-constexpr double a21 = 1.0 / 5;
-constexpr double a31 = 3.0 / 40, a32 = 9.0 / 40;
-constexpr double a41 = 44.0 / 45, a42 = -56.0 / 15, a43 = 32.0 / 9;
-constexpr double a51 = 19372.0 / 6561, a52 = -25360.0 / 2187, a53 = 64448.0 / 6561, a54 = -212.0 / 729;
-constexpr double a61 = 9017.0 / 3168, a62 = -355.0 / 33, a63 = 46732.0 / 5247, a64 = 49.0 / 176,
-                 a65 = -5103.0 / 18656;
-constexpr double a71 = 35.0 / 384, a73 = 500.0 / 1113, a74 = 125.0 / 192, a75 = -2187.0 / 6784, a76 = 11.0 / 84;
-// The 5th-order solution minus the embedded 4th-order one.
-constexpr double e1 = 71.0 / 57600, e3 = -71.0 / 16695, e4 = 71.0 / 1920, e5 = -17253.0 / 339200, e6 = 22.0 / 525,
-                 e7 = -1.0 / 40;
-// Shampine's continuous extension (Hairer, Nørsett & Wanner, DOPRI5's CONTD5).
-constexpr double d1 = -12715105075.0 / 11282082432, d3 = 87487479700.0 / 32700410799,
-                 d4 = -10690763975.0 / 1880347072, d5 = 701980252875.0 / 199316789632,
-                 d6 = -1453857185.0 / 822651844, d7 = 69997945.0 / 29380423;
-
-// Step-size control (Hairer, Nørsett & Wanner §IV.2, DOPRI5's defaults).
-constexpr double kBeta = 0.04;                // PI control
-constexpr double kExpo = 0.2 - kBeta * 0.75;  // 1/5 − 0.75 β
-constexpr double kSafety = 0.9;
-constexpr double kFacMin = 0.2, kFacMax = 10.0;  // bounds of h_new/h
-constexpr int kMaxFailures = 50;
-const double kLogErrFloor = std::log(1e-4);      // err_old ≥ 1e-4 in the PI control                 // consecutive rejected or failed attempts
+const double kLogErrFloor = std::log(1e-4);  // err_old ≥ 1e-4 in the PI control
 
 /// Time tolerance of a located root, as SUNDIALS' (100 ulp of the time and step).
 double root_tolerance(double t, double h) { return 100.0 * kEps * (std::abs(t) + std::abs(h)); }
@@ -58,6 +35,7 @@ void DormandPrinceIntegrator::restart(double t0, const double* y0, const int* ro
   y0_ = y1_ = {y0[0], y0[1]};
   t_stop_ = t_stop;
   have_step_ = false;
+  pending_ = attempt_failed_ = false;
   log_err_old_ = kLogErrFloor;
   error_.clear();
   std::fill(found_.begin(), found_.end(), 0);
@@ -123,37 +101,34 @@ double DormandPrinceIntegrator::initial_step() {
   return std::min({100.0 * h, h1, hmax});
 }
 
-bool DormandPrinceIntegrator::try_step(double h, Vec& y1, Vec& k7, double& err) {
-  const double t = t0_;
-  const Vec& y = y0_;
-  const Vec& k1 = k1_;
-  Vec s{};
-  auto f = [&](double c, Vec& k) {
-    ++counts_.rhs_evals;
-    return problem_.rhs(t + c * h, s.data(), k.data()) == 0;
+namespace {
+
+/// dopri5_attempt's operations on one double.
+struct ScalarOps {
+  using P = double;
+  using M = bool;
+  static P select(M m, P a, P b) { return m ? a : b; }
+  static M finite(P v) { return std::isfinite(v); }
+  static P abs(P v) { return std::abs(v); }
+  static P sqrt(P v) { return std::sqrt(v); }
+  static bool none(M m) { return !m; }
+};
+
+}  // namespace
+
+inline void DormandPrinceIntegrator::try_step() {
+  // Inputs in locals: the right-hand side is a virtual call, after which members would be
+  // read again.
+  const double t = attempt_.t0, h = attempt_.h;
+  const double y0[2] = {attempt_.y0[0], attempt_.y0[1]}, k1[2] = {attempt_.k1[0], attempt_.k1[1]};
+  const double atol[2] = {atol_[0], atol_[1]};
+  long evals = 0;
+  auto f = [&](double ts, const double* s, double* k, bool& alive) {  // called while alive
+    ++evals;
+    alive = problem_.rhs(ts, s, k) == 0;
   };
-  for (int i = 0; i < 2; ++i) s[i] = y[i] + h * a21 * k1[i];
-  if (!f(c2, k2_)) return false;
-  for (int i = 0; i < 2; ++i) s[i] = y[i] + h * (a31 * k1[i] + a32 * k2_[i]);
-  if (!f(c3, k3_)) return false;
-  for (int i = 0; i < 2; ++i) s[i] = y[i] + h * (a41 * k1[i] + a42 * k2_[i] + a43 * k3_[i]);
-  if (!f(c4, k4_)) return false;
-  for (int i = 0; i < 2; ++i) s[i] = y[i] + h * (a51 * k1[i] + a52 * k2_[i] + a53 * k3_[i] + a54 * k4_[i]);
-  if (!f(c5, k5_)) return false;
-  for (int i = 0; i < 2; ++i)
-    s[i] = y[i] + h * (a61 * k1[i] + a62 * k2_[i] + a63 * k3_[i] + a64 * k4_[i] + a65 * k5_[i]);
-  if (!f(1.0, k6_)) return false;
-  for (int i = 0; i < 2; ++i) y1[i] = y[i] + h * (a71 * k1[i] + a73 * k3_[i] + a74 * k4_[i] + a75 * k5_[i] + a76 * k6_[i]);
-  s = y1;
-  if (!f(1.0, k7)) return false;
-  double sum = 0.0;
-  for (int i = 0; i < 2; ++i) {
-    const double e = h * (e1 * k1[i] + e3 * k3_[i] + e4 * k4_[i] + e5 * k5_[i] + e6 * k6_[i] + e7 * k7[i]);
-    const double sk = weight(i, std::max(std::abs(y[i]), std::abs(y1[i])));
-    sum += (e / sk) * (e / sk);
-  }
-  err = std::sqrt(sum / 2.0);
-  return std::isfinite(err) && std::isfinite(y1[0]) && std::isfinite(y1[1]);
+  attempt_.ok = dopri5_attempt<ScalarOps>(t, h, y0, k1, atol, settings_.rtol, f, attempt_.out);
+  attempt_.evals = evals;
 }
 
 bool DormandPrinceIntegrator::step() {
@@ -161,66 +136,97 @@ bool DormandPrinceIntegrator::step() {
   y0_ = y1_;
   k1_ = k7_;
   if (!std::isfinite(k1_[0]) || !std::isfinite(k1_[1])) return fail(error_.empty() ? "dopri5: non-finite derivative" : error_);
-  const double limit = std::min(grid_.next_after(t0_), t_stop_);
-  double h = h_;
-  if (settings_.max_step_s > 0.0) h = std::min(h, settings_.max_step_s);
-  bool rejected = false;
-  for (int failures = 0;; ++failures) {
-    if (failures > kMaxFailures)
-      return fail("dopri5: " + std::to_string(kMaxFailures) + " failed step attempts in a row at t = " + number_text(t0_) + " s");
-    // Land on the breakpoint (or stop time) when the step would reach it or nearly so.
-    const bool clamped = t0_ + 1.01 * h >= limit;
-    const double h_try = clamped ? limit - t0_ : h;
-    if (!(h_try > 16.0 * kEps * std::abs(t0_)) || !(h_try > 0.0))
-      return fail("dopri5: step size " + number_text(h_try) + " s too small at t = " + number_text(t0_) + " s");
-    Vec y1{}, k7{};
-    double err = 0.0;
-    if (!try_step(h_try, y1, k7, err)) {  // the mechanism does not exist at a stage: shrink
-      h = 0.25 * h_try;
-      rejected = true;
-      continue;
+  limit_ = std::min(grid_.next_after(t0_), t_stop_);
+  h_trial_ = h_;
+  if (settings_.max_step_s > 0.0) h_trial_ = std::min(h_trial_, settings_.max_step_s);
+  rejected_ = false;
+  failures_ = 0;
+  return attempt_until_accepted();
+}
+
+inline bool DormandPrinceIntegrator::attempt_until_accepted() {
+  for (;;) {
+    if (!prepare_attempt()) return false;
+    if (lockstep_) {
+      pending_ = true;
+      return true;
     }
-    if (err > 1.0) {
-      h = h_try / std::min(1.0 / kFacMin, std::pow(err, kExpo) / kSafety);
-      rejected = true;
-      continue;
-    }
-    // Accepted. A step cut short by a breakpoint says little about the step the solution
-    // allows: the one the controller proposed before it is kept unless the PI control of
-    // this step proposes a longer one, which it cannot when even its largest growth
-    // (kFacMax) stays below (no pow() then: most steps of a record end at a sample).
-    const double log_err = std::log(std::max(err, 1e-300));
-    if (clamped && kFacMax * h_try <= h) {
-      h_ = h;
-    } else {
-      // err^α / err_old^β, with one exp instead of two pow().
-      double fac = std::exp(kExpo * log_err - kBeta * log_err_old_) / kSafety;
-      fac = std::clamp(fac, 1.0 / kFacMax, 1.0 / kFacMin);
-      double h_next = h_try / fac;
-      if (rejected) h_next = std::min(h_next, h_try);
-      h_ = clamped ? std::max(h_next, h) : h_next;
-    }
-    log_err_old_ = std::max(log_err, kLogErrFloor);
-    const double h1 = h_try;
-    t1_ = clamped ? limit : t0_ + h1;
-    y1_ = y1;
-    k7_ = k7;
-    // The continuous extension's coefficients.
-    for (int i = 0; i < 2; ++i) {
-      const double ydiff = y1[i] - y0_[i], bspl = h1 * k1_[i] - ydiff;
-      cont_[0][i] = y0_[i];
-      cont_[1][i] = ydiff;
-      cont_[2][i] = bspl;
-      cont_[3][i] = ydiff - h1 * k7[i] - bspl;
-      cont_[4][i] = h1 * (d1 * k1_[i] + d3 * k3_[i] + d4 * k4_[i] + d5 * k5_[i] + d6 * k6_[i] + d7 * k7[i]);
-    }
-    h_step_ = h1;
-    have_step_ = true;
-    ++counts_.steps;
-    ++counts_.root_evals;
-    problem_.roots(t1_, y1_.data(), g_end_.data());
+    try_step();
+    if (conclude_attempt()) return true;
+  }
+}
+
+inline bool DormandPrinceIntegrator::prepare_attempt() {
+  if (failures_ > kMaxFailures) return fail_attempt();
+  // Land on the breakpoint (or stop time) when the step would reach it or nearly so.
+  clamped_ = t0_ + 1.01 * h_trial_ >= limit_;
+  h_try_ = clamped_ ? limit_ - t0_ : h_trial_;
+  if (!(h_try_ > 16.0 * kEps * std::abs(t0_)) || !(h_try_ > 0.0)) return fail_attempt();
+  attempt_.t0 = t0_, attempt_.h = h_try_;
+  attempt_.y0[0] = y0_[0], attempt_.y0[1] = y0_[1];
+  attempt_.k1[0] = k1_[0], attempt_.k1[1] = k1_[1];
+  return true;
+}
+
+bool DormandPrinceIntegrator::fail_attempt() {
+  if (failures_ > kMaxFailures)
+    return fail("dopri5: " + std::to_string(kMaxFailures) + " failed step attempts in a row at t = " + number_text(t0_) + " s");
+  return fail("dopri5: step size " + number_text(h_try_) + " s too small at t = " + number_text(t0_) + " s");
+}
+
+inline bool DormandPrinceIntegrator::conclude_attempt() {
+  counts_.rhs_evals += attempt_.evals;
+  const double err = attempt_.out.err;
+  if (!attempt_.ok) {  // the mechanism does not exist at a stage: shrink
+    h_trial_ = 0.25 * h_try_;
+  } else if (err > 1.0) {
+    h_trial_ = h_try_ / std::min(1.0 / kFacMin, std::pow(err, kExpo) / kSafety);
+  } else {
+    accept();
     return true;
   }
+  rejected_ = true;
+  ++failures_;
+  return false;
+}
+
+void DormandPrinceIntegrator::take_attempt() {
+  pending_ = false;
+  if (conclude_attempt()) {
+    // The last stage was f at the step's end: a problem that remembers it need not redo it.
+    problem_.evaluated(t0_ + 1.0 * h_try_, attempt_.out.y1, attempt_.out.k7);
+    problem_.roots(t1_, y1_.data(), g_end_.data());
+    return;
+  }
+  if (!attempt_until_accepted()) attempt_failed_ = true;
+}
+
+inline void DormandPrinceIntegrator::accept() {
+  // A step cut short by a breakpoint says little about the step the solution allows: the
+  // one the controller proposed before it is kept unless the PI control of this step
+  // proposes a longer one, which it cannot when even its largest growth (kFacMax) stays
+  // below (no pow() then: most steps of a record end at a sample).
+  const double err = attempt_.out.err;
+  const double log_err = std::log(std::max(err, 1e-300));
+  if (clamped_ && kFacMax * h_try_ <= h_trial_) {
+    h_ = h_trial_;
+  } else {
+    // err^α / err_old^β, with one exp instead of two pow().
+    double fac = std::exp(kExpo * log_err - kBeta * log_err_old_) / kSafety;
+    fac = std::clamp(fac, 1.0 / kFacMax, 1.0 / kFacMin);
+    double h_next = h_try_ / fac;
+    if (rejected_) h_next = std::min(h_next, h_try_);
+    h_ = clamped_ ? std::max(h_next, h_trial_) : h_next;
+  }
+  log_err_old_ = std::max(log_err, kLogErrFloor);
+  t1_ = clamped_ ? limit_ : t0_ + h_try_;
+  y1_ = {attempt_.out.y1[0], attempt_.out.y1[1]};
+  k7_ = {attempt_.out.k7[0], attempt_.out.k7[1]};
+  h_step_ = h_try_;
+  have_step_ = true;
+  ++counts_.steps;
+  ++counts_.root_evals;
+  if (!lockstep_) problem_.roots(t1_, y1_.data(), g_end_.data());
 }
 
 void DormandPrinceIntegrator::dense(double t, Vec& y) const {
@@ -309,6 +315,7 @@ bool DormandPrinceIntegrator::find_roots(double a, const double* g_a, double b, 
   bool candidate = false;  // most steps cross nothing: leave at once
   for (int i = 0; i < nroots_; ++i) candidate = candidate || (g_a[i] != 0.0 && g_a[i] * g_b[i] <= 0.0);
   if (!candidate) return false;
+  ++tally_.root_searches;
   const double ttol = root_tolerance(b, h_step_);
   double earliest = std::numeric_limits<double>::infinity();
   std::array<double, kMaxRoots> when;  // NOLINT: filled below for every root
@@ -364,6 +371,13 @@ bool DormandPrinceIntegrator::find_roots(double a, const double* g_a, double b, 
 }
 
 OdeIntegrator::Outcome DormandPrinceIntegrator::advance(double tout, double& t, double* y, bool one_step) {
+  if (pending_) return Outcome::kPending;
+  if (attempt_failed_) {  // lockstep: the step that take_attempt() went on with failed
+    attempt_failed_ = false;
+    t = tcur_;
+    y[0] = y1_[0], y[1] = y1_[1];
+    return Outcome::kFailure;
+  }
   for (;;) {
     if (!have_step_ || tcur_ >= t1_) {
       // A root may leave the state a few ulp short of the stop time: no step that short
@@ -379,6 +393,7 @@ OdeIntegrator::Outcome DormandPrinceIntegrator::advance(double tout, double& t, 
       } else {
         step();
       }
+      if (pending_) return Outcome::kPending;
       if (!error_.empty()) {
         t = tcur_;
         y[0] = y1_[0], y[1] = y1_[1];
@@ -391,6 +406,7 @@ OdeIntegrator::Outcome DormandPrinceIntegrator::advance(double tout, double& t, 
       dense(root_time_, yr);
       tcur_ = root_time_;
       g_cur_ = g_root_;
+      ++tally_.roots;
       t = tcur_;
       y[0] = yr[0], y[1] = yr[1];
       return Outcome::kRoot;

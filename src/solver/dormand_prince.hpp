@@ -28,15 +28,31 @@
 /// integrator runs sample to sample without returning to its caller and without a restart
 /// (the right-hand side is continuous at a kink: the last stage of a step is still the first
 /// of the next). No heap allocation after construction; no N_Vector.
+///
+/// In lockstep (set_lockstep, the batch of src/solver/batch/) the integrator does not compute
+/// its step attempts: advance() returns kPending with the attempt's inputs in attempt(); the
+/// caller fills its outputs (the same arithmetic, dopri5_attempt.hpp, for many cases at once)
+/// and calls take_attempt(), then advance() again. Everything else — the step-size control,
+/// the roots, the breakpoints — is this class's, in both modes.
 #pragma once
 
 #include <array>
 #include <cstddef>
 #include <string>
 
+#include "dopri5_attempt.hpp"
 #include "integrators.hpp"
 
 namespace pcrf::detail {
+
+/// One step attempt: what the integrator sets (t0, h, y0, k1) and what it takes back.
+struct Dopri5Attempt {
+  double t0 = 0.0, h = 0.0;
+  double y0[2] = {0.0, 0.0}, k1[2] = {0.0, 0.0};
+  Dopri5Stages<double> out{};
+  bool ok = false;  ///< every stage succeeded, the error and solution are finite
+  long evals = 0;   ///< right-hand-side calls made
+};
 
 class DormandPrinceIntegrator final : public OdeIntegrator {
  public:
@@ -56,13 +72,37 @@ class DormandPrinceIntegrator final : public OdeIntegrator {
   const std::string& last_error() const override { return error_; }
   bool steps_between_samples() const override { return grid_.count > 0; }
 
+  /// Lockstep: step attempts are made by the caller (see above).
+  void set_lockstep(bool on) { lockstep_ = on; }
+  /// The pending attempt: its inputs set, its outputs for the caller to fill.
+  Dopri5Attempt& attempt() { return attempt_; }
+  /// Concludes the pending attempt from its outputs (accepted, or the next attempt made).
+  void take_attempt();
+
+  /// Work of the root search, for benchmarks: steps with a sign change to locate, roots returned.
+  struct Tally {
+    long root_searches = 0;
+    long roots = 0;
+  };
+  const Tally& tally() const { return tally_; }
+
  private:
   using Vec = std::array<double, 2>;
 
-  /// One attempted step from (t0_, y0_) with h; false when the right-hand side failed.
-  bool try_step(double h, Vec& y1, Vec& k7, double& err);
-  /// Takes one accepted step (with retries); false on failure (error_ set).
+  /// The attempt in attempt_ (one case): the right-hand side from the problem.
+  void try_step();
+  /// Takes one accepted step (with retries); false on failure (error_ set). In lockstep, true
+  /// with an attempt pending.
   bool step();
+  /// Attempts from h_trial_ until one is accepted (true), pending (true) or failure (false).
+  bool attempt_until_accepted();
+  /// Sets the next attempt's inputs from h_trial_; false on failure (error_ set).
+  bool prepare_attempt();
+  /// prepare_attempt's failure: too many attempts, or a step too small.
+  [[gnu::cold, gnu::noinline]] bool fail_attempt();
+  /// The attempt's outcome: accepted (true), or rejected with h_trial_ shrunk (false).
+  bool conclude_attempt();
+  void accept();
   /// The starting step of Hairer, Nørsett & Wanner §II.4.
   double initial_step();
   /// Looks for the earliest root crossing in (a, b] of the current step, from g_a at a.
@@ -86,13 +126,14 @@ class DormandPrinceIntegrator final : public OdeIntegrator {
   double dense_component(double t, int i) const {
     const double s = (t - t0_) / h_step_, s1 = 1.0 - s;
     const auto k = static_cast<std::size_t>(i);
-    return cont_[0][k] + s * (cont_[1][k] + s1 * (cont_[2][k] + s * (cont_[3][k] + s1 * cont_[4][k])));
+    const auto& c = attempt_.out.cont;
+    return c[0][k] + s * (c[1][k] + s1 * (c[2][k] + s * (c[3][k] + s1 * c[4][k])));
   }
   double dense_slope(double t, int i) const {
     const double s = (t - t0_) / h_step_, s1 = 1.0 - s;
     const auto k = static_cast<std::size_t>(i);
-    return (cont_[1][k] + (1.0 - 2.0 * s) * cont_[2][k] + s * (2.0 - 3.0 * s) * cont_[3][k] +
-            2.0 * s * s1 * (s1 - s) * cont_[4][k]) /
+    const auto& c = attempt_.out.cont;
+    return (c[1][k] + (1.0 - 2.0 * s) * c[2][k] + s * (2.0 - 3.0 * s) * c[3][k] + 2.0 * s * s1 * (s1 - s) * c[4][k]) /
            h_step_;
   }
   /// The error weight atol_i + rtol·magnitude of component i.
@@ -110,8 +151,6 @@ class DormandPrinceIntegrator final : public OdeIntegrator {
   // The current step [t0_, t1_] and its dense output; the position tcur_ within it.
   double t0_ = 0.0, t1_ = 0.0, tcur_ = 0.0;
   Vec y0_{}, y1_{}, k1_{}, k7_{};
-  Vec k2_{}, k3_{}, k4_{}, k5_{}, k6_{};  ///< stages of the last attempt
-  std::array<Vec, 5> cont_{};  ///< coefficients of the continuous extension
   double h_step_ = 0.0;        ///< t1_ − t0_
   bool have_step_ = false;
   std::array<double, kMaxRoots> g_cur_{};  ///< root functions at tcur_
@@ -125,6 +164,18 @@ class DormandPrinceIntegrator final : public OdeIntegrator {
   double root_time_ = 0.0;
   SolverCounts counts_;
   std::string error_;
+
+  // The step being attempted: the breakpoint or stop time it may not cross, the step the
+  // controller wants, the one tried (shortened to land on the limit: clamped). Once
+  // accepted, its continuous extension is the dense output until the next step.
+  Dopri5Attempt attempt_;
+  double limit_ = 0.0, h_trial_ = 0.0, h_try_ = 0.0;
+  bool clamped_ = false, rejected_ = false;
+  int failures_ = 0;
+  bool lockstep_ = false;
+  bool pending_ = false;         ///< lockstep: an attempt awaits take_attempt()
+  bool attempt_failed_ = false;  ///< lockstep: the step failed for good (error_ says why)
+  Tally tally_;
 };
 
 }  // namespace pcrf::detail

@@ -61,11 +61,15 @@ class OdeProblem {
   /// an analytic Jacobian returns −1 from has_jacobian() == false (difference quotients).
   virtual bool has_jacobian() const { return false; }
   virtual int jacobian(double /*t*/, const double* /*y*/, double* /*dfdy*/) { return -1; }
+  /// f(t, y) = ydot was evaluated outside rhs() (by a batch kernel): a problem that
+  /// remembers its last evaluation may take this one.
+  virtual void evaluated(double /*t*/, const double* /*y*/, const double* /*ydot*/) {}
 };
 
 class OdeIntegrator {
  public:
-  enum class Outcome { kReachedTime, kRoot, kFailure };
+  /// kPending: only in DormandPrinceIntegrator's lockstep, a step attempt awaits the caller.
+  enum class Outcome { kReachedTime, kRoot, kFailure, kPending };
 
   virtual ~OdeIntegrator() = default;
   OdeIntegrator() = default;

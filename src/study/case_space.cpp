@@ -55,20 +55,33 @@ CaseSpec CaseSpace::case_at(std::int64_t index) const {
   return spec;
 }
 
-std::vector<std::int64_t> CaseSpace::frame_major(std::vector<std::int64_t> indices) const {
-  // Key: the frame's position among the frame axes, then the record and level axes.
-  std::int64_t frames = 1;
-  for (std::size_t d = frame_dim_; d < shape_.size(); ++d) frames *= static_cast<std::int64_t>(shape_[d]);
-  const std::int64_t per_frame = size_ / frames;
-  auto key = [&](std::int64_t index) { return (index % frames) * per_frame + index / frames; };
+std::vector<std::int64_t> CaseSpace::frame_major(std::vector<std::int64_t> indices, std::int64_t frames_together) const {
+  // Key: the frame's tile among the frame axes, then the record and level axes, then the
+  // frame within its tile (storage order: the frame axes vary fastest).
+  const std::int64_t frames = frame_count();
+  const std::int64_t per_frame = size_ / frames, tile = std::max<std::int64_t>(frames_together, 1);
+  auto key = [&](std::int64_t index) {
+    const std::int64_t frame = index % frames;
+    return ((frame / tile) * per_frame + index / frames) * tile + frame % tile;
+  };
   std::stable_sort(indices.begin(), indices.end(), [&](std::int64_t a, std::int64_t b) { return key(a) < key(b); });
   return indices;
 }
 
-std::int64_t CaseSpace::handout_index(std::int64_t position) const {
-  if (!plan_->hands_out_by_frame() || ida_runs_ > 0) return position;
+std::int64_t CaseSpace::frame_count() const {
   std::int64_t frames = 1;
   for (std::size_t d = frame_dim_; d < shape_.size(); ++d) frames *= static_cast<std::int64_t>(shape_[d]);
+  return frames;
+}
+
+std::int64_t CaseSpace::excitation_of(std::int64_t index) const {
+  const std::int64_t frames = frame_count();
+  return index / frames;
+}
+
+std::int64_t CaseSpace::handout_index(std::int64_t position) const {
+  if (!plan_->hands_out_by_frame() || ida_runs_ > 0) return position;
+  const std::int64_t frames = frame_count();
   const std::int64_t per_frame = size_ / frames;
   return (position % per_frame) * frames + position / per_frame;
 }

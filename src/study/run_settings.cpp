@@ -15,6 +15,9 @@ const SettingTable<RunOptions>& run_settings() {
                                "progress line period on stderr; 0: only the closing line"));
     s.back().aliases = {"--progress-interval"};
     s.push_back(integer_setting("batch_size", &R::batch_size, Bound::kNonNegative, "cases per hand-out; 0: guided"));
+    s.push_back(integer_setting("lanes", &R::lanes, Bound::kAtLeastOne,
+                                "cases under one record a worker integrates together in lockstep vector lanes "
+                                "(dopri5 without verdict check; docs/batches.md); 1: one case at a time"));
     s.push_back(flag_setting("warnings_as_errors", &R::warnings_as_errors,
                              "a record whose PGA, PGV/PGA or units look wrong stops the study (exit code 2) "
                              "instead of a warning"));

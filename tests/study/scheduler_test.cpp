@@ -7,6 +7,8 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <span>
+#include <stdexcept>
 #include <thread>
 
 #include "pcrf/parallel/mpi_session.hpp"
@@ -117,6 +119,64 @@ TEST(Scheduler, OneRankRunsEveryCaseOnceThroughTheWorkerThread) {
   EXPECT_GT(idle_calls, 0);
   ASSERT_EQ(workers.size(), 1u);
   EXPECT_NE(*workers.begin(), master_thread);
+}
+
+TEST(WorkQueue, GroupedBatchesNeverMixTwoGroupsAndStillShrinkAtTheEnd) {
+  // Groups of 100 consecutive cases (what a study's excitation is, the queue does not know).
+  std::vector<std::int64_t> shared(1000);
+  for (std::size_t i = 0; i < shared.size(); ++i) shared[i] = static_cast<std::int64_t>(i);
+  WorkQueue queue(shared, {}, 2, 0, 64);
+  queue.group_by([](std::int64_t i) { return i / 100; });
+  std::vector<std::int64_t> order;
+  std::size_t largest = 0, last = 0;
+  while (!queue.exhausted()) {
+    const std::size_t left = queue.remaining();
+    const auto batch = queue.take(false);
+    ASSERT_FALSE(batch.empty());
+    EXPECT_LE(batch.size(), std::min<std::size_t>({64, (left + 7) / 8, left}));  // never above the guided size
+    EXPECT_EQ(batch.front().case_index / 100, batch.back().case_index / 100) << "two groups in one batch";
+    largest = std::max(largest, batch.size());
+    last = batch.size();
+    for (const auto& item : batch) order.push_back(item.case_index);
+  }
+  EXPECT_EQ(largest, 64u);
+  EXPECT_EQ(last, 1u);  // the tail still one by one: dynamic balance at the end
+  ASSERT_EQ(order.size(), 1000u);
+  EXPECT_TRUE(std::is_sorted(order.begin(), order.end()));
+  EXPECT_EQ(std::adjacent_find(order.begin(), order.end()), order.end());
+}
+
+TEST(Scheduler, ACasesEvaluatorGetsAtMostItsShareOfABatchPerCall) {
+  MpiSession mpi;
+  ASSERT_EQ(mpi.size(), 1);
+  std::vector<std::int64_t> shared;
+  for (std::int64_t i = 0; i < 300; ++i) shared.push_back(i);
+  WorkQueue work(shared, {}, 1, 20);  // batches of 20
+  std::vector<std::size_t> calls;
+  auto evaluate = [&](std::span<const WorkItem> items) {
+    calls.push_back(items.size());
+    ResultBatch outcomes;
+    for (const WorkItem& item : items) {
+      if (item.case_index == 42) throw std::runtime_error("boom");  // the call's every case fails
+      outcomes.push_back({item.case_index, 1, {static_cast<double>(item.case_index)}, ""});
+    }
+    return outcomes;
+  };
+  ScheduleOptions options;
+  options.row_width = 1;
+  options.evaluate_together = 8;
+  std::map<std::int64_t, CaseOutcome> received;
+  run_master(mpi.comm(), work, options, evaluate,
+             [&](ResultBatch&& batch) {
+               for (auto& o : batch) EXPECT_TRUE(received.emplace(o.case_index, o).second) << o.case_index;
+             },
+             [] {});
+  ASSERT_EQ(received.size(), 300u);
+  EXPECT_EQ(calls.size(), 15u * 3u);  // 20 = 8 + 8 + 4
+  EXPECT_EQ(*std::max_element(calls.begin(), calls.end()), 8u);
+  for (std::int64_t i = 40; i < 48; ++i) EXPECT_EQ(received[i].status, kEvaluatorThrew) << i;  // 42's call: 40 … 47
+  EXPECT_EQ(received[48].status, 1);
+  EXPECT_EQ(received[42].note, "boom");
 }
 
 /// Chains of cases: case k of a chain exists only once case k − 1 has come back, the way

@@ -58,10 +58,18 @@ class ExcitationCursor {
   explicit ExcitationCursor(const Excitation& excitation) : excitation_(excitation) {}
 
   GroundAcceleration at(double t_s) {
-    if (!(t_s >= lo_s_ && t_s < hi_s_) && !enter(t_s)) return excitation_.at(t_s);
-    const double frac = (t_s - lo_s_) * inv_dt_per_s_;
-    return {h0_ + frac * dh_, v0_ + frac * dv_};
+    if (!(t_s >= i_.lo_s && t_s < i_.hi_s) && !enter(t_s)) return excitation_.at(t_s);
+    const double frac = (t_s - i_.lo_s) * i_.inv_dt_per_s;
+    return {i_.h0 + frac * i_.dh, i_.v0 + frac * i_.dv};
   }
+
+  /// The record interval the cursor is in: at(t) inside it is h0 + (t − lo)/dt · dh (and v).
+  struct Interval {
+    double lo_s = 0.0, hi_s = 0.0;  ///< [k·dt, (k+1)·dt); empty at first
+    double inv_dt_per_s = 0.0;
+    double h0 = 0.0, dh = 0.0, v0 = 0.0, dv = 0.0;  ///< samples k and their differences [m/s²]
+  };
+  const Interval& interval() const { return i_; }
 
  private:
   /// Remembers the interval holding t; false outside the record (before, at or after its
@@ -69,9 +77,7 @@ class ExcitationCursor {
   bool enter(double t_s);
 
   Excitation excitation_;
-  double lo_s_ = 0.0, hi_s_ = 0.0;  ///< the interval [k·dt, (k+1)·dt); empty at first
-  double inv_dt_per_s_ = 0.0;
-  double h0_ = 0.0, dh_ = 0.0, v0_ = 0.0, dv_ = 0.0;  ///< samples k and their differences [m/s²]
+  Interval i_;
 };
 
 /// The one owner of a scaled excitation: copies of the components, every one multiplied

@@ -40,6 +40,24 @@ struct RockerParameters {
   double gravity_m_s2 = kGravity_m_s2; ///< the gravity it stands in [m/s²]
 };
 
+/// θ̈₁ of a rigid rocker, eq. (31) with I, J = K = 0 and the G, S above:
+///
+///     θ̈₁ = ((1 + 2γ) R / I) (σ sin(α + φ) (g + ü_v) − cos(α + φ) ü_h),
+///
+/// φ = θ₁ and σ = 1 on side −1 (`left`), φ = −θ₁ and σ = −1 on side +1: the odd mirror flips
+/// the sign of the gravity term only, exactly. Written once over a number type T — double
+/// (RigidRocker::acceleration) or a SIMD pack of cases (the batch kernels) — whose `Ops`
+/// give select(mask, a, b) and sincos(x, sin, cos).
+template <class Ops, class T, class Mask>
+T rigid_rocker_acceleration(const T& moment_over_inertia_per_m, const T& slenderness_rad, const T& gravity_m_s2,
+                            const T& theta1, const Mask& left, const T& ground_h_m_s2, const T& ground_v_m_s2) {
+  const T phi = Ops::select(left, theta1, -theta1);
+  T sin_a, cos_a;
+  Ops::sincos(slenderness_rad + phi, sin_a, cos_a);
+  const T sigma = Ops::select(left, T(1.0), T(-1.0));
+  return moment_over_inertia_per_m * (sigma * sin_a * (gravity_m_s2 + ground_v_m_s2) - cos_a * ground_h_m_s2);
+}
+
 class RigidRocker final : public Scene {
  public:
   /// \throws UserError naming the parameter: α outside (0, π/2), R ≤ 0, γ < 0,
@@ -47,6 +65,8 @@ class RigidRocker final : public Scene {
   explicit RigidRocker(const RockerParameters& parameters);
 
   const RockerParameters& parameters() const { return p_; }
+  /// (1 + 2γ) R / I [1/m], the factor of rigid_rocker_acceleration.
+  double moment_over_inertia_per_m() const { return moment_over_inertia_per_m_; }
 
   bool terms(double theta1, int side, EomTerms& out) const override;
   /// Eq. (31) with I, J = K = 0, G and S of a rigid rocker: one sincos.

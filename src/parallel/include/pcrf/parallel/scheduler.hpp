@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <vector>
 
 #include "pcrf/parallel/result_batch.hpp"
@@ -27,6 +28,11 @@ namespace pcrf::parallel {
 /// Computes one case. Should not throw: if it does anyway, the scheduler reports the case
 /// with status kEvaluatorThrew, a row of NaN and the exception text as its note.
 using CaseEvaluator = std::function<CaseOutcome(const WorkItem& item)>;
+
+/// Computes several cases handed out together (at most ScheduleOptions::evaluate_together),
+/// one outcome each, in their order: what a worker computes faster together than one by one.
+/// Should not throw: if it does anyway, every case of the call is reported as above.
+using CasesEvaluator = std::function<ResultBatch(std::span<const WorkItem> items)>;
 
 /// Master thread: receives outcomes as they arrive.
 using OutcomeHandler = std::function<void(ResultBatch&&)>;
@@ -39,6 +45,9 @@ struct ScheduleOptions {
   std::size_t fixed_batch = 0;      ///< 0: guided batch sizes (see WorkQueue)
   std::size_t max_batch = 64;       ///< cap of guided batches
   double poll_interval_s = 0.002;   ///< master's sleep when nothing arrives
+  /// Cases of a batch a CasesEvaluator takes in one call (≥ 1); a stop or an interrupt is
+  /// looked at between two calls.
+  std::size_t evaluate_together = 1;
   /// Set (nonzero) when the run is being stopped (a signal): every worker then reports the
   /// cases of its batch done so far at once, leaves the rest, and stops. Null: never.
   const std::atomic<int>* interrupt = nullptr;
@@ -50,6 +59,10 @@ struct ScheduleOptions {
 /// thread. If a handler throws, the local worker is stopped and the exception propagates:
 /// the caller must then MPI_Abort (remote workers would wait forever otherwise).
 void run_master(MPI_Comm comm, WorkSource& work, const ScheduleOptions& options,
+                const CasesEvaluator& evaluate, const OutcomeHandler& on_outcomes,
+                const IdleHandler& on_idle);
+/// The same with a case-by-case evaluator.
+void run_master(MPI_Comm comm, WorkSource& work, const ScheduleOptions& options,
                 const CaseEvaluator& evaluate, const OutcomeHandler& on_outcomes,
                 const IdleHandler& on_idle);
 
@@ -57,6 +70,10 @@ void run_master(MPI_Comm comm, WorkSource& work, const ScheduleOptions& options,
 int worker_count(MPI_Comm comm);
 
 /// Ranks ≥ 1. Returns when the master says there is no more work.
+void run_worker(MPI_Comm comm, const ScheduleOptions& options, const CasesEvaluator& evaluate);
 void run_worker(MPI_Comm comm, const ScheduleOptions& options, const CaseEvaluator& evaluate);
+
+/// A CasesEvaluator that calls `evaluate` case by case.
+CasesEvaluator one_by_one(CaseEvaluator evaluate);
 
 }  // namespace pcrf::parallel

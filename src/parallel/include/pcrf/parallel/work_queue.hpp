@@ -42,12 +42,19 @@ class WorkQueue final : public WorkSource {
   /// Cases not yet handed out.
   std::size_t remaining() const;
 
+  /// The group of a case: a batch then holds consecutive cases of one group only (a worker
+  /// computes a group's cases faster together; what a group is, the caller knows). Unset:
+  /// batches take cases regardless.
+  using GroupOf = std::function<std::int64_t(std::int64_t case_index)>;
+  void group_by(GroupOf group_of) { group_of_ = std::move(group_of); }
+
  private:
   std::size_t batch_size() const;
   /// Loads windows until there are shared cases or none is left.
   void refill();
 
   NextWindow next_window_;
+  GroupOf group_of_;
   std::size_t shared_left_ = 0;  ///< in shared_ and in the windows still to come
   std::deque<std::int64_t> shared_;
   std::deque<std::int64_t> pinned_;

@@ -1,6 +1,7 @@
 /// \file case_runner.hpp
-/// \brief Runs one case of a study: builds the frame, scales the record, calls solve_case
-/// and packs the stored metrics into a result row. Knows nothing of MPI or HDF5.
+/// \brief Runs the cases of a study: builds the frame, scales the record, calls solve_case
+/// (or solve_batch for the cases of one excitation) and packs the stored metrics into a
+/// result row. Knows nothing of MPI or HDF5.
 ///
 /// An outcome's status is the CaseStatus; its row's columns are the study's ResultColumns.
 #pragma once
@@ -8,6 +9,8 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
+#include <span>
 #include <vector>
 
 #include "pcrf/metrics/case_result.hpp"
@@ -35,6 +38,10 @@ class CaseRunner {
   /// sink, rows come every `history_dt_s` seconds (0: the record's dt) plus every event.
   parallel::CaseOutcome run(const parallel::WorkItem& item, const HistorySink& history = {},
                             double history_dt_s = 0.0) const noexcept;
+  /// Runs `items` as run() does, one outcome each in their order; the cases that share an
+  /// excitation are solved together in lockstep lanes (solve_batch, Study::run.lanes wide)
+  /// where the solver settings allow it. The answers are run()'s, bit for bit.
+  parallel::ResultBatch run(std::span<const parallel::WorkItem> items) const noexcept;
 
  private:
   /// What a case's frame feels: the record's components at the case's incidence, scaled
@@ -46,6 +53,18 @@ class CaseRunner {
                                                     double scale) const;
   /// The level of a case: its axis value, or in an IDA the intensity its work item carries.
   static double level_of(const CaseSpec& spec, const parallel::WorkItem& item);
+  /// What a case needs before it is solved.
+  struct Ready {
+    std::shared_ptr<PreparedFrame> frame;
+    std::shared_ptr<const ScaledExcitation> motion;
+  };
+  /// Sets up `item`'s case (the IDA columns of `outcome` included); nullopt when the case
+  /// ends here (an invalid frame: `outcome` says so). \throws as run() catches.
+  std::optional<Ready> set_up(const parallel::WorkItem& item, parallel::CaseOutcome& outcome) const;
+  /// `outcome` from the case's result: status, metrics, note.
+  void conclude(const CaseResult& result, parallel::CaseOutcome& outcome) const;
+  /// A fresh outcome of case `index` (solver failure until concluded).
+  parallel::CaseOutcome empty_outcome(std::int64_t index) const;
 
   const Study& study_;
   const CaseSpace& space_;
@@ -64,14 +83,15 @@ class CaseRunner {
 
   /// The frame of a case, prepared once and kept for the next cases of the same frame (a
   /// grid hands out every record and level of a frame together). \throws UserError.
-  PreparedFrame& prepared(const SceneSpec& scene) const;
+  std::shared_ptr<PreparedFrame> prepared(const SceneSpec& scene) const;
   struct Prepared {
     SceneSpec scene;
     std::uint64_t key;  ///< scene_key(scene), compared first
     std::shared_ptr<PreparedFrame> frame;
   };
   mutable std::vector<Prepared> prepared_;  ///< most recent first
-  static constexpr std::size_t kPreparedFrames = 32;
+  /// At least the frames a worker is handed together in lockstep (study_run.cpp's tiles).
+  static constexpr std::size_t kPreparedFrames = 128;
 };
 
 /// The status an outcome carries (an evaluator that threw: a solver failure).

@@ -48,8 +48,13 @@ class CaseSpace {
   /// Values of the second axis (`scale` or `intensity`, see Study::levels).
   const std::vector<double>& levels() const { return levels_; }
   /// `indices` reordered so that the cases of one frame (every record and level) are
-  /// adjacent, frames in storage order: a worker then prepares each frame once.
-  std::vector<std::int64_t> frame_major(std::vector<std::int64_t> indices) const;
+  /// adjacent, frames in storage order: a worker then prepares each frame once. With
+  /// `frames_together` > 1, the same for tiles of that many frames: in a tile, the cases of
+  /// one excitation (excitation_of) are adjacent, for a worker to compute them in lockstep.
+  std::vector<std::int64_t> frame_major(std::vector<std::int64_t> indices, std::int64_t frames_together = 1) const;
+  /// The excitation of a case — its record, level and incidence — as a number: equal for two
+  /// cases exactly when their frames feel the same ground motion.
+  std::int64_t excitation_of(std::int64_t index) const;
   /// The case handed out `position`-th: `position` itself (storage order), or when the plan
   /// hands out by frame (Plan::hands_out_by_frame) frame-major over the whole cube: every
   /// record, level and incidence of frame 0, then of frame 1, … A bijection of [0, size()).
@@ -72,6 +77,8 @@ class CaseSpace {
   std::int64_t resolve(const HistoryRequest& request) const;
 
  private:
+  /// Cases a record, level and incidence have: the product of the frame axes.
+  std::int64_t frame_count() const;
   std::shared_ptr<const Plan> plan_;
   std::shared_ptr<const LevelAxis> level_axis_;
   std::vector<std::string> names_;

@@ -50,6 +50,7 @@ struct RunOptions {
   double flush_interval_s = 30.0;
   double progress_interval_s = 5.0;
   std::size_t batch_size = 0;
+  std::size_t lanes = 8;  ///< cases of one excitation integrated together (docs/batches.md)
   bool warnings_as_errors = false;  ///< a record warning (implausible PGA, units, PGV/PGA) stops the study
 };
 

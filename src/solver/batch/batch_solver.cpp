@@ -1,0 +1,251 @@
+// Lockstep batches of cases under one excitation (see pcrf/solver/batch_solver.hpp).
+//
+// Each lane holds a case: the one-case solver's state machine (case_run.hpp) over its dopri5
+// integrator in lockstep (dormand_prince.hpp), which stops at every step attempt. The driver
+// runs every lane up to its attempt, makes all the attempts with one vector kernel
+// (attempt_kernel.hpp) and hands each lane its result. Everything else a lane does is the
+// one-case solver's own code, so the answers are the same (tests/solver/batch_solver_test.cpp).
+#include "pcrf/solver/batch_solver.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "../case_run.hpp"
+#include "lane_arrays.hpp"
+#include "pcrf/model/rigid_rocker.hpp"
+
+namespace pcrf {
+namespace detail::batch {
+namespace {
+
+/// A lane: the case in it, if any.
+struct Lane {
+  std::optional<CaseRun> run;
+  std::size_t case_index = 0;
+  std::chrono::steady_clock::time_point start;
+};
+
+/// The batch: lanes, arrays, the kernel, the queue of cases.
+class Driver final : public LaneCallbacks {
+ public:
+  Driver(std::span<PreparedFrame* const> frames, const Excitation& excitation, const SolverSettings& solver,
+         const OutputRequest& request, const BatchOptions& options, std::vector<CaseResult>& results,
+         BatchStats& stats);
+  void run();
+
+  void ground(int lane, double t_s, double& horizontal_m_s2, double& vertical_m_s2) override;
+  bool acceleration(int lane, double t_s, double theta_rad, double omega_rad_s, double& acc_rad_s2) override;
+
+ private:
+  /// Gives lane l the next case that needs integration, up to its first attempt; false when
+  /// none is left.
+  bool refill(std::size_t l);
+  /// Runs lane l's case to its next attempt (true), or ends it and refills the lane.
+  bool progress(std::size_t l);
+  /// Concludes lane l's attempt from the kernel's outputs, then progress(l).
+  bool take_attempt(std::size_t l);
+  void finish(std::size_t l);
+  void set_block_parameters(std::size_t l, const Scene& scene);
+  static bool all_rigid_rockers(std::span<PreparedFrame* const> frames);
+
+  std::span<PreparedFrame* const> frames_;
+  Excitation excitation_;
+  SolverSettings solver_;
+  OutputRequest request_;
+  HistorySink no_history_;
+  std::vector<CaseResult>& results_;
+  BatchStats& stats_;
+  LaneArrays arrays_;
+  bool block_;
+  AttemptKernel kernel_;
+  std::vector<Lane> lanes_;
+  std::vector<ExcitationCursor> cursors_;  ///< each lane's; the arrays hold their intervals
+  std::size_t next_case_ = 0;
+};
+
+void Driver::ground(int lane, double t_s, double& horizontal_m_s2, double& vertical_m_s2) {
+  const auto l = static_cast<std::size_t>(lane);
+  ExcitationCursor& cursor = cursors_[l];
+  const GroundAcceleration g = cursor.at(t_s);
+  const ExcitationCursor::Interval& i = cursor.interval();
+  LaneArrays& a = arrays_;
+  a.lo[l] = i.lo_s, a.hi[l] = i.hi_s, a.inv_dt[l] = i.inv_dt_per_s;
+  a.h0[l] = i.h0, a.dh[l] = i.dh, a.v0[l] = i.v0, a.dv[l] = i.dv;
+  horizontal_m_s2 = g.horizontal_m_s2, vertical_m_s2 = g.vertical_m_s2;
+}
+
+bool Driver::acceleration(int lane, double t_s, double theta_rad, double omega_rad_s, double& acc_rad_s2) {
+  std::optional<CaseRun>& run = lanes_[static_cast<std::size_t>(lane)].run;
+  if (!run) {  // an idle lane in a kernel call: any finite number
+    acc_rad_s2 = 0.0;
+    return true;
+  }
+  const double y[2] = {theta_rad, omega_rad_s};
+  double ydot[2] = {0.0, 0.0};
+  const bool ok = run->flight().rhs(t_s, y, ydot) == 0;
+  acc_rad_s2 = ydot[1];
+  return ok;
+}
+
+bool Driver::refill(std::size_t l) {
+  Lane& lane = lanes_[l];
+  while (next_case_ < frames_.size()) {
+    const std::size_t c = next_case_++;
+    PreparedFrame& frame = *frames_[c];
+    validate(solver_, frame.physics());
+    check_initial_state(frame.scene(), frame.physics());
+    const auto start = std::chrono::steady_clock::now();
+    ++stats_.cases;
+    if (auto rest = rest_throughout(frame, excitation_, request_, no_history_)) {
+      ++stats_.rest_cases;
+      results_[c] = std::move(*rest);
+      results_[c].wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      continue;
+    }
+    lane.run.emplace(frame, excitation_, solver_, request_, no_history_, true);
+    lane.case_index = c;
+    lane.start = start;
+    set_block_parameters(l, frame.scene());
+    lane.run->begin();
+    if (lane.run->progress()) return true;
+    finish(l);
+  }
+  return false;
+}
+
+bool Driver::progress(std::size_t l) {
+  if (lanes_[l].run->progress()) return true;
+  finish(l);
+  return refill(l);
+}
+
+bool Driver::take_attempt(std::size_t l) {
+  const LaneArrays& a = arrays_;
+  Dopri5Attempt& attempt = lanes_[l].run->lockstep()->attempt();
+  attempt.out.y1[0] = a.theta1[l], attempt.out.y1[1] = a.omega1[l];
+  attempt.out.k7[0] = a.k7_theta[l], attempt.out.k7[1] = a.k7_omega[l];
+  attempt.out.err = a.err[l];
+  for (std::size_t j = 0; j < 5; ++j)
+    for (std::size_t i = 0; i < 2; ++i) attempt.out.cont[j][i] = a.cont[j][i][l];
+  attempt.ok = a.ok[l] != 0.0;
+  attempt.evals = static_cast<long>(a.evals[l]);
+  ++(attempt.ok && attempt.out.err <= 1.0 ? stats_.accepted : stats_.rejected);
+  lanes_[l].run->lockstep()->take_attempt();
+  return progress(l);
+}
+
+/// Puts lane l's pending attempt into the arrays.
+void put_attempt(LaneArrays& a, std::size_t l, CaseRun& run) {
+  const Dopri5Attempt& attempt = run.lockstep()->attempt();
+  a.t0[l] = attempt.t0, a.h[l] = attempt.h;
+  a.theta0[l] = attempt.y0[0], a.omega0[l] = attempt.y0[1];
+  a.k1_theta[l] = attempt.k1[0], a.k1_omega[l] = attempt.k1[1];
+  a.side[l] = run.flight().side;
+}
+
+void Driver::finish(std::size_t l) {
+  Lane& lane = lanes_[l];
+  CaseResult& result = results_[lane.case_index];
+  result = lane.run->end();
+  result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - lane.start).count();
+  const DormandPrinceIntegrator::Tally& tally = lane.run->lockstep()->tally();
+  stats_.root_searches += tally.root_searches;
+  stats_.events += tally.roots;
+  stats_.flights += result.counts.reinits + (result.counts.rhs_evals > 0 ? 1 : 0);
+  lane.run.reset();
+}
+
+bool Driver::all_rigid_rockers(std::span<PreparedFrame* const> frames) {
+  return std::all_of(frames.begin(), frames.end(),
+                     [](PreparedFrame* f) { return dynamic_cast<const RigidRocker*>(&f->scene()) != nullptr; });
+}
+
+int capacity_for(int lanes, int register_lanes) {
+  return (lanes + register_lanes - 1) / register_lanes * register_lanes;
+}
+
+AttemptKernel kernel_of(const KernelSet& set, const std::string& trig) {
+  if (trig.empty() || trig == "libm") return set.libm_trig;
+  if (trig == "xsimd") return set.xsimd_trig;
+  if (trig == "sleef") {
+    if (set.sleef_trig == nullptr) throw std::invalid_argument("batch trig 'sleef': not built with SLEEF");
+    return set.sleef_trig;
+  }
+  throw std::invalid_argument("unknown batch trig '" + trig + "' (expected libm, sleef or xsimd)");
+}
+
+Driver::Driver(std::span<PreparedFrame* const> frames, const Excitation& excitation, const SolverSettings& solver,
+               const OutputRequest& request, const BatchOptions& options, std::vector<CaseResult>& results,
+               BatchStats& stats)
+    : frames_(frames),
+      excitation_(excitation),
+      solver_(solver),
+      request_(request),
+      results_(results),
+      stats_(stats),
+      arrays_(capacity_for(options.lanes, choose_kernels(options.lanes, options.kernels).register_lanes)),
+      block_(all_rigid_rockers(frames)) {
+  const KernelSet set = choose_kernels(options.lanes, options.kernels);
+  kernel_ = kernel_of(set, options.trig);
+  stats_.kernels = set.name;
+  stats_.trig = options.trig.empty() || set.register_lanes == 1 ? "libm" : options.trig;
+  stats_.lanes = arrays_.capacity();
+  arrays_.rtol = solver.rtol;
+  arrays_.atol_theta = solver.atol_theta_rad;
+  arrays_.atol_omega = solver.atol_omega_rad_s;
+  lanes_.resize(static_cast<std::size_t>(arrays_.capacity()));
+  cursors_.assign(static_cast<std::size_t>(arrays_.capacity()), ExcitationCursor(excitation_));
+}
+
+void Driver::set_block_parameters(std::size_t l, const Scene& scene) {
+  const auto* rocker = dynamic_cast<const RigidRocker*>(&scene);
+  if (rocker == nullptr) return;
+  arrays_.alpha[l] = rocker->parameters().slenderness_rad;
+  arrays_.moment_over_inertia[l] = rocker->moment_over_inertia_per_m();
+  arrays_.gravity[l] = rocker->parameters().gravity_m_s2;
+}
+
+void Driver::run() {
+  // Every lane up to its first attempt.
+  for (std::size_t l = 0; l < lanes_.size(); ++l)
+    if (refill(l)) put_attempt(arrays_, l, *lanes_[l].run);
+  for (;;) {
+    int pending = 0;
+    for (const Lane& lane : lanes_) pending += lane.run ? 1 : 0;
+    if (pending == 0) return;
+    kernel_(arrays_, *this, block_);
+    ++stats_.kernel_calls;
+    stats_.busy_lane_attempts += pending;
+    for (std::size_t l = 0; l < lanes_.size(); ++l)
+      if (lanes_[l].run && take_attempt(l)) put_attempt(arrays_, l, *lanes_[l].run);
+  }
+}
+
+}  // namespace
+}  // namespace detail::batch
+
+bool batch_integrates(const SolverSettings& solver) {
+  return solver.integrator == Integrator::kDormandPrince5 && !solver.verdict_check;
+}
+
+std::vector<CaseResult> solve_batch(std::span<PreparedFrame* const> frames, const Excitation& excitation,
+                                    const SolverSettings& solver, const OutputRequest& request,
+                                    const BatchOptions& options, BatchStats* stats) {
+  if (options.lanes < 1) throw std::invalid_argument("batch lanes: must be at least 1, got " + std::to_string(options.lanes));
+  std::vector<CaseResult> results(frames.size());
+  BatchStats local;
+  BatchStats& s = stats != nullptr ? *stats : local;
+  s = {};
+  if (!batch_integrates(solver)) {
+    s.scalar_cases = static_cast<long>(frames.size());
+    for (std::size_t i = 0; i < frames.size(); ++i) results[i] = solve_case(*frames[i], excitation, solver, request);
+    return results;
+  }
+  detail::batch::Driver(frames, excitation, solver, request, options, results, s).run();
+  return results;
+}
+
+}  // namespace pcrf

@@ -1,0 +1,163 @@
+/// \file case_run.hpp
+/// \brief One case under the dopri5 or SUNDIALS integrators: the flight problem and the
+/// case's state machine (see pcrf/solver/rocking_solver.hpp for the method). The
+/// one-case solver (rocking_solver.cpp) runs it start to end; the batch (batch/) runs many,
+/// each stopping at every step attempt. Private to the solver.
+#pragma once
+
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "case_common.hpp"
+#include "dormand_prince.hpp"
+#include "integrators.hpp"
+#include "pcrf/model/eom_table.hpp"
+#include "pcrf/solver/history.hpp"
+#include "pcrf/solver/rocking_solver.hpp"
+#include "prepared_frame.hpp"
+
+namespace pcrf::detail {
+
+/// Root indices.
+enum Root { kImpact = 0, kThetaPeak = 1, kOmegaPeak = 2, kLimit = 3, kRootCount = 4 };
+
+/// The ODE of one flight (between two impacts) on a fixed side.
+class FlightProblem final : public detail::OdeProblem {
+ public:
+  FlightProblem(const EomTable& table, const Excitation& excitation, double theta_stop_rad, bool omega_peak)
+      : table_(table), forcing_(excitation), theta_stop_rad_(theta_stop_rad), omega_peak_(omega_peak) {}
+
+  int side = -1;
+
+  int rhs(double t, const double* y, double* ydot) override;
+  int roots(double t, const double* y, double* g) override;
+
+  int root_count() const override { return kRootCount; }
+  int root_state_index(int i) const override { return i == kImpact ? 0 : i == kThetaPeak ? 1 : -1; }
+
+  bool has_jacobian() const override { return true; }
+  int jacobian(double t, const double* y, double* dfdy) override;
+  void evaluated(double t, const double* y, const double* ydot) override;
+
+  /// Root directions for the current side: the impact only while closing, θ peaks only
+  /// where |θ| is maximal, the limit only while opening.
+  std::array<int, kRootCount> directions() const {
+    return {-side, -side, 0, 1};
+  }
+
+ private:
+  /// θ̈₁ at (t, y). With the θ̈₁ root, remembering the last evaluation: the root functions
+  /// are evaluated at step ends, where the right-hand side has just been evaluated (FSAL
+  /// methods, CVODE's corrector), so that root costs almost nothing.
+  bool acceleration(double t, const double* y, double& acc);
+
+  const EomTable& table_;  // the prepared frame's: built once for every case of the frame
+  ExcitationCursor forcing_;  // linear between samples: most stages fall in the last interval
+  double theta_stop_rad_;
+  bool omega_peak_;
+  double last_t_ = std::numeric_limits<double>::quiet_NaN();
+  double last_y_[2] = {0.0, 0.0};
+  int last_side_ = 0;
+  double last_acc_ = 0.0;
+};
+
+/// The state machine of one case: rest → uplift → flights and impacts → rest or failure.
+class CaseRun {
+ public:
+  /// `lockstep`: the dopri5 integrator in lockstep (dormand_prince.hpp), for a batch; then
+  /// progress() may stop with an attempt pending.
+  CaseRun(PreparedFrame& frame, const Excitation& excitation, const SolverSettings& solver, const OutputRequest& request,
+          const HistorySink& history, bool lockstep = false)
+      : scene_(frame.scene()),
+        excitation_(excitation),
+        physics_(frame.physics()),
+        solver_(solver),
+        request_(request),
+        history_(history, frame.scene(), excitation),
+        history_dt_s_(request.history_dt_s > 0.0 ? request.history_dt_s : excitation.dt_s()),
+        restitution_(frame.restitution()),
+        stop_(frame.stop_angles()),
+        problem_(frame.table(), excitation_, stop_.stop_rad(), request.omega_peak),
+        samples_{excitation.dt_s(), excitation.horizontal().size()},
+        integrator_(make_integrator(solver, problem_, samples_, lockstep)),
+        end_(excitation, frame.scene().gravity_m_s2(), physics_),
+        t_end_(end_.t_end_s) {
+    if (lockstep) lockstep_ = static_cast<DormandPrinceIntegrator*>(integrator_.get());
+  }
+
+  /// The whole case: begin(), progress(), end().
+  CaseResult run();
+
+  /// Starts the case (a displaced start, a frame broken at rest).
+  void begin();
+  /// Runs the case until it ends (false) or, in lockstep, a step attempt is pending (true:
+  /// lockstep()'s attempt() to fill, take_attempt(), then progress() again).
+  bool progress();
+  /// The result of an ended case.
+  CaseResult end();
+  /// The lockstep integrator (null when not in lockstep).
+  DormandPrinceIntegrator* lockstep() const { return lockstep_; }
+  FlightProblem& flight() { return problem_; }
+
+ private:
+  static std::unique_ptr<OdeIntegrator> make_integrator(const SolverSettings& solver, FlightProblem& problem,
+                                                        SampleGrid samples, bool lockstep);
+  void rest_until_uplift();
+  void start_displaced();
+  /// One advance of the integrator and what it met; false: a lockstep attempt is pending.
+  bool fly();
+  bool handle_roots(double t, double* y);
+  void impact(double t, double* y);
+  bool returns_to_rest(double t, double omega_after) const;
+  bool holds_closed(double t) const;
+  void settle(double t);
+  void start_flight(double t, const double* y, std::uint32_t events = kEventNone);
+  void note_theta(double t, double theta);
+  void note_omega(double t, double omega);
+  void emit(double t, double theta, double omega, std::uint32_t events = kEventNone);
+  void emit_rest_until(double t);
+  /// History rows at the output times before t_until, from the last step's interpolant.
+  void emit_dense_before(double t_until);
+  double next_history_time() const { return static_cast<double>(next_history_sample_) * history_dt_s_; }
+  void finish(CaseStatus status, std::string message = {});
+  bool over_time() const;
+
+  const Scene& scene_;
+  Excitation excitation_;
+  PhysicsOptions physics_;
+  SolverSettings solver_;
+  OutputRequest request_;
+  detail::HistoryRows history_;
+  double history_dt_s_;  // output interval of the history
+  double restitution_;
+  detail::StopAngles stop_;
+  FlightProblem problem_;
+  detail::SampleGrid samples_;  // the record's samples: kinks of ü_g
+  std::unique_ptr<detail::OdeIntegrator> integrator_;
+  DormandPrinceIntegrator* lockstep_ = nullptr;
+  detail::CaseEnd end_;
+  double t_end_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+
+  // Progress.
+  bool at_rest_ = true;
+  bool done_ = false;
+  double t_ = 0.0;
+  double last_y_[2] = {0.0, 0.0};  // state at t_ while in flight
+  std::size_t next_history_sample_ = 0;
+  CaseResult result_;
+};
+
+/// A case whose frame rests through the whole record: what CaseRun would report, without
+/// its set-up (closing limit, fracture angle, coefficient table, integrator). nullopt when
+/// the case needs the full run (it lifts, starts displaced, is broken at rest or records a
+/// history).
+std::optional<CaseResult> rest_throughout(PreparedFrame& frame, const Excitation& excitation,
+                                          const OutputRequest& request, const HistorySink& history);
+
+}  // namespace pcrf::detail
