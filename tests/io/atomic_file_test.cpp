@@ -16,12 +16,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string read(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::read_file;
 
 TEST(AtomicFile, APartialTemporaryReusesAStrayOneAndReplacesTheTargetAtCommit) {
   const auto dir = test::scratch_dir("atomic_partial");
@@ -32,9 +27,9 @@ TEST(AtomicFile, APartialTemporaryReusesAStrayOneAndReplacesTheTargetAtCommit) {
   next.copy_from(cube);
   next.write("b", 1);
   next.close();
-  EXPECT_EQ(read(cube), std::string(300000, 'a'));  // not before commit()
+  EXPECT_EQ(read_file(cube), std::string(300000, 'a'));  // not before commit()
   next.commit();
-  EXPECT_EQ(read(cube), std::string(300000, 'a') + "b");
+  EXPECT_EQ(read_file(cube), std::string(300000, 'a') + "b");
   EXPECT_FALSE(fs::exists(dir / "c.h5.partial"));
 }
 
@@ -46,7 +41,7 @@ TEST(AtomicFile, AnUncommittedPartialGoesAndItsErrorsNameIt) {
     next.write("new", 3);
     EXPECT_TRUE(fs::exists(dir / "c.h5.partial"));
   }
-  EXPECT_EQ(read(cube), "old");
+  EXPECT_EQ(read_file(cube), "old");
   EXPECT_FALSE(fs::exists(dir / "c.h5.partial"));
   try {
     AtomicFile next(dir / "no" / "c.h5", true, AtomicFile::Temporary::kPartial);
@@ -67,7 +62,7 @@ TEST(AtomicFile, AUniqueTemporaryIsHiddenBesideTheTarget) {
   EXPECT_EQ(out.temporary().filename().string().rfind(".t.csv.", 0), 0u) << out.temporary();
   out.write("x", 1);
   out.commit();
-  EXPECT_EQ(read(dir / "t.csv"), "x");
+  EXPECT_EQ(read_file(dir / "t.csv"), "x");
 }
 
 }  // namespace

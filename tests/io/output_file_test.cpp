@@ -18,12 +18,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string read(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::read_file;
 
 /// Files in `dir` whose name starts with '.' (a temporary left behind).
 int hidden_files(const fs::path& dir) {
@@ -58,7 +53,7 @@ TEST(OutputFile, RefusesEveryNameOfAnInputEvenWithOverwrite) {
   fs::current_path(dir);
   EXPECT_NE(refusal(dir / "cube.h5", {"cube.h5"}, true).find("the input"), std::string::npos);
   fs::current_path(here);
-  EXPECT_EQ(read(input), "the input");
+  EXPECT_EQ(read_file(input), "the input");
   EXPECT_EQ(hidden_files(dir), 0);
 }
 
@@ -69,9 +64,9 @@ TEST(OutputFile, ReplacesAnExistingFileOnlyWithOverwrite) {
   EXPECT_EQ(refusal(dir, {}, true), dir.string() + ": is a folder; name a file");
   OutputFile out(old, {}, true);
   out.stream() << "new";
-  EXPECT_EQ(read(old), "old");  // not before commit()
+  EXPECT_EQ(read_file(old), "old");  // not before commit()
   out.commit();
-  EXPECT_EQ(read(old), "new");
+  EXPECT_EQ(read_file(old), "new");
   EXPECT_EQ(hidden_files(dir), 0);
 }
 
@@ -83,7 +78,7 @@ TEST(OutputFile, AnUncommittedOrFailedWriteLeavesTheOldFileAndNoTemporary) {
     out.stream() << std::string(200000, 'x');  // beyond the buffer: written to the temporary
     EXPECT_EQ(hidden_files(dir), 1);
   }  // an exception on the way: no commit()
-  EXPECT_EQ(read(old), "old");
+  EXPECT_EQ(read_file(old), "old");
   EXPECT_EQ(hidden_files(dir), 0);
 }
 
@@ -93,7 +88,7 @@ TEST(OutputFile, AFileThatAppearsMeanwhileIsNotReplacedWithoutOverwrite) {
   out.stream() << "mine";
   test::write_file(dir, "t.csv", "theirs");
   EXPECT_THROW(out.commit(), OutputError);
-  EXPECT_EQ(read(dir / "t.csv"), "theirs");
+  EXPECT_EQ(read_file(dir / "t.csv"), "theirs");
 }
 
 TEST(OutputFile, FilesGetTheUsersUmask) {
@@ -146,7 +141,7 @@ TEST(OutputFile, AFullFileSystemIsAnErrorNamingTheFileAndKeepsTheOldOne) {
   } catch (const OutputError& e) {
     EXPECT_EQ(std::string(e.what()), (small / "t.csv").string() + ": cannot write: No space left on device");
   }
-  EXPECT_EQ(read(small / "t.csv"), "old");
+  EXPECT_EQ(read_file(small / "t.csv"), "old");
   EXPECT_EQ(hidden_files(small), 0);
 }
 

@@ -36,14 +36,7 @@ const std::string kRecords = "[[records]]\nsynthetic = \"sine:amplitude_g=1.5\"\
 
 Study parse(const std::string& text) { return parse_study(text, "t.toml", folder()); }
 
-std::string error_of(const std::string& text) {
-  try {
-    parse(text);
-  } catch (const UserError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string error_of(const std::string& text) { return study_test::error_of(parse, text); }
 
 TEST(HazardStripes, StripesAreTheCurvesIntensitiesAtTheReturnPeriods) {
   const Study s = parse(kRecords + "[intensity]\nmeasure = \"pga_g\"\nhazard = \"site/pga.csv\"\n"

@@ -27,14 +27,7 @@ cube::Coordinate coordinate(const Study& s, const std::string& name) {
 }
 
 /// The message of the UserError a text raises ("" if none).
-std::string error_of(const std::string& text) {
-  try {
-    parse(text);
-  } catch (const UserError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string error_of(const std::string& text) { return study_test::error_of(parse, text); }
 
 TEST(StudyParser, DefaultsAreTheBasicModelAndEveryMetric) {
   const Study s = parse(kRecords);

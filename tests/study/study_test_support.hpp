@@ -25,6 +25,7 @@
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/record/synthetic.hpp"
 #include "support/test_support.hpp"
+#include "pcrf/user_error.hpp"
 
 extern char** environ;
 
@@ -133,6 +134,17 @@ inline void expect_same_cube(const std::filesystem::path& a_file, const std::fil
     EXPECT_EQ(differences, 0u) << m.name;
   }
   EXPECT_EQ(a.read_notes().size(), b.read_notes().size());
+}
+
+/// The message of the UserError that `parse(text)` raises ("" if none).
+template <class Parse>
+std::string error_of(Parse parse, const std::string& text) {
+  try {
+    parse(text);
+  } catch (const UserError& e) {
+    return e.what();
+  }
+  return "";
 }
 
 }  // namespace pcrf::study_test

@@ -30,6 +30,13 @@ std::filesystem::path scratch_dir(const std::string& name) {
   return dir;
 }
 
+std::string read_file(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
 std::filesystem::path write_file(const std::filesystem::path& dir, const std::string& name,
                                  const std::string& bytes) {
   const auto path = dir / name;

@@ -22,6 +22,8 @@ std::filesystem::path source_dir();
 std::filesystem::path scratch_dir(const std::string& name);
 
 /// Writes `bytes` to dir/name exactly as given (binary: "\r\n" stays "\r\n").
+/// The whole content of a file ("" when it cannot be read).
+std::string read_file(const std::filesystem::path& path);
 std::filesystem::path write_file(const std::filesystem::path& dir, const std::string& name,
                                  const std::string& bytes);
 
