@@ -25,7 +25,7 @@ std::vector<Candidate> candidates() {
 #ifdef PCRF_HAVE_XSIMD
   const auto cpu = xsimd::available_architectures();
   all = {
-      {avx512_kernels(), cpu.avx512f != 0},
+      {avx512_kernels(), cpu.avx512f != 0 && cpu.avx512cd != 0 && cpu.avx512dq != 0},  // its compile flags
       {avx2_kernels(), cpu.fma3_avx2 != 0},
       {sse2_kernels(), cpu.sse2 != 0},
       {neon64_kernels(), cpu.neon64 != 0},
