@@ -86,9 +86,12 @@ TEST(CrashSafety, AFullDiskEndsTheRunCleanlyAndTheCubeResumes) {
 }
 
 /// 3600 cases: several seconds, long enough to act on the cube while it runs.
+// Long enough (14 400 cases, about 5 s on one rank here) that a run is still going while a
+// test acts on it: at 3600 cases the faster engine finished in 1.3 s, and a loaded machine
+// let it end before the test's three refused runs had been made.
 const std::string kLongStudy = std::string("[[records]]\nsynthetic = [\"") + kPulse + "\", \"" + kPulse2 + "\", \"" +
-                               kNoise + "\"]\n[axes]\nscale = [0.9, 1.1, 1.3]\nkappa = {from = 1.0, to = 3.0, count = 20}\n"
-                               "tan_alpha = {from = 0.16, to = 0.24, count = 20}\n";
+                               kNoise + "\"]\n[axes]\nscale = [0.9, 1.1, 1.3]\nkappa = {from = 1.0, to = 3.0, count = 40}\n"
+                               "tan_alpha = {from = 0.16, to = 0.24, count = 40}\n";
 
 /// Starts the long study into dir/out/l.h5, waits until it has run a while, does `act`, and
 /// returns what the run said on stderr (its exit code is expected to be 2).
