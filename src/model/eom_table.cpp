@@ -122,14 +122,12 @@ bool EomTable::acceleration_jacobian(double theta1, double omega1, GroundAcceler
     d_omega = -2.0 * t.J * omega1 / t.I;
     return true;
   }
-  const double s = side < 0 ? 1.0 : -1.0;
-  const double a_h = ground.horizontal_m_s2, a_v = ground.vertical_m_s2;
   const std::array<double, 4> v = detail::power_series4(cell->abcd, x), dv = horner4_derivative(cell->abcd, x);
-  theta1_ddot = v[0] * a_h - s * (v[1] * omega1 * omega1 + (v[2] + v[3] * a_v));
+  theta1_ddot = detail::ratios_acceleration(v, omega1, ground, side);
   // d/du = (2/w) d/dx, and u = −θ₁ on side −1, +θ₁ on side +1.
   const double du_dx = 2.0 * inv_cell_ * (side < 0 ? -1.0 : 1.0);
-  d_theta = du_dx * (dv[0] * a_h - s * (dv[1] * omega1 * omega1 + (dv[2] + dv[3] * a_v)));
-  d_omega = -2.0 * s * v[1] * omega1;
+  d_theta = du_dx * detail::ratios_acceleration(dv, omega1, ground, side);
+  d_omega = (side < 0 ? -2.0 : 2.0) * v[1] * omega1;
   return true;
 }
 

@@ -103,6 +103,16 @@ std::array<double, 4> power_series4(const std::array<Row, N>& m, double x) {
   return {ab[0], ab[1], cd[0], cd[1]};
 }
 
+/// θ̈₁ = A ü_h − s (B θ̇₁² + C + D ü_v) from the ratios v = (A, B, C, D), s = +1 on side −1
+/// and −1 on side +1 (the odd mirror: J, G, K change sign, I and S do not). Linear in v, so
+/// the same combination of their x-derivatives is ∂θ̈₁/∂x. Without vertical shaking D·ü_v
+/// is a signed zero and C + D·ü_v is C bit for bit.
+inline double ratios_acceleration(const std::array<double, 4>& v, double omega1, GroundAcceleration ground,
+                                  int side) {
+  const double s = side < 0 ? 1.0 : -1.0;
+  return v[0] * ground.horizontal_m_s2 - s * (v[1] * omega1 * omega1 + (v[2] + v[3] * ground.vertical_m_s2));
+}
+
 }  // namespace detail
 
 inline const EomTable::Cell* EomTable::locate(double theta1, int side, double& x) const {
@@ -127,11 +137,7 @@ inline bool EomTable::acceleration(double theta1, double omega1, GroundAccelerat
   double x = 0;
   const Cell* cell = locate(theta1, side, x);
   if (cell == nullptr) return eom_.acceleration(theta1, omega1, ground, side, theta1_ddot);
-  const std::array<double, 4> v = detail::power_series4(cell->abcd, x);
-  // Side +1 is the odd mirror: J, G, K change sign, I and S do not (equation_of_motion.hpp).
-  // Without vertical shaking D·ü_v is a signed zero and C + D·ü_v is C bit for bit.
-  const double s = side < 0 ? 1.0 : -1.0;
-  theta1_ddot = v[0] * ground.horizontal_m_s2 - s * (v[1] * omega1 * omega1 + (v[2] + v[3] * ground.vertical_m_s2));
+  theta1_ddot = detail::ratios_acceleration(detail::power_series4(cell->abcd, x), omega1, ground, side);
   return true;
 }
 
