@@ -22,4 +22,11 @@ struct GroundAcceleration {
   double vertical_m_s2;
 };
 
+/// The ground over one time step, linear in τ = t − t₀ [s] (the record is linear between
+/// samples): ü_h(τ) = h0 + h1·τ, ü_v(τ) = v0 + v1·τ.
+struct GroundLine {
+  double h0_m_s2 = 0.0, h1_m_s3 = 0.0;
+  double v0_m_s2 = 0.0, v1_m_s3 = 0.0;
+};
+
 }  // namespace pcrf

@@ -1,6 +1,9 @@
 // Housner's block and the Makris–Vassiliou rocking frame (see rigid_rocker.hpp).
 #include "pcrf/model/rigid_rocker.hpp"
 
+#include <array>
+#include <utility>
+
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -65,6 +68,66 @@ bool RigidRocker::acceleration(double theta1, double, GroundAcceleration ground,
   theta1_ddot = rigid_rocker_acceleration<ScalarOps>(moment_over_inertia_per_m_, p_.slenderness_rad, p_.gravity_m_s2,
                                                      theta1, side < 0, ground.horizontal_m_s2, ground.vertical_m_s2);
   return true;
+}
+
+namespace {
+
+/// What the series of one rigid rocker needs: the factor, the slenderness, and the ground
+/// on the side's sign (σ(g + v0), σ v1, h0, h1).
+struct SeriesInput {
+  double k_inertia, alpha, sigma, g0, g1, h0, h1;
+};
+
+/// The recurrences of RigidRocker::taylor_series to order N, with N known to the compiler
+/// (its loops unrolled: an order-8 series is about a hundred products).
+template <int N>
+bool series_of_order(const SeriesInput& in, double theta1, double omega1, double* a) {
+  double s[N + 1], c[N + 1], jx[N + 1];  // S_k, C_k, j·x_j
+  a[0] = theta1;
+  a[1] = omega1;
+  s[0] = std::sin(in.alpha + in.sigma * theta1);
+  c[0] = std::cos(in.alpha + in.sigma * theta1);
+  jx[1] = in.sigma * omega1;
+  a[2] = 0.5 * in.k_inertia * (in.g0 * s[0] - in.h0 * c[0]);
+#pragma GCC unroll 32
+  for (int k = 1; k + 2 <= N; ++k) {
+    jx[k + 1] = in.sigma * (k + 1.0) * a[k + 1];
+    double sk = 0.0, ck = 0.0;
+#pragma GCC unroll 32
+    for (int j = 1; j <= k; ++j) {
+      sk += jx[j] * c[k - j];
+      ck += jx[j] * s[k - j];
+    }
+    s[k] = sk * (1.0 / k);
+    c[k] = -ck * (1.0 / k);
+    const double f = (in.g0 * s[k] + in.g1 * s[k - 1]) - (in.h0 * c[k] + in.h1 * c[k - 1]);
+    a[k + 2] = in.k_inertia * f * (1.0 / ((k + 1.0) * (k + 2.0)));
+  }
+  double sum = 0.0;  // finite when every coefficient is
+#pragma GCC unroll 32
+  for (int k = 0; k <= N; ++k) sum += a[k] - a[k];
+  return sum == 0.0;
+}
+
+using SeriesFunction = bool (*)(const SeriesInput&, double, double, double*);
+
+template <int... N>
+constexpr std::array<SeriesFunction, sizeof...(N)> series_table(std::integer_sequence<int, N...>) {
+  return {&series_of_order<N + 1>...};
+}
+/// series_of_order<n> at [n − 1], n = 1 … kTaylorOrderMax.
+constexpr auto kSeries = series_table(std::make_integer_sequence<int, RigidRocker::kTaylorOrderMax>{});
+
+}  // namespace
+
+bool RigidRocker::taylor_series(double theta1, double omega1, const GroundLine& ground, int side, int order,
+                                double* a) const {
+  if (order < 1 || order > kTaylorOrderMax) return false;
+  const double sigma = side < 0 ? 1.0 : -1.0;
+  const SeriesInput in{moment_over_inertia_per_m_, p_.slenderness_rad, sigma,
+                       sigma * (p_.gravity_m_s2 + ground.v0_m_s2), sigma * ground.v1_m_s3,
+                       ground.h0_m_s2, ground.h1_m_s3};
+  return kSeries[static_cast<std::size_t>(order - 1)](in, theta1, omega1, a);
 }
 
 double RigidRocker::overturn_angle_rad() const { return 0.5 * std::numbers::pi; }

@@ -29,8 +29,14 @@ enum Root { kImpact = 0, kThetaPeak = 1, kOmegaPeak = 2, kLimit = 3, kRootCount 
 /// The ODE of one flight (between two impacts) on a fixed side.
 class FlightProblem final : public detail::OdeProblem {
  public:
-  FlightProblem(const EomTable& table, const Excitation& excitation, double theta_stop_rad, bool omega_peak)
-      : table_(table), forcing_(excitation), theta_stop_rad_(theta_stop_rad), omega_peak_(omega_peak) {}
+  FlightProblem(const Scene& scene, const EomTable& table, const Excitation& excitation, double theta_stop_rad,
+                bool omega_peak)
+      : scene_(scene),
+        table_(table),
+        forcing_(excitation),
+        record_end_s_(excitation.horizontal().duration_s()),
+        theta_stop_rad_(theta_stop_rad),
+        omega_peak_(omega_peak) {}
 
   int side = -1;
 
@@ -43,6 +49,9 @@ class FlightProblem final : public detail::OdeProblem {
   bool has_jacobian() const override { return true; }
   int jacobian(double t, const double* y, double* dfdy) override;
   void evaluated(double t, const double* y, const double* ydot) override;
+  int taylor_order_max() const override { return scene_.taylor_order_max(); }
+  /// The scene's series under the record's line over the sample interval holding t0.
+  bool taylor(double t0, const double* y0, double h, int order, double* a) override;
 
   /// Root directions for the current side: the impact only while closing, θ peaks only
   /// where |θ| is maximal, the limit only while opening.
@@ -56,8 +65,14 @@ class FlightProblem final : public detail::OdeProblem {
   /// methods, CVODE's corrector), so that root costs almost nothing.
   bool acceleration(double t, const double* y, double& acc);
 
+  /// The ground over [t0, t0 + h]: the record's interval holding t0, else (after the
+  /// record, components on their own time axes) the chord.
+  GroundLine ground_line(double t0, double h);
+
+  const Scene& scene_;
   const EomTable& table_;  // the prepared frame's: built once for every case of the frame
   ExcitationCursor forcing_;  // linear between samples: most stages fall in the last interval
+  double record_end_s_;
   double theta_stop_rad_;
   bool omega_peak_;
   double last_t_ = std::numeric_limits<double>::quiet_NaN();
@@ -82,7 +97,7 @@ class CaseRun {
         history_dt_s_(request.history_dt_s > 0.0 ? request.history_dt_s : excitation.dt_s()),
         restitution_(frame.restitution()),
         stop_(frame.stop_angles()),
-        problem_(frame.table(), excitation_, stop_.stop_rad(), request.omega_peak),
+        problem_(frame.scene(), frame.table(), excitation_, stop_.stop_rad(), request.omega_peak),
         samples_{excitation.dt_s(), excitation.horizontal().size()},
         integrator_(make_integrator(solver, problem_, samples_, lockstep)),
         end_(excitation, frame.scene().gravity_m_s2(), physics_),

@@ -27,6 +27,18 @@ DormandPrinceIntegrator::DormandPrinceIntegrator(const SolverSettings& settings,
       nroots_(problem.root_count()),
       atol_{settings.atol_theta_rad, settings.atol_omega_rad_s} {
   if (nroots_ < 0 || nroots_ > kMaxRoots) throw IntegratorError("dopri5: too many root functions");
+  if (settings.integrator == Integrator::kTaylor && problem.taylor_order_max() > 0)
+    taylor_order_ = taylor_order_for(settings.rtol, std::min(problem.taylor_order_max(), static_cast<int>(taylor_.size()) - 1));
+}
+
+int DormandPrinceIntegrator::taylor_order_for(double rtol, int order_max) {
+  const double n = std::ceil(-0.5 * std::log10(std::max(rtol, kEps))) + 4.0;
+  return static_cast<int>(std::clamp(n, 3.0, static_cast<double>(order_max)));
+}
+
+void DormandPrinceIntegrator::set_lockstep(bool on) {
+  if (on && taylor_order_ > 0) throw IntegratorError("dopri5: Taylor steps do not run in lockstep");
+  lockstep_ = on;
 }
 
 void DormandPrinceIntegrator::restart(double t0, const double* y0, const int* root_dirs, double t_stop, double h0) {
@@ -50,7 +62,7 @@ void DormandPrinceIntegrator::restart(double t0, const double* y0, const int* ro
   // start than a fresh estimate (which costs a right-hand side).
   if (h0 > 0.0) {
     h_ = h0;
-  } else if (!(counts_.steps > 0 && h_ > 0.0)) {
+  } else if (taylor_order_ == 0 && !(counts_.steps > 0 && h_ > 0.0)) {
     h_ = initial_step();
   }
   // Root functions at the start. One that is zero there is judged a little later, on the
@@ -132,6 +144,7 @@ inline void DormandPrinceIntegrator::try_step() {
 }
 
 bool DormandPrinceIntegrator::step() {
+  if (taylor_order_ > 0) return taylor_step();
   t0_ = tcur_;
   y0_ = y1_;
   k1_ = k7_;
@@ -142,6 +155,60 @@ bool DormandPrinceIntegrator::step() {
   rejected_ = false;
   failures_ = 0;
   return attempt_until_accepted();
+}
+
+double DormandPrinceIntegrator::taylor_error(double h, double& h_fit) const {
+  // The last two terms of θ (a_{n−1} h^{n−1}, a_n h^n) and of θ̇ ((n−1) a_{n−1} h^{n−2},
+  // n a_n h^{n−1}), each against half its component's weight.
+  const int n = taylor_order_;
+  const double an1 = std::abs(taylor_[static_cast<std::size_t>(n - 1)]), an = std::abs(taylor_[static_cast<std::size_t>(n)]);
+  const double w0 = weight(0, std::abs(y0_[0])), w1 = weight(1, std::abs(y0_[1]));
+  const double terms[4] = {an1, an, (n - 1) * an1, n * an};
+  const double weights[4] = {w0, w0, w1, w1};
+  const int powers[4] = {n - 1, n, n - 2, n - 1};
+  double h_n2 = 1.0;  // h^(n−2)
+  for (int p = 0; p < n - 2; ++p) h_n2 *= h;
+  const double hp[4] = {h_n2 * h, h_n2 * h * h, h_n2, h_n2 * h};
+  double err = 0.0;
+  for (int i = 0; i < 4; ++i) err = std::max(err, 2.0 * terms[i] * hp[i] / weights[i]);
+  h_fit = h;
+  if (err > 1.0)
+    for (int i = 0; i < 4; ++i)
+      if (terms[i] > 0.0) h_fit = std::min(h_fit, std::pow(0.5 * weights[i] / terms[i], 1.0 / powers[i]));
+  return err;
+}
+
+bool DormandPrinceIntegrator::taylor_step() {
+  t0_ = tcur_;
+  y0_ = y1_;
+  limit_ = std::min(grid_.next_after(t0_), t_stop_);
+  double h = limit_ - t0_;
+  bool clamped = true;
+  if (settings_.max_step_s > 0.0 && h > settings_.max_step_s) h = settings_.max_step_s, clamped = false;
+  for (int attempt = 0;; ++attempt) {
+    if (attempt > kMaxFailures || !(h > 16.0 * kEps * std::abs(t0_)) || !(h > 0.0))
+      return fail("taylor: step size " + number_text(h) + " s too small at t = " + number_text(t0_) + " s");
+    ++counts_.rhs_evals;
+    if (!problem_.taylor(t0_, y0_.data(), h, taylor_order_, taylor_.data()))
+      return fail("taylor: the series is not finite at t = " + number_text(t0_) + " s");
+    double h_fit = h;
+    if (taylor_error(h, h_fit) <= 1.0) break;
+    // The series does not depend on h within a record interval: h_fit is within the
+    // tolerance at once (the chord of a forcing outside the record may need another try).
+    h = std::min(h_fit, 0.9 * h);
+    clamped = false;
+  }
+  h_step_ = h;
+  t1_ = clamped ? limit_ : t0_ + h;
+  double f1[2];
+  series(h, y1_[0], y1_[1], f1[1]);
+  f1[0] = y1_[1];
+  problem_.evaluated(t1_, y1_.data(), f1);  // the series' θ̈ there: a root function may take it
+  have_step_ = true;
+  ++counts_.steps;
+  ++counts_.root_evals;
+  problem_.roots(t1_, y1_.data(), g_end_.data());
+  return true;
 }
 
 inline bool DormandPrinceIntegrator::attempt_until_accepted() {
@@ -234,6 +301,11 @@ void DormandPrinceIntegrator::dense(double t, Vec& y) const {
     y = y1_;
     return;
   }
+  if (taylor_order_ > 0) {
+    double acc;
+    series(t - t0_, y[0], y[1], acc);
+    return;
+  }
   for (int i = 0; i < 2; ++i) y[i] = dense_component(t, i);
 }
 
@@ -245,7 +317,8 @@ void DormandPrinceIntegrator::locate_on_interpolant(int component, double& lo, d
   double t = hi - ghi * (hi - lo) / (ghi - glo);
   for (int it = 0; it < 100 && hi - lo > ttol && ghi != 0.0; ++it) {
     t = std::clamp(t, lo + 0.25 * ttol, hi - 0.25 * ttol);
-    const double v = dense_component(t, component), slope = dense_slope(t, component);
+    double v, slope;
+    dense_value_slope(t, component, v, slope);
     if (v == 0.0) {
       hi = t, ghi = 0.0;
       break;

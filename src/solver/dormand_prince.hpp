@@ -29,6 +29,22 @@
 /// (the right-hand side is continuous at a kink: the last stage of a step is still the first
 /// of the next). No heap allocation after construction; no N_Vector.
 ///
+/// Taylor steps (integrator `taylor`, for a problem that has a Taylor series: the rigid
+/// rockers). Where the problem can expand its solution as a series (OdeProblem::taylor), a
+/// step is that series to a fixed order n instead of the Runge–Kutta stages: one expansion
+/// per step (one sincos for a rigid rocker), no rejected attempts and no step-size history.
+/// The step goes to the next breakpoint when the series' last two terms there, in the same
+/// weighted norm, are within the tolerance; otherwise to where they would be, the estimate
+/// of A. Jorba & M. Zou, "A software package for the numerical integration of ODEs by means
+/// of high-order Taylor methods", Exp. Math. 14 (2005) 99–117, §3.2 (without their e⁻²
+/// safety: the terms, not the radius, are bounded). The order grows slowly with the
+/// tolerance, n = ⌈−log₁₀(rtol)/2⌉ + 4 (6 at rtol 1e-4, 8 at 1e-7): most steps end at a
+/// record sample, where a lower order than Jorba & Zou's ⌈−ln(rtol)/2⌉ + 1 (which minimises
+/// the work per unit time of free steps) already meets the tolerance, and each order costs
+/// about 2n products (measured: bench/case_cost.py, the block under four records, orders
+/// 4–10). The series is the dense output: events are located on it exactly as on the
+/// Runge–Kutta interpolant.
+///
 /// In lockstep (set_lockstep, the batch of src/solver/batch/) the integrator does not compute
 /// its step attempts: advance() returns kPending with the attempt's inputs in attempt(); the
 /// caller fills its outputs (the same arithmetic, dopri5_attempt.hpp, for many cases at once)
@@ -72,8 +88,12 @@ class DormandPrinceIntegrator final : public OdeIntegrator {
   const std::string& last_error() const override { return error_; }
   bool steps_between_samples() const override { return grid_.count > 0; }
 
-  /// Lockstep: step attempts are made by the caller (see above).
-  void set_lockstep(bool on) { lockstep_ = on; }
+  /// Lockstep: step attempts are made by the caller (see above). Not with Taylor steps.
+  void set_lockstep(bool on);
+  /// The order of the Taylor steps; 0: Runge–Kutta steps.
+  int taylor_order() const { return taylor_order_; }
+  /// The Taylor order that follows a relative tolerance (see above).
+  static int taylor_order_for(double rtol, int order_max);
   /// The pending attempt: its inputs set, its outputs for the caller to fill.
   Dopri5Attempt& attempt() { return attempt_; }
   /// Concludes the pending attempt from its outputs (accepted, or the next attempt made).
@@ -94,6 +114,11 @@ class DormandPrinceIntegrator final : public OdeIntegrator {
   /// Takes one accepted step (with retries); false on failure (error_ set). In lockstep, true
   /// with an attempt pending.
   bool step();
+  /// step() with the Taylor series.
+  bool taylor_step();
+  /// The series' truncation estimate over [0, h] in the weighted norm (≤ 1: within the
+  /// tolerance), and the step at which it would be 1 (`h_fit`).
+  double taylor_error(double h, double& h_fit) const;
   /// Attempts from h_trial_ until one is accepted (true), pending (true) or failure (false).
   bool attempt_until_accepted();
   /// Sets the next attempt's inputs from h_trial_; false on failure (error_ set).
@@ -124,17 +149,47 @@ class DormandPrinceIntegrator final : public OdeIntegrator {
   /// polynomial c₀ + s c₁ + s s₁ c₂ + s² s₁ c₃ + s² s₁² c₄, s = (t − t₀)/h, s₁ = 1 − s.
   /// Defined here: they sit in the root search's inner loop.
   double dense_component(double t, int i) const {
+    if (taylor_order_ > 0) {
+      double v[3];
+      series(t - t0_, v[0], v[1], v[2]);
+      return v[i];
+    }
     const double s = (t - t0_) / h_step_, s1 = 1.0 - s;
     const auto k = static_cast<std::size_t>(i);
     const auto& c = attempt_.out.cont;
     return c[0][k] + s * (c[1][k] + s1 * (c[2][k] + s * (c[3][k] + s1 * c[4][k])));
   }
   double dense_slope(double t, int i) const {
+    if (taylor_order_ > 0) {
+      double v[3];
+      series(t - t0_, v[0], v[1], v[2]);
+      return v[i + 1];
+    }
     const double s = (t - t0_) / h_step_, s1 = 1.0 - s;
     const auto k = static_cast<std::size_t>(i);
     const auto& c = attempt_.out.cont;
     return (c[1][k] + (1.0 - 2.0 * s) * c[2][k] + s * (2.0 - 3.0 * s) * c[3][k] + 2.0 * s * s1 * (s1 - s) * c[4][k]) /
            h_step_;
+  }
+  /// The step's series at τ and its first two derivatives (θ₁, θ̇₁, θ̈₁), by one Horner pass.
+  void series(double tau, double& v, double& dv, double& ddv) const {
+    v = taylor_[static_cast<std::size_t>(taylor_order_)], dv = 0.0, ddv = 0.0;
+    for (int k = taylor_order_ - 1; k >= 0; --k) {
+      ddv = ddv * tau + dv;
+      dv = dv * tau + v;
+      v = v * tau + taylor_[static_cast<std::size_t>(k)];
+    }
+    ddv *= 2.0;
+  }
+  /// dense_component and dense_slope together.
+  void dense_value_slope(double t, int i, double& v, double& slope) const {
+    if (taylor_order_ > 0) {
+      double s[3];
+      series(t - t0_, s[0], s[1], s[2]);
+      v = s[i], slope = s[i + 1];
+    } else {
+      v = dense_component(t, i), slope = dense_slope(t, i);
+    }
   }
   /// The error weight atol_i + rtol·magnitude of component i.
   double weight(int i, double magnitude) const { return atol_[static_cast<std::size_t>(i)] + settings_.rtol * magnitude; }
@@ -173,6 +228,9 @@ class DormandPrinceIntegrator final : public OdeIntegrator {
   bool clamped_ = false, rejected_ = false;
   int failures_ = 0;
   bool lockstep_ = false;
+  int taylor_order_ = 0;  ///< > 0: Taylor steps of this order
+  std::array<double, 32> taylor_{};  ///< the current step's series of θ₁ in τ = t − t0_
+
   bool pending_ = false;         ///< lockstep: an attempt awaits take_attempt()
   bool attempt_failed_ = false;  ///< lockstep: the step failed for good (error_ says why)
   Tally tally_;

@@ -289,6 +289,7 @@ class ErkIntegrator final : public SundialsBase {
 std::unique_ptr<OdeIntegrator> make_integrator(const SolverSettings& s, OdeProblem& p, SampleGrid samples) {
   switch (s.integrator) {
     case Integrator::kDormandPrince5:
+    case Integrator::kTaylor:  // Taylor steps where the problem has a series
       return std::make_unique<DormandPrinceIntegrator>(s, p, s.stop_at_samples ? samples : SampleGrid{});
     case Integrator::kCvodeBdf: return std::make_unique<CvodeIntegrator>(s, p, true);
     case Integrator::kCvodeAdams: return std::make_unique<CvodeIntegrator>(s, p, false);

@@ -64,6 +64,11 @@ class OdeProblem {
   /// f(t, y) = ydot was evaluated outside rhs() (by a batch kernel): a problem that
   /// remembers its last evaluation may take this one.
   virtual void evaluated(double /*t*/, const double* /*y*/, const double* /*ydot*/) {}
+  /// Highest order of taylor(); 0: the problem has no Taylor series.
+  virtual int taylor_order_max() const { return 0; }
+  /// The Taylor coefficients a₀…a_order of y[0](t0 + τ), y[1] = dy[0]/dt, valid for τ in
+  /// [0, h] (the forcing is smooth there). False when not finite or not available.
+  virtual bool taylor(double /*t0*/, const double* /*y0*/, double /*h*/, int /*order*/, double* /*a*/) { return false; }
 };
 
 class OdeIntegrator {

@@ -15,7 +15,8 @@ constexpr std::array<EnumName<UpliftCriterion>, 3> kUpliftNames{{{UpliftCriterio
                                                                  {UpliftCriterion::kPaper, "paper"},
                                                                  {UpliftCriterion::kPaperProcedure, "paper-procedure"}}};
 
-constexpr std::array<EnumName<Integrator>, 6> kIntegratorNames{{{Integrator::kDormandPrince5, "dopri5"},
+constexpr std::array<EnumName<Integrator>, 7> kIntegratorNames{{{Integrator::kDormandPrince5, "dopri5"},
+                                                                {Integrator::kTaylor, "taylor"},
                                                                 {Integrator::kArkodeErk5, "arkode-erk5"},
                                                                 {Integrator::kArkodeErk8, "arkode-erk8"},
                                                                 {Integrator::kCvodeAdams, "cvode-adams"},
@@ -80,7 +81,7 @@ const SettingTable<SolverSettings>& solver_settings() {
     preset.set = [](S& v, const SettingValue& value) { v = preset_settings(std::get<std::string>(value)); };
     s.push_back(std::move(preset));
     s.push_back(choice_setting("integrator", &S::integrator, values_of(kIntegratorNames), &to_string, &parse_integrator,
-                               "time integrator"));
+                               "time integrator (taylor: Taylor series steps where the scene has its series, the block and the rocking frame; dopri5 elsewhere)"));
     s.push_back(number_setting("rtol", &S::rtol, "1", Bound::kPositive, "relative tolerance"));
     s.push_back(number_setting("atol_theta_rad", &S::atol_theta_rad, "rad", Bound::kPositive,
                                "absolute tolerance on θ₁"));

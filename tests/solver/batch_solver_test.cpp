@@ -27,9 +27,15 @@ struct Design {
   std::vector<std::shared_ptr<PreparedFrame>> frames;
   std::vector<PreparedFrame*> views;
   std::vector<GroundMotion> records;
-  SolverSettings solver = preset_settings("balanced");
+  SolverSettings solver = dopri5_balanced();  // the lanes' integrator (Taylor steps are one case at a time)
   OutputRequest request;
-  std::vector<std::vector<CaseResult>> one_case;  ///< per record, solve_case's answers
+  std::vector<std::vector<CaseResult>> one_case;
+
+  static SolverSettings dopri5_balanced() {
+    SolverSettings s = preset_settings("balanced");
+    s.integrator = Integrator::kDormandPrince5;
+    return s;
+  }  ///< per record, solve_case's answers
 
   Design(SceneKind k, std::size_t n) : kind(k) {
     PhysicsOptions physics;

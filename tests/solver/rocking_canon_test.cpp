@@ -15,6 +15,14 @@
 namespace pcrf {
 namespace {
 
+/// The integrator the canon is checked with: each test runs with dopri5 and with Taylor steps.
+Integrator g_integrator = Integrator::kDormandPrince5;
+
+class RockingCanon : public ::testing::TestWithParam<Integrator> {
+ protected:
+  void SetUp() override { g_integrator = GetParam(); }
+};
+
 std::shared_ptr<PreparedFrame> rocker(double alpha, double R, double gamma = 0.0, std::optional<double> r = {},
                                       const PhysicsOptions& physics = {}) {
   RockerParameters p;
@@ -44,7 +52,7 @@ test::Trace release(double alpha, double R, double theta0_over_alpha, double sec
   PhysicsOptions physics;
   physics.theta0_rad = -theta0_over_alpha * alpha;
   test::Trace trace;
-  result = solve_case(*rocker(alpha, R, 0.0, {}, physics), test::quiet_record(seconds, 0.001), test::tight(), {},
+  result = solve_case(*rocker(alpha, R, 0.0, {}, physics), test::quiet_record(seconds, 0.001), test::tight(g_integrator), {},
                       trace.sink());
   return trace;
 }
@@ -55,7 +63,7 @@ double first_impact_s(const test::Trace& trace) {
   return NAN;
 }
 
-TEST(RockingCanon, FreeRockingReachesItsFirstImpactAtTheExactTime) {
+TEST_P(RockingCanon, FreeRockingReachesItsFirstImpactAtTheExactTime) {
   for (const double alpha : {0.05, 0.25}) {
     CaseResult r;
     const auto trace = release(alpha, 2.0, 0.5, 4.0, r);
@@ -65,7 +73,7 @@ TEST(RockingCanon, FreeRockingReachesItsFirstImpactAtTheExactTime) {
   }
 }
 
-TEST(RockingCanon, SlenderBlocksApproachHousnersLinearisedPeriod) {
+TEST_P(RockingCanon, SlenderBlocksApproachHousnersLinearisedPeriod) {
   // T/4 = (1/p) cosh⁻¹(1/(1 − θ₀/α)) holds in the slender limit: the error falls like α².
   double previous = 0.0;
   for (const double alpha : {0.2, 0.1, 0.05}) {
@@ -81,7 +89,7 @@ TEST(RockingCanon, SlenderBlocksApproachHousnersLinearisedPeriod) {
   }
 }
 
-TEST(RockingCanon, AmplitudesDecayAsHousnersRestitutionSays) {
+TEST_P(RockingCanon, AmplitudesDecayAsHousnersRestitutionSays) {
   // Energy before and after each impact: cos(α − θₙ₊₁) = cos α + r² (cos(α − θₙ) − cos α).
   const double alpha = 0.2;
   CaseResult r;
@@ -98,7 +106,7 @@ TEST(RockingCanon, AmplitudesDecayAsHousnersRestitutionSays) {
   EXPECT_NEAR(r.restitution, 1.0 - 1.5 * std::sin(alpha) * std::sin(alpha), 1e-15);
 }
 
-TEST(RockingCanon, TheBlockLiftsExactlyWhenTheGroundExceedsGTanAlpha) {
+TEST_P(RockingCanon, TheBlockLiftsExactlyWhenTheGroundExceedsGTanAlpha) {
   const double alpha = 0.15, k = 0.5 * kGravity_m_s2;  // a ramp of 0.5 g/s
   std::vector<double> a;
   for (int i = 0; i <= 100; ++i) a.push_back(k * 0.01 * i);
@@ -106,7 +114,7 @@ TEST(RockingCanon, TheBlockLiftsExactlyWhenTheGroundExceedsGTanAlpha) {
   EXPECT_NEAR(r.t_uplift_s, kGravity_m_s2 * std::tan(alpha) / k, 1e-12);
 }
 
-TEST(RockingCanon, TheRockingFrameRespondsAsTheBlockOfSizeRHat) {
+TEST_P(RockingCanon, TheRockingFrameRespondsAsTheBlockOfSizeRHat) {
   // Makris & Vassiliou (2013): the same response as the block R̂ = R(1 + 3γ)/(1 + 2γ) when both
   // have the same restitution (the frame's own is given to the block).
   const double alpha = 0.2, R = 1.0;
@@ -122,9 +130,9 @@ TEST(RockingCanon, TheRockingFrameRespondsAsTheBlockOfSizeRHat) {
     for (const double gamma : {0.5, 2.0}) {
       SCOPED_TRACE("Tp " + std::to_string(period_s) + " gamma " + std::to_string(gamma));
       const double r = RigidRocker::restitution_from_momentum(alpha, gamma);
-      const CaseResult frame = solve_case(*rocker(alpha, R, gamma), g, test::tight(), {});
+      const CaseResult frame = solve_case(*rocker(alpha, R, gamma), g, test::tight(g_integrator), {});
       const CaseResult block =
-          solve_case(*rocker(alpha, R * (1 + 3 * gamma) / (1 + 2 * gamma), 0.0, r), g, test::tight(), {});
+          solve_case(*rocker(alpha, R * (1 + 3 * gamma) / (1 + 2 * gamma), 0.0, r), g, test::tight(g_integrator), {});
       ASSERT_GT(frame.impacts, 0);
       EXPECT_EQ(frame.impacts, block.impacts);
       EXPECT_EQ(frame.status, block.status);
@@ -136,7 +144,7 @@ TEST(RockingCanon, TheRockingFrameRespondsAsTheBlockOfSizeRHat) {
   }
 }
 
-TEST(RockingCanon, ABlockOverturnsOnlyWhenItFalls) {
+TEST_P(RockingCanon, ABlockOverturnsOnlyWhenItFalls) {
   // Past θ = α the ground can still bring a block back; a case ends as overturned at π/2.
   const double alpha = 0.25;
   PhysicsOptions physics;
@@ -188,7 +196,7 @@ double engine_no_impact_overturning_beta(double alpha, double R, double omega_ra
     pulse.period_s = period_s;
     pulse.amplitude_g = beta * std::tan(alpha);
     pulse.dt_s = period_s / 2000.0;
-    const CaseResult r = solve_case(*block, make_pulse(pulse), test::tight(), {});
+    const CaseResult r = solve_case(*block, make_pulse(pulse), test::tight(g_integrator), {});
     return r.status == CaseStatus::kOverturned && r.impacts == 0;
   };
   double lo = 1.0, hi = 2.0;
@@ -200,7 +208,7 @@ double engine_no_impact_overturning_beta(double alpha, double R, double omega_ra
   return 0.5 * (lo + hi);
 }
 
-TEST(RockingCanon, OneSineOverturningWithoutImpactMatchesTheClosedFormForSlenderBlocks) {
+TEST_P(RockingCanon, OneSineOverturningWithoutImpactMatchesTheClosedFormForSlenderBlocks) {
   // The closed form is the slender (linearised) limit: the engine, which keeps sin and cos,
   // approaches it as α² (measured: 2.3499 against 2.34990 at ω_p/p = 2, 5.2391 against 5.23896 at
   // 4, 14.8725 against 14.8714 at 8, for α = 0.01).
@@ -235,11 +243,11 @@ PulseVerdict under_pulse(double alpha, double p_rad_s, std::optional<double> res
   pulse.period_s = period_s;
   pulse.amplitude_g = amplitude_g;
   pulse.dt_s = period_s / 2000.0;
-  const CaseResult r = solve_case(*rocker(alpha, R, 0.0, restitution, physics), make_pulse(pulse), test::tight(), {});
+  const CaseResult r = solve_case(*rocker(alpha, R, 0.0, restitution, physics), make_pulse(pulse), test::tight(g_integrator), {});
   return {r.status == CaseStatus::kOverturned, r.impacts};
 }
 
-TEST(RockingCanon, PublishedOverturningAmplitudesOfTheNonlinearBlock) {
+TEST_P(RockingCanon, PublishedOverturningAmplitudesOfTheNonlinearBlock) {
   // Makris & Konstantinidis (2003), EESD 32(2), Fig. 4 and its text: p = 2 rad/s, alpha = 15 deg,
   // Housner's restitution, a 2-s one-cosine (type B) pulse: 0.315 g is on the verge, 0.316 g overturns.
   const double alpha15 = 15.0 * M_PI / 180.0;
@@ -255,7 +263,7 @@ TEST(RockingCanon, PublishedOverturningAmplitudesOfTheNonlinearBlock) {
   EXPECT_EQ(mode1.impacts, 1);
 }
 
-TEST(RockingCanon, TheOneSineSafeCapeBetweenTheTwoOverturningModes) {
+TEST_P(RockingCanon, TheOneSineSafeCapeBetweenTheTwoOverturningModes) {
   // Zhang & Makris (2001), Figs. 7 and 8 (linearised formulation, restitution 0.9, omega_p/p = 5):
   // the block overturns after one impact from a_p = 3.01 alpha g to 6.32 alpha g, survives from
   // 6.33 to 7.17 alpha g and overturns without an impact from 7.18 alpha g. A slender block
@@ -274,6 +282,9 @@ TEST(RockingCanon, TheOneSineSafeCapeBetweenTheTwoOverturningModes) {
   EXPECT_TRUE(mode2.overturned);
   EXPECT_EQ(mode2.impacts, 0);
 }
+
+INSTANTIATE_TEST_SUITE_P(Integrators, RockingCanon, ::testing::Values(Integrator::kDormandPrince5, Integrator::kTaylor),
+                         test::integrator_test_name);
 
 }  // namespace
 }  // namespace pcrf

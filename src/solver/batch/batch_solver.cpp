@@ -105,6 +105,11 @@ bool Driver::refill(std::size_t l) {
       results_[c].wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       continue;
     }
+    if (solver_.integrator == Integrator::kTaylor && frame.scene().taylor_order_max() > 0) {
+      ++stats_.scalar_cases;  // Taylor steps: one case at a time
+      results_[c] = solve_case(frame, excitation_, solver_, request_);
+      continue;
+    }
     lane.run.emplace(frame, excitation_, solver_, request_, no_history_, true);
     lane.case_index = c;
     lane.start = start;
@@ -228,7 +233,8 @@ void Driver::run() {
 }  // namespace detail::batch
 
 bool batch_integrates(const SolverSettings& solver) {
-  return solver.integrator == Integrator::kDormandPrince5 && !solver.verdict_check;
+  return (solver.integrator == Integrator::kDormandPrince5 || solver.integrator == Integrator::kTaylor) &&
+         !solver.verdict_check;
 }
 
 std::vector<CaseResult> solve_batch(std::span<PreparedFrame* const> frames, const Excitation& excitation,

@@ -72,6 +72,19 @@ class RigidRocker final : public Scene {
   /// Eq. (31) with I, J = K = 0, G and S of a rigid rocker: one sincos.
   bool acceleration(double theta1, double omega1, GroundAcceleration ground, int side,
                     double& theta1_ddot) const override;
+  int taylor_order_max() const override { return kTaylorOrderMax; }
+  /// The series of rigid_rocker_acceleration, by the recurrences of sin and cos (automatic
+  /// differentiation; e.g. A. Jorba & M. Zou, Exp. Math. 14 (2005) 99–117, §3): with
+  /// x = α + φ = α + σθ₁ (σ = 1 on side −1, −1 on side +1), S = sin x, C = cos x,
+  ///
+  ///     S_k = (1/k) Σ_{j=1..k} j x_j C_{k−j},   C_k = −(1/k) Σ_{j=1..k} j x_j S_{k−j},
+  ///     F_k = σ [(g + v0) S_k + v1 S_{k−1}] − [h0 C_k + h1 C_{k−1}],
+  ///     a_{k+2} = ((1 + 2γ) R / I) F_k / ((k + 1)(k + 2)),
+  ///
+  /// one sincos and about order² products.
+  bool taylor_series(double theta1, double omega1, const GroundLine& ground, int side, int order,
+                     double* a) const override;
+  static constexpr int kTaylorOrderMax = 24;
   double gravity_m_s2() const override { return p_.gravity_m_s2; }
   double restitution() const override { return restitution_; }
   /// π/2: fallen on its side.

@@ -90,6 +90,17 @@ class Scene {
   virtual bool acceleration(double theta1, double omega1, GroundAcceleration ground, int side,
                             double& theta1_ddot) const;
 
+  /// Highest order of taylor_series(); 0: the scene has none (the solver then steps with
+  /// Runge–Kutta stages instead).
+  virtual int taylor_order_max() const { return 0; }
+  /// The Taylor coefficients a₀…a_order of θ₁(t₀ + τ) = Σ a_k τ^k on `side`, from (θ₁, θ̇₁)
+  /// at t₀, under a ground linear in τ (θ̇₁'s are k·a_k). False when the scene has none, the
+  /// order exceeds taylor_order_max(), or a coefficient is not finite.
+  virtual bool taylor_series(double /*theta1*/, double /*omega1*/, const GroundLine& /*ground*/, int /*side*/,
+                             int /*order*/, double* /*a*/) const {
+    return false;
+  }
+
  protected:
   /// Derived classes call this once their terms can be evaluated.
   /// \throws std::invalid_argument when the mechanism does not exist at rest.

@@ -32,6 +32,9 @@ enum class Integrator {
   /// Dormand–Prince 5(4), purpose-built for the rocking scenes (src/solver/dormand_prince.hpp):
   /// steps between record samples on its own, events located on its dense output.
   kDormandPrince5,
+  /// Taylor series steps where the scene has its series (Housner's block, the rocking frame:
+  /// RigidRocker::taylor_series), with dopri5's breakpoints and events; dopri5 otherwise.
+  kTaylor,
   kCvodeBdf,    ///< SUNDIALS CVODE, BDF (orders 1–5), dense Newton
   kCvodeAdams,  ///< SUNDIALS CVODE, Adams–Moulton (orders 1–12), fixed point
   kArkodeErk5,  ///< SUNDIALS ARKODE ERKStep, Dormand–Prince 5(4)
@@ -41,7 +44,7 @@ enum class Integrator {
   /// contender for the work-precision study and the numerics audit, not for production.
   kFixedRk4SignChange,
 };
-Integrator parse_integrator(const std::string& text);  ///< "dopri5", "cvode-bdf", "cvode-adams", "arkode-erk5", "arkode-erk8", "fixed-rk4"
+Integrator parse_integrator(const std::string& text);  ///< "dopri5", "taylor", "cvode-bdf", "cvode-adams", "arkode-erk5", "arkode-erk8", "fixed-rk4"
 std::string to_string(Integrator i);
 
 /// tail_s = "until-rest": the free vibration after the record goes on until the frame rests.
