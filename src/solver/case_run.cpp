@@ -64,10 +64,11 @@ void FlightProblem::evaluated(double t, const double* y, const double* ydot) {
   last_acc_ = ydot[1];
 }
 
-GroundLine FlightProblem::ground_line(double t0, double h) {
+GroundLine FlightProblem::ground_line(double t0, double h, bool& exact) {
   const GroundAcceleration a = forcing_.at(t0);  // enters the interval holding t0
   const ExcitationCursor::Interval& in = forcing_.interval();
-  if (t0 >= in.lo_s && t0 < in.hi_s)
+  exact = t0 >= in.lo_s && t0 < in.hi_s;
+  if (exact)
     return {a.horizontal_m_s2, in.dh * in.inv_dt_per_s, a.vertical_m_s2, in.dv * in.inv_dt_per_s};
   // At the record's last sample the ground is already the tail's for any τ > 0.
   const GroundAcceleration b = forcing_.at(t0 + h), start = t0 < record_end_s_ ? a : b;
@@ -75,8 +76,8 @@ GroundLine FlightProblem::ground_line(double t0, double h) {
           (b.vertical_m_s2 - start.vertical_m_s2) / h};
 }
 
-bool FlightProblem::taylor(double t0, const double* y0, double h, int order, double* a) {
-  return scene_.taylor_series(y0[0], y0[1], ground_line(t0, h), side, order, a);
+bool FlightProblem::taylor(double t0, const double* y0, double h, int order, double* a, bool& for_any_h) {
+  return scene_.taylor_series(y0[0], y0[1], ground_line(t0, h, for_any_h), side, order, a);
 }
 
 std::unique_ptr<OdeIntegrator> CaseRun::make_integrator(const SolverSettings& solver, FlightProblem& problem,

@@ -50,8 +50,9 @@ class FlightProblem final : public detail::OdeProblem {
   int jacobian(double t, const double* y, double* dfdy) override;
   void evaluated(double t, const double* y, const double* ydot) override;
   int taylor_order_max() const override { return scene_.taylor_order_max(); }
-  /// The scene's series under the record's line over the sample interval holding t0.
-  bool taylor(double t0, const double* y0, double h, int order, double* a) override;
+  /// The scene's series under the record's line over the sample interval holding t0 (for
+  /// any h), else under the chord over [t0, t0 + h].
+  bool taylor(double t0, const double* y0, double h, int order, double* a, bool& for_any_h) override;
 
   /// Root directions for the current side: the impact only while closing, θ peaks only
   /// where |θ| is maximal, the limit only while opening.
@@ -65,9 +66,9 @@ class FlightProblem final : public detail::OdeProblem {
   /// methods, CVODE's corrector), so that root costs almost nothing.
   bool acceleration(double t, const double* y, double& acc);
 
-  /// The ground over [t0, t0 + h]: the record's interval holding t0, else (after the
-  /// record, components on their own time axes) the chord.
-  GroundLine ground_line(double t0, double h);
+  /// The ground over [t0, t0 + h]: the record's interval holding t0 (`exact`), else
+  /// (after the record, components on their own time axes) the chord.
+  GroundLine ground_line(double t0, double h, bool& exact);
 
   const Scene& scene_;
   const EomTable& table_;  // the prepared frame's: built once for every case of the frame

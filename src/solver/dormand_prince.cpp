@@ -32,7 +32,7 @@ DormandPrinceIntegrator::DormandPrinceIntegrator(const SolverSettings& settings,
 }
 
 int DormandPrinceIntegrator::taylor_order_for(double rtol, int order_max) {
-  const double n = std::ceil(-0.5 * std::log10(std::max(rtol, kEps))) + 4.0;
+  const double n = std::ceil(-std::log10(std::max(rtol, kEps)) / 3.0) + 4.0;
   return static_cast<int>(std::clamp(n, 3.0, static_cast<double>(order_max)));
 }
 
@@ -185,16 +185,19 @@ bool DormandPrinceIntegrator::taylor_step() {
   double h = limit_ - t0_;
   bool clamped = true;
   if (settings_.max_step_s > 0.0 && h > settings_.max_step_s) h = settings_.max_step_s, clamped = false;
+  bool fresh = false;  // taylor_ holds the series for a step of h
   for (int attempt = 0;; ++attempt) {
     if (attempt > kMaxFailures || !(h > 16.0 * kEps * std::abs(t0_)) || !(h > 0.0))
       return fail("taylor: step size " + number_text(h) + " s too small at t = " + number_text(t0_) + " s");
-    ++counts_.rhs_evals;
-    if (!problem_.taylor(t0_, y0_.data(), h, taylor_order_, taylor_.data()))
-      return fail("taylor: the series is not finite at t = " + number_text(t0_) + " s");
+    if (!fresh) {
+      ++counts_.rhs_evals;
+      if (!problem_.taylor(t0_, y0_.data(), h, taylor_order_, taylor_.data(), fresh))
+        return fail("taylor: the series is not finite at t = " + number_text(t0_) + " s");
+    }
     double h_fit = h;
     if (taylor_error(h, h_fit) <= 1.0) break;
-    // The series does not depend on h within a record interval: h_fit is within the
-    // tolerance at once (the chord of a forcing outside the record may need another try).
+    // Within a record interval the series holds for any shorter step: h_fit is within the
+    // tolerance at once. Under a chord it is the chord's: new coefficients for the new h.
     h = std::min(h_fit, 0.9 * h);
     clamped = false;
   }
@@ -314,11 +317,16 @@ void DormandPrinceIntegrator::locate_on_interpolant(int component, double& lo, d
   // Newton on the interpolant's polynomial, kept inside the bracket (bisection where it
   // would leave it); once its steps fall below the tolerance, one probe just across the
   // root closes the bracket. Two to four probes where Illinois takes eight.
+  //
+  // On a Taylor series θ̈ comes with θ and θ̇, and the impact's root takes Schröder's step
+  // t − v v' / (v'² − v v''), Newton's on v/v': still quadratic at a nearly double root —
+  // a flight of microseconds, landing almost without velocity, where Newton's halves its
+  // distance per probe (measured: 9.4 probes per impact under ER1, 14 at worst).
   double t = hi - ghi * (hi - lo) / (ghi - glo);
   for (int it = 0; it < 100 && hi - lo > ttol && ghi != 0.0; ++it) {
     t = std::clamp(t, lo + 0.25 * ttol, hi - 0.25 * ttol);
-    double v, slope;
-    dense_value_slope(t, component, v, slope);
+    double v, slope, curvature = 0.0;
+    dense_value_slope(t, component, v, slope, curvature);
     if (v == 0.0) {
       hi = t, ghi = 0.0;
       break;
@@ -329,7 +337,8 @@ void DormandPrinceIntegrator::locate_on_interpolant(int component, double& lo, d
     } else {
       hi = t, ghi = v;
     }
-    const double newton = t - v / slope;  // ±inf or NaN for a zero slope: bisection below
+    // ±inf or NaN for a zero slope: bisection below
+    const double newton = curvature == 0.0 ? t - v / slope : t - v * slope / (slope * slope - v * curvature);
     if (std::abs(newton - t) < 0.5 * ttol) {
       t = below ? t + 0.5 * ttol : t - 0.5 * ttol;
     } else if (newton > lo && newton < hi) {
@@ -393,20 +402,25 @@ bool DormandPrinceIntegrator::find_roots(double a, const double* g_a, double b, 
   double earliest = std::numeric_limits<double>::infinity();
   std::array<double, kMaxRoots> when;  // NOLINT: filled below for every root
   std::array<double, kMaxRoots> g;     // NOLINT: filled by roots_at before use
-  bool any = false;
+  // One crossing is located; the others are checked at it below and located only if they
+  // came first. θ̇'s roots are tried first: in a step that holds a peak and the next impact,
+  // the peak comes first (Rolle), and the impact then needs no search in this step (nor
+  // the wide bracket around the peak that costs Newton most of its probes).
+  int first = -1;
   for (int i = 0; i < nroots_; ++i) {
     const auto k = static_cast<std::size_t>(i);
     when[k] = std::numeric_limits<double>::infinity();
     const double ga = g_a[i], gb = g_b[i];
     if (ga == 0.0 || ga * gb > 0.0) continue;     // inactive, or no sign change
     if (dirs_[k] != 0 && dirs_[k] * ga > 0.0) continue;  // crosses against its direction
-    double lo = a, glo = ga, hi = b, ghi = gb;
-    locate(i, lo, glo, hi, ghi, ttol);
-    when[k] = hi;
-    earliest = std::min(earliest, hi);
-    any = true;
+    if (first < 0 || (problem_.root_state_index(i) == 1 && problem_.root_state_index(first) != 1)) first = i;
   }
-  if (!any) return false;
+  if (first < 0) return false;
+  {
+    double lo = a, glo = g_a[first], hi = b, ghi = g_b[first];
+    locate(first, lo, glo, hi, ghi, ttol);
+    when[static_cast<std::size_t>(first)] = earliest = hi;
+  }
   // A function with the same sign at both ends of the step may still cross before the
   // earliest root and back: the stop angle exceeded at a θ peak inside the step, where
   // |θ₁| is largest. At the earliest root, any function whose sign differs from its sign at
@@ -419,8 +433,12 @@ bool DormandPrinceIntegrator::find_roots(double a, const double* g_a, double b, 
     for (int i = 0; i < nroots_; ++i) {
       const auto k = static_cast<std::size_t>(i);
       const double ga = g_a[i], gm = g[k];
-      if (when[k] <= earliest || ga == 0.0 || !(ga * gm < 0.0)) continue;
+      if (when[k] <= earliest || ga == 0.0 || ga * gm > 0.0) continue;
       if (dirs_[k] != 0 && dirs_[k] * ga > 0.0) continue;
+      if (gm == 0.0) {  // a root at the earliest itself
+        when[k] = earliest;
+        continue;
+      }
       double lo = a, glo = ga, hi = earliest, ghi = gm;
       locate(i, lo, glo, hi, ghi, ttol);
       when[k] = hi;

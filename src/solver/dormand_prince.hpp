@@ -181,12 +181,14 @@ class DormandPrinceIntegrator final : public OdeIntegrator {
     }
     ddv *= 2.0;
   }
-  /// dense_component and dense_slope together.
-  void dense_value_slope(double t, int i, double& v, double& slope) const {
+  /// dense_component and dense_slope together; on a Taylor series also θ̈ for θ (i = 0),
+  /// else `curvature` is left alone.
+  void dense_value_slope(double t, int i, double& v, double& slope, double& curvature) const {
     if (taylor_order_ > 0) {
       double s[3];
       series(t - t0_, s[0], s[1], s[2]);
       v = s[i], slope = s[i + 1];
+      if (i == 0) curvature = s[2];
     } else {
       v = dense_component(t, i), slope = dense_slope(t, i);
     }

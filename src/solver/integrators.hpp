@@ -67,8 +67,12 @@ class OdeProblem {
   /// Highest order of taylor(); 0: the problem has no Taylor series.
   virtual int taylor_order_max() const { return 0; }
   /// The Taylor coefficients a₀…a_order of y[0](t0 + τ), y[1] = dy[0]/dt, valid for τ in
-  /// [0, h] (the forcing is smooth there). False when not finite or not available.
-  virtual bool taylor(double /*t0*/, const double* /*y0*/, double /*h*/, int /*order*/, double* /*a*/) { return false; }
+  /// [0, h] (the forcing is smooth there). `for_any_h` says they hold for any shorter step
+  /// too (else a shorter step needs new ones). False when not finite or not available.
+  virtual bool taylor(double /*t0*/, const double* /*y0*/, double /*h*/, int /*order*/, double* /*a*/,
+                      bool& /*for_any_h*/) {
+    return false;
+  }
 };
 
 class OdeIntegrator {

@@ -152,8 +152,9 @@ TEST(TaylorSteps, ConvergeToTheEighthOrderReferenceAsTheToleranceTightens) {
   }
 }
 
-TEST(TaylorSteps, FewerStepsThanDopri5AtTheSameTolerance) {
-  // The point of the series: no rejected attempts and a step to the next sample.
+TEST(TaylorSteps, OneSeriesPerStepAndFarFewerThanDopri5sStages) {
+  // The point of the series: one expansion per step (no rejected attempt inside a record
+  // interval: the estimate gives the step before it is taken), where dopri5 makes six stages.
   const GroundMotion g = test::strong_record(5, 10.0).scaled(0.45);
   auto frame = prepared();
   SolverSettings dp = preset_settings("balanced");
@@ -162,7 +163,7 @@ TEST(TaylorSteps, FewerStepsThanDopri5AtTheSameTolerance) {
   const CaseResult t = solve_case(*frame, g, preset_settings("balanced"));
   ASSERT_GT(d.impacts, 2);
   EXPECT_EQ(t.impacts, d.impacts);
-  EXPECT_LE(t.counts.steps, d.counts.steps);
+  EXPECT_LE(t.counts.rhs_evals, t.counts.steps + t.counts.reinits + 1);  // + one f at each restart
   EXPECT_LT(t.counts.rhs_evals, d.counts.rhs_evals / 3);
 }
 
