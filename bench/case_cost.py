@@ -53,7 +53,9 @@ def case_command(pcrf, scene, record, thr_g):
 
 
 def instructions(command):
-    """(instructions in solve_case, share in the right-hand side) from callgrind."""
+    """(instructions in solve_case, share in the right-hand side) from callgrind. The
+    right-hand side: FlightProblem::rhs (Runge-Kutta stages, restarts) and FlightProblem::taylor
+    (the series of a Taylor step, its sincos included), inclusive."""
     with tempfile.TemporaryDirectory() as tmp:
         out_file = os.path.join(tmp, "cg.out")
         res = subprocess.run(["valgrind", "--tool=callgrind", f"--toggle-collect={TOGGLE}",
@@ -64,10 +66,11 @@ def instructions(command):
         total = int(m.group(1))
         ann = subprocess.run(["callgrind_annotate", "--inclusive=yes", out_file], capture_output=True, text=True).stdout
         rhs = 0
-        for line in ann.splitlines():
-            if "FlightProblem::rhs(" in line:
-                rhs = int(line.split()[0].replace(",", ""))
-                break
+        for name in ("FlightProblem::rhs(", "FlightProblem::taylor("):
+            for line in ann.splitlines():
+                if name in line:
+                    rhs += int(line.split()[0].replace(",", ""))
+                    break
         return total, rhs / total if total else float("nan")
 
 
