@@ -60,4 +60,18 @@ struct Trace {
   }
 };
 
+/// `b` is `a` mirrored, row by row and bit for bit: the same times, θ₁ and θ̇₁ of opposite
+/// signs (and, for a frame with tendons, the left column's strain where the right's was).
+inline void expect_mirrored(const Trace& a, const Trace& b, bool tendons = false) {
+  ASSERT_EQ(a.samples.size(), b.samples.size());
+  for (std::size_t i = 0; i < a.samples.size(); ++i) {
+    EXPECT_EQ(a.samples[i].t_s, b.samples[i].t_s);
+    EXPECT_EQ(a.samples[i].theta1_rad, -b.samples[i].theta1_rad) << "t = " << a.samples[i].t_s;
+    EXPECT_EQ(a.samples[i].omega1_rad_s, -b.samples[i].omega1_rad_s) << "t = " << a.samples[i].t_s;
+    if (tendons) {
+      EXPECT_EQ(a.samples[i].strain_column_left, b.samples[i].strain_column_right);
+    }
+  }
+}
+
 }  // namespace pcrf::test

@@ -115,12 +115,7 @@ TEST(VerticalExcitation, MirroringTheHorizontalMirrorsTheResponse) {
   EXPECT_EQ(ra.theta_max_rad, rb.theta_max_rad);
   EXPECT_EQ(ra.t_theta_max_s, rb.t_theta_max_s);
   EXPECT_EQ(ra.t_uplift_s, rb.t_uplift_s);
-  ASSERT_EQ(a.samples.size(), b.samples.size());
-  for (std::size_t i = 0; i < a.samples.size(); ++i) {
-    EXPECT_EQ(a.samples[i].t_s, b.samples[i].t_s);
-    EXPECT_EQ(a.samples[i].theta1_rad, -b.samples[i].theta1_rad);
-    EXPECT_EQ(a.samples[i].omega1_rad_s, -b.samples[i].omega1_rad_s);
-  }
+  test::expect_mirrored(a, b);
 }
 
 TEST(VerticalExcitation, EnergyChangesByTheVerticalWorkBetweenImpacts) {
