@@ -40,6 +40,15 @@ struct RockerParameters {
   double gravity_m_s2 = kGravity_m_s2; ///< the gravity it stands in [m/s²]
 };
 
+/// sin x and cos x [rad] of the rigid rockers (their right-hand side, terms and energy).
+/// Built with SLEEF (cmake/PcrfSleef.cmake): SLEEF's deterministic scalar sincos
+/// (Sleef_cinz_sincosd1_u35purec: 3.5 ulp at most, no fused multiply-add, the same bits as the same
+/// family's vector functions on every CPU), which the batch kernels take a register at a time,
+/// so a lane gives the one-case answer bit for bit. Without SLEEF, the C library's.
+void rocker_sincos(double x_rad, double& sin_x, double& cos_x);
+/// Which sincos rocker_sincos is: "sleef-cinz" or "libm".
+const char* rocker_sincos_name();
+
 /// θ̈₁ of a rigid rocker, eq. (31) with I, J = K = 0 and the G, S above:
 ///
 ///     θ̈₁ = ((1 + 2γ) R / I) (σ sin(α + φ) (g + ü_v) − cos(α + φ) ü_h),
