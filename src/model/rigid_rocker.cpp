@@ -8,12 +8,14 @@
 
 #include "pcrf/user_error.hpp"
 
-#ifdef PCRF_HAVE_SLEEF
-#include <sleef.h>
-#endif
-
 namespace pcrf {
 namespace {
+
+/// rocker_sincos's and rigid_rocker_acceleration's operations on one double.
+struct ScalarOps {
+  static double select(bool m, double a, double b) { return m ? a : b; }
+  static void sincos(double x, double& s, double& c) { rocker_sincos<ScalarOps>(x, s, c); }
+};
 
 /// `problem(value)` is formatted only when the check fails (a study builds a scene per case).
 void check(bool ok, const char* key, const char* problem, double value) {
@@ -21,23 +23,6 @@ void check(bool ok, const char* key, const char* problem, double value) {
 }
 
 }  // namespace
-
-void rocker_sincos(double x_rad, double& sin_x, double& cos_x) {
-#ifdef PCRF_HAVE_SLEEF
-  const Sleef_double_2 sc = Sleef_cinz_sincosd1_u35purec(x_rad);
-  sin_x = sc.x, cos_x = sc.y;
-#else
-  sin_x = std::sin(x_rad), cos_x = std::cos(x_rad);
-#endif
-}
-
-const char* rocker_sincos_name() {
-#ifdef PCRF_HAVE_SLEEF
-  return "sleef-cinz";
-#else
-  return "libm";
-#endif
-}
 
 double RigidRocker::restitution_from_momentum(double alpha, double gamma) {
   const double s = std::sin(alpha);
@@ -66,22 +51,13 @@ bool RigidRocker::terms(double theta1, int side, EomTerms& out) const {
   out.J = 0.0;
   out.K = 0.0;
   double sin_a, cos_a;
-  rocker_sincos(p_.slenderness_rad + phi, sin_a, cos_a);
+  ScalarOps::sincos(p_.slenderness_rad + phi, sin_a, cos_a);
   out.G = -c * R * sin_a;
   out.S = -c * R * cos_a;
   if (side > 0) out.G = -out.G;
   return true;
 }
 
-namespace {
-
-/// rigid_rocker_acceleration's operations on one double.
-struct ScalarOps {
-  static double select(bool m, double a, double b) { return m ? a : b; }
-  static void sincos(double x, double& s, double& c) { rocker_sincos(x, s, c); }
-};
-
-}  // namespace
 
 bool RigidRocker::acceleration(double theta1, double, GroundAcceleration ground, int side,
                                double& theta1_ddot) const {
@@ -99,7 +75,7 @@ double RigidRocker::energy(double theta1, double omega1, int side) const {
   terms(theta1, side, t);
   const double phi = side < 0 ? theta1 : -theta1;
   double sin_a, cos_a;
-  rocker_sincos(p_.slenderness_rad + phi, sin_a, cos_a);
+  ScalarOps::sincos(p_.slenderness_rad + phi, sin_a, cos_a);
   const double height = (1.0 + 2.0 * p_.beam_mass_ratio) * p_.size_m * cos_a;
   return 0.5 * t.I * omega1 * omega1 + p_.gravity_m_s2 * height;
 }

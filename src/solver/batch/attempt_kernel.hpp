@@ -2,12 +2,10 @@
 /// \brief One Dormand–Prince 5(4) step attempt for every lane of a batch, over a pack type:
 /// `double` (one lane) or an xsimd batch of doubles (one register of lanes). Included by one
 /// translation unit per instruction set, each compiled with that set's flags and with
-/// -ffp-contract=off. The attempt is dopri5_attempt.hpp's and the rigid rockers' right-hand
-/// side rigid_rocker.hpp's, the one-case solver's arithmetic rounding for rounding. Their
-/// sin/cos is the one-case solver's too (rocker_sincos): where built with SLEEF, the same
-/// deterministic family a register at a time (`SleefTrig` over a cinz function: the same bits
-/// as the scalar one), else rocker_sincos lane by lane. Only BatchOptions::trig "sleef" or
-/// "xsimd" trades that for another vector sin/cos. Private to the solver.
+/// -ffp-contract=off. The attempt is dopri5_attempt.hpp's, the rigid rockers' right-hand
+/// side rigid_rocker.hpp's and its sin/cos rocker_sincos.hpp's: the one-case solver's
+/// arithmetic rounding for rounding, a register at a time. Only BatchOptions::trig "sleef"
+/// or "xsimd" trades the sin/cos for another vector one. Private to the solver.
 #pragma once
 
 #include <cmath>
@@ -27,7 +25,7 @@
 
 namespace pcrf::detail::batch {
 
-/// The pack operations the kernel needs, for the one-lane pack `double`: the one-case sincos.
+/// The pack operations the kernel needs, for the one-lane pack `double`.
 struct ScalarPack {
   using P = double;
   using M = bool;
@@ -41,7 +39,7 @@ struct ScalarPack {
   static bool lane(M m, int) { return m; }
   static P abs(P v) { return std::abs(v); }
   static P sqrt(P v) { return std::sqrt(v); }
-  static void sincos(P x, P& s, P& c) { rocker_sincos(x, s, c); }
+  static void sincos(P x, P& s, P& c) { rocker_sincos<ScalarPack>(x, s, c); }
 };
 
 #ifdef PCRF_HAVE_XSIMD
@@ -67,14 +65,22 @@ struct VectorPack {
   static void sincos(const P& x, P& s, P& c) { Trig::sincos(x, s, c); }
 };
 
-/// The one-case sincos (rocker_sincos) lane by lane: its values, bit for bit.
+/// rocker_sincos over a whole register: the one-case solver's values, bit for bit.
+template <class Batch>
+struct RockerTrig {
+  template <class M>
+  static Batch select(const M& m, const Batch& a, const Batch& b) { return xsimd::select(m, a, b); }
+  static void sincos(const Batch& x, Batch& s, Batch& c) { rocker_sincos<RockerTrig>(x, s, c); }
+};
+
+/// rocker_sincos lane by lane (what the vector one gains, for benchmarks).
 template <class Batch>
 struct LaneByLaneTrig {
   static void sincos(const Batch& x, Batch& s, Batch& c) {
     constexpr std::size_t n = Batch::size;
     double v[n], sv[n], cv[n];
     x.store_unaligned(v);
-    for (std::size_t j = 0; j < n; ++j) rocker_sincos(v[j], sv[j], cv[j]);
+    for (std::size_t j = 0; j < n; ++j) ScalarPack::sincos(v[j], sv[j], cv[j]);
     s = Batch::load_unaligned(sv), c = Batch::load_unaligned(cv);
   }
 };
@@ -88,9 +94,7 @@ struct XsimdTrig {
   }
 };
 
-/// sin and cos of SLEEF's function F for one register (its result's x and y). Over a cinz
-/// function (deterministic: no fused multiply-add, the same bits in every width) it is
-/// rocker_sincos a register at a time.
+/// sin and cos of SLEEF's function F for one register (its result's x and y).
 template <class Batch, auto F>
 struct SleefTrig {
   static void sincos(const Batch& x, Batch& s, Batch& c) {
@@ -202,7 +206,7 @@ void attempt_all(LaneArrays& lanes, LaneCallbacks& callbacks, bool block) {
 }
 
 /// The exact sin/cos of pack type Pack over n arguments (tests): whole registers, then the
-/// rest by rocker_sincos.
+/// rest one by one.
 template <class Pack>
 void sincos_all(const double* x_rad, double* sin_x, double* cos_x, std::size_t n) {
   constexpr auto w = static_cast<std::size_t>(Pack::kLanes);
@@ -212,27 +216,23 @@ void sincos_all(const double* x_rad, double* sin_x, double* cos_x, std::size_t n
     Pack::sincos(Pack::load(x_rad + i), s, c);
     Pack::store(sin_x + i, s), Pack::store(cos_x + i, c);
   }
-  for (; i < n; ++i) rocker_sincos(x_rad[i], sin_x[i], cos_x[i]);
+  for (; i < n; ++i) ScalarPack::sincos(x_rad[i], sin_x[i], cos_x[i]);
 }
 
 #ifdef PCRF_HAVE_XSIMD
-/// The kernels of the instruction set Arch (an xsimd architecture). `Exact`: rocker_sincos
-/// over a register (a SleefTrig over the cinz function of this set where built with SLEEF,
-/// else void: lane by lane). `Fast`: SLEEF's fastest 1-ulp sincos of the set (a SleefTrig),
-/// or void where SLEEF is not built.
-template <class Arch, class Exact = void, class Fast = void>
+/// The kernels of the instruction set Arch (an xsimd architecture); `Sleef` the SLEEF
+/// sin/cos of its registers (a SleefTrig), or void where SLEEF is not built or lacks one.
+template <class Arch, class Sleef = void>
 KernelSet vector_kernels(const char* name) {
   using Batch = xsimd::batch<double, Arch>;
-  using ExactTrig = std::conditional_t<std::is_void_v<Exact>, LaneByLaneTrig<Batch>, Exact>;
   KernelSet k;
   k.name = name;
   k.register_lanes = static_cast<int>(Batch::size);
-  k.exact_trig = &attempt_all<VectorPack<Batch, ExactTrig>>;
-  k.exact_trig_name = std::is_void_v<Exact> ? "lane by lane" : "vector";
+  k.exact_trig = &attempt_all<VectorPack<Batch, RockerTrig<Batch>>>;
   k.scalar_trig = &attempt_all<VectorPack<Batch, LaneByLaneTrig<Batch>>>;
   k.xsimd_trig = &attempt_all<VectorPack<Batch, XsimdTrig<Batch>>>;
-  if constexpr (!std::is_void_v<Fast>) k.sleef_trig = &attempt_all<VectorPack<Batch, Fast>>;
-  k.sincos = &sincos_all<VectorPack<Batch, ExactTrig>>;
+  if constexpr (!std::is_void_v<Sleef>) k.sleef_trig = &attempt_all<VectorPack<Batch, Sleef>>;
+  k.sincos = &sincos_all<VectorPack<Batch, RockerTrig<Batch>>>;
   return k;
 }
 #endif

@@ -166,7 +166,10 @@ bool Driver::take_attempt(std::size_t l) {
   attempt.ok = a.ok[l] != 0.0;
   attempt.evals = static_cast<long>(a.evals[l]);
   ++(attempt.ok && attempt.out.err <= 1.0 ? stats_.accepted : stats_.rejected);
-  lanes_[l].run->lockstep()->take_attempt();
+  DormandPrinceIntegrator& integrator = *lanes_[l].run->lockstep();
+  integrator.take_attempt();
+  // Most steps hold nothing for the case: the integrator goes on to its next attempt alone.
+  if (integrator.continue_alone()) return true;
   return progress(l);
 }
 
@@ -213,14 +216,10 @@ AttemptKernel kernel_of(const KernelSet& set, const std::string& trig) {
   throw std::invalid_argument("unknown batch trig '" + trig + "' (expected scalar, sleef or xsimd, or none)");
 }
 
-/// What BatchStats::trig says: the one-case sincos (its name), vector or lane by lane, or
-/// the other sin/cos asked for.
+/// What BatchStats::trig says.
 std::string trig_label(const KernelSet& set, const std::string& trig) {
-  if (set.register_lanes == 1 || trig.empty() || trig == "scalar") {
-    const bool vector = set.register_lanes > 1 && trig.empty() && std::string(set.exact_trig_name) == "vector";
-    return std::string(rocker_sincos_name()) + (vector ? " vector" : " lane by lane");
-  }
-  return trig;
+  if (trig.empty()) return set.register_lanes == 1 ? "exact" : "exact vector";
+  return trig == "scalar" || set.register_lanes == 1 ? "exact lane by lane" : trig;
 }
 
 Driver::Driver(std::span<PreparedFrame* const> frames, const Excitation& excitation, const SolverSettings& solver,

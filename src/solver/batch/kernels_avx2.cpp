@@ -7,9 +7,7 @@ namespace pcrf::detail::batch {
 KernelSet avx2_kernels() {
   using Arch = xsimd::fma3<xsimd::avx2>;
 #ifdef PCRF_HAVE_SLEEF
-  using Batch = xsimd::batch<double, Arch>;
-  // Exact: SLEEF's deterministic (cinz) function of this width; fast: its 1-ulp one.
-  return vector_kernels<Arch, SleefTrig<Batch, &Sleef_cinz_sincosd4_u35avx>, SleefTrig<Batch, &Sleef_sincosd4_u10avx2>>("avx2");
+  return vector_kernels<Arch, SleefTrig<xsimd::batch<double, Arch>, &Sleef_sincosd4_u10avx2>>("avx2");
 #else
   return vector_kernels<Arch>("avx2");
 #endif

@@ -7,9 +7,7 @@ namespace pcrf::detail::batch {
 KernelSet avx512_kernels() {
   using Arch = xsimd::avx512f;
 #ifdef PCRF_HAVE_SLEEF
-  using Batch = xsimd::batch<double, Arch>;
-  // Exact: SLEEF's deterministic (cinz) function of this width; fast: its 1-ulp one.
-  return vector_kernels<Arch, SleefTrig<Batch, &Sleef_cinz_sincosd8_u35avx512fnofma>, SleefTrig<Batch, &Sleef_sincosd8_u10avx512f>>("avx512f");
+  return vector_kernels<Arch, SleefTrig<xsimd::batch<double, Arch>, &Sleef_sincosd8_u10avx512f>>("avx512f");
 #else
   return vector_kernels<Arch>("avx512f");
 #endif

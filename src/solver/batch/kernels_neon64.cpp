@@ -4,16 +4,7 @@
 
 namespace pcrf::detail::batch {
 #if defined(__aarch64__)
-KernelSet neon64_kernels() {
-#ifdef PCRF_HAVE_SLEEF
-  using Batch = xsimd::batch<double, xsimd::neon64>;
-  // Exact: SLEEF's deterministic (cinz) function of this width; fast: its 1-ulp one.
-  return vector_kernels<xsimd::neon64, SleefTrig<Batch, &Sleef_cinz_sincosd2_u35advsimdnofma>,
-                        SleefTrig<Batch, &Sleef_sincosd2_u10advsimd>>("neon64");
-#else
-  return vector_kernels<xsimd::neon64>("neon64");
-#endif
-}
+KernelSet neon64_kernels() { return vector_kernels<xsimd::neon64>("neon64"); }
 #else
 KernelSet neon64_kernels() { return {}; }  // not an arm64 build
 #endif

@@ -7,9 +7,7 @@ namespace pcrf::detail::batch {
 KernelSet sse2_kernels() {
   using Arch = xsimd::sse2;
 #ifdef PCRF_HAVE_SLEEF
-  using Batch = xsimd::batch<double, Arch>;
-  // Exact: SLEEF's deterministic (cinz) function of this width; fast: its 1-ulp one.
-  return vector_kernels<Arch, SleefTrig<Batch, &Sleef_cinz_sincosd2_u35sse2>, SleefTrig<Batch, &Sleef_sincosd2_u10sse2>>("sse2");
+  return vector_kernels<Arch, SleefTrig<xsimd::batch<double, Arch>, &Sleef_sincosd2_u10sse2>>("sse2");
 #else
   return vector_kernels<Arch>("sse2");
 #endif

@@ -35,10 +35,7 @@ using AttemptKernel = void (*)(LaneArrays& lanes, LaneCallbacks& callbacks, bool
 struct KernelSet {
   const char* name = "";      ///< "scalar", "sse2", "avx2", "avx512f", "neon64"
   int register_lanes = 1;     ///< doubles in one register
-  /// The rigid rockers' sin/cos of the one-case solver (rocker_sincos): a register at a
-  /// time where this set has SLEEF's deterministic function, else lane by lane.
-  AttemptKernel exact_trig = nullptr;
-  const char* exact_trig_name = "lane by lane";  ///< "vector" or "lane by lane"
+  AttemptKernel exact_trig = nullptr;   ///< the one-case sin/cos (rocker_sincos) a register at a time
   AttemptKernel scalar_trig = nullptr;  ///< rocker_sincos lane by lane (exact too)
   AttemptKernel xsimd_trig = nullptr;   ///< sin/cos of xsimd (not exact)
   AttemptKernel sleef_trig = nullptr;   ///< SLEEF's fastest 1-ulp sin/cos (not exact; null where not built)

@@ -27,6 +27,7 @@
 
 #include <optional>
 
+#include "pcrf/model/rocker_sincos.hpp"
 #include "pcrf/model/scene.hpp"
 #include "pcrf/units.hpp"
 
@@ -40,15 +41,6 @@ struct RockerParameters {
   double gravity_m_s2 = kGravity_m_s2; ///< the gravity it stands in [m/s²]
 };
 
-/// sin x and cos x [rad] of the rigid rockers (their right-hand side, terms and energy).
-/// Built with SLEEF (cmake/PcrfSleef.cmake): SLEEF's deterministic scalar sincos
-/// (Sleef_cinz_sincosd1_u35purec: 3.5 ulp at most, no fused multiply-add, the same bits as the same
-/// family's vector functions on every CPU), which the batch kernels take a register at a time,
-/// so a lane gives the one-case answer bit for bit. Without SLEEF, the C library's.
-void rocker_sincos(double x_rad, double& sin_x, double& cos_x);
-/// Which sincos rocker_sincos is: "sleef-cinz" or "libm".
-const char* rocker_sincos_name();
-
 /// θ̈₁ of a rigid rocker, eq. (31) with I, J = K = 0 and the G, S above:
 ///
 ///     θ̈₁ = ((1 + 2γ) R / I) (σ sin(α + φ) (g + ü_v) − cos(α + φ) ü_h),
@@ -56,7 +48,8 @@ const char* rocker_sincos_name();
 /// φ = θ₁ and σ = 1 on side −1 (`left`), φ = −θ₁ and σ = −1 on side +1: the odd mirror flips
 /// the sign of the gravity term only, exactly. Written once over a number type T — double
 /// (RigidRocker::acceleration) or a SIMD pack of cases (the batch kernels) — whose `Ops`
-/// give select(mask, a, b) and sincos(x, sin, cos).
+/// give select(mask, a, b) and sincos(x, sin, cos): rocker_sincos (rocker_sincos.hpp), the
+/// same bits for both, unless a batch asks for another.
 template <class Ops, class T, class Mask>
 T rigid_rocker_acceleration(const T& moment_over_inertia_per_m, const T& slenderness_rad, const T& gravity_m_s2,
                             const T& theta1, const Mask& left, const T& ground_h_m_s2, const T& ground_v_m_s2) {
