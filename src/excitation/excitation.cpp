@@ -3,6 +3,9 @@
 
 #include "pcrf/user_error.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -26,16 +29,48 @@ Excitation::Excitation(const GroundMotion& horizontal, const GroundMotion* verti
 
 bool ExcitationCursor::enter(double t_s) {
   const GroundMotion& h = excitation_.horizontal();
-  if (!(t_s >= 0.0) || !(t_s < h.duration_s())) return false;
+  if (!(t_s >= 0.0)) return false;
   // Components whose intervals agree only within the tolerance of same_sample_interval
   // interpolate each on its own time axis: at() then, to stay bit for bit.
   if (excitation_.has_vertical() && excitation_.vertical()->dt_s() != h.dt_s()) return false;
-  const std::size_t k = h.interval_of(t_s);
+  if (!(t_s < h.duration_s())) return enter_tail(t_s);
+  const std::size_t k = k_ = h.interval_of(t_s);
   const double dt = h.dt_s();
+  sampled_ = true;
   i_.lo_s = static_cast<double>(k) * dt;
   i_.hi_s = static_cast<double>(k + 1) * dt;
   i_.inv_dt_per_s = h.inverse_dt_per_s();
   const auto& a = h.samples_m_s2();
+  i_.h0 = a[k], i_.dh = a[k + 1] - a[k];
+  if (const GroundMotion* v = excitation_.vertical()) {
+    const auto& b = v->samples_m_s2();
+    i_.v0 = b[k], i_.dv = b[k + 1] - b[k];
+  }
+  return true;
+}
+
+bool ExcitationCursor::enter_tail(double t_s) {
+  // After every component's last sample the ground is still: at() is exactly 0 there, and so
+  // is 0 + frac·0 for any finite t. The last sample itself stays at()'s.
+  double end_s = excitation_.horizontal().duration_s();
+  if (const GroundMotion* v = excitation_.vertical()) end_s = std::max(end_s, v->duration_s());
+  if (!(t_s > end_s) || !(t_s < std::numeric_limits<double>::max())) return false;
+  i_ = Interval{};
+  sampled_ = false;
+  i_.lo_s = std::nextafter(end_s, std::numeric_limits<double>::infinity());
+  i_.hi_s = std::numeric_limits<double>::max();
+  i_.inv_dt_per_s = excitation_.horizontal().inverse_dt_per_s();
+  return true;
+}
+
+bool ExcitationCursor::next_interval() {
+  const GroundMotion& h = excitation_.horizontal();
+  if (!sampled_ || k_ + 2 >= h.size()) return false;
+  const std::size_t k = ++k_;
+  const double dt = h.dt_s();
+  const auto& a = h.samples_m_s2();
+  i_.lo_s = i_.hi_s;  // static_cast<double>(k) * dt, as enter() computes it
+  i_.hi_s = static_cast<double>(k + 1) * dt;
   i_.h0 = a[k], i_.dh = a[k + 1] - a[k];
   if (const GroundMotion* v = excitation_.vertical()) {
     const auto& b = v->samples_m_s2();

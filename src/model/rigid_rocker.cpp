@@ -14,6 +14,12 @@
 namespace pcrf {
 namespace {
 
+/// rocker_sincos's and rigid_rocker_acceleration's operations on one double.
+struct ScalarOps {
+  static double select(bool m, double a, double b) { return m ? a : b; }
+  static void sincos(double x, double& s, double& c) { rocker_sincos<ScalarOps>(x, s, c); }
+};
+
 /// `problem(value)` is formatted only when the check fails (a study builds a scene per case).
 void check(bool ok, const char* key, const char* problem, double value) {
   if (!ok) throw UserError(key, problem + (", got " + std::to_string(value)));
@@ -47,21 +53,14 @@ bool RigidRocker::terms(double theta1, int side, EomTerms& out) const {
   out.I = inertia_m2_;
   out.J = 0.0;
   out.K = 0.0;
-  out.G = -c * R * std::sin(p_.slenderness_rad + phi);
-  out.S = -c * R * std::cos(p_.slenderness_rad + phi);
+  double sin_a, cos_a;
+  ScalarOps::sincos(p_.slenderness_rad + phi, sin_a, cos_a);
+  out.G = -c * R * sin_a;
+  out.S = -c * R * cos_a;
   if (side > 0) out.G = -out.G;
   return true;
 }
 
-namespace {
-
-/// rigid_rocker_acceleration's operations on one double.
-struct ScalarOps {
-  static double select(bool m, double a, double b) { return m ? a : b; }
-  static void sincos(double x, double& s, double& c) { s = std::sin(x), c = std::cos(x); }
-};
-
-}  // namespace
 
 bool RigidRocker::acceleration(double theta1, double, GroundAcceleration ground, int side,
                                double& theta1_ddot) const {
@@ -85,8 +84,7 @@ bool series_of_order(const SeriesInput& in, double theta1, double omega1, double
   double s[N + 1], c[N + 1], jx[N + 1];  // S_k, C_k, j·x_j
   a[0] = theta1;
   a[1] = omega1;
-  s[0] = std::sin(in.alpha + in.sigma * theta1);
-  c[0] = std::cos(in.alpha + in.sigma * theta1);
+  ScalarOps::sincos(in.alpha + in.sigma * theta1, s[0], c[0]);  // the acceleration's own sin/cos
   jx[1] = in.sigma * omega1;
   a[2] = 0.5 * in.k_inertia * (in.g0 * s[0] - in.h0 * c[0]);
 #pragma GCC unroll 32
@@ -138,7 +136,9 @@ double RigidRocker::energy(double theta1, double omega1, int side) const {
   EomTerms t;
   terms(theta1, side, t);
   const double phi = side < 0 ? theta1 : -theta1;
-  const double height = (1.0 + 2.0 * p_.beam_mass_ratio) * p_.size_m * std::cos(p_.slenderness_rad + phi);
+  double sin_a, cos_a;
+  ScalarOps::sincos(p_.slenderness_rad + phi, sin_a, cos_a);
+  const double height = (1.0 + 2.0 * p_.beam_mass_ratio) * p_.size_m * cos_a;
   return 0.5 * t.I * omega1 * omega1 + p_.gravity_m_s2 * height;
 }
 

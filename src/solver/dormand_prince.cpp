@@ -394,9 +394,7 @@ void DormandPrinceIntegrator::locate(int i, double& lo, double& glo, double& hi,
 }
 
 bool DormandPrinceIntegrator::find_roots(double a, const double* g_a, double b, const double* g_b) {
-  bool candidate = false;  // most steps cross nothing: leave at once
-  for (int i = 0; i < nroots_; ++i) candidate = candidate || (g_a[i] != 0.0 && g_a[i] * g_b[i] <= 0.0);
-  if (!candidate) return false;
+  if (!root_candidate(g_a, g_b)) return false;  // most steps cross nothing: leave at once
   ++tally_.root_searches;
   const double ttol = root_tolerance(b, h_step_);
   double earliest = std::numeric_limits<double>::infinity();
@@ -461,7 +459,22 @@ bool DormandPrinceIntegrator::find_roots(double a, const double* g_a, double b, 
   return true;
 }
 
+bool DormandPrinceIntegrator::continue_alone() {
+  // advance()'s loop below, taken only where it would return nothing before its next attempt.
+  if (pending_) return true;  // a rejected attempt: the next one is pending already
+  if (attempt_failed_ || !have_step_ || !(tcur_ < t1_) || pending_one_step_) return false;
+  if (root_candidate(g_cur_.data(), g_end_.data())) return false;
+  if (!(t1_ < pending_tout_)) return false;
+  if (t_stop_ - t1_ <= 16.0 * kEps * std::max(1.0, std::abs(t_stop_)) || counts_.steps > settings_.max_steps) return false;
+  tcur_ = t1_;
+  g_cur_ = g_end_;
+  step();
+  if (!pending_) attempt_failed_ = true;  // error_ says why; advance() reports it at tcur_
+  return true;
+}
+
 OdeIntegrator::Outcome DormandPrinceIntegrator::advance(double tout, double& t, double* y, bool one_step) {
+  pending_tout_ = tout, pending_one_step_ = one_step;
   if (pending_) return Outcome::kPending;
   if (attempt_failed_) {  // lockstep: the step that take_attempt() went on with failed
     attempt_failed_ = false;

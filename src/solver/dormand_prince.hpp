@@ -98,6 +98,13 @@ class DormandPrinceIntegrator final : public OdeIntegrator {
   Dopri5Attempt& attempt() { return attempt_; }
   /// Concludes the pending attempt from its outputs (accepted, or the next attempt made).
   void take_attempt();
+  /// After take_attempt(): when the call of advance() that the caller would make next (with
+  /// the tout and one_step of the last one, which returned kPending) would only step on to
+  /// its next attempt — a rejected attempt, or no root in the step and tout and the stop
+  /// time beyond it — does that and returns true (an attempt pending again, or a failed step
+  /// that advance() reports); else false, nothing changed. The batch's shortcut past the
+  /// case between two attempts.
+  bool continue_alone();
 
   /// Work of the root search, for benchmarks: steps with a sign change to locate, roots returned.
   struct Tally {
@@ -130,6 +137,12 @@ class DormandPrinceIntegrator final : public OdeIntegrator {
   void accept();
   /// The starting step of Hairer, Nørsett & Wanner §II.4.
   double initial_step();
+  /// Whether some root function may cross between a and b (g_a, g_b its values there).
+  bool root_candidate(const double* g_a, const double* g_b) const {
+    bool candidate = false;
+    for (int i = 0; i < nroots_; ++i) candidate = candidate || (g_a[i] != 0.0 && g_a[i] * g_b[i] <= 0.0);
+    return candidate;
+  }
   /// Looks for the earliest root crossing in (a, b] of the current step, from g_a at a.
   /// Fills root_time_ and found_ and returns true when one exists.
   bool find_roots(double a, const double* g_a, double b, const double* g_b);
@@ -235,6 +248,8 @@ class DormandPrinceIntegrator final : public OdeIntegrator {
 
   bool pending_ = false;         ///< lockstep: an attempt awaits take_attempt()
   bool attempt_failed_ = false;  ///< lockstep: the step failed for good (error_ says why)
+  double pending_tout_ = 0.0;    ///< lockstep: tout and one_step of the advance() that returned kPending
+  bool pending_one_step_ = false;
   Tally tally_;
 };
 

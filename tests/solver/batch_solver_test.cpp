@@ -1,11 +1,14 @@
 // Lockstep batches (pcrf/solver/batch_solver.hpp): the same answers as the one-case
 // solver for every case of a random design of each scene, at W = 1, 2, 4 and 8, with every
-// kernel set this CPU runs and both vectorised sin/cos. Short synthetic records keep it to
+// kernel set this CPU runs, with the one-case sin/cos (rocker_sincos) a register at a time
+// and lane by lane, and with the two other vectorised sin/cos. Short synthetic records keep it to
 // seconds; the 10³-frame designs under three PEER records are tests/batch_long's (opt-in).
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <memory>
+#include <numbers>
 #include <ostream>
 #include <random>
 #include <string>
@@ -13,6 +16,7 @@
 
 #include "batch_design.hpp"
 #include "pcrf/solver/batch_solver.hpp"
+#include "solver/batch/lane_arrays.hpp"
 #include "solver_test_support.hpp"
 
 namespace pcrf {
@@ -113,14 +117,16 @@ TEST_P(BatchOnEveryScene, LanesAreTheOneCaseSolverBitForBit) {
   for (const auto& per_record : d.one_case)
     for (const CaseResult& c : per_record) rocking += c.impacts > 0 ? 1 : 0;
   EXPECT_GT(rocking, static_cast<int>(d.frames.size()));  // the design rocks, not just rests
-  on_every_kernel_set(d, "libm", [&](const std::vector<CaseResult>& results, std::size_t r, const std::string& where) {
-    for (std::size_t i = 0; i < results.size(); ++i)
-      expect_same(results[i], d.one_case[r][i], 0.0, where + ", case " + std::to_string(i));
-  });
+  for (const char* trig : {"", "scalar"}) {  // the one-case sin/cos, a register at a time and lane by lane
+    on_every_kernel_set(d, trig, [&](const std::vector<CaseResult>& results, std::size_t r, const std::string& where) {
+      for (std::size_t i = 0; i < results.size(); ++i)
+        expect_same(results[i], d.one_case[r][i], 0.0, where + ", case " + std::to_string(i));
+    });
+  }
 }
 
 TEST_P(BatchOnEveryScene, VectorisedSinCosKeepsEveryVerdictAndMovesLessThanTheTolerance) {
-  // A vectorised sin/cos differs from the C library's in the last bit now and then; where
+  // Another vectorised sin/cos differs from rocker_sincos in the last bit now and then; where
   // that flips a step's acceptance the answer moves by about the integration error. The
   // statuses and impacts stay; every metric stays within 10 rtol.
   if (GetParam().kind == SceneKind::kPrestressedFrame) GTEST_SKIP() << "its right-hand side has no sin/cos";
@@ -138,6 +144,40 @@ INSTANTIATE_TEST_SUITE_P(Scenes, BatchOnEveryScene,
                                            Variant{SceneKind::kRockingFrame, "rocking_frame"},
                                            Variant{SceneKind::kPrestressedFrame, "prestressed_frame"}),
                          [](const auto& p) { return std::string(p.param.scene); });
+
+TEST(BatchSolver, EveryKernelSetsSinCosIsTheOneCaseSinCosBitForBit) {
+  // The kernels' default sin/cos must be rocker_sincos's bits, whatever the register:
+  // arguments over the rockers' range α ± φ (small, near ±π/2, beyond) and a few
+  // far outside it.
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-3.5, 3.5);
+  std::vector<double> x;
+  for (int i = 0; i < 20000; ++i) x.push_back(i % 4 == 0 ? 1e-4 * u(rng) : u(rng));
+  for (double v : {0.0, -0.0, 1e-300, 0.5 * std::numbers::pi, -0.5 * std::numbers::pi, std::numbers::pi, 1e3, -7e5}) x.push_back(v);
+  std::vector<double> s0(x.size()), c0(x.size());
+  // The reference: the scalar set's, one double at a time (compiled as the model's, without
+  // fused multiply-add; the lanes' answers equal to the model's say the rest).
+  detail::batch::choose_kernels(1, "scalar").sincos(x.data(), s0.data(), c0.data(), x.size());
+  int sets = 0;
+  for (const char* kernels : {"scalar", "sse2", "avx2", "avx512f", "neon64"}) {
+    detail::batch::KernelSet set;
+    try {
+      set = detail::batch::choose_kernels(8, kernels);
+    } catch (const std::invalid_argument&) {
+      continue;  // not in this build or not run by this CPU
+    }
+    std::vector<double> s(x.size()), c(x.size());
+    set.sincos(x.data(), s.data(), c.data(), x.size());
+    int differ = 0;
+    for (std::size_t i = 0; i < x.size(); ++i)
+      differ += std::memcmp(&s[i], &s0[i], sizeof(double)) != 0 || std::memcmp(&c[i], &c0[i], sizeof(double)) != 0;
+    EXPECT_EQ(differ, 0) << kernels;
+    ++sets;
+  }
+  EXPECT_GE(sets, 1);
+  EXPECT_NEAR(s0[1], std::sin(x[1]), 1e-15);  // and it is sin and cos
+  EXPECT_NEAR(c0[1], std::cos(x[1]), 1e-15);
+}
 
 TEST(BatchSolver, OtherIntegratorsAndVerdictChecksGoCaseByCase) {
   auto frame = prepare_frame(basic_frame(), PhysicsOptions{});

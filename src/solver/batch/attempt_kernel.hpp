@@ -1,11 +1,11 @@
 /// \file attempt_kernel.hpp
 /// \brief One Dormand–Prince 5(4) step attempt for every lane of a batch, over a pack type:
-/// `double` (one lane, the C library's sin and cos) or an xsimd batch of doubles (one
-/// register of lanes). Included by one translation unit per instruction set, each compiled
-/// with that set's flags and with -ffp-contract=off. The attempt is dopri5_attempt.hpp's and
-/// the rigid rockers' right-hand side rigid_rocker.hpp's, the one-case solver's arithmetic
-/// rounding for rounding; only a vectorised sin/cos may differ from the C library's (in the
-/// last bit). Private to the solver.
+/// `double` (one lane) or an xsimd batch of doubles (one register of lanes). Included by one
+/// translation unit per instruction set, each compiled with that set's flags and with
+/// -ffp-contract=off. The attempt is dopri5_attempt.hpp's, the rigid rockers' right-hand
+/// side rigid_rocker.hpp's and its sin/cos rocker_sincos.hpp's: the one-case solver's
+/// arithmetic rounding for rounding, a register at a time. Only BatchOptions::trig "sleef"
+/// or "xsimd" trades the sin/cos for another vector one. Private to the solver.
 #pragma once
 
 #include <cmath>
@@ -39,7 +39,7 @@ struct ScalarPack {
   static bool lane(M m, int) { return m; }
   static P abs(P v) { return std::abs(v); }
   static P sqrt(P v) { return std::sqrt(v); }
-  static void sincos(P x, P& s, P& c) { s = std::sin(x), c = std::cos(x); }
+  static void sincos(P x, P& s, P& c) { rocker_sincos<ScalarPack>(x, s, c); }
 };
 
 #ifdef PCRF_HAVE_XSIMD
@@ -65,14 +65,22 @@ struct VectorPack {
   static void sincos(const P& x, P& s, P& c) { Trig::sincos(x, s, c); }
 };
 
-/// sin and cos lane by lane from the C library: the one-case solver's values, bit for bit.
+/// rocker_sincos over a whole register: the one-case solver's values, bit for bit.
 template <class Batch>
-struct LibmTrig {
+struct RockerTrig {
+  template <class M>
+  static Batch select(const M& m, const Batch& a, const Batch& b) { return xsimd::select(m, a, b); }
+  static void sincos(const Batch& x, Batch& s, Batch& c) { rocker_sincos<RockerTrig>(x, s, c); }
+};
+
+/// rocker_sincos lane by lane (what the vector one gains, for benchmarks).
+template <class Batch>
+struct LaneByLaneTrig {
   static void sincos(const Batch& x, Batch& s, Batch& c) {
     constexpr std::size_t n = Batch::size;
     double v[n], sv[n], cv[n];
     x.store_unaligned(v);
-    for (std::size_t j = 0; j < n; ++j) sv[j] = std::sin(v[j]), cv[j] = std::cos(v[j]);
+    for (std::size_t j = 0; j < n; ++j) ScalarPack::sincos(v[j], sv[j], cv[j]);
     s = Batch::load_unaligned(sv), c = Batch::load_unaligned(cv);
   }
 };
@@ -133,20 +141,36 @@ class Attempt {
  private:
   P ld(const std::vector<double>& v) const { return Pack::load(v.data() + o_); }
   void st(std::vector<double>& v, const P& x) const { Pack::store(v.data() + o_, x); }
-  /// The ground acceleration at the stage times: the lanes' record intervals, or lane by
-  /// lane through the callbacks when a time falls outside its lane's interval.
+  /// The ground acceleration at the stage times: each lane's record interval or the one after
+  /// it (ExcitationCursor::at's arithmetic: the value at t depends on t alone), else lane by
+  /// lane through the callbacks.
   void ground(const P& ts, P& ah, P& av) const {
-    const P lo = ld(L_.lo), hi = ld(L_.hi);
-    if (Pack::all((ts >= lo) & (ts < hi))) {
-      const P frac = (ts - lo) * ld(L_.inv_dt);
-      ah = ld(L_.h0) + frac * ld(L_.dh);
-      av = ld(L_.v0) + frac * ld(L_.dv);
+    const M here = (ts >= ld(L_.lo)) & (ts < ld(L_.hi));
+    if (Pack::all(here)) {
+      interpolate(ts, ld(L_.lo), ld(L_.h0), ld(L_.dh), ld(L_.v0), ld(L_.dv), ah, av);
       return;
     }
+    const M next = (ts >= ld(L_.nlo)) & (ts < ld(L_.nhi));
+    if (Pack::all(next)) {  // the step's last stages, on its closing sample
+      interpolate(ts, ld(L_.nlo), ld(L_.nh0), ld(L_.ndh), ld(L_.nv0), ld(L_.ndv), ah, av);
+      return;
+    }
+    P h1, v1, h2, v2;
+    interpolate(ts, ld(L_.lo), ld(L_.h0), ld(L_.dh), ld(L_.v0), ld(L_.dv), h1, v1);
+    interpolate(ts, ld(L_.nlo), ld(L_.nh0), ld(L_.ndh), ld(L_.nv0), ld(L_.ndv), h2, v2);
+    ah = Pack::select(here, h1, h2), av = Pack::select(here, v1, v2);
+    const M known = here | next;
+    if (Pack::all(known)) return;
     double t[N], a[N], b[N];
-    Pack::store(t, ts);
-    for (int j = 0; j < N; ++j) cb_.ground(o_ + j, t[j], a[j], b[j]);
+    Pack::store(t, ts), Pack::store(a, ah), Pack::store(b, av);
+    for (int j = 0; j < N; ++j)
+      if (!Pack::lane(known, j)) cb_.ground(o_ + j, t[j], a[j], b[j]);
     ah = Pack::load(a), av = Pack::load(b);
+  }
+  void interpolate(const P& ts, const P& lo, const P& h0, const P& dh, const P& v0, const P& dv, P& ah, P& av) const {
+    const P frac = (ts - lo) * ld(L_.inv_dt);
+    ah = h0 + frac * dh;
+    av = v0 + frac * dv;
   }
 
   /// θ̈₁ at (ts, θ₁, θ̇₁); `good` false where the right-hand side fails.
@@ -181,6 +205,20 @@ void attempt_all(LaneArrays& lanes, LaneCallbacks& callbacks, bool block) {
   for (int o = 0; o < lanes.capacity(); o += Pack::kLanes) Attempt<Pack>(lanes, callbacks, block, o).run();
 }
 
+/// The exact sin/cos of pack type Pack over n arguments (tests): whole registers, then the
+/// rest one by one.
+template <class Pack>
+void sincos_all(const double* x_rad, double* sin_x, double* cos_x, std::size_t n) {
+  constexpr auto w = static_cast<std::size_t>(Pack::kLanes);
+  std::size_t i = 0;
+  for (; i + w <= n; i += w) {
+    typename Pack::P s, c;
+    Pack::sincos(Pack::load(x_rad + i), s, c);
+    Pack::store(sin_x + i, s), Pack::store(cos_x + i, c);
+  }
+  for (; i < n; ++i) ScalarPack::sincos(x_rad[i], sin_x[i], cos_x[i]);
+}
+
 #ifdef PCRF_HAVE_XSIMD
 /// The kernels of the instruction set Arch (an xsimd architecture); `Sleef` the SLEEF
 /// sin/cos of its registers (a SleefTrig), or void where SLEEF is not built or lacks one.
@@ -190,9 +228,11 @@ KernelSet vector_kernels(const char* name) {
   KernelSet k;
   k.name = name;
   k.register_lanes = static_cast<int>(Batch::size);
-  k.libm_trig = &attempt_all<VectorPack<Batch, LibmTrig<Batch>>>;
+  k.exact_trig = &attempt_all<VectorPack<Batch, RockerTrig<Batch>>>;
+  k.scalar_trig = &attempt_all<VectorPack<Batch, LaneByLaneTrig<Batch>>>;
   k.xsimd_trig = &attempt_all<VectorPack<Batch, XsimdTrig<Batch>>>;
   if constexpr (!std::is_void_v<Sleef>) k.sleef_trig = &attempt_all<VectorPack<Batch, Sleef>>;
+  k.sincos = &sincos_all<VectorPack<Batch, RockerTrig<Batch>>>;
   return k;
 }
 #endif

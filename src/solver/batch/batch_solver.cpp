@@ -12,6 +12,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "../case_run.hpp"
 #include "lane_arrays.hpp"
@@ -47,6 +48,13 @@ class Driver final : public LaneCallbacks {
   bool progress(std::size_t l);
   /// Concludes lane l's attempt from the kernel's outputs, then progress(l).
   bool take_attempt(std::size_t l);
+  /// Lane l's pending attempt into the arrays.
+  void put_attempt(std::size_t l);
+  /// Lane l's record intervals in the arrays: its cursor's, and the one after it.
+  void set_interval(std::size_t l);
+  void set_next_interval(std::size_t l);
+  /// Moves lane l's intervals on by one when its attempt starts at t0 in the next one.
+  void follow(std::size_t l, double t0_s);
   void finish(std::size_t l);
   void set_block_parameters(std::size_t l, const Scene& scene);
   static bool all_rigid_rockers(std::span<PreparedFrame* const> frames);
@@ -62,19 +70,44 @@ class Driver final : public LaneCallbacks {
   bool block_;
   AttemptKernel kernel_;
   std::vector<Lane> lanes_;
-  std::vector<ExcitationCursor> cursors_;  ///< each lane's; the arrays hold their intervals
+  std::vector<ExcitationCursor> cursors_;       ///< each lane's; the arrays hold their intervals
+  std::vector<ExcitationCursor> next_cursors_;  ///< each lane's, on the interval after
   std::size_t next_case_ = 0;
 };
 
 void Driver::ground(int lane, double t_s, double& horizontal_m_s2, double& vertical_m_s2) {
   const auto l = static_cast<std::size_t>(lane);
-  ExcitationCursor& cursor = cursors_[l];
-  const GroundAcceleration g = cursor.at(t_s);
-  const ExcitationCursor::Interval& i = cursor.interval();
+  const GroundAcceleration g = cursors_[l].at(t_s);
+  set_interval(l);
+  set_next_interval(l);
+  horizontal_m_s2 = g.horizontal_m_s2, vertical_m_s2 = g.vertical_m_s2;
+}
+
+void Driver::set_interval(std::size_t l) {
+  const ExcitationCursor::Interval& i = cursors_[l].interval();
   LaneArrays& a = arrays_;
   a.lo[l] = i.lo_s, a.hi[l] = i.hi_s, a.inv_dt[l] = i.inv_dt_per_s;
   a.h0[l] = i.h0, a.dh[l] = i.dh, a.v0[l] = i.v0, a.dv[l] = i.dv;
-  horizontal_m_s2 = g.horizontal_m_s2, vertical_m_s2 = g.vertical_m_s2;
+}
+
+void Driver::set_next_interval(std::size_t l) {
+  // The sample interval after the lane's; empty where there is none (the record's end, the tail).
+  next_cursors_[l] = cursors_[l];
+  const bool holds = next_cursors_[l].next_interval();
+  const ExcitationCursor::Interval& i = next_cursors_[l].interval();
+  LaneArrays& a = arrays_;
+  a.nlo[l] = holds ? i.lo_s : 0.0, a.nhi[l] = holds ? i.hi_s : 0.0;
+  a.nh0[l] = i.h0, a.ndh[l] = i.dh, a.nv0[l] = i.v0, a.ndv[l] = i.dv;
+}
+
+void Driver::follow(std::size_t l, double t0_s) {
+  LaneArrays& a = arrays_;
+  if (!(t0_s >= a.hi[l] && t0_s >= a.nlo[l] && t0_s < a.nhi[l])) return;  // where it is, or for the callbacks
+  // The attempt starts in the next interval: it becomes the lane's, and the one after it the next.
+  std::swap(cursors_[l], next_cursors_[l]);
+  a.lo[l] = a.nlo[l], a.hi[l] = a.nhi[l];
+  a.h0[l] = a.nh0[l], a.dh[l] = a.ndh[l], a.v0[l] = a.nv0[l], a.dv[l] = a.ndv[l];
+  set_next_interval(l);
 }
 
 bool Driver::acceleration(int lane, double t_s, double theta_rad, double omega_rad_s, double& acc_rad_s2) {
@@ -138,13 +171,18 @@ bool Driver::take_attempt(std::size_t l) {
   attempt.ok = a.ok[l] != 0.0;
   attempt.evals = static_cast<long>(a.evals[l]);
   ++(attempt.ok && attempt.out.err <= 1.0 ? stats_.accepted : stats_.rejected);
-  lanes_[l].run->lockstep()->take_attempt();
+  DormandPrinceIntegrator& integrator = *lanes_[l].run->lockstep();
+  integrator.take_attempt();
+  // Most steps hold nothing for the case: the integrator goes on to its next attempt alone.
+  if (integrator.continue_alone()) return true;
   return progress(l);
 }
 
-/// Puts lane l's pending attempt into the arrays.
-void put_attempt(LaneArrays& a, std::size_t l, CaseRun& run) {
+void Driver::put_attempt(std::size_t l) {
+  LaneArrays& a = arrays_;
+  CaseRun& run = *lanes_[l].run;
   const Dopri5Attempt& attempt = run.lockstep()->attempt();
+  follow(l, attempt.t0);
   a.t0[l] = attempt.t0, a.h[l] = attempt.h;
   a.theta0[l] = attempt.y0[0], a.omega0[l] = attempt.y0[1];
   a.k1_theta[l] = attempt.k1[0], a.k1_omega[l] = attempt.k1[1];
@@ -173,13 +211,20 @@ int capacity_for(int lanes, int register_lanes) {
 }
 
 AttemptKernel kernel_of(const KernelSet& set, const std::string& trig) {
-  if (trig.empty() || trig == "libm") return set.libm_trig;
+  if (trig.empty()) return set.exact_trig;
+  if (trig == "scalar") return set.scalar_trig;
   if (trig == "xsimd") return set.xsimd_trig;
   if (trig == "sleef") {
     if (set.sleef_trig == nullptr) throw std::invalid_argument("batch trig 'sleef': not built with SLEEF");
     return set.sleef_trig;
   }
-  throw std::invalid_argument("unknown batch trig '" + trig + "' (expected libm, sleef or xsimd)");
+  throw std::invalid_argument("unknown batch trig '" + trig + "' (expected scalar, sleef or xsimd, or none)");
+}
+
+/// What BatchStats::trig says.
+std::string trig_label(const KernelSet& set, const std::string& trig) {
+  if (trig.empty()) return set.register_lanes == 1 ? "exact" : "exact vector";
+  return trig == "scalar" || set.register_lanes == 1 ? "exact lane by lane" : trig;
 }
 
 Driver::Driver(std::span<PreparedFrame* const> frames, const Excitation& excitation, const SolverSettings& solver,
@@ -196,13 +241,14 @@ Driver::Driver(std::span<PreparedFrame* const> frames, const Excitation& excitat
   const KernelSet set = choose_kernels(options.lanes, options.kernels);
   kernel_ = kernel_of(set, options.trig);
   stats_.kernels = set.name;
-  stats_.trig = options.trig.empty() || set.register_lanes == 1 ? "libm" : options.trig;
+  stats_.trig = trig_label(set, options.trig);
   stats_.lanes = arrays_.capacity();
   arrays_.rtol = solver.rtol;
   arrays_.atol_theta = solver.atol_theta_rad;
   arrays_.atol_omega = solver.atol_omega_rad_s;
   lanes_.resize(static_cast<std::size_t>(arrays_.capacity()));
   cursors_.assign(static_cast<std::size_t>(arrays_.capacity()), ExcitationCursor(excitation_));
+  next_cursors_ = cursors_;
 }
 
 void Driver::set_block_parameters(std::size_t l, const Scene& scene) {
@@ -216,7 +262,7 @@ void Driver::set_block_parameters(std::size_t l, const Scene& scene) {
 void Driver::run() {
   // Every lane up to its first attempt.
   for (std::size_t l = 0; l < lanes_.size(); ++l)
-    if (refill(l)) put_attempt(arrays_, l, *lanes_[l].run);
+    if (refill(l)) put_attempt(l);
   for (;;) {
     int pending = 0;
     for (const Lane& lane : lanes_) pending += lane.run ? 1 : 0;
@@ -225,7 +271,7 @@ void Driver::run() {
     ++stats_.kernel_calls;
     stats_.busy_lane_attempts += pending;
     for (std::size_t l = 0; l < lanes_.size(); ++l)
-      if (lanes_[l].run && take_attempt(l)) put_attempt(arrays_, l, *lanes_[l].run);
+      if (lanes_[l].run && take_attempt(l)) put_attempt(l);
   }
 }
 

@@ -32,7 +32,7 @@ std::vector<Candidate> candidates() {
   };
 #endif
   all.push_back({scalar_kernels(), true});
-  std::erase_if(all, [](const Candidate& c) { return c.set.libm_trig == nullptr; });
+  std::erase_if(all, [](const Candidate& c) { return c.set.exact_trig == nullptr; });
   return all;
 }
 

@@ -1,4 +1,4 @@
-// The one-lane kernel: the C library's sin and cos, no vector unit (see attempt_kernel.hpp).
+// The one-lane kernel: the one-case sincos (rocker_sincos), no vector unit (see attempt_kernel.hpp).
 #include "attempt_kernel.hpp"
 
 namespace pcrf::detail::batch {
@@ -7,7 +7,8 @@ KernelSet scalar_kernels() {
   KernelSet k;
   k.name = "scalar";
   k.register_lanes = 1;
-  k.libm_trig = k.xsimd_trig = k.sleef_trig = &attempt_all<ScalarPack>;
+  k.exact_trig = k.scalar_trig = k.xsimd_trig = k.sleef_trig = &attempt_all<ScalarPack>;
+  k.sincos = &sincos_all<ScalarPack>;
   return k;
 }
 

@@ -18,7 +18,8 @@ class LaneArrays;
 class LaneCallbacks {
  public:
   virtual ~LaneCallbacks() = default;
-  /// Ground acceleration at t for lane l, as ExcitationCursor::at (moving the lane's cursor).
+  /// Ground acceleration at t for lane l, as ExcitationCursor::at (moving the lane's cursor),
+  /// for a t in neither of the lane's intervals.
   virtual void ground(int lane, double t_s, double& horizontal_m_s2, double& vertical_m_s2) = 0;
   /// θ̈₁ of lane l at (t, θ₁, θ̇₁) from its scene; false where the flight problem's
   /// right-hand side fails (the mechanism does not exist, or a non-finite value).
@@ -34,9 +35,12 @@ using AttemptKernel = void (*)(LaneArrays& lanes, LaneCallbacks& callbacks, bool
 struct KernelSet {
   const char* name = "";      ///< "scalar", "sse2", "avx2", "avx512f", "neon64"
   int register_lanes = 1;     ///< doubles in one register
-  AttemptKernel libm_trig = nullptr;   ///< sin/cos of the C library, lane by lane
-  AttemptKernel xsimd_trig = nullptr;  ///< sin/cos of xsimd
-  AttemptKernel sleef_trig = nullptr;  ///< sin/cos of SLEEF (null where not built)
+  AttemptKernel exact_trig = nullptr;   ///< the one-case sin/cos (rocker_sincos) a register at a time
+  AttemptKernel scalar_trig = nullptr;  ///< rocker_sincos lane by lane (exact too)
+  AttemptKernel xsimd_trig = nullptr;   ///< sin/cos of xsimd (not exact)
+  AttemptKernel sleef_trig = nullptr;   ///< SLEEF's fastest 1-ulp sin/cos (not exact; null where not built)
+  /// exact_trig's sin and cos of n arguments [rad] (for tests).
+  void (*sincos)(const double* x_rad, double* sin_x, double* cos_x, std::size_t n) = nullptr;
 };
 
 /// The structure of arrays. Capacity: the batch's lane count rounded up to whole registers.
@@ -47,7 +51,7 @@ class LaneArrays {
     for (auto& row : cont)
       for (auto& v : row) v.assign(static_cast<std::size_t>(capacity), 0.0);
     for (std::size_t l = 0; l < static_cast<std::size_t>(capacity); ++l) {
-      side[l] = -1.0, hi[l] = -1.0;  // inert padding: no NaN
+      side[l] = -1.0, hi[l] = -1.0, nhi[l] = -1.0;  // inert padding: no NaN
     }
   }
   int capacity() const { return capacity_; }
@@ -63,14 +67,17 @@ class LaneArrays {
   // The flight: side (−1/+1). Rigid-rocker terms: α [rad], (1 + 2γ)R/I [1/m], g [m/s²].
   std::vector<double> side, alpha, moment_over_inertia, gravity;
   // The record cursor of each lane (ExcitationCursor's fields): the interval [lo, hi), 1/dt,
-  // the samples at lo and their differences.
+  // the samples at lo and their differences; and the interval after it, [nlo, nhi) (empty
+  // past the record's end), where a step's last stages land.
   std::vector<double> lo, hi, inv_dt, h0, dh, v0, dv;
+  std::vector<double> nlo, nhi, nh0, ndh, nv0, ndv;
 
  private:
   std::vector<std::vector<double>*> all() {
     return {&t0,     &h,        &theta0,   &omega0, &k1_theta, &k1_omega, &theta1, &omega1, &k7_theta,
             &k7_omega, &err,    &ok,       &evals,  &side,     &alpha,    &moment_over_inertia, &gravity,
-            &lo,     &hi,       &inv_dt,   &h0,     &dh,       &v0,       &dv};
+            &lo,     &hi,       &inv_dt,   &h0,     &dh,       &v0,       &dv,       &nlo,     &nhi,
+            &nh0,    &ndh,      &nv0,      &ndv};
   }
   int capacity_;
 };

@@ -65,19 +65,26 @@ class ExcitationCursor {
 
   /// The record interval the cursor is in: at(t) inside it is h0 + (t − lo)/dt · dh (and v).
   struct Interval {
-    double lo_s = 0.0, hi_s = 0.0;  ///< [k·dt, (k+1)·dt); empty at first
+    double lo_s = 0.0, hi_s = 0.0;  ///< [k·dt, (k+1)·dt), or past the record; empty at first
     double inv_dt_per_s = 0.0;
     double h0 = 0.0, dh = 0.0, v0 = 0.0, dv = 0.0;  ///< samples k and their differences [m/s²]
   };
   const Interval& interval() const { return i_; }
+  /// Moves to the sample interval after the current one (what enter() would find at its
+  /// end, without the search); false, unchanged, where there is none (the record's end, the
+  /// tail, or no interval yet).
+  bool next_interval();
 
  private:
-  /// Remembers the interval holding t; false outside the record (before, at or after its
-  /// last sample, or NaN).
+  /// Remembers the interval holding t; past every component's last sample, the still
+  /// ground's [end⁺, DBL_MAX) (zeros); false before the record, at its last sample, or NaN.
   bool enter(double t_s);
+  bool enter_tail(double t_s);
 
   Excitation excitation_;
   Interval i_;
+  std::size_t k_ = 0;  ///< the interval's index while i_ is a sample interval
+  bool sampled_ = false;  ///< i_ is a sample interval (not empty, not the tail)
 };
 
 /// The one owner of a scaled excitation: copies of the components, every one multiplied

@@ -27,6 +27,7 @@
 
 #include <optional>
 
+#include "pcrf/model/rocker_sincos.hpp"
 #include "pcrf/model/scene.hpp"
 #include "pcrf/units.hpp"
 
@@ -47,7 +48,8 @@ struct RockerParameters {
 /// φ = θ₁ and σ = 1 on side −1 (`left`), φ = −θ₁ and σ = −1 on side +1: the odd mirror flips
 /// the sign of the gravity term only, exactly. Written once over a number type T — double
 /// (RigidRocker::acceleration) or a SIMD pack of cases (the batch kernels) — whose `Ops`
-/// give select(mask, a, b) and sincos(x, sin, cos).
+/// give select(mask, a, b) and sincos(x, sin, cos): rocker_sincos (rocker_sincos.hpp), the
+/// same bits for both, unless a batch asks for another.
 template <class Ops, class T, class Mask>
 T rigid_rocker_acceleration(const T& moment_over_inertia_per_m, const T& slenderness_rad, const T& gravity_m_s2,
                             const T& theta1, const Mask& left, const T& ground_h_m_s2, const T& ground_v_m_s2) {

@@ -11,8 +11,8 @@
 /// own record interval, and none waits for another.
 ///
 /// Same answers as solve_case with the dopri5 integrator, bit for bit: every lane does that
-/// integrator's arithmetic in the same order and rounding, with the C library's sin/cos
-/// (BatchOptions::trig may trade that for a vectorised sin/cos). Cases the batch does not take (another integrator, a
+/// integrator's arithmetic in the same order and rounding, with its sin/cos (rocker_sincos,
+/// vectorised where built with SLEEF; BatchOptions::trig may trade it for another). Cases the batch does not take (another integrator, a
 /// verdict check) are solved by solve_case, one by one.
 ///
 /// The instruction set is chosen at run time among those this binary was built with
@@ -38,19 +38,20 @@ struct BatchOptions {
   /// Kernel set: "" the widest this CPU runs whose register holds at most `lanes` doubles;
   /// else "scalar", "sse2", "avx2", "avx512f" or "neon64".
   std::string kernels;
-  /// sin/cos of the rigid rockers' right-hand side: "" or "libm", the C library's lane by
-  /// lane (the one-case solver's values: the same answers bit for bit); "sleef" (SLEEF's
-  /// vector functions, 1 ulp; where built) or "xsimd" (xsimd's). A vectorised sin/cos
-  /// differs from the C library's in the last bit now and then, and a step accepted by a
-  /// hair may then be rejected: such a case's answer moves by about the integration error
-  /// (docs/batches.md measures it).
+  /// sin/cos of the rigid rockers' right-hand side: "" the one-case solver's (rocker_sincos:
+  /// the same answers bit for bit), a register at a time where built with SLEEF (its
+  /// deterministic family), else lane by lane; "scalar" the same lane by lane (to measure
+  /// what the vector one gains); "sleef" (SLEEF's fastest 1-ulp vector functions, with fused
+  /// multiply-add; where built) or "xsimd" (xsimd's). Those two differ from the one-case
+  /// sincos in the last bit now and then, and a step accepted by a hair may then be
+  /// rejected: such a case's answer moves by about the integration error (docs/batches.md).
   std::string trig;
 };
 
 /// What a batch run did, for benchmarks (docs/batches.md).
 struct BatchStats {
   std::string kernels;         ///< the kernel set used
-  std::string trig;            ///< the sin/cos used
+  std::string trig;            ///< the sin/cos used ("sleef-cinz vector", "libm lane by lane", "sleef", …)
   int lanes = 0;               ///< W
   long kernel_calls = 0;       ///< vector step attempts, each over all W lanes
   long busy_lane_attempts = 0; ///< lane attempts that belonged to a case (occupancy's numerator)
