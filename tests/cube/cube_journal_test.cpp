@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "pcrf/cube/cube_journal.hpp"
+#include "pcrf/cube/cube_merge.hpp"
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/cube/cube_writer.hpp"
 #include "pcrf/io/record_log.hpp"
@@ -148,6 +149,28 @@ TEST(CubeJournal, ChecksumsStoreResultsThatResumeAndFold) {
   }
   finish(file);
   expect_complete(file);
+}
+
+// What a reader shows is the last fold; it says how many results wait in the journal, and a
+// merge refuses a part whose journal holds results rather than leave them out.
+TEST(CubeJournal, ReadersNameTheResultsWaitingInTheJournal) {
+  const auto dir = test::scratch_dir("journal_readers");
+  const auto file = dir / "c.h5";
+  journaled_cube(file);
+  const auto info = test::run_command("'" + test::pcrf_executable().string() + "' cube info '" + file.string() + "'");
+  EXPECT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_NE(info.out.find("completion: 20000/50000"), std::string::npos) << info.out;
+  EXPECT_NE(info.err.find(file.string() + ": 3000 results wait in its journal " + journal_path(file).string()),
+            std::string::npos) << info.err;
+  try {
+    merge_cubes({file}, dir / "merged.h5", false, {}, true);
+    ADD_FAILURE() << "merged a part whose journal holds results";
+  } catch (const CubeError& e) {
+    EXPECT_NE(std::string(e.what()).find("3000 results wait in its journal"), std::string::npos) << e.what();
+  }
+  finish(file);  // folded: nothing waits, nothing is said
+  EXPECT_EQ(test::run_command("'" + test::pcrf_executable().string() + "' cube info '" + file.string() + "'")
+                .err.find("journal"), std::string::npos);
 }
 
 /// A copy of `from` (cube and journal) in `dir`, its journal cut to `bytes`.
