@@ -148,7 +148,8 @@ struct CubeWriter::Impl {
   std::string what(const std::string& problem) const { return path.string() + ": " + problem; }
 
   void create(const std::filesystem::path& target);
-  void checkpoint(const std::vector<std::int8_t>& status, bool fold_now);
+  enum class Checkpoint { kAppendOrFold, kAppend, kFold };
+  void checkpoint(const std::vector<std::int8_t>& status, Checkpoint how);
   bool fold_due() const;
   void append(const std::vector<std::int8_t>& status);
   void fold(const std::vector<std::int8_t>& status);
@@ -193,7 +194,7 @@ CubeWriter::CubeWriter(std::filesystem::path file, CubeLayout layout, OpenMode m
 CubeWriter::~CubeWriter() {
   if (impl_ && !impl_->closed) {
     try {
-      flush();  // keep what was computed even when the run is failing
+      append();  // keep what was computed even when the run is failing: the cheapest checkpoint
     } catch (...) {
     }
   }
@@ -670,9 +671,9 @@ void CubeWriter::Impl::fail(const CubeError& error) const {
 /// (cost: what changed) or by a fold (cost: the cube). Kill points (CheckpointStep, and
 /// docs/checkpoint.md): a kill at any moment leaves the last folded cube whole, and a
 /// journal whose complete records extend it, or a stale one that --resume ignores.
-void CubeWriter::Impl::checkpoint(const std::vector<std::int8_t>& status, bool fold_now) {
+void CubeWriter::Impl::checkpoint(const std::vector<std::int8_t>& status, Checkpoint how) {
   const bool changed = !pending_chunks.empty() || !pending_notes.empty() || !pending_histories.empty();
-  if (fold_now || !on_disk || journal_id == 0 || fold_due()) {
+  if (how == Checkpoint::kFold || !on_disk || journal_id == 0 || (how == Checkpoint::kAppendOrFold && fold_due())) {
     // Nothing new: the cube on disk is already this state.
     if (on_disk && journal_id != 0 && !changed && !sides_changed && journal_records == 0) return;
     fold(status);
@@ -778,9 +779,11 @@ void CubeWriter::Impl::clear_pending() {
   pending_histories.clear();
 }
 
-void CubeWriter::flush() { impl_->checkpoint(status_, false); }
+void CubeWriter::flush() { impl_->checkpoint(status_, Impl::Checkpoint::kAppendOrFold); }
 
-void CubeWriter::fold() { impl_->checkpoint(status_, true); }
+void CubeWriter::append() { impl_->checkpoint(status_, Impl::Checkpoint::kAppend); }
+
+void CubeWriter::fold() { impl_->checkpoint(status_, Impl::Checkpoint::kFold); }
 
 void CubeWriter::close() {
   fold();

@@ -247,7 +247,10 @@ class ResultSink {
     guard([&] {
       check_lock();
       if (before_flush_) before_flush_();
-      writer_.flush();
+      // Stopping (a kill may follow within a second): an append, never a fold, whose time
+      // follows what changed; close() folds if there is time.
+      if (stop_flushed_) writer_.append();
+      else writer_.flush();
     });
     last_flush_ = std::chrono::steady_clock::now();
     last_checkpoint_s_ = std::chrono::duration<double>(last_flush_ - start).count();

@@ -146,6 +146,11 @@ TEST(CubeJournal, ChecksumsStoreResultsThatResumeAndFold) {
     const auto theta = resumed.read_values("theta_max_rad");
     EXPECT_EQ(theta[22999], row_of(22999)[0]);
     EXPECT_TRUE(std::isnan(theta[23000]));
+    // append() never folds (a stopping run's checkpoint), though a fold is due here.
+    store_cases(resumed, 23000, 33000);
+    resumed.append();
+    EXPECT_EQ(done_in(CubeReader(file).read_status()), 20000);
+    EXPECT_EQ(JournalReader(file, folded.layout(), journal_id_of(folded.layout())).results(), 13000);
   }
   finish(file);
   expect_complete(file);

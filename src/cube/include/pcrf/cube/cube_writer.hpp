@@ -77,6 +77,7 @@ class CubeWriter {
   /// \throws CubeError naming the file: exists (kCreate), belongs to another study or has
   /// another layout (kResume), or cannot be written.
   CubeWriter(std::filesystem::path file, CubeLayout layout, OpenMode mode);
+  /// Unless closed: append() (errors ignored), keeping what was stored.
   ~CubeWriter();
   CubeWriter(const CubeWriter&) = delete;
   CubeWriter& operator=(const CubeWriter&) = delete;
@@ -106,6 +107,9 @@ class CubeWriter {
   /// A checkpoint: appends what changed since the last one to the journal, synced (or folds
   /// when the journal has grown past kFoldJournalShare of the cube).
   void flush();
+  /// A checkpoint that only appends, even when a fold is due (a new cube, or one of an
+  /// earlier version, is still folded): for a run stopping, which a kill may end within a second.
+  void append();
   /// A checkpoint that folds the journal and what changed into the cube, and removes the journal.
   void fold();
   /// fold() and close. Further calls are invalid.
