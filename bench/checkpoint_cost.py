@@ -68,27 +68,36 @@ def per_result_text(r):
 
 
 def append_per_result(rows):
-    """The largest measured cost of an append per result [s]."""
-    return max(r["quarter_appends_s"] / r["quarter_results"] for r in rows if r["quarter_results"] > 0)
+    """An append's cost per result [s], from the largest cube (the most results appended,
+    in the fewest syncs, as a long run's checkpoints)."""
+    return rows[-1]["quarter_appends_s"] / rows[-1]["quarter_results"]
 
 
-def estimate(rows, cases=1e8):
-    """Total checkpoint time of a run of `cases` results, old scheme and new: (old, appends, folds, cube MB)."""
+def write_per_result(rows):
+    """What a fold spends per result on top of a fold of one chunk [s]: reading, laying over,
+    compressing and writing the chunks. Either scheme pays it once per result (a chunk is
+    written at the checkpoint, or the fold, after its results came): from the largest cube."""
+    r = rows[-1]
+    return (r["fold_quarter_s"] - r["fold_chunk_s"]) / r["quarter_results"]
+
+
+def estimate(rows, cases=1e8, checkpoints=None):
+    """Checkpoint time of a whole run of `cases` results, old scheme and new, in parts."""
     big = rows[-1]["size_mb"] * cases / rows[-1]["cases"]
-    a_old, b_old = fit(rows, "fold_chunk_s")
+    a, b = fit(rows, "fold_chunk_s")  # a checkpoint of one chunk: constant + copy of the cube
+    writes = write_per_result(rows) * cases
     # Old: at least one checkpoint per 256 MiB of results held (1.96 million at 17 metrics),
     # each copying the cube as it then is: half the final one on average.
-    checkpoints = math.ceil(cases / 1.96e6)
-    old = checkpoints * a_old + b_old * big / 2 * checkpoints
-    # New: every result appended once (the cost per result of the appends of one chunk that
-    # filled the journal to a quarter: an upper bound, as a forced checkpoint appends two
-    # million results at once), and the folds.
-    per_result = append_per_result(rows)
-    appends = per_result * cases
-    a_fold, b_fold = fit(rows, "fold_quarter_s")
+    k = checkpoints or math.ceil(cases / 1.96e6)
+    old = k * a + b * big / 2 * k
+    # New: every result appended once, and folds, each when the journal holds a quarter of the
+    # cube's results, so the cube grows by 1.25 from one to the next: their copies add up to
+    # big * (1 + 1/0.25). The appends' constant (a sync) is in the per-result cost measured.
     folds = math.ceil(math.log(cases / FIRST_FOLD_RESULTS) / math.log(1 + FOLD_SHARE))
-    fold_total = folds * a_fold + b_fold * big * (1 + 1 / FOLD_SHARE)  # sum of big * 0.8^k
-    return old, appends, fold_total, folds, big
+    appends = append_per_result(rows) * cases
+    new = folds * a + b * big * (1 + 1 / FOLD_SHARE)
+    return {"big_mb": big, "old_copies_s": old, "checkpoints": k, "writes_s": writes, "appends_s": appends,
+            "folds": folds, "new_copies_s": new}
 
 
 def main():
@@ -116,13 +125,13 @@ def main():
                       flush=True)
             if len(rows) > 1:
                 a0, b = fit(rows, "fold_chunk_s")
-                af, bf = fit(rows, "fold_quarter_s")
-                old, appends, folds, count, big = estimate(rows)
-                print(f"varying {varying}: old checkpoint = {a0:.3f} s + {1e3 * b:.2f} s/GB x cube; "
-                      f"fold at a quarter = {af:.3f} s + {1e3 * bf:.2f} s/GB x cube; "
-                      f"appends = {1e6 * append_per_result(rows):.2f} us per result")
-                print(f"  10^8 cases ({big:.0f} MB cube): old checkpoints {old:.0f} s in all; "
-                      f"new: appends {appends:.0f} s + {count} folds {folds:.0f} s = {appends + folds:.0f} s")
+                e = estimate(rows)
+                print(f"varying {varying}: a checkpoint of one chunk = {a0:.3f} s + {1e3 * b:.2f} s/GB x cube; "
+                      f"appends {1e6 * append_per_result(rows):.2f} us per result; chunks written "
+                      f"{1e6 * write_per_result(rows):.2f} us per result")
+                print(f"  10^8 cases ({e['big_mb']:.0f} MB cube): chunks written (either scheme) {e['writes_s']:.0f} s; "
+                      f"old: {e['checkpoints']} checkpoints' copies {e['old_copies_s']:.0f} s; "
+                      f"new: appends {e['appends_s']:.0f} s + {e['folds']} folds' copies {e['new_copies_s']:.0f} s")
 
 
 if __name__ == "__main__":

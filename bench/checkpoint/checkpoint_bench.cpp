@@ -5,8 +5,9 @@
 // cases (--changed), times CubeWriter::flush() (an append to the journal: the new
 // checkpoint) and then CubeWriter::fold() of that one chunk (a copy of the cube with the
 // chunk written into it, renamed: the checkpoint before the journal). Last, a quarter of the
-// cube's cases (less --changed) is stored anew through appends and one fold() is timed: the
-// fold at kFoldJournalShare. Beside them, the time of a plain copy of the cube file.
+// cube's cases (less --changed) is stored anew through appends of --append-block cases (as a
+// run's checkpoints append a flush interval's results, or 256 MiB) and one fold() is timed:
+// the fold at kFoldJournalShare. Beside them, the time of a plain copy of the cube file.
 //
 //   build/bench/checkpoint/pcrf_checkpoint_bench --cases 1000000 [--metrics 17] [--repeats 5] [--dir /tmp]
 //
@@ -71,7 +72,7 @@ std::vector<double> row_of(std::int64_t index, int metrics, int varying, std::ui
 
 int main(int argc, char** argv) {
   CLI::App app{"Checkpoint cost: journal appends and folds of a full cube against the cube's size"};
-  long cases = 1'000'000, changed = 16384, fill_block = 1'000'000;
+  long cases = 1'000'000, changed = 16384, fill_block = 1'000'000, append_block = 1'000'000;
   int metrics = 17, varying = 17, repeats = 5;
   std::string dir = std::filesystem::temp_directory_path().string();
   app.add_option("--cases", cases, "cases in the cube")->capture_default_str();
@@ -80,6 +81,7 @@ int main(int argc, char** argv) {
   app.add_option("--changed", changed, "cases stored before each timed checkpoint")->capture_default_str();
   app.add_option("--repeats", repeats, "timed appends and folds of one chunk (their medians are printed)")->capture_default_str();
   app.add_option("--fill-block", fill_block, "cases stored between the checkpoints that fill the cube")->capture_default_str();
+  app.add_option("--append-block", append_block, "cases per append that fills the journal to a quarter")->capture_default_str();
   app.add_option("--dir", dir, "folder for the cube")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 
@@ -117,8 +119,8 @@ int main(int argc, char** argv) {
       fold_s.push_back(seconds_since(start));
     }
     // The journal filled to just under the fold's threshold, then the fold.
-    for (std::int64_t first = 0; first < quarter; first += changed) {
-      store_block(writer, first, std::min<std::int64_t>(changed, quarter - first), 99);
+    for (std::int64_t first = 0; first < quarter; first += append_block) {
+      store_block(writer, first, std::min<std::int64_t>(append_block, quarter - first), 99);
       start = Clock::now();
       writer.flush();
       quarter_appends_s += seconds_since(start);

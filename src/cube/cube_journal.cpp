@@ -298,7 +298,7 @@ JournalWriter::JournalWriter(const std::filesystem::path& cube, const CubeLayout
     log_ = std::make_unique<io::LogWriter>(file_, keep_bytes);
     if (keep_bytes > 0) return;
     log_->add(kHeader, header_payload(id, layout.case_count(), metrics_));
-    log_->commit();
+    log_->sync();
   });
 }
 
@@ -319,40 +319,37 @@ void JournalWriter::add_cases(std::size_t chunk, const std::vector<char>& stored
   std::vector<std::uint32_t> offsets;
   for (std::size_t k = 0; k < count; ++k)
     if (stored[k]) offsets.push_back(static_cast<std::uint32_t>(k));
-  std::string out;
-  out.reserve(static_cast<std::size_t>(cases_payload_bytes(offsets.size(), metrics_)));
-  put(out, chunk, 8);
-  put(out, offsets.size(), 4);
-  for (auto k : offsets) put(out, k, 4);
-  for (auto k : offsets) out.push_back(static_cast<char>(status[k]));
-  std::vector<double> row(offsets.size());
+  payload_.clear();
+  payload_.reserve(static_cast<std::size_t>(cases_payload_bytes(offsets.size(), metrics_)));
+  put(payload_, chunk, 8);
+  put(payload_, offsets.size(), 4);
+  for (auto k : offsets) put(payload_, k, 4);
+  for (auto k : offsets) payload_.push_back(static_cast<char>(status[k]));
+  column_.resize(offsets.size());
   for (std::size_t m = 0; m < metrics_; ++m) {
-    for (std::size_t j = 0; j < offsets.size(); ++j) row[j] = values[m * count + offsets[j]];
-    put_doubles(out, row.data(), row.size());
+    for (std::size_t j = 0; j < offsets.size(); ++j) column_[j] = values[m * count + offsets[j]];
+    put_doubles(payload_, column_.data(), column_.size());
   }
-  log_->add(kCases, out);
+  guarded([&] { log_->add(kCases, payload_); });
 }
 
 void JournalWriter::add_notes(const std::vector<std::pair<std::int64_t, std::string>>& notes) {
   if (notes.empty()) return;
-  std::string out;
-  put(out, notes.size(), 4);
+  payload_.clear();
+  put(payload_, notes.size(), 4);
   for (const auto& [index, text] : notes) {
-    put(out, static_cast<std::uint64_t>(index), 8);
-    put_text(out, text);
+    put(payload_, static_cast<std::uint64_t>(index), 8);
+    put_text(payload_, text);
   }
-  log_->add(kNotes, out);
+  guarded([&] { log_->add(kNotes, payload_); });
 }
 
-void JournalWriter::add_history(const HistoryTable& table) { log_->add(kHistory, history_payload(table)); }
+void JournalWriter::add_history(const HistoryTable& table) {
+  guarded([&] { log_->add(kHistory, history_payload(table)); });
+}
 
-std::size_t JournalWriter::waiting_bytes() const { return log_->waiting_bytes(); }
-
-void JournalWriter::write() {
-  guarded([&] {
-    log_->add(kCommit, {});
-    log_->write();
-  });
+void JournalWriter::commit() {
+  guarded([&] { log_->add(kCommit, {}); });
 }
 
 void JournalWriter::sync() {

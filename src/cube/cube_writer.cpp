@@ -689,9 +689,10 @@ bool CubeWriter::Impl::fold_due() const {
   return static_cast<double>(journal_results + pending_results) > kFoldJournalShare * static_cast<double>(folded_results);
 }
 
-/// Appends what was stored since the last checkpoint to the journal and syncs it.
-///   kill while writing (kJournalWritten not reached): a torn record at the journal's end,
-///     dropped by --resume (its cases are computed again); the cube is untouched;
+/// Appends what was stored since the last checkpoint to the journal, closed by a commit
+/// record, and syncs it.
+///   kill while writing (kJournalWritten not reached): records without their commit at the
+///     journal's end, dropped by --resume (their cases are computed again); the cube is untouched;
 ///   kJournalWritten: the records are complete in the page cache: --resume keeps them (a
 ///     power loss now may tear them: dropped as above);
 ///   kJournalSynced: the checkpoint is durable.
@@ -709,7 +710,7 @@ void CubeWriter::Impl::append(const std::vector<std::int8_t>& status) {
       journal->add_cases(chunk, stored.stored, stored.values, status.data() + grid.range(chunk).first);
     journal->add_notes(pending_notes);
     for (const auto& table : pending_histories) journal->add_history(table);
-    journal->write();
+    journal->commit();
     reached(CheckpointStep::kJournalWritten);
     journal->sync();
     reached(CheckpointStep::kJournalSynced);

@@ -132,8 +132,9 @@ LogWriter::LogWriter(fs::path file, std::uint64_t keep_bytes) : file_(std::move(
   if (fd_ < 0) fail("cannot write", errno);
   try {
     if (fresh) {
-      buffer_.assign(kMagic);
-      commit();
+      write_at(0, kMagic);
+      written_ = kMagic.size();
+      sync();
       sync_folder(folder_of(file_));
       return;
     }
@@ -153,41 +154,41 @@ void LogWriter::fail(const char* action, int error) const {
   throw OutputError(file_.string() + ": " + action + ": " + std::strerror(error), error);
 }
 
-void LogWriter::add(std::uint32_t kind, std::string_view payload) {
-  const std::size_t head = buffer_.size();
-  append_le(buffer_, kind, 4);
-  append_le(buffer_, payload.size(), 8);
-  buffer_.append(payload);
-  const std::uint32_t crc = crc_of(static_cast<std::uint32_t>(::crc32(0, nullptr, 0)), buffer_.data() + head,
-                                   buffer_.size() - head);
-  append_le(buffer_, crc, 4);
+void LogWriter::cut_back(int error) {
+  (void)::ftruncate(fd_, static_cast<off_t>(size_));  // best effort: readers drop a torn tail anyway
+  written_ = size_;
+  fail("cannot write", error);
 }
 
-void LogWriter::write() {
-  std::size_t done = 0;
-  while (done < buffer_.size()) {
-    const ssize_t n = ::pwrite(fd_, buffer_.data() + done, buffer_.size() - done, static_cast<off_t>(written_ + done));
+bool LogWriter::write_at(std::uint64_t offset, std::string_view bytes) {
+  while (!bytes.empty()) {
+    const ssize_t n = ::pwrite(fd_, bytes.data(), bytes.size(), static_cast<off_t>(offset));
     if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      const int error = n < 0 ? errno : EIO;
-      buffer_.clear();
-      (void)::ftruncate(fd_, static_cast<off_t>(size_));  // best effort: readers drop a torn tail anyway
-      written_ = size_;
-      fail("cannot write", error);
-    }
-    done += static_cast<std::size_t>(n);
+    if (n == 0) errno = EIO;
+    if (n <= 0) return false;
+    bytes.remove_prefix(static_cast<std::size_t>(n));
+    offset += static_cast<std::uint64_t>(n);
   }
-  written_ += buffer_.size();
-  buffer_.clear();
+  return true;
+}
+
+void LogWriter::add(std::uint32_t kind, std::string_view payload) {
+  std::string head, tail;
+  append_le(head, kind, 4);
+  append_le(head, payload.size(), 8);
+  const std::uint32_t crc = crc_of(crc_of(static_cast<std::uint32_t>(::crc32(0, nullptr, 0)), head.data(), head.size()),
+                                   payload.data(), payload.size());
+  append_le(tail, crc, 4);
+  std::uint64_t at = written_;
+  for (const std::string_view piece : {std::string_view(head), payload, std::string_view(tail)}) {
+    if (!write_at(at, piece)) cut_back(errno);
+    at += piece.size();
+  }
+  written_ = at;
 }
 
 void LogWriter::sync() {
-  if (::fdatasync(fd_) != 0) {
-    const int error = errno;
-    (void)::ftruncate(fd_, static_cast<off_t>(size_));
-    written_ = size_;
-    fail("cannot write", error);
-  }
+  if (::fdatasync(fd_) != 0) cut_back(errno);
   size_ = written_;
 }
 

@@ -252,7 +252,7 @@ void forge(const fs::path& file, std::uint32_t kind, const std::string& payload)
   io::LogWriter log(journal_path(file), journal.valid_bytes());
   log.add(kind, payload);
   log.add(kJournalCommit, {});
-  log.commit();
+  log.sync();
 }
 
 std::string resume_error(const fs::path& file) {

@@ -134,17 +134,15 @@ class JournalWriter {
   JournalWriter(const JournalWriter&) = delete;
   JournalWriter& operator=(const JournalWriter&) = delete;
 
-  /// The stored cases of one chunk: `stored[k]` marks case k of the chunk, `values` holds
-  /// [metric * count + k], `status` the chunk's statuses.
+  /// Writes the stored cases of one chunk (not synced): `stored[k]` marks case k of the
+  /// chunk, `values` holds [metric * count + k], `status` the chunk's statuses.
   void add_cases(std::size_t chunk, const std::vector<char>& stored, const std::vector<double>& values,
                  const std::int8_t* status);
   void add_notes(const std::vector<std::pair<std::int64_t, std::string>>& notes);
   void add_history(const HistoryTable& table);
-  /// Bytes added, not yet written.
-  std::size_t waiting_bytes() const;
-  /// Writes what was added, closed by a commit record (on failure: cut back, nothing waiting).
-  void write();
-  /// Syncs it to disk: the records are then committed.
+  /// Writes the commit record that makes the records added since the last one a checkpoint.
+  void commit();
+  /// Syncs what was written to disk: the checkpoint is then durable.
   void sync();
   /// Bytes of the journal (committed records).
   std::uint64_t bytes() const;
@@ -158,6 +156,8 @@ class JournalWriter {
   std::filesystem::path file_;
   std::size_t metrics_;
   std::unique_ptr<io::LogWriter> log_;
+  std::string payload_;        ///< reused: no fresh pages for every record
+  std::vector<double> column_;  ///< reused
 };
 
 }  // namespace pcrf::cube

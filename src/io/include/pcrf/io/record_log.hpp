@@ -81,24 +81,15 @@ class LogWriter {
   LogWriter& operator=(const LogWriter&) = delete;
 
   const std::filesystem::path& file() const { return file_; }
-  /// Bytes of the log, records committed (synced) only.
+  /// Bytes of the log, records synced only.
   std::uint64_t size() const { return size_; }
-  /// Frames a record in memory; commit() writes it.
+  /// Writes a record at the end of the log (framed as it goes: no copy of the payload), not
+  /// yet synced. On failure the file is cut back to its last synced size (best effort: a
+  /// kill then leaves a torn tail, which readers drop). \throws OutputError naming the file.
   void add(std::uint32_t kind, std::string_view payload);
-  /// Bytes add() holds for the next commit().
-  std::size_t waiting_bytes() const { return buffer_.size(); }
-  /// Writes what add() framed. On failure the file is cut back to its last committed size
-  /// (best effort: a kill then leaves a torn tail, which readers drop) and nothing stays
-  /// waiting. \throws OutputError naming the file.
-  void write();
-  /// Syncs what write() wrote to disk (fdatasync): the records are then committed.
+  /// Syncs what add() wrote to disk (fdatasync): the records are then committed.
   /// \throws OutputError naming the file.
   void sync();
-  /// write(), then sync().
-  void commit() {
-    write();
-    sync();
-  }
   /// True while `file` names the file this writer appends to (not removed, not replaced).
   bool in_place() const;
 
@@ -108,8 +99,11 @@ class LogWriter {
   std::filesystem::path file_;
   int fd_ = -1;
   std::uint64_t size_ = 0;
-  std::uint64_t written_ = 0;  ///< size after write(), before sync()
-  std::string buffer_;
+  [[noreturn]] void cut_back(int error);
+  /// pwrite() of all of `bytes` at `offset`; false (errno set) on failure.
+  bool write_at(std::uint64_t offset, std::string_view bytes);
+
+  std::uint64_t written_ = 0;  ///< size after add(), before sync()
 };
 
 }  // namespace pcrf::io
