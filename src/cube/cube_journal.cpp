@@ -2,6 +2,7 @@
 // payloads encoded and checked here against the cube's layout.
 #include "pcrf/cube/cube_journal.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cstring>
 
@@ -88,8 +89,20 @@ std::string header_payload(std::int64_t id, std::int64_t cases, std::size_t metr
   return out;
 }
 
-std::uint64_t cases_payload_bytes(std::uint64_t n, std::size_t metrics) {
-  return kCasesHeadBytes + n * (4 + 1 + 8 * static_cast<std::uint64_t>(metrics));
+/// How a metric's values are stored in a record of cases: one per case, or one for all (a
+/// metric that is the same for every case of the record, e.g. 0 or NaN where frames never lift).
+enum ColumnForm : std::uint8_t { kEach = 0, kSame = 1 };
+
+/// The bytes of a record of `n` cases: at most (every column kEach), at least (every kSame).
+std::uint64_t cases_payload_bytes(std::uint64_t n, std::size_t metrics, bool each) {
+  const auto m = static_cast<std::uint64_t>(metrics);
+  return kCasesHeadBytes + n * (4 + 1) + m * (1 + 8 * (each ? n : 1));
+}
+
+/// True when every value is the same, bit for bit (NaN payloads and -0 kept).
+bool all_same(const std::vector<double>& values) {
+  const auto first = values.empty() ? 0 : std::bit_cast<std::uint64_t>(values.front());
+  return std::all_of(values.begin(), values.end(), [&](double v) { return std::bit_cast<std::uint64_t>(v) == first; });
 }
 
 void put_attribute(std::string& out, const Attribute& a) {
@@ -195,7 +208,7 @@ JournalReader::JournalReader(const std::filesystem::path& cube, const CubeLayout
     if (chunk >= grid_.chunk_count())
       fail(r, "names chunk " + std::to_string(chunk) + " of a cube of " + std::to_string(grid_.chunk_count()));
     if (n > static_cast<std::uint64_t>(grid_.range(static_cast<std::size_t>(chunk)).count) ||
-        record.size != cases_payload_bytes(n, metrics_))
+        record.size > cases_payload_bytes(n, metrics_, true) || record.size < cases_payload_bytes(n, metrics_, false))
       fail(r, "holds " + std::to_string(record.size) + " bytes, not the " + std::to_string(n) + " cases it declares");
     chunks_[static_cast<std::size_t>(chunk)].push_back(r);
     results_ += static_cast<std::int64_t>(n);
@@ -234,7 +247,14 @@ JournalCases JournalReader::cases(std::size_t record) const {
     }
     const auto* status = reinterpret_cast<const std::int8_t*>(in.take(n));
     c.status.assign(status, status + n);
-    c.values = in.doubles(static_cast<std::uint64_t>(n) * metrics_);
+    c.values.reserve(n * metrics_);  // bounded by the chunk's size, checked above
+    for (std::size_t m = 0; m < metrics_; ++m) {
+      const auto form = in.number(1);
+      if (form != kEach && form != kSame) throw Malformed{"has a column of unknown form"};
+      const auto column = in.doubles(form == kEach ? n : 1);
+      if (form == kEach) c.values.insert(c.values.end(), column.begin(), column.end());
+      else c.values.insert(c.values.end(), n, column.front());
+    }
     in.expect_end();
   } catch (const Malformed& m) {
     fail(record, m.problem);
@@ -320,7 +340,7 @@ void JournalWriter::add_cases(std::size_t chunk, const std::vector<char>& stored
   for (std::size_t k = 0; k < count; ++k)
     if (stored[k]) offsets.push_back(static_cast<std::uint32_t>(k));
   payload_.clear();
-  payload_.reserve(static_cast<std::size_t>(cases_payload_bytes(offsets.size(), metrics_)));
+  payload_.reserve(static_cast<std::size_t>(cases_payload_bytes(offsets.size(), metrics_, true)));
   put(payload_, chunk, 8);
   put(payload_, offsets.size(), 4);
   for (auto k : offsets) put(payload_, k, 4);
@@ -328,7 +348,9 @@ void JournalWriter::add_cases(std::size_t chunk, const std::vector<char>& stored
   column_.resize(offsets.size());
   for (std::size_t m = 0; m < metrics_; ++m) {
     for (std::size_t j = 0; j < offsets.size(); ++j) column_[j] = values[m * count + offsets[j]];
-    put_doubles(payload_, column_.data(), column_.size());
+    const bool same = !column_.empty() && all_same(column_);
+    put(payload_, same ? kSame : kEach, 1);
+    put_doubles(payload_, column_.data(), same ? 1 : column_.size());
   }
   guarded([&] { log_->add(kCases, payload_); });
 }

@@ -33,7 +33,7 @@ CubeLayout journal_layout() {
   Coordinate index{"case", "case", "", "", {}, {}, false, true};
   for (int i = 0; i < 10000; ++i) index.numbers.push_back(i);
   l.coordinates = {row, index};
-  l.metrics = {{"theta_max_rad", "rad", ""}, {"impacts", "1", ""}};
+  l.metrics = {{"theta_max_rad", "rad", ""}, {"impacts", "1", ""}, {"uplift_m", "m", ""}};
   l.status_flags = {{0, "at_rest"}, {3, "overturned"}};
   l.attributes = {{kFingerprintName, std::string("journal-test")}};
   return l;
@@ -42,8 +42,9 @@ CubeLayout journal_layout() {
 constexpr std::int64_t kCases = 50000;
 constexpr std::int64_t kHistoryCase = 30500;
 
-/// Case i's result, the same whichever run computes it.
-std::vector<double> row_of(std::int64_t i) { return {1e-5 * static_cast<double>(i), static_cast<double>(i % 7)}; }
+/// Case i's result, the same whichever run computes it: two metrics that vary, one that is 0
+/// for every case (journaled as one value per record).
+std::vector<double> row_of(std::int64_t i) { return {1e-5 * static_cast<double>(i), static_cast<double>(i % 7), 0.0}; }
 std::int8_t status_of(std::int64_t i) { return i % 11 == 0 ? 3 : 0; }
 
 HistoryTable history_of(std::int64_t i) {
@@ -76,10 +77,11 @@ void expect_complete(const fs::path& file) {
   const auto status = reader.read_status();
   const auto theta = reader.read_metric("theta_max_rad");
   const auto impacts = reader.read_metric("impacts");
+  const auto uplift = reader.read_metric("uplift_m");
   std::size_t wrong = 0;
   for (std::int64_t i = 0; i < kCases; ++i) {
     const auto k = static_cast<std::size_t>(i);
-    wrong += status[k] != status_of(i) || theta[k] != row_of(i)[0] || impacts[k] != row_of(i)[1];
+    wrong += status[k] != status_of(i) || theta[k] != row_of(i)[0] || impacts[k] != row_of(i)[1] || uplift[k] != 0.0;
   }
   EXPECT_EQ(wrong, 0u) << file;
   auto notes = reader.read_notes();
@@ -130,6 +132,7 @@ TEST(CubeJournal, ChecksumsStoreResultsThatResumeAndFold) {
       EXPECT_EQ(c.status[j], status_of(i));
       EXPECT_EQ(c.values[j], row_of(i)[0]);
       EXPECT_EQ(c.values[c.offsets.size() + j], row_of(i)[1]);
+      EXPECT_EQ(c.values[2 * c.offsets.size() + j], 0.0);
       ++seen;
     }
   });

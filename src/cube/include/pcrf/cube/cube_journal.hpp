@@ -13,8 +13,9 @@
 ///
 /// Records (their kinds JournalRecord; payloads little-endian):
 ///   header   id i64, cases i64, metrics u32
-///   cases    chunk u64, n u32, n offsets in the chunk u32 (ascending), n statuses i8,
-///            n × metrics f64 (metric-major)
+///   cases    chunk u64, n u32, n offsets in the chunk u32 (ascending), n statuses i8, then
+///            per metric: u8 0 and n f64, or u8 1 and one f64 that every case has (a metric
+///            that is 0 or NaN wherever frames never lift costs 9 bytes, not 8 n)
 ///   notes    n u32, then n × (case i64, length u32, text)
 ///   history  a HistoryTable: name, attributes, columns and their values
 ///   commit   nothing: the records since the last commit are one checkpoint
