@@ -1,12 +1,19 @@
-// pcrf_checkpoint_bench: what one checkpoint of a result cube costs against the cube's size.
-// A cube of --cases cases and --metrics metrics is filled completely (--varying of them vary
-// case to case with five digits, the others are 0), then each repeat stores one
-// chunk's worth of changed cases (--changed) and times CubeWriter::flush(). Beside it, the
-// time of a plain copy of the cube file: the part of a checkpoint that grows with the cube.
+// pcrf_checkpoint_bench: what a checkpoint of a result cube costs against the cube's size,
+// by journal append (flush) and by fold (docs/checkpoint.md). A cube of --cases cases and
+// --metrics metrics is filled completely (--varying of them vary case to case with five
+// digits, the others are 0) and folded. Then each repeat stores one chunk's worth of changed
+// cases (--changed), times CubeWriter::flush() (an append to the journal: the new
+// checkpoint) and then CubeWriter::fold() of that one chunk (a copy of the cube with the
+// chunk written into it, renamed: the checkpoint before the journal). Last, a quarter of the
+// cube's cases (less --changed) is stored anew through appends of --append-block cases (as a
+// run's checkpoints append a flush interval's results, or 256 MiB) and one fold() is timed:
+// the fold at kFoldJournalShare. Beside them, the time of a plain copy of the cube file.
 //
 //   build/bench/checkpoint/pcrf_checkpoint_bench --cases 1000000 [--metrics 17] [--repeats 5] [--dir /tmp]
 //
-// Prints one line: cases, metrics, cube size [MB], median checkpoint [s], median copy [s].
+// Prints one line: cases, metrics, cube size [MB], median append [s], median fold of one
+// chunk [s], fold at a quarter [s], the journal then [MB], the appends that filled it [s] and
+// their results, median copy [s], fill [s].
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -18,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "pcrf/cube/cube_journal.hpp"
 #include "pcrf/cube/cube_writer.hpp"
 
 namespace {
@@ -63,38 +71,64 @@ std::vector<double> row_of(std::int64_t index, int metrics, int varying, std::ui
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Checkpoint cost: one flush of a full cube against the cube's size"};
-  long cases = 1'000'000, changed = 16384, fill_block = 1'000'000;
+  CLI::App app{"Checkpoint cost: journal appends and folds of a full cube against the cube's size"};
+  long cases = 1'000'000, changed = 16384, fill_block = 1'000'000, append_block = 1'000'000;
   int metrics = 17, varying = 17, repeats = 5;
   std::string dir = std::filesystem::temp_directory_path().string();
   app.add_option("--cases", cases, "cases in the cube")->capture_default_str();
   app.add_option("--metrics", metrics, "metrics stored per case")->capture_default_str();
   app.add_option("--varying", varying, "metrics that vary from case to case (the others are 0)")->capture_default_str();
   app.add_option("--changed", changed, "cases stored before each timed checkpoint")->capture_default_str();
-  app.add_option("--repeats", repeats, "timed checkpoints (the median is printed)")->capture_default_str();
+  app.add_option("--repeats", repeats, "timed appends and folds of one chunk (their medians are printed)")->capture_default_str();
   app.add_option("--fill-block", fill_block, "cases stored between the checkpoints that fill the cube")->capture_default_str();
+  app.add_option("--append-block", append_block, "cases per append that fills the journal to a quarter")->capture_default_str();
   app.add_option("--dir", dir, "folder for the cube")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 
   const std::filesystem::path file = std::filesystem::path(dir) / ("checkpoint_bench_" + std::to_string(cases) + ".h5");
-  std::vector<double> checkpoint_s, copy_s;
-  double fill_s = 0.0;
+  const auto journal = journal_path(file);
+  std::vector<double> append_s, fold_s, copy_s;
+  double fill_s = 0.0, quarter_s = 0.0, quarter_mb = 0.0, quarter_appends_s = 0.0;
+  // A journal just under the fold's threshold: a quarter of the cube's cases, less a chunk.
+  const auto quarter = static_cast<std::int64_t>(kFoldJournalShare * static_cast<double>(cases)) - changed;
+  auto store_block = [&](CubeWriter& writer, std::int64_t first, std::int64_t count, std::uint64_t salt) {
+    for (std::int64_t i = first; i < std::min<std::int64_t>(cases, first + count); ++i)
+      writer.store(i, 0, row_of(i, metrics, varying, salt));
+  };
   {
     CubeWriter writer(file, bench_layout(cases, metrics), OpenMode::kOverwrite);
     auto start = Clock::now();
-    for (std::int64_t i = 0; i < cases; ++i) {
-      writer.store(i, 0, row_of(i, metrics, varying, 0));
-      if ((i + 1) % fill_block == 0 || i + 1 == cases) writer.flush();
+    for (std::int64_t first = 0; first < cases; first += fill_block) {
+      store_block(writer, first, fill_block, 0);
+      writer.flush();
     }
+    writer.fold();
     fill_s = seconds_since(start);
     for (int r = 0; r < repeats; ++r) {
       const std::int64_t first = (static_cast<std::int64_t>(r) * 7919 * changed) % std::max<std::int64_t>(1, cases - changed);
-      for (std::int64_t i = first; i < std::min<std::int64_t>(cases, first + changed); ++i)
-        writer.store(i, 0, row_of(i, metrics, varying, static_cast<std::uint64_t>(r) + 1));
+      store_block(writer, first, changed, static_cast<std::uint64_t>(r) + 1);
       start = Clock::now();
       writer.flush();
-      checkpoint_s.push_back(seconds_since(start));
+      append_s.push_back(seconds_since(start));
+      if (!std::filesystem::exists(journal)) {
+        std::fprintf(stderr, "the flush folded: --changed must be under a quarter of --cases\n");
+        return 1;
+      }
+      start = Clock::now();
+      writer.fold();
+      fold_s.push_back(seconds_since(start));
     }
+    // The journal filled to just under the fold's threshold, then the fold.
+    for (std::int64_t first = 0; first < quarter; first += append_block) {
+      store_block(writer, first, std::min<std::int64_t>(append_block, quarter - first), 99);
+      start = Clock::now();
+      writer.flush();
+      quarter_appends_s += seconds_since(start);
+    }
+    quarter_mb = static_cast<double>(std::filesystem::file_size(journal)) / 1e6;
+    start = Clock::now();
+    writer.fold();
+    quarter_s = seconds_since(start);
     writer.close();
   }
   const std::filesystem::path copy = file.string() + ".copy";
@@ -106,7 +140,9 @@ int main(int argc, char** argv) {
   const double size_mb = static_cast<double>(std::filesystem::file_size(file)) / 1e6;
   std::filesystem::remove(copy);
   std::filesystem::remove(file);
-  std::printf("cases %ld metrics %d cube_MB %.1f checkpoint_s %.4f copy_s %.4f fill_s %.2f changed %ld\n", cases, metrics,
-              size_mb, median(checkpoint_s), median(copy_s), fill_s, changed);
+  std::printf("cases %ld metrics %d cube_MB %.1f append_s %.4f fold_chunk_s %.4f fold_quarter_s %.4f journal_quarter_MB %.1f "
+              "quarter_appends_s %.3f quarter_results %ld copy_s %.4f fill_s %.2f changed %ld\n",
+              cases, metrics, size_mb, median(append_s), median(fold_s), quarter_s, quarter_mb, quarter_appends_s,
+              static_cast<long>(std::max<std::int64_t>(quarter, 0)), median(copy_s), fill_s, changed);
   return 0;
 }

@@ -61,16 +61,16 @@ std::vector<cube::Selector> selectors(const std::vector<std::string>& texts) {
   return result;
 }
 
-/// A cube that a study run is writing is read as its last complete checkpoint; says so on stderr.
+/// A cube that a study run is writing is read as its last fold; says so on stderr.
 void note_running(const std::string& file) {
   if (const auto note = post::running_note(file); !note.empty()) std::cerr << "pcrf cube: " << note << '\n';
 }
 
-/// A cube with cases never run: says how many on stderr, since what is printed covers the
-/// cases run only.
+/// A cube with results waiting in its journal, or with cases never run: says how many on
+/// stderr, since what is printed covers the cases of the cube's last fold only.
 void note_partial(const std::string& command, const std::string& file, const cube::CubeReader& reader) {
-  if (const auto note = post::partial_note(file, reader); !note.empty())
-    std::cerr << "pcrf cube " << command << ": " << note << '\n';
+  for (const auto& note : {post::journal_note(file, reader), post::partial_note(file, reader)})
+    if (!note.empty()) std::cerr << "pcrf cube " << command << ": " << note << '\n';
 }
 
 /// What the cube's statuses say that the printed answer cannot show (vocabulary::verdict_notes:

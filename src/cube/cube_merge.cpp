@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 
+#include "pcrf/cube/cube_journal.hpp"
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/cube/cube_writer.hpp"
 #include "pcrf/io/output_file.hpp"
@@ -21,7 +22,13 @@ MergeResult merge_cubes(const std::vector<std::filesystem::path>& parts, const s
   if (out.temporary().empty()) throw CubeError(output.string() + ": the merged cube must be a regular file");
 
   std::vector<std::unique_ptr<CubeReader>> readers;
-  for (const auto& part : parts) readers.push_back(std::make_unique<CubeReader>(part));
+  for (const auto& part : parts) {
+    readers.push_back(std::make_unique<CubeReader>(part));
+    const auto& layout = readers.back()->layout();
+    if (const auto waiting = JournalReader(part, layout, journal_id_of(layout)).results(); waiting > 0)
+      throw CubeError(part.string() + ": " + std::to_string(waiting) + " results wait in its journal " +
+                      journal_path(part).string() + ": --resume its run to fold them in, then merge");
+  }
   const CubeLayout& first = readers.front()->layout();
   const std::string fingerprint = first.text_attribute(kFingerprintName);
   for (std::size_t p = 1; p < readers.size(); ++p) {

@@ -14,10 +14,13 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <random>
+#include <set>
 #include <tuple>
 
 #include "cube/hdf5_util.hpp"
 #include "pcrf/cube/chunk_grid.hpp"
+#include "pcrf/cube/cube_journal.hpp"
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/io/atomic_file.hpp"
 #include "pcrf/io/checked_stream.hpp"
@@ -84,7 +87,24 @@ std::string join(const std::vector<std::string>& words) {
   return text;
 }
 
+CheckpointObserver checkpoint_observer = nullptr;
+
+/// A kill point of a checkpoint (crash tests stop the process here).
+void reached(CheckpointStep step) {
+  if (checkpoint_observer != nullptr) checkpoint_observer(step);
+}
+
+/// A fresh journal id for a fold: positive, never 0 (which means "none").
+std::int64_t draw_journal_id() {
+  std::random_device device;
+  const std::uint64_t high = device(), low = device();
+  const auto id = static_cast<std::int64_t>(((high << 32) ^ low) & 0x7fff'ffff'ffff'ffffull);
+  return id == 0 ? 1 : id;
+}
+
 }  // namespace
+
+void observe_checkpoints(CheckpointObserver observer) { checkpoint_observer = observer; }
 
 struct CubeWriter::Impl {
   std::filesystem::path path;
@@ -106,32 +126,50 @@ struct CubeWriter::Impl {
   std::vector<std::pair<std::int64_t, std::string>> pending_notes;  // since the last checkpoint
   bool rewrite_notes = false;  // the file's notes are all in pending_notes: write them anew
   std::vector<HistoryTable> pending_histories;                      // likewise
+  std::int64_t pending_results = 0;  // store() calls since the last checkpoint
   bool sides_changed = true;
-  bool on_disk = false;  // `path` holds this cube's last checkpoint
+  bool on_disk = false;  // `path` holds this cube's last fold
   bool closed = false;
   struct stat identity {};  // of the file at `path` this writer made or opened (when on_disk)
+  // The journal (cube_journal.hpp): what was checkpointed since the last fold.
+  std::int64_t journal_id = 0;             // the folded cube's; 0: none (a new cube, or an earlier version's)
+  std::unique_ptr<JournalWriter> journal;  // open since the first append after the last fold
+  std::uint64_t journal_keep_bytes = 0;    // --resume: where the first append continues the journal
+  std::int64_t journal_records = 0;        // records appended since the last fold
+  std::int64_t journal_results = 0;        // case results among them
+  std::int64_t folded_results = 0;         // cases done in the folded cube
 
   Impl(std::filesystem::path p, CubeLayout l)
-      : path(std::move(p)), layout(std::move(l)), grid(layout.shape()) {}
+      : path(std::move(p)), layout(std::move(l)), grid(layout.shape()) {
+    // The id is the writer's to draw (a merged cube's layout comes from a part).
+    std::erase_if(layout.attributes, [](const Attribute& a) { return a.name == kJournalIdName; });
+  }
 
   std::string what(const std::string& problem) const { return path.string() + ": " + problem; }
 
   void create(const std::filesystem::path& target);
-  void checkpoint(const std::vector<std::int8_t>& status);
+  enum class Checkpoint { kAppendOrFold, kAppend, kFold };
+  void checkpoint(const std::vector<std::int8_t>& status, Checkpoint how);
+  bool fold_due() const;
+  void append(const std::vector<std::int8_t>& status);
+  void fold(const std::vector<std::int8_t>& status);
+  void clear_pending();
   void write_new_file(io::AtomicFile& target);
-  void update(const std::filesystem::path& target, const std::vector<std::int8_t>& status);
+  void update(const std::filesystem::path& target, const std::vector<std::int8_t>& status, std::int64_t new_id);
   void check_free_space(const std::filesystem::path& target) const;
   void remember_identity();
   void check_identity() const;
   [[noreturn]] void fail(const CubeError& error) const;
   void close_handles();
   void open_existing(std::vector<std::int8_t>& status);
+  void replay_journal(std::vector<std::int8_t>& status);
   h5::Handle create_cube_variable(const std::string& name, hid_t file_type, hid_t memory_type,
                                   const void* fill);
   h5::Handle create_side_variable(const SideVariable& v);
   void write_side(std::size_t index);
-  void write_chunk(std::size_t chunk, const ChunkValues& stored, const std::vector<std::int8_t>& status);
-  void append_notes();
+  void write_chunk(std::size_t chunk, const std::vector<JournalCases>& journaled, const ChunkValues* pending,
+                   const std::vector<std::int8_t>& status);
+  void append_notes(const std::vector<std::pair<std::int64_t, std::string>>& notes);
   void write_history(const HistoryTable& table);
 };
 
@@ -156,7 +194,7 @@ CubeWriter::CubeWriter(std::filesystem::path file, CubeLayout layout, OpenMode m
 CubeWriter::~CubeWriter() {
   if (impl_ && !impl_->closed) {
     try {
-      flush();  // keep what was computed even when the run is failing
+      append();  // keep what was computed even when the run is failing: the cheapest checkpoint
     } catch (...) {
     }
   }
@@ -287,12 +325,36 @@ void CubeWriter::Impl::open_existing(std::vector<std::int8_t>& status) {
   if (old.shape() != layout.shape() || old.metrics.size() != layout.metrics.size())
     throw CubeError(what("has another shape or other metrics than this study"));
   status = reader.read_status();
-  // Values and histories stay in the file: each checkpoint starts from a copy of it. The
-  // notes are written once more, into extendible datasets (a cube of an earlier version has
-  // fixed-size ones that cannot take more).
-  pending_notes = reader.read_notes();
-  rewrite_notes = true;
+  folded_results = std::count_if(status.begin(), status.end(), [](std::int8_t s) { return s != kStatusNotRun; });
+  journal_id = journal_id_of(old);
+  // Values, notes and histories stay in the file (each fold starts from a copy of it) and in
+  // the journal (each fold lays it over that copy). A cube of an earlier version has no
+  // journal id, and fixed-size notes that cannot take more: its first checkpoint is a fold
+  // that writes its notes once more, into extendible datasets.
+  if (journal_id == 0) {
+    pending_notes = reader.read_notes();
+    rewrite_notes = true;
+  } else {
+    replay_journal(status);
+  }
   // Side variables start from the study's values (the producer stores new ones).
+}
+
+/// The statuses of the journal's cases over the cube's; where appends continue it (its torn
+/// tail, if any, cut off then). Every record is read once here, so that a damaged one stops
+/// the run before it starts, not at a fold.
+void CubeWriter::Impl::replay_journal(std::vector<std::int8_t>& status) {
+  const JournalReader journaled(path, layout, journal_id);
+  if (!journaled.current()) return;  // none, or stale: the first append starts it anew
+  journaled.for_each_cases([&](const JournalCases& c) {
+    const auto first = static_cast<std::size_t>(grid.range(c.chunk).first);
+    for (std::size_t j = 0; j < c.offsets.size(); ++j) status[first + c.offsets[j]] = c.status[j];
+  });
+  (void)journaled.notes();
+  journaled.for_each_history([](HistoryTable&&) {});
+  journal_keep_bytes = journaled.valid_bytes();
+  journal_results = journaled.results();
+  journal_records = 1;  // at least the header: the next fold reads it
 }
 
 std::vector<double> CubeWriter::read_values(const std::string& metric) const {
@@ -303,6 +365,11 @@ std::vector<double> CubeWriter::read_values(const std::string& metric) const {
   if (m == metrics.size()) throw CubeError(impl_->what("has no metric '" + metric + "'"));
   std::vector<double> values = impl_->on_disk ? CubeReader(impl_->path).read_metric(metric)
                                               : std::vector<double>(status_.size(), kNaN);
+  if (impl_->journal_records > 0)
+    JournalReader(impl_->path, impl_->layout, impl_->journal_id).for_each_cases([&](const JournalCases& c) {
+      const auto first = static_cast<std::size_t>(impl_->grid.range(c.chunk).first);
+      for (std::size_t j = 0; j < c.offsets.size(); ++j) values[first + c.offsets[j]] = c.values[m * c.offsets.size() + j];
+    });
   for (const auto& [chunk, stored] : impl_->pending_chunks) {
     const auto r = impl_->grid.range(chunk);
     for (std::int64_t k = 0; k < r.count; ++k)
@@ -338,6 +405,7 @@ void CubeWriter::store(std::int64_t index, std::int8_t status, const std::vector
   }
   const auto k = static_cast<std::size_t>(index - r.first);
   pending.stored[k] = 1;
+  ++impl_->pending_results;
   for (std::size_t m = 0; m < metrics; ++m) pending.values[m * count + k] = values[m];
 }
 
@@ -351,9 +419,11 @@ void CubeWriter::store_history(HistoryTable table) {
   all.push_back(std::move(table));
 }
 
-/// One chunk: the values stored since the last checkpoint laid over what the file holds
-/// (a chunk may be finished over several checkpoints), and the chunk's status.
-void CubeWriter::Impl::write_chunk(std::size_t chunk, const ChunkValues& stored, const std::vector<std::int8_t>& status) {
+/// One chunk: the values journaled since the last fold, then those stored since the last
+/// checkpoint (`pending`, may be null), laid over what the file holds (a chunk may be
+/// finished over several checkpoints), and the chunk's status.
+void CubeWriter::Impl::write_chunk(std::size_t chunk, const std::vector<JournalCases>& journaled,
+                                   const ChunkValues* pending, const std::vector<std::int8_t>& status) {
   const auto r = grid.range(chunk);
   const auto start = to_hsize(r.start);
   const auto extent = to_hsize(r.extent);
@@ -371,8 +441,11 @@ void CubeWriter::Impl::write_chunk(std::size_t chunk, const ChunkValues& stored,
     const auto selection = select(metric_sets[m], name);
     h5::check(H5Dread(metric_sets[m], H5T_NATIVE_DOUBLE, memory, selection, H5P_DEFAULT, values.data()),
               what("cannot read '" + name + "'"));
-    for (std::size_t k = 0; k < values.size(); ++k)
-      if (stored.stored[k]) values[k] = stored.values[m * values.size() + k];
+    for (const auto& c : journaled)
+      for (std::size_t j = 0; j < c.offsets.size(); ++j) values[c.offsets[j]] = c.values[m * c.offsets.size() + j];
+    if (pending != nullptr)
+      for (std::size_t k = 0; k < values.size(); ++k)
+        if (pending->stored[k]) values[k] = pending->values[m * values.size() + k];
     h5::check(H5Dwrite(metric_sets[m], H5T_NATIVE_DOUBLE, memory, selection, H5P_DEFAULT, values.data()),
               what("cannot write '" + name + "'"));
   }
@@ -381,10 +454,10 @@ void CubeWriter::Impl::write_chunk(std::size_t chunk, const ChunkValues& stored,
             what("cannot write '" + std::string(kStatusName) + "'"));
 }
 
-/// The notes stored since the last checkpoint, appended to /messages/case_index and
-/// /messages/text (extendible along their one dimension).
-void CubeWriter::Impl::append_notes() {
-  if (pending_notes.empty()) return;
+/// Notes appended to /messages/case_index and /messages/text (extendible along their one
+/// dimension).
+void CubeWriter::Impl::append_notes(const std::vector<std::pair<std::int64_t, std::string>>& notes) {
+  if (notes.empty()) return;
   const std::string problem = what("cannot write case messages");
   auto t = h5::vlen_string_type();
   h5::Handle index_set, message_set;
@@ -411,10 +484,10 @@ void CubeWriter::Impl::append_notes() {
     message_set = h5::dataset(H5Dcreate2(group, "text", t, s, H5P_DEFAULT, dcpl, H5P_DEFAULT), problem);
     h5::check(H5DSattach_scale(message_set, index_set, 0), problem);
   }
-  const hsize_t added = pending_notes.size(), new_size = old_size + added;
+  const hsize_t added = notes.size(), new_size = old_size + added;
   std::vector<std::int64_t> indices;
   std::vector<const char*> texts;
-  for (const auto& [index, text] : pending_notes) {
+  for (const auto& [index, text] : notes) {
     indices.push_back(index);
     texts.push_back(text.c_str());
   }
@@ -499,16 +572,32 @@ void CubeWriter::Impl::write_new_file(io::AtomicFile& target) {
   target.write(image.data(), image.size());
 }
 
-/// Writes what changed since the last checkpoint into `target` (a copy of it, or a new cube).
-void CubeWriter::Impl::update(const std::filesystem::path& target, const std::vector<std::int8_t>& status) {
+/// Writes what changed since the last fold into `target` (a copy of it, or a new cube): the
+/// journal's records, then what was stored since the last checkpoint, and the new journal id.
+void CubeWriter::Impl::update(const std::filesystem::path& target, const std::vector<std::int8_t>& status,
+                              std::int64_t new_id) {
   try {
     file = h5::file(H5Fopen(target.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), what("cannot open " + target.string()));
     for (const auto& m : layout.metrics)
       metric_sets.push_back(h5::dataset(H5Dopen2(file, m.name.c_str(), H5P_DEFAULT), what("cannot open '" + m.name + "'")));
     status_set = h5::dataset(H5Dopen2(file, kStatusName, H5P_DEFAULT), what("cannot open 'status'"));
-    for (const auto& [chunk, stored] : pending_chunks) write_chunk(chunk, stored, status);
-    append_notes();
+    const JournalReader journaled(path, layout, journal_records > 0 ? journal_id : 0);
+    std::set<std::size_t> chunks;  // in order: each chunk read and written once
+    for (const auto& [chunk, records] : journaled.chunks()) chunks.insert(chunk);
+    for (const auto& [chunk, stored] : pending_chunks) chunks.insert(chunk);
+    for (const std::size_t chunk : chunks) {
+      std::vector<JournalCases> records;
+      if (const auto it = journaled.chunks().find(chunk); it != journaled.chunks().end())
+        for (const std::size_t r : it->second) records.push_back(journaled.cases(r));
+      const auto it = pending_chunks.find(chunk);
+      write_chunk(chunk, records, it == pending_chunks.end() ? nullptr : &it->second, status);
+    }
+    auto notes = journaled.notes();
+    notes.insert(notes.end(), pending_notes.begin(), pending_notes.end());
+    append_notes(notes);
+    journaled.for_each_history([&](HistoryTable&& table) { write_history(table); });
     for (const auto& table : pending_histories) write_history(table);
+    h5::write_attribute(file, kJournalIdName, new_id);
     for (std::size_t v = 0; v < layout.side_variables.size(); ++v) {
       const auto& name = layout.side_variables[v].name;
       side_sets.push_back(h5::dataset(H5Dopen2(file, name.c_str(), H5P_DEFAULT), what("cannot open '" + name + "'")));
@@ -531,8 +620,14 @@ void CubeWriter::Impl::check_free_space(const std::filesystem::path& target) con
   std::error_code ec;
   const auto space = std::filesystem::space(folder_of(target), ec);
   if (ec) return;  // unknown: the writes themselves will tell
+  auto size_of = [](const std::filesystem::path& of) {
+    std::error_code error;
+    const auto bytes = std::filesystem::file_size(of, error);
+    return error ? 0.0 : static_cast<double>(bytes);
+  };
   double needed = 0.0;
-  if (on_disk) needed += static_cast<double>(std::filesystem::file_size(path, ec));
+  if (on_disk) needed += size_of(path);
+  if (journal_records > 0) needed += size_of(journal_path(path));  // its results, uncompressed
   needed += static_cast<double>(pending_bytes);
   for (const auto& [index, text] : pending_notes) needed += 16.0 + static_cast<double>(text.size());
   for (const auto& table : pending_histories)
@@ -572,15 +667,75 @@ void CubeWriter::Impl::fail(const CubeError& error) const {
   throw error;
 }
 
-void CubeWriter::Impl::checkpoint(const std::vector<std::int8_t>& status) {
-  // Nothing new: the cube on disk is already this state.
-  if (on_disk && pending_chunks.empty() && pending_notes.empty() && pending_histories.empty() && !sides_changed) return;
-  // By the one atomic-file rule (io::AtomicFile): a complete new file beside the cube — a
-  // copy of the last checkpoint with what changed written into it, or a new cube — synced,
-  // then renamed over it. A process killed at any moment, or a disk that fills, leaves the
-  // last complete cube (and perhaps a stray .partial file, reused by the next checkpoint).
-  // On failure the cube itself is untouched: only the new file goes. Memory: what changed.
+/// A checkpoint: what changed since the last one goes to disk, by an append to the journal
+/// (cost: what changed) or by a fold (cost: the cube). Kill points (CheckpointStep, and
+/// docs/checkpoint.md): a kill at any moment leaves the last folded cube whole, and a
+/// journal whose complete records extend it, or a stale one that --resume ignores.
+void CubeWriter::Impl::checkpoint(const std::vector<std::int8_t>& status, Checkpoint how) {
+  const bool changed = !pending_chunks.empty() || !pending_notes.empty() || !pending_histories.empty();
+  if (how == Checkpoint::kFold || !on_disk || journal_id == 0 || (how == Checkpoint::kAppendOrFold && fold_due())) {
+    // Nothing new: the cube on disk is already this state.
+    if (on_disk && journal_id != 0 && !changed && !sides_changed && journal_records == 0) return;
+    fold(status);
+  } else if (changed) {
+    append(status);  // side variables wait for the next fold (their producer stores them anew on --resume)
+  }
+}
+
+/// A fold is due once the journal (with what waits to join it) holds more results than
+/// kFoldJournalShare of the folded cube's: the folds then copy the cube a bounded number of
+/// times over the run (a geometric series), however many checkpoints there are.
+bool CubeWriter::Impl::fold_due() const {
+  return static_cast<double>(journal_results + pending_results) > kFoldJournalShare * static_cast<double>(folded_results);
+}
+
+/// Appends what was stored since the last checkpoint to the journal, closed by a commit
+/// record, and syncs it.
+///   kill while writing (kJournalWritten not reached): records without their commit at the
+///     journal's end, dropped by --resume (their cases are computed again); the cube is untouched;
+///   kJournalWritten: the records are complete in the page cache: --resume keeps them (a
+///     power loss now may tear them: dropped as above);
+///   kJournalSynced: the checkpoint is durable.
+void CubeWriter::Impl::append(const std::vector<std::int8_t>& status) {
+  check_identity();
+  try {
+    if (!journal) {
+      journal = std::make_unique<JournalWriter>(path, layout, journal_id, journal_keep_bytes);
+      journal_records = std::max<std::int64_t>(journal_records, 1);  // its header
+    } else if (!journal->in_place()) {
+      throw CubeError(what("its journal " + journal_path(path).string() + " was removed or replaced during the run; "
+                           "the results since the last fold are lost with it"));
+    }
+    for (const auto& [chunk, stored] : pending_chunks)
+      journal->add_cases(chunk, stored.stored, stored.values, status.data() + grid.range(chunk).first);
+    journal->add_notes(pending_notes);
+    for (const auto& table : pending_histories) journal->add_history(table);
+    journal->commit();
+    reached(CheckpointStep::kJournalWritten);
+    journal->sync();
+    reached(CheckpointStep::kJournalSynced);
+  } catch (const CubeError& e) {
+    fail(e);
+  }
+  journal_records += static_cast<std::int64_t>(pending_chunks.size() + pending_histories.size() + !pending_notes.empty());
+  journal_results += pending_results;
+  clear_pending();
+}
+
+/// Folds the journal and what was stored since the last checkpoint into the cube, by the one
+/// atomic-file rule (io::AtomicFile): a complete new file beside the cube — a copy of the last
+/// fold with every change written into it, or a new cube — synced, then renamed over it.
+/// Memory: one chunk at a time, and what was stored since the last checkpoint.
+///   kill before kFoldWritten (kFoldCopied: the copy is made): a stray <cube>.partial,
+///     truncated by the next fold; the cube and its journal are as they were;
+///   kFoldWritten: the new cube is complete and synced beside the old; as above;
+///   kFoldRenamed: the new cube is in place with a new journal id; the old journal, not yet
+///     removed, is stale (its results are in the cube): ignored, then replaced;
+///   kJournalRemoved: the fold is complete.
+/// On failure the cube and its journal are untouched: only the new file goes.
+void CubeWriter::Impl::fold(const std::vector<std::int8_t>& status) {
   if (on_disk) check_identity();
+  const std::int64_t new_id = draw_journal_id();
   try {
     io::AtomicFile next(path, true, io::AtomicFile::Temporary::kPartial);
     check_free_space(next.temporary());
@@ -591,28 +746,48 @@ void CubeWriter::Impl::checkpoint(const std::vector<std::int8_t>& status) {
       write_new_file(next);
     }
     next.close();
-    update(next.temporary(), status);
+    reached(CheckpointStep::kFoldCopied);
+    update(next.temporary(), status, new_id);
     next.sync();
-    if (on_disk) check_identity();  // the checkpoint took time: nothing took the cube's place since
+    reached(CheckpointStep::kFoldWritten);
+    if (on_disk) check_identity();  // the fold took time: nothing took the cube's place since
     next.commit();
   } catch (const io::OutputError& e) {
     fail(CubeError(e.what(), CubeError::cause_of(e.os_error())));
   } catch (const CubeError& e) {
     fail(e);
   }
+  reached(CheckpointStep::kFoldRenamed);
+  journal.reset();
+  std::error_code ignored;  // a journal left behind is stale (another id): tidiness, not safety
+  std::filesystem::remove(journal_path(path), ignored);
+  reached(CheckpointStep::kJournalRemoved);
   on_disk = true;
   remember_identity();
-  pending_chunks.clear();
-  pending_bytes = 0;
-  pending_notes.clear();
-  pending_histories.clear();
+  journal_id = new_id;
+  journal_keep_bytes = 0;
+  journal_records = journal_results = 0;
+  folded_results = std::count_if(status.begin(), status.end(), [](std::int8_t s) { return s != kStatusNotRun; });
+  clear_pending();
   sides_changed = false;
 }
 
-void CubeWriter::flush() { impl_->checkpoint(status_); }
+void CubeWriter::Impl::clear_pending() {
+  pending_chunks.clear();
+  pending_bytes = 0;
+  pending_results = 0;
+  pending_notes.clear();
+  pending_histories.clear();
+}
+
+void CubeWriter::flush() { impl_->checkpoint(status_, Impl::Checkpoint::kAppendOrFold); }
+
+void CubeWriter::append() { impl_->checkpoint(status_, Impl::Checkpoint::kAppend); }
+
+void CubeWriter::fold() { impl_->checkpoint(status_, Impl::Checkpoint::kFold); }
 
 void CubeWriter::close() {
-  flush();
+  fold();
   impl_->closed = true;
 }
 

@@ -190,7 +190,8 @@ class ResultSink {
       stop_flushed_ = true;
       if (error_.empty()) checkpoint();
     }
-    // A checkpoint copies the cube: the next one comes a flush interval after this one
+    // A checkpoint appends to the cube's journal, and now and then folds it into a copy of
+    // the cube (docs/checkpoint.md): the next one comes a flush interval after this one
     // ends, and never sooner than 9 × its duration, so checkpoints take at most a tenth of the run.
     const double period_s = std::max(flush_interval_s_, 9.0 * last_checkpoint_s_);
     const auto since = std::chrono::steady_clock::now() - last_flush_;
@@ -246,7 +247,10 @@ class ResultSink {
     guard([&] {
       check_lock();
       if (before_flush_) before_flush_();
-      writer_.flush();
+      // Stopping (a kill may follow within a second): an append, never a fold, whose time
+      // follows what changed; close() folds if there is time.
+      if (stop_flushed_) writer_.append();
+      else writer_.flush();
     });
     last_flush_ = std::chrono::steady_clock::now();
     last_checkpoint_s_ = std::chrono::duration<double>(last_flush_ - start).count();

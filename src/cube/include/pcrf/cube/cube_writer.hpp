@@ -12,11 +12,18 @@
 /// Variables are chunked (each chunk one contiguous range of cases) and deflated.
 ///
 /// Memory: the status of every case (1 byte each) and the values stored since the last
-/// flush, chunk by chunk; nothing else of the cube. flush() writes a checkpoint by the one
-/// atomic-file rule (io::AtomicFile, as every output): the last one copied to <file>.partial,
-/// the chunks stored since written into it (laid over what it holds), synced, and renamed
-/// over the file. A process killed at any moment leaves the last complete checkpoint. The
-/// copy makes a checkpoint's cost grow with the whole cube (docs/checkpoint.md).
+/// flush, chunk by chunk; nothing else of the cube.
+///
+/// Checkpoints (docs/checkpoint.md): flush() appends what was stored since the last one to
+/// the cube's journal, `<file>.journal` (cube_journal.hpp), and syncs it: its cost follows
+/// what changed. The HDF5 file is never written in place: a fold replaces it by the one
+/// atomic-file rule (io::AtomicFile, as every output) — the last fold copied to
+/// <file>.partial, the journal and what was stored since laid over it, synced, renamed over
+/// the file — and then removes the journal. flush() folds once the journal holds more
+/// results than kFoldJournalShare of the cube's; close() always does. A process killed at
+/// any moment leaves the last folded cube whole, and a journal whose complete records
+/// --resume replays (CheckpointStep lists the kill points). Readers of the file see its
+/// last fold.
 #pragma once
 
 #include <cstdint>
@@ -35,6 +42,28 @@ enum class OpenMode {
   kResume,     ///< continue an existing cube of the same study (create it if absent)
 };
 
+/// A fold is due when the journal holds more than this many results per result of the
+/// folded cube [results in the journal / results in the cube]. Counted in results, not bytes:
+/// the journal stores a result uncompressed (8 bytes a metric), the cube deflated, so a
+/// ratio of bytes would fold several times as often for a cube that compresses well. With
+/// a quarter, the folds of a whole run copy the cube about 1 + 1/0.25 = 5 times its final size.
+inline constexpr double kFoldJournalShare = 0.25;
+
+/// The points of a checkpoint between which a kill leaves a distinct state on disk (each is
+/// described where it is reached, in cube_writer.cpp, and in docs/checkpoint.md).
+enum class CheckpointStep {
+  kJournalWritten,  ///< an append's records are written to the journal, not yet synced
+  kJournalSynced,   ///< … and synced: the checkpoint is durable
+  kFoldCopied,      ///< a fold's <file>.partial holds a copy of the cube
+  kFoldWritten,     ///< … with every change written into it, synced; the cube is still the old one
+  kFoldRenamed,     ///< the new cube is in place; the old journal not yet removed (stale)
+  kJournalRemoved,  ///< the fold is complete
+};
+/// Called at each CheckpointStep of every writer of the process (null: nothing). For crash
+/// tests, which stop the process there.
+using CheckpointObserver = void (*)(CheckpointStep);
+void observe_checkpoints(CheckpointObserver observer);
+
 /// A time history to store in its own group, /histories/<name>.
 struct HistoryTable {
   std::string name;                     ///< group name (letters, digits, '_', '-', '.')
@@ -48,6 +77,7 @@ class CubeWriter {
   /// \throws CubeError naming the file: exists (kCreate), belongs to another study or has
   /// another layout (kResume), or cannot be written.
   CubeWriter(std::filesystem::path file, CubeLayout layout, OpenMode mode);
+  /// Unless closed: append() (errors ignored), keeping what was stored.
   ~CubeWriter();
   CubeWriter(const CubeWriter&) = delete;
   CubeWriter& operator=(const CubeWriter&) = delete;
@@ -74,9 +104,15 @@ class CubeWriter {
   /// \throws CubeError for an unknown name or a wrong number of values.
   void store_side(const std::string& name, std::vector<double> values);
 
-  /// Writes what changed since the last flush and flushes the file to disk.
+  /// A checkpoint: appends what changed since the last one to the journal, synced (or folds
+  /// when the journal has grown past kFoldJournalShare of the cube).
   void flush();
-  /// flush() and close. Further calls are invalid.
+  /// A checkpoint that only appends, even when a fold is due (a new cube, or one of an
+  /// earlier version, is still folded): for a run stopping, which a kill may end within a second.
+  void append();
+  /// A checkpoint that folds the journal and what changed into the cube, and removes the journal.
+  void fold();
+  /// fold() and close. Further calls are invalid.
   void close();
 
  private:

@@ -10,9 +10,14 @@
 
 namespace pcrf::post {
 
-/// "FILE: a run holds it (WHO): read as its last complete checkpoint" while a study run
-/// writes `file` (each checkpoint is renamed into place whole); empty otherwise.
+/// "FILE: a run holds it (WHO): read as its last folded state" while a study run
+/// writes `file` (each fold is renamed into place whole); empty otherwise.
 std::string running_note(const std::string& file);
+
+/// "FILE: N results wait in its journal FILE.journal, …" when a run checkpointed results
+/// since the cube's last fold (docs/checkpoint.md): a reader sees the last fold only. Empty
+/// when there is no journal, or a stale one; a journal that cannot be read is said so.
+std::string journal_note(const std::string& file, const cube::CubeReader& reader);
 
 /// "FILE: N of M cases not run (a partial cube): left out" (an IDA counts curves) for a cube
 /// stopped early or merged from some shards; empty for a complete one.

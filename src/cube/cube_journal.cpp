@@ -1,0 +1,385 @@
+// The journal of a result cube (see cube_journal.hpp): records framed by io::LogWriter, their
+// payloads encoded and checked here against the cube's layout.
+#include "pcrf/cube/cube_journal.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cstring>
+
+#include "pcrf/io/checked_stream.hpp"
+#include "pcrf/io/record_log.hpp"
+
+namespace pcrf::cube {
+namespace {
+
+constexpr auto kHeader = kJournalHeader, kCases = kJournalCases, kNotes = kJournalNotes, kHistory = kJournalHistory,
+               kCommit = kJournalCommit;
+constexpr std::size_t kHeaderBytes = 8 + 8 + 4;
+constexpr std::size_t kCasesHeadBytes = 8 + 4;  // chunk, n
+enum AttributeType : std::uint8_t { kText = 0, kReal = 1, kInteger = 2 };
+
+/// A payload that does not say what its kind must (caught and named by JournalReader).
+struct Malformed {
+  std::string problem;
+};
+
+void put(std::string& out, std::uint64_t value, std::size_t bytes) { io::append_le(out, value, bytes); }
+
+void put_text(std::string& out, const std::string& text) {
+  put(out, text.size(), 4);
+  out += text;
+}
+
+void put_doubles(std::string& out, const double* values, std::size_t n) {
+  if constexpr (std::endian::native == std::endian::little) {
+    out.append(reinterpret_cast<const char*>(values), n * sizeof(double));
+  } else {
+    for (std::size_t i = 0; i < n; ++i) put(out, std::bit_cast<std::uint64_t>(values[i]), 8);
+  }
+}
+
+/// Reads a payload front to back; every length is checked against the bytes left before use.
+class Cursor {
+ public:
+  explicit Cursor(const std::string& bytes) : bytes_(bytes) {}
+  std::size_t left() const { return bytes_.size() - at_; }
+  const char* take(std::uint64_t n) {
+    if (n > left()) throw Malformed{"ends " + std::to_string(n - left()) + " bytes early"};
+    const char* p = bytes_.data() + at_;
+    at_ += static_cast<std::size_t>(n);
+    return p;
+  }
+  std::uint64_t number(std::size_t bytes) { return io::load_le(take(bytes), bytes); }
+  std::string text() {
+    const auto n = number(4);
+    return std::string(take(n), static_cast<std::size_t>(n));
+  }
+  /// `n` doubles, `n` checked against the bytes left before anything is allocated.
+  std::vector<double> doubles(std::uint64_t n) {
+    if (n > left() / sizeof(double)) throw Malformed{"declares " + std::to_string(n) + " values it does not hold"};
+    std::vector<double> values(static_cast<std::size_t>(n));
+    const char* p = take(n * sizeof(double));
+    if constexpr (std::endian::native == std::endian::little) {
+      std::memcpy(values.data(), p, values.size() * sizeof(double));
+    } else {
+      for (std::size_t i = 0; i < values.size(); ++i) values[i] = std::bit_cast<double>(io::load_le(p + 8 * i, 8));
+    }
+    return values;
+  }
+  /// A count of items of at least `min_bytes` each, checked against the bytes left.
+  std::size_t count(std::size_t bytes, std::size_t min_bytes) {
+    const auto n = number(bytes);
+    if (n > left() / min_bytes) throw Malformed{"declares " + std::to_string(n) + " items it does not hold"};
+    return static_cast<std::size_t>(n);
+  }
+  void expect_end() const {
+    if (left() != 0) throw Malformed{"has " + std::to_string(left()) + " bytes too many"};
+  }
+
+ private:
+  const std::string& bytes_;
+  std::size_t at_ = 0;
+};
+
+std::string header_payload(std::int64_t id, std::int64_t cases, std::size_t metrics) {
+  std::string out;
+  put(out, static_cast<std::uint64_t>(id), 8);
+  put(out, static_cast<std::uint64_t>(cases), 8);
+  put(out, metrics, 4);
+  return out;
+}
+
+/// How a metric's values are stored in a record of cases: one per case, or one for all (a
+/// metric that is the same for every case of the record, e.g. 0 or NaN where frames never lift).
+enum ColumnForm : std::uint8_t { kEach = 0, kSame = 1 };
+
+/// The bytes of a record of `n` cases: at most (every column kEach), at least (every kSame).
+std::uint64_t cases_payload_bytes(std::uint64_t n, std::size_t metrics, bool each) {
+  const auto m = static_cast<std::uint64_t>(metrics);
+  return kCasesHeadBytes + n * (4 + 1) + m * (1 + 8 * (each ? n : 1));
+}
+
+/// True when every value is the same, bit for bit (NaN payloads and -0 kept).
+bool all_same(const std::vector<double>& values) {
+  const auto first = values.empty() ? 0 : std::bit_cast<std::uint64_t>(values.front());
+  return std::all_of(values.begin(), values.end(), [&](double v) { return std::bit_cast<std::uint64_t>(v) == first; });
+}
+
+void put_attribute(std::string& out, const Attribute& a) {
+  put_text(out, a.name);
+  if (const auto* text = std::get_if<std::string>(&a.value)) {
+    put(out, kText, 1);
+    put_text(out, *text);
+  } else if (const auto* real = std::get_if<double>(&a.value)) {
+    put(out, kReal, 1);
+    put_doubles(out, real, 1);
+  } else {
+    put(out, kInteger, 1);
+    put(out, static_cast<std::uint64_t>(std::get<std::int64_t>(a.value)), 8);
+  }
+}
+
+Attribute take_attribute(Cursor& in) {
+  Attribute a;
+  a.name = in.text();
+  switch (in.number(1)) {
+    case kText: a.value = in.text(); break;
+    case kReal: a.value = in.doubles(1)[0]; break;
+    case kInteger: a.value = static_cast<std::int64_t>(in.number(8)); break;
+    default: throw Malformed{"has an attribute of unknown type"};
+  }
+  return a;
+}
+
+std::string history_payload(const HistoryTable& table) {
+  std::string out;
+  put_text(out, table.name);
+  put(out, table.attributes.size(), 4);
+  for (const auto& a : table.attributes) put_attribute(out, a);
+  put(out, table.columns.size(), 4);
+  for (std::size_t c = 0; c < table.columns.size(); ++c) {
+    put_text(out, table.columns[c].name);
+    put_text(out, table.columns[c].units);
+    put_text(out, table.columns[c].long_name);
+    const auto& values = c < table.values.size() ? table.values[c] : std::vector<double>{};
+    put(out, values.size(), 8);
+    put_doubles(out, values.data(), values.size());
+  }
+  return out;
+}
+
+HistoryTable take_history(Cursor& in) {
+  HistoryTable table;
+  table.name = in.text();
+  const std::size_t attributes = in.count(4, 4 + 1);
+  for (std::size_t a = 0; a < attributes; ++a) table.attributes.push_back(take_attribute(in));
+  const std::size_t columns = in.count(4, 3 * 4 + 8);
+  for (std::size_t c = 0; c < columns; ++c) {
+    MetricVariable column;
+    column.name = in.text();
+    column.units = in.text();
+    column.long_name = in.text();
+    table.columns.push_back(std::move(column));
+    table.values.push_back(in.doubles(in.number(8)));
+  }
+  in.expect_end();
+  return table;
+}
+
+}  // namespace
+
+std::filesystem::path journal_path(const std::filesystem::path& cube) { return cube.string() + ".journal"; }
+
+std::int64_t journal_id_of(const CubeLayout& layout) {
+  for (const auto& a : layout.attributes)
+    if (a.name == kJournalIdName)
+      if (const auto* id = std::get_if<std::int64_t>(&a.value)) return *id;
+  return 0;
+}
+
+// ---- reading ----
+
+JournalReader::JournalReader(const std::filesystem::path& cube, const CubeLayout& layout, std::int64_t id)
+    : file_(journal_path(cube)), metrics_(layout.metrics.size()), cases_(layout.case_count()), grid_(layout.shape()) {
+  try {
+    log_ = std::make_unique<io::LogReader>(file_);
+  } catch (const io::OutputError& e) {
+    throw CubeError(e.what(), CubeError::cause_of(e.os_error()));
+  }
+  const auto& records = log_->records();
+  if (id == 0 || records.empty() || records.front().kind != kHeader || records.front().size != kHeaderBytes) return;
+  const std::string header = payload(0);
+  if (static_cast<std::int64_t>(io::load_le(header.data(), 8)) != id) return;  // stale: another fold's
+  if (static_cast<std::int64_t>(io::load_le(header.data() + 8, 8)) != cases_ || io::load_le(header.data() + 16, 4) != metrics_)
+    fail(0, "carries this cube's id but another shape (a forged or foreign journal)");
+  current_ = true;
+  kept_ = 1;  // the header is committed alone
+  for (std::size_t r = 1; r < records.size(); ++r)
+    if (records[r].kind == kCommit) kept_ = r + 1;
+  valid_bytes_ = records[kept_ - 1].end();
+  dropped_bytes_ = log_->file_bytes() - valid_bytes_;
+  for (std::size_t r = 1; r < kept_; ++r) {
+    const auto& record = records[r];
+    if (record.kind == kNotes || record.kind == kHistory || record.kind == kCommit) continue;
+    if (record.kind != kCases) fail(r, "is of an unknown kind " + std::to_string(record.kind) + " (another version's journal?)");
+    if (record.size < kCasesHeadBytes) fail(r, "is too short for cases");
+    const std::string head = log_->payload({record.kind, record.offset, kCasesHeadBytes});
+    const auto chunk = io::load_le(head.data(), 8), n = io::load_le(head.data() + 8, 4);
+    if (chunk >= grid_.chunk_count())
+      fail(r, "names chunk " + std::to_string(chunk) + " of a cube of " + std::to_string(grid_.chunk_count()));
+    if (n > static_cast<std::uint64_t>(grid_.range(static_cast<std::size_t>(chunk)).count) ||
+        record.size > cases_payload_bytes(n, metrics_, true) || record.size < cases_payload_bytes(n, metrics_, false))
+      fail(r, "holds " + std::to_string(record.size) + " bytes, not the " + std::to_string(n) + " cases it declares");
+    chunks_[static_cast<std::size_t>(chunk)].push_back(r);
+    results_ += static_cast<std::int64_t>(n);
+  }
+}
+
+JournalReader::~JournalReader() = default;
+
+void JournalReader::fail(std::size_t record, const std::string& problem) const {
+  const auto offset = record < log_->records().size() ? log_->records()[record].offset : 0;
+  throw CubeError(file_.string() + ": record " + std::to_string(record) + " (at byte " + std::to_string(offset) + ") " +
+                  problem + "; remove the journal to resume from the cube's last folded state");
+}
+
+std::string JournalReader::payload(std::size_t record) const {
+  try {
+    return log_->payload(log_->records().at(record));
+  } catch (const io::OutputError& e) {
+    throw CubeError(e.what(), CubeError::cause_of(e.os_error()));
+  }
+}
+
+JournalCases JournalReader::cases(std::size_t record) const {
+  const std::string bytes = payload(record);  // its size was checked against its count
+  Cursor in(bytes);
+  JournalCases c;
+  try {
+    c.chunk = static_cast<std::size_t>(in.number(8));
+    const auto n = static_cast<std::size_t>(in.number(4));
+    const auto count = static_cast<std::uint64_t>(grid_.range(c.chunk).count);
+    c.offsets.resize(n);
+    for (std::size_t j = 0; j < n; ++j) {
+      c.offsets[j] = static_cast<std::uint32_t>(in.number(4));
+      if (c.offsets[j] >= count || (j > 0 && c.offsets[j] <= c.offsets[j - 1]))
+        throw Malformed{"has case offsets out of order or outside its chunk"};
+    }
+    const auto* status = reinterpret_cast<const std::int8_t*>(in.take(n));
+    c.status.assign(status, status + n);
+    c.values.reserve(n * metrics_);  // bounded by the chunk's size, checked above
+    for (std::size_t m = 0; m < metrics_; ++m) {
+      const auto form = in.number(1);
+      if (form != kEach && form != kSame) throw Malformed{"has a column of unknown form"};
+      const auto column = in.doubles(form == kEach ? n : 1);
+      if (form == kEach) c.values.insert(c.values.end(), column.begin(), column.end());
+      else c.values.insert(c.values.end(), n, column.front());
+    }
+    in.expect_end();
+  } catch (const Malformed& m) {
+    fail(record, m.problem);
+  }
+  return c;
+}
+
+void JournalReader::for_each_cases(const std::function<void(const JournalCases&)>& visit) const {
+  if (!current_) return;
+  const auto& records = log_->records();
+  for (std::size_t r = 1; r < kept_; ++r)
+    if (records[r].kind == kCases) visit(cases(r));
+}
+
+std::vector<std::pair<std::int64_t, std::string>> JournalReader::notes() const {
+  std::vector<std::pair<std::int64_t, std::string>> all;
+  if (!current_) return all;
+  const auto& records = log_->records();
+  for (std::size_t r = 1; r < kept_; ++r) {
+    if (records[r].kind != kNotes) continue;
+    const std::string bytes = payload(r);
+    Cursor in(bytes);
+    try {
+      const std::size_t n = in.count(4, 8 + 4);
+      for (std::size_t k = 0; k < n; ++k) {
+        const auto index = static_cast<std::int64_t>(in.number(8));
+        if (index < 0 || index >= cases_) fail(r, "has a note of case " + std::to_string(index) + ", outside the cube");
+        all.emplace_back(index, in.text());
+      }
+      in.expect_end();
+    } catch (const Malformed& m) {
+      fail(r, m.problem);
+    }
+  }
+  return all;
+}
+
+void JournalReader::for_each_history(const std::function<void(HistoryTable&&)>& visit) const {
+  if (!current_) return;
+  const auto& records = log_->records();
+  for (std::size_t r = 1; r < kept_; ++r) {
+    if (records[r].kind != kHistory) continue;
+    const std::string bytes = payload(r);
+    Cursor in(bytes);
+    HistoryTable table;
+    try {
+      table = take_history(in);
+    } catch (const Malformed& m) {
+      fail(r, m.problem);
+    }
+    visit(std::move(table));
+  }
+}
+
+// ---- writing ----
+
+JournalWriter::JournalWriter(const std::filesystem::path& cube, const CubeLayout& layout, std::int64_t id,
+                             std::uint64_t keep_bytes)
+    : file_(journal_path(cube)), metrics_(layout.metrics.size()) {
+  guarded([&] {
+    log_ = std::make_unique<io::LogWriter>(file_, keep_bytes);
+    if (keep_bytes > 0) return;
+    log_->add(kHeader, header_payload(id, layout.case_count(), metrics_));
+    log_->sync();
+  });
+}
+
+JournalWriter::~JournalWriter() = default;
+
+template <class Action>
+void JournalWriter::guarded(Action action) {
+  try {
+    action();
+  } catch (const io::OutputError& e) {
+    throw CubeError(e.what(), CubeError::cause_of(e.os_error()));
+  }
+}
+
+void JournalWriter::add_cases(std::size_t chunk, const std::vector<char>& stored, const std::vector<double>& values,
+                              const std::int8_t* status) {
+  const std::size_t count = stored.size();
+  std::vector<std::uint32_t> offsets;
+  for (std::size_t k = 0; k < count; ++k)
+    if (stored[k]) offsets.push_back(static_cast<std::uint32_t>(k));
+  payload_.clear();
+  payload_.reserve(static_cast<std::size_t>(cases_payload_bytes(offsets.size(), metrics_, true)));
+  put(payload_, chunk, 8);
+  put(payload_, offsets.size(), 4);
+  for (auto k : offsets) put(payload_, k, 4);
+  for (auto k : offsets) payload_.push_back(static_cast<char>(status[k]));
+  column_.resize(offsets.size());
+  for (std::size_t m = 0; m < metrics_; ++m) {
+    for (std::size_t j = 0; j < offsets.size(); ++j) column_[j] = values[m * count + offsets[j]];
+    const bool same = !column_.empty() && all_same(column_);
+    put(payload_, same ? kSame : kEach, 1);
+    put_doubles(payload_, column_.data(), same ? 1 : column_.size());
+  }
+  guarded([&] { log_->add(kCases, payload_); });
+}
+
+void JournalWriter::add_notes(const std::vector<std::pair<std::int64_t, std::string>>& notes) {
+  if (notes.empty()) return;
+  payload_.clear();
+  put(payload_, notes.size(), 4);
+  for (const auto& [index, text] : notes) {
+    put(payload_, static_cast<std::uint64_t>(index), 8);
+    put_text(payload_, text);
+  }
+  guarded([&] { log_->add(kNotes, payload_); });
+}
+
+void JournalWriter::add_history(const HistoryTable& table) {
+  guarded([&] { log_->add(kHistory, history_payload(table)); });
+}
+
+void JournalWriter::commit() {
+  guarded([&] { log_->add(kCommit, {}); });
+}
+
+void JournalWriter::sync() {
+  guarded([&] { log_->sync(); });
+}
+
+std::uint64_t JournalWriter::bytes() const { return log_->size(); }
+
+bool JournalWriter::in_place() const { return log_->in_place(); }
+
+}  // namespace pcrf::cube

@@ -1,0 +1,164 @@
+/// \file cube_journal.hpp
+/// \brief The journal of a result cube, `<cube>.journal`: what a run stored since the cube
+/// was last folded (docs/checkpoint.md). A checkpoint appends it (io::LogWriter: a size and
+/// a CRC-32 per record, then fdatasync), so that its cost follows what changed; the HDF5 cube
+/// is never written in place, only replaced whole by a fold (CubeWriter), after which the
+/// journal is removed.
+///
+/// A journal extends one folded state of its cube: its first record carries the cube's
+/// `journal_id` attribute, which each fold draws anew. A journal whose id is not its cube's
+/// (a fold renamed into place, then a kill before the journal was removed; a cube replaced
+/// by --overwrite) is stale: its results are in the cube already, or belong to another, and
+/// it is ignored and replaced.
+///
+/// Records (their kinds JournalRecord; payloads little-endian):
+///   header   id i64, cases i64, metrics u32
+///   cases    chunk u64, n u32, n offsets in the chunk u32 (ascending), n statuses i8, then
+///            per metric: u8 0 and n f64, or u8 1 and one f64 that every case has (a metric
+///            that is 0 or NaN wherever frames never lift costs 9 bytes, not 8 n)
+///   notes    n u32, then n × (case i64, length u32, text)
+///   history  a HistoryTable: name, attributes, columns and their values
+///   commit   nothing: the records since the last commit are one checkpoint
+/// A checkpoint's records count only once its commit record is complete: a tail torn
+/// anywhere drops the whole checkpoint (never a case's values without its note).
+/// Side variables are not journaled: their producer stores them anew on --resume, and a
+/// fold writes the writer's own.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "pcrf/cube/chunk_grid.hpp"
+#include "pcrf/cube/cube_layout.hpp"
+#include "pcrf/cube/cube_writer.hpp"
+
+namespace pcrf::io {
+class LogReader;
+class LogWriter;
+}  // namespace pcrf::io
+
+namespace pcrf::cube {
+
+/// Global attribute of a cube: the id its journal must carry to extend it (int64, drawn at
+/// each fold). A cube without it (an earlier version's) has no journal.
+inline constexpr const char* kJournalIdName = "journal_id";
+
+/// The kinds of a journal's records (io::LogRecord::kind).
+enum JournalRecord : std::uint32_t {
+  kJournalHeader = 1,
+  kJournalCases = 2,
+  kJournalNotes = 3,
+  kJournalHistory = 4,
+  kJournalCommit = 5,
+};
+
+/// `<cube>.journal`.
+std::filesystem::path journal_path(const std::filesystem::path& cube);
+
+/// The cube's journal id (its kJournalIdName attribute); 0 when it has none.
+std::int64_t journal_id_of(const CubeLayout& layout);
+
+/// Cases of one chunk, as a checkpoint stored them.
+struct JournalCases {
+  std::size_t chunk = 0;
+  std::vector<std::uint32_t> offsets;  ///< in the chunk, ascending
+  std::vector<std::int8_t> status;     ///< one per offset
+  std::vector<double> values;          ///< [metric * offsets.size() + j]
+};
+
+/// The journal beside a cube, as a reader or a resuming writer finds it.
+class JournalReader {
+ public:
+  /// Reads `journal_path(cube)` for the cube of `layout`, whose journal id is `id` (0: none).
+  /// A missing, stale or unreadable-header journal reads as current() false. The complete,
+  /// checksum-valid records are kept up to the first that is not, and of those up to the last
+  /// commit (a torn tail is dropped: the checkpoint it held is computed again).
+  /// \throws CubeError naming the journal when it cannot be read, or when a record whose CRC
+  /// holds does not fit the cube (a forged or foreign journal): remove it to resume from the
+  /// cube's last folded state.
+  JournalReader(const std::filesystem::path& cube, const CubeLayout& layout, std::int64_t id);
+  ~JournalReader();
+  JournalReader(const JournalReader&) = delete;
+  JournalReader& operator=(const JournalReader&) = delete;
+
+  /// True when the journal extends this cube (its header carries the cube's id).
+  bool current() const { return current_; }
+  /// Case results in its records (a case stored twice counts twice).
+  std::int64_t results() const { return results_; }
+  /// Where a writer continues it [bytes] (the end of its last commit); 0 when not current.
+  std::uint64_t valid_bytes() const { return valid_bytes_; }
+  /// Bytes past the last commit (a torn tail), dropped.
+  std::uint64_t dropped_bytes() const { return dropped_bytes_; }
+
+  /// Chunks with journaled cases, each with its records in journal order (for cases()).
+  const std::map<std::size_t, std::vector<std::size_t>>& chunks() const { return chunks_; }
+  /// One record of cases, decoded and checked against the layout.
+  JournalCases cases(std::size_t record) const;
+  /// Every record of cases, in journal order.
+  void for_each_cases(const std::function<void(const JournalCases&)>& visit) const;
+  /// The notes, in journal order.
+  std::vector<std::pair<std::int64_t, std::string>> notes() const;
+  /// The history tables, in journal order (a later one of a name replaces an earlier).
+  void for_each_history(const std::function<void(HistoryTable&&)>& visit) const;
+
+ private:
+  std::string payload(std::size_t record) const;
+  [[noreturn]] void fail(std::size_t record, const std::string& problem) const;
+
+  std::filesystem::path file_;
+  std::size_t metrics_;
+  std::int64_t cases_;
+  ChunkGrid grid_;
+  std::unique_ptr<io::LogReader> log_;
+  bool current_ = false;
+  std::size_t kept_ = 0;  ///< records kept: those up to the last commit
+  std::uint64_t valid_bytes_ = 0;
+  std::uint64_t dropped_bytes_ = 0;
+  std::int64_t results_ = 0;
+  std::map<std::size_t, std::vector<std::size_t>> chunks_;
+};
+
+/// Appends to the journal of a cube. \throws CubeError naming the journal on every failure.
+class JournalWriter {
+ public:
+  /// Starts the journal of the cube folded with `id` anew (replacing any file there), or,
+  /// with `keep_bytes` > 0 (a current JournalReader's valid_bytes()), continues it there.
+  JournalWriter(const std::filesystem::path& cube, const CubeLayout& layout, std::int64_t id,
+                std::uint64_t keep_bytes);
+  ~JournalWriter();
+  JournalWriter(const JournalWriter&) = delete;
+  JournalWriter& operator=(const JournalWriter&) = delete;
+
+  /// Writes the stored cases of one chunk (not synced): `stored[k]` marks case k of the
+  /// chunk, `values` holds [metric * count + k], `status` the chunk's statuses.
+  void add_cases(std::size_t chunk, const std::vector<char>& stored, const std::vector<double>& values,
+                 const std::int8_t* status);
+  void add_notes(const std::vector<std::pair<std::int64_t, std::string>>& notes);
+  void add_history(const HistoryTable& table);
+  /// Writes the commit record that makes the records added since the last one a checkpoint.
+  void commit();
+  /// Syncs what was written to disk: the checkpoint is then durable.
+  void sync();
+  /// Bytes of the journal (committed records).
+  std::uint64_t bytes() const;
+  /// True while the journal's path names the file this writer appends to.
+  bool in_place() const;
+
+ private:
+  template <class Action>
+  void guarded(Action action);
+
+  std::filesystem::path file_;
+  std::size_t metrics_;
+  std::unique_ptr<io::LogWriter> log_;
+  std::string payload_;        ///< reused: no fresh pages for every record
+  std::vector<double> column_;  ///< reused
+};
+
+}  // namespace pcrf::cube

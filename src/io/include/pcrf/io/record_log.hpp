@@ -1,0 +1,109 @@
+/// \file record_log.hpp
+/// \brief An append-only file of records, each framed by its kind, its size and a CRC-32
+/// (zlib's), so that a reader keeps every record a writer completed and drops a torn tail: a
+/// process killed, a machine that lost power or a disk that filled in the middle of an append.
+/// Knows nothing of what the records hold (the cube's journal, cube_journal.hpp, does).
+///
+/// File: the 8 bytes "pcrf-log", then records, each: kind (4 bytes), size (8 bytes), `size`
+/// bytes of payload, CRC-32 of the kind, size and payload (4 bytes); integers little-endian.
+///
+/// The file is untrusted input: a size is checked against the bytes the file has before it
+/// is used, a payload is read in bounded pieces to check its CRC, and the first record that
+/// does not fit or does not match its CRC ends what is read (nothing after it is trusted).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace pcrf::io {
+
+/// Appends `value` as `count` little-endian bytes (the log's integers, and its users').
+void append_le(std::string& out, std::uint64_t value, std::size_t count);
+/// The `count` little-endian bytes at `bytes` as a number.
+std::uint64_t load_le(const char* bytes, std::size_t count);
+
+/// One complete, checksum-valid record of a log.
+struct LogRecord {
+  std::uint32_t kind = 0;
+  std::uint64_t offset = 0;  ///< of the payload, in bytes from the start of the file
+  std::uint64_t size = 0;    ///< of the payload [bytes]
+  /// Where the record ends (after its CRC) [bytes from the start of the file].
+  std::uint64_t end() const { return offset + size + 4; }
+};
+
+/// Reads a log: its valid records, then their payloads on demand.
+class LogReader {
+ public:
+  /// Opens and scans `file`. A missing file reads as a log of no record.
+  /// \throws OutputError naming the file when it exists but cannot be read.
+  explicit LogReader(const std::filesystem::path& file);
+  ~LogReader();
+  LogReader(const LogReader&) = delete;
+  LogReader& operator=(const LogReader&) = delete;
+
+  bool exists() const { return fd_ >= 0; }
+  /// False when the file is missing, shorter than the magic or starts otherwise.
+  bool is_log() const { return is_log_; }
+  /// The complete, checksum-valid records, in file order, up to the first that is not.
+  const std::vector<LogRecord>& records() const { return records_; }
+  /// End of the last valid record [bytes] (of the magic when none; 0 when not a log).
+  std::uint64_t valid_bytes() const { return valid_bytes_; }
+  /// Size of the file [bytes]; more than valid_bytes() when a tail was dropped.
+  std::uint64_t file_bytes() const { return file_bytes_; }
+  /// A record's payload (its size was checked against the file when scanned).
+  /// \throws OutputError naming the file when it cannot be read.
+  std::string payload(const LogRecord& record) const;
+
+ private:
+  void scan();
+  bool read_at(std::uint64_t offset, char* data, std::size_t size) const;
+
+  std::filesystem::path file_;
+  int fd_ = -1;
+  bool is_log_ = false;
+  std::vector<LogRecord> records_;
+  std::uint64_t valid_bytes_ = 0;
+  std::uint64_t file_bytes_ = 0;
+};
+
+/// Appends records to a log. One writer per file (its owner's lock keeps others off).
+class LogWriter {
+ public:
+  /// Opens `file` to append after its first `keep_bytes` bytes (a LogReader's valid_bytes(),
+  /// so that a torn tail is cut off), or, with `keep_bytes` 0, creates it anew (replacing
+  /// any file there) with the magic, synced with its folder. \throws OutputError.
+  LogWriter(std::filesystem::path file, std::uint64_t keep_bytes);
+  ~LogWriter();
+  LogWriter(const LogWriter&) = delete;
+  LogWriter& operator=(const LogWriter&) = delete;
+
+  const std::filesystem::path& file() const { return file_; }
+  /// Bytes of the log, records synced only.
+  std::uint64_t size() const { return size_; }
+  /// Writes a record at the end of the log (framed as it goes: no copy of the payload), not
+  /// yet synced. On failure the file is cut back to its last synced size (best effort: a
+  /// kill then leaves a torn tail, which readers drop). \throws OutputError naming the file.
+  void add(std::uint32_t kind, std::string_view payload);
+  /// Syncs what add() wrote to disk (fdatasync): the records are then committed.
+  /// \throws OutputError naming the file.
+  void sync();
+  /// True while `file` names the file this writer appends to (not removed, not replaced).
+  bool in_place() const;
+
+ private:
+  [[noreturn]] void fail(const char* action, int error) const;
+
+  std::filesystem::path file_;
+  int fd_ = -1;
+  std::uint64_t size_ = 0;
+  [[noreturn]] void cut_back(int error);
+  /// pwrite() of all of `bytes` at `offset`; false (errno set) on failure.
+  bool write_at(std::uint64_t offset, std::string_view bytes);
+
+  std::uint64_t written_ = 0;  ///< size after add(), before sync()
+};
+
+}  // namespace pcrf::io

@@ -1,0 +1,201 @@
+// Append-only record files with a CRC per record (see record_log.hpp).
+#include "pcrf/io/record_log.hpp"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <zlib.h>
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <cstring>
+
+#include "pcrf/io/checked_stream.hpp"
+
+namespace pcrf::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr std::string_view kMagic = "pcrf-log";
+constexpr std::size_t kFrameHeadBytes = 12;  // kind (4) and size (8)
+constexpr std::size_t kFrameTailBytes = 4;   // CRC-32
+/// Piece in which a payload is read to check its CRC (never a buffer sized by the file).
+constexpr std::size_t kScanPieceBytes = std::size_t{1} << 20;
+
+std::uint32_t crc_of(std::uint32_t crc, const char* data, std::size_t size) {
+  while (size > 0) {  // zlib takes a uInt length
+    const auto piece = static_cast<uInt>(std::min<std::size_t>(size, 1u << 30));
+    crc = static_cast<std::uint32_t>(::crc32(crc, reinterpret_cast<const Bytef*>(data), piece));
+    data += piece;
+    size -= piece;
+  }
+  return crc;
+}
+
+fs::path folder_of(const fs::path& file) { return file.parent_path().empty() ? fs::path(".") : file.parent_path(); }
+
+void sync_folder(const fs::path& folder) {
+  const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return;
+  (void)::fsync(fd);  // best effort: a journal whose entry is lost is one that was never made
+  ::close(fd);
+}
+
+}  // namespace
+
+std::uint64_t load_le(const char* bytes, std::size_t count) {
+  std::uint64_t value = 0;
+  for (std::size_t i = 0; i < count; ++i) value |= std::uint64_t{static_cast<unsigned char>(bytes[i])} << (8 * i);
+  return value;
+}
+
+void append_le(std::string& out, std::uint64_t value, std::size_t count) {
+  for (std::size_t i = 0; i < count; ++i) out.push_back(static_cast<char>((value >> (8 * i)) & 0xff));
+}
+
+// ---- reading ----
+
+LogReader::LogReader(const fs::path& file) : file_(file) {
+  fd_ = ::open(file_.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd_ < 0) {
+    if (errno == ENOENT) return;
+    throw OutputError(file_.string() + ": cannot read: " + std::strerror(errno), errno);
+  }
+  struct stat st {};
+  if (::fstat(fd_, &st) != 0) throw OutputError(file_.string() + ": cannot read: " + std::strerror(errno), errno);
+  file_bytes_ = static_cast<std::uint64_t>(st.st_size);
+  scan();
+}
+
+LogReader::~LogReader() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+bool LogReader::read_at(std::uint64_t offset, char* data, std::size_t size) const {
+  while (size > 0) {
+    const ssize_t n = ::pread(fd_, data, size, static_cast<off_t>(offset));
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw OutputError(file_.string() + ": cannot read: " + std::strerror(errno), errno);
+    if (n == 0) return false;  // the file shrank under us: what follows is not there
+    data += n;
+    size -= static_cast<std::size_t>(n);
+    offset += static_cast<std::uint64_t>(n);
+  }
+  return true;
+}
+
+void LogReader::scan() {
+  std::array<char, kMagic.size()> magic{};
+  if (file_bytes_ < magic.size() || !read_at(0, magic.data(), magic.size())) return;
+  if (std::string_view(magic.data(), magic.size()) != kMagic) return;
+  is_log_ = true;
+  std::uint64_t at = magic.size();
+  valid_bytes_ = at;
+  std::vector<char> piece(kScanPieceBytes);
+  for (;;) {
+    char head[kFrameHeadBytes];
+    if (file_bytes_ - at < kFrameHeadBytes + kFrameTailBytes || !read_at(at, head, sizeof head)) return;
+    const auto kind = static_cast<std::uint32_t>(load_le(head, 4));
+    const std::uint64_t size = load_le(head + 4, 8);
+    // Checked before use: a size the file cannot hold is a torn (or damaged) tail.
+    if (size > file_bytes_ - at - kFrameHeadBytes - kFrameTailBytes) return;
+    std::uint32_t crc = crc_of(static_cast<std::uint32_t>(::crc32(0, nullptr, 0)), head, sizeof head);
+    for (std::uint64_t done = 0; done < size;) {
+      const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(size - done, piece.size()));
+      if (!read_at(at + kFrameHeadBytes + done, piece.data(), n)) return;
+      crc = crc_of(crc, piece.data(), n);
+      done += n;
+    }
+    char tail[kFrameTailBytes];
+    if (!read_at(at + kFrameHeadBytes + size, tail, sizeof tail)) return;
+    if (load_le(tail, 4) != crc) return;
+    records_.push_back({kind, at + kFrameHeadBytes, size});
+    at += kFrameHeadBytes + size + kFrameTailBytes;
+    valid_bytes_ = at;
+  }
+}
+
+std::string LogReader::payload(const LogRecord& record) const {
+  std::string bytes(static_cast<std::size_t>(record.size), '\0');
+  if (!read_at(record.offset, bytes.data(), bytes.size()))
+    throw OutputError(file_.string() + ": cannot read: the file was cut short while read");
+  return bytes;
+}
+
+// ---- writing ----
+
+LogWriter::LogWriter(fs::path file, std::uint64_t keep_bytes) : file_(std::move(file)) {
+  const bool fresh = keep_bytes == 0;
+  fd_ = ::open(file_.c_str(), O_WRONLY | O_CLOEXEC | (fresh ? O_CREAT | O_TRUNC : 0), 0666);  // the umask decides
+  if (fd_ < 0) fail("cannot write", errno);
+  try {
+    if (fresh) {
+      write_at(0, kMagic);
+      written_ = kMagic.size();
+      sync();
+      sync_folder(folder_of(file_));
+      return;
+    }
+    if (::ftruncate(fd_, static_cast<off_t>(keep_bytes)) != 0) fail("cannot cut the torn tail of", errno);
+    size_ = written_ = keep_bytes;
+  } catch (...) {
+    ::close(fd_);  // no destructor runs for an object that was never made
+    throw;
+  }
+}
+
+LogWriter::~LogWriter() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+void LogWriter::fail(const char* action, int error) const {
+  throw OutputError(file_.string() + ": " + action + ": " + std::strerror(error), error);
+}
+
+void LogWriter::cut_back(int error) {
+  (void)::ftruncate(fd_, static_cast<off_t>(size_));  // best effort: readers drop a torn tail anyway
+  written_ = size_;
+  fail("cannot write", error);
+}
+
+bool LogWriter::write_at(std::uint64_t offset, std::string_view bytes) {
+  while (!bytes.empty()) {
+    const ssize_t n = ::pwrite(fd_, bytes.data(), bytes.size(), static_cast<off_t>(offset));
+    if (n < 0 && errno == EINTR) continue;
+    if (n == 0) errno = EIO;
+    if (n <= 0) return false;
+    bytes.remove_prefix(static_cast<std::size_t>(n));
+    offset += static_cast<std::uint64_t>(n);
+  }
+  return true;
+}
+
+void LogWriter::add(std::uint32_t kind, std::string_view payload) {
+  std::string head, tail;
+  append_le(head, kind, 4);
+  append_le(head, payload.size(), 8);
+  const std::uint32_t crc = crc_of(crc_of(static_cast<std::uint32_t>(::crc32(0, nullptr, 0)), head.data(), head.size()),
+                                   payload.data(), payload.size());
+  append_le(tail, crc, 4);
+  std::uint64_t at = written_;
+  for (const std::string_view piece : {std::string_view(head), payload, std::string_view(tail)}) {
+    if (!write_at(at, piece)) cut_back(errno);
+    at += piece.size();
+  }
+  written_ = at;
+}
+
+void LogWriter::sync() {
+  if (::fdatasync(fd_) != 0) cut_back(errno);
+  size_ = written_;
+}
+
+bool LogWriter::in_place() const {
+  struct stat ours {}, there {};
+  return ::fstat(fd_, &ours) == 0 && ::stat(file_.c_str(), &there) == 0 && ours.st_dev == there.st_dev &&
+         ours.st_ino == there.st_ino;
+}
+
+}  // namespace pcrf::io
