@@ -155,7 +155,7 @@ P695Report cube_p695(const cube::CubeReader& cube, const std::vector<cube::Selec
     try {
       if (!(mu_t > 0.0)) mu_t = own_mu_t(cube.layout(), f.first_case, in.period_s);
     } catch (const UserError& e) {  // which frame
-      throw UserError(e.where(), "frame " + f.frame + ": " + e.problem(Dialect::kKey));
+      throw e.preceded_by("frame " + f.frame + ": ");
     }
     report.frames.push_back({f.frame, mu_t, counted.s_ct_g, counted.high_g, counted.bounded, lognormal,
                              p695::assess(s_ct, in.period_s, mu_t, in.sdc, in.design_rating, in.test_rating, in.model_rating)});

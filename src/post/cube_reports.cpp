@@ -324,6 +324,12 @@ std::vector<Column> fragility_point_columns() { return columns_of(fragility_poin
 std::vector<Column> sensitivity_columns() { return columns_of(sensitivity_spec()); }
 std::vector<Column> p695_columns() { return columns_of(p695_spec()); }
 
+UserError unreadable_cube(const std::string& file, const cube::CubeError& error) {
+  std::string problem = error.what();
+  if (problem.rfind(file + ": ", 0) == 0) problem.erase(0, file.size() + 2);  // said once, as the file
+  return UserError(Where{{}, file, 0}, problem);
+}
+
 void check_mce(const std::optional<double>& mce) {
   if (mce && !(*mce > 0.0)) throw UserError("mce", "must be positive");
 }
