@@ -100,7 +100,7 @@ std::vector<ColumnOf<FragilityPoint>> fragility_point_spec() {
                     "(an IDA curve safe up to this intensity) or unresolved (an IDA curve safe up to this intensity, "
                     "then without a verdict)", "%s"},
        [](const P& p) { return Cell{p.kind}; }},
-      {{"intensity", "", "the intensity (in intensity_units)"}, [](const P& p) { return Cell{p.intensity}; }},
+      {{vocabulary::kIntensity, "", "the intensity (in intensity_units)"}, [](const P& p) { return Cell{p.intensity}; }},
       {{"trials", "", "cases with a verdict at this intensity (1 for an IDA curve)"}, [](const P& p) { return Cell{p.trials}; }},
       {{"collapses", "", "of which collapsed"}, [](const P& p) { return Cell{p.collapses}; }},
   };
@@ -130,7 +130,7 @@ std::vector<ColumnOf<IndexRow>> sensitivity_spec() {
   };
   const std::string f = "%.3f";
   return {
-      {{"record", "", "all (across records: the mean output), or the record", "%s"}, [](const R& r) { return Cell{r.record}; }},
+      {{vocabulary::kRecord, "", "all (across records: the mean output), or the record", "%s"}, [](const R& r) { return Cell{r.record}; }},
       {{"parameter", "", "the varied parameter", "%s"}, [](const R& r) { return Cell{r.parameter}; }},
       {{"S1", "", "first-order Sobol' index", f}, number(&analysis::SobolIndex::s1)},
       {{"S1_5%", "", "5 % end of S1's 90 % bootstrap interval", f}, number(&analysis::SobolIndex::s1_low)},
