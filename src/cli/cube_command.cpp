@@ -94,9 +94,8 @@ void guarded(const std::string& file, Action action) {
   note_running(file);
   try {
     action();
-  } catch (const cube::CubeError& e) {
-    const std::string text = e.what();
-    throw UserError(text.rfind(file, 0) == 0 ? text : file + ": " + text);
+  } catch (const cube::CubeError& e) {  // a cube that cannot be read is the user's input: named by its file
+    throw post::unreadable_cube(file, e);
   }
 }
 
@@ -156,7 +155,7 @@ void write_report(const post::Report& report, const std::string& table, const Cu
 
 /// Refuses --json with `--csv -` (both are stdout) and a CSV output that is the cube.
 void check_report_outputs(const CubeArguments& args) {
-  if (args.json && args.csv == "-") throw UserError("--json and --csv - both write to stdout: choose one");
+  if (args.json && args.csv == "-") throw UserError(Where{}, "{} and {} - both write to stdout: choose one", {"json", "csv"});
   check_output(args.csv, {args.file}, args.overwrite);
 }
 
@@ -198,8 +197,8 @@ void add_info(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
       const auto damage = reader.damage();
       if (!damage.empty()) {
         for (const auto& d : damage) std::cout << "DAMAGED: " << d << '\n';
-        throw UserError(args->file + ": damaged: " + std::to_string(damage.size()) +
-                         " variables cannot be read; --resume cannot continue it");
+        throw UserError(Where{{}, args->file, 0}, "damaged: " + std::to_string(damage.size()) +
+                                                      " variables cannot be read; --resume cannot continue it");
       }
     });
   });
@@ -312,7 +311,7 @@ void add_sensitivity(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& a
   sensitivity->callback([args] {
     guarded(args->file, [&] {
       const bool by_record = !args->by.empty();
-      if (args->by.size() > 1 || (by_record && args->by.front() != "record")) throw UserError("--by takes `record` only");
+      if (args->by.size() > 1 || (by_record && args->by.front() != "record")) throw UserError("by", "takes `record` only");
       check_report_outputs(*args);
       cube::CubeReader reader(args->file);
       note_partial("sensitivity", args->file, reader);
@@ -433,7 +432,7 @@ void add_merge(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
       std::vector<std::filesystem::path> parts(args->parts.begin(), args->parts.end());
       for (const auto& part : args->parts) note_running(part);
       if (const auto who = io::RunLock::holder(args->output); !who.empty())
-        throw UserError(args->output + ": in use by a run (" + who + "); give another -o");
+        throw UserError(Where{}, args->output + ": in use by a run (" + who + "); give another {}", {"output"});
       const auto merged = cube::merge_cubes(parts, args->output, args->overwrite, study::vocabulary::kIdaRuns,
                                             args->allow_missing);
       if (merged.missing > 0)

@@ -15,6 +15,7 @@
 #include "pcrf/io/output_file.hpp"
 #include "pcrf/number_text.hpp"
 #include "pcrf/record/horizontal_pair.hpp"
+#include "pcrf/user_error.hpp"
 
 namespace pcrf::cli {
 namespace {
@@ -43,8 +44,8 @@ ScaledExcitation load_excitation(const RunOptions& o) {
   for (const auto& note : notes) std::cerr << "pcrf run: note: " << note << '\n';
   for (const auto& line : api::implausible_records(o.record, station)) std::cerr << "pcrf run: warning: " << line << '\n';
   if (o.incidence_deg)
-    if (const auto line = radians_warning("--incidence-deg", {*o.incidence_deg}); !line.empty())
-      std::cerr << "pcrf run: warning: " << line << '\n';
+    if (const auto problem = radians_problem({*o.incidence_deg}); !problem.empty())
+      std::cerr << "pcrf run: warning: " << UserError("incidence_deg", problem, {"incidence_deg"}).message(Dialect::kFlag) << '\n';
   api::Scaling scaling;
   scaling.scale = o.scale;
   scaling.scale_given = o.scale_flag->count() > 0;

@@ -42,7 +42,7 @@ constexpr std::size_t kMaxShards = 1000000;
 /// "K/N" with digits only and 1 ≤ K ≤ N ≤ kMaxShards. \throws UserError otherwise.
 std::pair<std::size_t, std::size_t> parse_shard(const std::string& text) {
   auto fail = [&text]() -> UserError {
-    return UserError("--shard '" + text + "': expected K/N with 1 ≤ K ≤ N ≤ " + std::to_string(kMaxShards) + ", e.g. 3/8");
+    return UserError("shard", "expected K/N with 1 ≤ K ≤ N ≤ " + std::to_string(kMaxShards) + ", e.g. 3/8, got '" + text + "'");
   };
   const auto slash = text.find('/');
   if (slash == std::string::npos) throw fail();

@@ -78,6 +78,11 @@ constexpr std::string_view kOmegaMax = "omega_max_rad_s";
 constexpr std::string_view kTOmegaMax = "t_omega_max_s";
 constexpr std::string_view kStatusStable = "status_stable";
 constexpr std::string_view kCollapseFraction = "collapse_fraction";
+constexpr std::string_view kTThetaMax = "t_theta_max_s";
+constexpr std::string_view kStrainColumnMax = "strain_column_max";
+constexpr std::string_view kStrainBeamMax = "strain_beam_max";
+constexpr std::string_view kImpacts = "impacts";
+constexpr std::string_view kWallTime = "wall_time_s";
 
 const MetricInfo& handle(std::string_view name) { return *find_metric(name); }
 }  // namespace
@@ -88,6 +93,11 @@ const MetricInfo& omega_max() { return handle(kOmegaMax); }
 const MetricInfo& t_omega_max() { return handle(kTOmegaMax); }
 const MetricInfo& status_stable() { return handle(kStatusStable); }
 const MetricInfo& collapse_fraction() { return handle(kCollapseFraction); }
+const MetricInfo& t_theta_max() { return handle(kTThetaMax); }
+const MetricInfo& strain_column_max() { return handle(kStrainColumnMax); }
+const MetricInfo& strain_beam_max() { return handle(kStrainBeamMax); }
+const MetricInfo& impacts() { return handle(kImpacts); }
+const MetricInfo& wall_time() { return handle(kWallTime); }
 }  // namespace metric
 
 const std::vector<MetricInfo>& all_metrics() {
@@ -102,21 +112,21 @@ const std::vector<MetricInfo>& all_metrics() {
        [](const CaseResult& r) { return r.t_trigger_paper_s; }},
       {"t_uplift_s", "s", "first lift-off", [](const CaseResult& r) { return r.t_uplift_s; }},
       {kThetaMax, "rad", "peak |theta1|", [](const CaseResult& r) { return r.theta_max_rad; }},
-      {"t_theta_max_s", "s", "time of peak |theta1|", [](const CaseResult& r) { return r.t_theta_max_s; }},
+      {kTThetaMax, "s", "time of peak |theta1|", [](const CaseResult& r) { return r.t_theta_max_s; }},
       {kOmegaMax, "rad s-1", "peak |dtheta1/dt|", [](const CaseResult& r) { return r.omega_max_rad_s; }},
       {kTOmegaMax, "s", "time of peak |dtheta1/dt|", [](const CaseResult& r) { return r.t_omega_max_s; }},
-      {"strain_column_max", "1", "peak column tendon strain, initial strain included",
+      {kStrainColumnMax, "1", "peak column tendon strain, initial strain included",
        [](const CaseResult& r) { return r.strain_column_max; }},
-      {"strain_beam_max", "1", "peak beam tendon strain, initial strain included",
+      {kStrainBeamMax, "1", "peak beam tendon strain, initial strain included",
        [](const CaseResult& r) { return r.strain_beam_max; }},
-      {"impacts", "1", "number of impacts", [](const CaseResult& r) { return static_cast<double>(r.impacts); }, true},
+      {kImpacts, "1", "number of impacts", [](const CaseResult& r) { return static_cast<double>(r.impacts); }, true},
       {"t_end_s", "s", "time at which the case ended", [](const CaseResult& r) { return r.t_end_s; }},
       {"steps", "1", "integrator steps", [](const CaseResult& r) { return static_cast<double>(r.counts.steps); }, true},
       {"rhs_evals", "1", "right-hand-side evaluations",
        [](const CaseResult& r) { return static_cast<double>(r.counts.rhs_evals); }, true},
       {"root_evals", "1", "root-function evaluations",
        [](const CaseResult& r) { return static_cast<double>(r.counts.root_evals); }, true},
-      {"wall_time_s", "s", "wall-clock time of the case", [](const CaseResult& r) { return r.wall_time_s; }},
+      {kWallTime, "s", "wall-clock time of the case", [](const CaseResult& r) { return r.wall_time_s; }},
       {kStatusStable, "1", "1 when the verdict survives the perturbation test (record x (1 +- 1e-9, 1e-7, 1e-6)), else 0",
        [](const CaseResult& r) { return r.status_stable; }, false, true},
       {"theta_max_spread", "1", "relative spread (max - min)/theta_max of peak |theta1| across the perturbation test",

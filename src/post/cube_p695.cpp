@@ -22,21 +22,26 @@
 namespace pcrf::post {
 namespace {
 
+namespace names = study::vocabulary;
+
+/// The cube's attribute of [intensity] `key` (the measure the records were scaled by).
+std::string intensity_attribute(std::string_view key) { return names::setting_attribute(intensity_settings().name, key); }
+
 /// Why the cube's intensity is not the methodology's Sa(T); empty when it is.
 std::string measure_problem(const cube::CubeReader& cube, double period_s) {
   const auto& layout = cube.layout();
-  const std::string measure = layout.text_attribute("intensity_measure");
+  const std::string measure = layout.text_attribute(intensity_attribute("measure"));
   if (measure != to_string(IntensityMeasure::kSa))
     return "the cube's intensity measure is " + (measure.empty() ? std::string("none") : measure) +
            ", not Sa(T): P-695 scales the records to Sa at the archetype's period, so these numbers are not P-695's";
   for (const auto& a : layout.attributes) {
-    if (a.name != "intensity_period_s") continue;
+    if (a.name != intensity_attribute("period_s")) continue;
     const double* stored = std::get_if<double>(&a.value);
     if (stored != nullptr && std::abs(*stored - period_s) > 1e-9 * period_s)
       return "the cube's Sa is at T = " + number_text(*stored) + " s, not at the --period-s " + number_text(period_s) +
              " s: these numbers are not P-695's";
   }
-  if (layout.text_attribute("intensity_normalise") != to_string(SetNormalisation::kP695))
+  if (layout.text_attribute(intensity_attribute("normalise")) != to_string(SetNormalisation::kP695))
     return "the cube's records were each scaled to their own Sa(T), not normalised and scaled as one set "
            "([intensity] normalise = \"p695\", Appendix A): its median collapse intensity is not P-695's S_CT";
   return {};
@@ -45,7 +50,6 @@ std::string measure_problem(const cube::CubeReader& cube, double period_s) {
 /// The scene model of case `index`: its `scene_model` coordinate (a study of several scenes),
 /// else the cube's attribute, else the prestressed frame.
 std::string scene_of_case(const cube::CubeLayout& layout, std::int64_t index) {
-  namespace names = study::vocabulary;
   if (const cube::Coordinate* c = layout.find_coordinate(names::kSceneModel))
     if (const auto dim = layout.find_dimension(c->dimension)) return c->label(unravel(index, layout.shape())[*dim]);
   const std::string attribute = layout.text_attribute(names::kSceneModel);
@@ -65,9 +69,9 @@ FrameParameters parameters_of_case(const cube::CubeLayout& layout, std::int64_t 
     throw UserError(Where{}, "the cube has no attribute " + name + ": give {}", {"mu_t"});
   };
   FrameParameters p;
-  for (const auto& info : all_parameters()) p.*info.member = attribute("base_" + std::string(info.name));
-  p.h_m = attribute("frame_h_m");
-  p.m_c_kg = attribute("frame_m_c_kg");
+  for (const auto& info : all_parameters()) p.*info.member = attribute(names::base_attribute(info.name));
+  p.h_m = attribute(names::frame_attribute("h_m"));
+  p.m_c_kg = attribute(names::frame_attribute("m_c_kg"));
   const auto coords = unravel(index, layout.shape());
   for (const auto& info : all_parameters()) {
     const cube::Coordinate* c = layout.find_coordinate(std::string(info.name));
@@ -82,7 +86,7 @@ FrameParameters parameters_of_case(const cube::CubeLayout& layout, std::int64_t 
 double own_mu_t(const cube::CubeLayout& layout, std::int64_t index, double period_s) {
   double fracture_strain = PhysicsOptions{}.fracture_strain;
   for (const auto& a : layout.attributes)
-    if (a.name == "physics_fracture_strain")
+    if (a.name == names::setting_attribute(physics_settings().name, "fracture_strain"))
       if (const double* v = std::get_if<double>(&a.value)) fracture_strain = *v;
   const FrameParameters parameters = parameters_of_case(layout, index);
   const EquationOfMotion eom(make_frame(parameters));
@@ -155,7 +159,7 @@ P695Report cube_p695(const cube::CubeReader& cube, const std::vector<cube::Selec
     try {
       if (!(mu_t > 0.0)) mu_t = own_mu_t(cube.layout(), f.first_case, in.period_s);
     } catch (const UserError& e) {  // which frame
-      throw UserError(e.where(), "frame " + f.frame + ": " + e.problem(Dialect::kKey));
+      throw e.preceded_by("frame " + f.frame + ": ");
     }
     report.frames.push_back({f.frame, mu_t, counted.s_ct_g, counted.high_g, counted.bounded, lognormal,
                              p695::assess(s_ct, in.period_s, mu_t, in.sdc, in.design_rating, in.test_rating, in.model_rating)});

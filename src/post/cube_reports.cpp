@@ -100,7 +100,7 @@ std::vector<ColumnOf<FragilityPoint>> fragility_point_spec() {
                     "(an IDA curve safe up to this intensity) or unresolved (an IDA curve safe up to this intensity, "
                     "then without a verdict)", "%s"},
        [](const P& p) { return Cell{p.kind}; }},
-      {{"intensity", "", "the intensity (in intensity_units)"}, [](const P& p) { return Cell{p.intensity}; }},
+      {{vocabulary::kIntensity, "", "the intensity (in intensity_units)"}, [](const P& p) { return Cell{p.intensity}; }},
       {{"trials", "", "cases with a verdict at this intensity (1 for an IDA curve)"}, [](const P& p) { return Cell{p.trials}; }},
       {{"collapses", "", "of which collapsed"}, [](const P& p) { return Cell{p.collapses}; }},
   };
@@ -130,7 +130,7 @@ std::vector<ColumnOf<IndexRow>> sensitivity_spec() {
   };
   const std::string f = "%.3f";
   return {
-      {{"record", "", "all (across records: the mean output), or the record", "%s"}, [](const R& r) { return Cell{r.record}; }},
+      {{vocabulary::kRecord, "", "all (across records: the mean output), or the record", "%s"}, [](const R& r) { return Cell{r.record}; }},
       {{"parameter", "", "the varied parameter", "%s"}, [](const R& r) { return Cell{r.parameter}; }},
       {{"S1", "", "first-order Sobol' index", f}, number(&analysis::SobolIndex::s1)},
       {{"S1_5%", "", "5 % end of S1's 90 % bootstrap interval", f}, number(&analysis::SobolIndex::s1_low)},
@@ -323,6 +323,12 @@ std::vector<Column> fragility_columns(bool with_mce) {
 std::vector<Column> fragility_point_columns() { return columns_of(fragility_point_spec()); }
 std::vector<Column> sensitivity_columns() { return columns_of(sensitivity_spec()); }
 std::vector<Column> p695_columns() { return columns_of(p695_spec()); }
+
+UserError unreadable_cube(const std::string& file, const cube::CubeError& error) {
+  std::string problem = error.what();
+  if (problem.rfind(file + ": ", 0) == 0) problem.erase(0, file.size() + 2);  // said once, as the file
+  return UserError(Where{{}, file, 0}, problem);
+}
 
 void check_mce(const std::optional<double>& mce) {
   if (mce && !(*mce > 0.0)) throw UserError("mce", "must be positive");

@@ -15,9 +15,12 @@
 #include "pcrf/number_text.hpp"
 #include "pcrf/post/cube_fragility.hpp"
 #include "pcrf/record/intensity.hpp"
+#include "pcrf/schema/cube_vocabulary.hpp"
 
 namespace pcrf::post {
 namespace {
+
+namespace names = study::vocabulary;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kBinsPerDecade = 10.0;
@@ -29,7 +32,7 @@ constexpr double kFragilityAtLowest = 1e-3; // P(C) at the curve's start above w
 /// file's header line.
 std::string check_measure(const cube::CubeReader& cube, const HazardFile& hazard) {
   const auto& layout = cube.layout();
-  const std::string measure = layout.text_attribute("intensity_measure");
+  const std::string measure = layout.text_attribute(names::setting_attribute(intensity_settings().name, "measure"));
   const Where where{{}, hazard.file.string(), static_cast<int>(hazard.header_line)};
   if (measure.empty())
     throw UserError(where, "the cube " + cube.file().string() + " records no intensity measure to match " +
@@ -39,7 +42,7 @@ std::string check_measure(const cube::CubeReader& cube, const HazardFile& hazard
                           ") is " + measure);
   if (!hazard.period_s) return measure;
   for (const auto& a : layout.attributes)
-    if (a.name == "intensity_period_s")
+    if (a.name == names::setting_attribute(intensity_settings().name, "period_s"))
       if (const double* stored = std::get_if<double>(&a.value); stored && std::abs(*stored - *hazard.period_s) > 1e-9 * *stored)
         throw UserError(where, "the curve is at period_s = " + number_text(*hazard.period_s) + " s, the cube's Sa at " +
                               number_text(*stored) + " s");
@@ -400,13 +403,13 @@ Report risk_report(const RiskReport& result, const RiskInputs& in, const std::st
       steps.push_back({f.frame, f.empirical_intensity[i], f.empirical_probability[i]});
   report.tables.emplace_back(
       "hazard", make_table(std::vector<ColumnOf<Point>>{
-                               {{"intensity", im_units, "the hazard curve's intensity, as read"}, [](const Point& p) { return Cell{p.x}; }},
+                               {{names::kIntensity, im_units, "the hazard curve's intensity, as read"}, [](const Point& p) { return Cell{p.x}; }},
                                {{"annual_rate_per_yr", "1/yr", "its mean annual rate of exceedance"}, [](const Point& p) { return Cell{p.y}; }}},
                            curve));
   report.tables.emplace_back(
       "empirical", make_table(std::vector<ColumnOf<Point>>{
                                   {{"frame", "", "the frame", "%s"}, [](const Point& p) { return Cell{p.frame}; }},
-                                  {{"intensity", im_units, "from this intensity on"}, [](const Point& p) { return Cell{p.x}; }},
+                                  {{names::kIntensity, im_units, "from this intensity on"}, [](const Point& p) { return Cell{p.x}; }},
                                   {{"probability", "", "the fraction collapsed"}, [](const Point& p) { return Cell{p.y}; }}},
                               steps));
   return report;

@@ -10,6 +10,7 @@
 #include "pcrf/metrics/case_result.hpp"
 #include "pcrf/model/parameters.hpp"
 #include "pcrf/ida/ida_search.hpp"
+#include "pcrf/schema/cube_vocabulary.hpp"
 #include "pcrf/solver/history.hpp"
 
 namespace pcrf::post {
@@ -40,8 +41,25 @@ std::string script_vocabulary_json() {
     curve_states.emplace_back();
     curve_states.back().text("name", c.name).integer("value", static_cast<int>(c.value));
   }
+  JsonObject cube_names, metric_roles;
+  for (const auto& n : study::vocabulary::cube_names()) cube_names.text(n.role, n.name);
+  std::vector<JsonObject> metrics;
+  for (const auto& m : all_metrics()) {
+    metrics.emplace_back();
+    metrics.back().text("name", m.name).text("units", m.units);
+  }
+  // The metrics other layers act on by meaning (case_result.hpp, namespace metric).
+  for (const auto& [role, m] : {std::pair{"THETA_MAX", &metric::theta_max()}, std::pair{"OMEGA_MAX", &metric::omega_max()},
+                                std::pair{"T_OMEGA_MAX", &metric::t_omega_max()}, std::pair{"STATUS_STABLE", &metric::status_stable()},
+                                std::pair{"COLLAPSE_FRACTION", &metric::collapse_fraction()},
+                                std::pair{"T_THETA_MAX", &metric::t_theta_max()},
+                                std::pair{"STRAIN_COLUMN_MAX", &metric::strain_column_max()},
+                                std::pair{"STRAIN_BEAM_MAX", &metric::strain_beam_max()}, std::pair{"IMPACTS", &metric::impacts()},
+                                std::pair{"WALL_TIME", &metric::wall_time()}})
+    metric_roles.text(role, m->name);
   JsonObject root;
   root.objects("curve_states", curve_states).objects("statuses", statuses).objects("history_events", events).objects("parameters", parameters);
+  root.object("cube_names", cube_names).objects("metrics", metrics).object("metric_roles", metric_roles);
   return root.str();
 }
 

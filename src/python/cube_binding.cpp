@@ -111,9 +111,8 @@ std::string cube_report(const std::string& kind, const std::string& file, const 
   std::ostringstream json;
   try {
     post::write_json(report(kind, file, keywords), json);
-  } catch (const cube::CubeError& e) {  // named as the command line names it: the file first
-    const std::string text = e.what();
-    throw UserError(text.rfind(file, 0) == 0 ? text : file + ": " + text);
+  } catch (const cube::CubeError& e) {  // a cube that cannot be read is the user's input: named by its file
+    throw post::unreadable_cube(file, e);
   }
   return json.str();
 }

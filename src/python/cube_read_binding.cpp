@@ -12,6 +12,7 @@
 #include "pcrf/cube/cube_query.hpp"
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/post/cube_notes.hpp"
+#include "pcrf/post/cube_reports.hpp"
 #include "pcrf/schema/cube_vocabulary.hpp"
 #include "pcrf/user_error.hpp"
 
@@ -26,9 +27,7 @@ auto reading(const std::string& file, Read read) {
     const cube::CubeReader reader(file);
     return read(reader);
   } catch (const cube::CubeError& e) {
-    std::string problem = e.what();
-    if (problem.rfind(file + ": ", 0) == 0) problem.erase(0, file.size() + 2);
-    throw UserError(Where{{}, file, 0}, problem);
+    throw post::unreadable_cube(file, e);
   }
 }
 

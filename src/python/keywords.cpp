@@ -189,14 +189,20 @@ SceneRequest Keywords::take_scene_parameters() {
   return request;
 }
 
-void Keywords::add_warnings(std::vector<std::string> found, std::vector<std::string>& warnings) {
-  found.erase(std::remove(found.begin(), found.end(), std::string()), found.end());  // a check that found nothing
+void Keywords::add_warnings(const std::vector<UserError>& found, std::vector<std::string>& warnings) {
   if (!warnings_as_errors_) {
     const auto value = take("warnings_as_errors");
     warnings_as_errors_ = value && py::bool_(*value);
   }
-  if (*warnings_as_errors_ && !found.empty()) throw UserError(found.front() + " (warnings_as_errors)");
-  for (auto& line : found) warnings.push_back(std::move(line));
+  if (*warnings_as_errors_ && !found.empty()) throw found.front().followed_by(" (warnings_as_errors)");
+  for (const auto& warning : found) warnings.push_back(warning.message(Dialect::kKeyword));
+}
+
+void Keywords::add_warnings(const std::vector<std::string>& found, std::vector<std::string>& warnings) {
+  std::vector<UserError> errors;
+  for (const auto& line : found)
+    if (!line.empty()) errors.emplace_back(line);  // "": a check that found nothing
+  add_warnings(errors, warnings);
 }
 
 void Keywords::finish() const {

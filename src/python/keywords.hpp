@@ -17,6 +17,7 @@
 #include "pcrf/api/record_input.hpp"
 #include "pcrf/model/scene.hpp"
 #include "pcrf/model/scene_catalog.hpp"
+#include "pcrf/user_error.hpp"
 
 namespace pcrf::python {
 
@@ -71,9 +72,11 @@ class Keywords {
   /// (pcrf.Frame(model="block", slenderness_rad=0.2)); checked by scene_of().
   SceneRequest take_scene_parameters();
 
-  /// Adds `found` (lines of a check that warns) to `warnings`; with the keyword
-  /// warnings_as_errors true the first is an UserError instead.
-  void add_warnings(std::vector<std::string> found, std::vector<std::string>& warnings);
+  /// Adds `found` (what a check that warns found: UserErrors not thrown) to `warnings`, spelt
+  /// as Python spells keys; with the keyword warnings_as_errors true the first is thrown.
+  void add_warnings(const std::vector<UserError>& found, std::vector<std::string>& warnings);
+  /// The same for lines that name no key (record checks).
+  void add_warnings(const std::vector<std::string>& found, std::vector<std::string>& warnings);
 
   /// \throws UserError "unknown keyword 'x' (did you mean 'y'?)" for one not taken.
   void finish() const;

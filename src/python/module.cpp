@@ -1,7 +1,8 @@
 // pcrf._pcrf: the engine in process for Python. Every function calls the C++ the command
 // line calls (src/api, the study layer); a bad input raises pcrf.InputError (a ValueError)
 // whose message names the keyword ("tail_s=: must be positive (got -1)") and whose `key`
-// is the key path's last key (None for the input as a whole).
+// is the key path's last key that is a name, not an entry's index (None for the input as a
+// whole).
 #include <pybind11/pybind11.h>
 
 #include <exception>
@@ -19,7 +20,8 @@ void raise_input_error(const pcrf::UserError& e) {
   const py::object type = py::module_::import("pcrf._pcrf").attr("InputError");
   py::object error = type(e.message(pcrf::Dialect::kKeyword));
   const auto& where = e.where();
-  error.attr("key") = where.keys.empty() ? py::object(py::none()) : py::object(py::str(where.keys.back()));
+  const std::string key = pcrf::last_key_name(where.keys);
+  error.attr("key") = key.empty() ? py::object(py::none()) : py::object(py::str(key));
   error.attr("file") = where.file.empty() ? py::object(py::none()) : py::object(py::str(where.file));
   error.attr("line") = where.line > 0 ? py::object(py::int_(where.line)) : py::object(py::none());
   PyErr_SetObject(type.ptr(), error.ptr());

@@ -67,7 +67,12 @@ CaseCall read_call(const py::kwargs& kwargs) {
   CaseCall call;
   call.station = keywords.take_station(call.notes, nullptr, &call.warnings);
   call.incidence_deg = keywords.take_number("incidence_deg");
-  if (call.incidence_deg) keywords.add_warnings({radians_warning("incidence_deg", {*call.incidence_deg})}, call.warnings);
+  if (call.incidence_deg) {
+    std::vector<UserError> found;
+    if (auto problem = radians_problem({*call.incidence_deg}); !problem.empty())
+      found.emplace_back("incidence_deg", std::move(problem), std::vector<std::string>{"incidence_deg"});
+    keywords.add_warnings(found, call.warnings);
+  }
   if (const auto scale = keywords.take_number("scale")) {
     call.scaling.scale = *scale;
     call.scaling.scale_given = true;

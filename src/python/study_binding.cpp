@@ -11,6 +11,8 @@
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "bindings.hpp"
 #include "keywords.hpp"
@@ -23,22 +25,29 @@
 namespace pcrf::python {
 namespace {
 
-/// How a dict study is named in messages and in the cube ("study: axes.kappa: …").
+/// How a dict study is named in messages and in the cube ("study: [axes] kappa: …").
 constexpr const char* kDictSource = "study";
 
-[[noreturn]] void refuse(const py::handle& value, const std::string& path) {
-  throw UserError(std::string(kDictSource) + ": " + path + ": a " +
-                          py::str(value.get_type().attr("__name__")).cast<std::string>() +
-                          " cannot be a study value (expected a dict, list, bool, int, float or str)");
+/// The key path of a value of the dict, as the study parser's messages give it.
+using KeyPath = std::vector<std::string>;
+
+KeyPath with_key(KeyPath path, std::string key) {
+  path.push_back(std::move(key));
+  return path;
 }
 
-toml::table toml_table(const py::dict& dict, const std::string& path);
-toml::array toml_array(const py::handle& list, const std::string& path);
+[[noreturn]] void refuse(const py::handle& value, const KeyPath& path) {
+  throw UserError(Where{path, kDictSource, 0}, "a " + py::str(value.get_type().attr("__name__")).cast<std::string>() +
+                                                   " cannot be a study value (expected a dict, list, bool, int, float or str)");
+}
+
+toml::table toml_table(const py::dict& dict, const KeyPath& path);
+toml::array toml_array(const py::handle& list, const KeyPath& path);
 
 /// Hands one value of a dict study, as its TOML type, to `put` (tables, arrays, booleans,
 /// integers, floats, strings; numpy arrays and scalars through their Python values).
 template <class Put>
-void with_toml_value(const py::handle& value, const std::string& path, Put put) {
+void with_toml_value(const py::handle& value, const KeyPath& path, Put put) {
   if (py::isinstance<py::dict>(value)) return put(toml_table(value.cast<py::dict>(), path));
   if (py::hasattr(value, "tolist") && !py::isinstance<py::str>(value))
     return with_toml_value(value.attr("tolist")(), path, put);
@@ -51,21 +60,21 @@ void with_toml_value(const py::handle& value, const std::string& path, Put put) 
   refuse(value, path);
 }
 
-toml::table toml_table(const py::dict& dict, const std::string& path) {
+toml::table toml_table(const py::dict& dict, const KeyPath& path) {
   toml::table table;
   for (const auto& [key, item] : dict) {
     const std::string name = py::str(key).cast<std::string>();
-    with_toml_value(item, path.empty() ? name : path + "." + name,
+    with_toml_value(item, with_key(path, name),
                     [&](auto&& value) { table.insert(name, std::forward<decltype(value)>(value)); });
   }
   return table;
 }
 
-toml::array toml_array(const py::handle& list, const std::string& path) {
+toml::array toml_array(const py::handle& list, const KeyPath& path) {
   toml::array array;
   std::size_t i = 0;
   for (const auto& item : list)
-    with_toml_value(item, path + "[" + std::to_string(i++) + "]",
+    with_toml_value(item, with_key(path, key_index(i++)),
                     [&](auto&& value) { array.push_back(std::forward<decltype(value)>(value)); });
   return array;
 }
@@ -73,7 +82,7 @@ toml::array toml_array(const py::handle& list, const std::string& path) {
 /// The dict as a study, read by the study parser (UserError naming the key path); the cube
 /// keeps its TOML text.
 study::Study parsed_study(const py::dict& study) {
-  const toml::table table = toml_table(study, "");
+  const toml::table table = toml_table(study, {});
   std::ostringstream text;
   text << table;
   return study::parse_study_table(table, text.str(), kDictSource, std::filesystem::current_path());

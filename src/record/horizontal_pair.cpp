@@ -99,7 +99,7 @@ GroundMotion project(const HorizontalPair& pair, double phi_deg) {
   return GroundMotion(pair.h1.name() + name, pair.h1.dt_s(), std::move(a));
 }
 
-std::string radians_warning(const std::string& key, const std::vector<double>& values_deg) {
+std::string radians_problem(const std::vector<double>& values_deg) {
   constexpr double kTwoPi = 2.0 * std::numbers::pi;
   if (values_deg.empty()) return {};
   bool all_whole = true;
@@ -110,8 +110,8 @@ std::string radians_warning(const std::string& key, const std::vector<double>& v
   if (all_whole) return {};
   char degrees[32];
   std::snprintf(degrees, sizeof degrees, "%.4g", values_deg.front() * 180.0 / std::numbers::pi);
-  return key + ": every value is within ±2π and not all are whole degrees: are they radians? (" +
-         number_text(values_deg.front()) + " rad is " + degrees + "°); " + key + " is in degrees";
+  return "every value is within ±2π and not all are whole degrees: are they radians? (" + number_text(values_deg.front()) +
+         " rad is " + degrees + "°); {} is in degrees";
 }
 
 bool is_vertical_component(const std::string& component) {

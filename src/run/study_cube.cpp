@@ -151,7 +151,7 @@ void add_pulse_coordinates(const Study& study, const CaseSpace& space, cube::Cub
 template <class Target>
 void add_settings(std::vector<Attribute>& attributes, const SettingTable<Target>& table, const Target& values) {
   for (const auto& setting : table.settings) {
-    const std::string name = std::string(table.name) + "_" + std::string(setting.key);
+    const std::string name = names::setting_attribute(table.name, setting.key);
     std::visit(
         [&](const auto& v) {
           using V = std::decay_t<decltype(v)>;
@@ -187,10 +187,10 @@ std::vector<Attribute> global_attributes(const Study& study, const std::string& 
   const auto& parameters = study.model->parameters;
   if (study.model != &default_scene_model() && !mixed_scenes) a.push_back({names::kSceneModel, std::string(study.model->name)});
   for (std::size_t k = 0; k < parameters.size(); ++k)  // set once for every case: h_m, m_c_kg
-    if (!parameters[k].axis) a.push_back({"frame_" + std::string(parameters[k].name), study.base[k]});
+    if (!parameters[k].axis) a.push_back({names::frame_attribute(parameters[k].name), study.base[k]});
   a.push_back({"gravity_m_s2", kGravity_m_s2});
   for (std::size_t k = 0; k < parameters.size(); ++k)
-    if (parameters[k].axis) a.push_back({"base_" + std::string(parameters[k].name), study.base[k]});
+    if (parameters[k].axis) a.push_back({names::base_attribute(parameters[k].name), study.base[k]});
   return a;
 }
 

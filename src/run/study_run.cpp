@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <csignal>
+#include <exception>
 #include <functional>
 #include <iostream>
 #include <map>
@@ -66,12 +67,13 @@ void apply_overrides(const StudyRunOptions& options, RunOptions& run) {
 void check_output_is_not_an_input(const std::filesystem::path& output, const StudyRunOptions& options, const Study& study) {
   using io::same_file;  // the one rule of every command's outputs (symbolic and hard links)
   if (same_file(output, options.study_file))
-    throw UserError(output.string() + ": -o names the study file itself; choose another output (--overwrite does not apply to inputs)");
+    throw UserError(Where{}, output.string() + ": {} names the study file itself; choose another output ({} does not apply to inputs)",
+                    {"output", "overwrite"});
   for (const auto& r : study.records)
     for (const auto* file : {&r.file, &r.h2, &r.up})
       if (*file && same_file(output, (*file)->path))
-        throw UserError(output.string() + ": -o names the record file of \"" + r.name +
-                         "\"; choose another output (--overwrite does not apply to inputs)");
+        throw UserError(Where{}, output.string() + ": {} names the record file of \"" + r.name +
+                                     "\"; choose another output ({} does not apply to inputs)", {"output", "overwrite"});
 }
 
 MasterSetup prepare_master(const StudyRunOptions& options, const Prepared& p) {
@@ -95,13 +97,15 @@ MasterSetup prepare_master(const StudyRunOptions& options, const Prepared& p) {
     try {
       const std::string theirs = cube::CubeReader(m.output).layout().text_attribute(cube::kShardName);
       if (theirs != shard)
-        throw UserError(m.output.string() + ": is shard \"" + (theirs.empty() ? "none" : theirs) +
-                         "\" of the study; this run is shard \"" + (shard.empty() ? "none" : shard) + "\"");
+        throw UserError(Where{{}, m.output.string(), 0}, "is shard \"" + (theirs.empty() ? "none" : theirs) +
+                                                             "\" of the study; this run is shard \"" +
+                                                             (shard.empty() ? "none" : shard) + "\"");
     } catch (const cube::CubeError&) {  // not readable: CubeWriter says why
     }
   }
   if (std::filesystem::exists(m.output) && !options.resume && !options.overwrite)
-    throw UserError(m.output.string() + ": already exists; use --resume to continue it or --overwrite to replace it");
+    throw UserError(Where{}, m.output.string() + ": already exists; use {} to continue it or {} to replace it",
+                    {"resume", "overwrite"});
   const auto mode = options.resume ? cube::OpenMode::kResume
                                    : (options.overwrite ? cube::OpenMode::kOverwrite : cube::OpenMode::kCreate);
   try {
@@ -458,18 +462,18 @@ std::filesystem::path default_output(const std::filesystem::path& study_file) {
 std::optional<StudySummary> run_study(const StudyRunOptions& options, const parallel::MpiSession& mpi) {
   std::unique_ptr<Prepared> prepared;
   MasterSetup setup;
-  std::string error;
+  std::exception_ptr error;  // a UserError, as found (its Where for the front end to spell)
   if (mpi.is_master()) {
     try {
       prepared = std::make_unique<Prepared>(options.study ? *options.study : load_study(options.study_file));
       apply_overrides(options, prepared->study.run);
       setup = prepare_master(options, *prepared);
-    } catch (const UserError& e) {
-      error = e.what();
+    } catch (const UserError&) {
+      error = std::current_exception();
     }
   }
-  if (mpi.broadcast(error.empty() ? 1 : 0) == 0) {
-    if (mpi.is_master()) throw UserError(error);  // the caller reports it, then joins the barrier
+  if (mpi.broadcast(error ? 0 : 1) == 0) {
+    if (mpi.is_master()) std::rethrow_exception(error);  // the caller reports it, then joins the barrier
     mpi.quiet_barrier();
     return std::nullopt;
   }

@@ -11,6 +11,32 @@
 
 namespace pcrf::study::vocabulary {
 
+const std::vector<CubeName>& cube_names() {
+  static const std::vector<CubeName> names{
+      {"RECORD", kRecord}, {"RECORD_SOURCE", kRecordSource}, {"SCALE", kScale}, {"INTENSITY", kIntensity},
+      {"SCALE_FACTOR", kScaleFactor}, {"RETURN_PERIOD", kReturnPeriod}, {"RECORD_TITLE", kRecordTitle},
+      {"IDA_POINT", kIdaPoint}, {"IDA_INTENSITY", kIdaIntensity}, {"COLLAPSE_INTENSITY", kCollapseIntensity},
+      {"LAST_SAFE_INTENSITY", kLastSafeIntensity}, {"IDA_RUNS", kIdaRuns}, {"CURVE_STATE", kCurveState},
+      {"UNRESOLVED_RUNS", kUnresolvedRuns}, {"UNSTABLE_FROM", kUnstableFrom}, {"UNSTABLE_TO", kUnstableTo},
+      {"PULSE_SHAPE", kPulseShape}, {"PULSE_PERIOD", kPulsePeriod}, {"FREQUENCY_PARAMETER", kFrequencyParameter},
+      {"UPLIFT_THRESHOLD", kUpliftThreshold}, {"OMEGA_OVER_P", kOmegaOverP}, {"CASE", kCase},
+      {"CASE_LABEL", kCaseLabel}, {"VARIED_PARAMETER", kVariedParameter}, {"SALTELLI_BLOCK", kSaltelliBlock},
+      {"SALTELLI_SAMPLE", kSaltelliSample}, {"INCIDENCE_DEG", kIncidenceDeg}, {"FRAME_AZIMUTH_DEG", kFrameAzimuthDeg},
+      {"SCENE_MODEL", kSceneModel}, {"STUDY_NAME", kStudyName}, {"PLAN", kPlan}, {"PCRF_VERSION", kPcrfVersion},
+      {"INTENSITY_HAZARD", kIntensityHazard}, {"TAIL_ATTRIBUTE", kTailAttribute},
+      {"IDA_COLLAPSE_ATTRIBUTE", kIdaCollapseAttribute}, {"STATUS", cube::kStatusName},
+      {"FINGERPRINT", cube::kFingerprintName}, {"SHARD", cube::kShardName}};
+  return names;
+}
+
+std::string setting_attribute(std::string_view table, std::string_view key) {
+  return std::string(table) + "_" + std::string(key);
+}
+
+std::string frame_attribute(std::string_view parameter) { return "frame_" + std::string(parameter); }
+
+std::string base_attribute(std::string_view parameter) { return "base_" + std::string(parameter); }
+
 const std::vector<PulseAxisKey>& pulse_axis_keys() {
   static const std::vector<PulseAxisKey> keys{{kPulsePeriod, "period_s", {}},
                                               {"pulse_amplitude_g", "amplitude_g", {}},

@@ -8,7 +8,7 @@
 namespace pcrf::study::detail {
 namespace {
 
-std::vector<double> read_range(const toml::table& table, const std::string& path, const std::string& file) {
+std::vector<double> read_range(const toml::table& table, const std::vector<std::string>& path, const std::string& file) {
   Fields range(table, path, file, {"from", "to", "count", "spacing"});
   for (auto key : {"from", "to", "count"})
     if (!range.has(key)) range.fail(key, "a range needs from, to and count");
@@ -64,7 +64,7 @@ const SceneModel* read_model(const Fields& fields) {
   try {
     return &scene_model(*name);
   } catch (const UserError& e) {  // the file and line of the key
-    fields.fail("model", e.problem(Dialect::kKey));
+    fields.fail("model", e.problem(Dialect::kStudy));
   }
 }
 
@@ -97,7 +97,7 @@ std::vector<std::string_view> with_scene_keys(std::vector<std::string_view> keys
 
 std::vector<double> read_values(const Fields& fields, std::string_view key) {
   const toml::node& node = *fields.node(key);
-  const std::string path = fields.path(key);
+  const auto path = fields.path(key);
   if (node.is_number()) return {Fields::number_at(fields.file(), node, path)};
   if (const auto* table = node.as_table()) return read_range(*table, path, fields.file());
   const auto* array = node.as_array();
@@ -107,7 +107,7 @@ std::vector<double> read_values(const Fields& fields, std::string_view key) {
   if (array->empty()) fields.fail(key, "empty list");
   std::vector<double> values;
   for (std::size_t i = 0; i < array->size(); ++i)
-    values.push_back(Fields::number_at(fields.file(), (*array)[i], path + "[" + std::to_string(i) + "]"));
+    values.push_back(Fields::number_at(fields.file(), (*array)[i], fields.entry_path(key, i)));
   return values;
 }
 

@@ -10,11 +10,22 @@
 #include "pcrf/number_text.hpp"
 #include "pcrf/record/horizontal_pair.hpp"
 #include "pcrf/study/fingerprint.hpp"
+#include "pcrf/study/plan.hpp"
 #include "pcrf/solver/rocking_solver.hpp"
 #include "pcrf/user_error.hpp"
 
 namespace pcrf::study {
 namespace {
+
+/// A warning (a UserError not thrown) into `warnings`, rendered as the study spells it; with
+/// [run] warnings_as_errors it is thrown instead.
+void warn(const Study& study, const UserError& warning, std::vector<std::string>& warnings) {
+  if (study.run.warnings_as_errors) throw warning.followed_by(" ([run] warnings_as_errors)");
+  warnings.push_back(warning.message(Dialect::kStudy));
+}
+
+/// "record \"NAME\": " before a problem of a study's record.
+std::string record_text(const RecordSource& source) { return "record \"" + source.name + "\": "; }
 
 void check_records(const Study& study, RecordCache& records, std::vector<std::string>& notes,
                    std::vector<std::string>& warnings) {
@@ -23,41 +34,29 @@ void check_records(const Study& study, RecordCache& records, std::vector<std::st
     try {
       records.get(r);  // loaded once, here, so that a bad record fails up front
       for (const auto& note : records.notes(r)) notes.push_back("record \"" + source.name + "\": " + note);
-    } catch (const std::exception& e) {
-      throw UserError(source.declared_at + ": records: cannot load record \"" + source.name + "\" (" +
-                       source.describe() + "): " + e.what());
+    } catch (const std::exception& e) {  // the study's key and line of the record, which the reader cannot know
+      throw UserError(source.declared_at, "cannot load record \"" + source.name + "\" (" + source.describe() + "): " + e.what());
     }
     if (const auto problem = measures_problem(records.get(r)); !problem.empty())
-      throw UserError(source.declared_at + ": records: record \"" + source.name + "\": " + problem);
-    std::vector<std::string> found;
-    if (auto warning = record_warning(study, r, records.get(r)); !warning.empty()) found.push_back(std::move(warning));
-    for (const auto& line : records.warnings(r))
-      found.push_back(source.declared_at + ": records: record \"" + source.name + "\": " + line);
-    for (auto& warning : found) {
-      if (study.run.warnings_as_errors) throw UserError(warning + " ([run] warnings_as_errors)");
-      warnings.push_back(std::move(warning));
-    }
+      throw UserError(source.declared_at, record_text(source) + problem);
+    if (auto problem = record_warning(study, r, records.get(r)); !problem.empty())
+      warn(study, UserError(source.declared_at, std::move(problem)), warnings);
+    for (const auto& line : records.warnings(r)) warn(study, UserError(source.declared_at, record_text(source) + line), warnings);
     if (!study.intensity) continue;
     if (component_measure(study.intensity->measure) == IntensityMeasure::kSa)
-      if (const auto problem = sa_period_problem(study.intensity->period_s, records.get(r).dt_s()); !problem.empty()) {
-        const auto line = study.setting_lines.find("intensity.period_s");
-        throw UserError((line != study.setting_lines.end() ? line->second : study.file) + ": intensity.period_s: " + problem +
-                         " (record \"" + source.name + "\")");
-      }
+      if (const auto problem = sa_period_problem(study.intensity->period_s, records.get(r).dt_s()); !problem.empty())
+        throw UserError(study.where("intensity.period_s"), problem + " (record \"" + source.name + "\")");
     double im = 0.0;
     try {
       im = records.intensity(r, *study.intensity);
-    } catch (const std::invalid_argument& e) {
-      if (study.intensity->normalise != SetNormalisation::kNone) {  // normalise = "p695" over records that are not pairs
-        const auto line = study.setting_lines.find("intensity.normalise");
-        throw UserError((line != study.setting_lines.end() ? line->second : study.file) + ": intensity.normalise: " + e.what());
-      }
-      throw UserError(source.declared_at + ": records: record \"" + source.name + "\": " + e.what());
+    } catch (const std::invalid_argument& e) {  // the study's key and line, which the measure cannot know
+      if (study.intensity->normalise != SetNormalisation::kNone)  // normalise = "p695" over records that are not pairs
+        throw UserError(study.where("intensity.normalise"), e.what());
+      throw UserError(source.declared_at, record_text(source) + e.what());
     }
     if (!(im > 0.0) || !std::isfinite(im))
-      throw UserError(source.declared_at + ": records: record \"" + source.name + "\" has " +
-                       to_string(study.intensity->measure) + " = " + number_text(im) +
-                       ": it cannot be scaled to an intensity");
+      throw UserError(source.declared_at, "record \"" + source.name + "\" has " + to_string(study.intensity->measure) +
+                                              " = " + number_text(im) + ": it cannot be scaled to an intensity");
   }
 }
 
@@ -89,23 +88,20 @@ void check_frames(const Study& study, const CaseSpace& space, CheckedStudy& chec
     }
     try {
       check_initial_state(*frame, study.physics);
-    } catch (const std::invalid_argument& e) {
-      const auto line = study.setting_lines.find("physics.theta0_rad");
-      throw UserError((line != study.setting_lines.end() ? line->second : study.file) + ": physics." + e.what() +
-                       " (frame " + describe(study, spec) + ")");
+    } catch (const UserError& e) {  // the study's file and line, and which frame
+      throw UserError(study.where("physics." + last_key_name(e.where().keys)), e.problem(Dialect::kStudy) +
+                                                                               " (frame " + describe(study, spec) + ")");
     }
   }
 }
 
-/// Incidences that all look like radians (radians_warning): a warning, or an error with
+/// Incidences that all look like radians (radians_problem): a warning, or an error with
 /// warnings_as_errors.
 void check_incidence(const Study& study, std::vector<std::string>& warnings) {
-  const auto line = study.setting_lines.find("axes.incidence_deg");
-  if (line == study.setting_lines.end()) return;
-  auto warning = radians_warning(line->second + ": axes.incidence_deg", study.incidence_deg);
-  if (warning.empty()) return;
-  if (study.run.warnings_as_errors) throw UserError(warning + " ([run] warnings_as_errors)");
-  warnings.push_back(std::move(warning));
+  const auto given = study.given_at.find("axes.incidence_deg");
+  if (given == study.given_at.end()) return;
+  if (auto problem = radians_problem(study.incidence_deg); !problem.empty())
+    warn(study, UserError(given->second, std::move(problem), {"incidence_deg"}), warnings);
 }
 
 }  // namespace
@@ -116,8 +112,7 @@ std::string record_warning(const Study& study, std::size_t r, const GroundMotion
   const bool at2 = source.file->format == RecordFormat::kAt2;
   const auto p = record_plausibility(motion, at2 ? AccelUnit::kG : source.file->unit);
   if (p.problem.empty()) return {};
-  std::string line = source.declared_at + ": records: record \"" + source.name + "\" (" + source.describe() +
-                     "): " + p.problem + ": " + p.hint;
+  std::string line = "record \"" + source.name + "\" (" + source.describe() + "): " + p.problem + ": " + p.hint;
   if (p.likely_unit) line += at2 ? " (an .AT2 file is read in g)" : " give units = \"" + to_string(*p.likely_unit) + "\"";
   return line;
 }
@@ -136,8 +131,7 @@ CheckedStudy check_study(const Study& study, const CaseSpace& space, RecordCache
     const std::int64_t index = space.resolve(h);
     for (std::size_t k = 0; k < checked.history_cases.size(); ++k)
       if (checked.history_cases[k] == index)
-        throw UserError(h.declared_at + ": outputs.histories \"" + h.label + "\": names the same case as \"" +
-                         study.histories[k].label + "\"");
+        fail_history(h, "names the same case as \"" + study.histories[k].label + "\"");
     checked.history_cases.push_back(index);
   }
   checked.fingerprint = study_fingerprint(study, space, records);

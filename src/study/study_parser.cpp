@@ -77,8 +77,8 @@ std::vector<RecordSource> read_pulse_entry(const Fields& f, const Study& s) {
     if (axis.key == "pulse_period_s")
       for (double t : axis.values)
         if (t < 4.0 * dt_s)
-          throw UserError(axis.declared_at + ": axes.pulse_period_s: value " + number_text(t) + " is below 4 dt = " +
-                           number_text(4.0 * dt_s) + " s of the pulse records (" + f.where("pulse") + ")");
+          throw UserError(axis.declared_at, "value " + number_text(t) + " is below 4 dt = " + number_text(4.0 * dt_s) +
+                                                " s of the pulse records (" + file_line_text(f.where("pulse")) + ")");
   std::vector<RecordSource> sources;
   for (PulseShape shape : shapes) {
     std::vector<const Study::PulseAxis*> axes;
@@ -123,7 +123,7 @@ void read_study_section(const Fields& top, Study& s) {
   s.name = std::filesystem::path(s.file).stem().string();
   const auto* table = top.subtable("study");
   if (table == nullptr) return;
-  Fields f(*table, "study", s.file, {"name", "description"});
+  Fields f(*table, {"study"}, s.file, {"name", "description"});
   s.name = f.text("name").value_or(s.name);
   s.description = f.text("description").value_or("");
 }
@@ -170,10 +170,10 @@ void read_plan(const Fields& top, const Fields* axes, Study& s) {
     for (auto key : entry.plan_keys)
       if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
   const auto* table = top.subtable("plan");
-  const Fields plan(table != nullptr ? *table : kNoTable, "plan", s.file, keys);
+  const Fields plan(table != nullptr ? *table : kNoTable, {"plan"}, s.file, keys);
   const PlanEntry& entry = read_plan_kind(top, plan);
   s.plan = entry.read({plan, axes, top, *s.model, s.base});
-  if (plan.has("samples")) s.setting_lines["plan.samples"] = plan.where("samples");  // for study_size's message
+  if (plan.has("samples")) s.given_at["plan.samples"] = plan.where("samples");  // for study_size's message
 }
 
 /// [frame]: the scene (model) and its base point; [base], the older table, takes the same
@@ -183,16 +183,16 @@ void read_base(const Fields& top, Study& s) {
   const auto* base_table = top.subtable("base");
   const std::vector<std::string_view> keys = detail::all_scene_keys();
   if (frame_table != nullptr) {
-    const Fields f(*frame_table, "frame", s.file, detail::with_scene_keys({"model"}));
+    const Fields f(*frame_table, {"frame"}, s.file, detail::with_scene_keys({"model"}));
     if (const auto* model = detail::read_model(f)) {
       s.model = model;
       s.base = s.model->defaults();
-      if (s.model != &default_scene_model()) s.setting_lines["frame.model"] = f.where("model");
+      if (s.model != &default_scene_model()) s.given_at["frame.model"] = f.where("model");
     }
     read_parameters(f, *s.model, s.base, false);
   }
   if (base_table != nullptr) {
-    const Fields f(*base_table, "base", s.file, keys);
+    const Fields f(*base_table, {"base"}, s.file, keys);
     if (frame_table != nullptr)
       for (auto key : keys)
         if (f.has(key) && frame_table->contains(key)) f.fail(key, "is also given in [frame]: give it once");
@@ -202,16 +202,13 @@ void read_base(const Fields& top, Study& s) {
 
 /// What an IDA needs of the outputs: no histories (its cases are chosen as it runs), and
 /// θ_max stored when it defines collapse.
-void check_ida_outputs(const Fields& top, const Study& s) {
+void check_ida_outputs(const Study& s) {
   if (!s.ida) return;
   if (!s.histories.empty())
-    Fields::fail_at(s.file, nullptr, "outputs.histories", "an IDA chooses its cases as it runs: histories are not available");
+    Fields::fail_at(s.file, nullptr, {"outputs", "histories"}, "an IDA chooses its cases as it runs: histories are not available");
   const bool theta_stored = std::find(s.metrics.begin(), s.metrics.end(), metric::theta_max().name) != s.metrics.end();
-  if (s.ida->theta_limit_rad > 0.0 && !theta_stored) {
-    const auto line = s.setting_lines.find("ida.theta_limit_rad");
-    throw UserError((line != s.setting_lines.end() ? line->second : top.where("ida")) +
-                     ": ida.theta_limit_rad: needs theta_max_rad among [outputs] metrics");
-  }
+  if (s.ida->theta_limit_rad > 0.0 && !theta_stored)
+    throw UserError(s.where("ida.theta_limit_rad"), "needs theta_max_rad among [outputs] metrics");
 }
 
 // ---- intensity ----------------------------------------------------------------------------
@@ -236,7 +233,7 @@ post::HazardFile read_stripe_hazard(const Fields& f, const Study::HazardStripes&
   } catch (const UserError& e) {
     f.fail(kHazardKey, e.what());
   }
-  const std::string where = read->file.string() + ":" + std::to_string(read->header_line) + ": ";
+  const std::string where = file_line_text(Where{{}, read->file.string(), static_cast<int>(read->header_line)}) + ": ";
   if (read->measure != to_string(spec.measure))
     f.fail(kHazardKey, where + "the curve's measure is " + read->measure + ", the study's [intensity] measure is " +
                            to_string(spec.measure));
@@ -271,7 +268,7 @@ void read_hazard_stripes(const Fields& f, const IntensitySpec& spec, Study& s) {
     intensities.push_back(x);
   }
   s.levels = std::move(intensities);
-  s.setting_lines["intensity.return_periods_yr"] = f.where(kReturnPeriodsKey);
+  s.given_at["intensity.return_periods_yr"] = f.where(kReturnPeriodsKey);
   s.hazard_stripes = std::move(h);
 }
 
@@ -279,28 +276,26 @@ void read_intensity(const Fields& top, Study& s) {
   const toml::table* table = top.subtable(intensity_settings().name);
   if (table == nullptr) return;
   IntensitySpec spec;
-  detail::read_setting_table(top, intensity_settings(), spec, s.setting_lines, {kHazardKey, kReturnPeriodsKey});
-  if (const auto problem = intensity_spec_problem(spec); !problem.empty()) {
-    const auto line = s.setting_lines.find("intensity.period_s");
-    throw UserError((line != s.setting_lines.end() ? line->second : top.where("intensity")) + ": intensity.period_s: " + problem);
-  }
+  detail::read_setting_table(top, intensity_settings(), spec, s.given_at, {kHazardKey, kReturnPeriodsKey});
+  if (const auto problem = intensity_spec_problem(spec); !problem.empty())
+    throw UserError(s.where("intensity.period_s"), problem);
   s.intensity = spec;
   std::vector<std::string_view> keys{kHazardKey, kReturnPeriodsKey};
   for (const auto& setting : intensity_settings().settings) keys.push_back(setting.key);
-  read_hazard_stripes(Fields(*table, "intensity", s.file, keys), spec, s);
+  read_hazard_stripes(Fields(*table, {"intensity"}, s.file, keys), spec, s);
 }
 
 void read_ida(const Fields& top, Study& s) {
   const toml::table* table = top.subtable(ida_settings().name);
   if (table == nullptr) return;
   IdaOptions ida;
-  detail::read_setting_table(top, ida_settings(), ida, s.setting_lines);
-  const Fields f(*table, "ida", s.file, {"start", "step", "step_factor", "resolution", "max_intensity", "max_runs", "collapse", "theta_limit_rad"});
+  detail::read_setting_table(top, ida_settings(), ida, s.given_at);
+  const Fields f(*table, {"ida"}, s.file, {"start", "step", "step_factor", "resolution", "max_intensity", "max_runs", "collapse", "theta_limit_rad"});
   if (!s.intensity)
     top.fail("ida", "an IDA needs an intensity measure: add an [intensity] table (measure = \"pga_g\", \"pgv_m_s\" or \"sa_g\")");
   if (s.hazard_stripes)
-    throw UserError(s.setting_lines.at("intensity.return_periods_yr") +
-                     ": intensity.return_periods_yr: with [ida] the search chooses the intensities: give no return periods");
+    throw UserError(s.where("intensity.return_periods_yr"),
+                    "with [ida] the search chooses the intensities: give no return periods");
   if (!f.has("start")) f.fail("start", "required: the first intensity of every curve");
   if (!f.has("max_intensity")) f.fail("max_intensity", "required: the largest intensity the search may run");
   if (ida.max_intensity < ida.start)
@@ -320,7 +315,7 @@ void read_incidence(const Fields& f, Study& s) {
   }
   if (!f.has("incidence_deg")) return;
   s.incidence_deg = read_values(f, "incidence_deg");
-  s.setting_lines["axes.incidence_deg"] = f.where("incidence_deg");  // for the radians warning (study_check)
+  s.given_at["axes.incidence_deg"] = f.where("incidence_deg");  // for the radians warning (study_check)
   std::vector<double> sorted = s.incidence_deg;
   std::sort(sorted.begin(), sorted.end());
   if (auto dup = std::adjacent_find(sorted.begin(), sorted.end()); dup != sorted.end())
@@ -336,23 +331,23 @@ void read_incidence(const Fields& f, Study& s) {
 /// [axes]: the level axis (scale or intensity) here, the parameter keys by the plan.
 void read_axes(const Fields& top, Study& s) {
   const auto* table = top.subtable("axes");
-  if (table != nullptr) s.setting_lines["axes"] = top.where("axes");
+  if (table != nullptr) s.given_at["axes"] = top.where("axes");
   const bool has_intensity_axis = table != nullptr && table->contains("intensity");
   if (s.ida && table != nullptr && (table->contains("intensity") || table->contains("scale")))
-    Fields(*table, "axes", s.file, axes_keys())
+    Fields(*table, {"axes"}, s.file, axes_keys())
         .fail(table->contains("intensity") ? "intensity" : "scale",
               "with [ida] the search chooses the intensities: give no intensity or scale axis");
   if (s.hazard_stripes && table != nullptr && (table->contains("intensity") || table->contains("scale")))
-    Fields(*table, "axes", s.file, axes_keys())
+    Fields(*table, {"axes"}, s.file, axes_keys())
         .fail(table->contains("intensity") ? "intensity" : "scale",
-              "[intensity] return_periods_yr (" + s.setting_lines.at("intensity.return_periods_yr") +
+              "[intensity] return_periods_yr (" + file_line_text(s.where("intensity.return_periods_yr")) +
                   ") sets the stripes' intensities: give either it or this axis, not both");
   if (s.intensity && !s.ida && !has_intensity_axis && !s.hazard_stripes)
     top.fail("intensity", "an [intensity] table needs [axes] intensity = [...] (values in " +
                               std::string(intensity_units(s.intensity->measure)) + "), or return_periods_yr with a hazard curve");
   std::optional<Fields> axes;
   if (table != nullptr) {
-    axes.emplace(*table, "axes", s.file, axes_keys());
+    axes.emplace(*table, std::vector<std::string>{"axes"}, s.file, axes_keys());
     const Fields& f = *axes;
     read_incidence(f, s);
     read_pulse_axes(f, s);
@@ -562,8 +557,7 @@ void check_station_needs(const Fields& f, const Study& s, const RecordSource& so
 void check_pulse_axes_used(const Study& s) {
   const bool pulses = std::any_of(s.records.begin(), s.records.end(), [](const RecordSource& r) { return !r.pulse_shape.empty(); });
   if (!pulses && !s.pulse_axes.empty())
-    throw UserError(s.pulse_axes.front().declared_at + ": axes." + s.pulse_axes.front().key +
-                     ": needs a [[records]] pulse entry (pulse = \"ricker\", …) to vary");
+    throw UserError(s.pulse_axes.front().declared_at, "needs a [[records]] pulse entry (pulse = \"ricker\", …) to vary");
 }
 
 void read_records(const Fields& top, Study& s) {
@@ -572,7 +566,7 @@ void read_records(const Fields& top, Study& s) {
     top.fail("records", "a study needs at least one [[records]] table (file, files, h1 or synthetic)");
   std::set<std::string> names;
   for (std::size_t i = 0; i < array->size(); ++i) {
-    const std::string path = "records[" + std::to_string(i) + "]";
+    const std::vector<std::string> path{"records", key_index(i)};
     const auto* table = (*array)[i].as_table();
     if (table == nullptr) Fields::fail_at(s.file, &(*array)[i], path, "expected a table ([[records]])");
     Fields f(*table, path, s.file,
@@ -628,7 +622,7 @@ void read_histories(const Fields& outputs, Study& s) {
   if (array == nullptr) return;
   std::set<std::string> labels;
   for (std::size_t i = 0; i < array->size(); ++i) {
-    const std::string path = "outputs.histories[" + std::to_string(i) + "]";
+    const std::vector<std::string> path{"outputs", "histories", key_index(i)};
     const auto* table = (*array)[i].as_table();
     if (table == nullptr) Fields::fail_at(s.file, &(*array)[i], path, "expected a table ([[outputs.histories]])");
     Fields f(*table, path, s.file, with_parameter_keys({"label", "record", "scale", "intensity", "case", "dt_s", "incidence_deg"}));
@@ -663,12 +657,25 @@ void read_outputs(const Fields& top, Study& s) {
   s.metrics = metric_names(s.solver.verdict_check);
   const auto* table = top.subtable("outputs");
   if (table == nullptr) return;
-  Fields f(*table, "outputs", s.file, {"metrics", "histories"});
+  Fields f(*table, {"outputs"}, s.file, {"metrics", "histories"});
   read_metrics(f, s);
   read_histories(f, s);
 }
 
 }  // namespace
+
+Where Study::where(const std::string& table_key) const {
+  if (const auto given = given_at.find(table_key); given != given_at.end()) return given->second;
+  Where where{{}, file, 0};
+  for (std::size_t from = 0, dot; from <= table_key.size(); from = dot + 1) {
+    dot = std::min(table_key.find('.', from), table_key.size());
+    where.keys.push_back(table_key.substr(from, dot - from));
+  }
+  // A key not given: its table's line, when the table is.
+  if (const auto table = given_at.find(where.keys.front()); table != given_at.end() && where.keys.size() > 1)
+    where.line = table->second.line;
+  return where;
+}
 
 Study parse_study(const std::string& text, const std::string& file, const std::filesystem::path& base_dir) {
   toml::table root;
@@ -676,8 +683,7 @@ Study parse_study(const std::string& text, const std::string& file, const std::f
   try {
     root = toml::parse(text, file);
   } catch (const toml::parse_error& e) {
-    throw UserError(file + ":" + std::to_string(e.source().begin.line) + ": not valid TOML: " +
-                     std::string(e.description()));
+    throw UserError(Where{{}, file, static_cast<int>(e.source().begin.line)}, "not valid TOML: " + std::string(e.description()));
   }
   return parse_study_table(root, text, file, base_dir);
 }
@@ -688,7 +694,7 @@ Study parse_study_table(const toml::table& root, const std::string& text, const 
   s.file = file;
   s.base_dir = base_dir;
   s.text = text;
-  Fields top(root, "", file,
+  Fields top(root, {}, file,
              {"study", "plan", "records", "axes", "frame", "base", "cases", intensity_settings().name, ida_settings().name,
               physics_settings().name, solver_settings().name, "outputs", run_settings().name});
   read_study_section(top, s);
@@ -698,17 +704,17 @@ Study parse_study_table(const toml::table& root, const std::string& text, const 
   read_axes(top, s);  // and the plan
   read_records(top, s);
   check_pulse_axes_used(s);
-  detail::read_setting_table(top, physics_settings(), s.physics, s.setting_lines);
-  detail::read_setting_table(top, solver_settings(), s.solver, s.setting_lines);
+  detail::read_setting_table(top, physics_settings(), s.physics, s.given_at);
+  detail::read_setting_table(top, solver_settings(), s.solver, s.given_at);
   read_outputs(top, s);
-  check_ida_outputs(top, s);
-  detail::read_setting_table(top, run_settings(), s.run, s.setting_lines);
+  check_ida_outputs(s);
+  detail::read_setting_table(top, run_settings(), s.run, s.given_at);
   return s;
 }
 
 std::string read_text_file(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
-  if (!in) throw UserError(file.string() + ": cannot read the file: " + std::strerror(errno));
+  if (!in) throw UserError(Where{{}, file.string(), 0}, std::string("cannot read the file: ") + std::strerror(errno));
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
@@ -718,9 +724,9 @@ Study load_study(const std::filesystem::path& file) {
   std::error_code error;
   const auto status = std::filesystem::status(file, error);
   if (error && status.type() != std::filesystem::file_type::not_found)
-    throw UserError(file.string() + ": cannot open: " + error.message());
-  if (!std::filesystem::exists(status)) throw UserError(file.string() + ": no such study file");
-  if (!std::filesystem::is_regular_file(status)) throw UserError(file.string() + ": not a regular file");
+    throw UserError(Where{{}, file.string(), 0}, "cannot open: " + error.message());
+  if (!std::filesystem::exists(status)) throw UserError(Where{{}, file.string(), 0}, "no such study file");
+  if (!std::filesystem::is_regular_file(status)) throw UserError(Where{{}, file.string(), 0}, "not a regular file");
   auto base_dir = std::filesystem::absolute(file).parent_path();
   return parse_study(read_text_file(file), file.string(), base_dir);
 }

@@ -22,11 +22,6 @@ double frames_of(const Study& study) {
   return frames;
 }
 
-std::string line_of(const Study& study, const std::string& key) {
-  const auto line = study.setting_lines.find(key);
-  return line != study.setting_lines.end() ? line->second : study.file;
-}
-
 }  // namespace
 
 StudySize study_size(const Study& study) {
@@ -39,34 +34,34 @@ StudySize study_size(const Study& study) {
 
 void check_study_size(const Study& study) {
   if (study.ida && study.ida->max_runs > kMaxIdaRuns)
-    throw UserError(line_of(study, "ida.max_runs") + ": ida.max_runs: at most " + std::to_string(kMaxIdaRuns) +
-                     " runs per curve, got " + std::to_string(study.ida->max_runs));
+    throw UserError(study.where("ida.max_runs"), "at most " + std::to_string(kMaxIdaRuns) + " runs per curve, got " +
+                                                     std::to_string(study.ida->max_runs));
   const StudySize size = study_size(study);
   const double needed = kFrameBytes * size.frames + 1.0 * size.cases + static_cast<double>(kPendingResultsBytes);
   const double memory = machine_memory_bytes();
   if (needed <= kUsableMemoryShare * memory) return;
   // The key to change: an IDA's runs, else the plan's size (the axes, or the samples).
-  const bool sampled = study.setting_lines.count("plan.samples") > 0;
+  const bool sampled = study.given_at.count("plan.samples") > 0;
   const std::string key = study.ida ? "ida.max_runs" : sampled ? "plan.samples" : "axes";
   char text[400];
   std::snprintf(text, sizeof text,
-                ": %s: %.4g frames and %.4g cases need about %.3g GB on rank 0 (%.0f bytes a frame, one byte a case, "
+                "%.4g frames and %.4g cases need about %.3g GB on rank 0 (%.0f bytes a frame, one byte a case, "
                 "and 0.27 GB of results between checkpoints), more than 80 %% of this machine's %.3g GB (every shard "
                 "holds them all); make the study smaller",
-                key.c_str(), size.frames, size.cases, needed / 1e9, kFrameBytes, memory / 1e9);
-  throw UserError(line_of(study, key) + text);
+                size.frames, size.cases, needed / 1e9, kFrameBytes, memory / 1e9);
+  throw UserError(study.where(key), text);
 }
 
-void check_frame_count(double frames, const std::string& where, const std::string& key) {
+void check_frame_count(double frames, const Where& where) {
   const double needed = kFrameBytes * frames + static_cast<double>(kPendingResultsBytes);
   const double memory = machine_memory_bytes();
   if (needed <= kUsableMemoryShare * memory) return;
   char text[300];
   std::snprintf(text, sizeof text,
-                ": %s: %.4g frames need about %.3g GB on rank 0 (%.0f bytes a frame), more than 80 %% of this machine's "
+                "%.4g frames need about %.3g GB on rank 0 (%.0f bytes a frame), more than 80 %% of this machine's "
                 "%.3g GB; make the study smaller",
-                key.c_str(), frames, needed / 1e9, kFrameBytes, memory / 1e9);
-  throw UserError(where + text);
+                frames, needed / 1e9, kFrameBytes, memory / 1e9);
+  throw UserError(where, text);
 }
 
 }  // namespace pcrf::study

@@ -34,7 +34,7 @@ class DotCounter {
   void count_dot() {
     if (dots_ == 0) name_line_ = line_;
     if (++dots_ + 1 > kMaxKeyParts)
-      throw UserError(file_ + ":" + std::to_string(name_line_) + ": a dotted key or table header of more than " +
+      throw UserError(Where{{}, file_, static_cast<int>(name_line_)}, "a dotted key or table header of more than " +
                        std::to_string(kMaxKeyParts) + " parts: no study key is that deep");
   }
 

@@ -17,7 +17,7 @@ std::string list_words(const std::vector<std::string_view>& words) {
 
 }  // namespace
 
-Fields::Fields(const toml::table& table, std::string prefix, std::string file,
+Fields::Fields(const toml::table& table, std::vector<std::string> prefix, std::string file,
                const std::vector<std::string_view>& known)
     : table_(table), prefix_(std::move(prefix)), file_(std::move(file)) {
   for (const auto& [key, value] : table_) {
@@ -29,8 +29,10 @@ Fields::Fields(const toml::table& table, std::string prefix, std::string file,
   }
 }
 
-std::string Fields::path(std::string_view key) const {
-  return prefix_.empty() ? std::string(key) : prefix_ + "." + std::string(key);
+std::vector<std::string> Fields::path(std::string_view key) const {
+  auto keys = prefix_;
+  keys.emplace_back(key);
+  return keys;
 }
 
 std::string Fields::type_name(const toml::node& node) {
@@ -45,22 +47,26 @@ std::string Fields::type_name(const toml::node& node) {
   }
 }
 
-std::string Fields::where_at(const std::string& file, const toml::node* node) {
-  if (node != nullptr && node->source().begin.line > 0)
-    return file + ":" + std::to_string(node->source().begin.line);
-  return file;
+std::vector<std::string> Fields::entry_path(std::string_view key, std::size_t i) const {
+  auto keys = path(key);
+  keys.push_back(key_index(i));
+  return keys;
 }
 
-void Fields::fail_at(const std::string& file, const toml::node* node, const std::string& path,
-                     const std::string& problem) {
+Where Fields::where_at(const std::string& file, const toml::node* node, std::vector<std::string> path) {
   const int line = node != nullptr ? static_cast<int>(node->source().begin.line) : 0;
-  throw UserError(Where{{path}, file, line}, problem);
+  return Where{std::move(path), file, line};
 }
 
-std::string Fields::where(std::string_view key) const {
+void Fields::fail_at(const std::string& file, const toml::node* node, std::vector<std::string> path,
+                     const std::string& problem) {
+  throw UserError(where_at(file, node, std::move(path)), problem);
+}
+
+Where Fields::where(std::string_view key) const {
   const toml::node* n = node(key);
   // A missing key points at its table; at the root that says nothing: the file alone.
-  return where_at(file_, n != nullptr ? n : (prefix_.empty() ? nullptr : &table_));
+  return where_at(file_, n != nullptr ? n : (prefix_.empty() ? nullptr : &table_), path(key));
 }
 
 void Fields::fail(std::string_view key, const std::string& problem) const {
@@ -68,7 +74,7 @@ void Fields::fail(std::string_view key, const std::string& problem) const {
   fail_at(file_, n != nullptr ? n : (prefix_.empty() ? nullptr : &table_), path(key), problem);
 }
 
-double Fields::number_at(const std::string& file, const toml::node& node, const std::string& path) {
+double Fields::number_at(const std::string& file, const toml::node& node, const std::vector<std::string>& path) {
   double value = 0.0;
   if (const auto* i = node.as_integer())
     value = static_cast<double>(i->get());
@@ -111,7 +117,9 @@ const toml::table* Fields::subtable(std::string_view key) const {
   const toml::node* n = node(key);
   if (n == nullptr) return nullptr;
   if (const auto* t = n->as_table()) return t;
-  fail(key, "expected a table ([" + path(key) + "]), got " + type_name(*n));
+  std::string header;
+  for (const auto& k : path(key)) header += (header.empty() ? "" : ".") + k;
+  fail(key, "expected a table ([" + header + "]), got " + type_name(*n));
 }
 
 const toml::array* Fields::array(std::string_view key) const {
@@ -131,7 +139,7 @@ SettingValue Fields::raw_value(std::string_view key) const {
     std::string words;
     for (std::size_t i = 0; i < a->size(); ++i) {
       const auto* w = (*a)[i].as_string();
-      if (w == nullptr) fail_at(file_, &(*a)[i], path(key) + "[" + std::to_string(i) + "]", "expected a string");
+      if (w == nullptr) fail_at(file_, &(*a)[i], entry_path(key, i), "expected a string");
       words += (i ? "," : "") + w->get();
     }
     return words;
@@ -150,7 +158,7 @@ std::vector<std::string> Fields::texts(std::string_view key) const {
   for (std::size_t i = 0; i < a->size(); ++i) {
     const auto* s = (*a)[i].as_string();
     if (s == nullptr)
-      fail_at(file_, &(*a)[i], path(key) + "[" + std::to_string(i) + "]",
+      fail_at(file_, &(*a)[i], entry_path(key, i),
               "expected a string, got " + type_name((*a)[i]));
     values.push_back(s->get());
   }

@@ -111,5 +111,5 @@ def test_a_study_in_python_gives_its_warnings_as_record_warnings(tmp_path):
         warnings.simplefilter("always")
         summary = pcrf.study(study, check=True)
     lines = [str(w.message) for w in caught if issubclass(w.category, pcrf.RecordWarning)]
-    assert len(lines) == 1 and "axes.incidence_deg" in lines[0], lines
+    assert len(lines) == 1 and "[axes] incidence_deg" in lines[0], lines
     assert "sampled cases" in summary["cost_estimate"], summary["cost_estimate"]

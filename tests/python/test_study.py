@@ -43,10 +43,10 @@ def test_a_study_file_in_process(tmp_path, monkeypatch):
 
 
 @pytest.mark.parametrize("change, message", [
-    ({"axes": {"kappa": [1.0, -2.0]}}, "study: axes.kappa"),
-    ({"axes": {"kapa": [1.0]}}, "study: axes.kapa: unknown key (did you mean 'kappa'?)"),
-    ({"physics": {"tail_s": "long"}}, "study: physics.tail_s"),
-    ({"solver": {"preset": "bogus"}}, "study: solver.preset"),
+    ({"axes": {"kappa": [1.0, -2.0]}}, "study: [axes] kappa"),
+    ({"axes": {"kapa": [1.0]}}, "study: [axes] kapa: unknown key (did you mean 'kappa'?)"),
+    ({"physics": {"tail_s": "long"}}, "study: [physics] tail_s"),
+    ({"solver": {"preset": "bogus"}}, "study: [solver] preset"),
 ])
 def test_a_dict_study_is_checked_with_key_paths(change, message, tmp_path):
     study = {**STUDY, **change}

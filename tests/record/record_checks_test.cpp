@@ -8,22 +8,25 @@
 
 #include "pcrf/record/horizontal_pair.hpp"
 #include "pcrf/record/record_readers.hpp"
+#include "pcrf/user_error.hpp"
 
 namespace pcrf {
 namespace {
 
 TEST(RadiansWarning, IncidencesThatAllLookLikeRadiansWarnNamingTheKey) {
-  const std::string w = radians_warning("axes.incidence_deg", {3.7});  // meant as 212°
-  EXPECT_NE(w.find("axes.incidence_deg"), std::string::npos) << w;
+  const std::string p = radians_problem({3.7});  // meant as 212°
+  const std::string w = UserError(Where{{"axes", "incidence_deg"}, "s.toml", 3}, p, {"incidence_deg"}).message(Dialect::kFlag);
+  EXPECT_EQ(w.rfind("s.toml:3: [axes] incidence_deg: ", 0), 0u) << w;
+  EXPECT_NE(w.find("; incidence_deg is in degrees"), std::string::npos) << w;
   EXPECT_NE(w.find("3.7"), std::string::npos) << w;
   EXPECT_NE(w.find("212"), std::string::npos) << w;
-  EXPECT_NE(radians_warning("k", {0.0, 1.5707963, 3.14159}), "");
-  EXPECT_NE(radians_warning("k", {-6.0, 0.5}), "");
+  EXPECT_NE(radians_problem({0.0, 1.5707963, 3.14159}), "");
+  EXPECT_NE(radians_problem({-6.0, 0.5}), "");
   // Whole degrees, or any value beyond 2π: degrees.
-  EXPECT_EQ(radians_warning("k", {0.0, 1.0, 3.0}), "");
-  EXPECT_EQ(radians_warning("k", {0.5, 12.5}), "");
-  EXPECT_EQ(radians_warning("k", {212.0}), "");
-  EXPECT_EQ(radians_warning("k", {}), "");
+  EXPECT_EQ(radians_problem({0.0, 1.0, 3.0}), "");
+  EXPECT_EQ(radians_problem({0.5, 12.5}), "");
+  EXPECT_EQ(radians_problem({212.0}), "");
+  EXPECT_EQ(radians_problem({}), "");
 }
 
 RecordMetadata header(const std::string& event, const std::string& station) { return {"", event, station, "", ""}; }

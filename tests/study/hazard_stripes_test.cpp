@@ -75,27 +75,27 @@ TEST(HazardStripes, RefusalsNameTheStudyFileLineAndKey) {
   const std::string head = kRecords + "[intensity]\nmeasure = \"pga_g\"\n";
   const std::map<std::string, std::string> corpus = {
       {head + "hazard = \"site/pga.csv\"\nreturn_periods_yr = [475, 1e6]\n",
-       "t.toml:6: intensity.return_periods_yr: return period 1e+06 yr is outside the hazard curve site/pga.csv, whose "
+       "t.toml:6: [intensity] return_periods_yr: return period 1e+06 yr is outside the hazard curve site/pga.csv, whose "
        "rates span return periods from 0.4762 to 2.5e+05 yr"},
-      {head + "hazard = \"site/pga.csv\"\nreturn_periods_yr = [0.1]\n", "t.toml:6: intensity.return_periods_yr: return period 0.1 yr is outside"},
-      {head + "hazard = \"site/pga.csv\"\nreturn_periods_yr = [475, 475]\n", "t.toml:6: intensity.return_periods_yr: value 475 appears twice"},
-      {head + "hazard = \"site/pga.csv\"\nreturn_periods_yr = [-5]\n", "t.toml:6: intensity.return_periods_yr: value -5 must be positive"},
-      {head + "hazard = \"site/pga.csv\"\n", "t.toml:5: intensity.hazard: a hazard curve sets the stripes' intensities: give return_periods_yr"},
-      {head + "return_periods_yr = [475]\n", "t.toml:5: intensity.return_periods_yr: needs hazard = \"FILE\""},
-      {head + "hazard = \"site/none.csv\"\nreturn_periods_yr = [475]\n", "t.toml:5: intensity.hazard: "},
+      {head + "hazard = \"site/pga.csv\"\nreturn_periods_yr = [0.1]\n", "t.toml:6: [intensity] return_periods_yr: return period 0.1 yr is outside"},
+      {head + "hazard = \"site/pga.csv\"\nreturn_periods_yr = [475, 475]\n", "t.toml:6: [intensity] return_periods_yr: value 475 appears twice"},
+      {head + "hazard = \"site/pga.csv\"\nreturn_periods_yr = [-5]\n", "t.toml:6: [intensity] return_periods_yr: value -5 must be positive"},
+      {head + "hazard = \"site/pga.csv\"\n", "t.toml:5: [intensity] hazard: a hazard curve sets the stripes' intensities: give return_periods_yr"},
+      {head + "return_periods_yr = [475]\n", "t.toml:5: [intensity] return_periods_yr: needs hazard = \"FILE\""},
+      {head + "hazard = \"site/none.csv\"\nreturn_periods_yr = [475]\n", "t.toml:5: [intensity] hazard: "},
       {head + "hazard = \"site/sa.csv\"\nreturn_periods_yr = [475]\n",
-       "t.toml:5: intensity.hazard: " + (folder() / "site/sa.csv").string() +
+       "t.toml:5: [intensity] hazard: " + (folder() / "site/sa.csv").string() +
            ":2: the curve's measure is sa_g, the study's [intensity] measure is pga_g"},
       {kRecords + "[intensity]\nmeasure = \"sa_g\"\nperiod_s = 0.5\nhazard = \"site/sa.csv\"\nreturn_periods_yr = [475]\n",
-       "t.toml:6: intensity.hazard: " + (folder() / "site/sa.csv").string() +
+       "t.toml:6: [intensity] hazard: " + (folder() / "site/sa.csv").string() +
            ":2: the curve is at period_s = 1 s, the study's Sa at 0.5 s"},
       {head + "hazard = \"site/pga.csv\"\nreturn_periods_yr = [475]\n[axes]\nintensity = [0.5, 1]\n",
-       "t.toml:8: axes.intensity: [intensity] return_periods_yr (t.toml:6) sets the stripes' intensities: give either it or "
+       "t.toml:8: [axes] intensity: [intensity] return_periods_yr (t.toml:6) sets the stripes' intensities: give either it or "
        "this axis, not both"},
-      {head + "hazard = \"site/pga.csv\"\nreturn_periods_yr = [475]\n[axes]\nscale = [1]\n", "t.toml:8: axes.scale: [intensity] return_periods_yr"},
+      {head + "hazard = \"site/pga.csv\"\nreturn_periods_yr = [475]\n[axes]\nscale = [1]\n", "t.toml:8: [axes] scale: [intensity] return_periods_yr"},
       {head + "hazard = \"site/pga.csv\"\nreturn_periods_yr = [475]\n[ida]\nstart = 0.1\nmax_intensity = 2\n",
-       "t.toml:6: intensity.return_periods_yr: with [ida] the search chooses the intensities"},
-      {head + "hazard = 3\nreturn_periods_yr = [475]\n", "t.toml:5: intensity.hazard: expected a string"},
+       "t.toml:6: [intensity] return_periods_yr: with [ida] the search chooses the intensities"},
+      {head + "hazard = 3\nreturn_periods_yr = [475]\n", "t.toml:5: [intensity] hazard: expected a string"},
   };
   for (const auto& [text, message] : corpus) {
     const std::string error = error_of(text);
@@ -104,7 +104,7 @@ TEST(HazardStripes, RefusalsNameTheStudyFileLineAndKey) {
   // A file the hazard reader refuses: its own file and line inside the study's message.
   test::write_file(folder() / "site", "rising.csv", "pga_g,annual_rate_per_yr\n0.1,1e-3\n0.2,2e-3\n");
   const std::string rising = error_of(head + "hazard = \"site/rising.csv\"\nreturn_periods_yr = [475]\n");
-  EXPECT_NE(rising.find("t.toml:5: intensity.hazard: " + (folder() / "site/rising.csv").string() + ":3: the curve is not decreasing"),
+  EXPECT_NE(rising.find("t.toml:5: [intensity] hazard: " + (folder() / "site/rising.csv").string() + ":3: the curve is not decreasing"),
             std::string::npos)
       << rising;
 }

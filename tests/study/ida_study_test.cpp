@@ -280,15 +280,15 @@ TEST(IdaStudy, BadIdaStudiesAreRejected) {
   const std::string im = "[intensity]\nmeasure = \"pga_g\"\n";
   const std::vector<std::pair<std::string, std::string>> corpus = {
       {records + "[ida]\nstart = 0.5\nmax_intensity = 8\n", "an IDA needs an intensity measure"},
-      {records + im + "[ida]\nstart = 0.5\nmax_intensity = 8\nresolution = 0\n", "ida.resolution: must be above 0 and below 1"},
-      {records + im + "[ida]\nstart = 0.5\nmax_intensity = 8\nresolution = 1\n", "ida.resolution: must be above 0 and below 1"},
-      {records + im + "[ida]\nstart = 0.5\nmax_intensity = 8\nmax_runs = 1\n", "ida.max_runs: must be at least 2"},
-      {records + im + "[ida]\nmax_intensity = 8\n", "ida.start: required"},
-      {records + im + "[ida]\nstart = 0.5\n", "ida.max_intensity: required"},
-      {records + im + "[ida]\nstart = 0.5\nmax_intensity = 8\ncollapse = [\"at_rest\"]\n", "ida.collapse: unknown value \"at_rest\""},
+      {records + im + "[ida]\nstart = 0.5\nmax_intensity = 8\nresolution = 0\n", "[ida] resolution: must be above 0 and below 1"},
+      {records + im + "[ida]\nstart = 0.5\nmax_intensity = 8\nresolution = 1\n", "[ida] resolution: must be above 0 and below 1"},
+      {records + im + "[ida]\nstart = 0.5\nmax_intensity = 8\nmax_runs = 1\n", "[ida] max_runs: must be at least 2"},
+      {records + im + "[ida]\nmax_intensity = 8\n", "[ida] start: required"},
+      {records + im + "[ida]\nstart = 0.5\n", "[ida] max_intensity: required"},
+      {records + im + "[ida]\nstart = 0.5\nmax_intensity = 8\ncollapse = [\"at_rest\"]\n", "[ida] collapse: unknown value \"at_rest\""},
       {records + im + "[ida]\nstart = 0.5\nmax_intensity = 8\n[axes]\nintensity = [1]\n", "the search chooses the intensities"},
       {records + im + "[ida]\nstart = 0.5\nmax_intensity = 8\ntheta_limit_rad = 0.1\n[outputs]\nmetrics = [\"impacts\"]\n",
-       "ida.theta_limit_rad: needs theta_max_rad"},
+       "[ida] theta_limit_rad: needs theta_max_rad"},
   };
   for (const auto& [text, message] : corpus) {
     const auto r = run_ida(dir, text, "bad.h5");

@@ -101,7 +101,7 @@ TEST(Plan, AKeyOfAnotherPlanNamesThePlansThatTakeIt) {
     parse("[plan]\nkind = \"lhs\"\nsamples = 4\nscramble = true\n[axes]\nkappa = {from = 1, to = 2}\n");
     FAIL() << "scramble accepted by lhs";
   } catch (const UserError& e) {
-    EXPECT_NE(std::string(e.what()).find("t.toml:6: plan.scramble: only applies to plans \"sobol\" and \"saltelli\""), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("t.toml:6: [plan] scramble: only applies to plans \"sobol\" and \"saltelli\""), std::string::npos)
         << e.what();
   }
   try {

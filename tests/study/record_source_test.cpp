@@ -12,7 +12,7 @@ RecordSource file_source(const std::filesystem::path& path, RecordFormat format)
   RecordFileSpec spec;
   spec.path = path;
   spec.format = format;
-  return {path.stem().string(), spec, "", "t.toml:1", {}, {}};
+  return {path.stem().string(), spec, "", Where{{}, "t.toml", 1}, {}, {}};
 }
 
 TEST(RecordCache, TitlesComeFromTheAt2HeaderElseTheFileNameOrTheSyntheticText) {
@@ -22,7 +22,7 @@ TEST(RecordCache, TitlesComeFromTheAt2HeaderElseTheFileNameOrTheSyntheticText) {
   const auto untitled = test::write_file(dir, "B.AT2", "PEER\n   \n" + data);
   const auto text = test::write_file(dir, "C.txt", "0 0.1\n0.01 0.2\n");
   RecordCache records({file_source(titled, RecordFormat::kAt2), file_source(untitled, RecordFormat::kAt2),
-                       file_source(text, RecordFormat::kTwoColumn), {"s", std::nullopt, "sine:amplitude_g=1", "t.toml:2", {}, {}}});
+                       file_source(text, RecordFormat::kTwoColumn), {"s", std::nullopt, "sine:amplitude_g=1", Where{{}, "t.toml", 2}, {}, {}}});
   ASSERT_EQ(records.get(0).size(), 2u);
   std::filesystem::remove(titled);  // the title came with the motion: the file is not read again
   EXPECT_EQ(records.title(0), "Loma Prieta, 1989, Gilroy, 090");
@@ -32,7 +32,7 @@ TEST(RecordCache, TitlesComeFromTheAt2HeaderElseTheFileNameOrTheSyntheticText) {
 }
 
 TEST(RecordCache, AScaleLevelIsTheFactorAnIntensityLevelIsDividedByTheRecordsMeasure) {
-  RecordCache records({{"s", std::nullopt, "sine:amplitude_g=0.5,period_s=0.5,cycles=2,duration_s=3", "t.toml:1", {}, {}}});
+  RecordCache records({{"s", std::nullopt, "sine:amplitude_g=0.5,period_s=0.5,cycles=2,duration_s=3", Where{{}, "t.toml", 1}, {}, {}}});
   EXPECT_EQ(records.scale_factor(0, 1.5, std::nullopt), 1.5);
   const IntensitySpec pga{IntensityMeasure::kPga, 0.0, 0.05};
   const double pga_g = records.intensity(0, pga);

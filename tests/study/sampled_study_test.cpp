@@ -128,13 +128,13 @@ TEST(SampledStudy, APartialSaltelliCubeGivesInterimIndices) {
 TEST(SampledStudy, BadSampledStudiesAreRejected) {
   const auto dir = test::scratch_dir("sampled_bad");
   const std::vector<std::pair<std::string, std::string>> corpus = {
-      {kRecords + "[plan]\nkind = \"lhs\"\nsamples = 1\n[axes]\nkappa = {from = 1, to = 2}\n", "s.toml:5: plan.samples: must be at least 2"},
-      {kRecords + "[plan]\nkind = \"sobol\"\nsamples = 8\n[axes]\nkappa = [1, 2]\n", "s.toml:7: axes.kappa: a sampled plan draws from a range"},
+      {kRecords + "[plan]\nkind = \"lhs\"\nsamples = 1\n[axes]\nkappa = {from = 1, to = 2}\n", "s.toml:5: [plan] samples: must be at least 2"},
+      {kRecords + "[plan]\nkind = \"sobol\"\nsamples = 8\n[axes]\nkappa = [1, 2]\n", "s.toml:7: [axes] kappa: a sampled plan draws from a range"},
       {kRecords + "[plan]\nkind = \"sobol\"\nsamples = 8\n[axes]\nkappa = {from = 0, to = 2, spacing = \"log\"}\n",
-       "axes.kappa.from: a log range must start above 0"},
+       "[axes] kappa.from: a log range must start above 0"},
       {kRecords + "[plan]\nkind = \"saltelli\"\nsamples = 8\n[axes]\nkappa = {from = 1, to = 2}\n",
        "plan \"saltelli\" needs at least two varied parameters"},
-      {kRecords + "[plan]\nkind = \"lhs\"\n[axes]\nkappa = {from = 1, to = 2}\n", "plan.samples: required"},
+      {kRecords + "[plan]\nkind = \"lhs\"\n[axes]\nkappa = {from = 1, to = 2}\n", "[plan] samples: required"},
       {kRecords + "[plan]\nkind = \"lhs\"\nsamples = 4\n[axes]\nkappa = {from = 1, to = 2, count = 3}\n", "no count"},
   };
   for (const auto& [text, message] : corpus) {

@@ -78,7 +78,7 @@ TEST(Settings, BadValuesNameTheKey) {
       parse_study(kRecords + "[solver]\n" + std::string(s.key) + " = " + literal + "\n", "t.toml", test::source_dir());
       ADD_FAILURE() << s.key << " = " << literal << " was accepted";
     } catch (const UserError& e) {
-      EXPECT_NE(std::string(e.what()).find("t.toml:4: solver." + std::string(s.key) + ":"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("t.toml:4: [solver] " + std::string(s.key) + ":"), std::string::npos) << e.what();
     }
   }
 }

@@ -107,7 +107,7 @@ TEST(Shards, OnlyKOverNWithinBoundsIsAShard) {
     for (const std::string check : {"", " --check"}) {
       const auto r = study_in(dir, "--shard '" + bad + "' -o x.h5" + check);
       EXPECT_EQ(r.exit_code, 2) << "'" << bad << "'" << check << "\n" << r.err;
-      EXPECT_EQ(r.err, "pcrf: error: --shard '" + bad + "': expected K/N with 1 ≤ K ≤ N ≤ 1000000, e.g. 3/8\n");
+      EXPECT_EQ(r.err, "pcrf: error: --shard: expected K/N with 1 ≤ K ≤ N ≤ 1000000, e.g. 3/8, got '" + bad + "'\n");
     }
   }
   EXPECT_FALSE(std::filesystem::exists(dir / "x.h5"));

@@ -213,20 +213,20 @@ TEST(StationStudy, BadStationsAreRefusedWithTheirLine) {
   const std::string pair = "[[records]]\nh1 = \"h1.txt\"\nh2 = \"h2.txt\"\nunits = \"m/s2\"\naz1_deg = 0\naz2_deg = 90\n";
   const std::map<std::string, std::string> corpus = {
       {"[[records]]\nh1 = \"h1.txt\"\nh2 = \"slow.txt\"\nunits = \"m/s2\"\naz1_deg = 0\naz2_deg = 90\n" + kFrame,
-       "bad.toml:2: records: cannot load record \"h1\""},
+       "bad.toml:2: [[records]] #1 h1: cannot load record \"h1\""},
       {"[[records]]\nh1 = \"h1.txt\"\nunits = \"m/s2\"\nup = \"h090.AT2\"\n" + kFrame,
        "its header names a horizontal component ('090'), given as the vertical"},
-      {pair + "[axes]\nincidence = \"fault-normal\"\n", "bad.toml:2: records[0].h1: incidence = \"fault-normal\" needs the fault's strike"},
+      {pair + "[axes]\nincidence = \"fault-normal\"\n", "bad.toml:2: [[records]] #1 h1: incidence = \"fault-normal\" needs the fault's strike"},
       {"[[records]]\nfile = \"h1.txt\"\nunits = \"m/s2\"\n[axes]\nincidence_deg = [10]\n",
-       "bad.toml:2: records[0].file: the study has an incidence axis: record \"h1\" needs its second horizontal component"},
+       "bad.toml:2: [[records]] #1 file: the study has an incidence axis: record \"h1\" needs its second horizontal component"},
       {pair + "[intensity]\nmeasure = \"pga_g\"\n[axes]\nintensity = [1]\nincidence_deg = [0, 90]\n",
-       "axes.incidence_deg: the records are scaled by their pga_g, which depends on the frame's orientation"},
+       "[axes] incidence_deg: the records are scaled by their pga_g, which depends on the frame's orientation"},
       {"[[records]]\nfile = \"h1.txt\"\nunits = \"m/s2\"\n[intensity]\nmeasure = \"pga_rotd50_g\"\n[axes]\nintensity = [1]\n",
-       "records[0].file: intensity measure pga_rotd50_g is a measure of a pair"},
+       "[[records]] #1 file: intensity measure pga_rotd50_g is a measure of a pair"},
       {"[[records]]\nh1 = \"h1.txt\"\nh2 = [\"h2.txt\", \"up.txt\"]\nunits = \"m/s2\"\n" + kFrame,
-       "records[0].h2: 2 files for 1 first components (h1)"},
-      {"[[records]]\nfile = \"h1.txt\"\nh2 = \"h2.txt\"\nunits = \"m/s2\"\n" + kFrame, "records[0].h2: a station's components are h1"},
-      {pair + "[axes]\nincidence = \"north-east\"\n", "axes.incidence: expected \"north\", \"fault-normal\" or \"fault-parallel\""},
+       "[[records]] #1 h2: 2 files for 1 first components (h1)"},
+      {"[[records]]\nfile = \"h1.txt\"\nh2 = \"h2.txt\"\nunits = \"m/s2\"\n" + kFrame, "[[records]] #1 h2: a station's components are h1"},
+      {pair + "[axes]\nincidence = \"north-east\"\n", "[axes] incidence: expected \"north\", \"fault-normal\" or \"fault-parallel\""},
   };
   for (const auto& [text, expected] : corpus) {
     const auto r = study(dir, "bad", text);
@@ -290,7 +290,7 @@ TEST(StationStudy, IncidencesInRadiansWarnAndCheckEstimatesTheCost) {
   const std::string records = "[[records]]\nh1 = \"h1.txt\"\nh2 = \"h2.txt\"\nunits = \"m/s2\"\naz1_deg = 0\naz2_deg = 90\n";
   const auto warned = check(dir, "r", records + kFrame + "incidence_deg = [3.7, 1.2]\n");
   ASSERT_EQ(warned.exit_code, 0) << warned.err;
-  EXPECT_NE(warned.err.find("r.toml:9: axes.incidence_deg"), std::string::npos) << warned.err;
+  EXPECT_NE(warned.err.find("r.toml:9: [axes] incidence_deg"), std::string::npos) << warned.err;
   EXPECT_NE(warned.err.find("3.7"), std::string::npos) << warned.err;
   EXPECT_NE(warned.out.find("cost estimate"), std::string::npos) << warned.out;
   EXPECT_NE(warned.out.find("sampled cases"), std::string::npos) << warned.out;

@@ -322,28 +322,28 @@ std::vector<BadStudy> bad_study_corpus(const std::filesystem::path& dir) {
   test::write_file(dir, "dt.AT2", "PEER\nX\nACCELERATION IN UNITS OF G\nNPTS=  3, DT= 1e300 SEC\n0.1 0.2 0.1\n");
   const std::string pulse = std::string("[[records]]\nsynthetic = \"") + kPulse + "\"\n";
   return {
-      {"unknown_key.toml", pulse + "[axes]\nkapa = [1, 2]\n", "unknown_key.toml:4: axes.kapa: unknown key (did you mean 'kappa'?)"},
+      {"unknown_key.toml", pulse + "[axes]\nkapa = [1, 2]\n", "unknown_key.toml:4: [axes] kapa: unknown key (did you mean 'kappa'?)"},
       {"unknown_table.toml", pulse + "[solvr]\nrtol = 1e-6\n", "unknown_table.toml:3: solvr: unknown key (did you mean 'solver'?)"},
-      {"wrong_type.toml", pulse + "[physics]\ntail_s = \"long\"\n", "wrong_type.toml:4: physics.tail_s: unknown value \"long\" (expected number ≥ 0 [s] or \"until-rest\")"},
-      {"empty_list.toml", pulse + "[axes]\nscale = []\n", "empty_list.toml:4: axes.scale: empty list"},
-      {"backwards.toml", pulse + "[axes]\nlambda = { from = 3, to = 2, count = 4 }\n", "axes.lambda.to: the range runs backwards"},
-      {"zero_count.toml", pulse + "[axes]\nlambda = { from = 2, to = 3, count = 0 }\n", "axes.lambda.count: must be at least 1 (got 0)"},
-      {"negative.toml", pulse + "[axes]\nkappa = [-1.0, 2.0]\n", "negative.toml:4: axes.kappa: value -1 must be positive"},
-      {"missing_record.toml", "[[records]]\nfile = \"records/ER99.AT2\"\n", "missing_record.toml:2: records[0].file: file not found:"},
-      {"no_match.toml", "[[records]]\nfiles = [\"records/*.AT2\"]\n", "no_match.toml:2: records[0].files: no file matches"},
+      {"wrong_type.toml", pulse + "[physics]\ntail_s = \"long\"\n", "wrong_type.toml:4: [physics] tail_s: unknown value \"long\" (expected number ≥ 0 [s] or \"until-rest\")"},
+      {"empty_list.toml", pulse + "[axes]\nscale = []\n", "empty_list.toml:4: [axes] scale: empty list"},
+      {"backwards.toml", pulse + "[axes]\nlambda = { from = 3, to = 2, count = 4 }\n", "[axes] lambda.to: the range runs backwards"},
+      {"zero_count.toml", pulse + "[axes]\nlambda = { from = 2, to = 3, count = 0 }\n", "[axes] lambda.count: must be at least 1 (got 0)"},
+      {"negative.toml", pulse + "[axes]\nkappa = [-1.0, 2.0]\n", "negative.toml:4: [axes] kappa: value -1 must be positive"},
+      {"missing_record.toml", "[[records]]\nfile = \"records/ER99.AT2\"\n", "missing_record.toml:2: [[records]] #1 file: file not found:"},
+      {"no_match.toml", "[[records]]\nfiles = [\"records/*.AT2\"]\n", "no_match.toml:2: [[records]] #1 files: no file matches"},
       {"unreadable_record.toml", "[[records]]\nfile = \"garbage.AT2\"\n",
-       "unreadable_record.toml:2: records: cannot load record \"garbage\""},
+       "unreadable_record.toml:2: [[records]] #1 file: cannot load record \"garbage\""},
       {"bad_synthetic.toml", "[[records]]\nsynthetic = \"square:amplitude_g=1\"\n",
-       "bad_synthetic.toml:2: records: cannot load record \"square:amplitude_g=1\""},
+       "bad_synthetic.toml:2: [[records]] #1 synthetic: cannot load record \"square:amplitude_g=1\""},
       {"history.toml", pulse + "[axes]\nkappa = [1, 2]\n[[outputs.histories]]\nlabel = \"h\"\nkappa = 3\n",
-       "history.toml:6: outputs.histories \"h\": kappa 3 is not on the kappa axis"},
+       "history.toml:6: [[outputs.histories]] #1 label: history \"h\": kappa 3 is not on the kappa axis"},
       {"not_toml.toml", pulse + "[axes\n", "not_toml.toml:3: not valid TOML"},
       {"theta0.toml", pulse + "[physics]\ntheta0_rad = 100\n",
-       "theta0.toml:4: physics.theta0_rad: |θ₀| = 100 rad is not below this frame's overturning angle"},
-      {"folder_record.toml", "[[records]]\nfile = \".\"\n", "folder_record.toml:2: records[0].file: not a regular file"},
+       "theta0.toml:4: [physics] theta0_rad: |θ₀| = 100 rad is not below this frame's overturning angle"},
+      {"folder_record.toml", "[[records]]\nfile = \".\"\n", "folder_record.toml:2: [[records]] #1 file: not a regular file"},
       {"absurd_dt.toml", "[[records]]\nfile = \"dt.AT2\"\n", "dt.AT2:4: sample interval 1e+300 s is outside"},
       {"negative_flush.toml", pulse + "[run]\nflush_interval_s = -1\n",
-       "negative_flush.toml:4: run.flush_interval_s: must be positive (got -1)"},
+       "negative_flush.toml:4: [run] flush_interval_s: must be positive (got -1)"},
   };
 }
 
@@ -418,7 +418,7 @@ TEST(StudyCommand, ARunBuildsNoFrameUpFrontUnlessItsInputNeedsIt) {
     (void)study::check_study(displaced, displaced_space, displaced_records, study::FrameCheck::kWhereNeeded);
     ADD_FAILURE() << "a start beyond the overturning angle passed the check of a run";
   } catch (const UserError& e) {
-    EXPECT_NE(std::string(e.what()).find("displaced.toml:9: physics.theta0_rad:"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("displaced.toml:9: [physics] theta0_rad:"), std::string::npos) << e.what();
   }
 }
 
@@ -428,11 +428,11 @@ TEST(StudyCommand, AnOutputIsNeverOneOfTheInputs) {
   const std::string text = "[[records]]\nfile = \"rec.AT2\"\n";
   const auto self = run_study(dir, "self.toml", text, "-o self.toml --overwrite");
   EXPECT_EQ(self.exit_code, 2);
-  EXPECT_NE(self.err.find("-o names the study file itself"), std::string::npos) << self.err;
+  EXPECT_NE(self.err.find("--output names the study file itself"), std::string::npos) << self.err;
   EXPECT_EQ(test::run_command("head -1 " + quoted(dir / "self.toml")).out, "[[records]]\n");
   const auto rec = run_study(dir, "self.toml", text, "-o ./rec.AT2 --overwrite");
   EXPECT_EQ(rec.exit_code, 2);
-  EXPECT_NE(rec.err.find("-o names the record file of \"rec\""), std::string::npos) << rec.err;
+  EXPECT_NE(rec.err.find("--output names the record file of \"rec\""), std::string::npos) << rec.err;
   EXPECT_EQ(test::run_command("head -1 " + quoted(record)).out, "PEER\n");
   // A study far beyond the machine's memory is refused at --check, naming the file and line.
   const auto huge = run_study(dir, "huge.toml", std::string("[[records]]\nsynthetic = \"") + kPulse + "\"\n[axes]\n"
@@ -484,7 +484,7 @@ TEST(StudyCommand, BadStudyUnderMpirunExitsWith2AndReportsOnce) {
   const auto r = run_study(dir, "bad.toml", "[[records]]\nsynthetic = \"sine:cycles=2\"\n[axes]\nkapa = 1\n", "-o out.h5",
                            mpirun(2));
   EXPECT_EQ(r.exit_code, 2) << r.err;
-  const std::string line = "pcrf: error: " + (dir / "bad.toml").string() + ":4: axes.kapa: unknown key";
+  const std::string line = "pcrf: error: " + (dir / "bad.toml").string() + ":4: [axes] kapa: unknown key";
   const auto first = r.err.find(line);
   EXPECT_NE(first, std::string::npos) << r.err;
   EXPECT_EQ(r.err.find(line, first + 1), std::string::npos) << "reported twice:\n" << r.err;

@@ -152,20 +152,20 @@ void expect_each_refused(const std::vector<BadStudy>& corpus) {
 
 TEST(StudyParser, RejectsBadStudiesNamingFileLineKeyAndProblem) {
   const std::vector<BadStudy> corpus = {
-      {kRecords + "[axes]\nkapa = 2\n", "t.toml:4: axes.kapa: unknown key (did you mean 'kappa'?)"},
-      {kRecords + "[axes]\nkappa = \"big\"\n", "t.toml:4: axes.kappa: expected a number, a list of numbers"},
-      {kRecords + "[axes]\nkappa = []\n", "t.toml:4: axes.kappa: empty list"},
-      {kRecords + "[axes]\nkappa = {from = 3, to = 1, count = 3}\n", "axes.kappa.to: the range runs backwards"},
-      {kRecords + "[axes]\nkappa = {from = 1, to = 3, count = 0}\n", "axes.kappa.count: must be at least 1"},
-      {kRecords + "[axes]\nscale = [-1, 1]\n", "axes.scale: value -1 must be positive"},
-      {kRecords + "[axes]\nlambda_h = [0.5, 1.2]\n", "axes.lambda_h: value 1.2 must be between 0 and 1"},
-      {kRecords + "[axes]\nkappa = [1, 1]\n", "axes.kappa: value 1 appears twice"},
-      {kRecords + "[physics]\nfracture_strain = \"x\"\n", "physics.fracture_strain: expected a number, got a string"},
-      {kRecords + "[solver]\nintegrator = \"euler\"\n", "t.toml:4: solver.integrator:"},
+      {kRecords + "[axes]\nkapa = 2\n", "t.toml:4: [axes] kapa: unknown key (did you mean 'kappa'?)"},
+      {kRecords + "[axes]\nkappa = \"big\"\n", "t.toml:4: [axes] kappa: expected a number, a list of numbers"},
+      {kRecords + "[axes]\nkappa = []\n", "t.toml:4: [axes] kappa: empty list"},
+      {kRecords + "[axes]\nkappa = {from = 3, to = 1, count = 3}\n", "[axes] kappa.to: the range runs backwards"},
+      {kRecords + "[axes]\nkappa = {from = 1, to = 3, count = 0}\n", "[axes] kappa.count: must be at least 1"},
+      {kRecords + "[axes]\nscale = [-1, 1]\n", "[axes] scale: value -1 must be positive"},
+      {kRecords + "[axes]\nlambda_h = [0.5, 1.2]\n", "[axes] lambda_h: value 1.2 must be between 0 and 1"},
+      {kRecords + "[axes]\nkappa = [1, 1]\n", "[axes] kappa: value 1 appears twice"},
+      {kRecords + "[physics]\nfracture_strain = \"x\"\n", "[physics] fracture_strain: expected a number, got a string"},
+      {kRecords + "[solver]\nintegrator = \"euler\"\n", "t.toml:4: [solver] integrator:"},
       {kRecords + "[outputs]\nmetrics = [\"theta_max\"]\n", "unknown metric \"theta_max\" (did you mean \"theta_max_rad\"?)"},
       {"[axes]\nkappa = 2\n", "t.toml: records: a study needs at least one [[records]]"},
-      {"[[records]]\nfile = \"no/such/file.AT2\"\n", "t.toml:2: records[0].file: file not found"},
-      {kRecords + "[plan]\nkind = \"random\"\n", "plan.kind: expected \"grid\", \"one-at-a-time\", \"list\", \"lhs\", \"sobol\" or \"saltelli\""},
+      {"[[records]]\nfile = \"no/such/file.AT2\"\n", "t.toml:2: [[records]] #1 file: file not found"},
+      {kRecords + "[plan]\nkind = \"random\"\n", "[plan] kind: expected \"grid\", \"one-at-a-time\", \"list\", \"lhs\", \"sobol\" or \"saltelli\""},
       {kRecords + "[plan]\nkind = \"one-at-a-time\"\n", "needs at least one parameter to sweep"},
       {kRecords + "kappa = [1\n", "t.toml:3: not valid TOML"},
       {kRecords + "[outputs]\nmetrics = [\"status_stable\"]\n", "metric \"status_stable\" needs [solver] verdict_check = true"},
@@ -199,17 +199,17 @@ TEST(StudyParser, RefusesAnotherScenesKeysAndImpossibleScenes) {
   const std::string block = kRecords + "[frame]\nmodel = \"block\"\n";
   const std::vector<BadStudy> corpus = {
       {block + "[axes]\nkappa = [1, 2]\n",
-       "t.toml:6: axes.kappa: does not apply to model \"block\" (it is a parameter of model \"pcrf\""},
-      {block + "pi_sigma_c = 3\n", "t.toml:5: frame.pi_sigma_c: does not apply to model \"block\""},
-      {kRecords + "[axes]\nslenderness_rad = [0.1, 0.2]\n", "axes.slenderness_rad: does not apply to model \"pcrf\""},
-      {block + "slenderness_rad = 1.6\n", "t.toml:5: frame.slenderness_rad: value 1.6 must lie between 0 and pi/2"},
-      {block + "[axes]\nslenderness_rad = [0.1, 1.5708]\n", "axes.slenderness_rad: value 1.5708 must lie between 0 and pi/2"},
-      {block + "beam_mass_ratio = 0.5\n", "frame.beam_mass_ratio: does not apply to model \"block\" (it is a parameter of model \"rocking-frame\""},
-      {kRecords + "[frame]\nmodel = \"rocking-frame\"\nbeam_mass_ratio = -0.5\n", "t.toml:5: frame.beam_mass_ratio: value -0.5 must not be negative"},
+       "t.toml:6: [axes] kappa: does not apply to model \"block\" (it is a parameter of model \"pcrf\""},
+      {block + "pi_sigma_c = 3\n", "t.toml:5: [frame] pi_sigma_c: does not apply to model \"block\""},
+      {kRecords + "[axes]\nslenderness_rad = [0.1, 0.2]\n", "[axes] slenderness_rad: does not apply to model \"pcrf\""},
+      {block + "slenderness_rad = 1.6\n", "t.toml:5: [frame] slenderness_rad: value 1.6 must lie between 0 and pi/2"},
+      {block + "[axes]\nslenderness_rad = [0.1, 1.5708]\n", "[axes] slenderness_rad: value 1.5708 must lie between 0 and pi/2"},
+      {block + "beam_mass_ratio = 0.5\n", "[frame] beam_mass_ratio: does not apply to model \"block\" (it is a parameter of model \"rocking-frame\""},
+      {kRecords + "[frame]\nmodel = \"rocking-frame\"\nbeam_mass_ratio = -0.5\n", "t.toml:5: [frame] beam_mass_ratio: value -0.5 must not be negative"},
       {block + "size_m = 2\nfrequency_parameter_rad_s = 3\n", "give either size_m or frequency_parameter_rad_s, not both"},
-      {block + "given_restitution = 1.2\n", "frame.given_restitution: value 1.2 must lie in [0, 1]"},
-      {kRecords + "[frame]\nmodel = \"cylinder\"\n", "t.toml:4: frame.model: unknown scene 'cylinder' (expected pcrf, block or rocking-frame)"},
-      {kRecords + "[frame]\nkappa = 2\n[base]\nkappa = 3\n", "base.kappa: is also given in [frame]"},
+      {block + "given_restitution = 1.2\n", "[frame] given_restitution: value 1.2 must lie in [0, 1]"},
+      {kRecords + "[frame]\nmodel = \"cylinder\"\n", "t.toml:4: [frame] model: unknown scene 'cylinder' (expected pcrf, block or rocking-frame)"},
+      {kRecords + "[frame]\nkappa = 2\n[base]\nkappa = 3\n", "[base] kappa: is also given in [frame]"},
   };
   expect_each_refused(corpus);
 }
@@ -247,11 +247,11 @@ TEST(StudyParser, AListedCaseMayNameAnotherSceneStartingFromItsDefaults) {
 TEST(StudyParser, RefusesAListedCasesKeysOfAnotherSceneThanItsOwn) {
   const std::string list = kRecords + "[plan]\nkind = \"list\"\n[[cases]]\n";
   const std::vector<BadStudy> corpus = {
-      {list + "model = \"block\"\nkappa = 2\n", "t.toml:7: cases[0].kappa: does not apply to model \"block\""},
-      {list + "slenderness_rad = 0.2\n", "t.toml:6: cases[0].slenderness_rad: does not apply to model \"pcrf\""},
-      {list + "model = \"sphere\"\n", "t.toml:6: cases[0].model: unknown scene 'sphere' (expected pcrf, block or rocking-frame)"},
-      {list + "model = \"block\"\nslenderness_rad = 1.6\n", "cases[0].slenderness_rad: value 1.6 must lie between 0 and pi/2"},
-      {list + "h_m = 5\n", "t.toml:6: cases[0].h_m: is set once for every case, in [frame] or [base]"},
+      {list + "model = \"block\"\nkappa = 2\n", "t.toml:7: [[cases]] #1 kappa: does not apply to model \"block\""},
+      {list + "slenderness_rad = 0.2\n", "t.toml:6: [[cases]] #1 slenderness_rad: does not apply to model \"pcrf\""},
+      {list + "model = \"sphere\"\n", "t.toml:6: [[cases]] #1 model: unknown scene 'sphere' (expected pcrf, block or rocking-frame)"},
+      {list + "model = \"block\"\nslenderness_rad = 1.6\n", "[[cases]] #1 slenderness_rad: value 1.6 must lie between 0 and pi/2"},
+      {list + "h_m = 5\n", "t.toml:6: [[cases]] #1 h_m: is set once for every case, in [frame] or [base]"},
   };
   expect_each_refused(corpus);
   // A case of another model than the study's sets all of its parameters: it has no base point.
@@ -284,13 +284,13 @@ TEST(StudyParser, PulseParametersAreAxesOfPulseRecords) {
 TEST(StudyParser, RefusesImpossiblePulses) {
   const std::string pulse = "[[records]]\npulse = \"ricker\"\n";
   const std::vector<BadStudy> corpus = {
-      {pulse + "[axes]\npulse_period_s = [0.5, 0]\n", "t.toml:4: axes.pulse_period_s: value 0 must be positive"},
-      {pulse + "[axes]\npulse_period_s = [-1, 0.5]\n", "t.toml:4: axes.pulse_period_s: value -1 must be positive"},
-      {pulse + "[axes]\npulse_period_s = [0.01, 0.5]\n", "t.toml:4: axes.pulse_period_s: value 0.01 is below 4 dt = 0.02 s"},
-      {"[[records]]\npulse = \"ricker\"\ndt_s = 0.01\n[axes]\npulse_period_s = 0.03\n", "axes.pulse_period_s: value 0.03 is below 4 dt = 0.04 s"},
-      {"[[records]]\npulse = \"wavelet\"\n", "t.toml:2: records[0].pulse: unknown pulse \"wavelet\" (expected pulse-sine"},
-      {kRecords + "[axes]\npulse_period_s = [0.5, 1]\n", "t.toml:4: axes.pulse_period_s: needs a [[records]] pulse entry"},
-      {pulse + "name = \"r\"\n", "records[0].name: does not apply to pulse records"},
+      {pulse + "[axes]\npulse_period_s = [0.5, 0]\n", "t.toml:4: [axes] pulse_period_s: value 0 must be positive"},
+      {pulse + "[axes]\npulse_period_s = [-1, 0.5]\n", "t.toml:4: [axes] pulse_period_s: value -1 must be positive"},
+      {pulse + "[axes]\npulse_period_s = [0.01, 0.5]\n", "t.toml:4: [axes] pulse_period_s: value 0.01 is below 4 dt = 0.02 s"},
+      {"[[records]]\npulse = \"ricker\"\ndt_s = 0.01\n[axes]\npulse_period_s = 0.03\n", "[axes] pulse_period_s: value 0.03 is below 4 dt = 0.04 s"},
+      {"[[records]]\npulse = \"wavelet\"\n", "t.toml:2: [[records]] #1 pulse: unknown pulse \"wavelet\" (expected pulse-sine"},
+      {kRecords + "[axes]\npulse_period_s = [0.5, 1]\n", "t.toml:4: [axes] pulse_period_s: needs a [[records]] pulse entry"},
+      {pulse + "name = \"r\"\n", "[[records]] #1 name: does not apply to pulse records"},
   };
   expect_each_refused(corpus);
 }

@@ -46,18 +46,18 @@ test::CommandResult check(const std::filesystem::path& dir, const std::string& t
 TEST(StudySize, HugeStudiesAreRefusedWithTheirKeyAndLine) {
   const auto dir = test::scratch_dir("study_size_huge");
   const std::vector<std::pair<std::string, std::string>> corpus = {
-      {kRecord + "[plan]\nkind = \"lhs\"\nsamples = 100000000\n[axes]\nkappa = {from = 1, to = 2}\n", "s.toml:5: plan.samples: "},
+      {kRecord + "[plan]\nkind = \"lhs\"\nsamples = 100000000\n[axes]\nkappa = {from = 1, to = 2}\n", "s.toml:5: [plan] samples: "},
       {kRecord + "[plan]\nkind = \"sobol\"\nsamples = 9223372036854775807\n[axes]\nkappa = {from = 1, to = 2}\n",
-       "s.toml:5: plan.samples: "},
+       "s.toml:5: [plan] samples: "},
       {kRecord + "[plan]\nkind = \"saltelli\"\nsamples = 1000000000000\n[axes]\nkappa = {from = 1, to = 2}\n"
                  "tan_alpha = {from = 0.1, to = 0.2}\n",
-       "s.toml:5: plan.samples: "},
+       "s.toml:5: [plan] samples: "},
       {kRecord + "[intensity]\nmeasure = \"pga_g\"\n[ida]\nstart = 0.1\nmax_intensity = 2\nmax_runs = 100000000\n"
                  "[axes]\nkappa = [1, 2]\n",
-       "s.toml:8: ida.max_runs: at most 1000000 runs per curve"},
+       "s.toml:8: [ida] max_runs: at most 1000000 runs per curve"},
       {kRecord + "[intensity]\nmeasure = \"pga_g\"\n[ida]\nstart = 0.1\nmax_intensity = 2\nmax_runs = 1000000\n"
                  "[axes]\nkappa = {from = 1, to = 3, count = 100000}\n",
-       "s.toml:8: ida.max_runs: "},
+       "s.toml:8: [ida] max_runs: "},
       {kRecord + "[axes]\nkappa = {from = 1, to = 3, count = 100000}\ntan_alpha = {from = 0.1, to = 0.2, count = 100000}\n",
        "s.toml:3: axes: "},
   };

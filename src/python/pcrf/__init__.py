@@ -174,7 +174,9 @@ def vocabulary():
     """The engine's names, as ``pcrf settings --json`` prints them: ``statuses`` (name, value,
     kind: survived, collapse or no_verdict), ``history_events`` (name, flag, meaning),
     ``parameters`` (the frame's, in axis order: name, long_name, units), ``curve_states`` (an
-    IDA cube's curve_state codes)."""
+    IDA cube's curve_state codes), and the cube's own names from its schema: ``cube_names``
+    (role: name, e.g. ``IDA_INTENSITY``), ``metrics`` (name, units) and ``metric_roles``
+    (``THETA_MAX``: its name); ``pcrf._names`` reads them once."""
     return _json.loads(_pcrf.vocabulary())
 
 

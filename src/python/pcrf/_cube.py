@@ -1,5 +1,6 @@
 """pcrf.open_cube: a result cube as an xarray.Dataset, status as integer flags."""
 
+from . import _names as schema
 from . import _pcrf
 
 
@@ -27,13 +28,13 @@ def open_cube(path, pulse_dimensions=False, **open_dataset_keywords):
     import xarray as xr
 
     ds = xr.open_dataset(path, **open_dataset_keywords)
-    if "status" in ds.variables and ds["status"].dtype.kind == "f":  # a cube written with a _FillValue
+    if schema.STATUS in ds.variables and ds[schema.STATUS].dtype.kind == "f":  # a cube written with a _FillValue
         with xr.open_dataset(path, mask_and_scale=False) as raw:
-            status = raw["status"].load()
+            status = raw[schema.STATUS].load()
         fill = status.attrs.pop("_FillValue", None)
         if fill is not None:
             status.encoding["_FillValue"] = fill
-        ds["status"] = status
+        ds[schema.STATUS] = status
     for name, coordinate in ds.coords.items():
         if coordinate.ndim == 1 and np.issubdtype(coordinate.dtype, np.floating):
             ds = ds.assign_coords({name: (coordinate.dims, np.array([_meant(v) for v in coordinate.values]),
@@ -43,14 +44,14 @@ def open_cube(path, pulse_dimensions=False, **open_dataset_keywords):
 
 def _pulses_unstacked(ds):
     """``record`` unstacked into the pulse coordinates along it (the engine names them)."""
-    levels = [name for name in _pcrf.pulse_coordinates() if name in ds.coords and ds.coords[name].dims == ("record",)]
-    if "pulse_shape" not in levels or any(shape == "" for shape in ds["pulse_shape"].values):
-        raise ValueError("pulse_dimensions=True: the cube's records are not all pulses (its pulse_shape is "
-                         + ("missing" if "pulse_shape" not in levels else "empty for some") + ")")
+    levels = [name for name in _pcrf.pulse_coordinates() if name in ds.coords and ds.coords[name].dims == (schema.RECORD,)]
+    if schema.PULSE_SHAPE not in levels or any(shape == "" for shape in ds[schema.PULSE_SHAPE].values):
+        raise ValueError(f"pulse_dimensions=True: the cube's records are not all pulses (its {schema.PULSE_SHAPE} is "
+                         + ("missing" if schema.PULSE_SHAPE not in levels else "empty for some") + ")")
     import numpy as np
 
-    stacked = ds.set_index(record=levels)
+    stacked = ds.set_index({schema.RECORD: levels})
     # Every variable needs its own filler (older xarray takes none by default from a dict).
     fill = {name: -1 if v.dtype.kind == "i" else np.nan if v.dtype.kind == "f" else ""
-            for name, v in stacked.variables.items() if "record" in v.dims}
-    return stacked.unstack("record", fill_value=fill)
+            for name, v in stacked.variables.items() if schema.RECORD in v.dims}
+    return stacked.unstack(schema.RECORD, fill_value=fill)

@@ -69,7 +69,7 @@ def study(source, output=None, ranks=1, *, overwrite=False, resume=False, check=
     as an xarray.Dataset (``pcrf.open_cube``).
 
     One rank (default): in this process, through the C++ ``pcrf study`` runs; a dict is checked
-    with the messages a file gets, naming the key path (``study: axes.kappa: ...``) in place of
+    with the messages a file gets, naming the key path (``study: [axes] kappa: ...``) in place of
     a line; a dict needs ``output=``. ``ranks > 1``: starts ``mpirun -n ranks pcrf study`` and
     says so on stderr. ``overwrite``, ``resume``, ``check`` and the [run] keys
     (``flush_interval_s``, ...) as on the command line; ``progress=True`` shows its progress

@@ -38,7 +38,7 @@ std::shared_ptr<const Plan> read_list_plan(const PlanInput& input) {
   std::set<std::string> labels;
   const auto keys = with_scene_keys({"label", "model"});
   for (std::size_t i = 0; i < array->size(); ++i) {
-    const std::string path = "cases[" + std::to_string(i) + "]";
+    const std::vector<std::string> path{"cases", key_index(i)};
     const auto* table = (*array)[i].as_table();
     if (table == nullptr) Fields::fail_at(input.top.file(), &(*array)[i], path, "expected a table");
     Fields f(*table, path, input.top.file(), keys);

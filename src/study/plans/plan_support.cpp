@@ -16,7 +16,7 @@ std::string Plan::canonical_heading() const {
 }
 
 void fail_history(const HistoryRequest& request, const std::string& problem) {
-  throw UserError(request.declared_at + ": outputs.histories \"" + request.label + "\": " + problem);
+  throw UserError(request.declared_at, "history \"" + request.label + "\": " + problem);
 }
 
 std::size_t pick_single(const HistoryRequest& request, std::size_t size, const std::string& key) {

@@ -47,7 +47,7 @@ SampledRange read_sampled_range(const Fields& fields, const SceneParameter& info
   const auto* table = node.as_table();
   if (table == nullptr)
     fields.fail(info.name, "a sampled plan draws from a range: give {from = A, to = B}, not " + Fields::type_name(node));
-  const std::string path = fields.path(info.name);
+  const auto path = fields.path(info.name);
   Fields range(*table, path, fields.file(), {"from", "to", "spacing", "count"});
   if (range.has("count")) range.fail("count", "a sampled plan draws `samples` values: no count");
   for (auto key : {"from", "to"})
@@ -85,7 +85,7 @@ Sampling read_sampling(const PlanInput& input) {
 
 /// Refuses a plan too large to draw, before it is drawn (`frames_per_sample`: saltelli d + 2).
 void check_drawable(const PlanInput& input, const Sampling& s, double frames_per_sample) {
-  check_frame_count(static_cast<double>(s.samples) * frames_per_sample, input.plan.where("samples"), "plan.samples");
+  check_frame_count(static_cast<double>(s.samples) * frames_per_sample, input.plan.where("samples"));
 }
 
 /// Unit points (row-major, one row per frame) mapped onto the ranges; labels "s<row>".

@@ -11,6 +11,7 @@ import math
 import matplotlib.pyplot as plt
 import numpy as np
 
+from .. import _names as schema
 from . import engine, style
 from .errors import PlotError
 
@@ -38,7 +39,7 @@ def draw(args):
         raise PlotError(f"{args.input}: no frame to fit among the selected cases")
     num = engine.number
     fig, ax = plt.subplots(figsize=(7, 4.6), constrained_layout=True)
-    top = max([num(p["intensity"]) for _, r in series for p in r["points"]] +
+    top = max([num(p[schema.INTENSITY]) for _, r in series for p in r["points"]] +
               [num(f["median_95%"]) for _, r in series for f in r["frames"] if math.isfinite(num(f["median_95%"]))] +
               [1e-9])
     x = np.linspace(top * 1e-3, top * 1.25, 400)
@@ -50,11 +51,11 @@ def draw(args):
         name = frame if not prefix else prefix if frame in ("all", prefix) else f"{prefix}, {frame}"
         mine = [p for p in points if p["frame"] == frame]
         stripes = [p for p in mine if p["kind"] == "stripe" and num(p["trials"]) > 0]
-        collapses = sorted(num(p["intensity"]) for p in mine if p["kind"] == "collapse")
-        censored = [num(p["intensity"]) for p in mine if p["kind"] == "censored"]
-        unresolved = [num(p["intensity"]) for p in mine if p["kind"] == "unresolved"]
+        collapses = sorted(num(p[schema.INTENSITY]) for p in mine if p["kind"] == "collapse")
+        censored = [num(p[schema.INTENSITY]) for p in mine if p["kind"] == "censored"]
+        unresolved = [num(p[schema.INTENSITY]) for p in mine if p["kind"] == "unresolved"]
         if stripes:
-            ax.plot([num(p["intensity"]) for p in stripes],
+            ax.plot([num(p[schema.INTENSITY]) for p in stripes],
                     [num(p["collapses"]) / num(p["trials"]) for p in stripes],
                     "o", color=colour, ms=5, mfc="none")
         if collapses:

@@ -17,6 +17,7 @@ import math
 import matplotlib.pyplot as plt
 import numpy as np
 
+from .. import _names as schema
 from . import engine, style
 from .errors import PlotError
 
@@ -29,14 +30,14 @@ UNRESOLVED_CURVES = "unresolved: last safe run"
 
 def is_safe(row):
     """A run the frame survived: neither a collapse nor without a verdict."""
-    return engine.status_kind(row["status"]) == "survived"
+    return engine.status_kind(row[schema.STATUS]) == "survived"
 
 
 def curves_of(rows, reduced_over):
     """A frame's rows by curve: by record, and (reduced) by the reduced axis's value too."""
     curves = {}
     for r in rows:
-        curves.setdefault((r["record"], r[reduced_over] if reduced_over else ""), []).append(r)
+        curves.setdefault((r[schema.RECORD], r[reduced_over] if reduced_over else ""), []).append(r)
     return curves
 
 
@@ -46,7 +47,7 @@ def frames_of(cube, metric, where, fits, extra):
     frames = {}
     for fit in fits:
         own = [w for w in (fit.get("selection") or "").split(",") if w]
-        rows = cube.export([metric, "ida_intensity", "collapse_intensity"] + extra, list(where) + own)
+        rows = cube.export([metric, schema.IDA_INTENSITY, schema.COLLAPSE_INTENSITY] + extra, list(where) + own)
         if rows:
             frames[fit["frame"]] = rows
     return frames
@@ -63,18 +64,18 @@ def edge_of(metric, rows):
 
 def draw(args):
     cube = engine.Cube(args.input)
-    if cube.variable("collapse_intensity") is None or cube.variable("ida_intensity") is None:
+    if cube.variable(schema.COLLAPSE_INTENSITY) is None or cube.variable(schema.IDA_INTENSITY) is None:
         raise PlotError(f"{args.input}: not an IDA cube (no collapse_intensity): run a study with an [ida] table")
-    metric = args.metric or "theta_max_rad"
+    metric = args.metric or schema.THETA_MAX
     cube.require_metric(metric, "ida")
     report = cube.fragility(args.where, engine.reduction(args))
     fits = {f["frame"]: f for f in report["frames"]}
     reduced_over, reduced = report.get("reduced_over"), engine.reduced_text(report)
-    has_states = cube.variable("curve_state") is not None  # cubes from before it have none
-    frames = frames_of(cube, metric, args.where, fits.values(), ["curve_state"] if has_states else [])
+    has_states = cube.variable(schema.CURVE_STATE) is not None  # cubes from before it have none
+    frames = frames_of(cube, metric, args.where, fits.values(), [schema.CURVE_STATE] if has_states else [])
     if not frames:
         raise PlotError(f"{args.input}: no case matches the selection")
-    units = cube.variable("ida_intensity")["units"]
+    units = cube.variable(schema.IDA_INTENSITY)["units"]
     columns = min(3, len(frames))
     fig, axes = plt.subplots(math.ceil(len(frames) / columns), columns, figsize=(4.4 * columns, 4.2), squeeze=False,
                              sharey=True, constrained_layout=True)
@@ -82,14 +83,14 @@ def draw(args):
     totals = {}  # legend label → how many points of that kind the figure holds
     for ax, (frame, frame_rows) in zip(axes.flat, frames.items()):
         resurrected, unbracketed, unresolved = False, 0, 0
-        no_verdict = [(engine.number(r["ida_intensity"]), engine.number(r[metric])) for r in frame_rows
-                      if r["ida_intensity"] != "" and engine.status_kind(r["status"]) == "no_verdict"]
+        no_verdict = [(engine.number(r[schema.IDA_INTENSITY]), engine.number(r[metric])) for r in frame_rows
+                      if r[schema.IDA_INTENSITY] != "" and engine.status_kind(r[schema.STATUS]) == "no_verdict"]
         records = curves_of(frame_rows, reduced_over)
         edge = edge_of(metric, frame_rows)
         for record_rows in records.values():
-            safe = sorted((engine.number(r["ida_intensity"]), engine.number(r[metric])) for r in record_rows
-                          if is_safe(r) and r["ida_intensity"] != "" and r[metric] != "")
-            state = engine.number(record_rows[0]["curve_state"]) if has_states else math.nan
+            safe = sorted((engine.number(r[schema.IDA_INTENSITY]), engine.number(r[metric])) for r in record_rows
+                          if is_safe(r) and r[schema.IDA_INTENSITY] != "" and r[metric] != "")
+            state = engine.number(record_rows[0][schema.CURVE_STATE]) if has_states else math.nan
             if state in (unbracketed_code, unresolved_code):
                 unbracketed += state == unbracketed_code
                 unresolved += state == unresolved_code
@@ -101,7 +102,7 @@ def draw(args):
                     else:
                         ax.plot(safe[-1][1], safe[-1][0], "s", mfc="none", color=style.BLACK, ms=7, mew=1.4)
                 continue
-            collapse = engine.number(record_rows[0]["collapse_intensity"])
+            collapse = engine.number(record_rows[0][schema.COLLAPSE_INTENSITY])
             below = [p for p in safe if not p[0] > collapse]  # NaN (censored): every run
             above = [p for p in safe if p[0] > collapse]
             if below:
@@ -116,7 +117,7 @@ def draw(args):
                 if not reduced:
                     ax.plot(edge, collapse, "x", color=style.VERMILLION, ms=5)
         if reduced:  # the values fitted: each record's reduction, from the engine's fragility points
-            mine = [engine.number(p["intensity"]) for p in report["points"] if p["frame"] == frame and p["kind"] == "collapse"]
+            mine = [engine.number(p[schema.INTENSITY]) for p in report["points"] if p["frame"] == frame and p["kind"] == "collapse"]
             ax.plot([edge] * len(mine), mine, "x", color=style.VERMILLION, ms=7, mew=1.8)
         fit = fits.get(frame)
         median, beta = (engine.number(fit["median"]), engine.number(fit["beta"])) if fit else (math.nan, math.nan)

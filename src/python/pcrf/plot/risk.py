@@ -7,6 +7,7 @@ import math
 import matplotlib.pyplot as plt
 import numpy as np
 
+from .. import _names as schema
 from . import engine, style
 from .errors import PlotError
 from .fragility import lognormal_cdf
@@ -18,7 +19,7 @@ def report(args):
 
 def draw_hazard(ax, r, units):
     num = engine.number
-    x = [num(p["intensity"]) for p in r["hazard"]]
+    x = [num(p[schema.INTENSITY]) for p in r["hazard"]]
     y = [num(p["annual_rate_per_yr"]) for p in r["hazard"]]
     ax.loglog(x, y, "o-", color=style.BLACK, ms=4, lw=1.6, label=f"hazard curve ({r['hazard_file']})")
     if r["tail"] == "power-law" and len(x) > 1:
@@ -45,7 +46,7 @@ def draw_fragility(ax, r, x):
                         label=f"{frame['frame']}: λ_c {lam:.3g} /yr (lognormal)")
         steps = [p for p in r["empirical"] if p["frame"] == frame["frame"]]
         if steps:
-            sx = [num(p["intensity"]) for p in steps]
+            sx = [num(p[schema.INTENSITY]) for p in steps]
             sy = [num(p["probability"]) for p in steps]
             emp = num(frame["lambda_collapse_empirical_per_yr"])
             ax.step([x[0]] + sx + [x[-1]], [0.0] + sy + [sy[-1]], where="post", color=colour, lw=1.2, ls="--",
@@ -88,7 +89,7 @@ def draw(args):
     units = r["measure"].rsplit("_", 1)[-1] if r["measure"] != "pgv_m_s" else "m/s"
     num = engine.number
     edges = [num(b["im_low"]) for b in r["deaggregation"]] + [num(b["im_high"]) for b in r["deaggregation"]]
-    hazard_x = [num(p["intensity"]) for p in r["hazard"]]
+    hazard_x = [num(p[schema.INTENSITY]) for p in r["hazard"]]
     x = np.geomspace(min(edges + hazard_x), max(edges + hazard_x), 400)
     fig, axes = plt.subplots(3, 1, figsize=(7.5, 9.5), sharex=True, constrained_layout=True)
     draw_hazard(axes[0], r, units)

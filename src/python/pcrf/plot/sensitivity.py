@@ -3,16 +3,17 @@ the 90 % bootstrap intervals that `pcrf cube sensitivity` estimates."""
 import matplotlib.pyplot as plt
 import numpy as np
 
+from .. import _names as schema
 from . import engine, style
 from .errors import PlotError
 
 
 def draw(args):
     cube = engine.Cube(args.input)
-    metric = args.metric or "theta_max_rad"
+    metric = args.metric or schema.THETA_MAX
     if metric != "collapse":
         cube.require_metric(metric, "sensitivity")
-    rows = [r for r in cube.sensitivity(metric, args.where) if r["record"] == "all"]
+    rows = [r for r in cube.sensitivity(metric, args.where) if r[schema.RECORD] == "all"]
     if not rows:
         raise PlotError(f"{args.input}: no indices for the selection")
     names = [r["parameter"] for r in rows]

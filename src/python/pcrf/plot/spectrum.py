@@ -12,6 +12,7 @@ import math
 import matplotlib.pyplot as plt
 from matplotlib import ticker
 
+from .. import _names as schema
 from . import engine, style
 from .errors import PlotError
 
@@ -25,33 +26,33 @@ def minor_label(value, _position):
 
 def draw(args):
     cube = engine.Cube(args.input)
-    for needed, why in (("collapse_intensity", "an IDA cube ([ida] table)"),
-                        ("omega_p_over_p", "pulse records ([[records]] pulse with [axes] pulse_period_s)")):
+    for needed, why in ((schema.COLLAPSE_INTENSITY, "an IDA cube ([ida] table)"),
+                        (schema.OMEGA_OVER_P, "pulse records ([[records]] pulse with [axes] pulse_period_s)")):
         if cube.variable(needed) is None:
             raise PlotError(f"{args.input}: not a rocking-spectrum cube (no {needed}): it needs {why}")
-    units = cube.variable("collapse_intensity")["units"]
-    names = ["ida_intensity", "collapse_intensity", "last_safe_intensity", "curve_state", "omega_p_over_p",
-             "frame_uplift_threshold_g"]
+    units = cube.variable(schema.COLLAPSE_INTENSITY)["units"]
+    names = [schema.IDA_INTENSITY, schema.COLLAPSE_INTENSITY, schema.LAST_SAFE_INTENSITY, schema.CURVE_STATE,
+             schema.OMEGA_OVER_P, schema.UPLIFT_THRESHOLD]
     rows = cube.export(names, args.where)
     censored, unresolved = engine.curve_state("censored"), engine.curve_state("unresolved")
     if not rows:
         raise PlotError(f"{args.input}: no case matches the selection")
-    frame_dims = [d["name"] for d in cube.dimensions if d["name"] not in ("record", "ida_point") and d["size"] > 1]
+    frame_dims = [d["name"] for d in cube.dimensions if d["name"] not in (schema.RECORD, schema.IDA_POINT) and d["size"] > 1]
     curves = {}  # (frame, shape) → {record: (ω_p/p, a_c/threshold, marker kind)}
     for r in rows:
-        frame = ",".join(f"{d}={r[d]}" if d != "case" else r["case_label"] for d in frame_dims) or "all"
-        threshold = engine.number(r["frame_uplift_threshold_g"]) if units == "g" else 1.0
-        key = (frame, r["pulse_shape"])
-        record = curves.setdefault(key, {}).setdefault(r["record"], {"x": engine.number(r["omega_p_over_p"])})
-        collapse, state = engine.number(r["collapse_intensity"]), engine.number(r["curve_state"])
+        frame = ",".join(f"{d}={r[d]}" if d != schema.CASE else r[schema.CASE_LABEL] for d in frame_dims) or "all"
+        threshold = engine.number(r[schema.UPLIFT_THRESHOLD]) if units == "g" else 1.0
+        key = (frame, r[schema.PULSE_SHAPE])
+        record = curves.setdefault(key, {}).setdefault(r[schema.RECORD], {"x": engine.number(r[schema.OMEGA_OVER_P])})
+        collapse, state = engine.number(r[schema.COLLAPSE_INTENSITY]), engine.number(r[schema.CURVE_STATE])
         if state == censored:
-            record["point"] = (engine.number(r["last_safe_intensity"]) / threshold, "censored")
+            record["point"] = (engine.number(r[schema.LAST_SAFE_INTENSITY]) / threshold, "censored")
         elif state == unresolved:
-            record["point"] = (engine.number(r["last_safe_intensity"]) / threshold, "unresolved")
+            record["point"] = (engine.number(r[schema.LAST_SAFE_INTENSITY]) / threshold, "unresolved")
         elif not math.isfinite(collapse):
-            record["point"] = (engine.number(r["last_safe_intensity"]) / threshold, "unbracketed")
-        elif r["ida_intensity"] != "" and engine.number(r["ida_intensity"]) == collapse:
-            record["point"] = (collapse / threshold, r["status"])
+            record["point"] = (engine.number(r[schema.LAST_SAFE_INTENSITY]) / threshold, "unbracketed")
+        elif r[schema.IDA_INTENSITY] != "" and engine.number(r[schema.IDA_INTENSITY]) == collapse:
+            record["point"] = (collapse / threshold, r[schema.STATUS])
     frames = sorted({f for f, _ in curves})
     columns = min(2, len(frames))
     fig, axes = plt.subplots(math.ceil(len(frames) / columns), columns, figsize=(6.4 * columns, 4.8), squeeze=False,
@@ -96,7 +97,7 @@ def draw(args):
         ax.remove()
     # A study of one scene names its model in an attribute (none: pcrf); one that mixes scenes
     # names each frame's in a coordinate, and its panels are titled by case label.
-    mixed = "scene_model" in cube.info["auxiliary_coordinates"]
-    scene = cube.info.get("attributes", {}).get("scene_model", "pcrf")
+    mixed = schema.SCENE_MODEL in cube.info["auxiliary_coordinates"]
+    scene = cube.info.get("attributes", {}).get(schema.SCENE_MODEL, "pcrf")
     fig.suptitle(args.title or ("Rocking spectra" if mixed else f"Rocking spectrum ({scene})"))
     return fig

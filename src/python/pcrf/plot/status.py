@@ -5,6 +5,7 @@ import numpy as np
 from matplotlib.colors import ListedColormap
 from matplotlib.patches import Patch
 
+from .. import _names as schema
 from . import engine, style
 from .errors import PlotError
 
@@ -19,8 +20,8 @@ def axis_values(cube, rows, name):
 
 def tick_labels(rows, name, values):
     """Labels of an axis's values: the case labels on a `case` axis, else the values."""
-    if name == "case" and rows and "case_label" in rows[0]:
-        label = {r["case"]: r["case_label"] for r in rows}
+    if name == schema.CASE and rows and schema.CASE_LABEL in rows[0]:
+        label = {r[schema.CASE]: r[schema.CASE_LABEL] for r in rows}
         return [label[v] for v in values]
     return values
 
@@ -45,14 +46,14 @@ def draw(args):
         hint = " ".join(f"-w {n}={rows[0][n]}" for n in rest)
         raise PlotError(f"{', '.join(rest)}: several values left; select one of each, e.g. {hint}")
     xs, ys = axis_values(cube, rows, x), axis_values(cube, rows, y)
-    present = {r["status"] for r in rows}
+    present = {r[schema.STATUS] for r in rows}
     statuses = [s for s in engine.statuses() if s in present] + sorted(present - set(engine.statuses()))
     colours = [style.status_colour(s, engine.status_kind(s)) for s in statuses]
     code = {s: i for i, s in enumerate(statuses)}
     grid = np.full((len(ys), len(xs)), np.nan)
     xi, yi = {v: i for i, v in enumerate(xs)}, {v: i for i, v in enumerate(ys)}
     for r in rows:
-        grid[yi[r[y]], xi[r[x]]] = code[r["status"]]
+        grid[yi[r[y]], xi[r[x]]] = code[r[schema.STATUS]]
     fig, ax = plt.subplots(figsize=(min(14, 2.5 + 0.45 * len(xs)), min(10, 2.0 + 0.35 * len(ys))),
                            constrained_layout=True)
     ax.pcolormesh(np.ma.masked_invalid(grid), cmap=ListedColormap(colours),
@@ -67,7 +68,7 @@ def draw(args):
         plt.setp(ax.get_xticklabels(), rotation=60, ha="right")
     ax.grid(False)
     ax.legend(handles=[Patch(color=c, label=s.replace("_", " ")) for s, c in zip(statuses, colours)],
-              loc="upper left", bbox_to_anchor=(1.01, 1.0), title="status")
+              loc="upper left", bbox_to_anchor=(1.01, 1.0), title=schema.STATUS)
     selected = ", ".join(args.where) if args.where else "all cases"
     ax.set_title(args.title or f"How each case ended ({selected})")
     return fig

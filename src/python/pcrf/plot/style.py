@@ -1,6 +1,8 @@
 """How figures look: readable fonts, the Okabe–Ito colour-blind-safe palette, labels with units."""
 import matplotlib
 
+from .. import _names as schema
+
 # Okabe & Ito (2008), distinguishable under the common colour-vision deficiencies.
 BLACK, ORANGE, SKY_BLUE, GREEN, YELLOW, BLUE, VERMILLION, PURPLE = (
     "#000000", "#E69F00", "#56B4E9", "#009E73", "#F0E442", "#0072B2", "#D55E00", "#CC79A7")
@@ -31,18 +33,18 @@ def status_colour(name, kind):
 PARAMETER_SYMBOLS = {
     "kappa": r"$\kappa$", "lambda": r"$\lambda$", "tan_alpha": r"$\tan\alpha$", "lambda_h": r"$\lambda_h$",
     "pi_sigma_b": r"$\Pi_{\sigma b}$", "pi_sigma_c": r"$\Pi_{\sigma c}$", "pi_e_b": r"$\Pi_{Eb}$",
-    "pi_e_c": r"$\Pi_{Ec}$", "scale": "scale factor", "record": "record", "case": "case",
+    "pi_e_c": r"$\Pi_{Ec}$", schema.SCALE: "scale factor", schema.RECORD: schema.RECORD, schema.CASE: schema.CASE,
 }
 
 # Labels of the metrics a figure shows most (others: the cube's long name and units).
 METRIC_LABELS = {
-    "theta_max_rad": r"peak $|\theta_1|$ [rad]",
-    "omega_max_rad_s": r"peak $|\dot\theta_1|$ [rad/s]",
-    "strain_column_max": "peak column tendon strain [–]",
-    "strain_beam_max": "peak beam tendon strain [–]",
-    "impacts": "impacts [–]",
-    "t_theta_max_s": r"time of peak $|\theta_1|$ [s]",
-    "wall_time_s": "wall time per case [s]",
+    schema.THETA_MAX: r"peak $|\theta_1|$ [rad]",
+    schema.OMEGA_MAX: r"peak $|\dot\theta_1|$ [rad/s]",
+    schema.STRAIN_COLUMN_MAX: "peak column tendon strain [–]",
+    schema.STRAIN_BEAM_MAX: "peak beam tendon strain [–]",
+    schema.IMPACTS: "impacts [–]",
+    schema.T_THETA_MAX: r"time of peak $|\theta_1|$ [s]",
+    schema.WALL_TIME: "wall time per case [s]",
 }
 
 
@@ -69,11 +71,11 @@ def metric_label(name, variable=None):
 
 def parameter_label(name):
     symbol = PARAMETER_SYMBOLS.get(name, name)
-    return symbol if name in ("record", "case", "scale") else f"{symbol} [–]"
+    return symbol if name in (schema.RECORD, schema.CASE, schema.SCALE) else f"{symbol} [–]"
 
 
 def intensity_label(cube, units):
     """ "peak ground acceleration [g]" from the cube's intensity variable, else "intensity [units]"."""
-    variable = cube.variable("ida_intensity")
-    name = variable["long_name"].split(": ", 1)[-1] if variable else "intensity"
+    variable = cube.variable(schema.IDA_INTENSITY)
+    name = variable["long_name"].split(": ", 1)[-1] if variable else schema.INTENSITY
     return f"{name} [{pretty_units(units)}]"

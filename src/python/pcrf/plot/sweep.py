@@ -6,6 +6,7 @@ import math
 import matplotlib.pyplot as plt
 import numpy as np
 
+from .. import _names as schema
 from . import engine, style
 from .errors import PlotError
 
@@ -15,15 +16,15 @@ def varied_parameters(cube, metric, where):
     rows = cube.export([metric], where)
     if not rows:
         raise PlotError(f"{cube.path}: no case matches the selection")
-    if "varied_parameter" in rows[0]:
-        named = {r["varied_parameter"] for r in rows} - {"none"}
+    if schema.VARIED_PARAMETER in rows[0]:
+        named = {r[schema.VARIED_PARAMETER] for r in rows} - {"none"}
         return [p for p in engine.parameters() if p in named]
     return [p for p in engine.parameters() if p in rows[0] and len({r[p] for r in rows}) > 1]
 
 
 def draw(args):
     cube = engine.Cube(args.input)
-    metric = args.metric or "theta_max_rad"
+    metric = args.metric or schema.THETA_MAX
     cube.require_metric(metric, "sweep")
     parameters = varied_parameters(cube, metric, args.where)
     if not parameters:
@@ -60,6 +61,6 @@ def draw(args):
                 "counted apart: n✕ above the panel")
     if pooled_over:
         note += "; pooled over " + ", ".join(sorted(pooled_over)) + " (select with -w)"
-    fig.suptitle(args.title or f"Parameter sweeps across {len(cube.dimension('record')['values'])} records")
+    fig.suptitle(args.title or f"Parameter sweeps across {len(cube.dimension(schema.RECORD)['values'])} records")
     fig.text(0.5, -0.02, note, ha="center", va="top", fontsize=9)
     return fig

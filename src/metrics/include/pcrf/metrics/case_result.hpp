@@ -114,14 +114,19 @@ const std::vector<MetricInfo>& all_metrics();
 const MetricInfo* find_metric(std::string_view name);
 
 /// Handles to the metrics other layers act on by meaning (the IDA's angle limit, the
-/// verdict check, the optional ω peak): each is the table's own entry, so its name is
-/// written once, in all_metrics().
+/// verdict check, the optional ω peak; the figures' own labels): each is the table's own
+/// entry, so its name is written once, in all_metrics().
 namespace metric {
 const MetricInfo& theta_max();        ///< peak |θ₁|
 const MetricInfo& omega_max();        ///< peak |θ̇₁|
 const MetricInfo& t_omega_max();      ///< its time
 const MetricInfo& status_stable();    ///< verdict check: the verdict survives perturbation
 const MetricInfo& collapse_fraction();///< verdict check: share of twins that collapse
+const MetricInfo& t_theta_max();      ///< time of peak |θ₁|
+const MetricInfo& strain_column_max();///< peak column tendon strain
+const MetricInfo& strain_beam_max();  ///< peak beam tendon strain
+const MetricInfo& impacts();          ///< number of impacts
+const MetricInfo& wall_time();        ///< wall-clock time of a case
 }  // namespace metric
 
 /// The record's keys (the metrics' names, status, reinits, message; NaN as null), added to

@@ -20,8 +20,13 @@
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/post/cube_p695.hpp"
 #include "pcrf/post/table.hpp"
+#include "pcrf/user_error.hpp"
 
 namespace pcrf::post {
+
+/// A cube that cannot be read, as what it is to the user: bad input of its file ("FILE:
+/// problem"). The command line and Python report every cube they open so.
+UserError unreadable_cube(const std::string& file, const cube::CubeError& error);
 
 /// How a reduction reduces when only its dimension is given: each command's worst. For a
 /// response (stats of θ_max) the worst orientation is its maximum; for a capacity (the

@@ -56,11 +56,12 @@ GroundMotion padded(const GroundMotion& record, std::size_t samples);
 /// no azimuth ("CLW-LN", "ABBAR--T").
 std::optional<double> azimuth_of_component(const std::string& component);
 
-/// One line when the angles given in degrees under `key` all look like radians: every
-/// value within ±2π and not all whole degrees (3.7, meant as 212°, would run at 3.7°). It
-/// names the key and shows the first such value in degrees; "" otherwise (0, 90, 12.5 and
-/// 370 do not warn: 12.5 is above 2π, 0 and 90 are whole degrees).
-std::string radians_warning(const std::string& key, const std::vector<double>& values_deg);
+/// The problem when angles given in degrees all look like radians: every value within ±2π
+/// and not all whole degrees (3.7, meant as 212°, would run at 3.7°). It shows the first
+/// such value in degrees and names the key as "{}", for the front end to spell
+/// (pcrf/user_error.hpp: a warning is a UserError(key, problem, {key}) not thrown); ""
+/// otherwise (0, 90, 12.5 and 370 do not warn: 12.5 is above 2π, 0 and 90 are whole degrees).
+std::string radians_problem(const std::vector<double>& values_deg);
 
 /// True for the vertical channels of PEER records: "UP", "-UP", "-V", "DWN", "VER".
 bool is_vertical_component(const std::string& component);

@@ -58,6 +58,24 @@ inline constexpr const char* kPcrfVersion = "pcrf_version";
 /// The hazard file of hazard-consistent stripes, as the study gives it.
 inline constexpr const char* kIntensityHazard = "intensity_hazard";
 
+/// A name of the cube's schema and the role code knows it by ("IDA_INTENSITY" for
+/// kIdaIntensity): Python reads pcrf._names.IDA_INTENSITY, never "ida_intensity".
+struct CubeName {
+  std::string_view role;
+  std::string_view name;
+};
+/// Every coordinate and global attribute named above, the cube's status variable
+/// (cube::kStatusName) and the attributes of the tail and the IDA's collapse set: the names
+/// post-processing, Python and figures read instead of spelling them.
+const std::vector<CubeName>& cube_names();
+
+/// The attribute holding a study setting: "TABLE_KEY" ("physics_tail_s", "intensity_period_s").
+std::string setting_attribute(std::string_view table, std::string_view key);
+/// The attribute of a frame parameter off the plan's axes: "frame_NAME" (its one value).
+std::string frame_attribute(std::string_view parameter);
+/// The attribute of a parameter on an axis: "base_NAME" (its value at the base point).
+std::string base_attribute(std::string_view parameter);
+
 /// A pulse parameter a study may put on its axes ([axes] pulse_period_s, …): the key,
 /// "pulse_" + the pulse's own key (record/pulses.hpp), and the shapes that take it (empty:
 /// every shape). Each axis a study gives is a coordinate of that name along `record`.

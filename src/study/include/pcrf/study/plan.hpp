@@ -67,7 +67,7 @@ class Plan {
 /// The names of every plan kind a study file can give ([plan] kind), the default first.
 std::vector<std::string_view> plan_kinds();
 
-/// \throws UserError "<declared_at>: outputs.histories \"<label>\": <problem>".
+/// \throws UserError at the request's label: "history \"<label>\": <problem>".
 [[noreturn]] void fail_history(const HistoryRequest& request, const std::string& problem);
 
 /// 0 when an axis has a single value; otherwise fail_history asking for `key`.

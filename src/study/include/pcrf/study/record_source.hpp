@@ -14,6 +14,7 @@
 #include "pcrf/record/ground_motion.hpp"
 #include "pcrf/record/intensity.hpp"
 #include "pcrf/record/record_readers.hpp"
+#include "pcrf/user_error.hpp"
 
 namespace pcrf::study {
 
@@ -22,7 +23,7 @@ struct RecordSource {
   std::string name;                    ///< its coordinate value in the cube (unique)
   std::optional<RecordFileSpec> file;  ///< a file (path already resolved), or
   std::string synthetic;               ///< a synthetic motion, make_synthetic() text
-  std::string declared_at;             ///< "study.toml:12", for messages
+  Where declared_at;                   ///< the [[records]] entry's key that makes it, file and line
   /// A station's other components ([[records]] h2, up), read like `file` (the first, h1).
   // (Initialised, so that sources written as {name, file, synthetic, where} stay complete.)
   std::optional<RecordFileSpec> h2 = std::nullopt;

@@ -26,6 +26,7 @@
 #include "pcrf/setting.hpp"
 #include "pcrf/solver/settings.hpp"
 #include "pcrf/study/record_source.hpp"
+#include "pcrf/user_error.hpp"
 
 namespace pcrf::study {
 
@@ -41,7 +42,7 @@ struct HistoryRequest {
   std::optional<std::string> case_label;  ///< plans with a `case` dimension
   std::vector<std::optional<double>> parameters;  ///< plans with parameter dimensions (grid), by the scene's table
   double dt_s = 0.0;                      ///< output interval [s]; 0: the record's dt
-  std::string declared_at;                ///< "study.toml:40", for messages
+  Where declared_at;                      ///< its `label`: the entry, file and line, for messages
 };
 
 /// How a run behaves; not part of what the study computes (not in its fingerprint).
@@ -92,7 +93,7 @@ struct Study {
   struct PulseAxis {
     std::string key;             ///< "pulse_period_s"
     std::vector<double> values;
-    std::string declared_at;     ///< "study.toml:7"
+    Where declared_at;           ///< the [axes] key, file and line
   };
   std::vector<PulseAxis> pulse_axes;
   /// The values of the second axis: scale factors of the records (`scale`), or, when
@@ -126,8 +127,11 @@ struct Study {
 
   PhysicsOptions physics;
   SolverSettings solver = preset_settings("balanced");
-  /// "FILE:LINE" of each setting the file gives, by "table.key" (for later checks' messages).
-  std::map<std::string, std::string> setting_lines;
+  /// Where each setting the file gives is (its key path, file and line), by "table.key", for
+  /// later checks' messages.
+  std::map<std::string, Where> given_at;
+  /// Where the setting "table.key" is: where the file gives it, else the file alone.
+  Where where(const std::string& table_key) const;
   std::vector<std::string> metrics;  ///< metric names to store, in all_metrics() order
   std::vector<HistoryRequest> histories;
   RunOptions run;

@@ -47,7 +47,7 @@ CheckedStudy check_study(const Study& study, const CaseSpace& space, RecordCache
                          FrameCheck frames = FrameCheck::kEveryFrame);
 
 /// The warning about record `r` of `study` (record_plausibility), or "" when it looks like a
-/// record; a synthetic record never warns.
+/// record; a synthetic record never warns. It is a problem at the record's declared_at.
 std::string record_warning(const Study& study, std::size_t r, const GroundMotion& motion);
 
 }  // namespace pcrf::study

@@ -20,7 +20,7 @@ Study parse_study(const std::string& text, const std::string& file,
 
 /// Reads a study already in TOML tables (e.g. built from a Python dict), whose nodes may
 /// carry no source position: messages then name `file` and the key path
-/// ("study: axes.kappa: …"). `text` is what the cube keeps as the study's text.
+/// ("study: [axes] kappa: …"). `text` is what the cube keeps as the study's text.
 /// \throws UserError.
 Study parse_study_table(const toml::table& root, const std::string& text, const std::string& file,
                         const std::filesystem::path& base_dir);
