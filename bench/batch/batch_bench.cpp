@@ -1,11 +1,13 @@
 // Batch bench (see bench/batch/CMakeLists.txt and bench/batch_cost.py).
 //
 //   pcrf_batch_bench --scene block|frame --cases N --lanes W [--one-case] [--trig T]
-//                    [--kernels K] [--level 2] RECORD.AT2 ...
+//                    [--kernels K] [--level 2] [--integrator dopri5|taylor] RECORD.AT2 ...
 //
 // Builds an N-point Latin hypercube of the scene (the block: α, R; the prestressed frame:
 // tan α, Π_σc, κ), scales each record to `level` times the design's median uplift
-// threshold, and solves every case under every record with the balanced preset: with
+// threshold, and solves every case under every record with the balanced preset (its
+// integrator, `taylor`, unless --integrator names another; the lanes step dopri5, and take
+// a rigid rocker under `taylor` one case at a time): with
 // --one-case by solve_case one case after the other, else by solve_batch in W lanes. Prints
 // one JSON line: cases, seconds (the process's CPU time: the machine may be shared), wall
 // seconds, cases/s (per CPU second), and the batch's statistics.
@@ -70,7 +72,7 @@ std::vector<std::shared_ptr<PreparedFrame>> design(const std::string& scene, std
 
 int main(int argc, char** argv) {
   CLI::App app{"cases per second, one case at a time or in lockstep lanes"};
-  std::string scene = "block", trig, kernels;
+  std::string scene = "block", trig, kernels, integrator;
   std::size_t cases = 1000;
   int lanes = 4;
   bool one_case = false;
@@ -83,6 +85,7 @@ int main(int argc, char** argv) {
   app.add_option("--trig", trig);
   app.add_option("--kernels", kernels);
   app.add_option("--level", level, "record PGA over the design's median uplift threshold");
+  app.add_option("--integrator", integrator, "the balanced preset's tolerances with this integrator");
   app.add_option("records", records)->required()->check(CLI::ExistingFile);
   CLI11_PARSE(app, argc, argv);
 
@@ -97,7 +100,8 @@ int main(int argc, char** argv) {
     const GroundMotion raw = read_at2(r);
     motions.push_back(raw.scaled(target_m_s2 / raw.pga_m_s2()));
   }
-  const SolverSettings solver = preset_settings("balanced");
+  SolverSettings solver = preset_settings("balanced");
+  if (!integrator.empty()) solver.integrator = parse_integrator(integrator);
   BatchOptions options;
   options.lanes = lanes;
   options.trig = trig;
