@@ -143,14 +143,20 @@ struct BadStudy {
 };
 
 /// Each study of `corpus` fails to parse with its message.
-/// "(expected pcrf, block or rocking-frame)": the catalogue's models, as an unknown one is
-/// answered (a new scene changes the list, not this test).
-std::string expected_models() {
+/// `names` as the parser lists the choices of a key, "a, b or c", each within `quote`: a new
+/// scene or plan kind changes the list, not these tests.
+std::string choices(const std::vector<std::string_view>& names, const std::string& quote) {
   std::string text;
-  const auto& models = scene_models();
-  for (std::size_t i = 0; i < models.size(); ++i)
-    text += (i == 0 ? "" : i + 1 == models.size() ? " or " : ", ") + std::string(models[i].name);
-  return "(expected " + text + ")";
+  for (std::size_t i = 0; i < names.size(); ++i)
+    text += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + quote + std::string(names[i]) + quote;
+  return text;
+}
+
+/// "(expected pcrf, block or rocking-frame)": the catalogue's models.
+std::string expected_models() {
+  std::vector<std::string_view> names;
+  for (const auto& m : scene_models()) names.push_back(m.name);
+  return "(expected " + choices(names, "") + ")";
 }
 
 void expect_each_refused(const std::vector<BadStudy>& corpus) {
@@ -175,7 +181,7 @@ TEST(StudyParser, RejectsBadStudiesNamingFileLineKeyAndProblem) {
       {kRecords + "[outputs]\nmetrics = [\"theta_max\"]\n", "unknown metric \"theta_max\" (did you mean \"theta_max_rad\"?)"},
       {"[axes]\nkappa = 2\n", "t.toml: records: a study needs at least one [[records]]"},
       {"[[records]]\nfile = \"no/such/file.AT2\"\n", "t.toml:2: [[records]] #1 file: file not found"},
-      {kRecords + "[plan]\nkind = \"random\"\n", "[plan] kind: expected \"grid\", \"one-at-a-time\", \"list\", \"lhs\", \"sobol\" or \"saltelli\""},
+      {kRecords + "[plan]\nkind = \"random\"\n", "[plan] kind: expected " + choices(plan_kinds(), "\"")},
       {kRecords + "[plan]\nkind = \"one-at-a-time\"\n", "needs at least one parameter to sweep"},
       {kRecords + "kappa = [1\n", "t.toml:3: not valid TOML"},
       {kRecords + "[outputs]\nmetrics = [\"status_stable\"]\n", "metric \"status_stable\" needs [solver] verdict_check = true"},
