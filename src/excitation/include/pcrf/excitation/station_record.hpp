@@ -72,12 +72,14 @@ constexpr auto component_members() {
 /// `items` as a sentence lists them: "a", "a and b", "a, b and c".
 std::string and_list(const std::vector<std::string>& items);
 
+/// A station's components, aligned. (The components are initialised, so that records written
+/// as {h1, az1, h2, az2, up} stay complete when a component is added.)
 struct StationRecord {
   GroundMotion h1;
-  std::optional<double> az1_deg;   ///< where h1 was recorded along; needed with an incidence
-  std::optional<GroundMotion> h2;  ///< the other horizontal component
+  std::optional<double> az1_deg;                  ///< where h1 was recorded along; needed with an incidence
+  std::optional<GroundMotion> h2 = std::nullopt;  ///< the other horizontal component
   std::optional<double> az2_deg;
-  std::optional<GroundMotion> up;  ///< vertical, positive up
+  std::optional<GroundMotion> up = std::nullopt;  ///< vertical, positive up
 
   /// Brings the components to one time axis: the shorter ones are padded with zeros to the
   /// longest (a note for each, naming it and both lengths).
@@ -99,13 +101,13 @@ struct StationComponent {
 bool is_downward_component(const std::string& component);
 
 /// A station's component files as read, before they are put together (make_station): the
-/// members of StationRecord.
+/// members of StationRecord, initialised as there.
 struct StationParts {
   StationComponent h1;
   std::optional<double> az1_deg;  ///< given; else from h1's header
-  std::optional<StationComponent> h2;
+  std::optional<StationComponent> h2 = std::nullopt;
   std::optional<double> az2_deg;  ///< given; else from h2's header
-  std::optional<StationComponent> up;
+  std::optional<StationComponent> up = std::nullopt;
 };
 
 /// A station put together from its component files, the one way `pcrf run`, `pcrf record`
