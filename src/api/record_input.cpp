@@ -53,10 +53,11 @@ StationRecord RecordInput::load_station(std::vector<std::string>& notes) const {
     const std::string component = input.file.empty() ? std::string() : component_of(input.spec());
     return StationComponent{input.load(), component, input.file.empty() ? input.synthetic : input.file};
   };
-  std::optional<StationComponent> h2, up;
-  if (!file_h2.empty()) h2 = part(component(file_h2));
-  if (!file_up.empty()) up = part(component(file_up));
-  return make_station(part(*this), az1_deg, std::move(h2), az2_deg, std::move(up), notes);
+  StationParts parts{part(*this), az1_deg, std::nullopt, az2_deg, std::nullopt};
+  const auto members = component_members<StationParts>();
+  for (std::size_t i = 0; i < kComponentCount; ++i)
+    if (!component_files[i].empty()) parts.*members[i] = part(component(component_files[i]));
+  return make_station(std::move(parts), notes);
 }
 
 std::vector<std::string> implausible_records(const RecordInput& input, const StationRecord& station) {
@@ -72,15 +73,16 @@ std::vector<std::string> implausible_records(const RecordInput& input, const Sta
   };
   if (input.file.empty()) return lines;  // a synthetic motion is what it was asked to be
   check(input.file, station.h1);
-  if (station.h2 && !input.file_h2.empty()) check(input.file_h2, *station.h2);
-  if (station.up && !input.file_up.empty()) check(input.file_up, *station.up);
+  const auto members = component_members<StationRecord>();
+  for (std::size_t i = 0; i < kComponentCount; ++i)
+    if (station.*members[i] && !input.component_files[i].empty()) check(input.component_files[i], *(station.*members[i]));
   const auto header = [&](const std::string& file) {
     const RecordInput part = input.component(file);
     return ComponentHeader{file, record_metadata(part.spec())};
   };
-  for (const std::string* other : {&input.file_h2, &input.file_up})
-    if (!other->empty())
-      if (auto line = different_station(header(input.file), header(*other)); !line.empty()) lines.push_back(std::move(line));
+  for (const std::string& other : input.component_files)
+    if (!other.empty())
+      if (auto line = different_station(header(input.file), header(other)); !line.empty()) lines.push_back(std::move(line));
   return lines;
 }
 
@@ -94,8 +96,8 @@ std::vector<std::string> implausible_arrays(const StationRecord& station) {
     lines.push_back(line);
   };
   check(station.h1);
-  if (station.h2) check(*station.h2);
-  if (station.up) check(*station.up);
+  for (const auto member : component_members<StationRecord>())
+    if (station.*member) check(*(station.*member));
   return lines;
 }
 

@@ -84,9 +84,12 @@ JsonObject record_measures(const StationRecord& station, const RecordInput& inpu
       throw UserError(Where{}, "the azimuth of '" + (station.az1_deg ? station.h2->name() : station.h1.name()) +
                        "' is not stated by its header: give {}", {station.az1_deg ? "h2_azimuth_deg" : "azimuth_deg"});
     add_rotd(json, HorizontalPair{station.h1, *station.az1_deg, *station.h2, *station.az2_deg}, request);
-    json.object("pair", measures(*station.h2, metadata_of_file(input, input.file_h2), request));
   }
-  if (station.up) json.object("up", measures(*station.up, metadata_of_file(input, input.file_up), request));
+  const auto members = component_members<StationRecord>();
+  for (std::size_t i = 0; i < kComponentCount; ++i)
+    if (const auto& motion = station.*members[i])
+      json.object(kStationComponents[i].measures_key,
+                  measures(*motion, metadata_of_file(input, input.component_files[i]), request));
   return json;
 }
 

@@ -37,7 +37,7 @@ void add_record_command(CLI::App& app) {
   cmd->add_option("--periods-s,--period", args->request.periods_s, "oscillator period for Sa [s] (repeatable)");
   cmd->add_option("--damping", args->request.damping, "damping ratio of the oscillator [-]")->capture_default_str();
   // --pair adds the second horizontal's measures and RotD50/RotD100 of PGA, PGV and Sa.
-  args->record.add_components_to(cmd, "--pair", "--up");
+  args->record.add_components_to(cmd, /*record_flags=*/true);
   cmd->callback([args] { describe(*args); });
 }
 

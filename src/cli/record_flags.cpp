@@ -1,6 +1,8 @@
 // Flags that name one ground motion (see record_flags.hpp).
 #include "cli/record_flags.hpp"
 
+#include "pcrf/user_error.hpp"
+
 
 namespace pcrf::cli {
 
@@ -25,10 +27,13 @@ void RecordFlags::add_to(CLI::App* cmd, bool file_positional, bool synthetic_all
         ->group(group);
 }
 
-void RecordFlags::add_components_to(CLI::App* cmd, const std::string& h2_flag, const std::string& up_flag) {
+void RecordFlags::add_components_to(CLI::App* cmd, bool record_flags) {
   const std::string group = "record";
-  cmd->add_option(h2_flag, file_h2, "the station's other horizontal component (read like the first)")->group(group);
-  cmd->add_option(up_flag, file_up, "the station's vertical component, positive up (read like the first)")->group(group);
+  for (std::size_t i = 0; i < kComponentCount; ++i) {
+    const ComponentInfo& c = kStationComponents[i];
+    const std::string flag = record_flags ? std::string(c.record_flag) : flag_name(c.keyword);
+    cmd->add_option(flag, component_files[i], std::string(c.doc) + " (read like the first)")->group(group);
+  }
   cmd->add_option("--azimuth-deg", az1_deg, "azimuth of the first component [deg from north] (default: its header)")
       ->group(group);
   cmd->add_option("--h2-azimuth-deg", az2_deg,

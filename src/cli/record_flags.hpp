@@ -16,9 +16,10 @@ struct RecordFlags : api::RecordInput {
   /// Adds --record (unless `file_positional`, then FILE), --format, --units, --dt, --skip-rows
   /// and (with `synthetic_allowed`) --synthetic.
   void add_to(CLI::App* cmd, bool file_positional, bool synthetic_allowed);
-  /// Adds `h2_flag` (e.g. "--record-h2"), `up_flag` ("--record-up"), --azimuth-deg and
-  /// --h2-azimuth-deg.
-  void add_components_to(CLI::App* cmd, const std::string& h2_flag, const std::string& up_flag);
+  /// Adds a flag for each of the station's other components (kStationComponents): `pcrf
+  /// run`'s (the keyword's flag_name, "--record-h2"), or with `record_flags` `pcrf record`'s
+  /// ("--pair"); then --azimuth-deg and --h2-azimuth-deg.
+  void add_components_to(CLI::App* cmd, bool record_flags);
 };
 
 

@@ -93,8 +93,9 @@ void run(const RunOptions& o) {
   HistorySink sink;
   if (!o.history_file.empty()) {
     std::vector<std::filesystem::path> records;  // the files read: every component's
-    for (const std::string* file : {&o.record.file, &o.record.file_h2, &o.record.file_up})
-      if (!file->empty()) records.emplace_back(*file);
+    if (!o.record.file.empty()) records.emplace_back(o.record.file);
+    for (const std::string& file : o.record.component_files)
+      if (!file.empty()) records.emplace_back(file);
     csv = std::make_unique<CsvHistory>(o.history_file, records, o.overwrite);
     sink = [&csv](const HistorySample& s) { (*csv)(s); };
   }
@@ -111,7 +112,7 @@ void add_run_command(CLI::App& app) {
   auto o = std::make_shared<RunOptions>();
   CLI::App* cmd = app.add_subcommand("run", "Solve one case and print its result record as JSON");
   o->record.add_to(cmd, false, true);
-  o->record.add_components_to(cmd, "--record-h2", "--record-up");
+  o->record.add_components_to(cmd, /*record_flags=*/false);
   cmd->add_option("--incidence-deg", o->incidence_deg,
                   "azimuth of the frame's plane [deg from north]: the pair is projected on it (needs --record-h2)")
       ->group("record");

@@ -13,10 +13,17 @@
 
 namespace pcrf {
 
+std::string and_list(const std::vector<std::string>& items) {
+  std::string text;
+  for (std::size_t i = 0; i < items.size(); ++i)
+    text += (i == 0 ? "" : i + 1 == items.size() ? " and " : ", ") + items[i];
+  return text;
+}
+
 std::vector<std::string> StationRecord::align() {
   std::vector<GroundMotion*> parts{&h1};
-  if (h2) parts.push_back(&*h2);
-  if (up) parts.push_back(&*up);
+  for (const auto member : component_members<StationRecord>())
+    if (this->*member) parts.push_back(&*(this->*member));
   std::size_t longest = 0;
   for (GroundMotion* g : parts) {
     if (!same_sample_interval(g->dt_s(), h1.dt_s()))
@@ -52,29 +59,29 @@ std::optional<double> stated_azimuth(const StationComponent& part, const char* r
   return azimuth_of_component(part.component);
 }
 
+/// The motion of `part`, given as `info`'s component, checked by its header as `info.enters`
+/// asks; the in-plane component's azimuth from its header into `station` unless given.
+GroundMotion checked_component(const ComponentInfo& info, StationComponent&& part, StationRecord& station,
+                               std::vector<std::string>& notes) {
+  const std::string role(info.role);
+  if (info.enters == Enters::kInPlane && !station.az2_deg) station.az2_deg = stated_azimuth(part, role.c_str());
+  if (info.enters != Enters::kVertical) return std::move(part.motion);
+  if (!part.component.empty() && azimuth_of_component(part.component))
+    throw UserError(part.label + ": its header names a horizontal component ('" + part.component + "'), given as " + role);
+  if (!is_downward_component(part.component)) return std::move(part.motion);
+  notes.push_back("vertical component '" + part.component + "' (" + part.label + ") is positive down: negated to positive up");
+  return part.motion.scaled(-1.0);
+}
+
 }  // namespace
 
-StationRecord make_station(StationComponent h1, std::optional<double> az1_deg, std::optional<StationComponent> h2,
-                           std::optional<double> az2_deg, std::optional<StationComponent> up,
-                           std::vector<std::string>& notes) {
-  if (!az1_deg) az1_deg = stated_azimuth(h1, "the first horizontal");
-  StationRecord station{std::move(h1.motion), az1_deg, std::nullopt, az2_deg, std::nullopt};
-  if (h2) {
-    if (!station.az2_deg) station.az2_deg = stated_azimuth(*h2, "the second horizontal");
-    station.h2 = std::move(h2->motion);
-  }
-  if (up) {
-    if (!up->component.empty() && azimuth_of_component(up->component))
-      throw UserError(up->label + ": its header names a horizontal component ('" + up->component +
-                                  "'), given as the vertical");
-    if (is_downward_component(up->component)) {
-      notes.push_back("vertical component '" + up->component + "' (" + up->label +
-                      ") is positive down: negated to positive up");
-      station.up = up->motion.scaled(-1.0);
-    } else {
-      station.up = std::move(up->motion);
-    }
-  }
+StationRecord make_station(StationParts parts, std::vector<std::string>& notes) {
+  if (!parts.az1_deg) parts.az1_deg = stated_azimuth(parts.h1, "the first horizontal");
+  StationRecord station{std::move(parts.h1.motion), parts.az1_deg, std::nullopt, parts.az2_deg, std::nullopt};
+  const auto given = component_members<StationParts>();
+  const auto kept = component_members<StationRecord>();
+  for (std::size_t i = 0; i < kComponentCount; ++i)
+    if (auto& part = parts.*given[i]) station.*kept[i] = checked_component(kStationComponents[i], std::move(*part), station, notes);
   for (auto& note : station.align()) notes.push_back(std::move(note));
   return station;
 }

@@ -111,29 +111,45 @@ void check_array_sampling(const std::string& name, double dt_s, std::size_t samp
 
 StationRecord Keywords::take_station(std::vector<std::string>& notes, api::RecordInput* used,
                                      std::vector<std::string>* warnings) {
-  const auto h1 = take("ground_accel_g"), h2 = take("ground_accel_h2_g"), up = take("ground_accel_up_g");
+  const auto h1 = take("ground_accel_g");
+  PerComponent<std::optional<py::object>> arrays;
+  for (std::size_t i = 0; i < kComponentCount; ++i) arrays[i] = take(std::string(kStationComponents[i].array_keyword));
+  const bool others = std::any_of(arrays.begin(), arrays.end(), [](const auto& a) { return a.has_value(); });
   api::RecordInput input;
   input.az1_deg = take_number("azimuth_deg");
   input.az2_deg = take_number("h2_azimuth_deg");
   const auto dt_s = take_number("dt_s");
   if (h1) {
     if (!dt_s) throw UserError("ground_accel_g", "needs {}, its sample interval [s]", {"dt_s"});
-    for (const char* file_key : {"record", "record_h2", "record_up", "synthetic"})
+    std::vector<std::string> file_keys{"record"};
+    for (const auto& c : kStationComponents) file_keys.emplace_back(c.keyword);
+    file_keys.emplace_back("synthetic");
+    for (const auto& file_key : file_keys)
       if (take(file_key)) throw UserError(Where{}, "give either {} or {}, not both", {"ground_accel_g", file_key});
     const std::string name = take_text("name").value_or("ground_accel_g");
     StationRecord station{motion_in_g(name, *dt_s, to_doubles(*h1, "ground_accel_g")), input.az1_deg, std::nullopt,
                           input.az2_deg, std::nullopt};
-    if (h2) station.h2 = motion_in_g(name + " (h2)", *dt_s, to_doubles(*h2, "ground_accel_h2_g"));
-    if (up) station.up = motion_in_g(name + " (up)", *dt_s, to_doubles(*up, "ground_accel_up_g"));
+    const auto members = component_members<StationRecord>();
+    for (std::size_t i = 0; i < kComponentCount; ++i) {
+      const ComponentInfo& c = kStationComponents[i];
+      if (arrays[i])
+        station.*members[i] = motion_in_g(name + " (" + std::string(c.key) + ")", *dt_s,
+                                          to_doubles(*arrays[i], std::string(c.array_keyword)));
+    }
     notes = station.align();
     check_array_sampling(name, *dt_s, station.h1.size());
     if (warnings != nullptr) add_warnings(api::implausible_arrays(station), *warnings);
     return station;
   }
-  if (h2 || up) throw UserError(Where{}, "{} and {} go with {}", {"ground_accel_h2_g", "ground_accel_up_g", "ground_accel_g"});
+  if (others) {
+    std::vector<std::string> keys;
+    for (const auto& c : kStationComponents) keys.emplace_back(c.array_keyword);
+    keys.emplace_back("ground_accel_g");
+    throw UserError(Where{}, and_list(std::vector<std::string>(kComponentCount, "{}")) + " go with {}", keys);
+  }
   input.file = take_text("record").value_or("");
-  input.file_h2 = take_text("record_h2").value_or("");
-  input.file_up = take_text("record_up").value_or("");
+  for (std::size_t i = 0; i < kComponentCount; ++i)
+    input.component_files[i] = take_text(std::string(kStationComponents[i].keyword)).value_or("");
   input.synthetic = take_text("synthetic").value_or("");
   input.format = take_text("format").value_or("");
   input.units = take_text("units").value_or("g");

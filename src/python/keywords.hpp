@@ -56,11 +56,12 @@ class Keywords {
     return given;
   }
 
-  /// The record the keywords name: ground_accel_g (+ dt_s) with ground_accel_h2_g and
-  /// ground_accel_up_g, or record / synthetic with record_h2 and record_up read like
-  /// `pcrf run` reads its files; the azimuths; the notes of padding in `notes`; how the files
-  /// were named in `input` (when not null); the record warnings (implausible_records for
-  /// files, implausible_arrays for arrays) in `warnings` (when not null) by add_warnings.
+  /// The record the keywords name: ground_accel_g (+ dt_s) with the other components'
+  /// arrays (ground_accel_h2_g, …: kStationComponents), or record / synthetic with their
+  /// files (record_h2, …) read like `pcrf run` reads its files; the azimuths; the notes of
+  /// padding in `notes`; how the files were named in `input` (when not null); the record
+  /// warnings (implausible_records for files, implausible_arrays for arrays) in `warnings`
+  /// (when not null) by add_warnings.
   /// \throws UserError.
   StationRecord take_station(std::vector<std::string>& notes, api::RecordInput* input = nullptr,
                              std::vector<std::string>* warnings = nullptr);

@@ -70,8 +70,8 @@ void check_output_is_not_an_input(const std::filesystem::path& output, const Stu
     throw UserError(Where{}, output.string() + ": {} names the study file itself; choose another output ({} does not apply to inputs)",
                     {"output", "overwrite"});
   for (const auto& r : study.records)
-    for (const auto* file : {&r.file, &r.h2, &r.up})
-      if (*file && same_file(output, (*file)->path))
+    for (const RecordFileSpec* file : r.files())
+      if (same_file(output, file->path))
         throw UserError(Where{}, output.string() + ": {} names the record file of \"" + r.name +
                                      "\"; choose another output ({} does not apply to inputs)", {"output", "overwrite"});
 }

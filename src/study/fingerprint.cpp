@@ -53,8 +53,9 @@ std::string canonical_description(const Study& study, const CaseSpace& space, Re
     const auto& source = study.records[r];
     if (source.has_components() || source.az1_deg || source.strike_deg) {  // studies of single records: as they were
       const StationRecord& station = records.station(r);
-      if (station.h2) out << " h2=" << samples_hash(*station.h2);
-      if (station.up) out << " up=" << samples_hash(*station.up);
+      const auto members = component_members<StationRecord>();
+      for (std::size_t i = 0; i < kComponentCount; ++i)
+        if (const auto& part = station.*members[i]) out << ' ' << kStationComponents[i].key << '=' << samples_hash(*part);
       out << " az1_deg=" << station.az1_deg.value_or(std::nan("")) << " az2_deg=" << station.az2_deg.value_or(std::nan(""))
           << " strike_deg=" << source.strike_deg.value_or(std::nan(""));
     }

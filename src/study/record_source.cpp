@@ -10,11 +10,25 @@
 
 namespace pcrf::study {
 
+bool RecordSource::has_components() const {
+  const auto members = component_members<RecordSource>();
+  return std::any_of(members.begin(), members.end(), [this](auto member) { return (this->*member).has_value(); });
+}
+
+std::vector<const RecordFileSpec*> RecordSource::files() const {
+  std::vector<const RecordFileSpec*> all;
+  if (file) all.push_back(&*file);
+  for (const auto member : component_members<RecordSource>())
+    if (this->*member) all.push_back(&*(this->*member));
+  return all;
+}
+
 std::string RecordSource::describe() const {
   if (!file) return "synthetic " + synthetic;
   std::string text = "file " + file->path.string();
-  if (h2) text += "; h2 " + h2->path.string();
-  if (up) text += "; up " + up->path.string();
+  const auto members = component_members<RecordSource>();
+  for (std::size_t i = 0; i < kComponentCount; ++i)
+    if (const auto& spec = this->*members[i]) text += "; " + std::string(kStationComponents[i].key) + " " + spec->path.string();
   return text;
 }
 
@@ -32,12 +46,13 @@ LoadedRecord load_record(const RecordSource& source) {
         warnings.push_back(std::move(line));
     return StationComponent{std::move(read.motion), std::move(read.metadata.component), spec.path.string()};
   };
-  std::optional<StationComponent> h2, up;
-  if (source.h2) h2 = component(read_record_file(*source.h2), *source.h2);
-  if (source.up) up = component(read_record_file(*source.up), *source.up);
+  StationParts parts{component(std::move(file), *source.file), source.az1_deg, std::nullopt, source.az2_deg, std::nullopt};
+  const auto given = component_members<RecordSource>();
+  const auto read = component_members<StationParts>();
+  for (std::size_t i = 0; i < kComponentCount; ++i)
+    if (const auto& spec = source.*given[i]) parts.*read[i] = component(read_record_file(*spec), *spec);
   std::vector<std::string> notes;
-  StationRecord station = make_station(component(std::move(file), *source.file), source.az1_deg, std::move(h2),
-                                       source.az2_deg, std::move(up), notes);
+  StationRecord station = make_station(std::move(parts), notes);
   return {std::move(station), std::move(title), std::move(notes), std::move(warnings)};
 }
 

@@ -468,8 +468,12 @@ std::vector<RecordSource> read_record_entry(const Fields& f, const Study& s) {
   const int given =
       int(f.has("file")) + int(f.has("files")) + int(f.has("synthetic")) + int(f.has("h1")) + int(f.has("pulse"));
   if (given != 1) f.fail(f.has("h1") ? "h1" : "file", "give exactly one of file, files, h1, synthetic or pulse");
-  for (const auto key : {"h2", "up", "az1_deg", "az2_deg"})
-    if (f.has(key) && !f.has("h1")) f.fail(key, "a station's components are h1 (the first horizontal), h2 and up: give h1");
+  std::vector<std::string> components{"h1 (the first horizontal)"};
+  for (const auto& c : kStationComponents) components.emplace_back(c.key);
+  std::vector<std::string> need_h1(components.begin() + 1, components.end());
+  need_h1.insert(need_h1.end(), {"az1_deg", "az2_deg"});
+  for (const auto& key : need_h1)
+    if (f.has(key) && !f.has("h1")) f.fail(key, "a station's components are " + and_list(components) + ": give h1");
   if (f.has("pulse")) {
     for (const auto key : {"format", "units", "skip_rows", "column", "name", "strike_deg"})
       if (f.has(key)) f.fail(key, "does not apply to pulse records (each is named by its text)");
@@ -510,12 +514,13 @@ std::vector<RecordSource> read_record_entry(const Fields& f, const Study& s) {
     }
     const auto firsts = read_file_specs(f, key, spec, format, s);
     // The other components pair with the first ones in the order their names sort.
-    std::vector<RecordFileSpec> seconds, verticals;
-    for (const auto& [other, list] : {std::pair{"h2", &seconds}, std::pair{"up", &verticals}}) {
+    PerComponent<std::vector<RecordFileSpec>> others;
+    for (std::size_t c = 0; c < kComponentCount; ++c) {
+      const std::string_view other = kStationComponents[c].key;
       if (!f.has(other)) continue;
-      *list = read_file_specs(f, other, spec, format, s);
-      if (list->size() != firsts.size())
-        f.fail(other, std::to_string(list->size()) + " files for " + std::to_string(firsts.size()) +
+      others[c] = read_file_specs(f, other, spec, format, s);
+      if (others[c].size() != firsts.size())
+        f.fail(other, std::to_string(others[c].size()) + " files for " + std::to_string(firsts.size()) +
                           " first components (h1): each station needs one of each");
     }
     for (std::size_t i = 0; i < firsts.size(); ++i) {
@@ -523,8 +528,8 @@ std::vector<RecordSource> read_record_entry(const Fields& f, const Study& s) {
       source.name = record_name(firsts[i]);
       source.file = firsts[i];
       source.declared_at = f.where(key);
-      if (!seconds.empty()) source.h2 = seconds[i];
-      if (!verticals.empty()) source.up = verticals[i];
+      for (std::size_t c = 0; c < kComponentCount; ++c)
+        if (!others[c].empty()) source.*component_members<RecordSource>()[c] = others[c][i];
       source.az1_deg = read_angle(f, "az1_deg");
       source.az2_deg = read_angle(f, "az2_deg");
       source.strike_deg = read_angle(f, "strike_deg");
@@ -569,9 +574,11 @@ void read_records(const Fields& top, Study& s) {
     const std::vector<std::string> path{"records", key_index(i)};
     const auto* table = (*array)[i].as_table();
     if (table == nullptr) Fields::fail_at(s.file, &(*array)[i], path, "expected a table ([[records]])");
-    Fields f(*table, path, s.file,
-             {"file", "files", "synthetic", "pulse", "format", "units", "dt_s", "duration_s", "skip_rows", "column", "name",
-              "h1", "h2", "up", "az1_deg", "az2_deg", "strike_deg"});
+    std::vector<std::string_view> keys{"file", "files", "synthetic", "pulse", "format", "units", "dt_s", "duration_s",
+                                       "skip_rows", "column", "name", "h1"};
+    for (const auto& c : kStationComponents) keys.push_back(c.key);
+    keys.insert(keys.end(), {"az1_deg", "az2_deg", "strike_deg"});
+    Fields f(*table, path, s.file, keys);
     for (auto& source : read_record_entry(f, s)) {
       if (!names.insert(source.name).second)
         f.fail(f.has("synthetic") ? "synthetic" : (f.has("file") ? "file" : f.has("h1") ? "h1" : "files"),

@@ -28,9 +28,9 @@ struct RecordInput {
   /// The motion, unscaled. \throws UserError with the reader's message.
   GroundMotion load() const;
 
-  // The station's other components (files read like the first one).
-  std::string file_h2;
-  std::string file_up;
+  /// The file of each of the station's other components (kStationComponents; empty: none),
+  /// read like the first one.
+  PerComponent<std::string> component_files;
   std::optional<double> az1_deg;
   std::optional<double> az2_deg;
   /// Every component given, aligned (the notes of padding in `notes`), the azimuths given or
@@ -41,7 +41,7 @@ struct RecordInput {
   RecordInput component(const std::string& path) const;
 };
 
-/// One line per record file of `input` (the first horizontal, h2, up) whose measures no
+/// One line per record file of `input` (the first horizontal, then the others) whose measures no
 /// earthquake record has (record_plausibility), naming the file and the likely units: "a.txt:
 /// PGA 501 g is above 3 g: is it in cm/s2 (PGA 0.511 g)? use --units cm/s2"; and one line
 /// when the AT2 headers of the components name different events or stations

@@ -24,15 +24,18 @@ struct RecordSource {
   std::optional<RecordFileSpec> file;  ///< a file (path already resolved), or
   std::string synthetic;               ///< a synthetic motion, make_synthetic() text
   Where declared_at;                   ///< the [[records]] entry's key that makes it, file and line
-  /// A station's other components ([[records]] h2, up), read like `file` (the first, h1).
-  // (Initialised, so that sources written as {name, file, synthetic, where} stay complete.)
+  /// A station's other components (kStationComponents: [[records]] h2, up), read like `file`
+  /// (the first, h1). (Initialised, so that sources written as {name, file, synthetic, where}
+  /// stay complete.)
   std::optional<RecordFileSpec> h2 = std::nullopt;
   std::optional<RecordFileSpec> up = std::nullopt;
   std::optional<double> az1_deg = std::nullopt;  ///< given azimuths [deg from north]; else from the headers
   std::optional<double> az2_deg = std::nullopt;
   std::optional<double> strike_deg = std::nullopt;  ///< the fault's strike [deg from north], for fault-normal incidence
 
-  bool has_components() const { return h2 || up; }
+  bool has_components() const;
+  /// Every file it reads: the first component's, then the others'.
+  std::vector<const RecordFileSpec*> files() const;
   /// A pulse of a [[records]] pulse entry: its shape ("ricker") and the values of its [axes]
   /// pulse_* keys by key ("pulse_period_s"), the cube's coordinates along `record`.
   std::string pulse_shape = {};
