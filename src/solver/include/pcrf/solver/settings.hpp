@@ -2,6 +2,7 @@
 /// \brief Physics options and integrator settings of one case.
 #pragma once
 
+#include <array>
 #include <limits>
 #include <string>
 #include <vector>
@@ -98,11 +99,6 @@ struct SolverSettings {
   bool operator==(const SolverSettings&) const = default;
 };
 
-/// The [physics] table: every PhysicsOptions member, in the order study files document them.
-const SettingTable<PhysicsOptions>& physics_settings();
-/// The [solver] table: `preset` first (it sets every other value), then the members of
-/// SolverSettings. Defaults: the "balanced" preset.
-const SettingTable<SolverSettings>& solver_settings();
 
 /// Named accuracy presets: "fast", "balanced" (the default) and "reference". Each is a
 /// complete SolverSettings; the README lists the error and cost measured for each.
@@ -110,5 +106,102 @@ const SettingTable<SolverSettings>& solver_settings();
 SolverSettings preset_settings(const std::string& name);
 /// Names of all presets, in order of increasing accuracy.
 const std::vector<std::string>& preset_names();
+
+namespace detail {
+
+/// The enumerations' text forms (to_string, parse_*, the tables' choices).
+inline constexpr std::array<EnumName<UpliftCriterion>, 3> kUpliftNames{{{UpliftCriterion::kPhysical, "physical"},
+                                                                 {UpliftCriterion::kPaper, "paper"},
+                                                                 {UpliftCriterion::kPaperProcedure, "paper-procedure"}}};
+
+inline constexpr std::array<EnumName<Integrator>, 7> kIntegratorNames{{{Integrator::kDormandPrince5, "dopri5"},
+                                                                {Integrator::kTaylor, "taylor"},
+                                                                {Integrator::kArkodeErk5, "arkode-erk5"},
+                                                                {Integrator::kArkodeErk8, "arkode-erk8"},
+                                                                {Integrator::kCvodeAdams, "cvode-adams"},
+                                                                {Integrator::kCvodeBdf, "cvode-bdf"},
+                                                                {Integrator::kFixedRk4SignChange, "fixed-rk4"}}};
+
+}  // namespace detail
+
+// The tables, here beside the members they describe: a new setting is its member and its row
+// in this one header, and its use (docs/developer.md, "What a new thing costs").
+
+/// The [physics] table: every PhysicsOptions member, in the order study files document them.
+inline const SettingTable<PhysicsOptions>& physics_settings() {
+  using P = PhysicsOptions;
+  static const SettingTable<PhysicsOptions> table = [] {
+    SettingTable<PhysicsOptions> t{"physics", PhysicsOptions{}, {}};
+    auto& s = t.settings;
+    s.push_back(choice_setting("uplift", &P::uplift, values_of(detail::kUpliftNames),
+                               &to_string, &parse_uplift_criterion,
+                               "uplift criterion (docs/physics.md, \"Uplift criteria\"); paper-procedure is NON-PHYSICAL "
+                               "(motion from the paper's t_RI, no contact condition; with integrator fixed-rk4)"));
+    s.back().aliases = {"--criterion"};
+    s.push_back(number_setting("fracture_strain", &P::fracture_strain, "1", Bound::kPositive,
+                               "total tendon strain at fracture"));
+    s.push_back(number_or_word_setting("tail_s", &P::tail_s, "s", Bound::kNonNegative, {{"until-rest", kTailUntilRest}},
+                                       "free vibration computed after the record ends: a time, or until the frame "
+                                       "rests or collapses (at most max_tail_s; still rocking then: unresolved)"));
+    s.back().aliases = {"--tail"};
+    s.push_back(number_setting("max_tail_s", &P::max_tail_s, "s", Bound::kPositive,
+                               "longest until-rest tail; a frame still rocking then is rocking_at_end, unresolved"));
+    s.push_back(number_setting("zeno_time_s", &P::zeno_time_s, "s", Bound::kPositive,
+                               "return-to-rest time scale (docs/physics.md, \"Return to rest\")"));
+    s.back().aliases = {"--zeno-time"};
+    s.push_back(number_setting("theta0_rad", &P::theta0_rad, "rad", Bound::kAny,
+                               "initial rotation θ₁ (0: the frame starts at rest); within the closing limit"));
+    s.push_back(number_setting("omega0_rad_s", &P::omega0_rad_s, "rad/s", Bound::kAny,
+                               "initial angular velocity θ̇₁ (0: the frame starts at rest)"));
+    return t;
+  }();
+  return table;
+}
+
+/// The [solver] table: `preset` first (it sets every other value), then the members of
+/// SolverSettings. Defaults: the "balanced" preset.
+inline const SettingTable<SolverSettings>& solver_settings() {
+  using S = SolverSettings;
+  static const SettingTable<SolverSettings> table = [] {
+    SettingTable<SolverSettings> t{"solver", preset_settings("balanced"), {}};
+    auto& s = t.settings;
+    Setting<SolverSettings> preset;
+    preset.key = "preset";
+    preset.type = SettingType::kChoice;
+    preset.choices = preset_names();
+    preset.doc = "accuracy preset; sets every value below, which single keys then override";
+    // Its whole effect is in the values it sets, and those are fingerprinted.
+    preset.in_fingerprint = false;
+    preset.get = [](const S& v) { return SettingValue(v.preset); };
+    preset.set = [](S& v, const SettingValue& value) { v = preset_settings(std::get<std::string>(value)); };
+    s.push_back(std::move(preset));
+    s.push_back(choice_setting("integrator", &S::integrator, values_of(detail::kIntegratorNames), &to_string, &parse_integrator,
+                               "time integrator (taylor: Taylor series steps where the scene has its series, the block and the rocking frame; dopri5 elsewhere)"));
+    s.push_back(number_setting("rtol", &S::rtol, "1", Bound::kPositive, "relative tolerance"));
+    s.push_back(number_setting("atol_theta_rad", &S::atol_theta_rad, "rad", Bound::kPositive,
+                               "absolute tolerance on θ₁"));
+    s.back().aliases = {"--atol-theta"};
+    s.push_back(number_setting("atol_omega_rad_s", &S::atol_omega_rad_s, "rad/s", Bound::kPositive,
+                               "absolute tolerance on θ̇₁"));
+    s.back().aliases = {"--atol-omega"};
+    s.push_back(number_setting("max_step_s", &S::max_step_s, "s", Bound::kNonNegative, "largest step; 0: no limit"));
+    s.back().aliases = {"--max-step"};
+    s.push_back(number_setting("fixed_step_s", &S::fixed_step_s, "s", Bound::kNonNegative,
+                               "step of fixed-rk4; 0: the record's dt"));
+    s.back().aliases = {"--fixed-step"};
+    s.push_back(flag_setting("stop_at_samples", &S::stop_at_samples,
+                             "stop the integrator at every record sample (kinks of the interpolated record)"));
+    s.push_back(integer_setting("max_steps", &S::max_steps, Bound::kAtLeastOne,
+                                "steps per case, all segments together"));
+    s.push_back(number_setting("wall_time_limit_s", &S::wall_time_limit_s, "s", Bound::kNonNegative,
+                               "a case that takes longer ends as time_limit; 0: no limit"));
+    s.back().aliases = {"--time-limit"};
+    s.push_back(flag_setting("verdict_check", &S::verdict_check,
+                             "run each case near collapse again with its record scaled by 1 ± 1e-9, 1e-7, 1e-6: "
+                             "status_stable, theta_max_spread, collapse_fraction"));
+    return t;
+  }();
+  return table;
+}
 
 }  // namespace pcrf
