@@ -158,26 +158,17 @@ class DormandPrinceIntegrator final : public OdeIntegrator {
   /// g at time t of the current step, from the dense output.
   bool roots_at(double t, double* g);
   void dense(double t, Vec& y) const;
-  /// Component i of the dense output at t (within a step), and its time derivative: the
-  /// polynomial c₀ + s c₁ + s s₁ c₂ + s² s₁ c₃ + s² s₁² c₄, s = (t − t₀)/h, s₁ = 1 − s.
+  /// Component i of the Runge–Kutta dense output at t (within a step), and its time
+  /// derivative: the polynomial c₀ + s c₁ + s s₁ c₂ + s² s₁ c₃ + s² s₁² c₄, s = (t − t₀)/h,
+  /// s₁ = 1 − s (a Taylor step's is series(): dense() and dense_value_slope() choose).
   /// Defined here: they sit in the root search's inner loop.
   double dense_component(double t, int i) const {
-    if (taylor_order_ > 0) {
-      double v[3];
-      series(t - t0_, v[0], v[1], v[2]);
-      return v[i];
-    }
     const double s = (t - t0_) / h_step_, s1 = 1.0 - s;
     const auto k = static_cast<std::size_t>(i);
     const auto& c = attempt_.out.cont;
     return c[0][k] + s * (c[1][k] + s1 * (c[2][k] + s * (c[3][k] + s1 * c[4][k])));
   }
   double dense_slope(double t, int i) const {
-    if (taylor_order_ > 0) {
-      double v[3];
-      series(t - t0_, v[0], v[1], v[2]);
-      return v[i + 1];
-    }
     const double s = (t - t0_) / h_step_, s1 = 1.0 - s;
     const auto k = static_cast<std::size_t>(i);
     const auto& c = attempt_.out.cont;
