@@ -139,8 +139,10 @@ bool Driver::refill(std::size_t l) {
       continue;
     }
     if (solver_.integrator == Integrator::kTaylor && frame.scene().taylor_order_max() > 0) {
-      ++stats_.scalar_cases;  // Taylor steps: one case at a time
-      results_[c] = solve_case(frame, excitation_, solver_, request_);
+      // Taylor steps: one case at a time, the checks and the rest scan above already made.
+      ++stats_.scalar_cases;
+      results_[c] = CaseRun(frame, excitation_, solver_, request_, no_history_).run();
+      results_[c].wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       continue;
     }
     lane.run.emplace(frame, excitation_, solver_, request_, no_history_, true);
