@@ -185,16 +185,18 @@ std::string check_setting(const Setting<Target>& s, SettingValue& value) {
   }
   const double v = std::holds_alternative<double>(value) ? std::get<double>(value)
                                                          : static_cast<double>(std::get<std::int64_t>(value));
-  const std::string got = " (got " + setting_text(value) + ")";
+  bool ok = true;
+  const char* rule = "";
   switch (s.bound) {
-    case Bound::kAny: return "";
-    case Bound::kPositive: return v > 0.0 ? "" : "must be positive" + got;
-    case Bound::kNonNegative: return v >= 0.0 ? "" : "must not be negative" + got;
-    case Bound::kAtLeastOne: return v >= 1.0 ? "" : "must be at least 1" + got;
-    case Bound::kFraction: return v >= 0.0 && v < 1.0 ? "" : "must be at least 0 and below 1" + got;
-    case Bound::kOpenUnit: return v > 0.0 && v < 1.0 ? "" : "must be above 0 and below 1" + got;
+    case Bound::kAny: break;
+    case Bound::kPositive: ok = v > 0.0, rule = "must be positive"; break;
+    case Bound::kNonNegative: ok = v >= 0.0, rule = "must not be negative"; break;
+    case Bound::kAtLeastOne: ok = v >= 1.0, rule = "must be at least 1"; break;
+    case Bound::kFraction: ok = v >= 0.0 && v < 1.0, rule = "must be at least 0 and below 1"; break;
+    case Bound::kOpenUnit: ok = v > 0.0 && v < 1.0, rule = "must be above 0 and below 1"; break;
   }
-  return "";
+  if (ok) return "";  // the message is formatted only for a value that fails
+  return rule + (" (got " + setting_text(value) + ")");
 }
 
 /// Parses command-line text into the setting's type (then check_setting() applies).
