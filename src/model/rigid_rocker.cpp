@@ -77,34 +77,42 @@ struct SeriesInput {
   double k_inertia, alpha, sigma, g0, g1, h0, h1;
 };
 
+/// Two doubles in one register (GCC/Clang vector extensions: SSE2 on x86-64, Advanced SIMD
+/// on arm64): a pair (S_k, C_k) of the series of sin x and cos x, computed together.
+using Pair = double __attribute__((vector_size(16)));
+
 /// The recurrences of RigidRocker::taylor_series to order N, with N known to the compiler
-/// (its loops unrolled: an order-8 series is about a hundred products).
+/// (its loops unrolled). With x = α + σθ₁ and x_j its coefficients, k S_k = Σ j x_j C_{k−j}
+/// and k C_k = −Σ j x_j S_{k−j} (j = 1 … k): one sum of pairs, P_k = (S_k, C_k) =
+/// (1/k) Σ j x_j Q_{k−j} with Q = (C, −S). Each lane rounds as the scalar sums would.
 template <int N>
 bool series_of_order(const SeriesInput& in, double theta1, double omega1, double* a) {
-  double s[N + 1], c[N + 1], jx[N + 1];  // S_k, C_k, j·x_j
+  Pair p[N + 1], q[N + 1];  // P_k = (S_k, C_k), Q_k = (C_k, −S_k)
+  double jx[N + 1];         // j·x_j
   a[0] = theta1;
   a[1] = omega1;
-  ScalarOps::sincos(in.alpha + in.sigma * theta1, s[0], c[0]);  // the acceleration's own sin/cos
+  double s0, c0;
+  ScalarOps::sincos(in.alpha + in.sigma * theta1, s0, c0);  // the acceleration's own sin/cos
+  p[0] = Pair{s0, c0}, q[0] = Pair{c0, -s0};
   jx[1] = in.sigma * omega1;
-  a[2] = 0.5 * in.k_inertia * (in.g0 * s[0] - in.h0 * c[0]);
+  a[2] = 0.5 * in.k_inertia * (in.g0 * s0 - in.h0 * c0);
+  // f_k = g0 S_k + g1 S_{k−1} − (h0 C_k + h1 C_{k−1}): the lanes of w0 P_k + w1 P_{k−1}, added.
+  const Pair w0{in.g0, -in.h0}, w1{in.g1, -in.h1};
 #pragma GCC unroll 32
   for (int k = 1; k + 2 <= N; ++k) {
     jx[k + 1] = in.sigma * (k + 1.0) * a[k + 1];
-    double sk = 0.0, ck = 0.0;
+    Pair sum{0.0, 0.0};
 #pragma GCC unroll 32
-    for (int j = 1; j <= k; ++j) {
-      sk += jx[j] * c[k - j];
-      ck += jx[j] * s[k - j];
-    }
-    s[k] = sk * (1.0 / k);
-    c[k] = -ck * (1.0 / k);
-    const double f = (in.g0 * s[k] + in.g1 * s[k - 1]) - (in.h0 * c[k] + in.h1 * c[k - 1]);
-    a[k + 2] = in.k_inertia * f * (1.0 / ((k + 1.0) * (k + 2.0)));
+    for (int j = 1; j <= k; ++j) sum += jx[j] * q[k - j];
+    p[k] = sum * (1.0 / k);
+    q[k] = Pair{p[k][1], -p[k][0]};
+    const Pair f = w0 * p[k] + w1 * p[k - 1];
+    a[k + 2] = in.k_inertia * (f[0] + f[1]) * (1.0 / ((k + 1.0) * (k + 2.0)));
   }
-  double sum = 0.0;  // finite when every coefficient is
+  double sum = 0.0;  // finite when every coefficient is (inf − inf and NaN are NaN)
 #pragma GCC unroll 32
-  for (int k = 0; k <= N; ++k) sum += a[k] - a[k];
-  return sum == 0.0;
+  for (int k = 2; k <= N; ++k) sum += a[k];
+  return std::isfinite(sum);
 }
 
 using SeriesFunction = bool (*)(const SeriesInput&, double, double, double*);

@@ -37,11 +37,9 @@ int FlightProblem::rhs(double t, const double* y, double* ydot) {
 }
 
 int FlightProblem::roots(double t, const double* y, double* g) {
-  g[kImpact] = y[0];
-  g[kThetaPeak] = y[1];
-  g[kOmegaPeak] = 1.0;  // inactive unless requested
-  if (omega_peak_ && !acceleration(t, y, g[kOmegaPeak])) return 1;
-  g[kLimit] = std::abs(y[0]) - theta_stop_rad_;
+  double d[3] = {y[0], y[1], 0.0};  // θ̈₁ only for the ω peaks
+  if (omega_peak_ && !acceleration(t, y, d[2])) return 1;
+  for (int i = 0; i < kRootCount; ++i) g[i] = root_value(root_form(i), d);
   return 0;
 }
 
@@ -64,9 +62,15 @@ void FlightProblem::evaluated(double t, const double* y, const double* ydot) {
   last_acc_ = ydot[1];
 }
 
-GroundLine FlightProblem::ground_line(double t0, double h, bool& exact) {
-  const GroundAcceleration a = forcing_.at(t0);  // enters the interval holding t0
+inline GroundLine FlightProblem::ground_line(double t0, double h, bool& exact) {
   const ExcitationCursor::Interval& in = forcing_.interval();
+  // A step that starts where the last one ended, at a sample: the next interval, no search
+  // (at(t0) there is its first sample, h0).
+  if (t0 == in.hi_s && forcing_.next_interval()) {
+    exact = true;
+    return {in.h0, in.dh * in.inv_dt_per_s, in.v0, in.dv * in.inv_dt_per_s};
+  }
+  const GroundAcceleration a = forcing_.at(t0);  // enters the interval holding t0
   exact = t0 >= in.lo_s && t0 < in.hi_s;
   if (exact)
     return {a.horizontal_m_s2, in.dh * in.inv_dt_per_s, a.vertical_m_s2, in.dv * in.inv_dt_per_s};

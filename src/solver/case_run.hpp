@@ -44,7 +44,16 @@ class FlightProblem final : public detail::OdeProblem {
   int roots(double t, const double* y, double* g) override;
 
   int root_count() const override { return kRootCount; }
-  int root_state_index(int i) const override { return i == kImpact ? 0 : i == kThetaPeak ? 1 : -1; }
+  /// θ₁, θ̇₁, θ̈₁ (or the constant 1 when ω peaks are not requested), |θ₁| − θ_stop.
+  RootForm root_form(int i) const override {
+    switch (i) {
+      case kImpact: return {0, false, 0.0};
+      case kThetaPeak: return {1, false, 0.0};
+      case kOmegaPeak: return omega_peak_ ? RootForm{2, false, 0.0} : RootForm{RootForm::kConstant, false, 1.0};
+      case kLimit: return {0, true, theta_stop_rad_};
+      default: return {};
+    }
+  }
 
   bool has_jacobian() const override { return true; }
   int jacobian(double t, const double* y, double* dfdy) override;

@@ -14,9 +14,6 @@ namespace {
 
 const double kLogErrFloor = std::log(1e-4);  // err_old ≥ 1e-4 in the PI control
 
-/// Time tolerance of a located root, as SUNDIALS' (100 ulp of the time and step).
-double root_tolerance(double t, double h) { return 100.0 * kEps * (std::abs(t) + std::abs(h)); }
-
 }  // namespace
 
 DormandPrinceIntegrator::DormandPrinceIntegrator(const SolverSettings& settings, OdeProblem& problem,
@@ -27,18 +24,8 @@ DormandPrinceIntegrator::DormandPrinceIntegrator(const SolverSettings& settings,
       nroots_(problem.root_count()),
       atol_{settings.atol_theta_rad, settings.atol_omega_rad_s} {
   if (nroots_ < 0 || nroots_ > kMaxRoots) throw IntegratorError("dopri5: too many root functions");
-  if (settings.integrator == Integrator::kTaylor && problem.taylor_order_max() > 0)
-    taylor_order_ = taylor_order_for(settings.rtol, std::min(problem.taylor_order_max(), static_cast<int>(taylor_.size()) - 1));
-}
-
-int DormandPrinceIntegrator::taylor_order_for(double rtol, int order_max) {
-  const double n = std::ceil(-std::log10(std::max(rtol, kEps)) / 3.0) + 4.0;
-  return static_cast<int>(std::clamp(n, 3.0, static_cast<double>(order_max)));
-}
-
-void DormandPrinceIntegrator::set_lockstep(bool on) {
-  if (on && taylor_order_ > 0) throw IntegratorError("dopri5: Taylor steps do not run in lockstep");
-  lockstep_ = on;
+  for (int i = nroots_ - 1; i >= 0; --i)
+    if (problem.root_state_index(i) == 1) velocity_root_ = i;
 }
 
 void DormandPrinceIntegrator::restart(double t0, const double* y0, const int* root_dirs, double t_stop, double h0) {
@@ -62,7 +49,7 @@ void DormandPrinceIntegrator::restart(double t0, const double* y0, const int* ro
   // start than a fresh estimate (which costs a right-hand side).
   if (h0 > 0.0) {
     h_ = h0;
-  } else if (taylor_order_ == 0 && !(counts_.steps > 0 && h_ > 0.0)) {
+  } else if (!(counts_.steps > 0 && h_ > 0.0)) {
     h_ = initial_step();
   }
   // Root functions at the start. One that is zero there is judged a little later, on the
@@ -144,7 +131,6 @@ inline void DormandPrinceIntegrator::try_step() {
 }
 
 bool DormandPrinceIntegrator::step() {
-  if (taylor_order_ > 0) return taylor_step();
   t0_ = tcur_;
   y0_ = y1_;
   k1_ = k7_;
@@ -155,63 +141,6 @@ bool DormandPrinceIntegrator::step() {
   rejected_ = false;
   failures_ = 0;
   return attempt_until_accepted();
-}
-
-double DormandPrinceIntegrator::taylor_error(double h, double& h_fit) const {
-  // The last two terms of θ (a_{n−1} h^{n−1}, a_n h^n) and of θ̇ ((n−1) a_{n−1} h^{n−2},
-  // n a_n h^{n−1}), each against half its component's weight.
-  const int n = taylor_order_;
-  const double an1 = std::abs(taylor_[static_cast<std::size_t>(n - 1)]), an = std::abs(taylor_[static_cast<std::size_t>(n)]);
-  const double w0 = weight(0, std::abs(y0_[0])), w1 = weight(1, std::abs(y0_[1]));
-  const double terms[4] = {an1, an, (n - 1) * an1, n * an};
-  const double weights[4] = {w0, w0, w1, w1};
-  const int powers[4] = {n - 1, n, n - 2, n - 1};
-  double h_n2 = 1.0;  // h^(n−2)
-  for (int p = 0; p < n - 2; ++p) h_n2 *= h;
-  const double hp[4] = {h_n2 * h, h_n2 * h * h, h_n2, h_n2 * h};
-  double err = 0.0;
-  for (int i = 0; i < 4; ++i) err = std::max(err, 2.0 * terms[i] * hp[i] / weights[i]);
-  h_fit = h;
-  if (err > 1.0)
-    for (int i = 0; i < 4; ++i)
-      if (terms[i] > 0.0) h_fit = std::min(h_fit, std::pow(0.5 * weights[i] / terms[i], 1.0 / powers[i]));
-  return err;
-}
-
-bool DormandPrinceIntegrator::taylor_step() {
-  t0_ = tcur_;
-  y0_ = y1_;
-  limit_ = std::min(grid_.next_after(t0_), t_stop_);
-  double h = limit_ - t0_;
-  bool clamped = true;
-  if (settings_.max_step_s > 0.0 && h > settings_.max_step_s) h = settings_.max_step_s, clamped = false;
-  bool fresh = false;  // taylor_ holds the series for a step of h
-  for (int attempt = 0;; ++attempt) {
-    if (attempt > kMaxFailures || !(h > 16.0 * kEps * std::abs(t0_)) || !(h > 0.0))
-      return fail("taylor: step size " + number_text(h) + " s too small at t = " + number_text(t0_) + " s");
-    if (!fresh) {
-      ++counts_.rhs_evals;
-      if (!problem_.taylor(t0_, y0_.data(), h, taylor_order_, taylor_.data(), fresh))
-        return fail("taylor: the series is not finite at t = " + number_text(t0_) + " s");
-    }
-    double h_fit = h;
-    if (taylor_error(h, h_fit) <= 1.0) break;
-    // Within a record interval the series holds for any shorter step: h_fit is within the
-    // tolerance at once. Under a chord it is the chord's: new coefficients for the new h.
-    h = std::min(h_fit, 0.9 * h);
-    clamped = false;
-  }
-  h_step_ = h;
-  t1_ = clamped ? limit_ : t0_ + h;
-  double f1[2];
-  series(h, y1_[0], y1_[1], f1[1]);
-  f1[0] = y1_[1];
-  problem_.evaluated(t1_, y1_.data(), f1);  // the series' θ̈ there: a root function may take it
-  have_step_ = true;
-  ++counts_.steps;
-  ++counts_.root_evals;
-  problem_.roots(t1_, y1_.data(), g_end_.data());
-  return true;
 }
 
 inline bool DormandPrinceIntegrator::attempt_until_accepted() {
@@ -304,50 +233,7 @@ void DormandPrinceIntegrator::dense(double t, Vec& y) const {
     y = y1_;
     return;
   }
-  if (taylor_order_ > 0) {
-    double acc;
-    series(t - t0_, y[0], y[1], acc);
-    return;
-  }
   for (int i = 0; i < 2; ++i) y[i] = dense_component(t, i);
-}
-
-void DormandPrinceIntegrator::locate_on_interpolant(int component, double& lo, double& glo, double& hi, double& ghi,
-                                                    double ttol) const {
-  // Newton on the interpolant's polynomial, kept inside the bracket (bisection where it
-  // would leave it); once its steps fall below the tolerance, one probe just across the
-  // root closes the bracket. Two to four probes where Illinois takes eight.
-  //
-  // On a Taylor series θ̈ comes with θ and θ̇, and the impact's root takes Schröder's step
-  // t − v v' / (v'² − v v''), Newton's on v/v', quadratic even at a double root (a flight of
-  // microseconds landing almost without velocity). Measured on the block under ER1 once the
-  // crossings were located one at a time (find_roots), it took as many probes as Newton's
-  // (4 600 against 4 602 for 744 searches): kept for the double roots, not for speed.
-  double t = hi - ghi * (hi - lo) / (ghi - glo);
-  for (int it = 0; it < 100 && hi - lo > ttol && ghi != 0.0; ++it) {
-    t = std::clamp(t, lo + 0.25 * ttol, hi - 0.25 * ttol);
-    double v, slope, curvature = 0.0;
-    dense_value_slope(t, component, v, slope, curvature);
-    if (v == 0.0) {
-      hi = t, ghi = 0.0;
-      break;
-    }
-    const bool below = (v > 0.0) == (glo > 0.0);
-    if (below) {
-      lo = t, glo = v;
-    } else {
-      hi = t, ghi = v;
-    }
-    // ±inf or NaN for a zero slope: bisection below
-    const double newton = curvature == 0.0 ? t - v / slope : t - v * slope / (slope * slope - v * curvature);
-    if (std::abs(newton - t) < 0.5 * ttol) {
-      t = below ? t + 0.5 * ttol : t - 0.5 * ttol;
-    } else if (newton > lo && newton < hi) {
-      t = newton;
-    } else {
-      t = 0.5 * (lo + hi);
-    }
-  }
 }
 
 bool DormandPrinceIntegrator::roots_at(double t, double* g) {
@@ -388,7 +274,8 @@ void DormandPrinceIntegrator::locate(int i, double& lo, double& glo, double& hi,
   // A root that is a state component: Newton on the interpolant, no call of the problem.
   const int component = problem_.root_state_index(i);
   if (component >= 0) {
-    locate_on_interpolant(component, lo, glo, hi, ghi, ttol);
+    newton_in_bracket([&](double t, double& v, double& slope) { dense_value_slope(t, component, v, slope); }, lo, glo, hi,
+                      ghi, ttol);
   } else {
     illinois(i, lo, glo, hi, ghi, ttol);
   }
@@ -396,67 +283,14 @@ void DormandPrinceIntegrator::locate(int i, double& lo, double& glo, double& hi,
 
 bool DormandPrinceIntegrator::find_roots(double a, const double* g_a, double b, const double* g_b) {
   if (!root_candidate(g_a, g_b)) return false;  // most steps cross nothing: leave at once
+  auto roots_at = [this](double t, double* g) { return this->roots_at(t, g); };
+  auto locate = [this](int i, double& lo, double& glo, double& hi, double& ghi, double ttol) {
+    this->locate(i, lo, glo, hi, ghi, ttol);
+  };
+  if (!earliest_crossing(nroots_, dirs_, velocity_root_, a, g_a, b, g_b, root_tolerance(b, h_step_), roots_at, locate,
+                         root_time_, found_, g_root_))
+    return false;
   ++tally_.root_searches;
-  const double ttol = root_tolerance(b, h_step_);
-  double earliest = std::numeric_limits<double>::infinity();
-  std::array<double, kMaxRoots> when;  // NOLINT: filled below for every root
-  std::array<double, kMaxRoots> g;     // NOLINT: filled by roots_at before use
-  // One crossing is located; the others are checked at it below and located only if they
-  // came first. θ̇'s roots are tried first: in a step that holds a peak and the next impact,
-  // the peak comes first (Rolle), and the impact then needs no search in this step (nor
-  // the wide bracket around the peak that costs Newton most of its probes).
-  int first = -1;
-  for (int i = 0; i < nroots_; ++i) {
-    const auto k = static_cast<std::size_t>(i);
-    when[k] = std::numeric_limits<double>::infinity();
-    const double ga = g_a[i], gb = g_b[i];
-    if (ga == 0.0 || ga * gb > 0.0) continue;     // inactive, or no sign change
-    if (dirs_[k] != 0 && dirs_[k] * ga > 0.0) continue;  // crosses against its direction
-    if (first < 0 || (problem_.root_state_index(i) == 1 && problem_.root_state_index(first) != 1)) first = i;
-  }
-  if (first < 0) return false;
-  {
-    double lo = a, glo = g_a[first], hi = b, ghi = g_b[first];
-    locate(first, lo, glo, hi, ghi, ttol);
-    when[static_cast<std::size_t>(first)] = earliest = hi;
-  }
-  // A function with the same sign at both ends of the step may still cross before the
-  // earliest root and back: the stop angle exceeded at a θ peak inside the step, where
-  // |θ₁| is largest. At the earliest root, any function whose sign differs from its sign at
-  // `a` crossed before it: locate that crossing, and check again at the new earliest.
-  bool current = false;  // g holds the functions at `earliest`
-  for (int pass = 0; pass < nroots_; ++pass) {
-    if (!roots_at(earliest, g.data())) break;
-    current = true;
-    bool moved = false;
-    for (int i = 0; i < nroots_; ++i) {
-      const auto k = static_cast<std::size_t>(i);
-      const double ga = g_a[i], gm = g[k];
-      if (when[k] <= earliest || ga == 0.0 || ga * gm > 0.0) continue;
-      if (dirs_[k] != 0 && dirs_[k] * ga > 0.0) continue;
-      if (gm == 0.0) {  // a root at the earliest itself
-        when[k] = earliest;
-        continue;
-      }
-      double lo = a, glo = ga, hi = earliest, ghi = gm;
-      locate(i, lo, glo, hi, ghi, ttol);
-      when[k] = hi;
-      if (hi < earliest) earliest = hi, moved = true, current = false;
-    }
-    if (!moved) break;
-  }
-  // The functions at the root, for the search that resumes there (advance()).
-  if (current) {
-    g_root_ = g;
-  } else if (!roots_at(earliest, g_root_.data())) {
-    std::fill(g_root_.begin(), g_root_.end(), 0.0);
-  }
-  std::fill(found_.begin(), found_.end(), 0);
-  for (int i = 0; i < nroots_; ++i) {
-    const auto k = static_cast<std::size_t>(i);
-    if (when[k] <= earliest + ttol) found_[k] = 1;
-  }
-  root_time_ = earliest;
   return true;
 }
 

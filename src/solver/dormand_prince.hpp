@@ -17,33 +17,17 @@
 ///    |ŷ_i|), a PI controller (β = 0.04, safety 0.9, factor bounds 0.2…10), and the starting
 ///    step of §II.4 (two right-hand-side evaluations) unless the caller gives one;
 ///  - root functions checked for sign changes at step ends (directional, as SUNDIALS' root
-///    finding), and each crossing located on the dense output by the Illinois variant of
-///    regula falsi (M. Dowell and P. Jarratt, BIT 11 (1971) 168–174) to 100 ulp of the time,
-///    reporting the bracket's far end as SUNDIALS does. A root function that depends on the
-///    state alone costs no right-hand-side call per probe: OdeProblem::roots is called on the
-///    interpolated state, and the rocking problem's θ and θ̇ roots never call it.
+///    finding), and each crossing located on the dense output (root_search.hpp) to 100 ulp of
+///    the time, reporting the bracket's far end as SUNDIALS does: a root that is a state
+///    component (the rocking problem's θ and θ̇) by Newton's method on the interpolant, with
+///    no call of the problem; any other by the Illinois variant of regula falsi (M. Dowell and
+///    P. Jarratt, BIT 11 (1971) 168–174) on OdeProblem::roots at the interpolated state.
 ///
 /// The breakpoints (the record's samples, where ü_g has a kink) are part of the integrator:
 /// no step crosses one, and the step size the controller wanted is kept across it, so the
 /// integrator runs sample to sample without returning to its caller and without a restart
 /// (the right-hand side is continuous at a kink: the last stage of a step is still the first
 /// of the next). No heap allocation after construction; no N_Vector.
-///
-/// Taylor steps (integrator `taylor`, for a problem that has a Taylor series: the rigid
-/// rockers). Where the problem can expand its solution as a series (OdeProblem::taylor), a
-/// step is that series to a fixed order n instead of the Runge–Kutta stages: one expansion
-/// per step (one sincos for a rigid rocker), no rejected attempts and no step-size history.
-/// The step goes to the next breakpoint when the series' last two terms there, in the same
-/// weighted norm, are within the tolerance; otherwise to where they would be, the estimate
-/// of A. Jorba & M. Zou, "A software package for the numerical integration of ODEs by means
-/// of high-order Taylor methods", Exp. Math. 14 (2005) 99–117, §3.2 (without their e⁻²
-/// safety: the terms, not the radius, are bounded). The order grows slowly with the
-/// tolerance, n = ⌈−log₁₀(rtol)/2⌉ + 4 (6 at rtol 1e-4, 8 at 1e-7): most steps end at a
-/// record sample, where a lower order than Jorba & Zou's ⌈−ln(rtol)/2⌉ + 1 (which minimises
-/// the work per unit time of free steps) already meets the tolerance, and each order costs
-/// about 2n products (measured: bench/case_cost.py, the block under four records, orders
-/// 4–10). The series is the dense output: events are located on it exactly as on the
-/// Runge–Kutta interpolant.
 ///
 /// In lockstep (set_lockstep, the batch of src/solver/batch/) the integrator does not compute
 /// its step attempts: advance() returns kPending with the attempt's inputs in attempt(); the
@@ -58,6 +42,7 @@
 
 #include "dopri5_attempt.hpp"
 #include "integrators.hpp"
+#include "root_search.hpp"
 
 namespace pcrf::detail {
 
@@ -88,12 +73,8 @@ class DormandPrinceIntegrator final : public OdeIntegrator {
   const std::string& last_error() const override { return error_; }
   bool steps_between_samples() const override { return grid_.count > 0; }
 
-  /// Lockstep: step attempts are made by the caller (see above). Not with Taylor steps.
-  void set_lockstep(bool on);
-  /// The order of the Taylor steps; 0: Runge–Kutta steps.
-  int taylor_order() const { return taylor_order_; }
-  /// The Taylor order that follows a relative tolerance (see above).
-  static int taylor_order_for(double rtol, int order_max);
+  /// Lockstep: step attempts are made by the caller (see above).
+  void set_lockstep(bool on) { lockstep_ = on; }
   /// The pending attempt: its inputs set, its outputs for the caller to fill.
   Dopri5Attempt& attempt() { return attempt_; }
   /// Concludes the pending attempt from its outputs (accepted, or the next attempt made).
@@ -121,11 +102,6 @@ class DormandPrinceIntegrator final : public OdeIntegrator {
   /// Takes one accepted step (with retries); false on failure (error_ set). In lockstep, true
   /// with an attempt pending.
   bool step();
-  /// step() with the Taylor series.
-  bool taylor_step();
-  /// The series' truncation estimate over [0, h] in the weighted norm (≤ 1: within the
-  /// tolerance), and the step at which it would be 1 (`h_fit`).
-  double taylor_error(double h, double& h_fit) const;
   /// Attempts from h_trial_ until one is accepted (true), pending (true) or failure (false).
   bool attempt_until_accepted();
   /// Sets the next attempt's inputs from h_trial_; false on failure (error_ set).
@@ -143,14 +119,11 @@ class DormandPrinceIntegrator final : public OdeIntegrator {
     for (int i = 0; i < nroots_; ++i) candidate = candidate || (g_a[i] != 0.0 && g_a[i] * g_b[i] <= 0.0);
     return candidate;
   }
-  /// Looks for the earliest root crossing in (a, b] of the current step, from g_a at a.
-  /// Fills root_time_ and found_ and returns true when one exists.
+  /// Looks for the earliest root crossing in (a, b] of the current step, from g_a at a
+  /// (root_search.hpp). Fills root_time_, found_ and g_root_ and returns true when one exists.
   bool find_roots(double a, const double* g_a, double b, const double* g_b);
-  /// Narrows [lo, hi] (values glo, ghi of opposite signs) around the root of dense
-  /// component `component` to ttol.
-  void locate_on_interpolant(int component, double& lo, double& glo, double& hi, double& ghi, double ttol) const;
   /// Narrows [lo, hi] (values glo, ghi of opposite signs) around the root of function i to
-  /// ttol: locate_on_interpolant for a state component, else illinois.
+  /// ttol: Newton on the interpolant for a state component, else illinois.
   void locate(int i, double& lo, double& glo, double& hi, double& ghi, double ttol);
   /// Narrows [lo, hi] around the root of function i by the Illinois method (g on the dense
   /// output); false when the problem's root functions failed.
@@ -160,7 +133,7 @@ class DormandPrinceIntegrator final : public OdeIntegrator {
   void dense(double t, Vec& y) const;
   /// Component i of the Runge–Kutta dense output at t (within a step), and its time
   /// derivative: the polynomial c₀ + s c₁ + s s₁ c₂ + s² s₁ c₃ + s² s₁² c₄, s = (t − t₀)/h,
-  /// s₁ = 1 − s (a Taylor step's is series(): dense() and dense_value_slope() choose).
+  /// s₁ = 1 − s.
   /// Defined here: they sit in the root search's inner loop.
   double dense_component(double t, int i) const {
     const double s = (t - t0_) / h_step_, s1 = 1.0 - s;
@@ -175,27 +148,9 @@ class DormandPrinceIntegrator final : public OdeIntegrator {
     return (c[1][k] + (1.0 - 2.0 * s) * c[2][k] + s * (2.0 - 3.0 * s) * c[3][k] + 2.0 * s * s1 * (s1 - s) * c[4][k]) /
            h_step_;
   }
-  /// The step's series at τ and its first two derivatives (θ₁, θ̇₁, θ̈₁), by one Horner pass.
-  void series(double tau, double& v, double& dv, double& ddv) const {
-    v = taylor_[static_cast<std::size_t>(taylor_order_)], dv = 0.0, ddv = 0.0;
-    for (int k = taylor_order_ - 1; k >= 0; --k) {
-      ddv = ddv * tau + dv;
-      dv = dv * tau + v;
-      v = v * tau + taylor_[static_cast<std::size_t>(k)];
-    }
-    ddv *= 2.0;
-  }
-  /// dense_component and dense_slope together; on a Taylor series also θ̈ for θ (i = 0),
-  /// else `curvature` is left alone.
-  void dense_value_slope(double t, int i, double& v, double& slope, double& curvature) const {
-    if (taylor_order_ > 0) {
-      double s[3];
-      series(t - t0_, s[0], s[1], s[2]);
-      v = s[i], slope = s[i + 1];
-      if (i == 0) curvature = s[2];
-    } else {
-      v = dense_component(t, i), slope = dense_slope(t, i);
-    }
+  /// dense_component and dense_slope together.
+  void dense_value_slope(double t, int i, double& v, double& slope) const {
+    v = dense_component(t, i), slope = dense_slope(t, i);
   }
   /// The error weight atol_i + rtol·magnitude of component i.
   double weight(int i, double magnitude) const { return atol_[static_cast<std::size_t>(i)] + settings_.rtol * magnitude; }
@@ -205,6 +160,7 @@ class DormandPrinceIntegrator final : public OdeIntegrator {
   OdeProblem& problem_;
   SampleGrid grid_;
   int nroots_;
+  int velocity_root_ = -1;  ///< the root function that is y[1] (θ̇), located first; −1: none
   std::array<double, 2> atol_;  ///< atol_θ [rad], atol_ω [rad/s]
   std::array<int, kMaxRoots> dirs_{};
   double t_stop_ = 0.0;
@@ -234,8 +190,6 @@ class DormandPrinceIntegrator final : public OdeIntegrator {
   bool clamped_ = false, rejected_ = false;
   int failures_ = 0;
   bool lockstep_ = false;
-  int taylor_order_ = 0;  ///< > 0: Taylor steps of this order
-  std::array<double, 32> taylor_{};  ///< the current step's series of θ₁ in τ = t − t0_
 
   bool pending_ = false;         ///< lockstep: an attempt awaits take_attempt()
   bool attempt_failed_ = false;  ///< lockstep: the step failed for good (error_ says why)

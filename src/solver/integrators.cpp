@@ -14,6 +14,7 @@
 
 #include "dormand_prince.hpp"
 #include "sundials_compat.hpp"
+#include "taylor_integrator.hpp"
 
 namespace pcrf::detail {
 namespace {
@@ -288,8 +289,10 @@ class ErkIntegrator final : public SundialsBase {
 
 std::unique_ptr<OdeIntegrator> make_integrator(const SolverSettings& s, OdeProblem& p, SampleGrid samples) {
   switch (s.integrator) {
+    case Integrator::kTaylor:  // Taylor steps where the problem has a series (always between samples)
+      if (p.taylor_order_max() > 0) return std::make_unique<TaylorIntegrator>(s, p, samples);
+      [[fallthrough]];
     case Integrator::kDormandPrince5:
-    case Integrator::kTaylor:  // Taylor steps where the problem has a series
       return std::make_unique<DormandPrinceIntegrator>(s, p, s.stop_at_samples ? samples : SampleGrid{});
     case Integrator::kCvodeBdf: return std::make_unique<CvodeIntegrator>(s, p, true);
     case Integrator::kCvodeAdams: return std::make_unique<CvodeIntegrator>(s, p, false);

@@ -44,6 +44,26 @@ struct SampleGrid {
   }
 };
 
+/// Root function i of a second-order problem (y[1] = dy[0]/dt) as a closed form of y[0]'s
+/// time derivatives: what an integrator whose dense output is a series of y[0] (Taylor
+/// steps) evaluates and locates without calling OdeProblem::roots.
+struct RootForm {
+  static constexpr int kNone = -1;      ///< not a closed form: OdeProblem::roots alone
+  static constexpr int kConstant = -2;  ///< g_i = offset, never crossing (an inactive root)
+  /// d ≥ 0: g_i = y[0]⁽ᵈ⁾ − offset, or |y[0]⁽ᵈ⁾| − offset when `absolute` (d = 0: y[0], 1: y[1],
+  /// 2: dy[1]/dt).
+  int derivative = kNone;
+  bool absolute = false;
+  double offset = 0.0;
+};
+
+/// g_i from d = (y[0], y[1], dy[1]/dt, …) at one time; `f` is not kNone.
+inline double root_value(const RootForm& f, const double* d) {
+  if (f.derivative < 0) return f.offset;
+  const double v = d[f.derivative];
+  return (f.absolute ? std::abs(v) : v) - f.offset;
+}
+
 /// The ODE y' = f(t, y), y ∈ ℝ², with root functions g(t, y) ∈ ℝⁿ.
 class OdeProblem {
  public:
@@ -53,10 +73,15 @@ class OdeProblem {
   virtual int rhs(double t, const double* y, double* ydot) = 0;
   virtual int roots(double t, const double* y, double* g) = 0;
   virtual int root_count() const = 0;
+  /// Root function i as a closed form (see RootForm); kNone by default.
+  virtual RootForm root_form(int /*i*/) const { return {}; }
   /// The state component that root function i is (g_i = y[k]), or −1 when it is anything
-  /// else. An integrator with dense output may locate such a root on the interpolant alone,
-  /// without calling roots() at every probe.
-  virtual int root_state_index(int /*i*/) const { return -1; }
+  /// else: by default read from root_form(). An integrator with dense output may locate such
+  /// a root on the interpolant alone, without calling roots() at every probe.
+  virtual int root_state_index(int i) const {
+    const RootForm f = root_form(i);
+    return (f.derivative == 0 || f.derivative == 1) && !f.absolute && f.offset == 0.0 ? f.derivative : -1;
+  }
   /// ∂f/∂y, row-major 2×2, for implicit methods. Returns 0 on success; a problem without
   /// an analytic Jacobian returns −1 from has_jacobian() == false (difference quotients).
   virtual bool has_jacobian() const { return false; }

@@ -34,7 +34,8 @@ enum class Integrator {
   /// steps between record samples on its own, events located on its dense output.
   kDormandPrince5,
   /// Taylor series steps where the scene has its series (Housner's block, the rocking frame:
-  /// RigidRocker::taylor_series), with dopri5's breakpoints and events; dopri5 otherwise.
+  /// RigidRocker::taylor_series; src/solver/taylor_integrator.hpp), between record samples,
+  /// events located on the series; dopri5 otherwise.
   kTaylor,
   kCvodeBdf,    ///< SUNDIALS CVODE, BDF (orders 1–5), dense Newton
   kCvodeAdams,  ///< SUNDIALS CVODE, Adams–Moulton (orders 1–12), fixed point

@@ -1,0 +1,229 @@
+// Taylor steps with breakpoints and events (see taylor_integrator.hpp).
+#include "taylor_integrator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "dopri5_tableau.hpp"
+#include "pcrf/number_text.hpp"
+#include "root_search.hpp"
+
+namespace pcrf::detail {
+
+TaylorIntegrator::TaylorIntegrator(const SolverSettings& settings, OdeProblem& problem, SampleGrid breakpoints)
+    : settings_(settings),
+      problem_(problem),
+      grid_(breakpoints),
+      nroots_(problem.root_count()),
+      order_(order_for(settings.rtol, std::min(problem.taylor_order_max(), kOrderMax))),
+      atol_{settings.atol_theta_rad, settings.atol_omega_rad_s} {
+  if (problem.taylor_order_max() < 3) throw IntegratorError("taylor: the problem has no Taylor series");
+  if (nroots_ < 0 || nroots_ > kMaxRoots) throw IntegratorError("taylor: too many root functions");
+  for (int i = 0; i < nroots_; ++i) {
+    const RootForm f = problem.root_form(i);
+    if (f.derivative == RootForm::kNone || f.derivative > 2)
+      throw IntegratorError("taylor: root function " + std::to_string(i) + " is not a closed form of the series");
+    const auto k = static_cast<std::size_t>(i);
+    forms_[k] = f;
+    const bool constant = f.derivative == RootForm::kConstant;
+    index_[k] = constant ? 3 : f.derivative;
+    absolute_[k] = f.absolute && !constant;
+    offset_[k] = constant ? -f.offset : f.offset;
+  }
+  for (int i = nroots_ - 1; i >= 0; --i)
+    if (problem.root_state_index(i) == 1) velocity_root_ = i;
+}
+
+int TaylorIntegrator::order_for(double rtol, int order_max) {
+  const double n = std::ceil(-std::log10(std::max(rtol, kEps)) / 3.0) + 4.0;
+  return static_cast<int>(std::clamp(n, 3.0, static_cast<double>(order_max)));
+}
+
+void TaylorIntegrator::restart(double t0, const double* y0, const int* root_dirs, double t_stop, double /*h0*/) {
+  if (counts_.steps > 0 || counts_.rhs_evals > 0) ++counts_.reinits;
+  t0_ = t1_ = tcur_ = t0;
+  y1_[0] = y0[0], y1_[1] = y0[1];
+  t_stop_ = t_stop;
+  have_step_ = false;
+  error_.clear();
+  found_.fill(0);
+  for (int i = 0; i < nroots_; ++i) dirs_[static_cast<std::size_t>(i)] = root_dirs[i];
+  // The first step now: its series gives the root functions at the start. One that is zero
+  // there is judged a little later (as SUNDIALS and dopri5 do): a flight leaving θ₁ = 0 takes
+  // the sign it moves into, and a function still zero stays inactive until it moves away.
+  if (!step()) return;  // advance() reports the failure
+  double d[3];
+  at<2>(0.0, d);
+  roots_of(d, g_cur_.data());
+  if (std::any_of(g_cur_.begin(), g_cur_.begin() + nroots_, [](double g) { return g == 0.0; })) {
+    std::array<double, kMaxRoots> g{};
+    roots_at(t0 + root_tolerance(t0, h_step_), g.data());
+    for (int i = 0; i < nroots_; ++i) {
+      auto k = static_cast<std::size_t>(i);
+      if (g_cur_[k] == 0.0) g_cur_[k] = g[k];
+    }
+  }
+}
+
+void TaylorIntegrator::set_stop_time(double t_stop) {
+  t_stop_ = t_stop;
+  if (!have_step_ || t1_ <= t_stop_) return;
+  // The step goes beyond the new stop time: the next one starts again from tcur_.
+  double d[2];
+  at<1>(tcur_ - t0_, d);
+  y1_[0] = d[0], y1_[1] = d[1];
+  t1_ = tcur_;
+}
+
+double TaylorIntegrator::truncation(double h, double& h_fit) {
+  // The last two terms of θ (a_{n−1} h^{n−1}, a_n h^n) and of θ̇ ((n−1) a_{n−1} h^{n−2},
+  // n a_n h^{n−1}), each against half its component's weight. Most steps are one record
+  // interval long: the powers of h are those of the last step when h is within a millionth
+  // of it (k·dt − (k − 1)·dt differs from dt by rounding), an estimate changed by 1e-5 at most.
+  const int n = order_;
+  if (!(std::abs(h - h_powers_of_) <= 1e-6 * h)) {
+    double h_n2 = 1.0;  // h^(n−2)
+    for (int p = 0; p < n - 2; ++p) h_n2 *= h;
+    h_powers_[0] = h_n2 * h, h_powers_[1] = h_n2 * h * h, h_powers_[2] = h_n2, h_powers_[3] = h_n2 * h;
+    h_powers_of_ = h;
+  }
+  const double an1 = std::abs(a_[static_cast<std::size_t>(n - 1)]), an = std::abs(a_[static_cast<std::size_t>(n)]);
+  const double w0 = atol_[0] + settings_.rtol * std::abs(y0_[0]), w1 = atol_[1] + settings_.rtol * std::abs(y0_[1]);
+  const double terms[4] = {an1, an, (n - 1) * an1, n * an};
+  const double err = 2.0 * std::max(std::max(terms[0] * h_powers_[0], terms[1] * h_powers_[1]) / w0,
+                                    std::max(terms[2] * h_powers_[2], terms[3] * h_powers_[3]) / w1);
+  h_fit = h;
+  if (err > 1.0) {
+    const double weights[4] = {w0, w0, w1, w1};
+    const int powers[4] = {n - 1, n, n - 2, n - 1};
+    for (int i = 0; i < 4; ++i)
+      if (terms[i] > 0.0) h_fit = std::min(h_fit, std::pow(0.5 * weights[i] / terms[i], 1.0 / powers[i]));
+  }
+  return err;
+}
+
+bool TaylorIntegrator::step() {
+  t0_ = tcur_;
+  y0_[0] = y1_[0], y0_[1] = y1_[1];
+  const double limit = std::min(grid_.next_after(t0_), t_stop_);
+  double h = limit - t0_;
+  bool clamped = true;
+  if (settings_.max_step_s > 0.0 && h > settings_.max_step_s) h = settings_.max_step_s, clamped = false;
+  bool fresh = false;  // a_ holds the series for a step of h
+  for (int attempt = 0;; ++attempt) {
+    if (attempt > kMaxFailures || !(h > 16.0 * kEps * std::abs(t0_)) || !(h > 0.0))
+      return fail("taylor: step size " + number_text(h) + " s too small at t = " + number_text(t0_) + " s");
+    if (!fresh) {
+      ++counts_.rhs_evals;
+      if (!problem_.taylor(t0_, y0_, h, order_, a_.data(), fresh))
+        return fail("taylor: the series is not finite at t = " + number_text(t0_) + " s");
+    }
+    double h_fit = h;
+    if (truncation(h, h_fit) <= 1.0) break;
+    // Within a record interval the series holds for any shorter step: h_fit is within the
+    // tolerance at once. Under a chord it is the chord's: new coefficients for the new h.
+    h = std::min(h_fit, 0.9 * h);
+    clamped = false;
+  }
+  h_step_ = h;
+  t1_ = clamped ? limit : t0_ + h;
+  double d[3];
+  at<2>(h, d);
+  y1_[0] = d[0], y1_[1] = d[1];
+  have_step_ = true;
+  ++counts_.steps;
+  ++counts_.root_evals;
+  roots_of(d, g_end_.data());
+  return true;
+}
+
+template <int D>
+void TaylorIntegrator::locate_derivative(const RootForm& form, double& lo, double& glo, double& hi, double& ghi,
+                                         double ttol) const {
+  newton_in_bracket(
+      [&](double t, double& v, double& slope) {
+        double d[D + 2];
+        at<D + 1>(t - t0_, d);
+        const bool flip = form.absolute && d[D] < 0.0;
+        v = (flip ? -d[D] : d[D]) - form.offset;
+        slope = flip ? -d[D + 1] : d[D + 1];
+      },
+      lo, glo, hi, ghi, ttol);
+}
+
+void TaylorIntegrator::locate(int i, double& lo, double& glo, double& hi, double& ghi, double ttol) const {
+  const RootForm& form = forms_[static_cast<std::size_t>(i)];
+  switch (form.derivative) {
+    case 0: locate_derivative<0>(form, lo, glo, hi, ghi, ttol); break;
+    case 1: locate_derivative<1>(form, lo, glo, hi, ghi, ttol); break;
+    default: locate_derivative<2>(form, lo, glo, hi, ghi, ttol); break;  // a constant never crosses
+  }
+}
+
+bool TaylorIntegrator::find_root() {
+  auto roots_at = [this](double t, double* g) {
+    this->roots_at(t, g);
+    return true;
+  };
+  auto locate = [this](int i, double& lo, double& glo, double& hi, double& ghi, double ttol) {
+    this->locate(i, lo, glo, hi, ghi, ttol);
+  };
+  return earliest_crossing(nroots_, dirs_, velocity_root_, tcur_, g_cur_.data(), t1_, g_end_.data(),
+                           root_tolerance(t1_, h_step_), roots_at, locate, root_time_, found_, g_root_);
+}
+
+OdeIntegrator::Outcome TaylorIntegrator::advance(double tout, double& t, double* y, bool one_step) {
+  if (!error_.empty()) return report(Outcome::kFailure, tcur_, y1_, t, y);
+  for (;;) {
+    if (!have_step_ || tcur_ >= t1_) {
+      // A root may leave the state a few ulp short of the stop time: no step that short
+      // exists, so the state is taken as the stop time's.
+      if (t_stop_ - tcur_ <= 16.0 * kEps * std::max(1.0, std::abs(t_stop_))) tcur_ = std::max(tcur_, t_stop_);
+      if (tcur_ >= t_stop_) return report(Outcome::kReachedTime, tcur_, y1_, t, y);
+      if (counts_.steps > settings_.max_steps) {
+        fail("more than max_steps steps");
+        return report(Outcome::kFailure, tcur_, y1_, t, y);
+      }
+      if (!step()) return report(Outcome::kFailure, tcur_, y1_, t, y);
+    }
+    if (find_root()) {
+      double d[2];
+      at<1>(root_time_ - t0_, d);
+      tcur_ = root_time_;
+      g_cur_ = g_root_;
+      return report(Outcome::kRoot, tcur_, d, t, y);
+    }
+    if (tout < t1_) {  // tout inside the step: the state there; the step goes on
+      double d[2];
+      at<1>(tout - t0_, d);
+      tcur_ = tout;
+      g_cur_ = g_end_;  // no root in between: the signs are those at the step's end
+      return report(Outcome::kReachedTime, tout, d, t, y);
+    }
+    tcur_ = t1_;
+    g_cur_ = g_end_;
+    if (tcur_ >= tout || one_step) return report(Outcome::kReachedTime, tcur_, y1_, t, y);
+  }
+}
+
+void TaylorIntegrator::interpolate(double t, double* y) {
+  if (!have_step_) {
+    y[0] = y1_[0], y[1] = y1_[1];
+    return;
+  }
+  double d[2];
+  at<1>(t - t0_, d);
+  y[0] = d[0], y[1] = d[1];
+}
+
+void TaylorIntegrator::root_info(int* found) {
+  for (int i = 0; i < nroots_; ++i) found[i] = found_[static_cast<std::size_t>(i)];
+}
+
+bool TaylorIntegrator::fail(const std::string& text) {
+  error_ = text;
+  return false;
+}
+
+}  // namespace pcrf::detail

@@ -1,0 +1,164 @@
+/// \file taylor_integrator.hpp
+/// \brief Taylor steps: the integrator `taylor` for a problem that expands its solution as a
+/// series (the rigid rockers), stepping between record samples, events located on the
+/// series. Private to the solver.
+///
+/// Method:
+///  - a step is the problem's Taylor series of y[0] (OdeProblem::taylor) to a fixed order n,
+///    the forcing linear over the record interval (for a rigid rocker: one sincos and about
+///    n² products, the recurrences of A. Jorba & M. Zou, "A software package for the
+///    numerical integration of ODEs by means of high-order Taylor methods", Exp. Math. 14
+///    (2005) 99–117, §3);
+///  - the step goes to the next breakpoint (record sample) when the series' last two terms
+///    there, in the weighted norm of dopri5 (atol_i + rtol·|y_i|), are within the tolerance;
+///    otherwise to where they would be, the estimate of Jorba & Zou §3.2 (without their e⁻²
+///    safety: the terms, not the radius, are bounded). No rejected attempts and no step-size
+///    history: each step is sized by its own series;
+///  - the order grows slowly with the tolerance, n = ⌈−log₁₀(rtol)/3⌉ + 4 (6 at rtol 1e-4, 7
+///    at 1e-7): most steps end at a record sample, where a lower order than Jorba & Zou's
+///    ⌈−ln(rtol)/2⌉ + 1 (which minimises the work per unit time of free steps) already meets
+///    the tolerance;
+///  - the series is the dense output, and every root function is a closed form of it
+///    (OdeProblem::root_form: θ₁, θ̇₁, θ̈₁, |θ₁| − θ_stop): the functions at a step's end, and
+///    each probe of a root search, are one Horner pass over the series, with no call of the
+///    problem. Crossings are found as by dopri5 (root_search.hpp) and located by Newton's
+///    method on the series' derivative, to 100 ulp of the time.
+///
+/// The breakpoints are part of the integrator: no step crosses one (the series holds within
+/// one record interval), so the integrator runs sample to sample without returning to its
+/// caller. No heap allocation after construction.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <string>
+
+#include "integrators.hpp"
+
+namespace pcrf::detail {
+
+class TaylorIntegrator final : public OdeIntegrator {
+ public:
+  /// At most this many root functions.
+  static constexpr int kMaxRoots = 8;
+  /// The highest order (the series' order at rtol = ε is 10).
+  static constexpr int kOrderMax = 12;
+
+  /// `breakpoints`: no step crosses t = k·dt_s for k < count.
+  /// \throws IntegratorError when the problem has no series, more than kMaxRoots roots, or a
+  /// root function that is not a closed form of the series (OdeProblem::root_form).
+  TaylorIntegrator(const SolverSettings& settings, OdeProblem& problem, SampleGrid breakpoints);
+
+  /// `h0` is not used: every step is sized by its own series.
+  void restart(double t0, const double* y0, const int* root_dirs, double t_stop, double h0) override;
+  void set_stop_time(double t_stop) override;
+  Outcome advance(double tout, double& t, double* y, bool one_step) override;
+  void interpolate(double t, double* y) override;
+  void root_info(int* found) override;
+  SolverCounts counts() override { return counts_; }
+  const std::string& last_error() const override { return error_; }
+  bool steps_between_samples() const override { return grid_.count > 0; }
+
+  /// The series' order.
+  int order() const { return order_; }
+  /// The order that follows a relative tolerance (see above), within [3, order_max].
+  static int order_for(double rtol, int order_max);
+
+ private:
+  /// y[0]'s series and its derivatives 0 … D at τ = t − t0_ (d[k] = dᵏy[0]/dtᵏ).
+  template <int D>
+  void at(double tau, double* d) const {
+    switch (order_) {
+      case 5: horner<5, D>(tau, d); break;
+      case 6: horner<6, D>(tau, d); break;
+      case 7: horner<7, D>(tau, d); break;
+      case 8: horner<8, D>(tau, d); break;
+      default: horner<kOrderMax, D>(tau, d); break;  // the coefficients above the order are zero
+    }
+  }
+  /// Horner's scheme with derivatives over N + 1 coefficients, unrolled (the presets' orders
+  /// have their own): it runs at every step's end and root probe.
+  template <int N, int D>
+  void horner(double tau, double* d) const {
+    double p[D + 1];
+    p[0] = a_[N];
+    for (int j = 1; j <= D; ++j) p[j] = 0.0;
+#pragma GCC unroll 16
+    for (int k = N - 1; k >= 0; --k) {
+#pragma GCC unroll 4
+      for (int j = D; j >= 1; --j) p[j] = p[j] * tau + p[j - 1];
+      p[0] = p[0] * tau + a_[static_cast<std::size_t>(k)];
+    }
+    double factorial = 1.0;
+    d[0] = p[0];
+    for (int j = 1; j <= D; ++j) factorial *= j, d[j] = p[j] * factorial;
+  }
+
+  /// One step from tcur_ (the series, its size, the state and root functions at its end);
+  /// false on failure (error_ set).
+  bool step();
+  /// The series' truncation estimate over [0, h] in the weighted norm (≤ 1: within the
+  /// tolerance), and the step at which it would be 1 (`h_fit`).
+  double truncation(double h, double& h_fit);
+  /// The root functions from d = (θ, θ̇, θ̈) at one time: root_value, with the forms
+  /// unpacked (a constant g_i = c reads 0 − (−c)).
+  void roots_of(const double* d, double* g) const {
+    const double e[4] = {d[0], d[1], d[2], 0.0};
+    for (int i = 0; i < nroots_; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      const double v = e[index_[k]];
+      g[i] = (absolute_[k] ? std::abs(v) : v) - offset_[k];
+    }
+  }
+  /// The root functions at t within the step.
+  void roots_at(double t, double* g) const {
+    double d[3];
+    at<2>(t - t0_, d);
+    roots_of(d, g);
+  }
+  /// Narrows [lo, hi] (values glo, ghi of opposite signs) around the root of function i to
+  /// ttol, by Newton's method on the series.
+  void locate(int i, double& lo, double& glo, double& hi, double& ghi, double ttol) const;
+  template <int D>
+  void locate_derivative(const RootForm& form, double& lo, double& glo, double& hi, double& ghi, double ttol) const;
+  /// The earliest crossing in (tcur_, t1_]: root_time_, found_, g_root_; false when none.
+  bool find_root();
+  /// The state y at t, reported as `outcome`.
+  Outcome report(Outcome outcome, double t_at, const double* y_at, double& t, double* y) const {
+    t = t_at;
+    y[0] = y_at[0], y[1] = y_at[1];
+    return outcome;
+  }
+  bool fail(const std::string& text);
+
+  SolverSettings settings_;
+  OdeProblem& problem_;
+  SampleGrid grid_;
+  int nroots_;
+  int order_;
+  std::array<RootForm, kMaxRoots> forms_{};
+  std::array<int, kMaxRoots> index_{};      ///< forms_ unpacked for roots_of: the derivative (3: constant),
+  std::array<bool, kMaxRoots> absolute_{};  ///< whether its magnitude,
+  std::array<double, kMaxRoots> offset_{};  ///< and the offset (−c for a constant c)
+  int velocity_root_ = -1;  ///< the root function that is θ̇, located first; −1: none
+  std::array<double, 2> atol_;  ///< atol_θ [rad], atol_ω [rad/s]
+  std::array<int, kMaxRoots> dirs_{};
+  double t_stop_ = 0.0;
+
+  // The current step [t0_, t1_], its series in τ = t − t0_ (zero above order_); the position
+  // tcur_ within it.
+  double t0_ = 0.0, t1_ = 0.0, tcur_ = 0.0, h_step_ = 0.0;
+  double y0_[2] = {0.0, 0.0}, y1_[2] = {0.0, 0.0};  ///< the state at t0_ and t1_
+  bool have_step_ = false;
+  std::array<double, kOrderMax + 1> a_{};
+  double h_powers_[4] = {1.0, 1.0, 1.0, 1.0};  ///< h^(n−1), hⁿ, h^(n−2), h^(n−1) of the step h_powers_of_
+  double h_powers_of_ = 0.0;
+  std::array<double, kMaxRoots> g_cur_{}, g_end_{}, g_root_{};  ///< at tcur_, t1_, root_time_
+  std::array<int, kMaxRoots> found_{};
+  double root_time_ = 0.0;
+  SolverCounts counts_;
+  std::string error_;
+};
+
+}  // namespace pcrf::detail
