@@ -5,7 +5,9 @@
 // The rigid rockers under it: taylor_test.cpp and rocking_canon_test.cpp.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <numbers>
 #include <vector>
 
