@@ -63,14 +63,8 @@ void FlightProblem::evaluated(double t, const double* y, const double* ydot) {
 }
 
 inline GroundLine FlightProblem::ground_line(double t0, double h, bool& exact) {
-  const ExcitationCursor::Interval& in = forcing_.interval();
-  // A step that starts where the last one ended, at a sample: the next interval, no search
-  // (at(t0) there is its first sample, h0).
-  if (t0 == in.hi_s && forcing_.next_interval()) {
-    exact = true;
-    return {in.h0, in.dh * in.inv_dt_per_s, in.v0, in.dv * in.inv_dt_per_s};
-  }
   const GroundAcceleration a = forcing_.at(t0);  // enters the interval holding t0
+  const ExcitationCursor::Interval& in = forcing_.interval();
   exact = t0 >= in.lo_s && t0 < in.hi_s;
   if (exact)
     return {a.horizontal_m_s2, in.dh * in.inv_dt_per_s, a.vertical_m_s2, in.dv * in.inv_dt_per_s};

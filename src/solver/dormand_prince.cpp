@@ -22,10 +22,9 @@ DormandPrinceIntegrator::DormandPrinceIntegrator(const SolverSettings& settings,
       problem_(problem),
       grid_(breakpoints),
       nroots_(problem.root_count()),
+      velocity_root_(problem.root_of_state(1)),
       atol_{settings.atol_theta_rad, settings.atol_omega_rad_s} {
   if (nroots_ < 0 || nroots_ > kMaxRoots) throw IntegratorError("dopri5: too many root functions");
-  for (int i = nroots_ - 1; i >= 0; --i)
-    if (problem.root_state_index(i) == 1) velocity_root_ = i;
 }
 
 void DormandPrinceIntegrator::restart(double t0, const double* y0, const int* root_dirs, double t_stop, double h0) {
@@ -282,7 +281,6 @@ void DormandPrinceIntegrator::locate(int i, double& lo, double& glo, double& hi,
 }
 
 bool DormandPrinceIntegrator::find_roots(double a, const double* g_a, double b, const double* g_b) {
-  if (!root_candidate(g_a, g_b)) return false;  // most steps cross nothing: leave at once
   auto roots_at = [this](double t, double* g) { return this->roots_at(t, g); };
   auto locate = [this](int i, double& lo, double& glo, double& hi, double& ghi, double ttol) {
     this->locate(i, lo, glo, hi, ghi, ttol);

@@ -160,7 +160,7 @@ class DormandPrinceIntegrator final : public OdeIntegrator {
   OdeProblem& problem_;
   SampleGrid grid_;
   int nroots_;
-  int velocity_root_ = -1;  ///< the root function that is y[1] (θ̇), located first; −1: none
+  int velocity_root_;  ///< the root function that is y[1] (θ̇), located first; −1: none
   std::array<double, 2> atol_;  ///< atol_θ [rad], atol_ω [rad/s]
   std::array<int, kMaxRoots> dirs_{};
   double t_stop_ = 0.0;

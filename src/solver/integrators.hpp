@@ -82,6 +82,12 @@ class OdeProblem {
     const RootForm f = root_form(i);
     return (f.derivative == 0 || f.derivative == 1) && !f.absolute && f.offset == 0.0 ? f.derivative : -1;
   }
+  /// The first root function that is state component k (root_state_index), −1 when none.
+  int root_of_state(int k) const {
+    for (int i = 0; i < root_count(); ++i)
+      if (root_state_index(i) == k) return i;
+    return -1;
+  }
   /// ∂f/∂y, row-major 2×2, for implicit methods. Returns 0 on success; a problem without
   /// an analytic Jacobian returns −1 from has_jacobian() == false (difference quotients).
   virtual bool has_jacobian() const { return false; }

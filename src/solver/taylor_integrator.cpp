@@ -17,22 +17,20 @@ TaylorIntegrator::TaylorIntegrator(const SolverSettings& settings, OdeProblem& p
       grid_(breakpoints),
       nroots_(problem.root_count()),
       order_(order_for(settings.rtol, std::min(problem.taylor_order_max(), kOrderMax))),
+      velocity_root_(problem.root_of_state(1)),
       atol_{settings.atol_theta_rad, settings.atol_omega_rad_s} {
   if (problem.taylor_order_max() < 3) throw IntegratorError("taylor: the problem has no Taylor series");
   if (nroots_ < 0 || nroots_ > kMaxRoots) throw IntegratorError("taylor: too many root functions");
   for (int i = 0; i < nroots_; ++i) {
     const RootForm f = problem.root_form(i);
-    if (f.derivative == RootForm::kNone || f.derivative > 2)
+    if (f.derivative != RootForm::kConstant && (f.derivative < 0 || f.derivative > 2))
       throw IntegratorError("taylor: root function " + std::to_string(i) + " is not a closed form of the series");
     const auto k = static_cast<std::size_t>(i);
-    forms_[k] = f;
     const bool constant = f.derivative == RootForm::kConstant;
     index_[k] = constant ? 3 : f.derivative;
     absolute_[k] = f.absolute && !constant;
     offset_[k] = constant ? -f.offset : f.offset;
   }
-  for (int i = nroots_ - 1; i >= 0; --i)
-    if (problem.root_state_index(i) == 1) velocity_root_ = i;
 }
 
 int TaylorIntegrator::order_for(double rtol, int order_max) {
@@ -139,25 +137,26 @@ bool TaylorIntegrator::step() {
 }
 
 template <int D>
-void TaylorIntegrator::locate_derivative(const RootForm& form, double& lo, double& glo, double& hi, double& ghi,
-                                         double ttol) const {
+void TaylorIntegrator::locate_derivative(int i, double& lo, double& glo, double& hi, double& ghi, double ttol) const {
+  const auto k = static_cast<std::size_t>(i);
+  const bool absolute = absolute_[k];
+  const double offset = offset_[k];
   newton_in_bracket(
       [&](double t, double& v, double& slope) {
         double d[D + 2];
         at<D + 1>(t - t0_, d);
-        const bool flip = form.absolute && d[D] < 0.0;
-        v = (flip ? -d[D] : d[D]) - form.offset;
+        const bool flip = absolute && d[D] < 0.0;
+        v = (flip ? -d[D] : d[D]) - offset;
         slope = flip ? -d[D + 1] : d[D + 1];
       },
       lo, glo, hi, ghi, ttol);
 }
 
 void TaylorIntegrator::locate(int i, double& lo, double& glo, double& hi, double& ghi, double ttol) const {
-  const RootForm& form = forms_[static_cast<std::size_t>(i)];
-  switch (form.derivative) {
-    case 0: locate_derivative<0>(form, lo, glo, hi, ghi, ttol); break;
-    case 1: locate_derivative<1>(form, lo, glo, hi, ghi, ttol); break;
-    default: locate_derivative<2>(form, lo, glo, hi, ghi, ttol); break;  // a constant never crosses
+  switch (index_[static_cast<std::size_t>(i)]) {
+    case 0: locate_derivative<0>(i, lo, glo, hi, ghi, ttol); break;
+    case 1: locate_derivative<1>(i, lo, glo, hi, ghi, ttol); break;
+    default: locate_derivative<2>(i, lo, glo, hi, ghi, ttol); break;  // a constant never crosses
   }
 }
 

@@ -28,6 +28,7 @@ class SeriesOscillator final : public detail::OdeProblem {
   double level = 0.5;
   bool closed_forms = true;
   bool constant_curvature_root = false;  ///< root 2 the constant 1 instead of y''
+  int root_3_derivative = 0;             ///< the derivative root 3 reads (0: |y| − level)
   int series_calls = 0;
   int rhs(double, const double* y, double* ydot) override {
     ydot[0] = y[1];
@@ -42,7 +43,7 @@ class SeriesOscillator final : public detail::OdeProblem {
   int root_count() const override { return 4; }
   RootForm root_form(int i) const override {
     if (!closed_forms) return {};
-    if (i == 3) return {0, true, level};
+    if (i == 3) return {root_3_derivative, true, level};
     if (i == 2 && constant_curvature_root) return {RootForm::kConstant, false, 1.0};
     return {i, false, 0.0};
   }
@@ -184,6 +185,11 @@ TEST(TaylorIntegrator, RefusesAProblemWithoutSeriesOrClosedFormRoots) {
   SeriesOscillator p;
   p.closed_forms = false;
   EXPECT_THROW(TaylorIntegrator(taylor_settings(1e-7), p, {}), detail::IntegratorError);
+  p.closed_forms = true;
+  for (int derivative : {3, -5}) {  // beyond the series' θ̈, and no form at all
+    p.root_3_derivative = derivative;
+    EXPECT_THROW(TaylorIntegrator(taylor_settings(1e-7), p, {}), detail::IntegratorError) << derivative;
+  }
   struct NoSeries final : detail::OdeProblem {
     int rhs(double, const double*, double*) override { return 0; }
     int roots(double, const double*, double*) override { return 0; }

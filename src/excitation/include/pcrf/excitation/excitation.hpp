@@ -58,7 +58,10 @@ class ExcitationCursor {
   explicit ExcitationCursor(const Excitation& excitation) : excitation_(excitation) {}
 
   GroundAcceleration at(double t_s) {
-    if (!(t_s >= i_.lo_s && t_s < i_.hi_s) && !enter(t_s)) return excitation_.at(t_s);
+    // Leaving the interval at its end (where a step that ended at a sample goes on): the next
+    // one, without enter()'s search (which finds the same interval there, exactly).
+    if (!(t_s >= i_.lo_s && t_s < i_.hi_s) && !(t_s == i_.hi_s && next_interval()) && !enter(t_s))
+      return excitation_.at(t_s);
     const double frac = (t_s - i_.lo_s) * i_.inv_dt_per_s;
     return {i_.h0 + frac * i_.dh, i_.v0 + frac * i_.dv};
   }
