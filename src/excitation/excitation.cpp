@@ -40,12 +40,7 @@ bool ExcitationCursor::enter(double t_s) {
   i_.lo_s = static_cast<double>(k) * dt;
   i_.hi_s = static_cast<double>(k + 1) * dt;
   i_.inv_dt_per_s = h.inverse_dt_per_s();
-  const auto& a = h.samples_m_s2();
-  i_.h0 = a[k], i_.dh = a[k + 1] - a[k];
-  if (const GroundMotion* v = excitation_.vertical()) {
-    const auto& b = v->samples_m_s2();
-    i_.v0 = b[k], i_.dv = b[k + 1] - b[k];
-  }
+  load_samples(k);
   return true;
 }
 
@@ -60,22 +55,6 @@ bool ExcitationCursor::enter_tail(double t_s) {
   i_.lo_s = std::nextafter(end_s, std::numeric_limits<double>::infinity());
   i_.hi_s = std::numeric_limits<double>::max();
   i_.inv_dt_per_s = excitation_.horizontal().inverse_dt_per_s();
-  return true;
-}
-
-bool ExcitationCursor::next_interval() {
-  const GroundMotion& h = excitation_.horizontal();
-  if (!sampled_ || k_ + 2 >= h.size()) return false;
-  const std::size_t k = ++k_;
-  const double dt = h.dt_s();
-  const auto& a = h.samples_m_s2();
-  i_.lo_s = i_.hi_s;  // static_cast<double>(k) * dt, as enter() computes it
-  i_.hi_s = static_cast<double>(k + 1) * dt;
-  i_.h0 = a[k], i_.dh = a[k + 1] - a[k];
-  if (const GroundMotion* v = excitation_.vertical()) {
-    const auto& b = v->samples_m_s2();
-    i_.v0 = b[k], i_.dv = b[k + 1] - b[k];
-  }
   return true;
 }
 

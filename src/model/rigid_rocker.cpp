@@ -43,6 +43,7 @@ RigidRocker::RigidRocker(const RockerParameters& p) : p_(p) {
   check(restitution_ >= 0.0 && restitution_ <= 1.0, "restitution", "must lie in [0, 1]", restitution_);
   inertia_m2_ = p.size_m * p.size_m * (4.0 / 3.0 + 4.0 * p.beam_mass_ratio);
   moment_over_inertia_per_m_ = (1.0 + 2.0 * p.beam_mass_ratio) * p.size_m / inertia_m2_;
+  ScalarOps::sincos(p.slenderness_rad, sin_alpha_, cos_alpha_);
   settle_rest();
 }
 
@@ -75,6 +76,7 @@ namespace {
 /// on the side's sign (σ(g + v0), σ v1, h0, h1).
 struct SeriesInput {
   double k_inertia, alpha, sigma, g0, g1, h0, h1;
+  double sin_alpha, cos_alpha;  ///< sin and cos of x at θ₁ = 0 (α + σ·0 is α)
 };
 
 /// Two doubles in one register (GCC/Clang vector extensions: SSE2 on x86-64, Advanced SIMD
@@ -92,7 +94,11 @@ bool series_of_order(const SeriesInput& in, double theta1, double omega1, double
   a[0] = theta1;
   a[1] = omega1;
   double s0, c0;
-  ScalarOps::sincos(in.alpha + in.sigma * theta1, s0, c0);  // the acceleration's own sin/cos
+  if (theta1 == 0.0) {  // a flight leaving an impact
+    s0 = in.sin_alpha, c0 = in.cos_alpha;
+  } else {
+    ScalarOps::sincos(in.alpha + in.sigma * theta1, s0, c0);  // the acceleration's own sin/cos
+  }
   p[0] = Pair{s0, c0}, q[0] = Pair{c0, -s0};
   jx[1] = in.sigma * omega1;
   a[2] = 0.5 * in.k_inertia * (in.g0 * s0 - in.h0 * c0);
@@ -115,25 +121,36 @@ bool series_of_order(const SeriesInput& in, double theta1, double omega1, double
   return std::isfinite(sum);
 }
 
-using SeriesFunction = bool (*)(const SeriesInput&, double, double, double*);
+/// The kernel of order N: constants (k_inertia, α, σ, g, sin α, cos α) and the ground on the
+/// side's sign make the SeriesInput.
+template <int N>
+bool kernel_of_order(const double* c, double theta1, double omega1, const GroundLine& ground, double* a) {
+  const double sigma = c[2];
+  const SeriesInput in{c[0],  c[1], sigma, sigma * (c[3] + ground.v0_m_s2), sigma * ground.v1_m_s3, ground.h0_m_s2,
+                       ground.h1_m_s3, c[4], c[5]};
+  return series_of_order<N>(in, theta1, omega1, a);
+}
 
 template <int... N>
-constexpr std::array<SeriesFunction, sizeof...(N)> series_table(std::integer_sequence<int, N...>) {
-  return {&series_of_order<N + 1>...};
+constexpr std::array<TaylorKernel::Series, sizeof...(N)> kernel_table(std::integer_sequence<int, N...>) {
+  return {&kernel_of_order<N + 1>...};
 }
-/// series_of_order<n> at [n − 1], n = 1 … kTaylorOrderMax.
-constexpr auto kSeries = series_table(std::make_integer_sequence<int, RigidRocker::kTaylorOrderMax>{});
+/// kernel_of_order<n> at [n − 1], n = 1 … kTaylorOrderMax.
+constexpr auto kKernels = kernel_table(std::make_integer_sequence<int, RigidRocker::kTaylorOrderMax>{});
 
 }  // namespace
 
+TaylorKernel RigidRocker::taylor_kernel(int side, int order) const {
+  if (order < 1 || order > kTaylorOrderMax) return {};
+  const double sigma = side < 0 ? 1.0 : -1.0;
+  return {kKernels[static_cast<std::size_t>(order - 1)],
+          {moment_over_inertia_per_m_, p_.slenderness_rad, sigma, p_.gravity_m_s2, sin_alpha_, cos_alpha_}};
+}
+
 bool RigidRocker::taylor_series(double theta1, double omega1, const GroundLine& ground, int side, int order,
                                 double* a) const {
-  if (order < 1 || order > kTaylorOrderMax) return false;
-  const double sigma = side < 0 ? 1.0 : -1.0;
-  const SeriesInput in{moment_over_inertia_per_m_, p_.slenderness_rad, sigma,
-                       sigma * (p_.gravity_m_s2 + ground.v0_m_s2), sigma * ground.v1_m_s3,
-                       ground.h0_m_s2, ground.h1_m_s3};
-  return kSeries[static_cast<std::size_t>(order - 1)](in, theta1, omega1, a);
+  const TaylorKernel kernel = taylor_kernel(side, order);
+  return kernel.series != nullptr && kernel.series(kernel.constants.data(), theta1, omega1, ground, a);
 }
 
 double RigidRocker::overturn_angle_rad() const { return 0.5 * std::numbers::pi; }

@@ -63,19 +63,27 @@ void FlightProblem::evaluated(double t, const double* y, const double* ydot) {
 }
 
 inline GroundLine FlightProblem::ground_line(double t0, double h, bool& exact) {
-  const GroundAcceleration a = forcing_.at(t0);  // enters the interval holding t0
-  const ExcitationCursor::Interval& in = forcing_.interval();
-  exact = t0 >= in.lo_s && t0 < in.hi_s;
-  if (exact)
-    return {a.horizontal_m_s2, in.dh * in.inv_dt_per_s, a.vertical_m_s2, in.dv * in.inv_dt_per_s};
+  GroundLine line;
+  exact = forcing_.line_from(t0, line);
+  return exact ? line : chord(t0, h);
+}
+
+void FlightProblem::load_kernels(int order) {
+  kernels_ = {scene_.taylor_kernel(-1, order), scene_.taylor_kernel(1, order)};
+  kernel_order_ = order;
+}
+
+GroundLine FlightProblem::chord(double t0, double h) {
   // At the record's last sample the ground is already the tail's for any τ > 0.
-  const GroundAcceleration b = forcing_.at(t0 + h), start = t0 < record_end_s_ ? a : b;
+  const GroundAcceleration a = forcing_.at(t0), b = forcing_.at(t0 + h), start = t0 < record_end_s_ ? a : b;
   return {start.horizontal_m_s2, (b.horizontal_m_s2 - start.horizontal_m_s2) / h, start.vertical_m_s2,
           (b.vertical_m_s2 - start.vertical_m_s2) / h};
 }
 
 bool FlightProblem::taylor(double t0, const double* y0, double h, int order, double* a, bool& for_any_h) {
-  return scene_.taylor_series(y0[0], y0[1], ground_line(t0, h, for_any_h), side, order, a);
+  if (order != kernel_order_) load_kernels(order);
+  const TaylorKernel& kernel = kernels_[side > 0 ? 1 : 0];
+  return kernel.series != nullptr && kernel.series(kernel.constants.data(), y0[0], y0[1], ground_line(t0, h, for_any_h), a);
 }
 
 std::unique_ptr<OdeIntegrator> CaseRun::make_integrator(const SolverSettings& solver, FlightProblem& problem,
@@ -166,8 +174,8 @@ inline void CaseRun::start_flight(double t, const double* y, std::uint32_t event
   // step guess, which then steps over the whole flight and can lose the return crossing
   // in its interpolant: start with a step that resolves the flight.
   double h0 = 0.0;
-  if (y[0] == 0.0 && y[1] != 0.0) {
-    const double a = std::abs(scene_.rest_acceleration(excitation_.at(t), problem_.side));
+  if (y[0] == 0.0 && y[1] != 0.0 && integrator_->takes_first_step()) {
+    const double a = std::abs(scene_.rest_acceleration(problem_.ground_at(t), problem_.side));
     const double flight_s = 2.0 * std::abs(y[1]) / a;
     if (std::isfinite(flight_s) && flight_s < 0.01) h0 = flight_s / 16.0;
   }
@@ -295,9 +303,9 @@ inline void CaseRun::impact(double t, double* y) {
 //  - T ≤ zeno_time_s: the sequence is over within a negligible time, or
 //  - the flight rises less than ten times the absolute tolerance on θ₁: no integrator
 //    run at that tolerance resolves it (its computed θ and θ̇ are noise).
-inline bool CaseRun::returns_to_rest(double t, double omega_after) const {
+inline bool CaseRun::returns_to_rest(double t, double omega_after) {
   if (!holds_closed(t) || restitution_ >= 1.0) return false;
-  const GroundAcceleration a = excitation_.at(t);
+  const GroundAcceleration a = problem_.ground_at(t);
   const double a_min = std::min(std::abs(scene_.rest_acceleration(a, -1)), std::abs(scene_.rest_acceleration(a, +1)));
   const double v = std::abs(omega_after);
   const double remaining_s = 2.0 * v / (a_min * (1.0 - restitution_));
@@ -305,8 +313,8 @@ inline bool CaseRun::returns_to_rest(double t, double omega_after) const {
   return remaining_s <= physics_.zeno_time_s || rise_rad <= 10.0 * solver_.atol_theta_rad;
 }
 
-inline bool CaseRun::holds_closed(double t) const {
-  return scene_.holds_closed(excitation_.at(t));
+inline bool CaseRun::holds_closed(double t) {
+  return scene_.holds_closed(problem_.ground_at(t));
 }
 
 inline void CaseRun::settle(double t) {

@@ -55,6 +55,9 @@ class FlightProblem final : public detail::OdeProblem {
     }
   }
 
+  /// The ground at t (Excitation::at, bit for bit, through the flight's cursor).
+  GroundAcceleration ground_at(double t) { return forcing_.at(t); }
+
   bool has_jacobian() const override { return true; }
   int jacobian(double t, const double* y, double* dfdy) override;
   void evaluated(double t, const double* y, const double* ydot) override;
@@ -78,6 +81,11 @@ class FlightProblem final : public detail::OdeProblem {
   /// The ground over [t0, t0 + h]: the record's interval holding t0 (`exact`), else
   /// (after the record, components on their own time axes) the chord.
   GroundLine ground_line(double t0, double h, bool& exact);
+  /// The chord of the ground over [t0, t0 + h] (out of line: after the record, or components
+  /// on their own time axes).
+  [[gnu::noinline]] GroundLine chord(double t0, double h);
+  /// The scene's series kernels of `order` (once per case, out of line).
+  [[gnu::noinline]] void load_kernels(int order);
 
   const Scene& scene_;
   const EomTable& table_;  // the prepared frame's: built once for every case of the frame
@@ -89,6 +97,8 @@ class FlightProblem final : public detail::OdeProblem {
   double last_y_[2] = {0.0, 0.0};
   int last_side_ = 0;
   double last_acc_ = 0.0;
+  std::array<TaylorKernel, 2> kernels_{};  ///< the scene's series on sides −1 and +1, of order kernel_order_
+  int kernel_order_ = 0;
 };
 
 /// The state machine of one case: rest → uplift → flights and impacts → rest or failure.
@@ -138,8 +148,8 @@ class CaseRun {
   bool fly();
   bool handle_roots(double t, double* y);
   void impact(double t, double* y);
-  bool returns_to_rest(double t, double omega_after) const;
-  bool holds_closed(double t) const;
+  bool returns_to_rest(double t, double omega_after);
+  bool holds_closed(double t);
   void settle(double t);
   void start_flight(double t, const double* y, std::uint32_t events = kEventNone);
   void note_theta(double t, double theta);

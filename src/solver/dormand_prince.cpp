@@ -21,6 +21,7 @@ DormandPrinceIntegrator::DormandPrinceIntegrator(const SolverSettings& settings,
     : settings_(settings),
       problem_(problem),
       grid_(breakpoints),
+      next_sample_(breakpoints),
       nroots_(problem.root_count()),
       velocity_root_(problem.root_of_state(1)),
       atol_{settings.atol_theta_rad, settings.atol_omega_rad_s} {
@@ -134,7 +135,7 @@ bool DormandPrinceIntegrator::step() {
   y0_ = y1_;
   k1_ = k7_;
   if (!std::isfinite(k1_[0]) || !std::isfinite(k1_[1])) return fail(error_.empty() ? "dopri5: non-finite derivative" : error_);
-  limit_ = std::min(grid_.next_after(t0_), t_stop_);
+  limit_ = std::min(next_sample_.after(t0_), t_stop_);
   h_trial_ = h_;
   if (settings_.max_step_s > 0.0) h_trial_ = std::min(h_trial_, settings_.max_step_s);
   rejected_ = false;
@@ -273,8 +274,8 @@ void DormandPrinceIntegrator::locate(int i, double& lo, double& glo, double& hi,
   // A root that is a state component: Newton on the interpolant, no call of the problem.
   const int component = problem_.root_state_index(i);
   if (component >= 0) {
-    newton_in_bracket([&](double t, double& v, double& slope) { dense_value_slope(t, component, v, slope); }, lo, glo, hi,
-                      ghi, ttol);
+    newton_in_bracket([&](double t, double& v, double& slope, double&) { dense_value_slope(t, component, v, slope); },
+                      lo, glo, hi, ghi, ttol);
   } else {
     illinois(i, lo, glo, hi, ghi, ttol);
   }

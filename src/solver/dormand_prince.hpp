@@ -159,6 +159,7 @@ class DormandPrinceIntegrator final : public OdeIntegrator {
   SolverSettings settings_;
   OdeProblem& problem_;
   SampleGrid grid_;
+  NextSample next_sample_;  ///< grid_'s next sample after a step's start
   int nroots_;
   int velocity_root_;  ///< the root function that is y[1] (θ̇), located first; −1: none
   std::array<double, 2> atol_;  ///< atol_θ [rad], atol_ω [rad/s]

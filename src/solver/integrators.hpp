@@ -44,6 +44,44 @@ struct SampleGrid {
   }
 };
 
+/// SampleGrid::next_after for the times of an integrator's steps, which mostly move forward
+/// by one sample: the sample found last, or the one after it, is checked first (no division
+/// or floor). The same answer as next_after for any t: a sample that is next for t is next for
+/// any later t it still lies a hair ahead of, since every earlier one failed for an earlier t.
+class NextSample {
+ public:
+  explicit NextSample(SampleGrid grid)
+      : grid_(grid), last_k_(static_cast<double>(grid.count) - 1.0), min_gap_s_(1e-9 * grid.dt_s) {}
+
+  double after(double t) {
+    if (k_ > 0.0 && t >= t_) {
+      if (ahead(tb_, t)) return remember(t);
+      const double k = k_ + 1.0, tb = k * grid_.dt_s;
+      if (ahead(tb, t)) {
+        k_ = k, tb_ = tb;
+        return remember(t);
+      }
+    }
+    tb_ = grid_.next_after(t);
+    k_ = std::isfinite(tb_) ? std::round(tb_ / grid_.dt_s) : 0.0;
+    return remember(t);
+  }
+
+ private:
+  bool ahead(double tb, double t) const { return tb > t && !(tb - t < min_gap_s_); }
+  double remember(double t) {
+    t_ = t;
+    return k_ <= last_k_ ? tb_ : std::numeric_limits<double>::infinity();
+  }
+
+  SampleGrid grid_;
+  double last_k_;     ///< the last sample's index
+  double min_gap_s_;  ///< next_after's hair: 1e-9·dt
+  double k_ = 0.0;   ///< the sample last found (k_·dt = tb_); 0: none yet
+  double tb_ = 0.0;
+  double t_ = 0.0;   ///< the time it was found for
+};
+
 /// Root function i of a second-order problem (y[1] = dy[0]/dt) as a closed form of y[0]'s
 /// time derivatives: what an integrator whose dense output is a series of y[0] (Taylor
 /// steps) evaluates and locates without calling OdeProblem::roots.
@@ -137,6 +175,8 @@ class OdeIntegrator {
   /// True when the integrator itself never steps across the sample grid it was made with,
   /// so its caller need not stop it at every sample.
   virtual bool steps_between_samples() const { return false; }
+  /// False when restart() does not use `h0` (the caller need not estimate one).
+  virtual bool takes_first_step() const { return true; }
 };
 
 /// The integrator `settings` name. `samples`: the record's sample grid, for an integrator

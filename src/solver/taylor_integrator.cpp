@@ -18,7 +18,8 @@ TaylorIntegrator::TaylorIntegrator(const SolverSettings& settings, OdeProblem& p
       nroots_(problem.root_count()),
       order_(order_for(settings.rtol, std::min(problem.taylor_order_max(), kOrderMax))),
       velocity_root_(problem.root_of_state(1)),
-      atol_{settings.atol_theta_rad, settings.atol_omega_rad_s} {
+      atol_{settings.atol_theta_rad, settings.atol_omega_rad_s},
+      next_sample_(breakpoints) {
   if (problem.taylor_order_max() < 3) throw IntegratorError("taylor: the problem has no Taylor series");
   if (nroots_ < 0 || nroots_ > kMaxRoots) throw IntegratorError("taylor: too many root functions");
   for (int i = 0; i < nroots_; ++i) {
@@ -29,6 +30,7 @@ TaylorIntegrator::TaylorIntegrator(const SolverSettings& settings, OdeProblem& p
     const bool constant = f.derivative == RootForm::kConstant;
     index_[k] = constant ? 3 : f.derivative;
     absolute_[k] = f.absolute && !constant;
+    keep_bits_[k] = absolute_[k] ? ~(std::uint64_t{1} << 63) : ~std::uint64_t{0};
     offset_[k] = constant ? -f.offset : f.offset;
   }
 }
@@ -42,7 +44,7 @@ void TaylorIntegrator::restart(double t0, const double* y0, const int* root_dirs
   if (counts_.steps > 0 || counts_.rhs_evals > 0) ++counts_.reinits;
   t0_ = t1_ = tcur_ = t0;
   y1_[0] = y0[0], y1_[1] = y0[1];
-  t_stop_ = t_stop;
+  set_stop(t_stop);
   have_step_ = false;
   error_.clear();
   found_.fill(0);
@@ -50,13 +52,27 @@ void TaylorIntegrator::restart(double t0, const double* y0, const int* root_dirs
   // The first step now: its series gives the root functions at the start. One that is zero
   // there is judged a little later (as SUNDIALS and dopri5 do): a flight leaving θ₁ = 0 takes
   // the sign it moves into, and a function still zero stays inactive until it moves away.
+  // At the start the series' coefficients are the derivatives (θ, θ̇, θ̈, θ⃛ = a₀, a₁, 2a₂, 6a₃).
   if (!step()) return;  // advance() reports the failure
-  double d[3];
-  at<2>(0.0, d);
+  const double d[4] = {a_[0], a_[1], 2.0 * a_[2], 6.0 * a_[3]};
   roots_of(d, g_cur_.data());
-  if (std::any_of(g_cur_.begin(), g_cur_.begin() + nroots_, [](double g) { return g == 0.0; })) {
+  // A zero θ⁽ʲ⁾ − c a tolerance later: θ⁽ʲ⁺¹⁾ times it, when that is not zero (the series'
+  // value there but for rounding); else, and for |θ| − c, the series' value.
+  const double tau = root_tolerance(t0, h_step_);
+  bool evaluate = false;
+  for (int i = 0; i < nroots_; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    if (g_cur_[k] != 0.0) continue;
+    const double later = index_[k] <= 2 && !absolute_[k] ? d[index_[k] + 1] * tau : 0.0;
+    if (later != 0.0) {
+      g_cur_[k] = later;
+    } else {
+      evaluate = true;
+    }
+  }
+  if (evaluate) {
     std::array<double, kMaxRoots> g{};
-    roots_at(t0 + root_tolerance(t0, h_step_), g.data());
+    roots_at(t0 + tau, g.data());
     for (int i = 0; i < nroots_; ++i) {
       auto k = static_cast<std::size_t>(i);
       if (g_cur_[k] == 0.0) g_cur_[k] = g[k];
@@ -65,7 +81,7 @@ void TaylorIntegrator::restart(double t0, const double* y0, const int* root_dirs
 }
 
 void TaylorIntegrator::set_stop_time(double t_stop) {
-  t_stop_ = t_stop;
+  set_stop(t_stop);
   if (!have_step_ || t1_ <= t_stop_) return;
   // The step goes beyond the new stop time: the next one starts again from tcur_.
   double d[2];
@@ -74,51 +90,58 @@ void TaylorIntegrator::set_stop_time(double t_stop) {
   t1_ = tcur_;
 }
 
-double TaylorIntegrator::truncation(double h, double& h_fit) {
+inline bool TaylorIntegrator::within_tolerance(double h, double& h_fit) {
   // The last two terms of θ (a_{n−1} h^{n−1}, a_n h^n) and of θ̇ ((n−1) a_{n−1} h^{n−2},
   // n a_n h^{n−1}), each against half its component's weight. Most steps are one record
-  // interval long: the powers of h are those of the last step when h is within a millionth
-  // of it (k·dt − (k − 1)·dt differs from dt by rounding), an estimate changed by 1e-5 at most.
+  // interval long: their powers of h are kept, and serve a step within a millionth of it
+  // (k·dt − (k − 1)·dt differs from dt by rounding), an estimate changed by 1e-5 at most.
   const int n = order_;
+  double fresh[4];
+  const double* powers_of_h = h_powers_;
   if (!(std::abs(h - h_powers_of_) <= 1e-6 * h)) {
-    double h_n2 = 1.0;  // h^(n−2)
+    double h_n2 = 2.0;  // 2h^(n−2)
     for (int p = 0; p < n - 2; ++p) h_n2 *= h;
-    h_powers_[0] = h_n2 * h, h_powers_[1] = h_n2 * h * h, h_powers_[2] = h_n2, h_powers_[3] = h_n2 * h;
-    h_powers_of_ = h;
+    const bool interval = std::abs(h - grid_.dt_s) <= 1e-6 * h;
+    double* to = interval ? h_powers_ : fresh;
+    to[0] = h_n2 * h, to[1] = h_n2 * h * h, to[2] = (n - 1) * h_n2, to[3] = n * (h_n2 * h);
+    if (interval) h_powers_of_ = h;
+    powers_of_h = to;
   }
   const double an1 = std::abs(a_[static_cast<std::size_t>(n - 1)]), an = std::abs(a_[static_cast<std::size_t>(n)]);
   const double w0 = atol_[0] + settings_.rtol * std::abs(y0_[0]), w1 = atol_[1] + settings_.rtol * std::abs(y0_[1]);
+  if (std::max(an1 * powers_of_h[0], an * powers_of_h[1]) <= w0 && std::max(an1 * powers_of_h[2], an * powers_of_h[3]) <= w1)
+    return true;
+  h_fit = fitting_step(h, an1, an, w0, w1);
+  return false;
+}
+
+double TaylorIntegrator::fitting_step(double h, double an1, double an, double w0, double w1) const {
+  const int n = order_;
   const double terms[4] = {an1, an, (n - 1) * an1, n * an};
-  const double err = 2.0 * std::max(std::max(terms[0] * h_powers_[0], terms[1] * h_powers_[1]) / w0,
-                                    std::max(terms[2] * h_powers_[2], terms[3] * h_powers_[3]) / w1);
-  h_fit = h;
-  if (err > 1.0) {
-    const double weights[4] = {w0, w0, w1, w1};
-    const int powers[4] = {n - 1, n, n - 2, n - 1};
-    for (int i = 0; i < 4; ++i)
-      if (terms[i] > 0.0) h_fit = std::min(h_fit, std::pow(0.5 * weights[i] / terms[i], 1.0 / powers[i]));
-  }
-  return err;
+  const double weights[4] = {w0, w0, w1, w1};
+  const int powers[4] = {n - 1, n, n - 2, n - 1};
+  double h_fit = h;
+  for (int i = 0; i < 4; ++i)
+    if (terms[i] > 0.0) h_fit = std::min(h_fit, std::pow(0.5 * weights[i] / terms[i], 1.0 / powers[i]));
+  return h_fit;
 }
 
 bool TaylorIntegrator::step() {
   t0_ = tcur_;
   y0_[0] = y1_[0], y0_[1] = y1_[1];
-  const double limit = std::min(grid_.next_after(t0_), t_stop_);
+  const double limit = std::min(next_sample_.after(t0_), t_stop_);
   double h = limit - t0_;
   bool clamped = true;
   if (settings_.max_step_s > 0.0 && h > settings_.max_step_s) h = settings_.max_step_s, clamped = false;
   bool fresh = false;  // a_ holds the series for a step of h
   for (int attempt = 0;; ++attempt) {
-    if (attempt > kMaxFailures || !(h > 16.0 * kEps * std::abs(t0_)) || !(h > 0.0))
-      return fail("taylor: step size " + number_text(h) + " s too small at t = " + number_text(t0_) + " s");
+    if (attempt > kMaxFailures || !(h > 16.0 * kEps * std::abs(t0_)) || !(h > 0.0)) return fail_step(h, false);
     if (!fresh) {
       ++counts_.rhs_evals;
-      if (!problem_.taylor(t0_, y0_, h, order_, a_.data(), fresh))
-        return fail("taylor: the series is not finite at t = " + number_text(t0_) + " s");
+      if (!problem_.taylor(t0_, y0_, h, order_, a_.data(), fresh)) return fail_step(h, true);
     }
     double h_fit = h;
-    if (truncation(h, h_fit) <= 1.0) break;
+    if (within_tolerance(h, h_fit)) break;
     // Within a record interval the series holds for any shorter step: h_fit is within the
     // tolerance at once. Under a chord it is the chord's: new coefficients for the new h.
     h = std::min(h_fit, 0.9 * h);
@@ -126,6 +149,7 @@ bool TaylorIntegrator::step() {
   }
   h_step_ = h;
   t1_ = clamped ? limit : t0_ + h;
+  probes_[0].count = probes_[1].count = 0;
   double d[3];
   at<2>(h, d);
   y1_[0] = d[0], y1_[1] = d[1];
@@ -137,22 +161,48 @@ bool TaylorIntegrator::step() {
 }
 
 template <int D>
-void TaylorIntegrator::locate_derivative(int i, double& lo, double& glo, double& hi, double& ghi, double ttol) const {
+void TaylorIntegrator::locate_derivative(int i, double& lo, double& glo, double& hi, double& ghi, double ttol) {
   const auto k = static_cast<std::size_t>(i);
   const bool absolute = absolute_[k];
   const double offset = offset_[k];
+  // The first probe is the root of the series' quadratic at lo when its derivatives there are
+  // known without an evaluation: at the step's start (the coefficients), or at a probe of the
+  // search before (a root found earlier in the step); else the secant's.
+  double t_first = std::numeric_limits<double>::quiet_NaN();
+  double m[3];  // the function's value, slope and curvature at lo
+  bool known = false;
+  if (lo == t0_) {
+    constexpr double kFactorials[5] = {1.0, 1.0, 2.0, 6.0, 24.0};
+    for (int j = 0; j < 3; ++j) m[j] = kFactorials[D + j] * a_[static_cast<std::size_t>(D + j)];
+    known = true;
+  } else if constexpr (D + 3 <= 4) {
+    if (const Probe* p = probe_at(lo); p != nullptr && p->count >= D + 3) {
+      for (int j = 0; j < 3; ++j) m[j] = p->d[D + j];
+      known = true;
+    }
+  }
+  if (known) {
+    const bool flip = absolute && m[0] < 0.0;
+    t_first = lo + model_step((flip ? -m[0] : m[0]) - offset, flip ? -m[1] : m[1], flip ? -m[2] : m[2]);
+  }
+  int next = 0;
   newton_in_bracket(
-      [&](double t, double& v, double& slope) {
-        double d[D + 2];
-        at<D + 1>(t - t0_, d);
+      [&](double t, double& v, double& slope, double& curvature) {
+        double d[D + 3];
+        at<D + 2>(t - t0_, d);
         const bool flip = absolute && d[D] < 0.0;
         v = (flip ? -d[D] : d[D]) - offset;
         slope = flip ? -d[D + 1] : d[D + 1];
+        curvature = flip ? -d[D + 2] : d[D + 2];
+        Probe& p = probes_[static_cast<std::size_t>(next)];
+        next ^= 1;
+        p.t = t, p.count = D + 3 < 4 ? D + 3 : 4;
+        for (int j = 0; j < p.count; ++j) p.d[j] = d[j];
       },
-      lo, glo, hi, ghi, ttol);
+      lo, glo, hi, ghi, ttol, t_first);
 }
 
-void TaylorIntegrator::locate(int i, double& lo, double& glo, double& hi, double& ghi, double ttol) const {
+void TaylorIntegrator::locate(int i, double& lo, double& glo, double& hi, double& ghi, double ttol) {
   switch (index_[static_cast<std::size_t>(i)]) {
     case 0: locate_derivative<0>(i, lo, glo, hi, ghi, ttol); break;
     case 1: locate_derivative<1>(i, lo, glo, hi, ghi, ttol); break;
@@ -178,7 +228,7 @@ OdeIntegrator::Outcome TaylorIntegrator::advance(double tout, double& t, double*
     if (!have_step_ || tcur_ >= t1_) {
       // A root may leave the state a few ulp short of the stop time: no step that short
       // exists, so the state is taken as the stop time's.
-      if (t_stop_ - tcur_ <= 16.0 * kEps * std::max(1.0, std::abs(t_stop_))) tcur_ = std::max(tcur_, t_stop_);
+      if (t_stop_ - tcur_ <= stop_slack_) tcur_ = std::max(tcur_, t_stop_);
       if (tcur_ >= t_stop_) return report(Outcome::kReachedTime, tcur_, y1_, t, y);
       if (counts_.steps > settings_.max_steps) {
         fail("more than max_steps steps");
@@ -186,9 +236,9 @@ OdeIntegrator::Outcome TaylorIntegrator::advance(double tout, double& t, double*
       }
       if (!step()) return report(Outcome::kFailure, tcur_, y1_, t, y);
     }
-    if (find_root()) {
-      double d[2];
-      at<1>(root_time_ - t0_, d);
+    if (may_cross() && find_root()) {
+      double d[3];
+      state_at(root_time_, d);
       tcur_ = root_time_;
       g_cur_ = g_root_;
       return report(Outcome::kRoot, tcur_, d, t, y);
@@ -218,6 +268,11 @@ void TaylorIntegrator::interpolate(double t, double* y) {
 
 void TaylorIntegrator::root_info(int* found) {
   for (int i = 0; i < nroots_; ++i) found[i] = found_[static_cast<std::size_t>(i)];
+}
+
+bool TaylorIntegrator::fail_step(double h, bool series) {
+  if (series) return fail("taylor: the series is not finite at t = " + number_text(t0_) + " s");
+  return fail("taylor: step size " + number_text(h) + " s too small at t = " + number_text(t0_) + " s");
 }
 
 bool TaylorIntegrator::fail(const std::string& text) {

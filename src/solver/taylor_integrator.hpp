@@ -21,17 +21,26 @@
 ///  - the series is the dense output, and every root function is a closed form of it
 ///    (OdeProblem::root_form: θ₁, θ̇₁, θ̈₁, |θ₁| − θ_stop): the functions at a step's end, and
 ///    each probe of a root search, are one Horner pass over the series, with no call of the
-///    problem. Crossings are found as by dopri5 (root_search.hpp) and located by Newton's
-///    method on the series' derivative, to 100 ulp of the time.
+///    problem. Crossings are found as by dopri5 (root_search.hpp) and located, to 100 ulp of
+///    the time, by the steps of the series' local quadratic (model_step: value, slope and
+///    curvature from one Horner pass; cubic convergence, and no slow approach to a root where
+///    the slope vanishes, as a flight's θ̇ where the ground is near the uplift threshold). The
+///    first probe is the quadratic's root at the bracket's start when the derivatives there
+///    are known without an evaluation (the step's start: the coefficients; an earlier root
+///    of the step: its probe), so a search takes two probes, three near a double root.
 ///
 /// The breakpoints are part of the integrator: no step crosses one (the series holds within
 /// one record interval), so the integrator runs sample to sample without returning to its
 /// caller. No heap allocation after construction.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <bit>
 #include <cstddef>
+#include <cstdint>
+#include <limits>
 #include <string>
 
 #include "integrators.hpp"
@@ -59,6 +68,7 @@ class TaylorIntegrator final : public OdeIntegrator {
   SolverCounts counts() override { return counts_; }
   const std::string& last_error() const override { return error_; }
   bool steps_between_samples() const override { return grid_.count > 0; }
+  bool takes_first_step() const override { return false; }
 
   /// The series' order.
   int order() const { return order_; }
@@ -98,31 +108,73 @@ class TaylorIntegrator final : public OdeIntegrator {
   /// One step from tcur_ (the series, its size, the state and root functions at its end);
   /// false on failure (error_ set).
   bool step();
-  /// The series' truncation estimate over [0, h] in the weighted norm (≤ 1: within the
-  /// tolerance), and the step at which it would be 1 (`h_fit`).
-  double truncation(double h, double& h_fit);
+  /// Whether the series' truncation estimate over [0, h] is within the tolerance (in the
+  /// weighted norm); if not, `h_fit`: the step at which it would be.
+  bool within_tolerance(double h, double& h_fit);
+  /// The step at which the truncation estimate would be within the tolerance (out of line:
+  /// rarely needed).
+  [[gnu::noinline]] double fitting_step(double h, double an1, double an, double w0, double w1) const;
+  /// The stop time, and the slack within which a time a few ulp short of it is taken as it.
+  void set_stop(double t_stop) {
+    t_stop_ = t_stop;
+    stop_slack_ = 16.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t_stop));
+  }
   /// The root functions from d = (θ, θ̇, θ̈) at one time: root_value on the forms as the
   /// constructor unpacked them (a constant g_i = c reads 0 − (−c)), a branch fewer per
   /// function (2 % of the block's instructions under ER1).
   void roots_of(const double* d, double* g) const {
+    if (nroots_ == 4) return roots_of_n<4>(d, g);  // the rockers' (case_run.hpp): unrolled
+    roots_of_n<0>(d, g);
+  }
+  /// roots_of over N functions (0: nroots_).
+  template <int N>
+  void roots_of_n(const double* d, double* g) const {
     const double e[4] = {d[0], d[1], d[2], 0.0};
-    for (int i = 0; i < nroots_; ++i) {
+    const int n = N > 0 ? N : nroots_;
+    for (int i = 0; i < n; ++i) {
       const auto k = static_cast<std::size_t>(i);
-      const double v = e[index_[k]];
-      g[i] = (absolute_[k] ? std::abs(v) : v) - offset_[k];
+      const auto bits = std::bit_cast<std::uint64_t>(e[index_[k]]) & keep_bits_[k];  // |v| by its sign bit
+      g[i] = std::bit_cast<double>(bits) - offset_[k];
     }
   }
-  /// The root functions at t within the step.
+  /// The root functions at t within the step (from the last probes of a search when t is one
+  /// of them: the root a search reports is its last or next-to-last probe).
   void roots_at(double t, double* g) const {
     double d[3];
-    at<2>(t - t0_, d);
+    state_at(t, d);
     roots_of(d, g);
   }
+  /// (θ, θ̇, θ̈) at t within the step, from the probe cache when t is one of its times.
+  void state_at(double t, double* d) const {
+    if (const Probe* p = probe_at(t)) {
+      d[0] = p->d[0], d[1] = p->d[1], d[2] = p->d[2];
+      return;
+    }
+    at<2>(t - t0_, d);
+  }
+  /// Whether any root function changes sign, or is zero, between tcur_ and t1_ (the check
+  /// of crosses() without the directions).
+  bool may_cross() const {
+    if (nroots_ == 4) {  // the rockers': two products of pairs (GCC vector extension)
+      using Pair = double __attribute__((vector_size(16)));
+      const auto at = [](const std::array<double, kMaxRoots>& g, std::size_t k) { return Pair{g[k], g[k + 1]}; };
+      const auto m = (at(g_cur_, 0) * at(g_end_, 0) <= 0.0) | (at(g_cur_, 2) * at(g_end_, 2) <= 0.0);
+      return (m[0] | m[1]) != 0;
+    }
+    return may_cross_n<0>();
+  }
+  template <int N>
+  bool may_cross_n() const {
+    const int n = N > 0 ? N : nroots_;
+    bool any = false;
+    for (int i = 0; i < n; ++i) any |= g_cur_[static_cast<std::size_t>(i)] * g_end_[static_cast<std::size_t>(i)] <= 0.0;
+    return any;
+  }
   /// Narrows [lo, hi] (values glo, ghi of opposite signs) around the root of function i to
-  /// ttol, by Newton's method on the series.
-  void locate(int i, double& lo, double& glo, double& hi, double& ghi, double ttol) const;
+  /// ttol, by the steps of the series' local quadratic (model_step).
+  void locate(int i, double& lo, double& glo, double& hi, double& ghi, double ttol);
   template <int D>
-  void locate_derivative(int i, double& lo, double& glo, double& hi, double& ghi, double ttol) const;
+  void locate_derivative(int i, double& lo, double& glo, double& hi, double& ghi, double ttol);
   /// The earliest crossing in (tcur_, t1_]: root_time_, found_, g_root_; false when none.
   bool find_root();
   /// The state y at t, reported as `outcome`.
@@ -132,6 +184,9 @@ class TaylorIntegrator final : public OdeIntegrator {
     return outcome;
   }
   bool fail(const std::string& text);
+  /// A step too small (`series` false) or a series not finite at t0_ (out of line: the message
+  /// is built only then).
+  [[gnu::noinline, gnu::cold]] bool fail_step(double h, bool series);
 
   SolverSettings settings_;
   OdeProblem& problem_;
@@ -142,11 +197,12 @@ class TaylorIntegrator final : public OdeIntegrator {
   // d) − offset_ with d the index_-th derivative of θ (3: a zero, for a constant −offset_).
   std::array<int, kMaxRoots> index_{};
   std::array<bool, kMaxRoots> absolute_{};
+  std::array<std::uint64_t, kMaxRoots> keep_bits_{};  ///< all bits, or all but the sign for absolute_
   std::array<double, kMaxRoots> offset_{};
   int velocity_root_;  ///< the root function that is θ̇, located first; −1: none
   std::array<double, 2> atol_;  ///< atol_θ [rad], atol_ω [rad/s]
   std::array<int, kMaxRoots> dirs_{};
-  double t_stop_ = 0.0;
+  double t_stop_ = 0.0, stop_slack_ = 0.0;
 
   // The current step [t0_, t1_], its series in τ = t − t0_ (zero above order_); the position
   // tcur_ within it.
@@ -154,9 +210,27 @@ class TaylorIntegrator final : public OdeIntegrator {
   double y0_[2] = {0.0, 0.0}, y1_[2] = {0.0, 0.0};  ///< the state at t0_ and t1_
   bool have_step_ = false;
   std::array<double, kOrderMax + 1> a_{};
-  double h_powers_[4] = {1.0, 1.0, 1.0, 1.0};  ///< h^(n−1), hⁿ, h^(n−2), h^(n−1) of the step h_powers_of_
+  /// 2h^(n−1), 2hⁿ, 2(n−1)h^(n−2), 2n·h^(n−1) of a step of one record interval, h_powers_of_:
+  /// the last two terms of θ and θ̇ over |a_(n−1)| and |a_n|, twice (each against half its
+  /// weight).
+  double h_powers_[4] = {1.0, 1.0, 1.0, 1.0};
   double h_powers_of_ = 0.0;
   std::array<double, kMaxRoots> g_cur_{}, g_end_{}, g_root_{};  ///< at tcur_, t1_, root_time_
+  /// The last two probes of a root search: θ and its first `count` − 1 derivatives (3 or 4)
+  /// at t within the current step (count 0: none).
+  struct Probe {
+    double t = 0.0;
+    double d[4] = {0.0, 0.0, 0.0, 0.0};
+    int count = 0;
+  };
+  /// The probe at t, or null.
+  const Probe* probe_at(double t) const {
+    for (const Probe& p : probes_)
+      if (p.t == t && p.count > 0) return &p;
+    return nullptr;
+  }
+  std::array<Probe, 2> probes_{};
+  NextSample next_sample_;
   std::array<int, kMaxRoots> found_{};
   double root_time_ = 0.0;
   SolverCounts counts_;

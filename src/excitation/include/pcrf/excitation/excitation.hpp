@@ -66,19 +66,49 @@ class ExcitationCursor {
     return {i_.h0 + frac * i_.dh, i_.v0 + frac * i_.dv};
   }
 
+  /// The ground from t on as a line, over the interval holding t: at(t) bit for bit, and
+  /// the interval's slopes. False where at() is not one line from t on (before the record,
+  /// at its last sample, components on their own time axes).
+  bool line_from(double t_s, GroundLine& line) {
+    if (!(t_s >= i_.lo_s && t_s < i_.hi_s) && !(t_s == i_.hi_s && next_interval()) && !enter(t_s)) return false;
+    const double frac = (t_s - i_.lo_s) * i_.inv_dt_per_s;
+    line = {i_.h0 + frac * i_.dh, i_.h_slope_m_s3, i_.v0 + frac * i_.dv, i_.v_slope_m_s3};
+    return true;
+  }
+
   /// The record interval the cursor is in: at(t) inside it is h0 + (t − lo)/dt · dh (and v).
   struct Interval {
     double lo_s = 0.0, hi_s = 0.0;  ///< [k·dt, (k+1)·dt), or past the record; empty at first
     double inv_dt_per_s = 0.0;
     double h0 = 0.0, dh = 0.0, v0 = 0.0, dv = 0.0;  ///< samples k and their differences [m/s²]
+    double h_slope_m_s3 = 0.0, v_slope_m_s3 = 0.0;  ///< dh / dt, dv / dt
   };
   const Interval& interval() const { return i_; }
   /// Moves to the sample interval after the current one (what enter() would find at its
   /// end, without the search); false, unchanged, where there is none (the record's end, the
   /// tail, or no interval yet).
-  bool next_interval();
+  bool next_interval() {
+    const GroundMotion& h = excitation_.horizontal();
+    if (!sampled_ || k_ + 2 >= h.size()) return false;
+    const std::size_t k = ++k_;
+    i_.lo_s = i_.hi_s;  // static_cast<double>(k) * dt, as enter() computes it
+    i_.hi_s = static_cast<double>(k + 1) * h.dt_s();
+    load_samples(k);
+    return true;
+  }
 
  private:
+  /// Samples k and k + 1 of every component into i_ (inv_dt_per_s set).
+  void load_samples(std::size_t k) {
+    const auto& a = excitation_.horizontal().samples_m_s2();
+    i_.h0 = a[k], i_.dh = a[k + 1] - a[k];
+    i_.h_slope_m_s3 = i_.dh * i_.inv_dt_per_s;
+    if (const GroundMotion* v = excitation_.vertical()) {
+      const auto& b = v->samples_m_s2();
+      i_.v0 = b[k], i_.dv = b[k + 1] - b[k];
+      i_.v_slope_m_s3 = i_.dv * i_.inv_dt_per_s;
+    }
+  }
   /// Remembers the interval holding t; past every component's last sample, the still
   /// ground's [end⁺, DBL_MAX) (zeros); false before the record, at its last sample, or NaN.
   bool enter(double t_s);

@@ -86,6 +86,7 @@ class RigidRocker final : public Scene {
   /// one sincos and about order² products.
   bool taylor_series(double theta1, double omega1, const GroundLine& ground, int side, int order,
                      double* a) const override;
+  TaylorKernel taylor_kernel(int side, int order) const override;
   static constexpr int kTaylorOrderMax = 24;
   double gravity_m_s2() const override { return p_.gravity_m_s2; }
   double restitution() const override { return restitution_; }
@@ -102,6 +103,7 @@ class RigidRocker final : public Scene {
   double restitution_;
   double inertia_m2_;          ///< I = R²(4/3 + 4γ) per unit column mass [m²]
   double moment_over_inertia_per_m_;  ///< (1 + 2γ) R / I [1/m]
+  double sin_alpha_ = 0.0, cos_alpha_ = 0.0;  ///< of the slenderness: the series' sin/cos at θ₁ = 0 (every impact)
 };
 
 }  // namespace pcrf

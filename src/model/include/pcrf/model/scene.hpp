@@ -14,6 +14,7 @@
 /// derives from this interface.
 #pragma once
 
+#include <array>
 #include <limits>
 
 #include "pcrf/ground_acceleration.hpp"
@@ -36,6 +37,15 @@ struct TendonState {
   double e_column_left_m = kNone, e_column_right_m = kNone, e_beam_m = kNone;  ///< added elongation [m]
   double strain_column_left = kNone, strain_column_right = kNone, strain_beam = kNone;  ///< (e + e₀)/length [-]
   double strain_column_max() const;
+};
+
+/// A scene's taylor_series for one side and order as a plain function and the constants it
+/// reads, for a caller that computes one series per step: series(constants, θ₁, θ̇₁, ground,
+/// a) is taylor_series(θ₁, θ̇₁, ground, side, order, a), without its two dispatches.
+struct TaylorKernel {
+  using Series = bool (*)(const double* constants, double theta1, double omega1, const GroundLine& ground, double* a);
+  Series series = nullptr;  ///< null: the scene has no series of that order
+  std::array<double, 6> constants{};
 };
 
 class Scene {
@@ -100,6 +110,9 @@ class Scene {
                              int /*order*/, double* /*a*/) const {
     return false;
   }
+  /// taylor_series on `side` to `order` as a kernel (see TaylorKernel); a null one when the
+  /// scene has none.
+  virtual TaylorKernel taylor_kernel(int /*side*/, int /*order*/) const { return {}; }
 
  protected:
   /// Derived classes call this once their terms can be evaluated.
