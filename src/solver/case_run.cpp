@@ -247,6 +247,7 @@ inline bool CaseRun::handle_roots(double t, double* y) {
     // probe lands beyond). The frame reached the stop angle: never reported as safe.
     const double at_stop = std::copysign(stop_.stop_rad(), y[0]);
     note_theta(t, at_stop);
+    if (request_.omega_peak) note_omega(t, y[1]);
     emit(t, at_stop, y[1], kEventStop);
     finish(stop_.status(), stop_.message());
     return true;
@@ -259,8 +260,9 @@ inline bool CaseRun::handle_roots(double t, double* y) {
     note_omega(t, y[1]);
     emit(t, y[0], y[1], kEventOmegaPeak);
   }
-  if (found[kLimit]) {
+  if (found[kLimit]) {  // the case ends here: its speed counts (a history's rows saw it)
     note_theta(t, y[0]);
+    if (request_.omega_peak) note_omega(t, y[1]);
     emit(t, y[0], y[1], kEventStop);
     finish(stop_.status(), stop_.message());
     return true;
@@ -323,10 +325,13 @@ inline void CaseRun::settle(double t) {
   emit(t, 0.0, 0.0, kEventRest);
 }
 
+// Without a history a peak matters only where it raises its maximum: the integrator may
+// pass over the peaks that cannot (set_peak_floor); a history records every peak.
 inline void CaseRun::note_theta(double t, double theta) {
   if (std::abs(theta) > result_.theta_max_rad) {
     result_.theta_max_rad = std::abs(theta);
     result_.t_theta_max_s = t;
+    if (!history_.wanted()) integrator_->set_peak_floor(kThetaPeak, result_.theta_max_rad);
   }
 }
 
@@ -334,6 +339,7 @@ inline void CaseRun::note_omega(double t, double omega) {
   if (std::abs(omega) > result_.omega_max_rad_s) {
     result_.omega_max_rad_s = std::abs(omega);
     result_.t_omega_max_s = t;
+    if (!history_.wanted()) integrator_->set_peak_floor(kOmegaPeak, result_.omega_max_rad_s);
   }
 }
 

@@ -177,6 +177,12 @@ class OdeIntegrator {
   virtual bool steps_between_samples() const { return false; }
   /// False when restart() does not use `h0` (the caller need not estimate one).
   virtual bool takes_first_step() const { return true; }
+  /// Root `root` (a zero of y[0]'s first or second derivative: a peak of |y[0]| or |y[1]|)
+  /// matters only where that magnitude may exceed `floor` (the caller's running maximum of
+  /// it). An integrator that can bound the magnitude over a step may pass over the root's
+  /// crossings in a step whose bound is below (the Taylor steps do); the others locate every
+  /// one, as with the default floor, −∞.
+  virtual void set_peak_floor(int /*root*/, double /*floor*/) {}
 };
 
 /// The integrator `settings` name. `samples`: the record's sample grid, for an integrator

@@ -20,6 +20,7 @@ TaylorIntegrator::TaylorIntegrator(const SolverSettings& settings, OdeProblem& p
       velocity_root_(problem.root_of_state(1)),
       atol_{settings.atol_theta_rad, settings.atol_omega_rad_s},
       next_sample_(breakpoints) {
+  floors_.fill(-std::numeric_limits<double>::infinity());
   if (problem.taylor_order_max() < 3) throw IntegratorError("taylor: the problem has no Taylor series");
   if (nroots_ < 0 || nroots_ > kMaxRoots) throw IntegratorError("taylor: too many root functions");
   for (int i = 0; i < nroots_; ++i) {
@@ -183,13 +184,17 @@ void TaylorIntegrator::locate_derivative(int i, double& lo, double& glo, double&
   }
   if (known) {
     const bool flip = absolute && m[0] < 0.0;
-    t_first = lo + model_step((flip ? -m[0] : m[0]) - offset, flip ? -m[1] : m[1], flip ? -m[2] : m[2]);
+    const double v = (flip ? -m[0] : m[0]) - offset, slope = flip ? -m[1] : m[1], curvature = flip ? -m[2] : m[2];
+    // A function zero at lo itself (θ₁ at the impact the flight left): the quadratic's other
+    // root, the flight's landing.
+    t_first = lo + (v == 0.0 && curvature != 0.0 ? -2.0 * slope / curvature : model_step(v, slope, curvature));
   }
   int next = 0;
   newton_in_bracket(
       [&](double t, double& v, double& slope, double& curvature) {
         double d[D + 3];
         at<D + 2>(t - t0_, d);
+        ++counts_.root_evals;
         const bool flip = absolute && d[D] < 0.0;
         v = (flip ? -d[D] : d[D]) - offset;
         slope = flip ? -d[D + 1] : d[D + 1];
@@ -210,7 +215,41 @@ void TaylorIntegrator::locate(int i, double& lo, double& glo, double& hi, double
   }
 }
 
+void TaylorIntegrator::set_peak_floor(int root, double floor) {
+  if (root < 0 || root >= nroots_) return;
+  const auto k = static_cast<std::size_t>(root);
+  if (index_[k] < 1 || index_[k] > 2 || absolute_[k]) return;
+  floors_[k] = floor;
+  any_floor_ = any_floor_ || floor > -std::numeric_limits<double>::infinity();
+}
+
+double TaylorIntegrator::peak_bound(int m) const {
+  double bound = 0.0, h_power = 1.0;
+  for (int k = m; k <= order_; ++k) {
+    double falling = 1.0;  // k!/(k − m)!
+    for (int j = 0; j < m; ++j) falling *= k - j;
+    bound += falling * std::abs(a_[static_cast<std::size_t>(k)]) * h_power;
+    h_power *= h_step_;
+  }
+  return bound;
+}
+
 bool TaylorIntegrator::find_root() {
+  // A peak root whose magnitude the series keeps below its floor over the step cannot raise
+  // the running maximum: it is left out of this step's search (a zero start value never
+  // crosses).
+  const double* g_start = g_cur_.data();
+  std::array<double, kMaxRoots> searched;  // NOLINT: filled below before use
+  if (any_floor_) {
+    searched = g_cur_;
+    for (int i = 0; i < nroots_; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      if (floors_[k] > -std::numeric_limits<double>::infinity() && crosses(g_cur_[k], g_end_[k], dirs_[k]) &&
+          peak_bound(index_[k] - 1) * (1.0 + 1e-12) < floors_[k])
+        searched[k] = 0.0;
+    }
+    g_start = searched.data();
+  }
   auto roots_at = [this](double t, double* g) {
     this->roots_at(t, g);
     return true;
@@ -218,7 +257,7 @@ bool TaylorIntegrator::find_root() {
   auto locate = [this](int i, double& lo, double& glo, double& hi, double& ghi, double ttol) {
     this->locate(i, lo, glo, hi, ghi, ttol);
   };
-  return earliest_crossing(nroots_, dirs_, velocity_root_, tcur_, g_cur_.data(), t1_, g_end_.data(),
+  return earliest_crossing(nroots_, dirs_, velocity_root_, tcur_, g_start, t1_, g_end_.data(),
                            root_tolerance(t1_, h_step_), roots_at, locate, root_time_, found_, g_root_);
 }
 

@@ -27,7 +27,10 @@
 ///    the slope vanishes, as a flight's θ̇ where the ground is near the uplift threshold). The
 ///    first probe is the quadratic's root at the bracket's start when the derivatives there
 ///    are known without an evaluation (the step's start: the coefficients; an earlier root
-///    of the step: its probe), so a search takes two probes, three near a double root.
+///    of the step: its probe), so a search takes two probes, three near a double root;
+///  - a peak root (θ̇ or θ̈) whose magnitude cannot reach its floor over a step (set_peak_floor:
+///    the running maximum, when the caller keeps no history) is left out of that step's
+///    search: the series bounds |θ| or |θ̇| by Σ k!/(k − m)! |a_k| h^(k−m).
 ///
 /// The breakpoints are part of the integrator: no step crosses one (the series holds within
 /// one record interval), so the integrator runs sample to sample without returning to its
@@ -69,6 +72,10 @@ class TaylorIntegrator final : public OdeIntegrator {
   const std::string& last_error() const override { return error_; }
   bool steps_between_samples() const override { return grid_.count > 0; }
   bool takes_first_step() const override { return false; }
+  /// Crossings of a θ̇ or θ̈ root (RootForm derivative 1 or 2, not absolute) are passed over in
+  /// a step where the series bounds |θ| or |θ̇| below `floor` (peak_bound); for other roots the
+  /// floor is ignored.
+  void set_peak_floor(int root, double floor) override;
 
   /// The series' order.
   int order() const { return order_; }
@@ -139,8 +146,9 @@ class TaylorIntegrator final : public OdeIntegrator {
   }
   /// The root functions at t within the step (from the last probes of a search when t is one
   /// of them: the root a search reports is its last or next-to-last probe).
-  void roots_at(double t, double* g) const {
+  void roots_at(double t, double* g) {
     double d[3];
+    if (!probe_at(t)) ++counts_.root_evals;
     state_at(t, d);
     roots_of(d, g);
   }
@@ -177,6 +185,8 @@ class TaylorIntegrator final : public OdeIntegrator {
   void locate_derivative(int i, double& lo, double& glo, double& hi, double& ghi, double ttol);
   /// The earliest crossing in (tcur_, t1_]: root_time_, found_, g_root_; false when none.
   bool find_root();
+  /// An upper bound of |θ⁽ᵐ⁾| over the step [t0_, t1_]: Σ_k k!/(k − m)! |a_k| h^(k−m).
+  double peak_bound(int m) const;
   /// The state y at t, reported as `outcome`.
   Outcome report(Outcome outcome, double t_at, const double* y_at, double& t, double* y) const {
     t = t_at;
@@ -202,6 +212,9 @@ class TaylorIntegrator final : public OdeIntegrator {
   int velocity_root_;  ///< the root function that is θ̇, located first; −1: none
   std::array<double, 2> atol_;  ///< atol_θ [rad], atol_ω [rad/s]
   std::array<int, kMaxRoots> dirs_{};
+  /// set_peak_floor's floors (−∞: none); any_floor_: one is finite.
+  std::array<double, kMaxRoots> floors_;
+  bool any_floor_ = false;
   double t_stop_ = 0.0, stop_slack_ = 0.0;
 
   // The current step [t0_, t1_], its series in τ = t − t0_ (zero above order_); the position

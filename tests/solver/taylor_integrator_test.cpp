@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <numbers>
 #include <vector>
 
@@ -108,6 +109,37 @@ TEST(TaylorIntegrator, ErrorFallsAsTheToleranceTightens) {
     EXPECT_LT(err, last) << rtol;
     last = err;
   }
+}
+
+TEST(TaylorIntegrator, PassesOverPeaksThatCannotReachTheirFloor) {
+  // cos 2t: |y| peaks at 1 (root 1, y' = 0), |y'| at 2 (root 2, y'' = 0). With floors above
+  // what the series can reach over a step (e^{2h} < 3 for the steps here) those roots are
+  // never reported; floors on y itself (root 0) and on |y| − c (root 3) are ignored; floors
+  // below the peaks change nothing.
+  const int dirs[4] = {0, 0, 0, 0};
+  auto counts = [&](double floor_1, double floor_2, double floor_0, double floor_3) {
+    SeriesOscillator p;
+    TaylorIntegrator integ(taylor_settings(1e-7), p, {});
+    integ.set_peak_floor(1, floor_1);
+    integ.set_peak_floor(2, floor_2);
+    integ.set_peak_floor(0, floor_0);
+    integ.set_peak_floor(3, floor_3);
+    double y = 0.0;
+    std::vector<int> n(4, 0);
+    for (const Found& f : run(integ, 6.0, dirs, y)) ++n[static_cast<std::size_t>(f.which)];
+    EXPECT_NEAR(y, std::cos(12.0), 1e-5);
+    return n;
+  };
+  const double none = -std::numeric_limits<double>::infinity();
+  const std::vector<int> all = counts(none, none, none, none);
+  ASSERT_GT(all[1], 2);
+  ASSERT_GT(all[2], 2);
+  EXPECT_EQ(counts(0.5, 1.0, none, none), all);  // below the peaks: every one
+  const std::vector<int> above = counts(3.0, 6.0, 10.0, 10.0);
+  EXPECT_EQ(above[0], all[0]);
+  EXPECT_EQ(above[1], 0);
+  EXPECT_EQ(above[2], 0);
+  EXPECT_EQ(above[3], all[3]);
 }
 
 TEST(TaylorIntegrator, LocatesEveryClosedFormRoot) {

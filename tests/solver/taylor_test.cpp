@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -161,6 +162,34 @@ TEST(TaylorSteps, OneSeriesPerStepAndFarFewerThanDopri5sStages) {
   EXPECT_EQ(t.impacts, d.impacts);
   EXPECT_LE(t.counts.rhs_evals, t.counts.steps + t.counts.reinits + 1);  // + one f at each restart
   EXPECT_LT(t.counts.rhs_evals, d.counts.rhs_evals / 3);
+}
+
+TEST(TaylorSteps, WithoutAHistoryOnlyThePeaksThatRaiseTheMaximaAreLocated) {
+  // A rocking block (many flights, most of them small): without a history the steps pass
+  // over the θ and θ̇ peaks that cannot raise θ_max or ω_max, so fewer root-function
+  // evaluations; the maxima, their times, the impacts and the end are those of a run that
+  // records every peak. At 0.45 the block overturns: ω_max is then the speed at the stop.
+  for (const double scale : {0.3, 0.45})
+  for (double gamma : {0.0, 0.5}) {
+    const GroundMotion g = test::strong_record(5, 10.0).scaled(scale);
+    auto frame = prepared(0.2, 1.5, gamma);
+    test::Trace trace;
+    const CaseResult with = solve_case(*frame, g, preset_settings("balanced"), {}, trace.sink());
+    const CaseResult plain = solve_case(*frame, g, preset_settings("balanced"));
+    ASSERT_GT(with.impacts, 5) << "the case must rock";
+    int peaks = 0;
+    for (const auto& row : trace.samples) peaks += (static_cast<std::uint32_t>(row.event) & kEventThetaPeak) != 0;
+    EXPECT_GE(peaks, with.impacts / 2) << "a history records the peaks of the flights";
+    EXPECT_EQ(plain.status, with.status);
+    EXPECT_EQ(plain.impacts, with.impacts);
+    EXPECT_EQ(plain.counts.steps, with.counts.steps);
+    EXPECT_NEAR(plain.theta_max_rad, with.theta_max_rad, 1e-12 * with.theta_max_rad);
+    EXPECT_NEAR(plain.t_theta_max_s, with.t_theta_max_s, 1e-12);
+    EXPECT_NEAR(plain.omega_max_rad_s, with.omega_max_rad_s, 1e-12 * with.omega_max_rad_s);
+    EXPECT_NEAR(plain.t_omega_max_s, with.t_omega_max_s, 1e-12);
+    EXPECT_EQ(plain.t_end_s, with.t_end_s);
+    EXPECT_LT(plain.counts.root_evals, with.counts.root_evals);
+  }
 }
 
 TEST(TaylorSteps, TheBatchSolvesThemOneAtATimeWithTheSameAnswers) {
