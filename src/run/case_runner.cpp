@@ -58,15 +58,26 @@ CaseRunner::CaseRunner(const Study& study, const CaseSpace& space, RecordCache& 
 std::shared_ptr<PreparedFrame> CaseRunner::prepared(const SceneSpec& scene) const {
   std::lock_guard lock(last_mutex_);
   const std::uint64_t key = scene_key(scene);
-  auto same = [&](const Prepared& p) { return p.key == key && same_scene(p.scene, scene); };
-  auto it = std::find_if(prepared_.begin(), prepared_.end(), same);
-  if (it == prepared_.end()) {
-    if (prepared_.size() >= kPreparedFrames) prepared_.pop_back();
-    prepared_.insert(prepared_.begin(), {scene, key, prepare_scene(scene.make(), study_.physics)});
-  } else if (it != prepared_.begin()) {
-    std::rotate(prepared_.begin(), it, it + 1);  // most recent first
+  auto same = [&](std::size_t i) { return prepared_keys_[i] == key && same_scene(prepared_[i].scene, scene); };
+  if (last_prepared_ < prepared_.size() && same(last_prepared_)) return prepared_[last_prepared_].frame;
+  for (auto k = prepared_keys_.begin(); (k = std::find(k, prepared_keys_.end(), key)) != prepared_keys_.end(); ++k) {
+    const auto i = static_cast<std::size_t>(k - prepared_keys_.begin());
+    if (same(i)) return prepared_[last_prepared_ = i].frame;
   }
-  return prepared_.front().frame;
+  // A new frame: into a free slot, else over the oldest (slots are reused in turn, nothing
+  // moves: a study of distinct frames misses every time).
+  Prepared fresh{scene, prepare_scene(scene.make(), study_.physics)};
+  std::size_t slot = prepared_.size();
+  if (slot < kPreparedFrames) {
+    prepared_.push_back(std::move(fresh));
+    prepared_keys_.push_back(key);
+  } else {
+    slot = oldest_prepared_;
+    oldest_prepared_ = (oldest_prepared_ + 1) % kPreparedFrames;
+    prepared_[slot] = std::move(fresh);
+    prepared_keys_[slot] = key;
+  }
+  return prepared_[last_prepared_ = slot].frame;
 }
 
 double CaseRunner::level_of(const CaseSpec& spec, const parallel::WorkItem& item) {

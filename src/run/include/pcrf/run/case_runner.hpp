@@ -86,10 +86,12 @@ class CaseRunner {
   std::shared_ptr<PreparedFrame> prepared(const SceneSpec& scene) const;
   struct Prepared {
     SceneSpec scene;
-    std::uint64_t key;  ///< scene_key(scene), compared first
     std::shared_ptr<PreparedFrame> frame;
   };
-  mutable std::vector<Prepared> prepared_;  ///< most recent first
+  mutable std::vector<Prepared> prepared_;  ///< up to kPreparedFrames, replaced oldest first
+  mutable std::vector<std::uint64_t> prepared_keys_;  ///< scene_key of each, compared first
+  mutable std::size_t last_prepared_ = 0;    ///< the slot found last (checked first)
+  mutable std::size_t oldest_prepared_ = 0;  ///< the slot a new frame replaces once all are used
   /// At least the frames a worker is handed together in lockstep (study_run.cpp's tiles).
   static constexpr std::size_t kPreparedFrames = 128;
 };
