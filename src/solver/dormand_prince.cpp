@@ -20,7 +20,6 @@ DormandPrinceIntegrator::DormandPrinceIntegrator(const SolverSettings& settings,
                                                  SampleGrid breakpoints)
     : settings_(settings),
       problem_(problem),
-      grid_(breakpoints),
       next_sample_(breakpoints),
       nroots_(problem.root_count()),
       velocity_root_(problem.root_of_state(1)),

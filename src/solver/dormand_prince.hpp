@@ -71,7 +71,7 @@ class DormandPrinceIntegrator final : public OdeIntegrator {
   void root_info(int* found) override;
   SolverCounts counts() override { return counts_; }
   const std::string& last_error() const override { return error_; }
-  bool steps_between_samples() const override { return grid_.count > 0; }
+  bool steps_between_samples() const override { return next_sample_.grid().count > 0; }
 
   /// Lockstep: step attempts are made by the caller (see above).
   void set_lockstep(bool on) { lockstep_ = on; }
@@ -158,8 +158,7 @@ class DormandPrinceIntegrator final : public OdeIntegrator {
 
   SolverSettings settings_;
   OdeProblem& problem_;
-  SampleGrid grid_;
-  NextSample next_sample_;  ///< grid_'s next sample after a step's start
+  NextSample next_sample_;  ///< the breakpoints, and the next after a step's start
   int nroots_;
   int velocity_root_;  ///< the root function that is y[1] (θ̇), located first; −1: none
   std::array<double, 2> atol_;  ///< atol_θ [rad], atol_ω [rad/s]

@@ -53,6 +53,8 @@ class NextSample {
   explicit NextSample(SampleGrid grid)
       : grid_(grid), last_k_(static_cast<double>(grid.count) - 1.0), min_gap_s_(1e-9 * grid.dt_s) {}
 
+  const SampleGrid& grid() const { return grid_; }
+
   double after(double t) {
     if (k_ > 0.0 && t >= t_) {
       if (ahead(tb_, t)) return remember(t);

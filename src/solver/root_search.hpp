@@ -45,8 +45,7 @@ inline double model_step(double v, double slope, double curvature) {
 /// With the curvature the model's root is good to the cube of the step: each model step aims
 /// a quarter of the tolerance past it (towards hi, the crossed side), and a probe that lands
 /// past the root with a step back below half the tolerance ends the search (hi within ttol of
-/// the root; lo not narrowed).
-/// One probe fewer than closing the bracket from both sides.
+/// the root; lo not narrowed): one probe fewer than closing the bracket from both sides.
 template <class ValueSlope>
 void newton_in_bracket(ValueSlope&& value_slope, double& lo, double& glo, double& hi, double& ghi, double ttol,
                        double t_first = std::numeric_limits<double>::quiet_NaN()) {
@@ -65,7 +64,7 @@ void newton_in_bracket(ValueSlope&& value_slope, double& lo, double& glo, double
     } else {
       hi = t, ghi = v;
     }
-    const double step = model_step(v, slope, curvature), newton = t + step;
+    const double newton = t + model_step(v, slope, curvature);
     if (std::abs(newton - t) < 0.5 * ttol) {
       if (!below && curvature != 0.0) break;
       t = below ? t + 0.5 * ttol : t - 0.5 * ttol;

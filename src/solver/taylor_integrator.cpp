@@ -14,7 +14,6 @@ namespace pcrf::detail {
 TaylorIntegrator::TaylorIntegrator(const SolverSettings& settings, OdeProblem& problem, SampleGrid breakpoints)
     : settings_(settings),
       problem_(problem),
-      grid_(breakpoints),
       nroots_(problem.root_count()),
       order_(order_for(settings.rtol, std::min(problem.taylor_order_max(), kOrderMax))),
       velocity_root_(problem.root_of_state(1)),
@@ -53,9 +52,8 @@ void TaylorIntegrator::restart(double t0, const double* y0, const int* root_dirs
   // The first step now: its series gives the root functions at the start. One that is zero
   // there is judged a little later (as SUNDIALS and dopri5 do): a flight leaving θ₁ = 0 takes
   // the sign it moves into, and a function still zero stays inactive until it moves away.
-  // At the start the series' coefficients are the derivatives (θ, θ̇, θ̈, θ⃛ = a₀, a₁, 2a₂, 6a₃).
   if (!step()) return;  // advance() reports the failure
-  const double d[4] = {a_[0], a_[1], 2.0 * a_[2], 6.0 * a_[3]};
+  const double d[4] = {start_derivative(0), start_derivative(1), start_derivative(2), start_derivative(3)};
   roots_of(d, g_cur_.data());
   // A zero θ⁽ʲ⁾ − c a tolerance later: θ⁽ʲ⁺¹⁾ times it, when that is not zero (the series'
   // value there but for rounding); else, and for |θ| − c, the series' value.
@@ -102,7 +100,7 @@ inline bool TaylorIntegrator::within_tolerance(double h, double& h_fit) {
   if (!(std::abs(h - h_powers_of_) <= 1e-6 * h)) {
     double h_n2 = 2.0;  // 2h^(n−2)
     for (int p = 0; p < n - 2; ++p) h_n2 *= h;
-    const bool interval = std::abs(h - grid_.dt_s) <= 1e-6 * h;
+    const bool interval = std::abs(h - next_sample_.grid().dt_s) <= 1e-6 * h;
     double* to = interval ? h_powers_ : fresh;
     to[0] = h_n2 * h, to[1] = h_n2 * h * h, to[2] = (n - 1) * h_n2, to[3] = n * (h_n2 * h);
     if (interval) h_powers_of_ = h;
@@ -173,8 +171,7 @@ void TaylorIntegrator::locate_derivative(int i, double& lo, double& glo, double&
   double m[3];  // the function's value, slope and curvature at lo
   bool known = false;
   if (lo == t0_) {
-    constexpr double kFactorials[5] = {1.0, 1.0, 2.0, 6.0, 24.0};
-    for (int j = 0; j < 3; ++j) m[j] = kFactorials[D + j] * a_[static_cast<std::size_t>(D + j)];
+    for (int j = 0; j < 3; ++j) m[j] = start_derivative(D + j);
     known = true;
   } else if constexpr (D + 3 <= 4) {
     if (const Probe* p = probe_at(lo); p != nullptr && p->count >= D + 3) {

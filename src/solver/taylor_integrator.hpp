@@ -70,7 +70,7 @@ class TaylorIntegrator final : public OdeIntegrator {
   void root_info(int* found) override;
   SolverCounts counts() override { return counts_; }
   const std::string& last_error() const override { return error_; }
-  bool steps_between_samples() const override { return grid_.count > 0; }
+  bool steps_between_samples() const override { return next_sample_.grid().count > 0; }
   bool takes_first_step() const override { return false; }
   /// Crossings of a θ̇ or θ̈ root (RootForm derivative 1 or 2, not absolute) are passed over in
   /// a step where the series bounds |θ| or |θ̇| below `floor` (peak_bound); for other roots the
@@ -148,17 +148,23 @@ class TaylorIntegrator final : public OdeIntegrator {
   /// of them: the root a search reports is its last or next-to-last probe).
   void roots_at(double t, double* g) {
     double d[3];
-    if (!probe_at(t)) ++counts_.root_evals;
-    state_at(t, d);
+    if (!state_at(t, d)) ++counts_.root_evals;
     roots_of(d, g);
   }
-  /// (θ, θ̇, θ̈) at t within the step, from the probe cache when t is one of its times.
-  void state_at(double t, double* d) const {
+  /// (θ, θ̇, θ̈) at t within the step, from the probe cache when t is one of its times (true)
+  /// or from the series (false).
+  bool state_at(double t, double* d) const {
     if (const Probe* p = probe_at(t)) {
       d[0] = p->d[0], d[1] = p->d[1], d[2] = p->d[2];
-      return;
+      return true;
     }
     at<2>(t - t0_, d);
+    return false;
+  }
+  /// θ⁽ʲ⁾ at the step's start: the series' coefficient a_j times j! (j ≤ 4), no evaluation.
+  double start_derivative(int j) const {
+    constexpr double kFactorials[5] = {1.0, 1.0, 2.0, 6.0, 24.0};
+    return kFactorials[j] * a_[static_cast<std::size_t>(j)];
   }
   /// Whether any root function changes sign, or is zero, between tcur_ and t1_ (the check
   /// of crosses() without the directions).
@@ -169,13 +175,8 @@ class TaylorIntegrator final : public OdeIntegrator {
       const auto m = (at(g_cur_, 0) * at(g_end_, 0) <= 0.0) | (at(g_cur_, 2) * at(g_end_, 2) <= 0.0);
       return (m[0] | m[1]) != 0;
     }
-    return may_cross_n<0>();
-  }
-  template <int N>
-  bool may_cross_n() const {
-    const int n = N > 0 ? N : nroots_;
     bool any = false;
-    for (int i = 0; i < n; ++i) any |= g_cur_[static_cast<std::size_t>(i)] * g_end_[static_cast<std::size_t>(i)] <= 0.0;
+    for (int i = 0; i < nroots_; ++i) any |= g_cur_[static_cast<std::size_t>(i)] * g_end_[static_cast<std::size_t>(i)] <= 0.0;
     return any;
   }
   /// Narrows [lo, hi] (values glo, ghi of opposite signs) around the root of function i to
@@ -200,7 +201,6 @@ class TaylorIntegrator final : public OdeIntegrator {
 
   SolverSettings settings_;
   OdeProblem& problem_;
-  SampleGrid grid_;
   int nroots_;
   int order_;
   // The problem's root forms (OdeProblem::root_form), unpacked: g_i = (|d| if absolute_ else
@@ -243,7 +243,7 @@ class TaylorIntegrator final : public OdeIntegrator {
     return nullptr;
   }
   std::array<Probe, 2> probes_{};
-  NextSample next_sample_;
+  NextSample next_sample_;  ///< the breakpoints, and the next after a step's start
   std::array<int, kMaxRoots> found_{};
   double root_time_ = 0.0;
   SolverCounts counts_;

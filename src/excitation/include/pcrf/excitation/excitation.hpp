@@ -58,10 +58,7 @@ class ExcitationCursor {
   explicit ExcitationCursor(const Excitation& excitation) : excitation_(excitation) {}
 
   GroundAcceleration at(double t_s) {
-    // Leaving the interval at its end (where a step that ended at a sample goes on): the next
-    // one, without enter()'s search (which finds the same interval there, exactly).
-    if (!(t_s >= i_.lo_s && t_s < i_.hi_s) && !(t_s == i_.hi_s && next_interval()) && !enter(t_s))
-      return excitation_.at(t_s);
+    if (!hold(t_s)) return excitation_.at(t_s);
     const double frac = (t_s - i_.lo_s) * i_.inv_dt_per_s;
     return {i_.h0 + frac * i_.dh, i_.v0 + frac * i_.dv};
   }
@@ -70,7 +67,7 @@ class ExcitationCursor {
   /// the interval's slopes. False where at() is not one line from t on (before the record,
   /// at its last sample, components on their own time axes).
   bool line_from(double t_s, GroundLine& line) {
-    if (!(t_s >= i_.lo_s && t_s < i_.hi_s) && !(t_s == i_.hi_s && next_interval()) && !enter(t_s)) return false;
+    if (!hold(t_s)) return false;
     const double frac = (t_s - i_.lo_s) * i_.inv_dt_per_s;
     line = {i_.h0 + frac * i_.dh, i_.h_slope_m_s3, i_.v0 + frac * i_.dv, i_.v_slope_m_s3};
     return true;
@@ -98,6 +95,12 @@ class ExcitationCursor {
   }
 
  private:
+  /// Whether i_ now holds t (entered if need be). Leaving the interval at its end (where a
+  /// step that ended at a sample goes on): the next one, without enter()'s search (which
+  /// finds the same interval there, exactly).
+  bool hold(double t_s) {
+    return (t_s >= i_.lo_s && t_s < i_.hi_s) || (t_s == i_.hi_s && next_interval()) || enter(t_s);
+  }
   /// Samples k and k + 1 of every component into i_ (inv_dt_per_s set).
   void load_samples(std::size_t k) {
     const auto& a = excitation_.horizontal().samples_m_s2();
