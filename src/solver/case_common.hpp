@@ -5,6 +5,7 @@
 #pragma once
 
 #include <algorithm>
+#include <chrono>
 #include <string>
 
 #include "pcrf/excitation/excitation.hpp"
@@ -101,6 +102,11 @@ StopAngles stop_angles(const Scene& scene, const PhysicsOptions& physics);
 inline constexpr const char* kBrokenAtRestMessage = "the initial tendon strain already reaches the fracture strain";
 
 /// Branch a frame leaving rest enters: ü_g > 0 pushes it into θ₁ < 0.
+/// Seconds of the steady clock since `start` (a case's wall_time_s, a wall-time limit).
+inline double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 inline int uplift_side(double ground_accel_m_s2) { return ground_accel_m_s2 > 0.0 ? -1 : +1; }
 /// Branch of a displaced initial state: the side of θ₁, or of −θ̇₁ when θ₁ = 0.
 inline int initial_side(double theta_rad, double omega_rad_s) {

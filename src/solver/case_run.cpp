@@ -245,11 +245,7 @@ inline bool CaseRun::handle_roots(double t, double* y) {
     // A peak beyond the stop angle: |θ₁| crossed it and came back within one step, unseen
     // by the root search (dopri5 checks for this; SUNDIALS' search finds it only when a
     // probe lands beyond). The frame reached the stop angle: never reported as safe.
-    const double at_stop = std::copysign(stop_.stop_rad(), y[0]);
-    note_theta(t, at_stop);
-    if (request_.omega_peak) note_omega(t, y[1]);
-    emit(t, at_stop, y[1], kEventStop);
-    finish(stop_.status(), stop_.message());
+    stop_at(t, std::copysign(stop_.stop_rad(), y[0]), y[1]);
     return true;
   }
   if (found[kThetaPeak]) {
@@ -260,11 +256,8 @@ inline bool CaseRun::handle_roots(double t, double* y) {
     note_omega(t, y[1]);
     emit(t, y[0], y[1], kEventOmegaPeak);
   }
-  if (found[kLimit]) {  // the case ends here: its speed counts (a history's rows saw it)
-    note_theta(t, y[0]);
-    if (request_.omega_peak) note_omega(t, y[1]);
-    emit(t, y[0], y[1], kEventStop);
-    finish(stop_.status(), stop_.message());
+  if (found[kLimit]) {
+    stop_at(t, y[0], y[1]);
     return true;
   }
   if (!found[kImpact]) return false;
@@ -280,6 +273,15 @@ inline bool CaseRun::handle_roots(double t, double* y) {
     return true;
   }
   return false;
+}
+
+// The case ends at the stop angle: its angle and its speed there count (a history's rows saw
+// them), and the stop is an event.
+inline void CaseRun::stop_at(double t, double theta, double omega) {
+  note_theta(t, theta);
+  if (request_.omega_peak) note_omega(t, omega);
+  emit(t, theta, omega, kEventStop);
+  finish(stop_.status(), stop_.message());
 }
 
 inline void CaseRun::impact(double t, double* y) {
@@ -374,7 +376,7 @@ void CaseRun::finish(CaseStatus status, std::string message) {
 
 inline bool CaseRun::over_time() const {
   if (solver_.wall_time_limit_s <= 0.0) return false;
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count() > solver_.wall_time_limit_s;
+  return seconds_since(start_) > solver_.wall_time_limit_s;
 }
 
 /// A case whose frame rests through the whole record: what CaseRun would report, without

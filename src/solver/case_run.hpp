@@ -147,6 +147,8 @@ class CaseRun {
   /// One advance of the integrator and what it met; false: a lockstep attempt is pending.
   bool fly();
   bool handle_roots(double t, double* y);
+  /// Ends the case at the stop angle, (θ₁, θ̇₁) there.
+  void stop_at(double t, double theta, double omega);
   void impact(double t, double* y);
   bool returns_to_rest(double t, double omega_after);
   bool holds_closed(double t);

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "case_common.hpp"
 #include "case_run.hpp"
 #include "fixed_step_solver.hpp"
 #include "pcrf/model/equation_of_motion.hpp"
@@ -89,7 +90,7 @@ CaseResult solve_case(PreparedFrame& frame, const Excitation& excitation, const 
     result = run.run();
   }
   if (solver.verdict_check) check_verdict(frame, excitation, solver, request, result);
-  result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.wall_time_s = detail::seconds_since(start);
   return result;
 }
 

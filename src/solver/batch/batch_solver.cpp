@@ -14,6 +14,7 @@
 #include <string>
 #include <utility>
 
+#include "../case_common.hpp"
 #include "../case_run.hpp"
 #include "lane_arrays.hpp"
 #include "pcrf/model/rigid_rocker.hpp"
@@ -135,14 +136,14 @@ bool Driver::refill(std::size_t l) {
     if (auto rest = rest_throughout(frame, excitation_, request_, no_history_)) {
       ++stats_.rest_cases;
       results_[c] = std::move(*rest);
-      results_[c].wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      results_[c].wall_time_s = seconds_since(start);
       continue;
     }
     if (solver_.integrator == Integrator::kTaylor && frame.scene().taylor_order_max() > 0) {
       // Taylor steps: one case at a time, the checks and the rest scan above already made.
       ++stats_.scalar_cases;
       results_[c] = CaseRun(frame, excitation_, solver_, request_, no_history_).run();
-      results_[c].wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      results_[c].wall_time_s = seconds_since(start);
       continue;
     }
     lane.run.emplace(frame, excitation_, solver_, request_, no_history_, true);
@@ -195,7 +196,7 @@ void Driver::finish(std::size_t l) {
   Lane& lane = lanes_[l];
   CaseResult& result = results_[lane.case_index];
   result = lane.run->end();
-  result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - lane.start).count();
+  result.wall_time_s = seconds_since(lane.start);
   const DormandPrinceIntegrator::Tally& tally = lane.run->lockstep()->tally();
   stats_.root_searches += tally.root_searches;
   stats_.events += tally.roots;
