@@ -70,6 +70,7 @@ void add_record_command(CLI::App& app) {
   // --pair adds the second horizontal's measures and RotD50/RotD100 of PGA, PGV and Sa.
   args->record.add_components_to(cmd, /*record_flags=*/true);
   add_pulse_command(cmd);
+  add_record_library_commands(cmd);
   cmd->require_subcommand(0, 1);
   cmd->callback([args, cmd] {
     if (!cmd->get_subcommands().empty()) return;
