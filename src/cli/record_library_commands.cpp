@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "cli/commands.hpp"
+#include "pcrf/api/record_selection.hpp"
 #include "pcrf/io/output_file.hpp"
 #include "pcrf/json.hpp"
 #include "pcrf/number_text.hpp"
@@ -106,23 +107,6 @@ void write_fragment(std::ostream& out, const SelectArguments& args, const Spectr
   }
 }
 
-JsonObject selection_json(const SelectionTarget& t, const SpectraTable& table, const SelectionResult& r) {
-  std::vector<JsonObject> records;
-  for (std::size_t i = 0; i < r.records.size(); ++i) {
-    const LibraryEntry& e = table.entries[r.records[i].entry];
-    JsonObject o;
-    o.text("name", e.name).text("kind", e.kind).text("file", e.file).text("file_h2", e.file_h2).number("scale", r.records[i].scale);
-    o.numbers("ln_sa", r.ln_sa[i]);
-    records.push_back(std::move(o));
-  }
-  JsonObject o;
-  o.numbers("periods_s", t.periods_s).numbers("target_mean_ln_sa", t.mean_ln_sa).numbers("target_sigma_ln_sa", t.sigma_ln_sa);
-  o.numbers("mean_ln_sa", r.mean_ln_sa).numbers("sigma_ln_sa", r.sigma_ln_sa);
-  o.number("median_error_percent", r.median_error_percent).number("sigma_error_percent", r.sigma_error_percent);
-  o.number("sum_of_squares", r.sum_of_squares).objects("records", records);
-  return o;
-}
-
 void select_from_library(const SelectArguments& args) {
   std::ifstream target_in = open_input(args.target);
   const SelectionTarget target = read_selection_target(target_in, args.target);
@@ -133,7 +117,7 @@ void select_from_library(const SelectArguments& args) {
   std::cerr << "pcrf record select: largest error of the median " << number_text(std::round(r.median_error_percent * 10) / 10)
             << " %, of sigma ln Sa " << number_text(std::round(r.sigma_error_percent * 10) / 10) << " %\n";
   write_output(args.output, {args.target, args.library}, args.overwrite, [&](std::ostream& out) {
-    if (args.json) out << selection_json(target, table, r).str() << '\n';
+    if (args.json) out << api::selection_json(target, table, r).str() << '\n';
     else write_fragment(out, args, table, r);
   });
 }
