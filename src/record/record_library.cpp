@@ -267,7 +267,9 @@ SpectraTable read_spectra_csv(std::istream& in, const std::string& file) {
     e.file_h2 = row[3];
     if (e.file.empty()) fail(file, number, "file", "is empty");
     e.dt_s = positive_field(row, 4, header, file, number, false);
-    e.samples = static_cast<std::size_t>(positive_field(row, 5, header, file, number, false));
+    const double samples = positive_field(row, 5, header, file, number, false);
+    if (samples != std::floor(samples) || samples > 1e12) fail(file, number, "samples", "'" + row[5] + "' is not a whole number of samples");
+    e.samples = static_cast<std::size_t>(samples);
     e.damping = positive_field(row, 6, header, file, number, true);
     e.pga_g = positive_field(row, 7, header, file, number, true);
     for (std::size_t c = kFixedColumns.size(); c < row.size(); ++c)

@@ -224,10 +224,12 @@ SelectionTarget read_selection_target(std::istream& in, const std::string& file)
 }
 
 SelectionResult select_records(const SelectionTarget& target, const SpectraTable& table, const SelectionSettings& w) {
-  if (w.count < 2) throw UserError("n", "select at least 2 records", {"n"});
+  if (w.count < 2) throw UserError("count", "select at least 2 records", {"count"});
   if (!(w.scale_min > 0.0 && w.scale_min <= w.scale_max && std::isfinite(w.scale_max)))
     throw UserError("scale_min", "scale limits must satisfy 0 < min ≤ max", {"scale_min"});
-  if (w.trials < 1 || w.loops < 0) throw UserError("trials", "needs at least one trial", {"trials"});
+  if (w.trials < 1 || w.trials > 100000) throw UserError("trials", "must be 1 to 100000", {"trials"});
+  if (w.loops < 0 || w.loops > 1000) throw UserError("loops", "must be 0 to 1000", {"loops"});
+  if (w.kind != "rotd50" && w.kind != "component") throw UserError("kind", "'" + w.kind + "' is not rotd50 or component", {"kind"});
   const auto& grid = table.periods_s;
   for (std::size_t j = 0; j < target.periods_s.size(); ++j) {
     const double t = target.periods_s[j];
@@ -251,9 +253,9 @@ SelectionResult select_records(const SelectionTarget& target, const SpectraTable
   std::size_t usable = 0;
   for (std::size_t k = 0; k < lib.size(); ++k) usable += cond == periods.size() || allowed(std::exp(fixed_ln_s[k]), w);
   if (usable < w.count)
-    throw UserError("n", std::to_string(usable) + " entries of kind " + w.kind + " can be scaled within [" + number_text(w.scale_min) +
+    throw UserError("count", std::to_string(usable) + " entries of kind " + w.kind + " can be scaled within [" + number_text(w.scale_min) +
                              ", " + number_text(w.scale_max) + "]; " + std::to_string(w.count) + " asked",
-                    {"n"});
+                    {"count"});
 
   // Step 2: the nearest entry to each simulated spectrum.
   const Matrix sim = simulated_set(target, w);
@@ -276,7 +278,7 @@ SelectionResult select_records(const SelectionTarget& target, const SpectraTable
       for (std::size_t j = 0; j < periods.size(); ++j) err += std::pow(lib[k][j] + ln_s - s[j], 2);
       if (err < best) best = err, best_k = k, best_ln_s = ln_s;
     }
-    if (best_k == lib.size()) throw UserError("n", "no library entry left within the scale limits", {"n"});
+    if (best_k == lib.size()) throw UserError("count", "no library entry left within the scale limits", {"count"});
     chosen.push_back(best_k);
     chosen_ln_s.push_back(best_ln_s);
   }
