@@ -110,23 +110,27 @@ std::vector<SceneSpec> PointPlan::frames() const {
 }
 
 std::vector<cube::Coordinate> PointPlan::coordinates() const {
+  // Each per-case vector is made only for a coordinate the cube stores (a study of 10^6
+  // cases held every label and model name twice more here).
   std::vector<double> index(points_.size());
-  std::vector<std::string> labels, models;
-  for (std::size_t i = 0; i < points_.size(); ++i) {
-    index[i] = static_cast<double>(i);
-    labels.push_back(points_[i].label);
-    models.emplace_back(points_[i].model->name);
-  }
+  for (std::size_t i = 0; i < points_.size(); ++i) index[i] = static_cast<double>(i);
   std::vector<cube::Coordinate> coords{number_coordinate(vocabulary::kCase, vocabulary::kCase, "", "frame number", index)};
   coords.back().is_index = true;
-  coords.push_back(text_coordinate(vocabulary::kCaseLabel, vocabulary::kCase, "frame label", labels));
+  if (stores_labels()) {
+    std::vector<std::string> labels;
+    for (const auto& p : points_) labels.push_back(p.label);
+    coords.push_back(text_coordinate(vocabulary::kCaseLabel, vocabulary::kCase, "frame label", labels));
+  }
   // The models present: the plan's first, then the others in catalogue order.
   std::vector<const SceneModel*> present{model_};
   for (const auto& m : scene_models())
     if (&m != model_ && std::any_of(points_.begin(), points_.end(), [&](const Point& p) { return p.model == &m; }))
       present.push_back(&m);
-  if (present.size() > 1)
+  if (present.size() > 1) {
+    std::vector<std::string> models;
+    for (const auto& p : points_) models.emplace_back(p.model->name);
     coords.push_back(text_coordinate(vocabulary::kSceneModel, vocabulary::kCase, "scene model of the frame", models));
+  }
   for (auto& c : extra_coordinates()) coords.push_back(std::move(c));
   // The plan's model's other parameters are the cube's attributes (frame_h_m, …); another
   // model has no base point, so all of its parameters are coordinates.

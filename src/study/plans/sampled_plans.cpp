@@ -108,6 +108,7 @@ class SampledPlan : public PointPlan {
       : PointPlan(model, std::move(points)), name_(name), sampling_(std::move(sampling)) {}
 
   std::string_view name() const override { return name_; }
+  bool stores_labels() const override { return false; }  // "s<case>" (saltelli: its sample and block)
   void describe(std::ostream& out) const override {
     describe_axes(out, model(), {});
     out << "sampled samples=" << sampling_.samples << " seed=" << sampling_.seed << " scramble=" << sampling_.scramble;
