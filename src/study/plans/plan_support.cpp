@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <limits>
 
 #include "pcrf/schema/cube_vocabulary.hpp"
 #include "pcrf/user_error.hpp"
@@ -114,7 +115,7 @@ std::vector<cube::Coordinate> PointPlan::coordinates() const {
   // cases held every label and model name twice more here).
   std::vector<double> index(points_.size());
   for (std::size_t i = 0; i < points_.size(); ++i) index[i] = static_cast<double>(i);
-  std::vector<cube::Coordinate> coords{number_coordinate(vocabulary::kCase, vocabulary::kCase, "", "frame number", index)};
+  std::vector<cube::Coordinate> coords{number_coordinate(vocabulary::kCase, vocabulary::kCase, "", "frame number", std::move(index))};
   coords.back().is_index = true;
   if (stores_labels()) {
     std::vector<std::string> labels;
@@ -141,10 +142,20 @@ std::vector<cube::Coordinate> PointPlan::coordinates() const {
       if (m == model_ && !parameter.axis) continue;
       if (std::find(written.begin(), written.end(), parameter.name) != written.end()) continue;
       written.push_back(parameter.name);
+      // SceneSpec::value without its copy of the point and its search by name per case
+      // (1 k instructions a case of rank 0's set-up for an LHS): the position of the
+      // parameter in each model present, found once.
+      std::vector<std::size_t> position(present.size());
+      for (std::size_t j = 0; j < present.size(); ++j) position[j] = present[j]->index(parameter.name);
       std::vector<double> values;
-      for (const auto& p : points_) values.push_back(SceneSpec{p.model, p.parameters}.value(parameter.name));
+      values.reserve(points_.size());
+      for (const auto& p : points_) {
+        const std::size_t j = static_cast<std::size_t>(std::find(present.begin(), present.end(), p.model) - present.begin());
+        values.push_back(position[j] == std::string::npos ? std::numeric_limits<double>::quiet_NaN()  // as SceneSpec::value
+                                                          : p.parameters[position[j]]);
+      }
       coords.push_back(number_coordinate(std::string(parameter.name), vocabulary::kCase, std::string(parameter.units),
-                                         std::string(parameter.long_name), values));
+                                         std::string(parameter.long_name), std::move(values)));
     }
   return coords;
 }
