@@ -69,7 +69,7 @@ def main():
     parser.add_argument("--metrics", nargs="*", default=[], help="stored metrics (default: every one)")
     parser.add_argument("--plan", choices=["grid", "lhs"], default="grid", help="grid (one frame per 100 cases) or lhs")
     args = parser.parse_args()
-    print(f"{args.plan}: | cases | stored metrics | wall time [s] | rank 0 peak RSS [MB] | cube [MB] | "
+    print(f"plan {args.plan}\n| cases | stored metrics | wall time [s] | rank 0 peak RSS [MB] | cube [MB] | "
           "RSS beyond the first row [B a case] | cube beyond the first row [B a case] |")
     print("| --- | --- | --- | --- | --- | --- | --- |")
     first = None

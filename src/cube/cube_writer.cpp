@@ -202,6 +202,12 @@ CubeWriter::CubeWriter(std::filesystem::path file, CubeLayout layout, OpenMode m
     resumed_ = true;
   }
   flush();  // the file exists, complete, from the start (an overwritten one is replaced whole)
+  // The coordinates are in the file now, and every later fold starts from a copy of it: their
+  // values need not stay in memory for the run (an LHS's eight parameters: 72 B a case).
+  for (auto& c : impl_->layout.coordinates) {
+    std::vector<double>().swap(c.numbers);
+    std::vector<std::string>().swap(c.strings);
+  }
 }
 
 CubeWriter::~CubeWriter() {
