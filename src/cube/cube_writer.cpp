@@ -202,12 +202,6 @@ CubeWriter::CubeWriter(std::filesystem::path file, CubeLayout layout, OpenMode m
     resumed_ = true;
   }
   flush();  // the file exists, complete, from the start (an overwritten one is replaced whole)
-  // The coordinates are in the file now, and every later fold starts from a copy of it: their
-  // values need not stay in memory for the run (an LHS's eight parameters: 72 B a case).
-  for (auto& c : impl_->layout.coordinates) {
-    std::vector<double>().swap(c.numbers);
-    std::vector<std::string>().swap(c.strings);
-  }
 }
 
 CubeWriter::~CubeWriter() {
@@ -578,6 +572,13 @@ void CubeWriter::Impl::write_new_file(io::AtomicFile& target) {
   std::vector<char> image;
   try {
     create(target.temporary());
+    // The coordinates are in the image now, and every later fold starts from a copy of the
+    // file: their values need not stay in memory, neither while the image is copied out (the
+    // peak of rank 0's memory) nor for the run (an LHS's eight parameters: 72 B a case).
+    for (auto& c : layout.coordinates) {
+      std::vector<double>().swap(c.numbers);
+      std::vector<std::string>().swap(c.strings);
+    }
     h5::check(H5Fflush(file, H5F_SCOPE_GLOBAL), what("cannot flush"));
     const ssize_t size = H5Fget_file_image(file, nullptr, 0);
     if (size <= 0) throw CubeError(what("cannot take the file's image"));
