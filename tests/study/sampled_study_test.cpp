@@ -64,6 +64,18 @@ TEST(SampledStudy, LabelsAreNotStoredButStillNameAHistory) {
   EXPECT_TRUE(case_four) << names[0];
 }
 
+// Without stored labels, the fragility table names a sampled frame by its case number.
+TEST(SampledStudy, FragilityNamesASampledFrameByItsCaseNumber) {
+  const auto dir = test::scratch_dir("sampled_fragility");
+  const std::string text = kRecords + "[plan]\nkind = \"lhs\"\nsamples = 3\nseed = 3\n[intensity]\nmeasure = \"pga_g\"\n"
+                                      "[axes]\nkappa = {from = 1.2, to = 2.4}\nintensity = [0.5, 2.0]\n";
+  ASSERT_EQ(run_in(dir, text, "-o lhs.h5 --progress-interval 0").exit_code, 0);
+  const auto table = test::run_command(pcrf() + " cube fragility " + quoted(dir / "lhs.h5"));
+  ASSERT_EQ(table.exit_code, 0) << table.err;
+  for (const char* frame : {"\ncase=0 ", "\ncase=1 ", "\ncase=2 "})
+    EXPECT_NE(table.out.find(frame), std::string::npos) << frame << " in\n" << table.out;
+}
+
 TEST(SampledStudy, SensitivityOfASaltelliCubeIsTheEstimatorOnItsOutputs) {
   const auto dir = test::scratch_dir("sampled_saltelli");
   const std::string text = kRecords + "[plan]\nkind = \"saltelli\"\nsamples = 32\nscramble = true\n[axes]\n"
