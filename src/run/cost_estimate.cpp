@@ -7,10 +7,12 @@
 #include <cmath>
 #include <cstdio>
 #include <numeric>
+#include <span>
 
 #include "pcrf/ida/ida_search.hpp"
 #include "pcrf/run/case_runner.hpp"
 #include "pcrf/run/ida_work.hpp"
+#include "pcrf/solver/batch_solver.hpp"
 
 namespace pcrf::study {
 namespace {
@@ -36,6 +38,19 @@ std::int64_t reversed(std::int64_t value, int bits) {
   std::int64_t out = 0;
   for (int b = 0; b < bits; ++b) out |= ((value >> b) & 1) << (bits - 1 - b);
   return out;
+}
+
+/// The cases a run solves together with case `index` in lockstep lanes: up to `lanes` cases of
+/// its excitation (the same record, level and incidence; other frames), adjacent in storage
+/// order as the run's blocks of one excitation take them. `index` alone without lanes.
+std::vector<parallel::WorkItem> lane_group(const CaseSpace& space, std::int64_t index, std::size_t lanes) {
+  std::vector<parallel::WorkItem> group{{index, 0.0}};
+  const std::int64_t excitation = space.excitation_of(index);
+  for (std::int64_t j = index + 1; group.size() < lanes && j < space.size() && space.excitation_of(j) == excitation; ++j)
+    group.push_back({j, 0.0});
+  for (std::int64_t j = index - 1; group.size() < lanes && j >= 0 && space.excitation_of(j) == excitation; --j)
+    group.push_back({j, 0.0});
+  return group;
 }
 
 }  // namespace
@@ -72,16 +87,20 @@ std::string CostEstimate::text() const {
   else
     range = cpu_amount(std::max(0.0, total - spread)) + " to " + cpu_amount(total + spread) +
             " at two standard errors of the sample mean";
-  char line[600];
+  char line[1024];
   std::snprintf(line, sizeof line,
                 "cost estimate: about %s (%s; divide by the worker count): %lld sampled %s of %lld%s, spread over "
-                "the study's hand-out order, took %.3g to %.3g s of CPU each (mean %.3g s); a sample mean, not a "
-                "bound: rare costly %s it misses are not in it",
+                "the study's hand-out order, took %.3g to %.3g s of CPU each (mean %.3g s)%s",
                 cpu_amount(total).c_str(), range.c_str(), static_cast<long long>(sampled()), unit,
                 static_cast<long long>(population),
                 ida ? (" (run whole: " + std::to_string(runs.size()) + " runs at the intensities their searches reach)").c_str()
-                    : "",
-                *lo, *hi, total / static_cast<double>(population), ida ? "curves" : "cases");
+                : lanes > 1 ? (" (each solved in lanes with up to " + std::to_string(lanes - 1) +
+                               " more cases of its excitation, as the run does: its share)").c_str()
+                            : "",
+                *lo, *hi, total / static_cast<double>(population),
+                sampled() == population ? ""
+                : ida ? "; a sample mean, not a bound: rare costly curves it misses are not in it"
+                      : "; a sample mean, not a bound: rare costly cases it misses are not in it");
   return line;
 }
 
@@ -104,13 +123,21 @@ CostEstimate estimate_cost(const Study& study, const CaseSpace& space, RecordCac
   estimate.ida = space.ida_runs() > 0;
   estimate.population = estimate.ida ? space.curves() : space.size();
   const auto collapse = estimate.ida ? collapse_test(study) : ida::IdaCurves::CollapseTest{};
+  // As the run solves them: a grid's or a plan's cases in lanes where it does (study_run.cpp's
+  // in_lanes), each case then costing its share of its lane batch.
+  const std::size_t lanes = !estimate.ida && study.run.lanes > 1 && batch_integrates(study.solver) ? study.run.lanes : 1;
+  estimate.lanes = lanes;
   const double begin_s = thread_cpu_s();
   for (const std::int64_t position : sample_positions(estimate.population, sample)) {
     const double unit_begin_s = thread_cpu_s();
+    const std::size_t runs_before = estimate.runs.size();
+    double share = 1.0;
     if (!estimate.ida) {
-      const parallel::WorkItem item{space.handout_index(position), 0.0};
-      (void)runner.run(item);
-      estimate.runs.push_back(item);
+      const auto group = lane_group(space, space.handout_index(position), lanes);
+      if (group.size() == 1) (void)runner.run(group.front());
+      else (void)runner.run(std::span<const parallel::WorkItem>(group));
+      estimate.runs.insert(estimate.runs.end(), group.begin(), group.end());
+      share = 1.0 / static_cast<double>(group.size());
     } else {
       // A curve whole, as IdaCurves makes its runs: run k of curve c is case c · max_runs + k.
       ida::IdaSearch search(study.ida->search());
@@ -120,7 +147,8 @@ CostEstimate estimate_cost(const Study& study, const CaseSpace& space, RecordCac
         estimate.runs.push_back(item);
       }
     }
-    estimate.unit_cpu_s.push_back(thread_cpu_s() - unit_begin_s);
+    estimate.unit_cpu_s.push_back(share * (thread_cpu_s() - unit_begin_s));
+    estimate.unit_runs.push_back(estimate.runs.size() - runs_before);
     if (estimate.sampled() >= 2 && thread_cpu_s() - begin_s > budget_cpu_s) break;
   }
   return estimate;

@@ -101,7 +101,7 @@ TEST(CostEstimate, AnIdaIsSampledAtTheIntensitiesItsCurvesReach) {
 
 TEST(CostEstimate, AGridIsSampledOverItsHandOutOrder) {
   const auto dir = test::scratch_dir("cost_estimate_grid");
-  Parsed p(dir, small_grid_study());
+  Parsed p(dir, small_grid_study("[run]\nlanes = 1\n"));
   const CostEstimate estimate = study::estimate_cost(p.study, p.space, p.records, 8, 1e9);
   EXPECT_FALSE(estimate.ida);
   EXPECT_EQ(estimate.population, 24);
@@ -118,6 +118,30 @@ TEST(CostEstimate, AGridIsSampledOverItsHandOutOrder) {
   double sum = 0.0;
   for (const double s : estimate.unit_cpu_s) sum += s;
   EXPECT_DOUBLE_EQ(estimate.total_cpu_s(), 24.0 * sum / 8.0);
+}
+
+TEST(CostEstimate, InLanesASampledCaseIsSolvedWithItsLaneMates) {
+  // 4 frames under each of the 6 excitations (3 records × 2 scales): a case's lane batch is 4
+  // cases of its excitation, the sampled one first; each unit costs its share of the batch.
+  const auto dir = test::scratch_dir("cost_estimate_lanes");
+  Parsed p(dir, small_grid_study("[run]\nlanes = 4\n"));
+  const CostEstimate estimate = study::estimate_cost(p.study, p.space, p.records, 5, 1e9);
+  const auto positions = study::sample_positions(24, 5);
+  ASSERT_EQ(estimate.unit_runs.size(), positions.size());
+  std::size_t cursor = 0;
+  for (std::size_t k = 0; k < positions.size(); ++k) {
+    ASSERT_EQ(estimate.unit_runs[k], 4u) << "unit " << k;
+    const std::int64_t sampled = p.space.handout_index(positions[k]);
+    EXPECT_EQ(estimate.runs[cursor].case_index, sampled);
+    std::set<std::int64_t> distinct;
+    for (std::size_t r = cursor; r < cursor + 4; ++r) {
+      EXPECT_EQ(p.space.excitation_of(estimate.runs[r].case_index), p.space.excitation_of(sampled));
+      distinct.insert(estimate.runs[r].case_index);
+    }
+    EXPECT_EQ(distinct.size(), 4u);
+    cursor += 4;
+  }
+  EXPECT_EQ(estimate.runs.size(), cursor);
 }
 
 TEST(CostEstimate, EveryUnitTimedHasNoSamplingErrorAndOneUnitNoSpread) {

@@ -6,10 +6,10 @@
 ///
 /// The unit of work is a case, or in an IDA a whole curve: every run its hunt-and-fill search
 /// makes, at the intensities it reaches (the search is deterministic, so these are the runs
-/// the study will make for that curve). The estimate is a sample mean, not a bound: a
-/// study whose cost lies in a few cases the sample misses costs more, and lanes (cases of one
-/// excitation solved together, `[run] lanes`) make a grid cheaper than its cases timed one at
-/// a time.
+/// the study will make for that curve). Where the run solves a grid's or a plan's cases in
+/// lockstep lanes (`[run] lanes`), a sampled case is solved with the cases of its excitation
+/// that share its lane batch, and costs its share. The estimate is a sample mean, not a
+/// bound: a study whose cost lies in a few cases the sample misses costs more.
 #pragma once
 
 #include <cstdint>
@@ -26,8 +26,10 @@ namespace pcrf::study {
 struct CostEstimate {
   bool ida = false;                 ///< units are IDA curves (all their runs), not cases
   std::int64_t population = 0;      ///< units in the study: cases, or IDA curves
-  std::vector<double> unit_cpu_s;   ///< CPU time of each sampled unit, in the order run [s]
-  std::vector<parallel::WorkItem> runs;  ///< every case run, in order (an IDA's with their intensity)
+  std::vector<double> unit_cpu_s;   ///< CPU time of each sampled unit (in lanes: its share), in the order run [s]
+  std::vector<parallel::WorkItem> runs;  ///< every case run, in order (an IDA's with their intensity; lane mates)
+  std::vector<std::size_t> unit_runs;    ///< how many of `runs` each unit made, in order
+  std::size_t lanes = 1;                 ///< lane batch width the sampled cases were solved in (1: alone)
 
   std::int64_t sampled() const { return static_cast<std::int64_t>(unit_cpu_s.size()); }
   /// population × the mean CPU time per sampled unit [CPU-seconds]; NaN when none was sampled.
@@ -46,7 +48,8 @@ struct CostEstimate {
 std::vector<std::int64_t> sample_positions(std::int64_t population, std::int64_t n);
 
 /// Runs up to `sample` units of the study at sample_positions over its hand-out order
-/// (CaseSpace::handout_index; an IDA: over its curves), one after another in this thread,
+/// (CaseSpace::handout_index, with their lane mates; an IDA: over its curves), one after
+/// another in this thread,
 /// stopping once `budget_cpu_s` CPU seconds have been spent (at least two units run when
 /// the study has two). An IDA's curve runs every run its search makes, with the study's
 /// collapse rule deciding each verdict.
