@@ -3,9 +3,9 @@ from the C++ that the command line runs (``pcrf._pcrf``: the same reports, the s
 reader, the same names), never from the text of a ``pcrf`` process."""
 import csv
 import json
-import sys
 
 from .. import _pcrf
+from .._notices import warn
 from .._reports import report as _report
 from .errors import PlotError
 
@@ -111,9 +111,8 @@ class Cube:
         info, notes = call(_pcrf.cube_info, self.path)
         self.info = json.loads(info)
         # A partial cube (cases never run), or one a run is writing: the figure shows the
-        # cases run so far; say so.
-        for note in notes:
-            print(f"pcrf plot: {note}", file=sys.stderr)
+        # cases run so far; say so (pcrf plot prints it on stderr).
+        warn(notes)
 
     @property
     def dimensions(self):
