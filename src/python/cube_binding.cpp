@@ -139,14 +139,15 @@ py::tuple cube_report(const std::string& kind, const std::string& file, const py
   return py::make_tuple(json.str(), notes);
 }
 
-/// What the command line says on stderr of a cube it reads (`cube info`, `export`): a run
-/// holding it, results waiting in its journal, cases not run.
+/// What `pcrf cube info` says on stderr of a cube: a run holding it, results waiting in its
+/// journal, cases not run, cases unresolved.
 std::vector<std::string> cube_notes(const std::string& file) {
   std::vector<std::string> notes;
   if (auto running = post::running_note(file); !running.empty()) notes.push_back(std::move(running));
   try {
     const cube::CubeReader reader(file);
     for (auto& note : post::completion_notes(file, reader)) notes.push_back(std::move(note));
+    for (auto& line : post::verdict_lines("info", file, reader)) notes.push_back(std::move(line));
   } catch (const cube::CubeError& e) {
     throw post::unreadable_cube(file, e);
   }
@@ -160,7 +161,8 @@ void bind_cube(py::module_& m) {
         "(the JSON of `pcrf cube KIND FILE --json` (stats, fragility, sensitivity, p695, risk), the notes the command "
         "line prints beside it); see pcrf.fragility.");
   m.def("cube_notes", &cube_notes, py::arg("file"),
-        "The notes `pcrf cube info FILE` prints on stderr: a run holding it, results in its journal, cases not run.");
+        "The notes `pcrf cube info FILE` prints on stderr: a run holding it, results in its journal, cases not run "
+        "or unresolved.");
   m.def("pulse_coordinates", &study::vocabulary::pulse_coordinates,
         "The coordinates a study of pulses may have along `record`: pulse_shape and the pulse axes.");
 }

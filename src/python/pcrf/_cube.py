@@ -28,13 +28,17 @@ def open_cube(path, pulse_dimensions=False, **open_dataset_keywords):
     What ``pcrf cube info`` says of the cube on stderr (a run is writing it, results wait in its
     journal, cases were not run) is warned, each a ``pcrf.PcrfWarning``.
     """
-    import numpy as np
-    import xarray as xr
-
     try:
         warn(_pcrf.cube_notes(str(path)))
     except _pcrf.InputError:
         pass  # not a cube the engine reads: xarray says what it makes of the file
+    return opened(path, pulse_dimensions, **open_dataset_keywords)
+
+
+def opened(path, pulse_dimensions=False, **open_dataset_keywords):
+    """open_cube without its notes: pcrf.study's cube, whose run said what it had to."""
+    import numpy as np
+    import xarray as xr
 
     ds = xr.open_dataset(path, **open_dataset_keywords)
     if schema.STATUS in ds.variables and ds[schema.STATUS].dtype.kind == "f":  # a cube written with a _FillValue

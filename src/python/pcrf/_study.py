@@ -9,7 +9,7 @@ import tempfile
 from pathlib import Path
 
 from . import _pcrf
-from ._cube import open_cube
+from ._cube import opened
 from ._notices import RecordWarning, warn
 from ._pcrf import InputError, OutputError
 
@@ -61,12 +61,12 @@ def _error_of(line, returncode):
 def _under_mpirun(source, output, ranks, flags, run_settings, progress):
     from . import _ENVIRONMENT_AT_IMPORT
 
-    run_flags = _pcrf.run_flags(**run_settings)  # checked here, as ranks=1 checks them
     temporary = None
-    if isinstance(source, dict):
-        # Checked here with the dict's key paths; mpirun's ranks read it as a file in the working
+    text = _pcrf.study_text(source) if isinstance(source, dict) else None
+    run_flags = _pcrf.run_flags(**run_settings)  # checked here, after the dict, as ranks=1 checks them
+    if text is not None:
+        # Checked above with the dict's key paths; mpirun's ranks read it as a file in the working
         # directory, so that relative record paths mean what they meant in the dict.
-        text = _pcrf.study_text(source)
         handle, temporary = tempfile.mkstemp(prefix=".pcrf_study_", suffix=".toml", dir=os.getcwd())
         with os.fdopen(handle, "w") as file:
             file.write(text)
@@ -127,7 +127,7 @@ def study(source, output=None, ranks=1, *, overwrite=False, resume=False, check=
     if ranks > 1:
         flags = [flag for flag, on in (("--overwrite", overwrite), ("--resume", resume), ("--check", check)) if on]
         cube = _under_mpirun(source, output, ranks, flags, run_settings, progress)
-        return None if check else open_cube(cube)
+        return None if check else opened(cube)
     summary = _pcrf.study(source, output=None if output is None else os.fspath(output), overwrite=overwrite,
                           resume=resume, check=check, progress=progress, **run_settings)
     warn(summary["notes"])
@@ -138,4 +138,4 @@ def study(source, output=None, ranks=1, *, overwrite=False, resume=False, check=
         return summary
     if summary["error"]:
         raise OSError(summary["error"])
-    return open_cube(summary["output"])
+    return opened(summary["output"])
