@@ -136,8 +136,11 @@ py::dict study(const py::object& source, const py::kwargs& kwargs) {
   if (py::isinstance<py::dict>(source)) {
     options.study = parsed_study(source.cast<py::dict>());
     options.study_file = kDictSource;
-  } else {
+  } else if (py::isinstance<py::str>(source) || py::hasattr(source, "__fspath__")) {
     options.study_file = py::str(py::hasattr(source, "__fspath__") ? source.attr("__fspath__")() : source).cast<std::string>();
+  } else {
+    throw UserError("source", "expected a dict of the study's tables or a study file's path (got a " +
+                                  py::str(source.get_type().attr("__name__")).cast<std::string>() + ")");
   }
   Keywords keywords(kwargs);
   if (const auto output = keywords.take_text("output")) options.output = *output;

@@ -265,6 +265,13 @@ def test_a_study_of_containers_without_end_is_refused_naming_the_key(value, prob
         pcrf.study(cyclic, output="never.h5")
 
 
+def test_a_study_source_that_is_neither_a_dict_nor_a_path_is_refused():
+    for source in (nested(200_000), 42, holding_itself()["to"].keys()):
+        with pytest.raises(pcrf.InputError, match="source=: expected a dict") as error:
+            pcrf.study(source, output="never.h5")
+        assert error.value.key == "source"
+
+
 @pytest.mark.parametrize("keywords, key", [
     ({"frame": {"kappa": nested(200_000)}}, "kappa"),
     ({"tail_s": nested(200_000)}, "tail_s"),
@@ -326,3 +333,19 @@ def test_pcrf_plot_help_lists_the_kinds_of_the_one_table():
     modules = {p.stem for p in (Path(pcrf.plot.__file__).parent).glob("*.py")
                if "def draw(" in p.read_text(encoding="utf-8")}
     assert modules == set(KINDS)
+
+
+# ---- the docs' rules are the engine's -------------------------------------------------------
+
+def test_the_ida_run_rule_is_stated_once_and_rendered_as_checked(tmp_path):
+    _, table, _ = cli("settings")
+    row = next(line for line in table.splitlines() if line.startswith("| `max_runs` |"))
+    least = int(re.search(r"integer ≥ (\d+)", row).group(1))
+    readme = (SOURCE_DIR / "studies" / "README.md").read_text(encoding="utf-8")
+    assert row in readme
+    study = {"records": [{"synthetic": ["sine:amplitude_g=1,period_s=0.5"]}], "intensity": {"measure": "pga_g"},
+             "ida": {"start": 0.5, "max_intensity": 8.0, "max_runs": least - 1}}
+    with pytest.raises(pcrf.InputError, match=f"max_runs: must be at least {least}"):
+        pcrf._pcrf.study_text(study)
+    study["ida"]["max_runs"] = least
+    assert "max_runs" in pcrf._pcrf.study_text(study)
