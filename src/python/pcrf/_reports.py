@@ -12,10 +12,16 @@ def report(kind, cube, **keywords):
     """The object ``pcrf cube KIND CUBE --json`` writes (the same C++), as dicts and lists; what
     ``pcrf cube KIND`` prints on stderr beside it (the cube's notes, then the report's warnings)
     is warned, each a ``pcrf.PcrfWarning``."""
-    text, notes = _pcrf.cube_report(kind, os.fspath(cube), **keywords)
-    answer = json.loads(text)
+    answer, notes = said(kind, cube, **keywords)
     warn(notes + answer.get("warnings", []))
     return answer
+
+
+def said(kind, cube, **keywords):
+    """(the report's object, the notes ``pcrf cube KIND`` prints before it), nothing warned: the
+    figures, which say their cube's notes themselves, draw from it."""
+    text, notes = _pcrf.cube_report(kind, os.fspath(cube), **keywords)
+    return json.loads(text), notes
 
 
 def _frame(kind, cube, table, **keywords):

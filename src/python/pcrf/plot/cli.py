@@ -109,21 +109,25 @@ def save(figure, args):
     _pcrf.write_output(args.output, image.getvalue(), [args.input], args.overwrite)
 
 
-def main(argv):
-    """Draws and writes the figure; its notes and warnings (pcrf.PcrfWarning) are lines on
-    stderr, "pcrf plot: …", as every command prints them."""
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always", PcrfWarning)
-        code = _draw_and_write(argv)
+def say(caught):
+    """The warnings caught while drawing: a pcrf.PcrfWarning (the cube's notes) as a line on
+    stderr, "pcrf plot: …", as every command prints its notes; any other as Python shows it."""
     for warning in caught:
         if issubclass(warning.category, PcrfWarning):
             print(f"pcrf plot: {warning.message}", file=sys.stderr)
-        else:
-            warnings.showwarning(warning.message, warning.category, warning.filename, warning.lineno)
-    return code
+        else:  # as Python shows it (showwarning itself records, inside catch_warnings)
+            sys.stderr.write(warnings.formatwarning(warning.message, warning.category, warning.filename, warning.lineno))
 
 
-def _draw_and_write(argv):
+def main(argv):
+    """Draws and writes the figure; returns 0, or 2 after one line on stderr (and nothing else:
+    the notes of a figure not written are not said)."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", PcrfWarning)
+        return _draw_and_write(argv, caught)
+
+
+def _draw_and_write(argv, caught):
     args = None
     try:
         args = parser().parse_args(argv)
@@ -140,6 +144,7 @@ def _draw_and_write(argv):
         style.apply()
         figure = importlib.import_module(f".{args.kind}", __package__).draw(args)
         save(figure, args)
+        say(caught)
         panels = len(figure.axes)
         print(f"pcrf plot: wrote {args.output} ({args.kind}, {panels} panel{'' if panels == 1 else 's'})")
         return 0

@@ -6,7 +6,7 @@ import json
 
 from .. import _pcrf
 from .._notices import warn
-from .._reports import report as _report
+from .._reports import said as _said
 from .errors import PlotError
 
 # What a bad input raises in the engine (pcrf.InputError, a ValueError) and a
@@ -24,7 +24,7 @@ def call(function, *args, **keywords):
 
 def report(kind, cube, **keywords):
     """``pcrf cube KIND --json``'s object (stats, fragility, sensitivity, risk), from the same C++."""
-    return call(_report, kind, cube, **keywords)
+    return call(_said, kind, cube, **keywords)[0]  # as pcrf plot always drew: the cube's notes said by Cube
 
 
 _VOCABULARY = None
