@@ -142,6 +142,13 @@ STDERR_LINES = {
     ("src/cli/run_command.cpp", "pcrf run: warning: "): (2, "pcrf.run: RecordWarning (test_record_checks.py)"),
     ("src/cli/record_command.cpp", "pcrf record: note: "): (1, "pcrf.record_measures: PcrfWarning"),
     ("src/cli/record_command.cpp", "pcrf record: warning: "): (1, "pcrf.record_measures: RecordWarning (test_record_checks.py)"),
+    ("src/cli/record_command.cpp", "pcrf record pulse: note: "): (1, "pcrf.pulse: PcrfWarning (its record's notes)"),
+    ("src/cli/record_library_commands.cpp", "pcrf record spectra: note: "): (1, "pcrf.record_spectra: PcrfWarning"),
+    ("src/cli/record_library_commands.cpp", None): (1, "record spectra's progress on a terminal: the command line's alone"),
+    ("src/cli/record_library_commands.cpp", "pcrf record spectra: "): (2, "its progress and its count of components: "
+                                                                         "the command line's; Python returns the table"),
+    ("src/cli/record_library_commands.cpp", "pcrf record select: largest error of the median "): (
+        1, "the fit's errors: pcrf.select returns them (median_error_percent, sigma_error_percent)"),
     ("src/cli/study_command.cpp", None): (2, "its error lines: raised (test_more_ranks_raise_what_one_rank_raises)"),
     ("src/cli/study_command.cpp", "pcrf: error: "): (1, "an internal error on a rank: RuntimeError"),
     ("src/cli/study_command.cpp", "pcrf study: "): (1, "the stop report: a note of the KeyboardInterrupt"),
