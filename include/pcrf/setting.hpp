@@ -49,6 +49,7 @@ enum class Bound {
   kPositive,     ///< > 0
   kNonNegative,  ///< ≥ 0
   kAtLeastOne,   ///< ≥ 1
+  kAtLeast,      ///< ≥ the setting's `at_least`
   kFraction,     ///< in [0, 1)
   kOpenUnit,     ///< in (0, 1)
 };
@@ -59,6 +60,7 @@ struct Setting {
   SettingType type = SettingType::kNumber;
   std::string_view unit;  ///< UDUNITS text ("s", "rad", "rad/s", "1"); empty for flags and choices
   Bound bound = Bound::kAny;
+  double at_least = 0.0;  ///< Bound::kAtLeast: the least value admitted (stated where the rule lives)
   std::vector<std::string> choices;  ///< kChoice: the words allowed
   /// kNumber: words that stand for a value outside `bound` ("until-rest" for an unbounded
   /// tail). A value given as one of them is carried as the word (fingerprint, attributes).
@@ -128,6 +130,7 @@ std::string setting_kind_text(const Setting<Target>& s) {
     case Bound::kPositive: text += " > 0"; break;
     case Bound::kNonNegative: text += " ≥ 0"; break;
     case Bound::kAtLeastOne: text += " ≥ 1"; break;
+    case Bound::kAtLeast: text += " ≥ " + number_text(s.at_least); break;
     case Bound::kFraction: text += " in [0, 1)"; break;
     case Bound::kOpenUnit: text += " in (0, 1)"; break;
   }
@@ -192,6 +195,9 @@ std::string check_setting(const Setting<Target>& s, SettingValue& value) {
     case Bound::kPositive: ok = v > 0.0, rule = "must be positive"; break;
     case Bound::kNonNegative: ok = v >= 0.0, rule = "must not be negative"; break;
     case Bound::kAtLeastOne: ok = v >= 1.0, rule = "must be at least 1"; break;
+    case Bound::kAtLeast:
+      if (v >= s.at_least) break;
+      return "must be at least " + number_text(s.at_least) + " (got " + setting_text(value) + ")";
     case Bound::kFraction: ok = v >= 0.0 && v < 1.0, rule = "must be at least 0 and below 1"; break;
     case Bound::kOpenUnit: ok = v > 0.0 && v < 1.0, rule = "must be above 0 and below 1"; break;
   }

@@ -4,6 +4,8 @@
 /// main() turns into a one-line message (keys as flags) and exit code 2.
 #pragma once
 
+#include <string>
+
 #include "pcrf/user_error.hpp"
 
 namespace CLI {
@@ -15,6 +17,15 @@ namespace pcrf::cli {
 /// Bad arguments or bad input files: one line on stderr, exit code 2. The error every layer
 /// throws for bad input (pcrf/user_error.hpp); its keys are printed as flags.
 using UsageError = UserError;
+
+/// The one line that reports bad input: "pcrf: error: " and the message, keys spelt as flags.
+/// With PCRF_ERROR_FORMAT=json in the environment (pcrf.study with ranks > 1 sets it for the
+/// `pcrf study` it starts under mpirun), the message is a JSON object that Python raises as
+/// ranks=1 would: {"kind": "input", "message" (keys spelt as keywords), "key", "file", "line"}.
+std::string error_line(const UserError& e);
+/// The same for a failure that is not the input's: `kind` "output" (an output refused or not
+/// written: pcrf.OutputError) or "write" (a study's cube could not be written: OSError).
+std::string error_line(const std::string& kind, const std::string& message);
 
 /// Exit code a sub-command asks main() to return (set by its callback; default 0).
 int& exit_code();

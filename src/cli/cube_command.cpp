@@ -66,26 +66,10 @@ void note_running(const std::string& file) {
   if (const auto note = post::running_note(file); !note.empty()) std::cerr << "pcrf cube: " << note << '\n';
 }
 
-/// A cube with results waiting in its journal, or with cases never run: says how many on
-/// stderr, since what is printed covers the cases of the cube's last fold only.
-void note_partial(const std::string& command, const std::string& file, const cube::CubeReader& reader) {
-  for (const auto& note : {post::journal_note(file, reader), post::partial_note(file, reader)})
-    if (!note.empty()) std::cerr << "pcrf cube " << command << ": " << note << '\n';
-}
-
-/// What the cube's statuses say that the printed answer cannot show (vocabulary::verdict_notes:
-/// unresolved cases, collapse statuses an IDA's collapse set leaves out), one line each on
-/// stderr. `treatment`: what the command does with the unresolved cases.
-void note_verdicts(const std::string& command, const std::string& file, const cube::CubeReader& reader,
-                   const std::string& treatment) {
-  namespace v = study::vocabulary;
-  const auto& layout = reader.layout();
-  const bool ida = layout.find_side_variable(v::kIdaRuns) != nullptr;
-  for (const auto& line : v::verdict_notes(reader.read_status(),
-                                           ida ? std::optional<std::string>(layout.text_attribute(v::kIdaCollapseAttribute))
-                                               : std::nullopt,
-                                           treatment, v::tail_s_of(layout)))
-    std::cerr << "pcrf cube " << command << ": " << file << ": " << line << '\n';
+/// What the report `kind` of the cube should be read with (post::report_notes: results waiting
+/// in its journal, cases never run, unresolved cases), one line each on stderr.
+void note_report(const std::string& kind, const std::string& file, const cube::CubeReader& reader) {
+  for (const auto& note : post::report_notes(kind, file, reader)) std::cerr << "pcrf cube " << kind << ": " << note << '\n';
 }
 
 /// Runs a cube action; cube problems (missing file, unknown name) are usage errors.
@@ -185,14 +169,14 @@ void add_info(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
   info->callback([args] {
     guarded(args->file, [&] {
       const cube::CubeReader reader(args->file);
-      note_partial("info", args->file, reader);
+      for (const auto& note : post::completion_notes(args->file, reader)) std::cerr << "pcrf cube info: " << note << '\n';
       const auto completion = study::vocabulary::completion(reader);
       if (args->json) cube::print_info_json(reader, std::cout, completion);
       else cube::print_info(reader, study::vocabulary::info_heading(reader.layout()), std::cout, completion);
       if (const auto states = study::vocabulary::curve_states_text(study::vocabulary::curve_states(reader));
           !states.empty())
         (args->json ? std::cerr : std::cout) << states << '\n';
-      note_verdicts("info", args->file, reader, "neither safe nor collapsed");
+      for (const auto& line : post::verdict_lines("info", args->file, reader)) std::cerr << "pcrf cube info: " << line << '\n';
       // Vouch for nothing unread: a variable whose chunks no longer decompress is damage.
       const auto damage = reader.damage();
       if (!damage.empty()) {
@@ -254,8 +238,7 @@ void add_stats(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
       check_report_outputs(*args);
       const auto reduction = reduction_of(*args, post::kStatsReduction);
       cube::CubeReader reader(args->file);
-      note_partial("stats", args->file, reader);
-      note_verdicts("stats", args->file, reader, "in the column `unresolved`, not in the percentiles");
+      note_report("stats", args->file, reader);
       const auto report = post::stats_report(reader, {args->by, args->metric, selectors(args->where), reduction});
       // The text of stats is its CSV (as it always was): --csv FILE adds a copy.
       write_report(report, "groups", *args, "",
@@ -288,8 +271,7 @@ void add_fragility(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& arg
       check_output(args->points, is_stdout(args->csv) ? csv_inputs : points_inputs, args->overwrite);
       const auto reduction = reduction_of(*args, post::kFragilityReduction);
       cube::CubeReader reader(args->file);
-      note_partial("fragility", args->file, reader);
-      note_verdicts("fragility", args->file, reader, "counted in no stripe (neither safe nor collapsed)");
+      note_report("fragility", args->file, reader);
       const auto report = post::fragility_report(reader, {selectors(args->where), args->mce}, reduction);
       write_report(report, "frames", *args, "");
       if (!args->points.empty())
@@ -314,8 +296,7 @@ void add_sensitivity(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& a
       if (args->by.size() > 1 || (by_record && args->by.front() != "record")) throw UserError("by", "takes `record` only");
       check_report_outputs(*args);
       cube::CubeReader reader(args->file);
-      note_partial("sensitivity", args->file, reader);
-      note_verdicts("sensitivity", args->file, reader, "without a value (their base samples are left out)");
+      note_report("sensitivity", args->file, reader);
       write_report(post::sensitivity_report(reader, {args->metric, selectors(args->where), by_record}), "indices", *args, "");
     });
   });
@@ -354,8 +335,7 @@ void add_p695(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
       const post::P695Inputs in = p695_inputs(*args);
       check_report_outputs(*args);
       cube::CubeReader reader(args->file);
-      note_partial("p695", args->file, reader);
-      note_verdicts("p695", args->file, reader, "counted in no stripe (neither safe nor collapsed)");
+      note_report("p695", args->file, reader);
       const post::P695Report result = post::cube_p695(reader, selectors(args->where), in);
       write_report(post::p695_report(result, in, args->file), "frames", *args, "warning: ",
                    [&](std::ostream& out) { post::print_p695(result, in, out); });
@@ -412,8 +392,7 @@ void add_risk(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
       in.design_rating = ratings.design_rating, in.test_rating = ratings.test_rating, in.model_rating = ratings.model_rating;
       check_report_outputs(*args);
       cube::CubeReader reader(args->file);
-      note_partial("risk", args->file, reader);
-      note_verdicts("risk", args->file, reader, "counted in no stripe (neither safe nor collapsed)");
+      note_report("risk", args->file, reader);
       report = post::risk_report(post::cube_risk(reader, selectors(args->where), in), in, args->file);
       write_report(report, "frames", *args, "warning: ", [&](std::ostream& out) { post::print_risk(report, out); });
     });

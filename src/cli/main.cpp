@@ -2,6 +2,8 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <cstdlib>
+#include <string>
 #include <exception>
 #include <iostream>
 #include <string_view>
@@ -10,6 +12,7 @@
 #include "cli/commands.hpp"
 #include "pcrf/closest_word.hpp"
 #include "pcrf/io/checked_stream.hpp"
+#include "pcrf/json.hpp"
 #include "pcrf/printable.hpp"
 #include "pcrf/version.hpp"
 
@@ -18,6 +21,34 @@ int& exit_code() {
   static int code = 0;
   return code;
 }
+
+namespace {
+
+/// Whether the environment asks for errors as JSON (PCRF_ERROR_FORMAT=json).
+bool json_errors() {
+  const char* format = std::getenv("PCRF_ERROR_FORMAT");
+  return format != nullptr && std::string_view(format) == "json";
+}
+
+}  // namespace
+
+std::string error_line(const UserError& e) {
+  if (!json_errors()) return "pcrf: error: " + printable(e.message(Dialect::kFlag));
+  const Where& where = e.where();
+  return "pcrf: error: " + JsonObject()
+                               .text("kind", "input")
+                               .text("message", e.message(Dialect::kKeyword))
+                               .text("key", last_key_name(where.keys))
+                               .text("file", where.file)
+                               .integer("line", where.line)
+                               .str();
+}
+
+std::string error_line(const std::string& kind, const std::string& message) {
+  if (!json_errors()) return "pcrf: error: " + printable(message);
+  return "pcrf: error: " + JsonObject().text("kind", kind).text("message", message).str();
+}
+
 }  // namespace pcrf::cli
 
 namespace {
@@ -94,9 +125,9 @@ int run(CLI::App& app, int argc, char** argv, pcrf::io::CheckedStdout& out) {
     if (const auto unknown = unknown_flag_message(app); !unknown.empty()) return fail(unknown, 2);
     return fail("pcrf: error: " + pcrf::printable(e.what()) + " (see pcrf --help)", 2);
   } catch (const pcrf::UserError& e) {
-    return fail("pcrf: error: " + pcrf::printable(e.message(pcrf::Dialect::kFlag)), 2);
+    return fail(pcrf::cli::error_line(e), 2);
   } catch (const pcrf::io::OutputError& e) {
-    return fail("pcrf: error: " + pcrf::printable(e.what()), 2);
+    return fail(pcrf::cli::error_line("output", e.what()), 2);
   } catch (const std::exception& e) {
     return fail("pcrf: internal error: " + pcrf::printable(e.what()), 1);
   }

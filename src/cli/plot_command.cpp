@@ -64,9 +64,10 @@ std::string module_folder() {
 }  // namespace
 
 void add_plot_command(CLI::App& app) {
+  // The kinds: the figure package's one table (src/python/pcrf/plot/kinds.json, read by CMake).
   auto* cmd = app.add_subcommand("plot",
                                  "Draw a figure: pcrf plot KIND INPUT [-w NAME=VALUE]... [-m METRIC] -o FILE.png|.pdf|.svg "
-                                 "(kinds: history, sweep, ida, spectrum, fragility, sensitivity, status, table3; pcrf plot --help)");
+                                 "(kinds: " PCRF_PLOT_KINDS "; pcrf plot --help)");
   // Every argument, --help included, belongs to the figure package: it owns the kinds.
   cmd->prefix_command();
   cmd->set_help_flag();

@@ -103,7 +103,7 @@ void run_study_command(StudyArguments& args) {
   } catch (const UserError& e) {
     // Nothing has started. Report here, before MPI_Finalize, and not through UserError in
     // main(): once another rank has exited with code 2, mpirun may end this one at any time.
-    std::cerr << "pcrf: error: " << printable(e.message(Dialect::kFlag)) << std::endl;
+    std::cerr << error_line(e) << std::endl;
     mpi.quiet_barrier();  // the other ranks wait for this line before they leave
     exit_code() = 2;
     return;
@@ -120,10 +120,10 @@ void run_study_command(StudyArguments& args) {
               << args.run.study_file.string() << " -o " << summary->output.string() << " --resume" << std::endl;
   }
   if (summary && mpi.is_master())
-    for (const auto& note : summary->verdict_notes) std::cerr << "pcrf study: " << printable(note) << std::endl;
+    for (const auto& note : summary->verdict_notes) std::cerr << "pcrf study: note: " << printable(note) << std::endl;
   if (summary && summary->stopped_by != 0) exit_code() = 128 + summary->stopped_by;
   if (summary && !summary->error.empty()) {
-    std::cerr << "pcrf: error: " << printable(summary->error) << "; " << advice(summary->error_cause) << std::endl;
+    std::cerr << error_line("write", summary->error + "; " + advice(summary->error_cause)) << std::endl;
     exit_code() = 2;
   }
   if (!mpi.is_master() && stop_signal.load() != 0) exit_code() = 128 + stop_signal.load();

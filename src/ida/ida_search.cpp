@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 namespace pcrf::ida {
 namespace {
@@ -18,7 +19,8 @@ IdaSearch::IdaSearch(const IdaSearchSettings& settings) : settings_(settings) {
   if (!(settings_.resolution > 0.0 && settings_.resolution < 1.0))
     throw std::invalid_argument("IDA resolution must be in (0, 1)");
   if (!(settings_.max_intensity >= settings_.start)) throw std::invalid_argument("IDA max_intensity must be ≥ start");
-  if (settings_.max_runs < 2) throw std::invalid_argument("IDA max_runs must be at least 2");
+  if (settings_.max_runs < kMinIdaRuns)
+    throw std::invalid_argument("IDA max_runs must be at least " + std::to_string(kMinIdaRuns));
 }
 
 void IdaSearch::add(double intensity, RunVerdict verdict) {

@@ -8,6 +8,7 @@
 #include "pcrf/metrics/case_result.hpp"
 #include "pcrf/ida/ida_search.hpp"
 #include "pcrf/row_major.hpp"
+#include "pcrf/user_error.hpp"
 #include "pcrf/schema/cube_vocabulary.hpp"
 
 namespace pcrf::post {
@@ -238,7 +239,8 @@ std::vector<FrameFragility> cube_fragility(const cube::CubeReader& cube, const s
   const auto& layout = cube.layout();
   if (layout.find_side_variable(vocabulary::kCollapseIntensity) != nullptr) return ida_fragility(cube, selectors, reduction);
   if (!reduction.dimension.empty())
-    throw cube::CubeError("--reduce-over needs an IDA cube (its collapse intensities are reduced; a stripe's verdicts are not)");
+    throw UserError(Where{}, cube.file().string() + ": {} needs an IDA cube (its collapse intensities are reduced; a "
+                             "stripe's verdicts are not)", {"reduce_over"});
   const std::size_t record_dim = dimension_index(layout, vocabulary::kRecord);
   const std::size_t level_dim = dimension_index(layout, vocabulary::kIntensity);
   const auto& levels = layout.find_coordinate(vocabulary::kIntensity)->numbers;

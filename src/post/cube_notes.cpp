@@ -5,6 +5,9 @@
 #include "pcrf/io/run_lock.hpp"
 #include "pcrf/schema/cube_vocabulary.hpp"
 
+#include <optional>
+#include <stdexcept>
+
 namespace pcrf::post {
 
 std::string running_note(const std::string& file) {
@@ -29,6 +32,40 @@ std::string partial_note(const std::string& file, const cube::CubeReader& reader
   if (missing.count == 0) return {};
   return file + ": " + std::to_string(missing.count) + " of " + std::to_string(missing.total) + " " + missing.unit +
          " not run (a partial cube): left out";
+}
+
+std::string unresolved_treatment(const std::string& kind) {
+  if (kind == "stats") return "in the column `unresolved`, not in the percentiles";
+  if (kind == "sensitivity") return "without a value (their base samples are left out)";
+  if (kind == "fragility" || kind == "p695" || kind == "risk") return "counted in no stripe (neither safe nor collapsed)";
+  if (kind == "info") return "neither safe nor collapsed";
+  throw std::invalid_argument("unresolved_treatment: no report '" + kind + "'");
+}
+
+std::vector<std::string> completion_notes(const std::string& file, const cube::CubeReader& reader) {
+  std::vector<std::string> notes;
+  for (auto& note : {journal_note(file, reader), partial_note(file, reader)})
+    if (!note.empty()) notes.push_back(note);
+  return notes;
+}
+
+std::vector<std::string> verdict_lines(const std::string& kind, const std::string& file, const cube::CubeReader& reader) {
+  namespace v = study::vocabulary;
+  const auto& layout = reader.layout();
+  const bool ida = layout.find_side_variable(v::kIdaRuns) != nullptr;
+  std::vector<std::string> lines;
+  for (const auto& line : v::verdict_notes(reader.read_status(),
+                                           ida ? std::optional<std::string>(layout.text_attribute(v::kIdaCollapseAttribute))
+                                               : std::nullopt,
+                                           unresolved_treatment(kind), v::tail_s_of(layout)))
+    lines.push_back(file + ": " + line);
+  return lines;
+}
+
+std::vector<std::string> report_notes(const std::string& kind, const std::string& file, const cube::CubeReader& reader) {
+  auto notes = completion_notes(file, reader);
+  for (auto& line : verdict_lines(kind, file, reader)) notes.push_back(std::move(line));
+  return notes;
 }
 
 }  // namespace pcrf::post

@@ -216,7 +216,7 @@ void add_reduction_fields(const cube::Reduction& reduction, Report& report) {
 
 Report stats_report(const cube::CubeReader& cube, const StatsRequest& request) {
   const auto& layout = cube.layout();
-  if (request.by.empty()) throw cube::CubeError("give at least one coordinate to group by (--by)");
+  if (request.by.empty()) throw UserError(Where{}, "give at least one coordinate to group by ({})", {"by"});
   // In a one-at-a-time cube, the first swept parameter grouped by picks its sweep.
   auto where = request.where;
   for (const auto& by : request.by) where = vocabulary::stats_selectors(layout, by, where);

@@ -1,4 +1,5 @@
 // Sobol' indices of a saltelli cube (see cube_sensitivity.hpp).
+#include "pcrf/user_error.hpp"
 #include "pcrf/post/cube_sensitivity.hpp"
 
 #include <algorithm>
@@ -68,8 +69,8 @@ std::vector<SensitivityGroup> cube_sensitivity(const cube::CubeReader& cube, con
     y[c[record_dim]][c[case_dim]] = values[static_cast<std::size_t>(i)];
   }
   if (std::count(level_used.begin(), level_used.end(), true) > 1)
-    throw cube::CubeError("has several values of '" + layout.dimensions[level_dim].name + "': pick one with -w " +
-                          layout.dimensions[level_dim].name + "=VALUE");
+    throw UserError(Where{}, cube.file().string() + ": has several values of '" + layout.dimensions[level_dim].name +
+                                 "': pick one with {} " + layout.dimensions[level_dim].name + "=VALUE", {"where"});
 
   auto group_of = [&](const std::string& name, const std::vector<std::size_t>& which) {
     SensitivityGroup g{name, parameters, {}, 0, 0};

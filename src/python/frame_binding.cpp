@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "bindings.hpp"
@@ -36,7 +37,8 @@ py::dict frame(const py::kwargs& kwargs) {
   const SceneRequest request = keywords.take_scene_parameters();
   const auto physics = keywords.take_settings(physics_settings());
   int points = 41;  // as `pcrf frame` prints by default
-  if (const auto value = keywords.take_number("points")) points = static_cast<int>(*value);
+  if (const auto value = keywords.take_whole("points", std::numeric_limits<int>::min(), std::numeric_limits<int>::max()))
+    points = static_cast<int>(*value);  // its bounds: check_pushover_points, as the command line's
   keywords.finish();
   api::check_pushover_points(points);
   ScenePoint point;

@@ -4,6 +4,8 @@
 #include "pcrf/api/frame_input.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string_view>
 
@@ -18,6 +20,84 @@
 
 namespace pcrf::python {
 
+namespace {
+
+/// A dict's key as a key path names it: a str as it is, any other key by its repr (a repr
+/// that cannot be made, by its type).
+std::string key_text(const py::handle& key) {
+  if (PyUnicode_Check(key.ptr())) return py::reinterpret_borrow<py::str>(key).cast<std::string>();
+  try {
+    return py::repr(key).cast<std::string>();
+  } catch (const py::error_already_set&) {
+    return "<" + py::str(key.get_type().attr("__name__")).cast<std::string>() + ">";
+  }
+}
+
+/// A Python int for a message: its digits, or how many there are when they are many.
+std::string integer_text(const py::handle& value) {
+  constexpr std::size_t kShownDigits = 24;
+  const std::string digits = py::str(value).cast<std::string>();
+  if (digits.size() <= kShownDigits) return digits;
+  return "an integer of " + std::to_string(digits.size() - (digits.front() == '-' ? 1 : 0)) + " digits";
+}
+
+/// The key path `keys` up to its last name: what a message names of a path nested too deep.
+std::vector<std::string> up_to_last_name(std::vector<std::string> keys) {
+  while (!keys.empty() && is_key_index(keys.back())) keys.pop_back();
+  return keys;
+}
+
+/// check_nesting's walk: `open` holds the containers on the path to `value`, `keys` its key
+/// path; the depth is bounded by kMaxNestingDepth, so this recursion is too.
+void walk_nesting(const py::handle& value, std::vector<std::string>& keys, std::vector<PyObject*>& open,
+                  const Where& where) {
+  PyObject* object = value.ptr();
+  const bool is_dict = PyDict_Check(object) != 0;
+  if (!is_dict && PyList_Check(object) == 0 && PyTuple_Check(object) == 0) return;
+  if (std::find(open.begin(), open.end(), object) != open.end())
+    throw UserError(Where{keys, where.file, 0}, "holds itself (a list or dict that contains itself cannot be a value)");
+  if (open.size() == kMaxNestingDepth) throw nested_too_deep(Where{keys, where.file, 0});
+  open.push_back(object);
+  if (is_dict) {
+    for (const auto& [key, item] : py::reinterpret_borrow<py::dict>(value)) {
+      keys.push_back(key_text(key));
+      walk_nesting(item, keys, open, where);
+      keys.pop_back();
+    }
+  } else {
+    // A list may change under a walk only through Python code, which none of this runs.
+    const Py_ssize_t size = PySequence_Fast_GET_SIZE(object);
+    for (Py_ssize_t i = 0; i < size; ++i) {
+      keys.push_back(key_index(static_cast<std::size_t>(i)));
+      walk_nesting(PySequence_Fast_GET_ITEM(object, i), keys, open, where);
+      keys.pop_back();
+    }
+  }
+  open.pop_back();
+}
+
+}  // namespace
+
+UserError nested_too_deep(const Where& where) {
+  return UserError(Where{up_to_last_name(where.keys), where.file, where.line},
+                   "nests lists and dicts more than " + std::to_string(kMaxNestingDepth) + " deep");
+}
+
+void check_nesting(const py::handle& value, const Where& where) {
+  std::vector<std::string> keys = where.keys;
+  std::vector<PyObject*> open;
+  walk_nesting(value, keys, open, where);
+}
+
+std::int64_t whole_number(const py::handle& value, const Where& where) {
+  int overflow = 0;
+  const long long number = PyLong_AsLongLongAndOverflow(value.ptr(), &overflow);
+  if (overflow != 0)
+    throw UserError(where, "is out of range: " + integer_text(value) + " lies outside a 64-bit integer's [-2**63, 2**63 - 1]");
+  if (number == -1 && PyErr_Occurred() != nullptr) throw py::error_already_set();
+  return static_cast<std::int64_t>(number);
+}
+
 template <class Target>
 SettingValue setting_value(const Setting<Target>& s, const py::handle& value) {
   SettingValue v;
@@ -29,10 +109,16 @@ SettingValue setting_value(const Setting<Target>& s, const py::handle& value) {
     std::string words;
     for (const auto& word : value) words += (words.empty() ? "" : ",") + py::str(word).cast<std::string>();
     return api::checked_setting_text(s, words);
-  } else if (PyIndex_Check(value.ptr())) {
-    v = static_cast<std::int64_t>(py::int_(py::reinterpret_borrow<py::object>(value)).cast<long long>());
-  } else if (PyFloat_Check(value.ptr()) || py::hasattr(value, "__float__")) {
-    v = py::float_(py::reinterpret_borrow<py::object>(value)).cast<double>();
+  } else if (PyIndex_Check(value.ptr()) && s.type != SettingType::kNumber) {
+    v = whole_number(value, Where{{std::string(s.key)}, {}, 0});
+  } else if (PyIndex_Check(value.ptr()) || PyFloat_Check(value.ptr()) || py::hasattr(value, "__float__")) {
+    try {
+      v = py::float_(py::reinterpret_borrow<py::object>(value)).cast<double>();
+    } catch (const py::error_already_set&) {
+      if (PyIndex_Check(value.ptr()) != 0)  // an int beyond a double's range
+        throw UserError(std::string(s.key), "is out of range: " + integer_text(value) + " is beyond any number a double holds");
+      throw UserError(std::string(s.key), "expected " + setting_kind_text(s));
+    }
   } else {
     throw UserError(std::string(s.key), "expected " + setting_kind_text(s));
   }
@@ -45,8 +131,12 @@ template SettingValue setting_value(const Setting<IntensitySpec>&, const py::han
 template SettingValue setting_value(const Setting<study::RunOptions>&, const py::handle&);
 
 Keywords::Keywords(const py::kwargs& keywords) {
-  for (const auto& [key, value] : keywords)
-    if (!value.is_none()) given_[key.cast<std::string>()] = py::reinterpret_borrow<py::object>(value);
+  for (const auto& [key, value] : keywords) {
+    if (value.is_none()) continue;
+    const std::string name = key.cast<std::string>();
+    check_nesting(value, Where{{name}, {}, 0});  // before anything walks it
+    given_[name] = py::reinterpret_borrow<py::object>(value);
+  }
 }
 
 std::optional<py::object> Keywords::take(const std::string& key) {
@@ -64,8 +154,31 @@ std::optional<double> Keywords::take_number(const std::string& key) {
   try {
     return py::float_(*value).cast<double>();
   } catch (const py::error_already_set&) {
+    if (PyIndex_Check(value->ptr()) != 0)  // an int beyond a double's range
+      throw UserError(key, "is out of range: " + integer_text(*value) + " is beyond any number a double holds");
     throw UserError(key, "expected a number");
   }
+}
+
+std::optional<std::int64_t> Keywords::take_whole(const std::string& key, std::int64_t low, std::int64_t high) {
+  const auto value = take(key);
+  if (!value) return std::nullopt;
+  const std::string range = "[" + std::to_string(low) + ", " + std::to_string(high) + "]";
+  std::int64_t number = 0;
+  if (PyIndex_Check(value->ptr()) != 0 && !py::isinstance<py::bool_>(*value)) {
+    number = whole_number(*value, Where{{key}, {}, 0});
+  } else if (PyFloat_Check(value->ptr()) != 0) {
+    const double x = value->cast<double>();
+    // Exactly representable bounds: 2^63 is the first double past an int64's range.
+    if (!(std::trunc(x) == x) || !(x >= -9223372036854775808.0 && x < 9223372036854775808.0))
+      throw UserError(key, "expected a whole number in " + range + " (got " + py::str(*value).cast<std::string>() + ")");
+    number = static_cast<std::int64_t>(x);
+  } else {
+    throw UserError(key, "expected a whole number");
+  }
+  if (number < low || number > high)
+    throw UserError(key, "must lie in " + range + " (got " + std::to_string(number) + ")");
+  return number;
 }
 
 std::optional<std::string> Keywords::take_text(const std::string& key) {
@@ -154,8 +267,10 @@ StationRecord Keywords::take_station(std::vector<std::string>& notes, api::Recor
   input.format = take_text("format").value_or("");
   input.units = take_text("units").value_or("g");
   input.dt_s = dt_s.value_or(0.0);
-  if (const auto rows = take_number("skip_rows")) input.skip_rows = static_cast<std::size_t>(*rows);
-  if (const auto column = take_number("column")) input.column = static_cast<std::size_t>(*column);
+  // As the command line's --skip-rows and --column read them: counts of lines and columns.
+  constexpr std::int64_t kMaxLines = std::numeric_limits<std::int32_t>::max();
+  if (const auto rows = take_whole("skip_rows", 0, kMaxLines)) input.skip_rows = static_cast<std::size_t>(*rows);
+  if (const auto column = take_whole("column", 0, kMaxLines)) input.column = static_cast<std::size_t>(*column);
   if (used != nullptr) *used = input;
   StationRecord station = input.load_station(notes);
   if (warnings != nullptr) add_warnings(api::implausible_records(input, station), *warnings);

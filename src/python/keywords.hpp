@@ -7,6 +7,8 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <cstddef>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <optional>
@@ -22,6 +24,24 @@
 namespace pcrf::python {
 
 namespace py = pybind11;
+
+/// How deep a keyword's value, or a study given as a dict, may nest lists, tuples and dicts
+/// (a study's deepest is 5: a value of an inline table of an entry of an array of tables).
+inline constexpr std::size_t kMaxNestingDepth = 32;
+
+/// Refuses, before anything walks it, a value that holds itself (directly or through others)
+/// or nests lists, tuples and dicts deeper than kMaxNestingDepth: UserError at `where`'s key
+/// path, extended to the list or dict at fault ("frame['kappa']: holds itself"). Walks the
+/// value without recursion beyond that depth: no container can crash the interpreter.
+void check_nesting(const py::handle& value, const Where& where);
+
+/// The error of a value nested deeper than kMaxNestingDepth at `where` (named up to its last
+/// key that is a name).
+UserError nested_too_deep(const Where& where);
+
+/// A Python int (or an object with __index__) as a 64-bit integer. \throws UserError at
+/// `where` when it lies outside [-2^63, 2^63 - 1].
+std::int64_t whole_number(const py::handle& value, const Where& where);
 
 /// A Python value as a setting of `s` takes it: booleans, integers, floats as they are,
 /// text as the command line reads it, a list of words joined. \throws UserError.
@@ -46,6 +66,8 @@ class Keywords {
   std::optional<py::object> take(const std::string& key);
   std::optional<double> take_number(const std::string& key);
   std::optional<std::string> take_text(const std::string& key);  ///< str or os.PathLike
+  /// A whole number (an int, or a float with no fraction) in [`low`, `high`]. \throws UserError.
+  std::optional<std::int64_t> take_whole(const std::string& key, std::int64_t low, std::int64_t high);
 
   /// The values of the table's keys that were given, checked, in table order.
   template <class Target>

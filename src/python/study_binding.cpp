@@ -45,15 +45,23 @@ toml::table toml_table(const py::dict& dict, const KeyPath& path);
 toml::array toml_array(const py::handle& list, const KeyPath& path);
 
 /// Hands one value of a dict study, as its TOML type, to `put` (tables, arrays, booleans,
-/// integers, floats, strings; numpy arrays and scalars through their Python values).
+/// integers, floats, strings; numpy arrays and scalars through their Python values). The dict
+/// was checked by check_nesting; what a numpy array's tolist() makes (an object array may hold
+/// itself) is bounded here by its key path's length, so that no recursion below is deeper
+/// than kMaxNestingDepth.
 template <class Put>
 void with_toml_value(const py::handle& value, const KeyPath& path, Put put) {
+  if (path.size() > kMaxNestingDepth) throw nested_too_deep(Where{path, kDictSource, 0});
   if (py::isinstance<py::dict>(value)) return put(toml_table(value.cast<py::dict>(), path));
-  if (py::hasattr(value, "tolist") && !py::isinstance<py::str>(value))
-    return with_toml_value(value.attr("tolist")(), path, put);
+  if (py::hasattr(value, "tolist") && !py::isinstance<py::str>(value)) {
+    const py::object listed = value.attr("tolist")();
+    if (py::hasattr(listed, "tolist") && !py::isinstance<py::list>(listed) && !py::isinstance<py::tuple>(listed))
+      refuse(value, path);  // a tolist() that gives neither a list nor a plain value: no end to follow
+    return with_toml_value(listed, path, put);
+  }
   if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) return put(toml_array(value, path));
   if (py::isinstance<py::bool_>(value)) return put(value.cast<bool>());
-  if (py::isinstance<py::int_>(value)) return put(value.cast<std::int64_t>());
+  if (py::isinstance<py::int_>(value)) return put(whole_number(value, Where{path, kDictSource, 0}));
   if (py::isinstance<py::float_>(value)) return put(value.cast<double>());
   if (py::isinstance<py::str>(value)) return put(value.cast<std::string>());
   if (py::hasattr(value, "__fspath__")) return put(py::str(value.attr("__fspath__")()).cast<std::string>());
@@ -82,6 +90,7 @@ toml::array toml_array(const py::handle& list, const KeyPath& path) {
 /// The dict as a study, read by the study parser (UserError naming the key path); the cube
 /// keeps its TOML text.
 study::Study parsed_study(const py::dict& study) {
+  check_nesting(study, Where{{}, kDictSource, 0});  // before toml_table walks it
   const toml::table table = toml_table(study, {});
   std::ostringstream text;
   text << table;
@@ -127,8 +136,11 @@ py::dict study(const py::object& source, const py::kwargs& kwargs) {
   if (py::isinstance<py::dict>(source)) {
     options.study = parsed_study(source.cast<py::dict>());
     options.study_file = kDictSource;
-  } else {
+  } else if (py::isinstance<py::str>(source) || py::hasattr(source, "__fspath__")) {
     options.study_file = py::str(py::hasattr(source, "__fspath__") ? source.attr("__fspath__")() : source).cast<std::string>();
+  } else {
+    throw UserError("source", "expected a dict of the study's tables or a study file's path (got a " +
+                                  py::str(source.get_type().attr("__name__")).cast<std::string>() + ")");
   }
   Keywords keywords(kwargs);
   if (const auto output = keywords.take_text("output")) options.output = *output;
@@ -143,6 +155,8 @@ py::dict study(const py::object& source, const py::kwargs& kwargs) {
   if (options.study && options.output.empty() && !options.check_only)
     throw UserError(Where{}, "a study given as a dict needs {} (the cube's path)", {"output"});
 
+  std::vector<std::string> notes;  // warned by pcrf.study (as the command line prints them)
+  options.notes = &notes;
   std::optional<study::StudySummary> summary;
   Interrupt interrupt;  // outside the released block: its exception is let go with the GIL held
   options.stop_signal = &interrupt.stop;
@@ -170,6 +184,8 @@ py::dict study(const py::object& source, const py::kwargs& kwargs) {
   d["fingerprint"] = summary->fingerprint;
   d["cost_estimate"] = summary->cost_estimate;  // --check: measured on a sample of cases
   d["warnings"] = summary->warnings;
+  d["notes"] = notes;
+  d["verdict_notes"] = summary->verdict_notes;
   d["invalid_cases"] = summary->invalid_cases;
   d["invalid_frames"] = summary->invalid_frames;
   d["first_invalid"] = summary->first_invalid;
@@ -177,9 +193,29 @@ py::dict study(const py::object& source, const py::kwargs& kwargs) {
   return d;
 }
 
+/// The [run] keywords as the flags of `pcrf study` (pcrf.study with ranks > 1 hands them to
+/// mpirun), checked here as ranks=1 checks them (InputError naming the keyword).
+std::vector<std::string> run_flags(const py::kwargs& kwargs) {
+  Keywords keywords(kwargs);
+  const auto given = keywords.take_settings(study::run_settings());
+  keywords.finish();
+  std::vector<std::string> flags;
+  for (const auto& [setting, value] : given) {
+    const std::string flag = flag_name(setting->key);
+    if (const bool* on = std::get_if<bool>(&value)) {
+      flags.push_back(*on ? flag : "--no-" + flag.substr(2));
+      continue;
+    }
+    flags.push_back(flag);
+    flags.push_back(setting_display(value));
+  }
+  return flags;
+}
+
 }  // namespace
 
 void bind_study(py::module_& m) {
+  m.def("run_flags", &run_flags, "The [run] keywords as `pcrf study` flags, checked (InputError naming the keyword).");
   m.def("study", &study, py::arg("source"), "A study in process on one rank; see pcrf.study.");
   m.def("study_text", &checked_study_text, py::arg("study"),
         "A dict study as TOML text, checked as a study file is (UserError naming the key path).");

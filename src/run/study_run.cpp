@@ -80,7 +80,9 @@ MasterSetup prepare_master(const StudyRunOptions& options, const Prepared& p) {
   MasterSetup m;
   m.checked = check_study(p.study, *p.space, *p.records,
                           options.check_only ? FrameCheck::kEveryFrame : FrameCheck::kWhereNeeded);
-  for (const auto& note : m.checked.notes) std::cerr << "pcrf study: note: " << note << '\n';
+  for (const auto& note : m.checked.notes)
+    if (options.notes != nullptr) options.notes->push_back(note);
+    else std::cerr << "pcrf study: note: " << note << '\n';
   if (options.progress != nullptr)
     for (const auto& warning : m.checked.warnings) *options.progress << "pcrf study: warning: " << warning << '\n';
   if (options.check_only) return m;

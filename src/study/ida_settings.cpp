@@ -19,7 +19,8 @@ const SettingTable<IdaOptions>& ida_settings() {
                                "bisect until collapse / last safe − 1 is at most this"));
     s.push_back(number_setting("max_intensity", &I::max_intensity, "", Bound::kPositive,
                                "cap of the hunt (the measure's units); a curve safe there is right-censored; required"));
-    s.push_back(integer_setting("max_runs", &I::max_runs, Bound::kAtLeastOne, "runs per curve (≥ 2): hunt, bracket, then fill"));
+    s.push_back(integer_setting("max_runs", &I::max_runs, Bound::kAtLeast, "runs per curve: hunt, bracket, then fill"));
+    s.back().at_least = ida::kMinIdaRuns;
     std::vector<std::string> statuses;
     for (CaseStatus status : all_final_statuses())
       if (is_collapse(status)) statuses.emplace_back(status_name(status));

@@ -300,7 +300,6 @@ void read_ida(const Fields& top, Study& s) {
   if (!f.has("max_intensity")) f.fail("max_intensity", "required: the largest intensity the search may run");
   if (ida.max_intensity < ida.start)
     f.fail("max_intensity", "must be at least start (" + number_text(ida.start) + ")");
-  if (ida.max_runs < 2) f.fail("max_runs", "must be at least 2 (got " + std::to_string(ida.max_runs) + ")");
   s.ida = ida;
 }
 

@@ -2,9 +2,10 @@
 """Mutation fuzzing of every input path of the `pcrf` command line (docs/robustness.md).
 
 Each target starts from seeds it writes itself (an AT2 record, a two-column and a one-column
-text record, synthetic-motion strings, study files, a small cube that a tiny study makes),
-mutates them, runs `pcrf` on each mutant and judges the outcome by the engine's rule for bad
-input: exit 0, or exit 2 with one `pcrf: error:` line. Anything else is a finding: a signal,
+text record, synthetic-motion strings, study files, a small cube that a tiny study makes, the
+Python module's keywords and dict studies: python_containers.py), mutates them, runs `pcrf`
+(or a child Python calling the module) on each mutant and judges the outcome by the engine's
+rule for bad input: exit 0, or exit 2 with one `pcrf: error:` line. Anything else is a finding: a signal,
 a hang (past --timeout-s), exit 1 ("internal error"), a sanitizer report, or exit 2 with
 more or less than one error line. Each finding's input and command are saved in --out.
 
@@ -27,6 +28,9 @@ import subprocess
 import sys
 import time
 from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from python_containers import PythonContainers, module_available  # noqa: E402
 
 ERROR_LINE = re.compile(r"^pcrf: error: ")
 SANITIZER = re.compile(r"AddressSanitizer|LeakSanitizer|UndefinedBehaviorSanitizer|runtime error:")
@@ -401,7 +405,9 @@ def main():
     parser.add_argument("--budget-s", type=float, default=600.0, help="time for all targets together [s]")
     parser.add_argument("--seed", type=int, default=1, help="seed of the mutations (deterministic per seed)")
     parser.add_argument("--runs", type=int, help="at most this many inputs per target (default: until the budget)")
-    parser.add_argument("--targets", default="records,synthetic,study,cube", help="comma-separated targets")
+    parser.add_argument("--targets", default="records,synthetic,study,cube,python", help="comma-separated targets")
+    parser.add_argument("--module-dir", type=Path,
+                        help="python: the folder holding the module `pcrf` (default: python/ beside --pcrf)")
     parser.add_argument("--timeout-s", type=float, default=20.0, help="a run longer than this is a hang [s]")
     parser.add_argument("--work", type=Path, default=Path("fuzz-work"), help="folder for seeds and mutants")
     parser.add_argument("--spare-global-heaps", action="store_true",
@@ -413,13 +419,18 @@ def main():
     args.out = (args.out or args.work / "findings").resolve()
     source_dir = Path(__file__).resolve().parents[2]
     targets = {"records": lambda: Records(), "synthetic": lambda: Synthetic(), "study": lambda: Studies(source_dir),
-             "cube": lambda: Cubes(args.pcrf, args.timeout_s, args.spare_global_heaps)}
+             "cube": lambda: Cubes(args.pcrf, args.timeout_s, args.spare_global_heaps),
+             "python": lambda: PythonContainers(args.module_dir)}
     names = [n for n in args.targets.split(",") if n]
     unknown = [n for n in names if n not in targets]
     if unknown or not names or args.budget_s <= 0:
         parser.error(f"--targets: choose among {', '.join(targets)}" if unknown or not names else "--budget-s: must be > 0")
     if not os.access(args.pcrf, os.X_OK):
         parser.error(f"--pcrf: {args.pcrf} is not an executable")
+    args.module_dir = (args.module_dir or Path(args.pcrf).parent / "python").resolve()
+    if "python" in names and not module_available(args.module_dir):
+        print(f"fuzz: python: no module pcrf in {args.module_dir} (a build without it): target left out")
+        names.remove("python")
     args.work.mkdir(parents=True, exist_ok=True)
     if args.out.exists():
         shutil.rmtree(args.out)

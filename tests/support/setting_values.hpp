@@ -41,6 +41,7 @@ std::optional<std::string> out_of_bound_text(const Setting<Target>& s) {
     case Bound::kPositive: return std::string("0");
     case Bound::kNonNegative: return std::string("-1");
     case Bound::kAtLeastOne: return std::string("0");
+    case Bound::kAtLeast: return number_text(s.at_least - 1.0);
     case Bound::kFraction: return std::string("1");
     case Bound::kOpenUnit: return std::string("1");
   }

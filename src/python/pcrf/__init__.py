@@ -22,14 +22,17 @@ the command line's message, its keys spelt as keywords (``tail_s=: must be posit
 - ``settings()``: every [physics] / [solver] / intensity / [run] key, with unit and default;
   ``vocabulary()``: the statuses, history events, parameters (``pcrf settings --json``).
 - ``write_output(path, bytes)``, ``check_output(path)``: the rule of every file pcrf writes.
-- ``pcrf.plot.figure(kind, input, ...)``: the figures of ``pcrf plot`` (matplotlib).
+- ``pcrf.plot.figure(kind, input, ...)``: the figures of ``pcrf plot`` (matplotlib, imported when
+  a figure is drawn).
+
+Every note and warning the command line prints on stderr is a ``pcrf.PcrfWarning`` here
+(``warnings.warn``; record checks as its subclass ``pcrf.RecordWarning``).
 
 The compiled part releases the GIL while it computes: a thread pool over cases uses every core.
 """
 
 import json as _json
 import os as _os
-import warnings as _warnings
 
 from . import _pcrf
 from ._pcrf import InputError  # a ValueError naming the keyword (its .key), or file and line
@@ -41,17 +44,8 @@ __version__ = _pcrf.__version__
 _ENVIRONMENT_AT_IMPORT = dict(_os.environ)
 
 
-class RecordWarning(UserWarning):
-    """A record whose measures no earthquake record has (a PGA above 3 g or below 0.01 g,
-    PGV/PGA outside its range: wrong units or a wrong ``dt_s``), or whose components' headers
-    name different events or stations: the checks ``pcrf run`` makes of a file, made of arrays
-    too. ``warnings_as_errors=True`` (a keyword of ``run`` and ``record_measures``), or
-    ``warnings.simplefilter("error", pcrf.RecordWarning)``, makes them errors."""
-
-
-def _warn_notes(notes, category=UserWarning):
-    for note in notes:
-        _warnings.warn(note, category, stacklevel=3)
+from ._notices import PcrfWarning, RecordWarning  # noqa: E402 (every note and warning of the command line)
+from ._notices import warn as _warn  # noqa: E402
 
 
 def _history_table(array, history):
@@ -94,8 +88,8 @@ def run(ground_accel_g=None, dt_s=None, *, history=False, **keywords):
     if dt_s is not None:
         keywords["dt_s"] = dt_s
     result, rows, notes, record_warnings = _pcrf.run(history=bool(history), **keywords)
-    _warn_notes(notes)
-    _warn_notes(record_warnings, RecordWarning)
+    _warn(notes)
+    _warn(record_warnings, RecordWarning)
     if not history:
         return result
     return result, _history_table(rows, history)
@@ -162,8 +156,8 @@ def record_measures(record=None, **keywords):
     if periods is not None and not hasattr(periods, "__len__"):
         keywords["periods_s"] = [periods]
     text, notes, record_warnings = _pcrf.record_measures(**keywords)
-    _warn_notes(notes)
-    _warn_notes(record_warnings, RecordWarning)
+    _warn(notes)
+    _warn(record_warnings, RecordWarning)
     return _json.loads(text)
 
 
@@ -179,7 +173,7 @@ def pulse(record=None, series=False, **keywords):
         else:
             keywords["ground_accel_g"] = record
     text, notes = _pcrf.pulse(series=bool(series), **keywords)
-    _warn_notes(notes)
+    _warn(notes)
     return _json.loads(text)
 
 
@@ -198,7 +192,7 @@ def record_spectra(paths, periods_s=None, damping=0.05):
         paths = [paths]
     periods = [] if periods_s is None else ([periods_s] if not hasattr(periods_s, "__len__") else list(periods_s))
     text, notes = _pcrf.record_spectra([_os.fspath(p) for p in paths], [float(t) for t in periods], float(damping))
-    _warn_notes(notes)
+    _warn(notes)
     return _pd.read_csv(_io.StringIO(text), comment="#", keep_default_na=False)
 
 
@@ -245,10 +239,11 @@ def write_output(path, content, inputs=(), overwrite=False):
 from ._cube import open_cube  # noqa: E402
 from ._reports import fragility, p695, risk, sensitivity, stats  # noqa: E402
 from ._study import study  # noqa: E402
+from . import plot  # noqa: E402 (matplotlib is imported only when a figure is drawn)
 
 __all__ = ["run", "Frame", "record_measures", "pulse", "record_spectra", "select", "study", "open_cube", "stats", "fragility", "sensitivity", "p695", "risk",
            "settings", "vocabulary", "check_output", "write_output", "InputError", "OutputError",
-           "RecordWarning"]
+           "PcrfWarning", "RecordWarning", "plot"]
 
 import atexit as _atexit  # noqa: E402
 

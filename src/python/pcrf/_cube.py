@@ -2,6 +2,7 @@
 
 from . import _names as schema
 from . import _pcrf
+from ._notices import warn
 
 
 def _meant(value):
@@ -23,7 +24,19 @@ def open_cube(path, pulse_dimensions=False, **open_dataset_keywords):
       ``ds.collapse_intensity.plot(x="pulse_period_s")`` work; the engine keeps pulses along
       ``record``, as motions, since a study may mix pulses and records. Combinations the study
       did not run are NaN (status -1). ValueError for a cube whose records are not all pulses.
+
+    What ``pcrf cube info`` says of the cube on stderr (a run is writing it, results wait in its
+    journal, cases were not run) is warned, each a ``pcrf.PcrfWarning``.
     """
+    try:
+        warn(_pcrf.cube_notes(str(path)))
+    except _pcrf.InputError:
+        pass  # not a cube the engine reads: xarray says what it makes of the file
+    return opened(path, pulse_dimensions, **open_dataset_keywords)
+
+
+def opened(path, pulse_dimensions=False, **open_dataset_keywords):
+    """open_cube without its notes: pcrf.study's cube, whose run said what it had to."""
     import numpy as np
     import xarray as xr
 

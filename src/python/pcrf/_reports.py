@@ -5,16 +5,29 @@ import json
 import os
 
 from . import _pcrf
+from ._notices import warn
 
 
 def report(kind, cube, **keywords):
-    """The object ``pcrf cube KIND CUBE --json`` writes (the same C++), as dicts and lists."""
-    return json.loads(_pcrf.cube_report(kind, os.fspath(cube), **keywords))
+    """The object ``pcrf cube KIND CUBE --json`` writes (the same C++), as dicts and lists; what
+    ``pcrf cube KIND`` prints on stderr beside it (the cube's notes, then the report's warnings)
+    is warned, each a ``pcrf.PcrfWarning``."""
+    answer, notes = said(kind, cube, **keywords)
+    warn(notes + answer.get("warnings", []))
+    return answer
+
+
+def said(kind, cube, **keywords):
+    """(the report's object, the notes ``pcrf cube KIND`` prints before it), nothing warned: the
+    figures, which say their cube's notes themselves, draw from it."""
+    text, notes = _pcrf.cube_report(kind, os.fspath(cube), **keywords)
+    return json.loads(text), notes
 
 
 def _frame(kind, cube, table, **keywords):
     """The report's table `table` as a DataFrame; ``attrs`` holds the report's fields, its
-    warnings, the columns' units and descriptions, and its other tables (as DataFrames)."""
+    warnings (also warned: ``pcrf.PcrfWarning``), the columns' units and descriptions, and its
+    other tables (as DataFrames)."""
     import pandas
 
     answer = report(kind, cube, **keywords)

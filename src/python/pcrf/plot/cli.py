@@ -11,40 +11,28 @@ import argparse
 import difflib
 import importlib
 import io
+import json
 import os
 import sys
 
+import warnings
+
 from .. import _pcrf
+from .._notices import PcrfWarning
 from .errors import PlotError
 
 FORMATS = (".png", ".pdf", ".svg")
 
 
-# The one list of kinds: name → what it draws. Each is the module pcrf.plot.<name>, whose
-# draw(args) returns a matplotlib figure.
-KINDS = {
-    "history": "θ₁, θ̇₁ and ü_g against t, and the phase portrait (a cube's history group or a "
-               "pcrf run --history CSV)",
-    "sweep": "one panel per varied parameter: median and 16–84 % band across records, collapses apart",
-    "ida": "IDA curves per record, one panel per frame, with the collapse intensities' median and 16/84 %",
-    "spectrum": "rocking spectrum of an IDA over pulses: collapse amplitude over the uplift threshold against "
-                "omega_p/p, one line per pulse shape, overturning and fracture marked apart",
-    "fragility": "collapse fractions or IDA collapse points, the fitted lognormal and its 90 % interval",
-    "risk": "collapse risk at a site (--hazard FILE): the hazard curve, each frame's fragility and the "
-            "deaggregation of its annual collapse rate, on one figure",
-    "sensitivity": "first-order and total Sobol' indices with their 90 % intervals",
-    "status": "map of the status over two axes (--x, --y), the others selected with -w",
-    "table3": "the paper comparison (docs/paper_comparison.csv)",
-    "pulse": "a record's velocity, its extracted velocity pulse and the residual (JSON of pcrf record pulse --series)",
-    "selection": "target median and ±σ, the selected scaled spectra and their median (JSON of pcrf record select --json)",
-}
-
-
-# The kinds that can show a metric reduced over an axis (--reduce-over): they draw what cube
-# stats or cube fragility compute. status maps each case's own end (select an orientation with
-# -w, or map it with --x incidence_deg); history is one case; spectrum's pulses have no
-# orientation; sensitivity's saltelli samples are frames; table3 is a fixed table.
-REDUCING = ("sweep", "ida", "fragility")
+# The one table of kinds (kinds.json, beside this file): each kind's name, what it draws and whether it
+# can show a metric reduced over an axis (--reduce-over: the kinds that draw what cube stats or
+# cube fragility compute). Each is the module pcrf.plot.<name>, whose draw(args) returns a
+# matplotlib figure; `pcrf plot`'s one-line help lists the names from the same table (CMake
+# reads it: src/cli/CMakeLists.txt).
+with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "kinds.json"), encoding="utf-8") as _table:
+    _KIND_TABLE = json.load(_table)
+KINDS = {kind["name"]: kind["draws"] for kind in _KIND_TABLE}
+REDUCING = tuple(kind["name"] for kind in _KIND_TABLE if kind["reduces"])
 
 
 class Parser(argparse.ArgumentParser):
@@ -121,7 +109,25 @@ def save(figure, args):
     _pcrf.write_output(args.output, image.getvalue(), [args.input], args.overwrite)
 
 
+def say(caught):
+    """The warnings caught while drawing: a pcrf.PcrfWarning (the cube's notes) as a line on
+    stderr, "pcrf plot: …", as every command prints its notes; any other as Python shows it."""
+    for warning in caught:
+        if issubclass(warning.category, PcrfWarning):
+            print(f"pcrf plot: {warning.message}", file=sys.stderr)
+        else:  # as Python shows it (showwarning itself records, inside catch_warnings)
+            sys.stderr.write(warnings.formatwarning(warning.message, warning.category, warning.filename, warning.lineno))
+
+
 def main(argv):
+    """Draws and writes the figure; returns 0, or 2 after one line on stderr (and nothing else:
+    the notes of a figure not written are not said)."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", PcrfWarning)
+        return _draw_and_write(argv, caught)
+
+
+def _draw_and_write(argv, caught):
     args = None
     try:
         args = parser().parse_args(argv)
@@ -138,6 +144,7 @@ def main(argv):
         style.apply()
         figure = importlib.import_module(f".{args.kind}", __package__).draw(args)
         save(figure, args)
+        say(caught)
         panels = len(figure.axes)
         print(f"pcrf plot: wrote {args.output} ({args.kind}, {panels} panel{'' if panels == 1 else 's'})")
         return 0

@@ -3,10 +3,10 @@ from the C++ that the command line runs (``pcrf._pcrf``: the same reports, the s
 reader, the same names), never from the text of a ``pcrf`` process."""
 import csv
 import json
-import sys
 
 from .. import _pcrf
-from .._reports import report as _report
+from .._notices import warn
+from .._reports import said as _said
 from .errors import PlotError
 
 # What a bad input raises in the engine (pcrf.InputError, a ValueError) and a
@@ -24,7 +24,7 @@ def call(function, *args, **keywords):
 
 def report(kind, cube, **keywords):
     """``pcrf cube KIND --json``'s object (stats, fragility, sensitivity, risk), from the same C++."""
-    return call(_report, kind, cube, **keywords)
+    return call(_said, kind, cube, **keywords)[0]  # as pcrf plot always drew: the cube's notes said by Cube
 
 
 _VOCABULARY = None
@@ -111,9 +111,8 @@ class Cube:
         info, notes = call(_pcrf.cube_info, self.path)
         self.info = json.loads(info)
         # A partial cube (cases never run), or one a run is writing: the figure shows the
-        # cases run so far; say so.
-        for note in notes:
-            print(f"pcrf plot: {note}", file=sys.stderr)
+        # cases run so far; say so (pcrf plot prints it on stderr).
+        warn(notes)
 
     @property
     def dimensions(self):

@@ -57,13 +57,18 @@ inline std::string curve_state_name(CurveState state) { return name_of(kCurveSta
 /// The hunt's default growth of its steps, measured (studies/README.md, [ida] step_factor).
 inline constexpr double kDefaultStepFactor = 2.0;
 
+/// The fewest runs an IDA curve may have: its first run and one more, the fewest that can
+/// bracket a collapse. The one statement of the rule: the [ida] max_runs setting's bound (its
+/// check and its row in studies/README.md) and IdaSearch's own check derive from it.
+inline constexpr int kMinIdaRuns = 2;
+
 struct IdaSearchSettings {
   double start = 0.0;          ///< first intensity (> 0)
   double step = 0.0;           ///< hunt: the first step; 0: `start`
   double step_factor = kDefaultStepFactor;  ///< hunt: each step is this times the one before (≥ 1)
   double resolution = 0.02;    ///< relative width of the final bracket, in (0, 1)
   double max_intensity = 0.0;  ///< cap of the hunt (≥ start)
-  int max_runs = 16;           ///< runs of the curve, ≥ 2
+  int max_runs = 16;           ///< runs of the curve, ≥ kMinIdaRuns
 };
 
 class IdaSearch {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "pcrf/cube/cube_reader.hpp"
 
@@ -23,5 +24,23 @@ std::string journal_note(const std::string& file, const cube::CubeReader& reader
 /// stopped early or merged from some shards; empty for a complete one.
 /// \throws cube::CubeError when the cube cannot be read.
 std::string partial_note(const std::string& file, const cube::CubeReader& reader);
+
+/// What `pcrf cube KIND` (info, stats, fragility, sensitivity, p695, risk) does with the cases
+/// a cube leaves unresolved, for its verdict notes: "counted in no stripe (…)".
+/// \throws std::invalid_argument for another kind (a bug).
+std::string unresolved_treatment(const std::string& kind);
+
+/// journal_note and partial_note, those not empty.
+std::vector<std::string> completion_notes(const std::string& file, const cube::CubeReader& reader);
+
+/// "FILE: …" for each line of vocabulary::verdict_notes of the cube (unresolved cases and what
+/// KIND does with them, collapse statuses an IDA's collapse set leaves out).
+std::vector<std::string> verdict_lines(const std::string& kind, const std::string& file, const cube::CubeReader& reader);
+
+/// What a reader of the report KIND of `file` should know before trusting it, one line each,
+/// naming the file first: completion_notes, then verdict_lines. The command
+/// line prints them on stderr after "pcrf cube KIND: ", Python warns them (pcrf.PcrfWarning).
+/// \throws cube::CubeError when the cube cannot be read.
+std::vector<std::string> report_notes(const std::string& kind, const std::string& file, const cube::CubeReader& reader);
 
 }  // namespace pcrf::post

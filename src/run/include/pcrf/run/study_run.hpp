@@ -32,6 +32,9 @@ struct StudyRunOptions {
   bool check_only = false;        ///< validate, print the case count, write nothing
   /// Where rank 0 writes progress lines and the closing line (the CLI: stderr); null: nowhere.
   std::ostream* progress = nullptr;
+  /// Where rank 0 puts the study's notes (a record's components padded, …) for a front end
+  /// that says them its own way (Python warns them); null: stderr, as "pcrf study: note: …".
+  std::vector<std::string>* notes = nullptr;
   /// Compute only shard `shard_index` (0-based) of `shard_count`: a contiguous 1/N of the
   /// cases in the order they are handed out (frames together), or of the IDA's curves.
   std::size_t shard_index = 0;
