@@ -301,8 +301,6 @@ std::vector<ColumnOf<RiskRow>> risk_spec(const std::string& units) {
        [](const R& r) { return count(r.frame->bracketing); }},
       {{"hazard_factor_at_target", "", "factor on the hazard's intensities at which this fragility meets the risk target", "%.3f"},
        [](const R& r) { return number_or_missing(r.frame->hazard_factor); }},
-      {{"integration_change", "", "relative change of lambda_c at the last halving of the log-grid step (it stops below 1e-7; 1e-3 = 0.1 % at most)", "%.1e", true},
-       lognormal([](const risk::RateResult& x) { return x.relative_change; })},
       {{"selection", "", "the frame as -w selectors, comma-separated (empty: all)", "%s", true},
        [](const R& r) { return Cell{r.frame->selection}; }},
   };
@@ -429,7 +427,7 @@ void print_risk(const Report& report, std::ostream& out) {
   };
   out << "hazard " << text("hazard_file") << " (" << text("measure")
       << (text("period_s") == "none" ? "" : ", T = " + text("period_s") + " s") << "), beyond its last point: "
-      << text("tail") << "; lambda_c integrated over a log grid to 0.1 %\n";
+      << text("tail") << "; lambda_c exact per segment of the curve\n";
   out << "risk target " << text("target_probability") << " in " << text("target_years") << " years ("
       << text("target_rate_per_yr") << " /yr), generic fragility beta " << text("generic_beta") << " with "
       << text("generic_collapse_probability") << " at the intensity: risk-targeted intensity " << text("risk_targeted_intensity")
