@@ -194,6 +194,7 @@ RiskReport cube_risk(const cube::CubeReader& cube, const std::vector<cube::Selec
   (void)in.ratings_beta();  // an unknown rating throws before anything is read
   RiskReport report{read_hazard_file(in.hazard, in.tail), "", {}, {}, kNaN, kNaN, {}, {}, {}, {}, {}};
   report.cube_measure = check_measure(cube, report.hazard);
+  for (const UserError& w : report.hazard.warnings) report.warnings.push_back(w.message(Dialect::kFlag));
   const auto& hazard = report.hazard.curve;
   const std::string units = intensity_units(cube);
   const auto frames = cube_fragility(cube, selectors);
