@@ -222,9 +222,11 @@ RiskReport cube_risk(const cube::CubeReader& cube, const std::vector<cube::Selec
       const double added = in.ratings_beta();
       r.with_ratings = risk::collapse_rate(hazard, {f.fit->median, std::sqrt(f.fit->beta * f.fit->beta + added * added)});
       r.sample_size = sample_size(f);
-      if (r.sample_size > 0) r.interval = risk::rate_interval(hazard, refit_of(f));
+      // The one rule of cube fragility (kFewestForInterval): no interval from few records.
+      r.interval = gives_interval(f) ? risk::rate_interval(hazard, refit_of(f)) : risk::RateInterval{kNaN, kNaN, 0};
     }
     warn(r, report, units, report.warnings);
+    if (auto line = few_records_warning(f); !line.empty()) report.warnings.push_back(std::move(line));
     report.frames.push_back(std::move(r));
   }
   add_model_scatter(cube, frames, in, report);
