@@ -95,7 +95,7 @@ void run(const RunOptions& o) {
   HistorySink sink;
   if (!o.history_file.empty()) {
     // Refused before the file is made (solve_case checks it again for every front end).
-    check_history_interval(longest_case_s(scaled.view(), physics), o.history_dt_s, scaled.view().dt_s());
+    check_history_interval(longest_case_s(scaled.view().duration_s(), physics), o.history_dt_s, scaled.view().dt_s());
     std::vector<std::filesystem::path> records;  // the files read: every component's
     if (!o.record.file.empty()) records.emplace_back(o.record.file);
     for (const std::string& file : o.record.component_files)

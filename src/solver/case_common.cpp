@@ -114,7 +114,7 @@ double free_fall_time(const Excitation& excitation, double gravity_m_s2, double 
 }
 
 CaseEnd::CaseEnd(const Excitation& excitation, double gravity_m_s2, const PhysicsOptions& physics)
-    : t_end_s(longest_case_s(excitation, physics)),
+    : t_end_s(longest_case_s(excitation.duration_s(), physics)),
       free_fall(false),
       until_rest(physics.tail_s == kTailUntilRest),
       record_end_s(excitation.duration_s()) {

@@ -164,6 +164,13 @@ CheckedStudy check_study(const Study& study, const CaseSpace& space, RecordCache
   }
   for (const auto& h : study.histories) {
     const std::int64_t index = space.resolve(h);
+    // The history's rows bounded up front (solve_case checks it again when the case runs).
+    const GroundMotion& motion = records.get(space.case_at(index).record);
+    try {
+      check_history_interval(longest_case_s(motion.duration_s(), study.physics), h.dt_s, motion.dt_s());
+    } catch (const UserError& e) {
+      fail_history(h, "dt_s: " + e.problem(Dialect::kStudy));
+    }
     for (std::size_t k = 0; k < checked.history_cases.size(); ++k)
       if (checked.history_cases[k] == index)
         fail_history(h, "names the same case as \"" + study.histories[k].label + "\"");

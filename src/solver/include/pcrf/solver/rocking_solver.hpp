@@ -61,9 +61,9 @@ std::shared_ptr<PreparedFrame> prepare_frame(const Frame& frame, const PhysicsOp
 /// \throws UserError naming the failed condition (a frame the rigid-body rocking model cannot represent).
 std::shared_ptr<PreparedFrame> prepare_scene(std::unique_ptr<Scene> scene, const PhysicsOptions& physics);
 
-/// The longest a case of `excitation` can run [s]: the record and its tail (an until-rest
-/// tail: max_tail_s); the ground's free fall may end it sooner.
-double longest_case_s(const Excitation& excitation, const PhysicsOptions& physics);
+/// The longest a case on a record of `record_s` seconds can run [s]: the record and its tail
+/// (an until-rest tail: max_tail_s); the ground's free fall may end it sooner.
+double longest_case_s(double record_s, const PhysicsOptions& physics);
 
 /// Solves one case. Never throws for a physical or numerical failure: the result's
 /// status says what happened (message gives detail). Throws std::invalid_argument only
