@@ -3,6 +3,11 @@
 
 #include "pcrf/user_error.hpp"
 
+#include <cmath>
+#include <string>
+
+#include "pcrf/number_text.hpp"
+
 namespace pcrf::api {
 
 std::unique_ptr<Scene> scene_of(const std::string& model_name, const std::map<std::string, double, std::less<>>& values,
@@ -14,8 +19,12 @@ std::unique_ptr<Scene> scene_of(const std::string& model_name, const std::map<st
   return scene;
 }
 
-void check_pushover_points(int points) {
-  if (points < 2) throw UserError("points", "must be at least 2");
+int pushover_points(double points) {
+  const std::string most = std::to_string(kMaxPushoverPoints);
+  if (!(points >= 2.0)) throw UserError("points", "must be at least 2 (and at most " + most + "), not " + number_text(points));
+  if (!(points <= kMaxPushoverPoints)) throw UserError("points", "must be at most " + most + ", not " + number_text(points));
+  if (points != std::floor(points)) throw UserError("points", "must be a whole number, not " + number_text(points));
+  return static_cast<int>(points);
 }
 
 }  // namespace pcrf::api

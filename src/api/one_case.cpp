@@ -19,12 +19,13 @@ double scale_factor(const Scaling& scaling, const StationRecord& station, std::o
   if (const auto problem = intensity_spec_problem(spec); !problem.empty()) throw UserError("period_s", problem);
   if (spec.normalise != SetNormalisation::kNone)
     throw UserError("normalise", "applies to a study's record set, not to one record: scale it with {}", {"scale"});
+  const std::string& named = scaling.record_file.empty() ? motion.name() : scaling.record_file;
   if (component_measure(spec.measure) == IntensityMeasure::kSa)
     if (const auto problem = sa_period_problem(spec.period_s, motion.dt_s()); !problem.empty())
-      throw UserError("period_s", problem + " (" + motion.name() + ")");
-  if (const auto problem = measures_problem(motion); !problem.empty()) throw UserError(motion.name() + ": " + problem);
+      throw UserError("period_s", problem + " (" + named + ")");
+  if (const auto problem = measures_problem(motion); !problem.empty()) throw UserError(named + ": " + problem);
   const double im = station_intensity(station, incidence_deg, spec);
-  if (!(im > 0.0)) throw UserError(motion.name() + ": its " + to_string(spec.measure) + " is 0: it cannot be scaled");
+  if (!(im > 0.0)) throw UserError(named + ": its " + to_string(spec.measure) + " is 0: it cannot be scaled");
   return intensity_scale_factor(*scaling.intensity, im);
 }
 

@@ -51,7 +51,11 @@ StationRecord RecordInput::load_station(std::vector<std::string>& notes) const {
   // The checks of the components' names and azimuths are the study's too (make_station).
   auto part = [](const RecordInput& input) {
     const std::string component = input.file.empty() ? std::string() : component_of(input.spec());
-    return StationComponent{input.load(), component, input.file.empty() ? input.synthetic : input.file};
+    GroundMotion motion = input.load();
+    // Values no measure can take name the file they came from (the motion's name is its stem).
+    if (const auto problem = measures_problem(motion); !problem.empty())
+      throw input.file.empty() ? UserError("synthetic", problem) : UserError(Where{{}, input.file, 0}, problem);
+    return StationComponent{std::move(motion), component, input.file.empty() ? input.synthetic : input.file};
   };
   StationParts parts{part(*this), az1_deg, std::nullopt, az2_deg, std::nullopt};
   const auto members = component_members<StationParts>();

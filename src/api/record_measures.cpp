@@ -12,13 +12,17 @@
 namespace pcrf::api {
 namespace {
 
-/// The measures of one component, and what its file says about itself.
-/// \throws UserError for values that overflow the measures or a period below 2·dt.
-JsonObject measures(const GroundMotion& motion, const RecordMetadata& meta, const MeasureRequest& args) {
-  if (const auto problem = measures_problem(motion); !problem.empty()) throw UserError(motion.name() + ": " + problem);
+/// The measures of one component read from `file` (empty: a synthetic motion), and what its
+/// file says about itself.
+/// \throws UserError naming the file (else the motion) for values that overflow the measures
+/// or a period below 2·dt.
+JsonObject measures(const GroundMotion& motion, const std::string& file, const RecordMetadata& meta,
+                    const MeasureRequest& args) {
+  if (const auto problem = measures_problem(motion); !problem.empty())
+    throw file.empty() ? UserError(motion.name() + ": " + problem) : UserError(Where{{}, file, 0}, problem);
   for (double t : args.periods_s)
     if (const auto problem = sa_period_problem(t, motion.dt_s()); !problem.empty())
-      throw UserError("periods_s", problem + " (" + motion.name() + ")");
+      throw UserError("periods_s", problem + " (" + (file.empty() ? motion.name() : file) + ")");
   const auto peak = peak_acceleration(motion);
   std::vector<double> sa_g;
   for (double t : args.periods_s) sa_g.push_back(spectral_acceleration_g(motion, t, args.damping));
@@ -78,7 +82,7 @@ void check_measure_request(const MeasureRequest& request) {
 }
 
 JsonObject record_measures(const StationRecord& station, const RecordInput& input, const MeasureRequest& request) {
-  JsonObject json = measures(station.h1, metadata_of_file(input, input.file), request);
+  JsonObject json = measures(station.h1, input.file, metadata_of_file(input, input.file), request);
   if (station.h2) {
     if (!station.az1_deg || !station.az2_deg)
       throw UserError(Where{}, "the azimuth of '" + (station.az1_deg ? station.h2->name() : station.h1.name()) +
@@ -89,7 +93,7 @@ JsonObject record_measures(const StationRecord& station, const RecordInput& inpu
   for (std::size_t i = 0; i < kComponentCount; ++i)
     if (const auto& motion = station.*members[i])
       json.object(kStationComponents[i].measures_key,
-                  measures(*motion, metadata_of_file(input, input.component_files[i]), request));
+                  measures(*motion, input.component_files[i], metadata_of_file(input, input.component_files[i]), request));
   return json;
 }
 

@@ -25,7 +25,7 @@ namespace {
 struct FrameOptions {
   SceneFlags scene;
   std::unique_ptr<SettingFlags<PhysicsOptions>> physics;
-  int points = 41;
+  double points = api::kDefaultPushoverPoints;  ///< checked by api::pushover_points
   bool json = false;
   double period_s = 0.0;  ///< > 0: also FEMA P-695's period-based ductility at this period
 };
@@ -76,11 +76,11 @@ void print_text(const FrameProperties& p) {
 }
 
 void describe(const FrameOptions& o) {
-  api::check_pushover_points(o.points);
+  const int points = api::pushover_points(o.points);
   const PhysicsOptions physics = o.physics->resolve();
   ScenePoint point;
   const auto scene = o.scene.scene(&point);
-  const FrameProperties p = frame_properties(*scene, physics.fracture_strain, o.points);
+  const FrameProperties p = frame_properties(*scene, physics.fracture_strain, points);
   std::optional<P695Ductility> ductility;
   if (o.period_s != 0.0) {
     if (!(o.period_s > 0.0)) throw UserError("period_s", "must be positive");
@@ -108,7 +108,8 @@ void add_frame_command(CLI::App& app) {
       "frame", "A scene's properties (threshold, r, p, stop angles) and its static pushover curve");
   o->scene.add_to(cmd);
   o->physics = std::make_unique<SettingFlags<PhysicsOptions>>(cmd, physics_settings());
-  cmd->add_option("--points", o->points, "rotations at which the pushover curve is printed")->capture_default_str();
+  cmd->add_option("--points", o->points,
+                  "rotations at which the pushover curve is printed (2 to " + std::to_string(api::kMaxPushoverPoints) + ")")->capture_default_str();
   cmd->add_flag("--json", o->json, "one JSON object instead of text");
   cmd->add_option("--period-s", o->period_s,
                   "also FEMA P-695's period-based ductility mu_T at this archetype period T [s] (PCRF only)");

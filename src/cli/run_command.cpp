@@ -15,6 +15,7 @@
 #include "pcrf/io/output_file.hpp"
 #include "pcrf/number_text.hpp"
 #include "pcrf/record/horizontal_pair.hpp"
+#include "pcrf/solver/rocking_solver.hpp"
 #include "pcrf/user_error.hpp"
 
 namespace pcrf::cli {
@@ -51,6 +52,7 @@ ScaledExcitation load_excitation(const RunOptions& o) {
   scaling.scale_given = o.scale_flag->count() > 0;
   if (o.intensity_flag->count() > 0) scaling.intensity = o.intensity;
   scaling.measure = o.measure->given();
+  scaling.record_file = o.record.file;
   return api::scaled_excitation(station, o.incidence_deg, scaling);
 }
 
@@ -92,6 +94,8 @@ void run(const RunOptions& o) {
   std::unique_ptr<CsvHistory> csv;
   HistorySink sink;
   if (!o.history_file.empty()) {
+    // Refused before the file is made (solve_case checks it again for every front end).
+    check_history_interval(longest_case_s(scaled.view().duration_s(), physics), o.history_dt_s, scaled.view().dt_s());
     std::vector<std::filesystem::path> records;  // the files read: every component's
     if (!o.record.file.empty()) records.emplace_back(o.record.file);
     for (const std::string& file : o.record.component_files)

@@ -5,14 +5,17 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <system_error>
 #include <vector>
 
+#include "pcrf/byte_order_mark.hpp"
 #include "pcrf/number_text.hpp"
 #include "pcrf/printable.hpp"
 #include "pcrf/record/intensity.hpp"
+#include "pcrf/units.hpp"
 
 namespace pcrf::post {
 namespace {
@@ -36,6 +39,75 @@ std::optional<double> number(const std::string& text) {
   if (end != t.c_str() + t.size() || errno == ERANGE || !std::isfinite(v)) return std::nullopt;
   return v;
 }
+
+/// A unit a curve's intensities may have been written in, and the factor to the measure's.
+struct ReadingAs {
+  const char* unit;
+  double to_measure;  ///< value in `unit` × this = value in the measure's units (g or m/s)
+};
+
+/// What a value read under an acceleration header (in g) may have been written in, and
+/// the same for a velocity header (in m/s).
+constexpr ReadingAs kAccelerationUnits[] = {{"cm/s2", 1.0 / (100.0 * kGravity_m_s2)},
+                                            {"m/s2", 1.0 / kGravity_m_s2},
+                                            {"% g", 0.01}};
+constexpr ReadingAs kVelocityUnits[] = {{"cm/s", 0.01}, {"mm/s", 0.001}};
+
+std::string four_digits(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", value);
+  return text;
+}
+
+/// "is it in cm/s2 (3 g) or % g (29.4 g)?": each unit under which the largest intensity
+/// would be one a hazard curve can end at, or what else to check.
+std::string likely_units(double largest, bool velocity) {
+  const double most = velocity ? kMaxHazardVelocity_m_s : kMaxHazardAcceleration_g;
+  const double least = velocity ? kLeastHazardEnd_m_s : kLeastHazardEnd_g;
+  const char* units = velocity ? "m/s" : "g";
+  std::string guesses;
+  auto consider = [&](const ReadingAs& r) {
+    const double as = largest * r.to_measure;
+    if (as > most || as < least) return;
+    guesses += std::string(guesses.empty() ? "" : " or ") + r.unit + " (" + four_digits(as) + " " + units + ")";
+  };
+  if (velocity)
+    for (const auto& r : kVelocityUnits) consider(r);
+  else
+    for (const auto& r : kAccelerationUnits) consider(r);
+  return guesses.empty() ? "check its units" : "is it in " + guesses + "? convert it to " + units;
+}
+
+}  // namespace
+
+std::vector<UserError> hazard_warnings(const HazardFile& hazard, std::size_t first_row, std::size_t last_row) {
+  std::vector<UserError> warnings;
+  const auto& x = hazard.curve.intensities();
+  const auto& rates = hazard.curve.rates_per_yr();
+  const std::string file = hazard.file.string();
+  bool velocity = false;
+  try {
+    velocity = intensity_units(parse_intensity_measure(hazard.measure)) == "m/s";
+  } catch (const std::invalid_argument&) {
+    return warnings;  // the header's measure is checked where it is read
+  }
+  const double most = velocity ? kMaxHazardVelocity_m_s : kMaxHazardAcceleration_g;
+  if (x.back() > most)
+    warnings.emplace_back(Where{{}, file, static_cast<int>(last_row)},
+                          "the largest intensity, " + four_digits(x.back()) + " " + (velocity ? "m/s" : "g") +
+                              ", is beyond any " + hazard.measure + " (at most " + four_digits(most) + " " +
+                              (velocity ? "m/s" : "g") + " on a hazard curve): " + likely_units(x.back(), velocity));
+  // Every rate at most 1, the first close to it: the saturation of a probability of
+  // exceedance in a period (OpenQuake's poe over its investigation_time), not an annual rate.
+  if (rates.front() >= kProbabilityLikeRate_per_yr && rates.front() <= 1.0)
+    warnings.emplace_back(Where{{}, file, static_cast<int>(first_row)},
+                          "the rates start at " + four_digits(rates.front()) + " /yr and never exceed 1: if the column "
+                          "holds probabilities of exceedance over a period of T years (e.g. 50), give annual rates, "
+                          "-ln(1 - p)/T, under " + std::string(kRateColumn));
+  return warnings;
+}
+
+namespace {
 
 class Reader {
  public:
@@ -86,15 +158,20 @@ class Reader {
     if (!rate_.empty() && !(*rate < rate_.back()))
       fail(line, "the curve is not decreasing: the rate must fall as the intensity grows (the line before has " +
                      number_text(rate_.back()) + " /yr)");
-    if (x_.size() >= kMaxHazardPoints) fail(line, "more than " + std::to_string(kMaxHazardPoints) + " points");
+    if (x_.size() >= kMaxHazardPoints)
+      fail(line, "more than " + std::to_string(kMaxHazardPoints) + " points: a hazard curve has tens (thin it out)");
     x_.push_back(*x);
     rate_.push_back(*rate);
+    if (!first_row_) first_row_ = line;
+    last_row_ = line;
   }
 
   HazardFile finish(risk::Tail tail) const {
     if (!header_) fail(0, "no header line (e.g. pga_g,annual_rate_per_yr)");
     if (x_.size() < 2) fail(0, "a hazard curve needs at least two points");
-    return HazardFile{file_, measure_, period_, *header_, risk::HazardCurve(x_, rate_, tail)};
+    HazardFile read{file_, measure_, period_, *header_, risk::HazardCurve(x_, rate_, tail), {}};
+    read.warnings = hazard_warnings(read, first_row_.value_or(0), last_row_.value_or(0));
+    return read;
   }
 
   bool has_header() const { return header_.has_value(); }
@@ -105,6 +182,7 @@ class Reader {
   std::optional<double> period_;
   std::string measure_;
   std::vector<double> x_, rate_;
+  std::optional<std::size_t> first_row_, last_row_;
 };
 
 }  // namespace
@@ -120,6 +198,10 @@ HazardFile read_hazard_file(const std::filesystem::path& file, risk::Tail tail) 
   if (!in) reader.fail(0, "cannot open it");
   std::string line;
   for (std::size_t number = 1; std::getline(in, line); ++number) {
+    if (number == 1) {
+      if (starts_as_utf16(line)) reader.fail(1, "UTF-16 text; save it as ASCII or UTF-8");
+      line = std::string(without_byte_order_mark(line));  // a spreadsheet's "CSV UTF-8"
+    }
     const std::string text = trim(line);
     if (text.empty()) continue;
     if (text[0] == '#') reader.comment(text, number);

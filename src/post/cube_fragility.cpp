@@ -85,16 +85,6 @@ struct CurveValue {
   bool has_value() const { return std::isfinite(intensity); }
 };
 
-/// No interval from a bootstrap over fewer units than this: it cannot tell its own spread.
-/// `fitted`: how many records (IDA: curves with a value) the fit stands on; `units`: how many
-/// the bootstrap resamples.
-std::optional<analysis::BootstrapResult> interval_or_none(
-    std::size_t fitted, std::size_t units,
-    const std::function<std::optional<analysis::Lognormal>(const std::vector<std::size_t>&)>& fit) {
-  if (fitted < kFewestForInterval) return std::nullopt;
-  return analysis::bootstrap(units, fit);
-}
-
 /// The interval columns of a frame without a bootstrap: missing.
 analysis::BootstrapResult no_interval() {
   const double none = std::nan("");
@@ -226,7 +216,7 @@ std::vector<FrameFragility> ida_fragility(const cube::CubeReader& cube, const st
     std::vector<std::size_t> all(values.size());
     for (std::size_t k = 0; k < all.size(); ++k) all[k] = k;
     out.fit = fit(all);
-    if (out.fit) out.interval = interval_or_none(out.cases, values.size(), fit).value_or(no_interval());
+    out.interval = gives_interval(out) ? analysis::bootstrap(values.size(), fit) : no_interval();
     result.push_back(std::move(out));
   }
   return result;
@@ -309,10 +299,10 @@ std::vector<FrameFragility> cube_fragility(const cube::CubeReader& cube, const s
       }
     out.failed = records * levels.size() - out.cases - out.not_run - out.unresolved;
     out.fit = analysis::fit_stripes(out.stripes);
-    if (out.fit)
-      out.interval = interval_or_none(records, records, [&](const std::vector<std::size_t>& sample) {
-                       return analysis::fit_stripes(stripes_of(sample));
-                     }).value_or(no_interval());
+    out.interval = gives_interval(out) ? analysis::bootstrap(records, [&](const std::vector<std::size_t>& sample) {
+                                           return analysis::fit_stripes(stripes_of(sample));
+                                         })
+                                       : no_interval();
     result.push_back(std::move(out));
   }
   return result;
@@ -332,13 +322,20 @@ std::vector<std::string> unbracketed_warnings(const std::vector<FrameFragility>&
                       (f.unresolved > f.unresolved_intensities.size()
                            ? "; " + std::to_string(f.unresolved - f.unresolved_intensities.size()) + " without a safe run left out"
                            : std::string()));
-    const std::size_t units = f.unbracketed ? f.cases : f.records;
-    if (f.fit && units < kFewestForInterval)
-      lines.push_back("frame " + f.frame + ": a fit from " + std::to_string(units) + (f.unbracketed ? " curves" : " records") +
-                      ", fewer than " + std::to_string(kFewestForInterval) +
-                      ": its median and beta are rough, and no bootstrap interval is given");
+    if (auto line = few_records_warning(f); !line.empty()) lines.push_back(std::move(line));
   }
   return lines;
+}
+
+std::size_t interval_units(const FrameFragility& f) { return f.unbracketed ? f.cases : f.records; }
+
+bool gives_interval(const FrameFragility& f) { return f.fit && interval_units(f) >= kFewestForInterval; }
+
+std::string few_records_warning(const FrameFragility& f) {
+  if (!f.fit || gives_interval(f)) return {};
+  return "frame " + f.frame + ": a fit from " + std::to_string(interval_units(f)) + (f.unbracketed ? " curves" : " records") +
+         ", fewer than " + std::to_string(kFewestForInterval) +
+         ": its median and beta are rough, and no bootstrap interval is given";
 }
 
 }  // namespace pcrf::post

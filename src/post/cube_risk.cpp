@@ -194,6 +194,7 @@ RiskReport cube_risk(const cube::CubeReader& cube, const std::vector<cube::Selec
   (void)in.ratings_beta();  // an unknown rating throws before anything is read
   RiskReport report{read_hazard_file(in.hazard, in.tail), "", {}, {}, kNaN, kNaN, {}, {}, {}, {}, {}};
   report.cube_measure = check_measure(cube, report.hazard);
+  for (const UserError& w : report.hazard.warnings) report.warnings.push_back(w.message(Dialect::kFlag));
   const auto& hazard = report.hazard.curve;
   const std::string units = intensity_units(cube);
   const auto frames = cube_fragility(cube, selectors);
@@ -221,9 +222,11 @@ RiskReport cube_risk(const cube::CubeReader& cube, const std::vector<cube::Selec
       const double added = in.ratings_beta();
       r.with_ratings = risk::collapse_rate(hazard, {f.fit->median, std::sqrt(f.fit->beta * f.fit->beta + added * added)});
       r.sample_size = sample_size(f);
-      if (r.sample_size > 0) r.interval = risk::rate_interval(hazard, refit_of(f));
+      // The one rule of cube fragility (kFewestForInterval): no interval from few records.
+      r.interval = gives_interval(f) ? risk::rate_interval(hazard, refit_of(f)) : risk::RateInterval{kNaN, kNaN, 0};
     }
     warn(r, report, units, report.warnings);
+    if (auto line = few_records_warning(f); !line.empty()) report.warnings.push_back(std::move(line));
     report.frames.push_back(std::move(r));
   }
   add_model_scatter(cube, frames, in, report);
@@ -301,8 +304,6 @@ std::vector<ColumnOf<RiskRow>> risk_spec(const std::string& units) {
        [](const R& r) { return count(r.frame->bracketing); }},
       {{"hazard_factor_at_target", "", "factor on the hazard's intensities at which this fragility meets the risk target", "%.3f"},
        [](const R& r) { return number_or_missing(r.frame->hazard_factor); }},
-      {{"integration_change", "", "relative change of lambda_c at the last halving of the log-grid step (it stops below 1e-7; 1e-3 = 0.1 % at most)", "%.1e", true},
-       lognormal([](const risk::RateResult& x) { return x.relative_change; })},
       {{"selection", "", "the frame as -w selectors, comma-separated (empty: all)", "%s", true},
        [](const R& r) { return Cell{r.frame->selection}; }},
   };
@@ -429,7 +430,7 @@ void print_risk(const Report& report, std::ostream& out) {
   };
   out << "hazard " << text("hazard_file") << " (" << text("measure")
       << (text("period_s") == "none" ? "" : ", T = " + text("period_s") + " s") << "), beyond its last point: "
-      << text("tail") << "; lambda_c integrated over a log grid to 0.1 %\n";
+      << text("tail") << "; lambda_c exact per segment of the curve\n";
   out << "risk target " << text("target_probability") << " in " << text("target_years") << " years ("
       << text("target_rate_per_yr") << " /yr), generic fragility beta " << text("generic_beta") << " with "
       << text("generic_collapse_probability") << " at the intensity: risk-targeted intensity " << text("risk_targeted_intensity")

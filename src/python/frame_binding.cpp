@@ -36,11 +36,9 @@ py::dict frame(const py::kwargs& kwargs) {
   Keywords keywords(kwargs);
   const SceneRequest request = keywords.take_scene_parameters();
   const auto physics = keywords.take_settings(physics_settings());
-  int points = 41;  // as `pcrf frame` prints by default
-  if (const auto value = keywords.take_whole("points", std::numeric_limits<int>::min(), std::numeric_limits<int>::max()))
-    points = static_cast<int>(*value);  // its bounds: check_pushover_points, as the command line's
+  const double asked = keywords.take_number("points").value_or(api::kDefaultPushoverPoints);
   keywords.finish();
-  api::check_pushover_points(points);
+  const int points = api::pushover_points(asked);
   ScenePoint point;
   const auto scene = scene_of(request, &point);
   FrameProperties p;

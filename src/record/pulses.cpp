@@ -174,9 +174,26 @@ double pulse_peak_velocity_m_s(const PulseSpec& p) {
   return 0.0;
 }
 
+namespace {
+
+/// The pulse's support and its duration in samples, checked before anything is sized by them:
+/// a period of 1e308 s makes the support infinite and its sample count NaN.
+void check_samples(const PulseSpec& p, const UnitPulse& unit) {
+  const double support = (unit.end_s - unit.begin_s) / p.dt_s;
+  if (!(support <= kMaxSamples) || !std::isfinite(unit.peak_s))
+    bad(p, "period_s",
+        "= " + number_text(p.period_s) + " s" +
+            (p.shape == PulseShape::kMavroeidis ? " (times gamma = " + number_text(p.gamma) + ")" : std::string()) +
+            " at dt_s = " + number_text(p.dt_s) + " s gives a pulse of " + number_text(support) + " samples, more than 1e8");
+  if (!(p.duration_s / p.dt_s <= kMaxSamples)) bad(p, "duration_s", "gives more than 1e8 samples");
+}
+
+}  // namespace
+
 GroundMotion make_pulse(const PulseSpec& p) {
   validate(p);
   const UnitPulse unit = unit_pulse(p);
+  check_samples(p, unit);
   // The peak on sample k: a smooth pulse starts at δ = k dt − (τ_peak − τ_begin) ∈ [0, dt);
   // one that jumps at its start starts at 0 with dt shortened to (τ_peak − τ_begin)/k.
   const double to_peak = unit.peak_s - unit.begin_s;
@@ -184,7 +201,7 @@ GroundMotion make_pulse(const PulseSpec& p) {
   const double dt = unit.jumps_at_start && k > 0.0 ? to_peak / k : p.dt_s;
   const double delay = unit.jumps_at_start ? 0.0 : k * dt - to_peak;
   const double length_s = std::max(delay + (unit.end_s - unit.begin_s), p.duration_s);
-  if (length_s / dt > kMaxSamples) bad(p, "duration_s", "gives more than 1e8 samples");
+  if (!(length_s / dt <= kMaxSamples)) bad(p, "duration_s", "gives more than 1e8 samples");
   const auto n = static_cast<std::size_t>(std::ceil(length_s / dt - 1e-9)) + 1;
   const double a_p = p.amplitude_g * kGravity_m_s2;
   std::vector<double> a(n, 0.0);

@@ -1,5 +1,6 @@
 // Response spectra of a record library, and their table (see record_library.hpp).
 #include "pcrf/record/record_library.hpp"
+#include "pcrf/byte_order_mark.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -250,6 +251,7 @@ SpectraTable read_spectra_csv(std::istream& in, const std::string& file) {
   int number = 0;
   while (std::getline(in, line)) {
     ++number;
+    if (number == 1) line = std::string(without_byte_order_mark(line));  // a spreadsheet's "CSV UTF-8"
     if (line.empty() || line[0] == '#' || line == "\r") continue;
     std::vector<std::string> row = split_csv_line(line);
     if (header.empty()) {

@@ -27,6 +27,7 @@
 #include <utility>
 #include <vector>
 
+#include "pcrf/byte_order_mark.hpp"
 #include "pcrf/number_text.hpp"
 #include "pcrf/printable.hpp"
 
@@ -108,7 +109,7 @@ bool parse_integer(std::string_view token, long long& value) {
   return !token.empty() && ec == std::errc() && ptr == end;
 }
 
-/// The whole file as text. A missing file, a folder or a FIFO, an unreadable file, a UTF-16
+/// The whole file as text, without a leading UTF-8 byte-order mark. A missing file, a folder or a FIFO, an unreadable file, a UTF-16
 /// file and a binary file (a NUL byte) are UserErrors.
 std::string read_text(const std::filesystem::path& file) {
   std::error_code ec;
@@ -122,8 +123,8 @@ std::string read_text(const std::filesystem::path& file) {
   text << in.rdbuf();
   if (in.bad()) fail_file(file, std::string("read error: ") + std::strerror(errno));
   std::string bytes = std::move(text).str();
-  if (bytes.size() >= 2 && ((bytes[0] == '\xFF' && bytes[1] == '\xFE') || (bytes[0] == '\xFE' && bytes[1] == '\xFF')))
-    fail_file(file, "UTF-16 text; save it as ASCII or UTF-8");
+  if (starts_as_utf16(bytes)) fail_file(file, "UTF-16 text; save it as ASCII or UTF-8");
+  if (without_byte_order_mark(bytes).size() < bytes.size()) bytes.erase(0, kUtf8ByteOrderMark.size());
   if (const auto nul = bytes.find('\0'); nul != std::string::npos) {
     const auto line = 1 + static_cast<std::size_t>(std::count(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(nul), '\n'));
     fail_at(file, line, "a NUL byte: this is not a text file");

@@ -1,5 +1,6 @@
 // Record selection to a target spectrum (see selection.hpp).
 #include "pcrf/record/selection.hpp"
+#include "pcrf/byte_order_mark.hpp"
 
 #include <Eigen/Dense>
 
@@ -169,6 +170,7 @@ SelectionTarget read_selection_target(std::istream& in, const std::string& file)
   int n = 0;
   while (std::getline(in, line)) {
     ++n;
+    if (n == 1) line = std::string(without_byte_order_mark(line));  // a spreadsheet's "CSV UTF-8"
     if (line.empty() || line[0] == '#' || line == "\r") continue;
     const std::vector<std::string> fields = split_fields(line);
     if (header.empty()) {

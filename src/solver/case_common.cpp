@@ -153,7 +153,7 @@ double free_fall_time(const Excitation& excitation, double gravity_m_s2, double 
 }
 
 CaseEnd::CaseEnd(const Excitation& excitation, double gravity_m_s2, const PhysicsOptions& physics)
-    : t_end_s(excitation.duration_s() + (physics.tail_s == kTailUntilRest ? physics.max_tail_s : physics.tail_s)),
+    : t_end_s(longest_case_s(excitation.duration_s(), physics)),
       free_fall(false),
       until_rest(physics.tail_s == kTailUntilRest),
       record_end_s(excitation.duration_s()) {

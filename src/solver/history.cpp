@@ -1,6 +1,11 @@
 // The columns of a time history (see pcrf/solver/history.hpp).
 #include "pcrf/solver/history.hpp"
 
+#include <cmath>
+
+#include "pcrf/number_text.hpp"
+#include "pcrf/user_error.hpp"
+
 namespace pcrf {
 
 const std::vector<HistoryEventName>& history_events() {
@@ -37,6 +42,16 @@ const std::vector<HistoryColumn>& history_columns() {
        &HistorySample::event},
   };
   return columns;
+}
+
+void check_history_interval(double case_s, double history_dt_s, double record_dt_s) {
+  const double dt_s = history_dt_s > 0.0 ? history_dt_s : record_dt_s;
+  const double rows = case_s / dt_s;
+  if (rows <= kMaxHistoryRows) return;  // NaN (no interval) falls through to the refusal
+  const std::string why = number_text(case_s) + " s of case (record and tail) at " + number_text(dt_s) + " s give " +
+                          number_text(std::floor(rows)) + " rows, more than " + number_text(kMaxHistoryRows) +
+                          ": give an interval of at least " + number_text(case_s / kMaxHistoryRows) + " s";
+  throw UserError("history_dt_s", history_dt_s > 0.0 ? why : "the record's sample interval: " + why);
 }
 
 }  // namespace pcrf

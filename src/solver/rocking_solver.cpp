@@ -74,10 +74,16 @@ void check_verdict(PreparedFrame& frame, const Excitation& excitation, const Sol
 
 }  // namespace
 
+double longest_case_s(double record_s, const PhysicsOptions& physics) {
+  return record_s + (physics.tail_s == kTailUntilRest ? physics.max_tail_s : physics.tail_s);
+}
+
 CaseResult solve_case(PreparedFrame& frame, const Excitation& excitation, const SolverSettings& solver,
                       const OutputRequest& request, const HistorySink& history) {
   detail::validate(solver, frame.physics());
   check_initial_state(frame.scene(), frame.physics());
+  if (history) check_history_interval(longest_case_s(excitation.duration_s(), frame.physics()), request.history_dt_s,
+                                      excitation.dt_s());
   // Timed here, so that the per-case set-up (linkage limits, fracture angle, r) counts.
   const double start_cpu_s = detail::thread_cpu_s();
   CaseResult result;

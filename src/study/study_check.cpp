@@ -3,10 +3,13 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 
+#include "pcrf/hazard/hazard_file.hpp"
 #include "pcrf/number_text.hpp"
 #include "pcrf/record/horizontal_pair.hpp"
 #include "pcrf/study/fingerprint.hpp"
@@ -27,8 +30,14 @@ void warn(const Study& study, const UserError& warning, std::vector<std::string>
 /// "record \"NAME\": " before a problem of a study's record.
 std::string record_text(const RecordSource& source) { return "record \"" + source.name + "\": "; }
 
+/// The record of least intensity (an [intensity] study): the one scaled the most.
+struct WeakestRecord {
+  double im = std::numeric_limits<double>::infinity();
+  std::string name;
+};
+
 void check_records(const Study& study, RecordCache& records, std::vector<std::string>& notes,
-                   std::vector<std::string>& warnings) {
+                   std::vector<std::string>& warnings, WeakestRecord& weakest) {
   for (std::size_t r = 0; r < study.records.size(); ++r) {
     const auto& source = study.records[r];
     try {
@@ -57,7 +66,31 @@ void check_records(const Study& study, RecordCache& records, std::vector<std::st
     if (!(im > 0.0) || !std::isfinite(im))
       throw UserError(source.declared_at, "record \"" + source.name + "\" has " + to_string(study.intensity->measure) +
                                               " = " + number_text(im) + ": it cannot be scaled to an intensity");
+    if (im < weakest.im) weakest = {im, source.name};
   }
+}
+
+/// Hazard-consistent stripes: the curve's own warnings (post::hazard_warnings), and a
+/// warning when its intensities ask a record for a scale factor above
+/// post::kMaxHazardScaleFactor (a curve in other units than its header's, or records that
+/// are not the site's).
+void check_hazard_stripes(const Study& study, const WeakestRecord& weakest, std::vector<std::string>& warnings) {
+  if (!study.hazard_stripes) return;
+  for (const UserError& w : study.hazard_stripes->warnings) warn(study, w, warnings);
+  if (study.levels.empty() || !(weakest.im > 0.0) || !std::isfinite(weakest.im)) return;
+  const double strongest = *std::max_element(study.levels.begin(), study.levels.end());
+  const double factor = strongest / weakest.im;
+  if (factor <= post::kMaxHazardScaleFactor) return;
+  char text[64];
+  std::snprintf(text, sizeof text, "%.4g", factor);
+  const auto where = study.given_at.find("intensity.return_periods_yr");
+  warn(study,
+       UserError(where == study.given_at.end() ? Where{{}, study.file, 0} : where->second,
+                 "the hazard curve " + study.hazard_stripes->hazard + " asks record \"" + weakest.name + "\" (" +
+                     to_string(study.intensity->measure) + " " + number_text(weakest.im) + ") for a scale factor of " +
+                     text + " at " + number_text(strongest) + ", above " + number_text(post::kMaxHazardScaleFactor) +
+                     ": are the curve's intensities in the units its header names?"),
+       warnings);
 }
 
 std::string describe(const Study& study, const SceneSpec& frame) {
@@ -118,7 +151,9 @@ std::string record_warning(const Study& study, std::size_t r, const GroundMotion
 
 CheckedStudy check_study(const Study& study, const CaseSpace& space, RecordCache& records, FrameCheck frames) {
   CheckedStudy checked;
-  check_records(study, records, checked.notes, checked.warnings);
+  WeakestRecord weakest;
+  check_records(study, records, checked.notes, checked.warnings, weakest);
+  check_hazard_stripes(study, weakest, checked.warnings);
   check_incidence(study, checked.warnings);
   // A displaced start must lie below every frame's overturning angle: an input error, found
   // before the run. Otherwise the worker that runs a frame's cases builds it, once per case.
@@ -128,6 +163,13 @@ CheckedStudy check_study(const Study& study, const CaseSpace& space, RecordCache
   }
   for (const auto& h : study.histories) {
     const std::int64_t index = space.resolve(h);
+    // The history's rows bounded up front (solve_case checks it again when the case runs).
+    const GroundMotion& motion = records.get(space.case_at(index).record);
+    try {
+      check_history_interval(longest_case_s(motion.duration_s(), study.physics), h.dt_s, motion.dt_s());
+    } catch (const UserError& e) {
+      fail_history(h, "dt_s: " + e.problem(Dialect::kStudy));
+    }
     for (std::size_t k = 0; k < checked.history_cases.size(); ++k)
       if (checked.history_cases[k] == index)
         fail_history(h, "names the same case as \"" + study.histories[k].label + "\"");

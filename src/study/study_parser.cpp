@@ -267,6 +267,7 @@ void read_hazard_stripes(const Fields& f, const IntensitySpec& spec, Study& s) {
                                     four_digits(1.0 / rates.back()) + " yr");
     intensities.push_back(x);
   }
+  h.warnings = hazard.warnings;
   s.levels = std::move(intensities);
   s.given_at["intensity.return_periods_yr"] = f.where(kReturnPeriodsKey);
   s.hazard_stripes = std::move(h);

@@ -224,7 +224,9 @@ TEST(RecordCommand, PrintsTheIntensityMeasuresAsJson) {
   const auto huge = test::write_file(dir, "huge.txt", "0 1e300\n0.01 -1e300\n0.02 1e300\n");
   const auto overflow = test::run_command(pcrf() + " record " + huge.string());
   EXPECT_EQ(overflow.exit_code, 2) << overflow.out;
-  EXPECT_NE(overflow.err.find("huge: its accelerations (PGA 1e+300 g) overflow the intensity measures"), std::string::npos)
+  // Named by its file, not only its stem (issue 41).
+  EXPECT_NE(overflow.err.find(huge.string() + ": its accelerations (PGA 1e+300 g) overflow the intensity measures"),
+            std::string::npos)
       << overflow.err;
 }
 

@@ -2,7 +2,8 @@
 """Mutation fuzzing of every input path of the `pcrf` command line (docs/robustness.md).
 
 Each target starts from seeds it writes itself (an AT2 record, a two-column and a one-column
-text record, synthetic-motion strings, study files, a small cube that a tiny study makes, the
+text record, synthetic-motion strings, study files, a small cube that a tiny study makes,
+hazard curves read against a tiny IDA cube and as a study's hazard-consistent stripes, the
 Python module's keywords and dict studies: python_containers.py), mutates them, runs `pcrf`
 (or a child Python calling the module) on each mutant and judges the outcome by the engine's
 rule for bad input: exit 0, or exit 2 with one `pcrf: error:` line. Anything else is a finding: a signal,
@@ -293,6 +294,83 @@ class Cubes(Target):
         return [pcrf, "cube", extra[0], str(file), *extra[1:]]
 
 
+HAZARD_STUDY = """[study]
+name = "fuzz_hazard"
+
+[[records]]
+synthetic = ["stochastic:seed=1,pga_g=1,duration_s=3", "stochastic:seed=2,pga_g=1,duration_s=3",
+             "stochastic:seed=3,pga_g=1,duration_s=3"]
+
+[intensity]
+measure = "pga_g"
+
+[ida]
+start = 0.5
+max_intensity = 6
+max_runs = 6
+
+[physics]
+tail_s = 0.5
+"""
+
+STRIPES_STUDY = """[study]
+name = "fuzz_stripes"
+
+[[records]]
+synthetic = ["stochastic:seed=1,pga_g=1,duration_s=3"]
+
+[intensity]
+measure = "pga_g"
+hazard = "mutant.csv"
+return_periods_yr = [475, 2475]
+"""
+
+
+def hazard_curve(points=6, k0=2.625e-4, k=3.0, low=0.05, high=3.0, scale=1.0):
+    xs = [low * (high / low) ** (i / (points - 1)) for i in range(points)]
+    return ("pga_g,annual_rate_per_yr\n" + "".join(f"{x * scale:.6g},{k0 * x ** -k:.6g}\n" for x in xs)).encode()
+
+
+class Hazards(Target):
+    """Hazard curves (CSV) read by `pcrf cube risk` against a tiny IDA cube, and by `pcrf study
+    --check` as hazard-consistent stripes. The seeds are the findings of issue 41: a segment
+    1e-6 wide with a decade of rate (an internal error before the integral was exact), a
+    byte-order mark, a curve in cm/s² and one of 50-year probabilities under pga_g (both
+    warned of), and the most points a curve may have (a 10⁵-point curve took minutes)."""
+    name = "hazard"
+    suffix = ".csv"
+
+    def __init__(self, pcrf, timeout_s):
+        self.pcrf, self.timeout_s = pcrf, timeout_s
+
+    def seeds(self, work):
+        study = work / "seed_study.toml"
+        study.write_text(HAZARD_STUDY)
+        (work / "stripes.toml").write_text(STRIPES_STUDY)
+        cube = work / "seed.h5"
+        if cube.exists():
+            cube.unlink()
+        done = subprocess.run([self.pcrf, "study", str(study), "-o", str(cube)], capture_output=True, text=True,
+                              timeout=max(120, 10 * self.timeout_s), cwd=work)
+        if done.returncode != 0 or not cube.is_file():
+            raise RuntimeError(f"cannot make the seed cube: {done.stderr.strip()}")
+        probabilities = "".join(f"{x:.6g},{-math.expm1(-50 * 2.625e-4 * x ** -3):.6g}\n"
+                                for x in (0.05, 0.1, 0.2, 0.5, 1.0, 2.0))
+        curves = [("power_law", hazard_curve()),
+                  ("steep", b"pga_g,annual_rate_per_yr\n0.1,1e-2\n0.5,1e-3\n0.5000005,1e-4\n2,1e-6\n"),
+                  ("bom", b"\xef\xbb\xbf" + hazard_curve()),
+                  ("cm_s2", hazard_curve(scale=980.665)),
+                  ("probabilities", ("pga_g,annual_rate_per_yr\n" + probabilities).encode()),
+                  ("sa", b"# period_s = 1.0\nsa_g,annual_rate_per_yr\n0.1,1e-2\n1,1e-4\n"),
+                  ("most_points", hazard_curve(points=10000, low=0.01, high=10.0))]
+        return [(f"{label}_{how}", data, [how]) for label, data in curves for how in ("risk", "stripes")]
+
+    def command(self, pcrf, file, extra):
+        if extra[0] == "risk":
+            return [pcrf, "cube", "risk", "seed.h5", "--hazard", str(file)]
+        return [pcrf, "study", "stripes.toml", "--check"]
+
+
 # ---- running --------------------------------------------------------------------------------
 
 # Faults inside HDF5 1.10 itself on crafted files, which no cheap check of pcrf's avoids
@@ -405,7 +483,7 @@ def main():
     parser.add_argument("--budget-s", type=float, default=600.0, help="time for all targets together [s]")
     parser.add_argument("--seed", type=int, default=1, help="seed of the mutations (deterministic per seed)")
     parser.add_argument("--runs", type=int, help="at most this many inputs per target (default: until the budget)")
-    parser.add_argument("--targets", default="records,synthetic,study,cube,python", help="comma-separated targets")
+    parser.add_argument("--targets", default="records,synthetic,study,cube,hazard,python", help="comma-separated targets")
     parser.add_argument("--module-dir", type=Path,
                         help="python: the folder holding the module `pcrf` (default: python/ beside --pcrf)")
     parser.add_argument("--timeout-s", type=float, default=20.0, help="a run longer than this is a hang [s]")
@@ -420,6 +498,7 @@ def main():
     source_dir = Path(__file__).resolve().parents[2]
     targets = {"records": lambda: Records(), "synthetic": lambda: Synthetic(), "study": lambda: Studies(source_dir),
              "cube": lambda: Cubes(args.pcrf, args.timeout_s, args.spare_global_heaps),
+             "hazard": lambda: Hazards(args.pcrf, args.timeout_s),
              "python": lambda: PythonContainers(args.module_dir)}
     names = [n for n in args.targets.split(",") if n]
     unknown = [n for n in names if n not in targets]

@@ -14,7 +14,8 @@ HAZARD = "pga_g,annual_rate_per_yr\n0.05,0.178885\n0.1,0.0316228\n0.3,0.00202837
 @pytest.fixture(scope="module")
 def ida_cube(tmp_path_factory):
     folder = tmp_path_factory.mktemp("risk")
-    records = [f"stochastic:seed={s},pga_g=1,duration_s=6" for s in range(1, 7)]
+    # Ten records: the fewest that get a bootstrap interval (kFewestForInterval, cube_fragility.hpp).
+    records = [f"stochastic:seed={s},pga_g=1,duration_s=6" for s in range(1, 11)]
     study = {"study": {"name": "risk"}, "records": [{"synthetic": records}],
              "intensity": {"measure": "pga_g"}, "ida": {"start": 0.5, "max_intensity": 8.0}}
     cube = folder / "ida.h5"

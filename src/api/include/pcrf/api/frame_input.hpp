@@ -19,7 +19,14 @@ namespace pcrf::api {
 std::unique_ptr<Scene> scene_of(const std::string& model, const std::map<std::string, double, std::less<>>& values,
                                 ScenePoint* point = nullptr);
 
-/// \throws UserError at `points` when a pushover curve of `points` rotations cannot be drawn (< 2).
-void check_pushover_points(int points);
+/// The rotations a pushover curve is drawn at unless asked (`pcrf frame`, pcrf.Frame), and
+/// the most it is drawn at: each is a static solution of the frame, and the curve is printed
+/// or returned whole (at 10⁵ points, a few MB and well under a second).
+inline constexpr int kDefaultPushoverPoints = 41;
+inline constexpr int kMaxPushoverPoints = 100000;
+
+/// `points` as the number of rotations of a pushover curve: one check for both front ends.
+/// \throws UserError at `points` unless it is a whole number from 2 to kMaxPushoverPoints.
+int pushover_points(double points);
 
 }  // namespace pcrf::api

@@ -26,6 +26,9 @@ struct Scaling {
   bool scale_given = false;
   std::optional<double> intensity;  ///< in the measure's units (g or m/s)
   GivenSettings<IntensitySpec> measure;
+  /// The file the station's first component was read from, to name it in messages; empty:
+  /// the motion's name (a synthetic motion, an array).
+  std::string record_file;
 };
 
 /// The factor the record is scaled by: `scale`, or `intensity` over the station's measure (of

@@ -54,8 +54,19 @@ struct FrameFragility {
   std::vector<double> collapse_intensities, censored_intensities, unresolved_intensities;
 };
 
-/// A fit from fewer records (IDA: curves) than this gets a caution and no bootstrap interval.
+/// The one rule for intervals from few records, followed by `cube fragility` (the median's
+/// and β's intervals) and `cube risk` (λ_c's) alike: a bootstrap over fewer than this many
+/// records (IDA: curves with a value) cannot tell its own spread, so a fit from fewer gets
+/// a caution (few_records_warning) and no interval at all.
 inline constexpr std::size_t kFewestForInterval = 10;
+
+/// The records (IDA: curves with a value) a frame's fit stands on, as the rule counts them.
+std::size_t interval_units(const FrameFragility& frame);
+/// Whether the rule gives `frame` an interval: a fit from at least kFewestForInterval units.
+bool gives_interval(const FrameFragility& frame);
+/// The caution of a fit without an interval by the rule ("frame F: a fit from 4 records, fewer
+/// than 10: …"); empty for a frame that gets one, or has no fit.
+std::string few_records_warning(const FrameFragility& frame);
 
 /// One line per frame with unbracketed or unresolved curves, saying how they were fitted, and
 /// per frame fitted from fewer than kFewestForInterval records or curves (for stderr).

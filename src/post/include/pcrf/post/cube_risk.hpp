@@ -51,6 +51,8 @@ struct FrameRisk {
   double hazard_factor = 0.0;       ///< risk::hazard_factor_at_target of the fit (NaN: none)
   /// 90 % interval of the lognormal λ_c over 1000 refits: an IDA's curves resampled with
   /// replacement; a stripe cube's collapses redrawn per stripe as binomial (n, z/n).
+  /// None (NaN ends) for a fit from fewer than kFewestForInterval records or curves: the
+  /// rule of cube fragility (cube_fragility.hpp, gives_interval).
   risk::RateInterval interval;
   std::size_t sample_size = 0;      ///< curves (IDA) or records (stripes) the interval is of
   /// λ_c of the fit with the ratings' dispersion added: β' = √(β² + RiskInputs::ratings_beta()²).

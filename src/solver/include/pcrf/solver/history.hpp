@@ -52,6 +52,17 @@ struct HistorySample {
 /// Receives the rows in time order. Empty function: no history.
 using HistorySink = std::function<void(const HistorySample&)>;
 
+/// The most rows at its output interval a case's history may have: 10⁷ rows are about 2 GB of
+/// CSV (12 columns at full precision) or 1 GB in memory, ten hours of a record sampled at
+/// 0.005 s. Rows at events (impacts, peaks) come on top.
+inline constexpr double kMaxHistoryRows = 1e7;
+
+/// Checks the history interval of a case that runs for `case_s` seconds (record and tail):
+/// `history_dt_s` (0: the record's `record_dt_s`) must give at most kMaxHistoryRows rows.
+/// \throws UserError at `history_dt_s`, naming the rows it would write and the interval
+/// that stays within the bound, before any row is written.
+void check_history_interval(double case_s, double history_dt_s, double record_dt_s);
+
 /// One column of a history: its name (the CSV header and the cube variable), unit
 /// (UDUNITS spelling, "1" for dimensionless), meaning and field.
 struct HistoryColumn {

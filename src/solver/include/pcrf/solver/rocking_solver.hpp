@@ -61,9 +61,14 @@ std::shared_ptr<PreparedFrame> prepare_frame(const Frame& frame, const PhysicsOp
 /// \throws UserError naming the failed condition (a frame the rigid-body rocking model cannot represent).
 std::shared_ptr<PreparedFrame> prepare_scene(std::unique_ptr<Scene> scene, const PhysicsOptions& physics);
 
+/// The longest a case on a record of `record_s` seconds can run [s]: the record and its tail
+/// (an until-rest tail: max_tail_s); the ground's free fall may end it sooner.
+double longest_case_s(double record_s, const PhysicsOptions& physics);
+
 /// Solves one case. Never throws for a physical or numerical failure: the result's
 /// status says what happened (message gives detail). Throws std::invalid_argument only
-/// for invalid settings (a value outside its description, an impossible initial state).
+/// for invalid settings (a value outside its description, an impossible initial state, a
+/// history interval beyond check_history_interval's bound over longest_case_s, before any row).
 CaseResult solve_case(PreparedFrame& frame, const Excitation& excitation, const SolverSettings& solver,
                       const OutputRequest& request = {}, const HistorySink& history = {});
 

@@ -132,6 +132,7 @@ struct Study {
     std::string hazard;                     ///< the hazard file as the study gives it
     std::filesystem::path file;             ///< resolved against base_dir
     std::vector<double> return_periods_yr;  ///< T [yr], one per level
+    std::vector<UserError> warnings;        ///< the curve's post::hazard_warnings, for the study's check
   };
   std::optional<HazardStripes> hazard_stripes;
   /// The [ida] table, when given: the intensity axis becomes a search, `levels` is unused.
