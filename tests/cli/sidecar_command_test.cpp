@@ -59,6 +59,12 @@ TEST(Sidecars, ARiskReportIsNeverWrittenOverItsHazardCurve) {
   expect_refused(in(dir, "cube risk f.h5 --hazard h_link.csv --csv h.csv --overwrite"), "the input", "via a link");
   EXPECT_EQ(test::read_file(dir / "h.csv"), kHazard);
   EXPECT_EQ(in(dir, "cube risk f.h5 --hazard h.csv --csv report.csv").exit_code, 0);
+  // A figure is not drawn over the hazard curve either (a curve named like a figure).
+  if (test::run_command(std::string("'") + PCRF_PYTHON + "' -c 'import matplotlib, numpy'").exit_code == 0) {
+    test::write_file(dir, "h.svg", kHazard);
+    expect_refused(in(dir, "plot risk f.h5 --hazard h.svg -o h.svg --overwrite"), "the input", "plot risk");
+    EXPECT_EQ(test::read_file(dir / "h.svg"), kHazard);
+  }
 }
 
 /// A small study in `dir` (s.toml) and its cube s.h5.
