@@ -85,6 +85,14 @@ void guarded(const std::string& file, Action action) {
 
 bool is_stdout(const std::string& path) { return path.empty() || path == "-"; }
 
+/// Every file the command reads: the cube and, for `cube risk`, the hazard curve. No output
+/// may be one of them (io::check_output: the same file by device and inode).
+std::vector<std::filesystem::path> inputs_of(const CubeArguments& args) {
+  std::vector<std::filesystem::path> inputs{args.file};
+  if (!args.hazard.empty()) inputs.emplace_back(args.hazard);
+  return inputs;
+}
+
 /// Refuses an output file before anything is computed (see io::check_output).
 void check_output(const std::string& path, const std::vector<std::filesystem::path>& inputs, bool overwrite) {
   if (!is_stdout(path)) io::check_output(path, inputs, overwrite);
@@ -134,13 +142,13 @@ void write_report(const post::Report& report, const std::string& table, const Cu
     else post::write_text(report.table(table), std::cout);
   }
   if (!args.csv.empty())
-    with_output(args.csv, {args.file}, args.overwrite, [&](std::ostream& out) { post::write_csv(report.table(table), out); });
+    with_output(args.csv, inputs_of(args), args.overwrite, [&](std::ostream& out) { post::write_csv(report.table(table), out); });
 }
 
 /// Refuses --json with `--csv -` (both are stdout) and a CSV output that is the cube.
 void check_report_outputs(const CubeArguments& args) {
   if (args.json && args.csv == "-") throw UserError(Where{}, "{} and {} - both write to stdout: choose one", {"json", "csv"});
-  check_output(args.csv, {args.file}, args.overwrite);
+  check_output(args.csv, inputs_of(args), args.overwrite);
 }
 
 std::string schema(const std::string& fields, const std::vector<std::pair<std::string, std::vector<post::Column>>>& tables) {
@@ -202,16 +210,16 @@ void add_export(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) 
   history->excludes(exporter->get_option("--metric"))->excludes(exporter->get_option("--where"));
   exporter->callback([args] {
     guarded(args->file, [&] {
-      check_output(args->output, {args->file}, args->overwrite);
+      check_output(args->output, inputs_of(*args), args->overwrite);
       cube::CubeReader reader(args->file);
       if (!args->history.empty()) {
-        with_output(args->output, {args->file}, args->overwrite,
+        with_output(args->output, inputs_of(*args), args->overwrite,
                     [&](std::ostream& out) { cube::export_history_csv(reader, args->history, out); });
         return;
       }
       const auto chosen = selectors(args->where);
       const auto leave_out = args->no_record_text ? study::vocabulary::record_text_coordinates() : std::vector<std::string>{};
-      with_output(args->output, {args->file}, args->overwrite,
+      with_output(args->output, inputs_of(*args), args->overwrite,
                   [&](std::ostream& out) { cube::export_csv(reader, args->metrics, chosen, out, leave_out); });
     });
   });
@@ -267,7 +275,9 @@ void add_fragility(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& arg
     guarded(args->file, [&] {
       post::check_mce(args->mce);
       check_report_outputs(*args);
-      const std::vector<std::filesystem::path> csv_inputs{args->file}, points_inputs{args->file, args->csv};
+      const auto csv_inputs = inputs_of(*args);
+      auto points_inputs = csv_inputs;
+      points_inputs.emplace_back(args->csv);
       check_output(args->points, is_stdout(args->csv) ? csv_inputs : points_inputs, args->overwrite);
       const auto reduction = reduction_of(*args, post::kFragilityReduction);
       cube::CubeReader reader(args->file);

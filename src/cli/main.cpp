@@ -13,6 +13,7 @@
 #include "pcrf/closest_word.hpp"
 #include "pcrf/io/checked_stream.hpp"
 #include "pcrf/json.hpp"
+#include "pcrf/io/file_kind.hpp"
 #include "pcrf/printable.hpp"
 #include "pcrf/version.hpp"
 
@@ -148,6 +149,9 @@ int main(int argc, char** argv) {
   pcrf::cli::add_plot_command(app);
   pcrf::cli::add_settings_command(app);
   pcrf::io::CheckedStdout out;
+  // A command stopped by SIGTERM, SIGINT or SIGHUP leaves no temporary beside its outputs
+  // (`pcrf study` replaces these handlers with its own, which stop it in order).
+  pcrf::io::remove_temporaries_on_signals();
   try {
     return run(app, argc, argv, out);
   } catch (const pcrf::io::OutputError& e) {  // help or version could not be written

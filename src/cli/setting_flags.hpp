@@ -46,6 +46,19 @@ class SettingFlags {
     return values;
   }
 
+  /// The flags given, as a command line repeats them: "--name=value" ("--name" or
+  /// "--no-name" for a flag), in table order.
+  std::vector<std::string> given_words() const {
+    std::vector<std::string> words;
+    for (const Entry& e : entries_) {
+      if (e.option->count() == 0) continue;
+      const std::string name = flag_name(e.setting->key);
+      if (e.setting->type == SettingType::kFlag) words.push_back(e.text == "false" ? "--no-" + name.substr(2) : name);
+      else words.push_back(name + "=" + e.text);
+    }
+    return words;
+  }
+
   /// table.defaults with every given value applied. \throws UserError.
   Target resolve() const { return api::resolve_settings(table_, given()); }
 

@@ -12,6 +12,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/setting_flags.hpp"
+#include "pcrf/io/file_kind.hpp"
 #include "pcrf/parallel/mpi_session.hpp"
 #include "pcrf/printable.hpp"
 #include "pcrf/study/study_parser.hpp"
@@ -33,7 +34,17 @@ struct StudyArguments {
 std::atomic<int> stop_signal{0};
 static_assert(std::atomic<int>::is_always_lock_free, "set from a signal handler");
 
-extern "C" void on_stop_signal(int number) { stop_signal.store(number); }
+/// The first signal asks the run to stop in order; a second ends the process at once, by
+/// the signal's default action, once the temporaries beside the cube are removed.
+extern "C" void on_stop_signal(int number) {
+  if (stop_signal.load() == 0) {
+    stop_signal.store(number);
+    return;
+  }
+  io::remove_temporaries();
+  ::signal(number, SIG_DFL);
+  ::raise(number);
+}
 
 /// Shards a study may be split into, at most: more than any job array needs, few enough
 /// that a typo (a pasted size, a negative number read as a huge one) is caught.
@@ -59,12 +70,12 @@ std::pair<std::size_t, std::size_t> parse_shard(const std::string& text) {
 }
 
 /// Every rank catches SIGTERM and SIGINT: rank 0 stops handing out work and flushes, the
-/// others finish the batch they hold and are then told to stop. A second signal is not
-/// caught again (the default action ends the process).
+/// others finish the batch they hold and are then told to stop. A second signal ends the
+/// process (its default action), leaving no temporary.
 void catch_stop_signals() {
   struct sigaction action {};
   action.sa_handler = on_stop_signal;
-  action.sa_flags = SA_RESETHAND;
+  action.sa_flags = 0;
   sigemptyset(&action.sa_mask);
   ::sigaction(SIGTERM, &action, nullptr);
   ::sigaction(SIGINT, &action, nullptr);
@@ -82,6 +93,27 @@ std::string advice(cube::CubeError::Cause cause) {
     case Cause::kOther: break;
   }
   return "the cube keeps its last complete checkpoint: once the cause above is fixed, --resume continues it";
+}
+
+/// `word` as a POSIX shell reads it back: as it is when it holds only safe characters, else
+/// in single quotes.
+std::string shell_word(const std::string& word) {
+  const bool safe = !word.empty() && word.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz"
+                                                           "0123456789_-./:=+,@%") == std::string::npos;
+  if (safe) return word;
+  std::string quoted = "'";
+  for (const char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+/// The whole command that continues a stopped run: under mpirun with as many ranks, the same
+/// study, cube, shard and [run] flags, and --resume.
+std::string resume_command(const StudyArguments& args, const study::StudySummary& summary, int ranks) {
+  std::string command = ranks > 1 ? "mpirun -n " + std::to_string(ranks) + " " : "";
+  command += "pcrf study " + shell_word(args.run.study_file.string()) + " -o " + shell_word(summary.output.string()) + " --resume";
+  if (args.shard_flag->count() > 0) command += " --shard " + shell_word(args.shard);
+  for (const auto& word : args.run_flags->given_words()) command += " " + shell_word(word);
+  return command;
 }
 
 void run_study_command(StudyArguments& args) {
@@ -116,8 +148,8 @@ void run_study_command(StudyArguments& args) {
   }
   if (!summary) exit_code() = 2;  // rank ≠ 0 of a study that cannot run: rank 0 reported it
   if (summary && mpi.is_master() && summary->stopped_by != 0) {
-    std::cerr << "pcrf study: " << study::stop_report(*summary) << "; continue with: pcrf study "
-              << args.run.study_file.string() << " -o " << summary->output.string() << " --resume" << std::endl;
+    std::cerr << "pcrf study: " << study::stop_report(*summary) << "; continue with: "
+              << resume_command(args, *summary, mpi.size()) << std::endl;
   }
   if (summary && mpi.is_master())
     for (const auto& note : summary->verdict_notes) std::cerr << "pcrf study: note: " << printable(note) << std::endl;

@@ -58,6 +58,7 @@ class Cursor {
   std::vector<double> doubles(std::uint64_t n) {
     if (n > left() / sizeof(double)) throw Malformed{"declares " + std::to_string(n) + " values it does not hold"};
     std::vector<double> values(static_cast<std::size_t>(n));
+    if (n == 0) return values;  // a history of no rows: no bytes to copy (and no buffer to copy them to)
     const char* p = take(n * sizeof(double));
     if constexpr (std::endian::native == std::endian::little) {
       std::memcpy(values.data(), p, values.size() * sizeof(double));
@@ -148,19 +149,39 @@ std::string history_payload(const HistoryTable& table) {
   return out;
 }
 
+/// Text shown in a message: at most 40 characters, bytes that are not printable as '?'.
+std::string shown(const std::string& text) {
+  std::string out;
+  for (const char c : text.substr(0, 40)) out += c >= 0x20 && c < 0x7f ? c : '?';
+  return "\"" + out + (text.size() > 40 ? "…" : "") + "\"";
+}
+
+/// A history as the writer can store it: checked here, so that a journal that cannot be
+/// folded is found when it is read (--resume sets it aside), not at every fold.
 HistoryTable take_history(Cursor& in) {
   HistoryTable table;
   table.name = in.text();
+  if (!valid_group_name(table.name)) throw Malformed{"has a history named " + shown(table.name) + ", not a group name"};
   const std::size_t attributes = in.count(4, 4 + 1);
-  for (std::size_t a = 0; a < attributes; ++a) table.attributes.push_back(take_attribute(in));
+  for (std::size_t a = 0; a < attributes; ++a) {
+    table.attributes.push_back(take_attribute(in));
+    if (table.attributes.back().name.empty() || table.attributes.back().name.find('\0') != std::string::npos)
+      throw Malformed{"has a history attribute without a name"};
+  }
   const std::size_t columns = in.count(4, 3 * 4 + 8);
+  if (columns == 0) throw Malformed{"has a history of no column"};
   for (std::size_t c = 0; c < columns; ++c) {
     MetricVariable column;
     column.name = in.text();
     column.units = in.text();
     column.long_name = in.text();
+    if (!valid_group_name(column.name)) throw Malformed{"has a history column named " + shown(column.name) + ", not a variable name"};
+    for (const auto& other : table.columns)
+      if (other.name == column.name) throw Malformed{"has the history column " + shown(column.name) + " twice"};
     table.columns.push_back(std::move(column));
     table.values.push_back(in.doubles(in.number(8)));
+    if (table.values.back().size() != table.values.front().size())
+      throw Malformed{"has history columns of different lengths"};
   }
   in.expect_end();
   return table;
@@ -181,6 +202,8 @@ std::int64_t journal_id_of(const CubeLayout& layout) {
 
 JournalReader::JournalReader(const std::filesystem::path& cube, const CubeLayout& layout, std::int64_t id)
     : file_(journal_path(cube)), metrics_(layout.metrics.size()), cases_(layout.case_count()), grid_(layout.shape()) {
+  for (const auto& flag : layout.status_flags)
+    if (flag.value != kStatusNotRun) statuses_.push_back(flag.value);
   try {
     log_ = std::make_unique<io::LogReader>(file_);
   } catch (const io::OutputError& e) {
@@ -198,12 +221,18 @@ JournalReader::JournalReader(const std::filesystem::path& cube, const CubeLayout
     if (records[r].kind == kCommit) kept_ = r + 1;
   valid_bytes_ = records[kept_ - 1].end();
   dropped_bytes_ = log_->file_bytes() - valid_bytes_;
+  dropped_records_ = records.size() - kept_;
+  damaged_ = log_->valid_bytes() < log_->file_bytes();
+  for (std::size_t r = kept_; r < records.size(); ++r)  // what the dropped records held
+    if (records[r].kind == kCases && records[r].size >= kCasesHeadBytes)
+      dropped_results_ += static_cast<std::int64_t>(
+          io::load_le(payload_head(records[r]).data() + 8, 4));
   for (std::size_t r = 1; r < kept_; ++r) {
     const auto& record = records[r];
     if (record.kind == kNotes || record.kind == kHistory || record.kind == kCommit) continue;
     if (record.kind != kCases) fail(r, "is of an unknown kind " + std::to_string(record.kind) + " (another version's journal?)");
     if (record.size < kCasesHeadBytes) fail(r, "is too short for cases");
-    const std::string head = log_->payload({record.kind, record.offset, kCasesHeadBytes});
+    const std::string head = payload_head(record);
     const auto chunk = io::load_le(head.data(), 8), n = io::load_le(head.data() + 8, 4);
     if (chunk >= grid_.chunk_count())
       fail(r, "names chunk " + std::to_string(chunk) + " of a cube of " + std::to_string(grid_.chunk_count()));
@@ -217,10 +246,24 @@ JournalReader::JournalReader(const std::filesystem::path& cube, const CubeLayout
 
 JournalReader::~JournalReader() = default;
 
+std::string JournalReader::payload_head(const io::LogRecord& record) const {
+  try {
+    return log_->payload({record.kind, record.offset, kCasesHeadBytes});
+  } catch (const io::OutputError& e) {
+    throw CubeError(e.what(), CubeError::cause_of(e.os_error()));
+  }
+}
+
 void JournalReader::fail(std::size_t record, const std::string& problem) const {
   const auto offset = record < log_->records().size() ? log_->records()[record].offset : 0;
-  throw CubeError(file_.string() + ": record " + std::to_string(record) + " (at byte " + std::to_string(offset) + ") " +
-                  problem + "; remove the journal to resume from the cube's last folded state");
+  throw JournalDamage(file_.string() + ": record " + std::to_string(record) + " (at byte " + std::to_string(offset) + ") " +
+                      problem);
+}
+
+void JournalReader::check_all() const {
+  for_each_cases([](const JournalCases&) {});
+  (void)notes();
+  for_each_history([](HistoryTable&&) {});
 }
 
 std::string JournalReader::payload(std::size_t record) const {
@@ -247,6 +290,10 @@ JournalCases JournalReader::cases(std::size_t record) const {
     }
     const auto* status = reinterpret_cast<const std::int8_t*>(in.take(n));
     c.status.assign(status, status + n);
+    // Only the statuses the cube's flags name reach it (never not_run, 99 or -128).
+    for (const std::int8_t s : c.status)
+      if (!statuses_.empty() && std::find(statuses_.begin(), statuses_.end(), s) == statuses_.end())
+        throw Malformed{"has the status code " + std::to_string(s) + ", which the cube's flags do not name"};
     c.values.reserve(n * metrics_);  // bounded by the chunk's size, checked above
     for (std::size_t m = 0; m < metrics_; ++m) {
       const auto form = in.number(1);

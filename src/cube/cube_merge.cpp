@@ -1,6 +1,8 @@
 // Joining the cubes of a sharded run (see cube_merge.hpp).
 #include "pcrf/cube/cube_merge.hpp"
 
+#include <sys/stat.h>
+
 #include <cmath>
 #include <map>
 #include <memory>
@@ -9,6 +11,7 @@
 #include "pcrf/cube/cube_journal.hpp"
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/cube/cube_writer.hpp"
+#include "pcrf/io/file_kind.hpp"
 #include "pcrf/io/output_file.hpp"
 
 namespace pcrf::cube {
@@ -16,6 +19,10 @@ namespace pcrf::cube {
 MergeResult merge_cubes(const std::vector<std::filesystem::path>& parts, const std::filesystem::path& output, bool overwrite,
                         const std::string& runs_variable, bool allow_missing) {
   if (parts.empty()) throw CubeError("no cube to merge");
+  // A cube is a regular file: a FIFO or a device at -o is refused before it is opened (a FIFO
+  // that no process reads would make the open wait for ever).
+  if (struct stat st {}; ::stat(output.c_str(), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode))
+    throw CubeError(output.string() + ": is " + io::kind_of(st.st_mode) + "; the merged cube must be a regular file");
   // Written beside the output and renamed over it when complete: a merge that fails or is
   // killed leaves no cube at -o (and any old one intact).
   io::OutputFile out(output, parts, overwrite);
@@ -25,9 +32,16 @@ MergeResult merge_cubes(const std::vector<std::filesystem::path>& parts, const s
   for (const auto& part : parts) {
     readers.push_back(std::make_unique<CubeReader>(part));
     const auto& layout = readers.back()->layout();
-    if (const auto waiting = JournalReader(part, layout, journal_id_of(layout)).results(); waiting > 0)
-      throw CubeError(part.string() + ": " + std::to_string(waiting) + " results wait in its journal " +
-                      journal_path(part).string() + ": --resume its run to fold them in, then merge");
+    try {
+      const JournalReader journal(part, layout, journal_id_of(layout));
+      journal.check_all();
+      if (const auto waiting = journal.results(); waiting > 0)
+        throw CubeError(part.string() + ": " + std::to_string(waiting) + " results wait in its journal " +
+                        journal_path(part).string() + ": --resume its run to fold them in, then merge");
+    } catch (const JournalDamage& e) {
+      throw CubeError(std::string(e.what()) + ": --resume its run (which sets the journal aside and computes its cases "
+                      "again), then merge");
+    }
   }
   const CubeLayout& first = readers.front()->layout();
   const std::string fingerprint = first.text_attribute(kFingerprintName);

@@ -2,7 +2,9 @@
 // memory and writes the chunks that changed at each flush.
 #include "pcrf/cube/cube_writer.hpp"
 
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <cerrno>
 #include <cstdio>
@@ -14,6 +16,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 #include <random>
 #include <set>
 #include <tuple>
@@ -24,6 +27,7 @@
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/io/atomic_file.hpp"
 #include "pcrf/io/checked_stream.hpp"
+#include "pcrf/io/file_kind.hpp"
 
 namespace pcrf::cube {
 namespace {
@@ -119,6 +123,13 @@ std::int64_t draw_journal_id() {
 
 void observe_checkpoints(CheckpointObserver observer) { checkpoint_observer = observer; }
 
+bool valid_group_name(std::string_view name) {
+  return !name.empty() && name.size() <= 255 && name != "." && name != ".." &&
+         std::all_of(name.begin(), name.end(), [](char c) {
+           return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+         });
+}
+
 struct CubeWriter::Impl {
   std::filesystem::path path;
   CubeLayout layout;
@@ -151,6 +162,7 @@ struct CubeWriter::Impl {
   std::int64_t journal_records = 0;        // records appended since the last fold
   std::int64_t journal_results = 0;        // case results among them
   std::int64_t folded_results = 0;         // cases done in the folded cube
+  std::vector<std::string> resume_notes;   // what --resume did to the journal (CubeWriter::resume_notes)
 
   Impl(std::filesystem::path p, CubeLayout l)
       : path(std::move(p)), layout(std::move(l)), grid(layout.shape()) {
@@ -176,6 +188,7 @@ struct CubeWriter::Impl {
   void close_handles();
   void open_existing(std::vector<std::int8_t>& status);
   void replay_journal(std::vector<std::int8_t>& status);
+  void set_aside_journal(const std::string& problem);
   h5::Handle create_cube_variable(const std::string& name, hid_t file_type, hid_t memory_type,
                                   const void* fill);
   h5::Handle create_side_variable(const SideVariable& v);
@@ -191,6 +204,14 @@ CubeWriter::CubeWriter(std::filesystem::path file, CubeLayout layout, OpenMode m
   h5::silence_library_errors();
   const auto n = static_cast<std::size_t>(impl_->layout.case_count());
   status_.assign(n, kStatusNotRun);
+  // The files beside the cube are made by the writer alone: a symbolic link, a FIFO or a
+  // second name of another file there is refused before anything is read or written.
+  try {
+    io::check_sidecar(journal_path(impl_->path), "journal");
+    io::check_sidecar(impl_->path.string() + ".partial", "partial cube (a fold's temporary)");
+  } catch (const io::OutputError& e) {
+    throw CubeError(e.what());
+  }
   std::error_code error;  // a link loop, a folder that cannot be searched: one line, not an exception
   const bool exists = std::filesystem::exists(impl_->path, error);
   if (error) throw CubeError(impl_->what("cannot open: " + error.message()));
@@ -357,17 +378,54 @@ void CubeWriter::Impl::open_existing(std::vector<std::int8_t>& status) {
 /// tail, if any, cut off then). Every record is read once here, so that a damaged one stops
 /// the run before it starts, not at a fold.
 void CubeWriter::Impl::replay_journal(std::vector<std::int8_t>& status) {
-  const JournalReader journaled(path, layout, journal_id);
+  std::optional<JournalReader> read;
+  try {
+    read.emplace(path, layout, journal_id);
+    read->check_all();
+  } catch (const JournalDamage& e) {
+    set_aside_journal(e.what());  // its cases are computed again; nothing of it reaches the cube
+    return;
+  }
+  const JournalReader& journaled = *read;
   if (!journaled.current()) return;  // none, or stale: the first append starts it anew
   journaled.for_each_cases([&](const JournalCases& c) {
     const auto first = static_cast<std::size_t>(grid.range(c.chunk).first);
     for (std::size_t j = 0; j < c.offsets.size(); ++j) status[first + c.offsets[j]] = c.status[j];
   });
-  (void)journaled.notes();
-  journaled.for_each_history([](HistoryTable&&) {});
+  if (journaled.dropped_bytes() > 0) {
+    std::string text = journal_path(path).string() + ": its last " + std::to_string(journaled.dropped_bytes()) +
+                       " bytes are dropped: ";
+    if (journaled.dropped_records() > 0)
+      text += std::to_string(journaled.dropped_records()) + " complete records of a checkpoint never closed (" +
+              std::to_string(journaled.dropped_results()) + " results)" + (journaled.damaged() ? ", then " : "");
+    if (journaled.damaged()) text += "a record that is torn or damaged (its results cannot be counted)";
+    resume_notes.push_back(text + "; a run killed while it wrote, or damage: their cases are computed again");
+  }
   journal_keep_bytes = journaled.valid_bytes();
   journal_results = journaled.results();
   journal_records = 1;  // at least the header: the next fold reads it
+}
+
+/// Renames a journal that cannot be replayed out of the way, exclusively (never over a file
+/// there: <journal>.set-aside-1, -2, …), and says so: the next append starts a new journal.
+void CubeWriter::Impl::set_aside_journal(const std::string& problem) {
+  const std::filesystem::path from = journal_path(path);
+  for (int k = 1; k <= 1000; ++k) {
+    const std::filesystem::path to = from.string() + ".set-aside-" + std::to_string(k);
+    bool moved = ::renameat2(AT_FDCWD, from.c_str(), AT_FDCWD, to.c_str(), RENAME_NOREPLACE) == 0;
+    if (!moved && (errno == EINVAL || errno == ENOSYS)) {  // no RENAME_NOREPLACE here: link() never replaces
+      moved = ::link(from.c_str(), to.c_str()) == 0;
+      if (moved) ::unlink(from.c_str());
+    }
+    if (moved) {
+      resume_notes.push_back(problem + ": the journal cannot be replayed, so it is set aside as " + to.string() +
+                             " and nothing of it is used; the cases it held are computed again (the cube's last fold holds " +
+                             std::to_string(folded_results) + " of " + std::to_string(layout.case_count()) + " cases)");
+      return;
+    }
+    if (errno != EEXIST) break;
+  }
+  throw CubeError(problem + "; it cannot be set aside (" + std::strerror(errno) + "): move it away to resume from the cube's last fold");
 }
 
 std::vector<double> CubeWriter::read_values(const std::string& metric) const {
@@ -799,6 +857,8 @@ void CubeWriter::Impl::clear_pending() {
   pending_notes.clear();
   pending_histories.clear();
 }
+
+const std::vector<std::string>& CubeWriter::resume_notes() const { return impl_->resume_notes; }
 
 void CubeWriter::flush() { impl_->checkpoint(status_, Impl::Checkpoint::kAppendOrFold); }
 

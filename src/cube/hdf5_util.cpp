@@ -22,6 +22,10 @@ namespace {
 /// cube holds (a study's whole text is a few kB), far below what could exhaust memory.
 constexpr std::size_t kMaxAttributeBytes = std::size_t{64} << 20;
 
+/// The largest chunk a reader reads [bytes]: 512 times the largest pcrf writes (16 384 cases
+/// of float64, 128 KiB), and more than any netCDF or h5py default.
+constexpr double kMaxChunkBytes = 64.0 * 1024 * 1024;
+
 /// The innermost messages of HDF5's error stack (the library's own reason), e.g.
 /// "unable to open file: ... errno = 28, error message = 'No space left on device'".
 std::string library_reason() {
@@ -102,8 +106,25 @@ void check_readable(hid_t dataset, double values, double bytes_each, const std::
                   name.c_str(), values, bytes / 1e9, 100.0 * kUsableMemoryShare, memory / 1e9);
     throw CubeError(text);
   }
-  if (!stored_whole(dataset)) return;
   auto t = type(H5Dget_type(dataset), "cannot read the type of '" + name + "'");
+  if (!stored_whole(dataset)) {
+    // HDF5 reads a chunk whole into a buffer of the size its layout declares, whatever the
+    // variable's length: a damaged chunk size must not size that buffer.
+    auto dcpl = plist(H5Dget_create_plist(dataset), "cannot read a dataset's storage");
+    if (H5Pget_layout(dcpl) != H5D_CHUNKED) return;
+    const int rank = H5Pget_chunk(dcpl, 0, nullptr);
+    std::vector<hsize_t> chunk(static_cast<std::size_t>(std::max(rank, 0)));
+    if (rank < 0 || (rank > 0 && H5Pget_chunk(dcpl, rank, chunk.data()) < 0))
+      throw CubeError("'" + name + "': cannot read its chunk size");
+    double chunk_bytes = static_cast<double>(H5Tget_size(t));
+    for (const auto n : chunk) chunk_bytes *= static_cast<double>(n);
+    if (chunk_bytes > kMaxChunkBytes) {
+      std::snprintf(text, sizeof text, "'%s' declares chunks of %.4g bytes, more than the %.3g MB a reader allows: a damaged cube",
+                    name.c_str(), chunk_bytes, kMaxChunkBytes / 1e6);
+      throw CubeError(text);
+    }
+    return;
+  }
   const double stored = values * static_cast<double>(H5Tget_size(t)), file_size = file_size_of(dataset);
   if (stored > file_size) {
     std::snprintf(text, sizeof text,

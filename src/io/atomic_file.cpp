@@ -11,6 +11,7 @@
 #include <string>
 
 #include "pcrf/io/checked_stream.hpp"
+#include "pcrf/io/file_kind.hpp"
 
 namespace pcrf::io {
 namespace {
@@ -57,14 +58,22 @@ bool is_other_than_regular(const fs::path& p) {
 AtomicFile::AtomicFile(fs::path target, bool overwrite, Temporary naming)
     : target_(std::move(target)), overwrite_(overwrite), name_temporary_(naming == Temporary::kPartial) {
   if (naming == Temporary::kUnique && is_other_than_regular(target_)) {  // a device or a pipe: nothing to rename
-    fd_ = ::open(target_.c_str(), O_WRONLY | O_CLOEXEC);
+    // Without blocking: a FIFO that no process reads would wait for one for ever.
+    fd_ = ::open(target_.c_str(), O_WRONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd_ < 0 && errno == ENXIO)
+      throw OutputError(target_.string() + ": is a FIFO that no process reads; start its reader first, or name a file", errno);
     if (fd_ < 0) throw OutputError(target_.string() + ": cannot open: " + std::strerror(errno), errno);
+    if (const int flags = ::fcntl(fd_, F_GETFL); flags >= 0) (void)::fcntl(fd_, F_SETFL, flags & ~O_NONBLOCK);
     return;
   }
   if (naming == Temporary::kPartial) {
+    // A killed run's .partial (a regular file of one name) is removed and made anew,
+    // exclusively: never truncated through a link to another file.
     temporary_ = target_.string() + ".partial";
-    fd_ = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);  // the umask decides
+    remove_stale_sidecar(temporary_, "partial cube (a fold's temporary)");
+    fd_ = create_exclusive(temporary_, O_WRONLY);  // the umask decides the mode
     if (fd_ < 0) fail("cannot write", errno);
+    slot_ = remember_temporary(temporary_);
     return;
   }
   const fs::path folder = folder_of(target_);
@@ -73,6 +82,7 @@ AtomicFile::AtomicFile(fs::path target, bool overwrite, Temporary naming)
   if (fd_ < 0)
     throw OutputError(target_.string() + ": cannot create a file in " + folder.string() + ": " + std::strerror(errno), errno);
   temporary_ = pattern;
+  slot_ = remember_temporary(temporary_);
   if (::fchmod(fd_, user_file_mode()) != 0) {
     const int error = errno;
     throw OutputError(target_.string() + ": cannot set the mode of " + pattern + ": " + std::strerror(error), error);
@@ -82,6 +92,7 @@ AtomicFile::AtomicFile(fs::path target, bool overwrite, Temporary naming)
 AtomicFile::~AtomicFile() {
   if (fd_ >= 0) ::close(fd_);
   if (!committed_ && !temporary_.empty()) ::unlink(temporary_.c_str());
+  forget_temporary(slot_);
 }
 
 void AtomicFile::fail(const char* action, int error) const {
@@ -106,8 +117,7 @@ void AtomicFile::copy_from(const fs::path& source) {
     ~Source() {
       if (fd >= 0) ::close(fd);
     }
-  } in{::open(source.c_str(), O_RDONLY | O_CLOEXEC)};
-  if (in.fd < 0) throw OutputError(source.string() + ": cannot read: " + std::strerror(errno), errno);
+  } in{open_regular_to_read(source)};  // never a FIFO, which would block
   bool kernel_copy = true;
   for (;;) {
     ssize_t n = 0;
@@ -139,7 +149,7 @@ void AtomicFile::sync() {
   close();
   if (synced_ || temporary_.empty()) return;
   // By path: a writer given temporary() may have replaced the file there.
-  const int fd = ::open(temporary_.c_str(), O_RDONLY | O_CLOEXEC);
+  const int fd = ::open(temporary_.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0 || ::fsync(fd) != 0) {
     const int error = errno;
     if (fd >= 0) ::close(fd);
@@ -161,6 +171,8 @@ void AtomicFile::commit() {
     throw OutputError(target_.string() + ": cannot replace it with " + temporary_.string() + ": " + std::strerror(error), error);
   }
   committed_ = true;
+  forget_temporary(slot_);
+  slot_ = -1;
   sync_folder(folder_of(target_));
 }
 

@@ -12,6 +12,8 @@
 #include <cstring>
 
 #include "pcrf/io/checked_stream.hpp"
+#include "pcrf/io/file_kind.hpp"
+#include "pcrf/machine_memory.hpp"
 
 namespace pcrf::io {
 namespace {
@@ -58,14 +60,23 @@ void append_le(std::string& out, std::uint64_t value, std::size_t count) {
 // ---- reading ----
 
 LogReader::LogReader(const fs::path& file) : file_(file) {
-  fd_ = ::open(file_.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd_ < 0) {
-    if (errno == ENOENT) return;
-    throw OutputError(file_.string() + ": cannot read: " + std::strerror(errno), errno);
-  }
+  // A regular file, not followed, opened without blocking: a FIFO or a link there is refused.
+  fd_ = open_regular_to_read(file_, false, true);
+  if (fd_ < 0) return;
   struct stat st {};
-  if (::fstat(fd_, &st) != 0) throw OutputError(file_.string() + ": cannot read: " + std::strerror(errno), errno);
+  if (::fstat(fd_, &st) != 0) {
+    const int error = errno;
+    ::close(fd_);
+    fd_ = -1;
+    throw OutputError(file_.string() + ": cannot read: " + std::strerror(error), error);
+  }
   file_bytes_ = static_cast<std::uint64_t>(st.st_size);
+  // Where the file's data end: its first hole (SEEK_HOLE; the end of the file where there is
+  // none, or where the file system cannot tell). An appended log has no hole: a record
+  // reaching into one was never written (a sparse, forged file) and is not checksummed.
+  const off_t hole = ::lseek(fd_, 0, SEEK_HOLE);
+  data_bytes_ = hole >= 0 ? std::min<std::uint64_t>(static_cast<std::uint64_t>(hole), file_bytes_) : file_bytes_;
+  max_record_bytes_ = static_cast<std::uint64_t>(kUsableMemoryShare * machine_memory_bytes());
   scan();
 }
 
@@ -96,11 +107,14 @@ void LogReader::scan() {
   std::vector<char> piece(kScanPieceBytes);
   for (;;) {
     char head[kFrameHeadBytes];
-    if (file_bytes_ - at < kFrameHeadBytes + kFrameTailBytes || !read_at(at, head, sizeof head)) return;
+    if (data_bytes_ < at || data_bytes_ - at < kFrameHeadBytes + kFrameTailBytes || !read_at(at, head, sizeof head)) return;
     const auto kind = static_cast<std::uint32_t>(load_le(head, 4));
     const std::uint64_t size = load_le(head + 4, 8);
-    // Checked before use: a size the file cannot hold is a torn (or damaged) tail.
-    if (size > file_bytes_ - at - kFrameHeadBytes - kFrameTailBytes) return;
+    // Checked before use: a size the file's data cannot hold is a torn (or damaged) tail,
+    // and so is one that memory cannot (payload() reads a record whole).
+    if (at + kFrameHeadBytes + kFrameTailBytes > data_bytes_ || size > data_bytes_ - at - kFrameHeadBytes - kFrameTailBytes ||
+        size > max_record_bytes_)
+      return;
     std::uint32_t crc = crc_of(static_cast<std::uint32_t>(::crc32(0, nullptr, 0)), head, sizeof head);
     for (std::uint64_t done = 0; done < size;) {
       const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(size - done, piece.size()));
@@ -128,9 +142,20 @@ std::string LogReader::payload(const LogRecord& record) const {
 
 LogWriter::LogWriter(fs::path file, std::uint64_t keep_bytes) : file_(std::move(file)) {
   const bool fresh = keep_bytes == 0;
-  fd_ = ::open(file_.c_str(), O_WRONLY | O_CLOEXEC | (fresh ? O_CREAT | O_TRUNC : 0), 0666);  // the umask decides
+  if (fresh) {
+    // A log that is there (stale) is removed, and the new one made exclusively: never
+    // truncated through a link, nor another file's second name.
+    remove_stale_sidecar(file_, "journal");
+    fd_ = create_exclusive(file_, O_WRONLY);  // the umask decides the mode
+  } else {
+    fd_ = open_sidecar(file_, O_WRONLY, "journal");
+    if (fd_ < 0) errno = ENOENT;
+  }
   if (fd_ < 0) fail("cannot write", errno);
   try {
+    struct stat st {};
+    if (!fresh && (::fstat(fd_, &st) != 0 || static_cast<std::uint64_t>(st.st_size) < keep_bytes))
+      fail("cannot continue", ESTALE);  // not the log read: it was cut or replaced meanwhile
     if (fresh) {
       write_at(0, kMagic);
       written_ = kMagic.size();

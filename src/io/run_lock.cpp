@@ -12,6 +12,7 @@
 #include <string>
 
 #include "pcrf/io/checked_stream.hpp"
+#include "pcrf/io/file_kind.hpp"
 
 namespace pcrf::io {
 namespace {
@@ -61,7 +62,11 @@ std::filesystem::path RunLock::lock_path(const std::filesystem::path& file) { re
 
 RunLock::RunLock(const std::filesystem::path& file) : path_(lock_path(file)) {
   for (;;) {
-    fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+    // Made exclusively, or a killed run's (a regular file of one name) reused: never a
+    // link or another file's name, whose content the note below would replace.
+    fd_ = create_exclusive(path_, O_RDWR);
+    if (fd_ < 0 && errno == EEXIST) fd_ = open_sidecar(path_, O_RDWR, "lock file");
+    if (fd_ < 0 && errno == ENOENT) continue;  // its holder removed it meanwhile: make it
     if (fd_ < 0) throw OutputError(file.string() + ": cannot make its lock " + path_.string() + ": " + std::strerror(errno), errno);
     if (!try_lock(fd_)) {
       const int error = errno;
@@ -89,8 +94,14 @@ RunLock::~RunLock() {
 
 std::string RunLock::holder(const std::filesystem::path& file) {
   const std::filesystem::path path = lock_path(file);
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  // Without following or blocking: a link or a FIFO there is no lock of a run.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0) return "";
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(fd);
+    return "";
+  }
   std::string who;
   if (::flock(fd, LOCK_SH | LOCK_NB) != 0 && errno == EWOULDBLOCK) who = read_holder(fd);
   ::close(fd);  // releases a lock taken just to look

@@ -1,6 +1,8 @@
 // Notes on a cube being read (see cube_notes.hpp).
 #include "pcrf/post/cube_notes.hpp"
 
+#include <sys/stat.h>
+
 #include "pcrf/cube/cube_journal.hpp"
 #include "pcrf/io/run_lock.hpp"
 #include "pcrf/schema/cube_vocabulary.hpp"
@@ -17,11 +19,25 @@ std::string running_note(const std::string& file) {
 
 std::string journal_note(const std::string& file, const cube::CubeReader& reader) {
   const auto journal = cube::journal_path(file).string();
+  struct stat st {};
+  if (::lstat(journal.c_str(), &st) != 0) return {};  // none: nothing to say
   try {
     const cube::JournalReader waiting(file, reader.layout(), cube::journal_id_of(reader.layout()));
-    if (waiting.results() == 0) return {};
-    return file + ": " + std::to_string(waiting.results()) + " results wait in its journal " + journal +
-           ", not read here (a run folds them in as it goes and at its end; --resume folds those of a stopped run)";
+    if (!waiting.current())
+      return file + ": its journal " + journal + " is not of its last fold (stale: its results are in the cube, or are "
+             "another cube's) and is ignored; the next run replaces it";
+    waiting.check_all();
+    std::string note = file + ": " + std::to_string(waiting.results()) + " results wait in its journal " + journal +
+                       ", not read here (a run folds them in as it goes and at its end; --resume folds those of a stopped run)";
+    if (waiting.dropped_bytes() > 0)
+      note += "; its last " + std::to_string(waiting.dropped_bytes()) + " bytes (" +
+              std::to_string(waiting.dropped_records()) + " complete records of a checkpoint never closed" +
+              (waiting.damaged() ? ", then a torn or damaged record" : "") +
+              ") are dropped by --resume, which computes their cases again";
+    return note;
+  } catch (const cube::JournalDamage& e) {
+    return file + ": its journal cannot be replayed, so only the cube's last fold is read: " + e.what() +
+           "; --resume sets it aside and computes its cases again";
   } catch (const cube::CubeError& e) {
     return file + ": its journal cannot be read, so only the cube's last fold is: " + e.what();
   }

@@ -4,6 +4,8 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <unistd.h>
+
 #include <sstream>
 #include <string>
 #include <vector>
@@ -11,6 +13,8 @@
 #include "bindings.hpp"
 #include "pcrf/cube/cube_query.hpp"
 #include "pcrf/cube/cube_reader.hpp"
+#include "pcrf/io/checked_stream.hpp"
+#include "pcrf/io/file_kind.hpp"
 #include "pcrf/post/cube_notes.hpp"
 #include "pcrf/post/cube_reports.hpp"
 #include "pcrf/schema/cube_vocabulary.hpp"
@@ -73,9 +77,21 @@ py::dict cube_history(const std::string& file, const std::string& name) {
   });
 }
 
+/// Refuses a path that is not a regular file (a FIFO, on which netCDF's open would wait for
+/// ever; a folder), as `pcrf cube` does, before xarray opens it. Opened without blocking.
+void check_cube_file(const std::string& file) {
+  try {
+    ::close(io::open_regular_to_read(file));
+  } catch (const io::OutputError& e) {
+    throw post::unreadable_cube(file, cube::CubeError(e.what()));
+  }
+}
+
 }  // namespace
 
 void bind_cube_read(py::module_& m) {
+  m.def("check_cube_file", &check_cube_file, py::arg("file"),
+        "InputError unless FILE is a regular file (checked without blocking: a FIFO is refused at once)");
   m.def("cube_info", &cube_info, py::arg("file"),
         "(JSON of `pcrf cube info --json FILE`, notes): the notes as the command line's stderr says them");
   m.def("cube_export", &cube_export, py::arg("file"), py::arg("metrics") = std::vector<std::string>{},

@@ -13,6 +13,7 @@
 #include <mutex>
 #include <span>
 
+#include "pcrf/cube/cube_journal.hpp"
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/cube/cube_writer.hpp"
 #include "pcrf/io/output_file.hpp"
@@ -63,17 +64,27 @@ void apply_overrides(const StudyRunOptions& options, RunOptions& run) {
   for (const auto& [setting, value] : options.run_overrides) setting->set(run, value);
 }
 
-/// An output must never be one of the study's inputs, whatever --overwrite says.
+/// An output must never be one of the study's inputs (the study file, its records, its
+/// hazard curve), whatever --overwrite says; nor may a file the run writes beside it (its
+/// lock, journal and fold's .partial).
 void check_output_is_not_an_input(const std::filesystem::path& output, const StudyRunOptions& options, const Study& study) {
   using io::same_file;  // the one rule of every command's outputs (symbolic and hard links)
-  if (same_file(output, options.study_file))
-    throw UserError(Where{}, output.string() + ": {} names the study file itself; choose another output ({} does not apply to inputs)",
-                    {"output", "overwrite"});
-  for (const auto& r : study.records)
-    for (const RecordFileSpec* file : r.files())
-      if (same_file(output, file->path))
-        throw UserError(Where{}, output.string() + ": {} names the record file of \"" + r.name +
-                                     "\"; choose another output ({} does not apply to inputs)", {"output", "overwrite"});
+  const std::string cube = output.string();
+  for (const std::filesystem::path& written : {output, io::RunLock::lock_path(output), cube::journal_path(output),
+                                              std::filesystem::path(cube + ".partial")}) {
+    const std::string as = written == output ? cube + ": {} names " : cube + ": {}'s " + written.string() + " is ";
+    if (same_file(written, options.study_file))
+      throw UserError(Where{}, as + "the study file itself; choose another output ({} does not apply to inputs)",
+                      {"output", "overwrite"});
+    for (const auto& r : study.records)
+      for (const RecordFileSpec* file : r.files())
+        if (same_file(written, file->path))
+          throw UserError(Where{}, as + "the record file of \"" + r.name +
+                                       "\"; choose another output ({} does not apply to inputs)", {"output", "overwrite"});
+    if (study.hazard_stripes && same_file(written, study.hazard_stripes->file))
+      throw UserError(Where{}, as + "the hazard curve " + study.hazard_stripes->hazard +
+                                   " of [intensity]; choose another output ({} does not apply to inputs)", {"output", "overwrite"});
+  }
 }
 
 MasterSetup prepare_master(const StudyRunOptions& options, const Prepared& p) {
@@ -117,6 +128,7 @@ MasterSetup prepare_master(const StudyRunOptions& options, const Prepared& p) {
   } catch (const cube::CubeError& e) {
     throw UserError(e.what());
   }
+  for (const auto& note : m.writer->resume_notes()) std::cerr << "pcrf study: note: " << note << '\n';
   return m;
 }
 

@@ -13,6 +13,7 @@
 #include <set>
 #include <sstream>
 
+#include "pcrf/cube/cube_writer.hpp"
 #include "pcrf/metrics/case_result.hpp"
 #include "pcrf/hazard/hazard_file.hpp"
 #include "pcrf/record/pulses.hpp"
@@ -621,11 +622,8 @@ void read_metrics(const Fields& f, Study& s) {
   }
 }
 
-bool valid_group_name(const std::string& name) {
-  return !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
-    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
-  });
-}
+/// The cube's rule for a history group's name (one rule: journals are checked by it too).
+bool valid_group_name(const std::string& name) { return cube::valid_group_name(name); }
 
 void read_histories(const Fields& outputs, Study& s) {
   const auto* array = outputs.array("histories");
@@ -640,7 +638,7 @@ void read_histories(const Fields& outputs, Study& s) {
     request.declared_at = f.where("label");
     if (!f.has("label")) f.fail("label", "a history needs a label (its group name)");
     request.label = *f.text("label");
-    if (!valid_group_name(request.label)) f.fail("label", "use letters, digits, '_', '-' and '.' only");
+    if (!valid_group_name(request.label)) f.fail("label", "use letters, digits, '_', '-' and '.' only (not . or ..), at most 255");
     if (!labels.insert(request.label).second) f.fail("label", "\"" + request.label + "\" is used twice");
     request.record = f.text("record");
     const char* level_key = s.intensity ? "intensity" : "scale";

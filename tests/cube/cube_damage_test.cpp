@@ -29,6 +29,7 @@ struct Craft {
   bool chunked_coordinate = false;   ///< chunked, unwritten: takes no room in the file
   bool write_coordinate = true;      ///< a contiguous coordinate left unwritten holds no bytes
   hsize_t message_texts = 0;         ///< with messages: case_index of 1 value, text of this many
+  hsize_t text_chunk = 0;            ///< with messages: the text's chunk length (0: as make_set)
 };
 
 hid_t make_set(hid_t where, const char* name, hid_t type, hsize_t n, bool chunked) {
@@ -88,7 +89,17 @@ std::filesystem::path craft(const std::filesystem::path& file, const Craft& c) {
     H5Dclose(make_set(group, "case_index", H5T_STD_I64LE, 1, true));
     const hid_t text = H5Tcopy(H5T_C_S1);
     H5Tset_size(text, H5T_VARIABLE);
-    H5Dclose(make_set(group, "text", text, c.message_texts, true));
+    if (c.text_chunk == 0) {
+      H5Dclose(make_set(group, "text", text, c.message_texts, true));
+    } else {  // extendible, so that a chunk may be longer than the variable
+      const hsize_t unlimited = H5S_UNLIMITED;
+      const hid_t space = H5Screate_simple(1, &c.message_texts, &unlimited);
+      const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+      H5Pset_chunk(dcpl, 1, &c.text_chunk);
+      H5Dclose(H5Dcreate2(group, "text", text, space, H5P_DEFAULT, dcpl, H5P_DEFAULT));
+      H5Pclose(dcpl);
+      H5Sclose(space);
+    }
     H5Tclose(text);
     H5Gclose(group);
   }
@@ -200,6 +211,17 @@ TEST(CubeDamage, MessagesOfTwoLengthsAreRefused) {
   c.message_texts = 1000000000000;  // one case index, 10^12 texts: pointers for every one
   const auto file = craft(test::scratch_dir("damage_messages") / "c.h5", c);
   expect_refused(file, "messages/text");
+}
+
+// Issue 41: a damaged chunk size of a text variable made every reader allocate a chunk
+// buffer of GBs (HDF5 reads a chunk whole) before refusing; the size is checked first.
+TEST(CubeDamage, AChunkLargerThanAReaderAllowsIsRefusedBeforeItIsRead) {
+  Craft c;
+  c.message_texts = 1;
+  c.text_chunk = hsize_t{1} << 27;  // 2^27 texts of 16 bytes a chunk: 2.1 GB (HDF5 allows < 4 GiB)
+  const auto file = craft(test::scratch_dir("damage_chunk") / "c.h5", c);
+  expect_refused(file, "'messages/text' declares chunks of");
+  expect_one_line_refusal(cube_command("info", file), file);
 }
 
 // Finding 5: `cube info` on a symbolic-link loop ended in an uncaught filesystem_error.

@@ -7,7 +7,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <sys/stat.h>
+
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <fstream>
 #include <string>
@@ -258,13 +261,17 @@ void forge(const fs::path& file, std::uint32_t kind, const std::string& payload)
   log.sync();
 }
 
+/// What resuming `file` says about its journal: the error, or the notes (a journal that
+/// cannot be replayed is set aside, and the notes say why).
 std::string resume_error(const fs::path& file) {
   try {
     CubeWriter writer(file, journal_layout(), OpenMode::kResume);
+    std::string notes;
+    for (const auto& note : writer.resume_notes()) notes += note + "\n";
+    return notes;
   } catch (const CubeError& e) {
     return e.what();
   }
-  return "";
 }
 
 TEST(CubeJournal, AForgedRecordIsAClearErrorAndAHugeSizeATornTail) {
@@ -275,9 +282,11 @@ TEST(CubeJournal, AForgedRecordIsAClearErrorAndAHugeSizeATornTail) {
   io::append_le(chunk_999, 0, 4);
   auto file = torn_copy(dir / "whole.h5", dir / "chunk", sizes[3]);
   forge(file, kJournalCases, chunk_999);
-  EXPECT_NE(resume_error(file).find(journal_path(file).string() + ": record 10 (at byte "), std::string::npos) << resume_error(file);
-  EXPECT_NE(resume_error(file).find("names chunk 999 of a cube of 5"), std::string::npos) << resume_error(file);
-  EXPECT_NE(resume_error(file).find("remove the journal"), std::string::npos) << resume_error(file);
+  const std::string chunk_error = resume_error(file);  // sets the journal aside: asked once
+  EXPECT_NE(chunk_error.find(journal_path(file).string() + ": record 10 (at byte "), std::string::npos) << chunk_error;
+  EXPECT_NE(chunk_error.find("names chunk 999 of a cube of 5"), std::string::npos) << chunk_error;
+  // Issue 41: no longer "remove the journal": --resume sets it aside itself and says so.
+  EXPECT_NE(chunk_error.find("set aside as " + journal_path(file).string() + ".set-aside-1"), std::string::npos) << chunk_error;
   // A note's text declared longer than its record: refused before anything is allocated.
   std::string note;
   io::append_le(note, 1, 4);
@@ -285,14 +294,14 @@ TEST(CubeJournal, AForgedRecordIsAClearErrorAndAHugeSizeATornTail) {
   io::append_le(note, 0xffffffffu, 4);
   file = torn_copy(dir / "whole.h5", dir / "note", sizes[3]);
   forge(file, kJournalNotes, note);
-  EXPECT_NE(resume_error(file).find("ends "), std::string::npos) << resume_error(file);
+  EXPECT_NE(resume_error(file).find("ends "), std::string::npos);
   // A cases record whose declared count disagrees with its size.
   std::string short_cases;
   io::append_le(short_cases, 1, 8);
   io::append_le(short_cases, 10000, 4);
   file = torn_copy(dir / "whole.h5", dir / "short", sizes[3]);
   forge(file, kJournalCases, short_cases);
-  EXPECT_NE(resume_error(file).find("not the 10000 cases it declares"), std::string::npos) << resume_error(file);
+  EXPECT_NE(resume_error(file).find("not the 10000 cases it declares"), std::string::npos);
   // A frame declaring 2^60 bytes: more than the file holds, so a torn tail, not an allocation.
   file = torn_copy(dir / "whole.h5", dir / "huge", sizes[3]);
   {
@@ -305,6 +314,159 @@ TEST(CubeJournal, AForgedRecordIsAClearErrorAndAHugeSizeATornTail) {
   EXPECT_EQ(CubeWriter(file, journal_layout(), OpenMode::kResume).done_count(), 23000);
   finish(file);
   expect_complete(file);
+}
+
+/// The payload of a record of cases of chunk 2 (cases 20 000 …) with `statuses`, every
+/// metric the same value.
+std::string cases_payload(const std::vector<std::int8_t>& statuses) {
+  std::string out;
+  io::append_le(out, 2, 8);
+  io::append_le(out, statuses.size(), 4);
+  for (std::size_t j = 0; j < statuses.size(); ++j) io::append_le(out, 5000 + j, 4);  // offsets not yet journaled
+  for (const auto s : statuses) out.push_back(static_cast<char>(s));
+  for (int m = 0; m < 3; ++m) {
+    out.push_back(1);  // one value for every case
+    io::append_le(out, std::bit_cast<std::uint64_t>(0.25), 8);
+  }
+  return out;
+}
+
+void put_text(std::string& out, const std::string& text) {
+  io::append_le(out, text.size(), 4);
+  out += text;
+}
+
+/// The payload of a history record named `name`, of one column `column` of `rows` rows.
+std::string history_payload(const std::string& name, const std::string& column, std::size_t rows) {
+  std::string out;
+  put_text(out, name);
+  io::append_le(out, 0, 4);  // no attribute
+  io::append_le(out, 1, 4);  // one column
+  put_text(out, column);
+  put_text(out, "s");
+  put_text(out, "time");
+  io::append_le(out, rows, 8);
+  for (std::size_t k = 0; k < rows; ++k) io::append_le(out, std::bit_cast<std::uint64_t>(0.5 * static_cast<double>(k)), 8);
+  return out;
+}
+
+// Issue 41: a journal forged with valid checksums writes nothing the cube's layout does not
+// allow (status 99 or -128, a history name that is no group name), and does not make every
+// --resume fail: it is set aside (never over a file there) with a note, and its cases are
+// computed again.
+TEST(CubeJournal, AForgedJournalIsSetAsideAndItsCasesComputedAgain) {
+  const auto dir = test::scratch_dir("journal_set_aside");
+  const auto sizes = journaled_cube(dir / "whole.h5");
+  struct Forgery {
+    const char* name;
+    std::uint32_t kind;
+    std::string payload;
+    const char* problem;
+  };
+  for (const Forgery& f : {Forgery{"status99", kJournalCases, cases_payload({0, 99}), "has the status code 99"},
+                           Forgery{"status128", kJournalCases, cases_payload({-128}), "has the status code -128"},
+                           Forgery{"not_run", kJournalCases, cases_payload({kStatusNotRun}), "has the status code -1"},
+                           Forgery{"slash", kJournalHistory, history_payload("a/b", "t_s", 2), "history named \"a/b\""},
+                           Forgery{"dotdot", kJournalHistory, history_payload("..", "t_s", 2), "history named \"..\""},
+                           Forgery{"column", kJournalHistory, history_payload("h1", "", 2), "history column named"}}) {
+    const auto file = torn_copy(dir / "whole.h5", dir / f.name, sizes[3]);
+    // A file already at the first set-aside name is kept as it is: the next name is taken.
+    test::write_file(file.parent_path(), "c.h5.journal.set-aside-1", "the user's");
+    forge(file, f.kind, f.payload);
+    std::vector<std::string> notes;
+    {
+      CubeWriter resumed(file, journal_layout(), OpenMode::kResume);
+      notes = resumed.resume_notes();
+      EXPECT_EQ(resumed.done_count(), 20000) << f.name << ": nothing of a journal set aside is used";
+    }
+    ASSERT_EQ(notes.size(), 1u) << f.name;
+    EXPECT_NE(notes[0].find(f.problem), std::string::npos) << notes[0];
+    EXPECT_NE(notes[0].find("set aside as " + journal_path(file).string() + ".set-aside-2"), std::string::npos) << notes[0];
+    EXPECT_NE(notes[0].find("computed again (the cube's last fold holds 20000 of 50000 cases)"), std::string::npos) << notes[0];
+    EXPECT_EQ(test::read_file(journal_path(file).string() + ".set-aside-1"), "the user's");
+    EXPECT_TRUE(fs::exists(journal_path(file).string() + ".set-aside-2"));
+    finish(file);
+    expect_complete(file);
+    const auto status = CubeReader(file).read_status();
+    EXPECT_EQ(std::count_if(status.begin(), status.end(), [](std::int8_t s) { return s != 0 && s != 3; }), 0) << f.name;
+  }
+}
+
+// UBSan (issue 41): a history of zero rows read back from a journal copied from a null
+// pointer; it replays and folds as the history of no rows it is.
+TEST(CubeJournal, AHistoryOfNoRowsReplays) {
+  const auto dir = test::scratch_dir("journal_empty_history");
+  const auto sizes = journaled_cube(dir / "whole.h5");
+  const auto file = torn_copy(dir / "whole.h5", dir / "empty", sizes[3]);
+  forge(file, kJournalHistory, history_payload("h_empty", "t_s", 0));
+  {
+    CubeWriter resumed(file, journal_layout(), OpenMode::kResume);
+    EXPECT_TRUE(resumed.resume_notes().empty());
+    EXPECT_EQ(resumed.done_count(), 23000);
+  }
+  finish(file);
+  const CubeReader reader(file);
+  const auto empty = reader.read_history("h_empty");
+  ASSERT_EQ(empty.values.size(), 1u);
+  EXPECT_TRUE(empty.values[0].empty());
+}
+
+// Issue 41 item 9: a resume that drops a torn tail says how much it dropped.
+TEST(CubeJournal, AResumeThatDropsRecordsSaysHowMany) {
+  const auto dir = test::scratch_dir("journal_dropped_note");
+  const auto sizes = journaled_cube(dir / "whole.h5");
+  // The third append's records complete but its commit cut off: 1 record of 1000 cases and
+  // one of notes, dropped.
+  auto file = torn_copy(dir / "whole.h5", dir / "uncommitted", sizes[3] - 16);
+  {
+    CubeWriter resumed(file, journal_layout(), OpenMode::kResume);
+    ASSERT_EQ(resumed.resume_notes().size(), 1u);
+    const auto& note = resumed.resume_notes()[0];
+    EXPECT_NE(note.find(journal_path(file).string() + ": its last " + std::to_string(sizes[3] - 16 - sizes[2]) + " bytes are dropped"),
+              std::string::npos) << note;
+    EXPECT_NE(note.find("2 complete records of a checkpoint never closed (1000 results)"), std::string::npos) << note;
+    EXPECT_NE(note.find("computed again"), std::string::npos) << note;
+  }
+  // A byte of the second append damaged: its records and all after are dropped, uncounted.
+  file = torn_copy(dir / "whole.h5", dir / "damaged", sizes[3]);
+  flip_byte(journal_path(file), (sizes[1] + sizes[2]) / 2);
+  {
+    CubeWriter resumed(file, journal_layout(), OpenMode::kResume);
+    ASSERT_EQ(resumed.resume_notes().size(), 1u);
+    EXPECT_NE(resumed.resume_notes()[0].find("a record that is torn or damaged"), std::string::npos) << resumed.resume_notes()[0];
+  }
+  finish(file);
+  expect_complete(file);
+}
+
+// Issue 41 item 1: the files beside a cube are never followed: a symbolic link at the
+// journal or the .partial (to the study file, say) is refused before anything is written,
+// and so is a FIFO (without waiting on it).
+TEST(CubeJournal, ALinkOrAFifoBesideTheCubeIsRefusedNeverFollowed) {
+  const auto dir = test::scratch_dir("journal_sidecar_links");
+  const auto sizes = journaled_cube(dir / "whole.h5");
+  for (const char* sidecar : {".journal", ".partial"})
+    for (const OpenMode mode : {OpenMode::kResume, OpenMode::kOverwrite}) {
+      const auto file = torn_copy(dir / "whole.h5", dir / (std::string("link") + sidecar + std::to_string(int(mode))), sizes[3]);
+      const auto study = test::write_file(file.parent_path(), "study.toml", "precious");
+      fs::remove(file.string() + sidecar);
+      fs::create_symlink(study, file.string() + sidecar);
+      try {
+        CubeWriter writer(file, journal_layout(), mode);
+        ADD_FAILURE() << sidecar << ": opened with a link beside the cube";
+      } catch (const CubeError& e) {
+        EXPECT_NE(std::string(e.what()).find(file.string() + sidecar + ": is a symbolic link"), std::string::npos) << e.what();
+      }
+      EXPECT_EQ(test::read_file(study), "precious");
+    }
+  const auto file = torn_copy(dir / "whole.h5", dir / "fifo", sizes[3]);
+  fs::remove(journal_path(file));
+  ASSERT_EQ(::mkfifo(journal_path(file).c_str(), 0600), 0);
+  alarm(20);  // a regression blocks: end it rather than hang the suite
+  EXPECT_THROW(CubeWriter(file, journal_layout(), OpenMode::kResume), CubeError);
+  const CubeReader reader(file);
+  EXPECT_THROW(JournalReader(file, reader.layout(), journal_id_of(reader.layout())), CubeError);
+  alarm(0);
 }
 
 // ---- kills ----

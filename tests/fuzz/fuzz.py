@@ -20,14 +20,17 @@ Exit status: 0 when no mutant gave a finding, 1 when one did, 2 on bad arguments
 """
 
 import argparse
+import json
 import math
 import os
 import random
 import re
 import shutil
+import struct
 import subprocess
 import sys
 import time
+import zlib
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -371,6 +374,164 @@ class Hazards(Target):
         return [pcrf, "study", "stripes.toml", "--check"]
 
 
+def make_seed_cube(pcrf, work, timeout_s, name, shard=None):
+    """The tiny study's cube (shard K/N of it, when given) at WORK/NAME; its study file beside."""
+    study = work / "seed_study.toml"
+    study.write_text(TINY_STUDY)
+    cube = work / name
+    for leftover in (cube, Path(str(cube) + ".journal")):
+        if leftover.exists():
+            leftover.unlink()
+    argv = [pcrf, "study", str(study), "-o", str(cube), "--progress-interval-s", "0"] + (["--shard", shard] if shard else [])
+    done = subprocess.run(argv, capture_output=True, text=True, timeout=max(120, 10 * timeout_s), cwd=work)
+    if done.returncode != 0 or not cube.is_file():
+        raise RuntimeError(f"cannot make the seed cube: {done.stderr.strip()}")
+    return study, cube
+
+
+# The journal's format (src/io/include/pcrf/io/record_log.hpp, src/cube/include/pcrf/cube/cube_journal.hpp).
+JOURNAL_MAGIC = b"pcrf-log"
+HEADER, CASES, NOTES, HISTORY, COMMIT = 1, 2, 3, 4, 5
+
+
+def frame(kind, payload):
+    head = kind.to_bytes(4, "little") + len(payload).to_bytes(8, "little")
+    return head + payload + zlib.crc32(payload, zlib.crc32(head)).to_bytes(4, "little")
+
+
+def frames(data):
+    """[(start, kind, payload)] of a journal's records, up to the first that does not fit."""
+    out, at = [], len(JOURNAL_MAGIC)
+    while at + 16 <= len(data):
+        kind = int.from_bytes(data[at:at + 4], "little")
+        size = int.from_bytes(data[at + 4:at + 12], "little")
+        if at + 16 + size > len(data):
+            break
+        out.append((at, kind, data[at + 12:at + 12 + size]))
+        at += 16 + size
+    return out
+
+
+def text_bytes(text):
+    return len(text).to_bytes(4, "little") + text
+
+
+def journal_of(journal_id, cases, metrics, checkpoints):
+    """A journal extending the cube of `journal_id`: each checkpoint its records, then a commit."""
+    data = JOURNAL_MAGIC + frame(HEADER, journal_id.to_bytes(8, "little", signed=True) + cases.to_bytes(8, "little") +
+                                 metrics.to_bytes(4, "little"))
+    for records in checkpoints:
+        for kind, payload in records:
+            data += frame(kind, payload)
+        data += frame(COMMIT, b"")
+    return data
+
+
+def cases_payload(offsets, status, metrics, same_last=True):
+    out = (0).to_bytes(8, "little") + len(offsets).to_bytes(4, "little")
+    out += b"".join(o.to_bytes(4, "little") for o in offsets) + bytes(status & 0xff for _ in offsets)
+    for m in range(metrics):
+        if same_last and m == metrics - 1:
+            out += b"\x01" + struct.pack("<d", 0.0)
+        else:
+            out += b"\x00" + b"".join(struct.pack("<d", 1e-3 * (o + m)) for o in offsets)
+    return out
+
+
+def history_payload(name, rows):
+    out = text_bytes(name) + (1).to_bytes(4, "little") + text_bytes(b"case_index") + b"\x02" + (5).to_bytes(8, "little")
+    out += (2).to_bytes(4, "little")
+    for column in (b"t_s", b"theta_rad"):
+        out += text_bytes(column) + text_bytes(b"s" if column == b"t_s" else b"rad") + text_bytes(b"")
+        out += rows.to_bytes(8, "little") + b"".join(struct.pack("<d", 0.01 * k) for k in range(rows))
+    return out
+
+
+class Journals(Target):
+    """Journals beside the tiny study's first shard, made by this harness in the journal's
+    format with the cube's id: read by `cube info`, replayed by `study --resume` and checked
+    by `cube merge`. Mutants change bytes (a damaged journal: torn at its first bad CRC), cut
+    it, or change a record's payload and fix its CRC (a forged journal, which the engine must
+    check against the cube's layout and set aside on --resume)."""
+    name = "journal"
+    suffix = ".h5.journal"
+    commands = (["info"], ["resume"], ["merge"])
+
+    def __init__(self, pcrf, timeout_s):
+        self.pcrf, self.timeout_s = pcrf, timeout_s
+
+    def seeds(self, work):
+        self.study, self.cube = make_seed_cube(self.pcrf, work, self.timeout_s, "seed_shard.h5", "1/2")
+        info = json.loads(subprocess.run([self.pcrf, "cube", "info", "--json", str(self.cube)], capture_output=True,
+                                         text=True, timeout=60, check=True).stdout)
+        journal_id = int(info["attributes"]["journal_id"])
+        cases = math.prod(d["size"] for d in info["dimensions"])
+        metrics = len(info["metrics"])
+        rest = list(range(cases // 2, cases))  # the second shard's cases, not in this cube
+        notes = (1).to_bytes(4, "little") + rest[0].to_bytes(8, "little") + text_bytes(b"a note")
+        one = journal_of(journal_id, cases, metrics, [[(CASES, cases_payload(rest, 0, metrics)), (NOTES, notes),
+                                                       (HISTORY, history_payload(b"h_fuzz", 3))]])
+        two = journal_of(journal_id, cases, metrics, [[(CASES, cases_payload(rest[:1], 0, metrics))],
+                                                      [(CASES, cases_payload(rest[1:], 0, metrics, False)),
+                                                       (HISTORY, history_payload(b"h_empty", 0))]])
+        return [(f"j{i}{c[0]}", journal, c) for i, journal in enumerate((one, two)) for c in self.commands]
+
+    def mutate(self, rng, data):
+        how = rng.randrange(4)
+        if how == 0:  # damaged bytes: the first bad CRC ends what is read
+            return mutate_binary(rng, data, hot_bytes=len(data))
+        if how == 1:  # torn, or with junk after its end
+            return data[:rng.randrange(len(data))] if rng.random() < 0.7 else data + insert_junk(rng, b"")
+        records = frames(data)
+        start, kind, payload = rng.choice(records)
+        if how == 2:  # a forged record: its payload changed, its CRC made to match
+            changed = mutate_binary(rng, payload, hot_bytes=len(payload)) if payload else payload
+            if payload and rng.random() < 0.3:
+                at = rng.randrange(max(1, len(payload) - 8))
+                changed = payload[:at] + rng.choice([b"\xff" * 8, b"\x00" * 8, b"\x80" * 8]) + payload[at + 8:]
+            new_kind = kind if rng.random() < 0.9 else rng.randrange(8)
+            return data[:start] + frame(new_kind, changed) + data[start + 16 + len(payload):]
+        # a record declaring a huge size: more than the file has (a torn tail), never allocated
+        huge = rng.choice([1 << 36, 1 << 62, len(data) * 2])
+        return data[:start + 4] + huge.to_bytes(8, "little") + data[start + 12:]
+
+    def command(self, pcrf, file, extra):
+        cube = Path(str(file)[:-len(".journal")])
+        shutil.copyfile(self.cube, cube)  # --resume folds the cube: each mutant starts from the seed
+        for aside in cube.parent.glob(cube.name + ".journal.set-aside-*"):
+            aside.unlink()
+        if extra[0] == "info":
+            return [pcrf, "cube", "info", str(cube)]
+        if extra[0] == "resume":
+            return [pcrf, "study", str(self.study), "-o", str(cube), "--resume", "--shard", "1/2", "--progress-interval-s", "0"]
+        return [pcrf, "cube", "merge", str(cube), "-o", str(cube.parent / "merged.h5"), "--overwrite", "--allow-missing"]
+
+
+class Merges(Target):
+    """`cube merge` of the tiny study's two shards, the first one's bytes changed (as the
+    cube target's); the merged cube is written beside."""
+    name = "merge"
+    suffix = ".h5"
+
+    def __init__(self, pcrf, timeout_s, spare_global_heaps):
+        self.pcrf, self.timeout_s = pcrf, timeout_s
+        self.spare = spare_global_heaps
+        self.avoid = ()
+
+    def seeds(self, work):
+        _, first = make_seed_cube(self.pcrf, work, self.timeout_s, "part1.h5", "1/2")
+        _, self.second = make_seed_cube(self.pcrf, work, self.timeout_s, "part2.h5", "2/2")
+        if self.spare:
+            self.avoid = global_heaps(first.read_bytes())
+        return [("m0", first.read_bytes(), [])]
+
+    def mutate(self, rng, data):
+        return mutate_binary(rng, data, hot_bytes=min(len(data), 16384), avoid=self.avoid)
+
+    def command(self, pcrf, file, extra):
+        return [pcrf, "cube", "merge", str(file), str(self.second), "-o", str(file.parent / "merged.h5"), "--overwrite"]
+
+
 # ---- running --------------------------------------------------------------------------------
 
 # Faults inside HDF5 1.10 itself on crafted files, which no cheap check of pcrf's avoids
@@ -483,7 +644,7 @@ def main():
     parser.add_argument("--budget-s", type=float, default=600.0, help="time for all targets together [s]")
     parser.add_argument("--seed", type=int, default=1, help="seed of the mutations (deterministic per seed)")
     parser.add_argument("--runs", type=int, help="at most this many inputs per target (default: until the budget)")
-    parser.add_argument("--targets", default="records,synthetic,study,cube,hazard,python", help="comma-separated targets")
+    parser.add_argument("--targets", default="records,synthetic,study,cube,hazard,python,journal,merge", help="comma-separated targets")
     parser.add_argument("--module-dir", type=Path,
                         help="python: the folder holding the module `pcrf` (default: python/ beside --pcrf)")
     parser.add_argument("--timeout-s", type=float, default=20.0, help="a run longer than this is a hang [s]")
@@ -499,7 +660,9 @@ def main():
     targets = {"records": lambda: Records(), "synthetic": lambda: Synthetic(), "study": lambda: Studies(source_dir),
              "cube": lambda: Cubes(args.pcrf, args.timeout_s, args.spare_global_heaps),
              "hazard": lambda: Hazards(args.pcrf, args.timeout_s),
-             "python": lambda: PythonContainers(args.module_dir)}
+             "python": lambda: PythonContainers(args.module_dir),
+             "journal": lambda: Journals(args.pcrf, args.timeout_s),
+             "merge": lambda: Merges(args.pcrf, args.timeout_s, args.spare_global_heaps)}
     names = [n for n in args.targets.split(",") if n]
     unknown = [n for n in names if n not in targets]
     if unknown or not names or args.budget_s <= 0:

@@ -133,3 +133,11 @@ def test_a_study_of_several_scenes_gives_each_case_what_run_gives(tmp_path):
         for case, keywords in scenes.items():
             result = pcrf.run(synthetic=str(record), **keywords)
             assert cube["theta_max_rad"].isel(record=r, scale=0).sel(case=case) == result["theta_max_rad"], (record, case)
+
+
+def test_open_cube_refuses_a_fifo_at_once(tmp_path):
+    """Issue 41: xarray (netCDF) waited for ever on a FIFO; refused before it opens, by name."""
+    fifo = tmp_path / "pipe.h5"
+    os.mkfifo(fifo)
+    with pytest.raises(pcrf.InputError, match=r"pipe\.h5: is a FIFO, not a regular file"):
+        pcrf.open_cube(fifo)

@@ -1,5 +1,7 @@
 """pcrf.open_cube: a result cube as an xarray.Dataset, status as integer flags."""
 
+import os
+
 from . import _names as schema
 from . import _pcrf
 from ._notices import warn
@@ -40,6 +42,8 @@ def opened(path, pulse_dimensions=False, **open_dataset_keywords):
     import numpy as np
     import xarray as xr
 
+    if isinstance(path, (str, bytes)) or hasattr(path, "__fspath__"):
+        _pcrf.check_cube_file(os.fsdecode(path))  # a FIFO would make netCDF wait for ever: refused at once
     ds = xr.open_dataset(path, **open_dataset_keywords)
     if schema.STATUS in ds.variables and ds[schema.STATUS].dtype.kind == "f":  # a cube written with a _FillValue
         with xr.open_dataset(path, mask_and_scale=False) as raw:

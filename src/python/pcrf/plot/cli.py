@@ -99,14 +99,19 @@ def check_paths(args):
     ext = os.path.splitext(args.output)[1].lower()
     if ext not in FORMATS:
         raise PlotError(f"{args.output}: the output must end in .png, .pdf or .svg")
-    _pcrf.check_output(args.output, [args.input], args.overwrite)
+    _pcrf.check_output(args.output, inputs(args), args.overwrite)
+
+
+def inputs(args):
+    """Every file the figure is drawn from (the cube and, for risk, the hazard curve): never its output."""
+    return [args.input] + ([args.hazard] if args.hazard else [])
 
 
 def save(figure, args):
     """The figure's bytes, written by the engine's output rule: complete or not at all."""
     image = io.BytesIO()
     figure.savefig(image, format=os.path.splitext(args.output)[1].lower()[1:], bbox_inches="tight")
-    _pcrf.write_output(args.output, image.getvalue(), [args.input], args.overwrite)
+    _pcrf.write_output(args.output, image.getvalue(), inputs(args), args.overwrite)
 
 
 def say(caught):

@@ -41,6 +41,7 @@
 namespace pcrf::io {
 class LogReader;
 class LogWriter;
+struct LogRecord;
 }  // namespace pcrf::io
 
 namespace pcrf::cube {
@@ -64,6 +65,14 @@ std::filesystem::path journal_path(const std::filesystem::path& cube);
 /// The cube's journal id (its kJournalIdName attribute); 0 when it has none.
 std::int64_t journal_id_of(const CubeLayout& layout);
 
+/// A journal whose checksums hold but whose content does not fit its cube (a forged or
+/// foreign journal): what() names the journal, the record, its offset and the problem.
+/// `--resume` sets such a journal aside (CubeWriter) and computes its cases again.
+class JournalDamage : public CubeError {
+ public:
+  explicit JournalDamage(const std::string& what) : CubeError(what) {}
+};
+
 /// Cases of one chunk, as a checkpoint stored them.
 struct JournalCases {
   std::size_t chunk = 0;
@@ -79,9 +88,11 @@ class JournalReader {
   /// A missing, stale or unreadable-header journal reads as current() false. The complete,
   /// checksum-valid records are kept up to the first that is not, and of those up to the last
   /// commit (a torn tail is dropped: the checkpoint it held is computed again).
-  /// \throws CubeError naming the journal when it cannot be read, or when a record whose CRC
-  /// holds does not fit the cube (a forged or foreign journal): remove it to resume from the
-  /// cube's last folded state.
+  /// Every value of a record is checked against the layout before it is handed out: chunks,
+  /// counts, sizes, case offsets, status codes (those of the layout's flags only), note case
+  /// indices, history names, columns and lengths.
+  /// \throws CubeError naming the journal when it cannot be read (a symbolic link or a FIFO
+  /// there included); JournalDamage when a record whose CRC holds does not fit the cube.
   JournalReader(const std::filesystem::path& cube, const CubeLayout& layout, std::int64_t id);
   ~JournalReader();
   JournalReader(const JournalReader&) = delete;
@@ -95,6 +106,15 @@ class JournalReader {
   std::uint64_t valid_bytes() const { return valid_bytes_; }
   /// Bytes past the last commit (a torn tail), dropped.
   std::uint64_t dropped_bytes() const { return dropped_bytes_; }
+  /// Complete, checksum-valid records past the last commit (a checkpoint not closed), dropped.
+  std::size_t dropped_records() const { return dropped_records_; }
+  /// Case results in the dropped records of cases (those of a damaged tail cannot be counted).
+  std::int64_t dropped_results() const { return dropped_results_; }
+  /// True when a record that does not match its CRC or does not fit the file ended what was
+  /// read (damage, or a tail torn in the middle of a record).
+  bool damaged() const { return damaged_; }
+  /// Reads and checks every record (cases, notes, histories) once. \throws JournalDamage.
+  void check_all() const;
 
   /// Chunks with journaled cases, each with its records in journal order (for cases()).
   const std::map<std::size_t, std::vector<std::size_t>>& chunks() const { return chunks_; }
@@ -109,6 +129,7 @@ class JournalReader {
 
  private:
   std::string payload(std::size_t record) const;
+  std::string payload_head(const io::LogRecord& record) const;
   [[noreturn]] void fail(std::size_t record, const std::string& problem) const;
 
   std::filesystem::path file_;
@@ -120,6 +141,10 @@ class JournalReader {
   std::size_t kept_ = 0;  ///< records kept: those up to the last commit
   std::uint64_t valid_bytes_ = 0;
   std::uint64_t dropped_bytes_ = 0;
+  std::size_t dropped_records_ = 0;
+  std::int64_t dropped_results_ = 0;
+  bool damaged_ = false;
+  std::vector<std::int8_t> statuses_;  ///< the codes a case may have: the layout's flags but not_run
   std::int64_t results_ = 0;
   std::map<std::size_t, std::vector<std::size_t>> chunks_;
 };

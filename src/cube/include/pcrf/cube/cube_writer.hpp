@@ -30,6 +30,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "pcrf/cube/cube_layout.hpp"
@@ -64,9 +65,13 @@ enum class CheckpointStep {
 using CheckpointObserver = void (*)(CheckpointStep);
 void observe_checkpoints(CheckpointObserver observer);
 
+/// True for a name a history group or column may have: letters, digits, '_', '-' and '.',
+/// at most 255 characters, not "." or ".." (the one rule: study labels, journals).
+bool valid_group_name(std::string_view name);
+
 /// A time history to store in its own group, /histories/<name>.
 struct HistoryTable {
-  std::string name;                     ///< group name (letters, digits, '_', '-', '.')
+  std::string name;                     ///< group name (valid_group_name)
   std::vector<Attribute> attributes;    ///< e.g. the case's coordinates
   std::vector<MetricVariable> columns;  ///< the first one is the time axis
   std::vector<std::vector<double>> values;  ///< one vector per column, equal lengths
@@ -84,6 +89,10 @@ class CubeWriter {
 
   /// True when an existing cube was opened for --resume.
   bool resumed() const { return resumed_; }
+  /// What opening for --resume did to the cube's journal that the user should hear, one line
+  /// each: records dropped (a torn or damaged tail) and how many, or a journal that cannot be
+  /// replayed set aside, and that their cases are computed again. Empty otherwise.
+  const std::vector<std::string>& resume_notes() const;
   /// Status of every case (kStatusNotRun where not computed yet).
   const std::vector<std::int8_t>& status() const { return status_; }
   std::int64_t done_count() const;

@@ -5,7 +5,10 @@
 /// renamed over the target, whose folder is then synced. A write that fails, or a process
 /// killed at any moment, leaves the old file whole (or no file), never part of the new one.
 ///
-/// The temporary gets the user's mode (0666 & ~umask), as the shell's redirections do.
+/// The temporary gets the user's mode (0666 & ~umask), as the shell's redirections do. It is
+/// created exclusively (never through a link), and removed when the process is stopped by a
+/// signal where the command installed io::remove_temporaries_on_signals. A target that is a
+/// FIFO is opened without blocking: refused when no process reads it.
 #pragma once
 
 #include <cstddef>
@@ -20,8 +23,10 @@ class AtomicFile {
     /// ".NAME.XXXXXX", made exclusively: for outputs, which no lock keeps other commands off.
     /// A target that exists and is not a regular file (/dev/null, a pipe) is written in place.
     kUnique,
-    /// "NAME.partial", truncated when there: for a target whose writer holds its lock (a
-    /// cube), so that the temporary of a killed run is reused by the next, not piled up.
+    /// "NAME.partial": for a target whose writer holds its lock (a cube), so that the
+    /// temporary of a killed run is replaced by the next, not piled up. One that is there is
+    /// removed and made anew exclusively (O_EXCL | O_NOFOLLOW) when it is a regular file of
+    /// one name; anything else there (a symbolic link, a FIFO) is refused (io::file_kind.hpp).
     kPartial,
   };
 
@@ -65,6 +70,7 @@ class AtomicFile {
   int fd_ = -1;
   bool synced_ = false;
   bool committed_ = false;
+  int slot_ = -1;  ///< io::remember_temporary's: removed on SIGTERM, SIGINT, SIGHUP
 };
 
 }  // namespace pcrf::io

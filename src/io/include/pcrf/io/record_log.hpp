@@ -7,7 +7,10 @@
 /// File: the 8 bytes "pcrf-log", then records, each: kind (4 bytes), size (8 bytes), `size`
 /// bytes of payload, CRC-32 of the kind, size and payload (4 bytes); integers little-endian.
 ///
-/// The file is untrusted input: a size is checked against the bytes the file has before it
+/// The file is untrusted input: it is opened only when it is a regular file (not followed,
+/// without blocking: a link or a FIFO there is an OutputError); a size is checked against the
+/// bytes the file really has (up to its first hole: a sparse file declaring 64 GiB holds
+/// none of them) and against a memory budget (kUsableMemoryShare of the machine's) before it
 /// is used, a payload is read in bounded pieces to check its CRC, and the first record that
 /// does not fit or does not match its CRC ends what is read (nothing after it is trusted).
 #pragma once
@@ -67,14 +70,18 @@ class LogReader {
   std::vector<LogRecord> records_;
   std::uint64_t valid_bytes_ = 0;
   std::uint64_t file_bytes_ = 0;
+  std::uint64_t data_bytes_ = 0;       ///< up to the file's first hole (its real data)
+  std::uint64_t max_record_bytes_ = 0;  ///< a memory budget: kUsableMemoryShare of the machine's
 };
 
 /// Appends records to a log. One writer per file (its owner's lock keeps others off).
 class LogWriter {
  public:
   /// Opens `file` to append after its first `keep_bytes` bytes (a LogReader's valid_bytes(),
-  /// so that a torn tail is cut off), or, with `keep_bytes` 0, creates it anew (replacing
-  /// any file there) with the magic, synced with its folder. \throws OutputError.
+  /// so that a torn tail is cut off), or, with `keep_bytes` 0, creates it anew with the magic,
+  /// synced with its folder: a regular file there (a stale log) is removed first and the new
+  /// one created exclusively. Never through a link: a symbolic link, a FIFO or a file of
+  /// several names there is refused (io/file_kind.hpp). \throws OutputError.
   LogWriter(std::filesystem::path file, std::uint64_t keep_bytes);
   ~LogWriter();
   LogWriter(const LogWriter&) = delete;

@@ -9,6 +9,10 @@
 /// works across hosts; a client that crashes holds its lock until the server's lease ends
 /// (NFSv4: about 90 s). File systems without locking (some FUSE and old NFS mounts) refuse
 /// the lock: the run then stops with that reason rather than run unprotected.
+///
+/// The lock file is created exclusively (O_EXCL | O_NOFOLLOW); a killed holder's is reused
+/// only when it is a regular file of one name. A symbolic link, a FIFO or a hard link at
+/// `<file>.lock` is refused naming it (io/file_kind.hpp): the note would replace its content.
 #pragma once
 
 #include <filesystem>
