@@ -32,7 +32,9 @@ def cube(tmp_path_factory):
 
 @pytest.fixture
 def no_process(monkeypatch):
-    """Any attempt to start a process fails the test."""
+    """Any attempt to start a process fails the test. Matplotlib's font list is built first: on a
+    fresh machine its first scan starts fc-list, which is matplotlib's own cache, not the figure's."""
+    import matplotlib.font_manager  # noqa: F401  (loads or builds the font cache)
     def refuse(*args, **kwargs):
         raise AssertionError(f"a process was started: {args[:2]}")
     monkeypatch.setattr(subprocess, "Popen", refuse)
