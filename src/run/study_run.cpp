@@ -19,7 +19,7 @@
 #include "pcrf/io/run_lock.hpp"
 #include "pcrf/parallel/scheduler.hpp"
 #include "pcrf/parallel/work_queue.hpp"
-#include "pcrf/solver/batch_solver.hpp"
+#include "pcrf/solver/case_group.hpp"
 #include "pcrf/run/case_runner.hpp"
 #include "pcrf/run/cost_estimate.hpp"
 #include "pcrf/schema/cube_vocabulary.hpp"
@@ -142,7 +142,7 @@ class HistoryInbox {
 constexpr std::int64_t kFramesTogether = 64;
 
 /// True when the study's cases go to workers in blocks of one excitation (docs/batches.md).
-bool in_lanes(const Study& study) { return study.run.lanes > 1 && batch_integrates(study.solver) && !study.ida; }
+bool in_lanes(const Study& study) { return study.run.lanes > 1 && lanes_take(study.solver) && !study.ida; }
 
 /// `stop_signal`: a signal stops the workers between two cases, reporting the ones done.
 parallel::ScheduleOptions schedule_options(const Study& study, const CaseRunner& runner, const std::atomic<int>* stop_signal) {

@@ -11,7 +11,7 @@
 #include "pcrf/model/equation_of_motion.hpp"
 #include "pcrf/model/frame.hpp"
 #include "pcrf/units.hpp"
-#include "solver/case_common.hpp"
+#include "solver/case/case_common.hpp"
 
 namespace pcrf {
 namespace {
