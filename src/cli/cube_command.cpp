@@ -78,7 +78,7 @@ void note_partial(const std::string& command, const std::string& file, const cub
 /// stderr. `treatment`: what the command does with the unresolved cases.
 void note_verdicts(const std::string& command, const std::string& file, const cube::CubeReader& reader,
                    const std::string& treatment) {
-  namespace v = study::vocabulary;
+  namespace v = schema;
   const auto& layout = reader.layout();
   const bool ida = layout.find_side_variable(v::kIdaRuns) != nullptr;
   for (const auto& line : v::verdict_notes(reader.read_status(),
@@ -186,10 +186,10 @@ void add_info(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
     guarded(args->file, [&] {
       const cube::CubeReader reader(args->file);
       note_partial("info", args->file, reader);
-      const auto completion = study::vocabulary::completion(reader);
+      const auto completion = schema::completion(reader);
       if (args->json) cube::print_info_json(reader, std::cout, completion);
-      else cube::print_info(reader, study::vocabulary::info_heading(reader.layout()), std::cout, completion);
-      if (const auto states = study::vocabulary::curve_states_text(study::vocabulary::curve_states(reader));
+      else cube::print_info(reader, schema::info_heading(reader.layout()), std::cout, completion);
+      if (const auto states = schema::curve_states_text(schema::curve_states(reader));
           !states.empty())
         (args->json ? std::cerr : std::cout) << states << '\n';
       note_verdicts("info", args->file, reader, "neither safe nor collapsed");
@@ -226,7 +226,7 @@ void add_export(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) 
         return;
       }
       const auto chosen = selectors(args->where);
-      const auto leave_out = args->no_record_text ? study::vocabulary::record_text_coordinates() : std::vector<std::string>{};
+      const auto leave_out = args->no_record_text ? schema::record_text_coordinates() : std::vector<std::string>{};
       with_output(args->output, {args->file}, args->overwrite,
                   [&](std::ostream& out) { cube::export_csv(reader, args->metrics, chosen, out, leave_out); });
     });
@@ -433,7 +433,7 @@ void add_merge(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
       for (const auto& part : args->parts) note_running(part);
       if (const auto who = io::RunLock::holder(args->output); !who.empty())
         throw UserError(Where{}, args->output + ": in use by a run (" + who + "); give another {}", {"output"});
-      const auto merged = cube::merge_cubes(parts, args->output, args->overwrite, study::vocabulary::kIdaRuns,
+      const auto merged = cube::merge_cubes(parts, args->output, args->overwrite, schema::kIdaRuns,
                                             args->allow_missing);
       if (merged.missing > 0)
         std::cerr << "pcrf cube merge: " << args->output << ": " << merged.missing << " of " << merged.total

@@ -14,7 +14,7 @@
 #include "pcrf/printable.hpp"
 #include "pcrf/record/intensity.hpp"
 
-namespace pcrf::post {
+namespace pcrf::hazard {
 namespace {
 
 constexpr const char* kRateColumn = "annual_rate_per_yr";
@@ -130,4 +130,4 @@ HazardFile read_hazard_file(const std::filesystem::path& file, risk::Tail tail) 
   return reader.finish(tail);
 }
 
-}  // namespace pcrf::post
+}  // namespace pcrf::hazard

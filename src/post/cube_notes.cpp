@@ -25,7 +25,7 @@ std::string journal_note(const std::string& file, const cube::CubeReader& reader
 }
 
 std::string partial_note(const std::string& file, const cube::CubeReader& reader) {
-  const auto missing = study::vocabulary::not_run(reader);
+  const auto missing = schema::not_run(reader);
   if (missing.count == 0) return {};
   return file + ": " + std::to_string(missing.count) + " of " + std::to_string(missing.total) + " " + missing.unit +
          " not run (a partial cube): left out";

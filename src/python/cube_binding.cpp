@@ -122,7 +122,7 @@ std::string cube_report(const std::string& kind, const std::string& file, const 
 void bind_cube(py::module_& m) {
   m.def("cube_report", &cube_report, py::arg("kind"), py::arg("file"),
         "The JSON of `pcrf cube KIND FILE --json` (stats, fragility, sensitivity, p695, risk); see pcrf.fragility.");
-  m.def("pulse_coordinates", &study::vocabulary::pulse_coordinates,
+  m.def("pulse_coordinates", &schema::pulse_coordinates,
         "The coordinates a study of pulses may have along `record`: pulse_shape and the pulse axes.");
 }
 

@@ -19,7 +19,7 @@ namespace pcrf::study {
 namespace {
 
 using cube::Attribute;
-namespace names = vocabulary;
+namespace names = schema;
 
 std::string utc_now() {
   const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());

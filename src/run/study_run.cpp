@@ -420,7 +420,7 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
   if (stoppable.stopped()) summary.stopped_by = stop_signal->load();
   summary.error = sink.error();
   summary.error_cause = sink.error_cause();
-  summary.verdict_notes = vocabulary::verdict_notes(
+  summary.verdict_notes = schema::verdict_notes(
       m.writer->status(), p.study.ida ? std::optional<std::string>(p.study.ida->collapse) : std::nullopt,
       "neither safe nor collapsed", p.study.physics.tail_s);
   return summary;

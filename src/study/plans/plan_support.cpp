@@ -93,7 +93,7 @@ void describe_parameters(std::ostream& out, const SceneModel& model, const Scene
 }
 
 PointPlan::PointPlan(const SceneModel& model, std::vector<Point> points)
-    : model_(&model), points_(std::move(points)), dimensions_{{vocabulary::kCase, points_.size()}} {
+    : model_(&model), points_(std::move(points)), dimensions_{{schema::kCase, points_.size()}} {
   for (auto& p : points_)
     if (p.model == nullptr) p.model = model_;
 }
@@ -117,16 +117,16 @@ std::vector<cube::Coordinate> PointPlan::coordinates() const {
     labels.push_back(points_[i].label);
     models.emplace_back(points_[i].model->name);
   }
-  std::vector<cube::Coordinate> coords{number_coordinate(vocabulary::kCase, vocabulary::kCase, "", "frame number", index)};
+  std::vector<cube::Coordinate> coords{number_coordinate(schema::kCase, schema::kCase, "", "frame number", index)};
   coords.back().is_index = true;
-  coords.push_back(text_coordinate(vocabulary::kCaseLabel, vocabulary::kCase, "frame label", labels));
+  coords.push_back(text_coordinate(schema::kCaseLabel, schema::kCase, "frame label", labels));
   // The models present: the plan's first, then the others in catalogue order.
   std::vector<const SceneModel*> present{model_};
   for (const auto& m : scene_models())
     if (&m != model_ && std::any_of(points_.begin(), points_.end(), [&](const Point& p) { return p.model == &m; }))
       present.push_back(&m);
   if (present.size() > 1)
-    coords.push_back(text_coordinate(vocabulary::kSceneModel, vocabulary::kCase, "scene model of the frame", models));
+    coords.push_back(text_coordinate(schema::kSceneModel, schema::kCase, "scene model of the frame", models));
   for (auto& c : extra_coordinates()) coords.push_back(std::move(c));
   // The plan's model's other parameters are the cube's attributes (frame_h_m, …); another
   // model has no base point, so all of its parameters are coordinates.
@@ -139,21 +139,21 @@ std::vector<cube::Coordinate> PointPlan::coordinates() const {
       written.push_back(parameter.name);
       std::vector<double> values;
       for (const auto& p : points_) values.push_back(SceneSpec{p.model, p.parameters}.value(parameter.name));
-      coords.push_back(number_coordinate(std::string(parameter.name), vocabulary::kCase, std::string(parameter.units),
+      coords.push_back(number_coordinate(std::string(parameter.name), schema::kCase, std::string(parameter.units),
                                          std::string(parameter.long_name), values));
     }
   return coords;
 }
 
 std::vector<std::size_t> PointPlan::locate(const HistoryRequest& request) const {
-  if (!request.case_label) return {pick_single(request, points_.size(), vocabulary::kCase)};
+  if (!request.case_label) return {pick_single(request, points_.size(), schema::kCase)};
   const auto it = std::find_if(points_.begin(), points_.end(), [&](const Point& p) { return p.label == *request.case_label; });
   if (it == points_.end()) fail_history(request, "no case is labelled \"" + *request.case_label + "\"");
   return {static_cast<std::size_t>(it - points_.begin())};
 }
 
 std::string PointPlan::history_key_problem(std::string_view key) const {
-  if (key == vocabulary::kCase) return "";
+  if (key == schema::kCase) return "";
   return "plan \"" + std::string(name()) + "\" selects cases by `case` label";
 }
 

@@ -132,10 +132,10 @@ class SaltelliPlan final : public SampledPlan {
   bool hands_out_by_frame() const override { return true; }  // frames are base sample by base sample
 
   std::vector<cube::Coordinate> extra_coordinates() const override {
-    auto sample = number_coordinate(vocabulary::kSaltelliSample, vocabulary::kCase, "1",
+    auto sample = number_coordinate(schema::kSaltelliSample, schema::kCase, "1",
                                     "Saltelli base sample the frame belongs to", samples_);
     sample.is_index = true;  // whole numbers: stored as integers
-    return {text_coordinate(vocabulary::kSaltelliBlock, vocabulary::kCase, "Saltelli design block: A, B or AB_<parameter>", blocks_),
+    return {text_coordinate(schema::kSaltelliBlock, schema::kCase, "Saltelli design block: A, B or AB_<parameter>", blocks_),
             std::move(sample)};
   }
 

@@ -21,7 +21,7 @@
 #include "pcrf/analysis/risk.hpp"
 #include "pcrf/user_error.hpp"
 
-namespace pcrf::post {
+namespace pcrf::hazard {
 
 struct HazardFile {
   std::filesystem::path file;
@@ -38,4 +38,4 @@ HazardFile read_hazard_file(const std::filesystem::path& file, risk::Tail tail);
 inline constexpr std::uintmax_t kMaxHazardFileBytes = 16u << 20;
 inline constexpr std::size_t kMaxHazardPoints = 100000;
 
-}  // namespace pcrf::post
+}  // namespace pcrf::hazard

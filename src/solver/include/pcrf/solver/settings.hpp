@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "pcrf/metrics/unresolved.hpp"
 #include "pcrf/setting.hpp"
 
 namespace pcrf {
@@ -51,13 +52,8 @@ Integrator parse_integrator(const std::string& text);  ///< "dopri5", "taylor", 
 std::string to_string(Integrator i);
 std::vector<Integrator> integrator_choices();  ///< every registered integrator, in its order
 
-/// tail_s = "until-rest": the free vibration after the record goes on until the frame rests.
-inline constexpr double kTailUntilRest = std::numeric_limits<double>::infinity();
-
-/// The setting that resolves a case still rocking at its end (rocking_at_end) for a tail of
-/// `tail_s` [s]: "a longer physics.tail_s …" when the tail is fixed, "… physics.max_tail_s …"
-/// when it runs until rest (kTailUntilRest); both when NaN (not known).
-std::string tail_advice(double tail_s);
+// kTailUntilRest and tail_advice: pcrf/metrics/unresolved.hpp (below the solver: the schema's
+// verdict notes use them too).
 
 /// What the physics of a case includes. Every member is described (key, unit, default,
 /// check, doc) in physics_settings(); the comments here say only what the code needs.
