@@ -32,14 +32,16 @@ std::vector<std::size_t> frame_dimensions(const cube::CubeLayout& layout, std::s
   return dims;
 }
 
-/// The frame of a case on `frame_dims`: "name=value,…" ("all" when none; a `case` by its case_label).
+/// The frame of a case on `frame_dims`: "name=value,…" ("all" when none; a `case` by its case_label where the cube has one).
 std::string frame_label(const cube::CubeLayout& layout, const std::vector<std::size_t>& frame_dims,
                         const std::vector<std::size_t>& coords) {
   std::string label;
   for (std::size_t d : frame_dims) {
     const auto& name = layout.dimensions[d].name;
-    const cube::Coordinate* c = layout.find_coordinate(name == vocabulary::kCase ? vocabulary::kCaseLabel : name);
-    label += (label.empty() ? "" : ",") + (name == vocabulary::kCase ? c->label(coords[d]) : name + "=" + c->label(coords[d]));
+    // A cube without case labels (a sampled plan's, whose label the case number says): case=<i>.
+    const cube::Coordinate* labelled = name == vocabulary::kCase ? layout.find_coordinate(vocabulary::kCaseLabel) : nullptr;
+    const cube::Coordinate* c = labelled != nullptr ? labelled : layout.find_coordinate(name);
+    label += (label.empty() ? "" : ",") + (labelled != nullptr ? c->label(coords[d]) : name + "=" + c->label(coords[d]));
   }
   return label.empty() ? "all" : label;
 }

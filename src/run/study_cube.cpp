@@ -121,7 +121,9 @@ void add_pulse_coordinates(const Study& study, const CaseSpace& space, cube::Cub
                        frame_dimensions, {}};
   cube::SideVariable threshold{names::kUpliftThreshold, "g", "ground acceleration that uplifts the frame at rest",
                                frame_dimensions, {}};
-  for (const auto& point : space.frames()) {
+  p.values.reserve(static_cast<std::size_t>(space.distinct_frames()));
+  threshold.values.reserve(static_cast<std::size_t>(space.distinct_frames()));
+  space.for_each_frame([&](const SceneSpec& point) {
     double p_rad_s = std::nan(""), threshold_g = std::nan("");
     try {
       const auto scene = point.make();
@@ -132,7 +134,7 @@ void add_pulse_coordinates(const Study& study, const CaseSpace& space, cube::Cub
     }
     p.values.push_back(p_rad_s);
     threshold.values.push_back(threshold_g);
-  }
+  });
   if (!periods.empty()) {
     std::vector<std::string> dimensions{names::kRecord};
     dimensions.insert(dimensions.end(), frame_dimensions.begin(), frame_dimensions.end());

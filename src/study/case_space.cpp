@@ -88,6 +88,19 @@ std::int64_t CaseSpace::handout_index(std::int64_t position) const {
 
 std::vector<SceneSpec> CaseSpace::frames() const { return plan_->frames(); }
 
+std::int64_t CaseSpace::distinct_frames() const {
+  std::int64_t n = 1;
+  for (const auto& d : plan_->dimensions()) n *= static_cast<std::int64_t>(d.size);
+  return n;
+}
+
+void CaseSpace::for_each_frame(const std::function<void(const SceneSpec&)>& visit) const {
+  std::vector<std::size_t> shape;
+  for (const auto& d : plan_->dimensions()) shape.push_back(d.size);
+  const std::int64_t n = distinct_frames();
+  for (std::int64_t f = 0; f < n; ++f) visit(plan_->frame_at(unravel(f, shape)));  // row-major, as frames()
+}
+
 std::int64_t CaseSpace::resolve(const HistoryRequest& request) const {
   std::vector<std::size_t> coords(shape_.size());
   if (request.record) {

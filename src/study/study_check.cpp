@@ -70,11 +70,10 @@ std::string describe(const Study& study, const SceneSpec& frame) {
 }
 
 /// Counts the frames the model cannot represent, and checks the initial state of the rest.
-/// Each frame is built once.
+/// Each frame is built once, one at a time.
 void check_frames(const Study& study, const CaseSpace& space, CheckedStudy& checked) {
-  const auto frames = space.frames();
-  const std::int64_t cases_per_frame = space.size() / static_cast<std::int64_t>(frames.size());
-  for (const auto& spec : frames) {
+  const std::int64_t cases_per_frame = space.size() / space.distinct_frames();
+  space.for_each_frame([&](const SceneSpec& spec) {
     const Scene* frame = nullptr;
     std::shared_ptr<PreparedFrame> prepared;  // owns *frame
     try {
@@ -84,7 +83,7 @@ void check_frames(const Study& study, const CaseSpace& space, CheckedStudy& chec
     } catch (const std::invalid_argument& e) {  // impossible geometry, or outside the model's domain
       if (checked.invalid_frames++ == 0) checked.first_invalid = describe(study, spec) + ": " + e.what();
       checked.invalid_cases += cases_per_frame;
-      continue;
+      return;
     }
     try {
       check_initial_state(*frame, study.physics);
@@ -92,7 +91,7 @@ void check_frames(const Study& study, const CaseSpace& space, CheckedStudy& chec
       throw UserError(study.where("physics." + last_key_name(e.where().keys)), e.problem(Dialect::kStudy) +
                                                                                " (frame " + describe(study, spec) + ")");
     }
-  }
+  });
 }
 
 /// Incidences that all look like radians (radians_problem): a warning, or an error with

@@ -94,6 +94,60 @@ TEST(CubeFile, WritesFlushesAndReadsBack) {
   EXPECT_THROW(reader.read_metric("nope"), CubeError);
 }
 
+/// A cube along one `case` dimension of n frames: the case number, a parameter and, as every
+/// cube of a sampled plan had before issue 38 (the old layout), a text label per case.
+CubeLayout case_layout(std::size_t n, bool labels) {
+  CubeLayout l;
+  l.dimensions = {{"record", 1}, {"case", n}};
+  Coordinate record{"record", "record", "", "ground motion", {}, {"ER1"}, true, false};
+  Coordinate index{"case", "case", "", "frame number", {}, {}, false, true};
+  Coordinate kappa{"kappa", "case", "1", "", {}, {}, false, false};
+  Coordinate label{"case_label", "case", "", "frame label", {}, {}, true, false};
+  for (std::size_t i = 0; i < n; ++i) {
+    index.numbers.push_back(static_cast<double>(i));
+    kappa.numbers.push_back(1.0 + 1.0 / static_cast<double>(i + 3));  // no two alike, not short decimals
+    label.strings.push_back("s" + std::to_string(i));
+  }
+  l.coordinates = {record, index};
+  if (labels) l.coordinates.push_back(label);
+  l.coordinates.push_back(kappa);
+  l.metrics = {{"theta_max_rad", "rad", "peak"}};
+  l.status_flags = {{0, "at_rest"}};
+  l.attributes = {{kFingerprintName, std::string("f")}};
+  return l;
+}
+
+// Coordinates longer than a few thousand values are chunked and deflated (issue 38), shorter
+// ones stay contiguous as every coordinate was before: both read back exactly, with and
+// without the per-case text labels that cubes written before issue 38 hold.
+TEST(CubeFile, CoordinatesReadBackChunkedOrNotWithOrWithoutLabels) {
+  for (const std::size_t n : {std::size_t{100}, std::size_t{70000}}) {
+    for (const bool labels : {true, false}) {
+      const auto file = test::scratch_dir("cube_coordinates") / ("c" + std::to_string(n) + std::to_string(labels) + ".h5");
+      const auto layout = case_layout(n, labels);
+      {
+        CubeWriter writer(file, layout, OpenMode::kOverwrite);
+        writer.store(static_cast<std::int64_t>(n - 1), 0, {0.25});
+        writer.close();
+      }
+      CubeReader reader(file);
+      const auto& read = reader.layout();
+      EXPECT_EQ(read.find_coordinate("kappa")->numbers, layout.find_coordinate("kappa")->numbers) << n;
+      EXPECT_EQ(read.find_coordinate("case")->numbers, layout.find_coordinate("case")->numbers) << n;
+      EXPECT_TRUE(read.find_coordinate("case")->is_index);
+      ASSERT_EQ(read.find_coordinate("case_label") != nullptr, labels) << n;
+      if (labels) {
+        EXPECT_EQ(read.find_coordinate("case_label")->strings[n - 1], "s" + std::to_string(n - 1));
+      }
+      EXPECT_EQ(reader.read_metric("theta_max_rad")[n - 1], 0.25);
+      EXPECT_TRUE(reader.damage().empty());
+      const auto picked = select_cases(read, {parse_selector("kappa=" + layout.find_coordinate("kappa")->label(0))});
+      EXPECT_EQ(std::count(picked.begin(), picked.end(), true), 1);
+      EXPECT_TRUE(picked[0]);
+    }
+  }
+}
+
 TEST(CubeFile, ResumeKeepsDoneCasesAndRefusesAnotherStudy) {
   const auto file = test::scratch_dir("cube_resume") / "c.h5";
   {

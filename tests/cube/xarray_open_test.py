@@ -1,5 +1,7 @@
 """A cube opened by plain xarray (no pcrf code): `status` is an integer with CF flags that
-name every status, and range-generated coordinates select by the decimals a reader types.
+name every status, and range-generated coordinates select by the decimals a reader types. An
+LHS of more than 4096 frames (its coordinates chunked, shuffled and deflated, no per-case label
+stored) opens with every coordinate, equal to what `pcrf cube export` prints.
 
 Run by ctest: python3 xarray_open_test.py PCRF SCRATCH_DIR. Exit code 77 (skipped) when
 xarray or netCDF4 is missing.
@@ -61,5 +63,49 @@ def main(pcrf, folder):
         print(f"{engine}: status {status.dtype}, kappa {ds.kappa.values.tolist()}")
 
 
+LHS = """[[records]]
+synthetic = "sine:amplitude_g=0.05,period_s=0.5,cycles=1,duration_s=0.5"
+[plan]
+kind = "lhs"
+samples = 5000
+seed = 7
+[axes]
+kappa = {from = 1.2, to = 2.4}
+tan_alpha = {from = 0.15, to = 0.25}
+[outputs]
+metrics = ["theta_max_rad"]
+"""
+
+
+def lhs_coordinates(pcrf, folder):
+    """A long LHS: xarray reads its compressed coordinates as the engine wrote them."""
+    import csv
+    import io
+    study = os.path.join(folder, "lhs.toml")
+    cube = os.path.join(folder, "lhs.h5")
+    with open(study, "w", encoding="utf-8") as f:
+        f.write(LHS)
+    subprocess.run([pcrf, "study", study, "-o", cube, "--overwrite", "--progress-interval", "0"],
+                   check=True, capture_output=True)
+    rows = list(csv.DictReader(io.StringIO(subprocess.run(
+        [pcrf, "cube", "export", cube, "--no-record-text"], check=True, capture_output=True, text=True).stdout)))
+    for engine in ("netcdf4", "h5netcdf"):
+        try:
+            ds = xr.open_dataset(cube, engine=engine)
+        except (ValueError, ImportError) as e:
+            print(f"{engine}: skipped ({e})")
+            continue
+        assert "case_label" not in ds.variables, list(ds.variables)
+        assert ds.sizes["case"] == 5000, ds.sizes
+        for name in ("case", "kappa", "tan_alpha", "lambda", "lambda_h", "pi_e_c"):
+            assert name in ds.coords, f"{engine}: no coordinate {name} in {list(ds.coords)}"
+        kappa = ds.kappa.values.tolist()
+        assert [float(r["kappa"]) for r in rows] == kappa, f"{engine}: kappa differs from the export"
+        assert ds.case.values.tolist() == list(range(5000))
+        ds.close()
+        print(f"{engine}: lhs of 5000 frames, coordinates {sorted(ds.coords)}")
+
+
 if __name__ == "__main__":
     main(sys.argv[1], sys.argv[2])
+    lhs_coordinates(sys.argv[1], sys.argv[2])

@@ -41,6 +41,41 @@ TEST(SampledStudy, LatinHypercubeFramesFillTheRanges) {
   EXPECT_DOUBLE_EQ(layout.find_coordinate("lambda")->numbers[7], 2.0);  // not varied: the base
 }
 
+// A sampled frame's label ("s<case>") is its case number: the cube stores no text per case
+// (issue 38), yet a history still names its case by that label, and the fragility table names
+// a frame by its case number.
+TEST(SampledStudy, LabelsAreNotStoredButStillNameAHistory) {
+  const auto dir = test::scratch_dir("sampled_labels");
+  const std::string text = kRecords + "[plan]\nkind = \"lhs\"\nsamples = 6\nseed = 2\n[axes]\n"
+                                      "kappa = {from = 1.2, to = 2.4}\n"
+                                      "[[outputs.histories]]\nlabel = \"four\"\nrecord = \"" + std::string(kPulse) + "\"\ncase = \"s4\"\n";
+  const auto run = run_in(dir, text, "-o lhs.h5 --progress-interval 0");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  cube::CubeReader cube(dir / "lhs.h5");
+  EXPECT_EQ(cube.layout().find_coordinate("case_label"), nullptr);
+  ASSERT_NE(cube.layout().find_coordinate("case"), nullptr);
+  const auto names = cube.history_names();
+  ASSERT_EQ(names.size(), 1u);
+  const auto history = cube.read_history(names[0]);
+  bool case_four = false;
+  for (const auto& a : history.attributes)
+    if (a.name == "case_index")
+      if (const auto* i = std::get_if<std::int64_t>(&a.value)) case_four = case_four || *i % 6 == 4;  // linear index: record × scale × case
+  EXPECT_TRUE(case_four) << names[0];
+}
+
+// Without stored labels, the fragility table names a sampled frame by its case number.
+TEST(SampledStudy, FragilityNamesASampledFrameByItsCaseNumber) {
+  const auto dir = test::scratch_dir("sampled_fragility");
+  const std::string text = kRecords + "[plan]\nkind = \"lhs\"\nsamples = 3\nseed = 3\n[intensity]\nmeasure = \"pga_g\"\n"
+                                      "[axes]\nkappa = {from = 1.2, to = 2.4}\nintensity = [0.5, 2.0]\n";
+  ASSERT_EQ(run_in(dir, text, "-o lhs.h5 --progress-interval 0").exit_code, 0);
+  const auto table = test::run_command(pcrf() + " cube fragility " + quoted(dir / "lhs.h5"));
+  ASSERT_EQ(table.exit_code, 0) << table.err;
+  for (const char* frame : {"\ncase=0 ", "\ncase=1 ", "\ncase=2 "})
+    EXPECT_NE(table.out.find(frame), std::string::npos) << frame << " in\n" << table.out;
+}
+
 TEST(SampledStudy, SensitivityOfASaltelliCubeIsTheEstimatorOnItsOutputs) {
   const auto dir = test::scratch_dir("sampled_saltelli");
   const std::string text = kRecords + "[plan]\nkind = \"saltelli\"\nsamples = 32\nscramble = true\n[axes]\n"

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <limits>
 
 #include "pcrf/schema/cube_vocabulary.hpp"
 #include "pcrf/user_error.hpp"
@@ -98,35 +99,48 @@ PointPlan::PointPlan(const SceneModel& model, std::vector<Point> points)
     if (p.model == nullptr) p.model = model_;
 }
 
+PointPlan::PointPlan(const SceneModel& model, std::size_t count)
+    : model_(&model), dimensions_{{schema::kCase, count}} {}
+
 SceneSpec PointPlan::frame_at(std::span<const std::size_t> coordinates) const {
-  const Point& p = points_[coordinates[0]];
-  return {p.model, p.parameters};
+  const std::size_t i = coordinates[0];
+  const SceneModel& m = point_model(i);
+  ScenePoint values(m.parameters.size());
+  for (std::size_t k = 0; k < values.size(); ++k) values[k] = point_value(i, k);
+  return {&m, std::move(values)};
 }
 
 std::vector<SceneSpec> PointPlan::frames() const {
   std::vector<SceneSpec> frames;
-  for (const auto& p : points_) frames.push_back({p.model, p.parameters});
+  frames.reserve(point_count());
+  for (std::size_t i = 0; i < point_count(); ++i) frames.push_back(frame_at(std::span<const std::size_t>(&i, 1)));
   return frames;
 }
 
 std::vector<cube::Coordinate> PointPlan::coordinates() const {
-  std::vector<double> index(points_.size());
-  std::vector<std::string> labels, models;
-  for (std::size_t i = 0; i < points_.size(); ++i) {
-    index[i] = static_cast<double>(i);
-    labels.push_back(points_[i].label);
-    models.emplace_back(points_[i].model->name);
-  }
-  std::vector<cube::Coordinate> coords{number_coordinate(schema::kCase, schema::kCase, "", "frame number", index)};
+  // Each per-case vector is made only for a coordinate the cube stores (a study of 10^6
+  // cases held every label and model name twice more here).
+  const std::size_t n = point_count();
+  std::vector<double> index(n);
+  for (std::size_t i = 0; i < n; ++i) index[i] = static_cast<double>(i);
+  std::vector<cube::Coordinate> coords{number_coordinate(schema::kCase, schema::kCase, "", "frame number", std::move(index))};
   coords.back().is_index = true;
-  coords.push_back(text_coordinate(schema::kCaseLabel, schema::kCase, "frame label", labels));
+  if (stores_labels()) {
+    std::vector<std::string> labels;
+    for (std::size_t i = 0; i < n; ++i) labels.push_back(point_label(i));
+    coords.push_back(text_coordinate(schema::kCaseLabel, schema::kCase, "frame label", labels));
+  }
   // The models present: the plan's first, then the others in catalogue order.
   std::vector<const SceneModel*> present{model_};
+  std::vector<char> used(scene_models().size(), 0);
+  for (std::size_t i = 0; i < n; ++i) used[static_cast<std::size_t>(&point_model(i) - scene_models().data())] = 1;
   for (const auto& m : scene_models())
-    if (&m != model_ && std::any_of(points_.begin(), points_.end(), [&](const Point& p) { return p.model == &m; }))
-      present.push_back(&m);
-  if (present.size() > 1)
+    if (&m != model_ && used[static_cast<std::size_t>(&m - scene_models().data())]) present.push_back(&m);
+  if (present.size() > 1) {
+    std::vector<std::string> models;
+    for (std::size_t i = 0; i < n; ++i) models.emplace_back(point_model(i).name);
     coords.push_back(text_coordinate(schema::kSceneModel, schema::kCase, "scene model of the frame", models));
+  }
   for (auto& c : extra_coordinates()) coords.push_back(std::move(c));
   // The plan's model's other parameters are the cube's attributes (frame_h_m, …); another
   // model has no base point, so all of its parameters are coordinates.
@@ -137,19 +151,31 @@ std::vector<cube::Coordinate> PointPlan::coordinates() const {
       if (m == model_ && !parameter.axis) continue;
       if (std::find(written.begin(), written.end(), parameter.name) != written.end()) continue;
       written.push_back(parameter.name);
+      // SceneSpec::value without a frame made and a search by name per case (1 k
+      // instructions a case of rank 0's set-up for an LHS): the position of the parameter in
+      // each model present, found once.
+      std::vector<std::size_t> position(present.size());
+      for (std::size_t j = 0; j < present.size(); ++j) position[j] = present[j]->index(parameter.name);
       std::vector<double> values;
-      for (const auto& p : points_) values.push_back(SceneSpec{p.model, p.parameters}.value(parameter.name));
+      values.reserve(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        const SceneModel* own = &point_model(i);
+        const std::size_t j = static_cast<std::size_t>(std::find(present.begin(), present.end(), own) - present.begin());
+        values.push_back(position[j] == std::string::npos ? std::numeric_limits<double>::quiet_NaN()  // as SceneSpec::value
+                                                          : point_value(i, position[j]));
+      }
       coords.push_back(number_coordinate(std::string(parameter.name), schema::kCase, std::string(parameter.units),
-                                         std::string(parameter.long_name), values));
+                                         std::string(parameter.long_name), std::move(values)));
     }
   return coords;
 }
 
 std::vector<std::size_t> PointPlan::locate(const HistoryRequest& request) const {
-  if (!request.case_label) return {pick_single(request, points_.size(), schema::kCase)};
-  const auto it = std::find_if(points_.begin(), points_.end(), [&](const Point& p) { return p.label == *request.case_label; });
-  if (it == points_.end()) fail_history(request, "no case is labelled \"" + *request.case_label + "\"");
-  return {static_cast<std::size_t>(it - points_.begin())};
+  if (!request.case_label) return {pick_single(request, point_count(), schema::kCase)};
+  for (std::size_t i = 0; i < point_count(); ++i)
+    if (point_label(i) == *request.case_label) return {i};
+  fail_history(request, "no case is labelled \"" + *request.case_label + "\"");
+  return {};  // not reached: fail_history throws
 }
 
 std::string PointPlan::history_key_problem(std::string_view key) const {

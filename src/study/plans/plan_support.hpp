@@ -55,7 +55,9 @@ void describe_parameters(std::ostream& out, const SceneModel& model, const Scene
 /// number, `case_label`, where the cases mix scene models `scene_model`, the plan's own
 /// (extra_coordinates), the axis parameters of the plan's model and every parameter of any
 /// other model present (NaN for a case whose model has no such parameter); a history names
-/// its frame by `case` label.
+/// its frame by `case` label. The frames are held (a list's, one-at-a-time's) or computed from
+/// their numbers by the plan (the sampled plans, which then hold their unit points only):
+/// everything here reads them through point_model, point_value and point_label.
 class PointPlan : public Plan {
  public:
   struct Point {
@@ -73,9 +75,21 @@ class PointPlan : public Plan {
 
  protected:
   PointPlan(const SceneModel& model, std::vector<Point> points);
+  /// A plan of `count` frames that it computes (it overrides the point_* functions).
+  PointPlan(const SceneModel& model, std::size_t count);
   const SceneModel& model() const { return *model_; }
+  std::size_t point_count() const { return dimensions_[0].size; }
+  /// Frame i's model, the value of its model's parameter k, and its label.
+  virtual const SceneModel& point_model(std::size_t i) const { return *points_[i].model; }
+  virtual double point_value(std::size_t i, std::size_t k) const { return points_[i].parameters[k]; }
+  virtual std::string point_label(std::size_t i) const { return points_[i].label; }
   /// Auxiliary coordinates along `case` between case_label and the parameters.
   virtual std::vector<cube::Coordinate> extra_coordinates() const { return {}; }
+  /// Whether the cube stores each case's label as text (`case_label`). A plan whose labels
+  /// its case numbers and other coordinates say (lhs and sobol "s<case>", saltelli
+  /// "s<saltelli_sample>:<saltelli_block>") answers false: a string a case cost an LHS cube
+  /// about 40 B of its 144 (issue 38). The labels still name a case in a history request.
+  virtual bool stores_labels() const { return true; }
   const std::vector<Point>& points() const { return points_; }
 
  private:

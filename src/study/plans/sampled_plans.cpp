@@ -1,7 +1,8 @@
 // The sampled plans: points of the unit hypercube (plan/sampling.hpp) mapped onto the
-// [axes] ranges of the varied parameters, the others at the base point. lhs and sobol label
-// their frames "s0", "s1", …; saltelli groups them by base sample j ("s<j>:A", "s<j>:B",
-// "s<j>:AB_<parameter>") and stores each frame's block and sample.
+// [axes] ranges of the varied parameters, the others at the base point, frame by frame when
+// asked (the plan holds the unit points, d doubles a frame, and nothing else per frame). lhs
+// and sobol label their frames "s0", "s1", …; saltelli groups them by base sample j ("s<j>:A",
+// "s<j>:B", "s<j>:AB_<parameter>") and stores each frame's block and sample.
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -88,26 +89,20 @@ void check_drawable(const PlanInput& input, const Sampling& s, double frames_per
   check_frame_count(static_cast<double>(s.samples) * frames_per_sample, input.plan.where("samples"));
 }
 
-/// Unit points (row-major, one row per frame) mapped onto the ranges; labels "s<row>".
-std::vector<PointPlan::Point> map_points(const study::UnitPoints& unit, const Sampling& s, const ScenePoint& base) {
-  const auto varied = s.varied();
-  const std::size_t d = varied.size();
-  std::vector<PointPlan::Point> points(unit.size() / d);
-  for (std::size_t row = 0; row < points.size(); ++row) {
-    points[row].label = "s" + std::to_string(row);
-    points[row].parameters = base;
-    for (std::size_t k = 0; k < d; ++k)
-      points[row].parameters[varied[k]] = s.ranges[varied[k]]->at(unit[row * d + k]);
-  }
-  return points;
-}
-
+/// A sampled plan holds its unit points (row-major, one row of d values per frame) and maps
+/// frame i onto the ranges when asked: no frame, label or parameter vector is held per case.
+/// lhs and sobol label frame i "s<i>".
 class SampledPlan : public PointPlan {
  public:
-  SampledPlan(const SceneModel& model, std::string_view name, std::vector<Point> points, Sampling sampling)
-      : PointPlan(model, std::move(points)), name_(name), sampling_(std::move(sampling)) {}
+  SampledPlan(const SceneModel& model, std::string_view name, study::UnitPoints unit, Sampling sampling,
+              ScenePoint base)
+      : PointPlan(model, unit.size() / sampling.varied().size()), name_(name), sampling_(std::move(sampling)),
+        base_(std::move(base)), unit_(std::move(unit)), varied_(sampling_.varied()), slot_(base_.size(), kNotVaried) {
+    for (std::size_t k = 0; k < varied_.size(); ++k) slot_[varied_[k]] = k;
+  }
 
   std::string_view name() const override { return name_; }
+  bool stores_labels() const override { return false; }  // "s<case>" (saltelli: its sample and block)
   void describe(std::ostream& out) const override {
     describe_axes(out, model(), {});
     out << "sampled samples=" << sampling_.samples << " seed=" << sampling_.seed << " scramble=" << sampling_.scramble;
@@ -117,31 +112,62 @@ class SampledPlan : public PointPlan {
     out << '\n';
   }
 
+ protected:
+  const SceneModel& point_model(std::size_t) const override { return model(); }
+  /// The base point's value, or the unit coordinate mapped onto the parameter's range.
+  double point_value(std::size_t i, std::size_t k) const override {
+    if (slot_[k] == kNotVaried) return base_[k];
+    return sampling_.ranges[k]->at(unit_[i * varied_.size() + slot_[k]]);
+  }
+  std::string point_label(std::size_t i) const override { return "s" + std::to_string(i); }
+  /// The varied parameters (positions in the model's table), d of them.
+  const std::vector<std::size_t>& varied() const { return varied_; }
+
  private:
+  static constexpr std::size_t kNotVaried = static_cast<std::size_t>(-1);
   std::string_view name_;
   Sampling sampling_;
+  ScenePoint base_;
+  study::UnitPoints unit_;
+  std::vector<std::size_t> varied_;
+  std::vector<std::size_t> slot_;  ///< per parameter: its column in unit_, or kNotVaried
 };
 
+/// Saltelli: frame i is row i of the design, base sample i / (d + 2), block i % (d + 2).
 class SaltelliPlan final : public SampledPlan {
  public:
-  SaltelliPlan(const SceneModel& model, std::vector<Point> points, Sampling sampling, std::vector<std::string> blocks,
-               std::vector<double> samples)
-      : SampledPlan(model, "saltelli", std::move(points), std::move(sampling)), blocks_(std::move(blocks)), samples_(std::move(samples)) {}
+  SaltelliPlan(const SceneModel& model, study::UnitPoints unit, Sampling sampling, ScenePoint base)
+      : SampledPlan(model, "saltelli", std::move(unit), std::move(sampling), std::move(base)) {}
 
  protected:
   bool hands_out_by_frame() const override { return true; }  // frames are base sample by base sample
 
+  std::string point_label(std::size_t i) const override {
+    return "s" + std::to_string(study::SaltelliDesign::sample(i, varied().size())) + ":" + block_name(i);
+  }
+
   std::vector<cube::Coordinate> extra_coordinates() const override {
+    std::vector<std::string> blocks;
+    std::vector<double> samples;
+    for (std::size_t i = 0; i < point_count(); ++i) {
+      blocks.push_back(block_name(i));
+      samples.push_back(static_cast<double>(study::SaltelliDesign::sample(i, varied().size())));
+    }
     auto sample = number_coordinate(schema::kSaltelliSample, schema::kCase, "1",
-                                    "Saltelli base sample the frame belongs to", samples_);
+                                    "Saltelli base sample the frame belongs to", std::move(samples));
     sample.is_index = true;  // whole numbers: stored as integers
-    return {text_coordinate(schema::kSaltelliBlock, schema::kCase, "Saltelli design block: A, B or AB_<parameter>", blocks_),
+    return {text_coordinate(schema::kSaltelliBlock, schema::kCase, "Saltelli design block: A, B or AB_<parameter>",
+                            std::move(blocks)),
             std::move(sample)};
   }
 
  private:
-  std::vector<std::string> blocks_;  ///< per frame: "A", "B" or "AB_<parameter>"
-  std::vector<double> samples_;      ///< per frame: the base sample j
+  /// "A", "B" or "AB_<parameter>".
+  std::string block_name(std::size_t i) const {
+    const std::size_t block = study::SaltelliDesign::block(i, varied().size());
+    if (block < 2) return block == 0 ? "A" : "B";
+    return "AB_" + std::string(model().parameters[varied()[block - 2]].name);
+  }
 };
 
 }  // namespace
@@ -149,34 +175,24 @@ class SaltelliPlan final : public SampledPlan {
 std::shared_ptr<const Plan> read_lhs_plan(const PlanInput& input) {
   const Sampling s = read_sampling(input);
   check_drawable(input, s, 1.0);
-  auto points = map_points(study::latin_hypercube(s.samples, s.varied().size(), s.seed), s, input.base);
-  return std::make_shared<SampledPlan>(input.model, "lhs", std::move(points), s);
+  return std::make_shared<SampledPlan>(input.model, "lhs", study::latin_hypercube(s.samples, s.varied().size(), s.seed),
+                                       s, input.base);
 }
 
 std::shared_ptr<const Plan> read_sobol_plan(const PlanInput& input) {
   const Sampling s = read_sampling(input);
   check_drawable(input, s, 1.0);
-  auto points = map_points(study::sobol_points(s.samples, s.varied().size(), s.scramble, s.seed), s, input.base);
-  return std::make_shared<SampledPlan>(input.model, "sobol", std::move(points), s);
+  return std::make_shared<SampledPlan>(input.model, "sobol",
+                                       study::sobol_points(s.samples, s.varied().size(), s.scramble, s.seed), s, input.base);
 }
 
 std::shared_ptr<const Plan> read_saltelli_plan(const PlanInput& input) {
   const Sampling s = read_sampling(input);
-  const auto varied = s.varied();
-  const std::size_t d = varied.size();
+  const std::size_t d = s.varied().size();
   if (d < 2) input.top.fail("axes", "plan \"saltelli\" needs at least two varied parameters (sensitivity apportions variance among them)");
   check_drawable(input, s, static_cast<double>(d + 2));
-  auto points = map_points(study::saltelli_design(s.samples, d, s.scramble, s.seed).points, s, input.base);
-  std::vector<std::string> blocks;
-  std::vector<double> samples;
-  for (std::size_t row = 0; row < points.size(); ++row) {
-    const std::size_t block = study::SaltelliDesign::block(row, d);
-    const std::size_t sample = study::SaltelliDesign::sample(row, d);
-    blocks.push_back(block == 0 ? "A" : block == 1 ? "B" : "AB_" + std::string(input.model.parameters[varied[block - 2]].name));
-    samples.push_back(static_cast<double>(sample));
-    points[row].label = "s" + std::to_string(sample) + ":" + blocks.back();
-  }
-  return std::make_shared<SaltelliPlan>(input.model, std::move(points), s, std::move(blocks), std::move(samples));
+  return std::make_shared<SaltelliPlan>(input.model, study::saltelli_design(s.samples, d, s.scramble, s.seed).points, s,
+                                        input.base);
 }
 
 }  // namespace pcrf::study::detail

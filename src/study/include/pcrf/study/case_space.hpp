@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -61,6 +62,11 @@ class CaseSpace {
   std::int64_t handout_index(std::int64_t position) const;
   /// Distinct frames of the study (every parameter combination), for up-front checks.
   std::vector<SceneSpec> frames() const;
+  /// Number of distinct frames (frames().size()).
+  std::int64_t distinct_frames() const;
+  /// Calls `visit` with each of frames() in turn, in its order, made one at a time: memory
+  /// for one frame, not for every frame of the study.
+  void for_each_frame(const std::function<void(const SceneSpec&)>& visit) const;
 
   /// The incidence axis' values as the study gives them (empty: no such axis).
   const std::vector<double>& incidences() const { return incidences_; }

@@ -1,0 +1,101 @@
+#!/usr/bin/env python3
+"""Who pays for a result (issue 38): per rank and per thread, the instructions each case costs,
+counted by callgrind, for a Latin hypercube of frames that never lift (bench/nonlift_cost.py's
+study: each case a scan of one weak record, so that what surrounds a case is what shows).
+
+    python3 bench/master/rank_costs.py --pcrf build/pcrf                    # 1 rank
+    python3 bench/master/rank_costs.py --pcrf build/pcrf --ranks 4 --small 1000 3000
+
+Every rank runs under `valgrind --tool=callgrind --separate-threads=yes` at two study sizes;
+the difference over the difference in cases cancels start-up (MPI's, the record's, the cube's
+creation). Instruction counts do not depend on the machine's load (2 cores shared here).
+
+Prints, per thread of each rank, its marginal instructions per case: all of them, and without
+Open MPI's progress and polling (objects of libmpi, open-pal, pmix, ucx, hwloc, libevent,
+ld.so and the kernel's vdso), which on an oversubscribed machine count how long a thread waited,
+not what it did. Then:
+- rank 0's main thread (the master: hand-out, results, the cube) per result, beyond its own
+  cases (it computes none; rank 0's cases run in its worker thread);
+- the balance: the busiest thread's marginal instructions (MPI left out) over the mean of the
+  threads that work (issue 38 item 5 asks for at most 1.25).
+"""
+import argparse
+import glob
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.dirname(HERE))
+from nonlift_cost import ENV, function_costs, record_table, write_study  # noqa: E402 (one study, one parser)
+
+# Objects whose instructions are MPI's progress and polling, not a thread's own work.
+MPI_OBJECTS = re.compile(r"libmpi|open-pal|open-rte|libpmix|pmix|libucs|libucp|libuct|libhwloc|libevent|"
+                         r"ld-linux|vdso|libfabric|libpsm")
+# A thread below this many marginal instructions per case is not working (a progress thread).
+WORKING_FLOOR = 100.0
+
+
+def profile_run(pcrf, ranks, study, folder, tag):
+    """Runs the study under callgrind on every rank; returns {(rank, thread): (all, own)} counts."""
+    out = os.path.join(folder, f"{tag}.%q{{OMPI_COMM_WORLD_RANK}}")
+    valgrind = ["valgrind", "--tool=callgrind", "--separate-threads=yes", f"--callgrind-out-file={out}"]
+    command = valgrind + [pcrf, "study", study, "-o", os.path.join(folder, "cube.h5"), "--overwrite",
+                         "--progress-interval", "0"]
+    if ranks > 1:
+        command = ["mpirun", "--oversubscribe", "-n", str(ranks)] + command
+    env = dict(ENV, OMPI_COMM_WORLD_RANK=ENV.get("OMPI_COMM_WORLD_RANK", "0"))
+    done = subprocess.run(command, capture_output=True, text=True, env=env)
+    if done.returncode != 0:
+        sys.exit(f"rank_costs: {' '.join(command)} failed:\n{done.stderr[-3000:]}")
+    counts = {}
+    for path in glob.glob(os.path.join(folder, f"{tag}.*")):
+        match = re.search(r"\.(\d+)-(\d+)$", path)
+        if not match:
+            continue
+        costs = function_costs(path)
+        total = sum(costs.values())
+        own = sum(c for (obj, _), c in costs.items() if not MPI_OBJECTS.search(obj))
+        counts[(int(match.group(1)), int(match.group(2)))] = (total, own)
+        os.remove(path)
+    return counts
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--pcrf", default=os.path.join(HERE, "..", "..", "build", "pcrf"))
+    parser.add_argument("--ranks", type=int, default=1, help="MPI ranks (mpirun --oversubscribe)")
+    parser.add_argument("--small", type=int, nargs=2, default=[2000, 10000], metavar=("N1", "N2"),
+                        help="the two study sizes (default 2000 10000)")
+    parser.add_argument("--source", default=os.path.join(HERE, "..", ".."), help="source tree (../shared/records)")
+    args = parser.parse_args()
+    pcrf = os.path.abspath(args.pcrf)
+    label, scale, records = record_table(args.source)
+    small, large = args.small
+    with tempfile.TemporaryDirectory() as folder:
+        runs = [profile_run(pcrf, args.ranks, write_study(folder, n, records, scale), folder, f"cg{n}")
+                for n in (small, large)]
+    keys = sorted(set(runs[0]) & set(runs[1]))
+    per_case = {k: tuple((runs[1][k][i] - runs[0][k][i]) / (large - small) for i in (0, 1)) for k in keys}
+    print(f"rank_costs: non-lifting LHS over eight parameters, record {label}, {args.ranks} rank(s);")
+    print(f"instructions per case = (count at {large} cases - count at {small}) / {large - small}, callgrind\n")
+    print("| rank | thread | per case, all | per case, MPI left out |")
+    print("| --- | --- | --- | --- |")
+    for (rank, thread), (total, own) in per_case.items():
+        print(f"| {rank} | {thread} | {total:,.0f} | {own:,.0f} |")
+    total_all = sum(t for t, _ in per_case.values())
+    working = [own for _, own in per_case.values() if own > WORKING_FLOOR]
+    master = per_case.get((0, 1), (0.0, 0.0))
+    print(f"\nall threads together: {total_all:,.0f} instructions per case")
+    print(f"rank 0's main thread (master, cube) per result beyond its own cases: {master[0]:,.0f} "
+          f"({master[1]:,.0f} with MPI left out)")
+    if working:
+        mean = sum(working) / len(working)
+        print(f"balance: busiest thread {max(working):,.0f} / mean of {len(working)} working threads "
+              f"{mean:,.0f} = {max(working) / mean:.2f} (goal <= 1.25)")
+
+
+if __name__ == "__main__":
+    main()

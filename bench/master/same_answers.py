@@ -1,0 +1,127 @@
+#!/usr/bin/env python3
+"""Same answers (issue 38 item 4): every metric and status of every case, wall time aside, of
+a reference pcrf (e.g. main's build) against this one, bit for bit, for small studies of every
+plan and level axis (grid, list, LHS, Sobol', Saltelli, IDA, stripes, pairs, pulses) at 1, 2,
+3, 4 and 8 ranks (mpirun --oversubscribe). Not a test (it needs two builds); a check to run
+after any change to the scheduling or the writing.
+
+    python3 bench/master/same_answers.py --baseline /work/main/build/pcrf --pcrf build/pcrf
+    python3 bench/master/same_answers.py --baseline OLD --pcrf NEW --ranks 1 4 --studies lhs ida
+
+The reference runs at 1 rank, this build at each rank count. Cases are compared row by row
+in `pcrf cube export --no-record-text` (values as shortest round-trip decimals: equal text is
+equal bits) on the columns both cubes have; a column one cube has and the other lacks (e.g.
+`case_label`, no longer stored for sampled plans) is listed, not compared. The pairs study
+needs ../shared/records (skipped without).
+"""
+import argparse
+import csv
+import io
+import os
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+IGNORED = {"wall_time_s"}  # the one value that is not the model's
+
+SINES = '[[records]]\nsynthetic = ["sine:amplitude_g=1.5,period_s=0.5,cycles=2,duration_s=3", ' \
+        '"sine:amplitude_g=3,period_s=0.7,cycles=2,duration_s=3"]\n'
+NOISE = '[[records]]\nsynthetic = ["stochastic:seed=1,pga_g=1,duration_s=6", "stochastic:seed=2,pga_g=1,duration_s=6"]\n'
+SAMPLED = "[axes]\nscale = [1.0, 2.0]\nkappa = {from = 1.2, to = 2.4}\ntan_alpha = {from = 0.15, to = 0.25}\n"
+PAIR = "nearfault_hsiifu3/RSN181_IMPVALL.H_H-E06"
+
+STUDIES = {
+    "grid": SINES + "[axes]\nscale = [0.5, 1.0, 2.0]\nkappa = [1.4, 2.2]\ntan_alpha = [0.15, 0.2]\n",
+    "list": SINES + '[plan]\nkind = "list"\n[[cases]]\nlabel = "stocky"\ntan_alpha = 0.3\n[[cases]]\nkappa = 3\n'
+                    "[[cases]]\nlambda_h = 0.25\n[axes]\nscale = [1.0, 2.5]\n",
+    "lhs": SINES + '[plan]\nkind = "lhs"\nsamples = 24\nseed = 3\n' + SAMPLED,
+    "sobol": SINES + '[plan]\nkind = "sobol"\nsamples = 16\nscramble = true\nseed = 5\n' + SAMPLED,
+    "saltelli": SINES + '[plan]\nkind = "saltelli"\nsamples = 6\nseed = 2\n' + SAMPLED,
+    "ida": NOISE + '[axes]\nkappa = [1.4, 2.2]\n[intensity]\nmeasure = "pga_g"\n[ida]\nstart = 0.5\n'
+                   "max_intensity = 8\nmax_runs = 5\n",
+    "stripes": NOISE + '[intensity]\nmeasure = "pga_g"\n[axes]\nintensity = [0.2, 0.6, 1.2]\nkappa = [1.4, 2.2]\n',
+    "pairs": '[[records]]\nh1 = "{records}/' + PAIR + '140.AT2"\nh2 = "{records}/' + PAIR + '230.AT2"\n'
+             'name = "RSN181"\n[intensity]\nmeasure = "pga_rotd50_g"\n[axes]\nintensity = [0.3, 0.8]\n'
+             'incidence_deg = {{from = 0, to = 120, count = 3}}\n',
+    "pulses": ('[[records]]\npulse = ["pulse-sine", "ricker"]\n[intensity]\nmeasure = "pga_g"\n'
+                     "[axes]\npulse_period_s = [0.4, 1.0]\nkappa = [1.4, 2.2]\nintensity = [0.3, 0.9]\n"),
+}
+
+
+def run_study(pcrf, ranks, study, cube):
+    command = [pcrf, "study", study, "-o", cube, "--overwrite", "--progress-interval", "0"]
+    if ranks > 1:
+        command = ["mpirun", "--oversubscribe", "-n", str(ranks)] + command
+    done = subprocess.run(command, capture_output=True, text=True, env=ENV)
+    if done.returncode != 0:
+        raise RuntimeError(f"{' '.join(command)} failed:\n{done.stderr[-2000:]}")
+    out = subprocess.run([pcrf, "cube", "export", cube, "--no-record-text"], capture_output=True, text=True,
+                         env=ENV, check=True).stdout
+    return list(csv.DictReader(io.StringIO(out)))
+
+
+def compare(reference, rows):
+    """Differences between two exports (one line each), and the columns not compared."""
+    if not reference or not rows:
+        return ["an export is empty"], set()
+    common = (set(reference[0]) & set(rows[0])) - IGNORED
+    skipped = (set(reference[0]) ^ set(rows[0])) - IGNORED
+    problems = []
+    if len(reference) != len(rows):
+        problems.append(f"{len(reference)} cases against {len(rows)}")
+    for i, (a, b) in enumerate(zip(reference, rows)):
+        for column in sorted(common):
+            if a[column] != b[column]:
+                problems.append(f"case row {i}: {column} {a[column]} against {b[column]}")
+                break
+        if len(problems) > 5:
+            break
+    return problems, skipped
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--baseline", required=True, help="the reference pcrf (run at 1 rank)")
+    parser.add_argument("--pcrf", default=os.path.join(HERE, "..", "..", "build", "pcrf"))
+    parser.add_argument("--ranks", type=int, nargs="*", default=[1, 2, 3, 4, 8])
+    parser.add_argument("--studies", nargs="*", default=list(STUDIES), choices=list(STUDIES))
+    parser.add_argument("--records", default=os.path.join(HERE, "..", "..", "..", "shared", "records"),
+                        help="the PEER records folder (pairs)")
+    args = parser.parse_args()
+    baseline, pcrf = os.path.abspath(args.baseline), os.path.abspath(args.pcrf)
+    records = os.path.abspath(args.records)
+    if not os.path.isdir(records) and os.path.isdir("/work/shared/records"):
+        records = "/work/shared/records"
+    print("| study | cases | " + " | ".join(f"{r} rank{'s' if r > 1 else ''}" for r in args.ranks) + " | not compared |")
+    print("| --- | --- |" + " --- |" * len(args.ranks) + " --- |")
+    failed = False
+    with tempfile.TemporaryDirectory() as folder:
+        for name in args.studies:
+            text = STUDIES[name].format(records=records) if name == "pairs" else STUDIES[name]
+            if name == "pairs" and not os.path.exists(f"{records}/{PAIR}140.AT2"):
+                print(f"| {name} | skipped: no {records}/{PAIR}140.AT2 |")
+                continue
+            study = os.path.join(folder, f"{name}.toml")
+            with open(study, "w", encoding="utf-8") as f:
+                f.write(f'[study]\nname = "{name}"\n' + text)
+            reference = run_study(baseline, 1, study, os.path.join(folder, "reference.h5"))
+            cells, skipped = [], set()
+            for ranks in args.ranks:
+                try:
+                    problems, columns = compare(reference, run_study(pcrf, ranks, study, os.path.join(folder, "new.h5")))
+                except RuntimeError as e:
+                    problems, columns = [str(e).splitlines()[0]], set()
+                skipped |= columns
+                cells.append("equal" if not problems else "DIFFERENT")
+                for p in problems:
+                    print(f"  {name} at {ranks} ranks: {p}", file=sys.stderr)
+                failed = failed or bool(problems)
+            print(f"| {name} | {len(reference)} | " + " | ".join(cells) + f" | {', '.join(sorted(skipped)) or '-'} |",
+                  flush=True)
+    sys.exit(1 if failed else 0)
+
+
+if __name__ == "__main__":
+    main()
