@@ -22,7 +22,7 @@ namespace {
 
 /// Command-line values; the [run] flags override the study file's table.
 struct StudyArguments {
-  study::StudyRunOptions run;
+  run::StudyRunOptions run;
   std::string shard;  ///< "K/N"
   CLI::Option* shard_flag = nullptr;
   std::unique_ptr<SettingFlags<study::RunOptions>> run_flags;
@@ -97,9 +97,9 @@ void run_study_command(StudyArguments& args) {
   if (const auto problem = parallel::MpiSession::startup_problem(); !problem.empty()) throw UserError(problem);
   parallel::MpiSession mpi;
   catch_stop_signals();
-  std::optional<study::StudySummary> summary;
+  std::optional<run::StudySummary> summary;
   try {
-    summary = study::run_study(args.run, mpi);
+    summary = run::run_study(args.run, mpi);
   } catch (const UserError& e) {
     // Nothing has started. Report here, before MPI_Finalize, and not through UserError in
     // main(): once another rank has exited with code 2, mpirun may end this one at any time.
@@ -116,7 +116,7 @@ void run_study_command(StudyArguments& args) {
   }
   if (!summary) exit_code() = 2;  // rank ≠ 0 of a study that cannot run: rank 0 reported it
   if (summary && mpi.is_master() && summary->stopped_by != 0) {
-    std::cerr << "pcrf study: " << study::stop_report(*summary) << "; continue with: pcrf study "
+    std::cerr << "pcrf study: " << run::stop_report(*summary) << "; continue with: pcrf study "
               << args.run.study_file.string() << " -o " << summary->output.string() << " --resume" << std::endl;
   }
   if (summary && mpi.is_master())

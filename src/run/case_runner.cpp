@@ -11,7 +11,9 @@
 
 #include "pcrf/solver/case_group.hpp"
 
-namespace pcrf::study {
+namespace pcrf::run {
+// A run runs a study: its values (pcrf::study) are this library's vocabulary.
+using namespace pcrf::study;
 namespace {
 
 /// A failed case: its metrics NaN (an IDA's intensity and factor columns stay).
@@ -211,4 +213,4 @@ bool is_failure(CaseStatus status) {
   return status == CaseStatus::kSolverFailure || status == CaseStatus::kTimeLimit;
 }
 
-}  // namespace pcrf::study
+}  // namespace pcrf::run

@@ -7,7 +7,9 @@
 
 #include "pcrf/run/case_runner.hpp"
 
-namespace pcrf::study {
+namespace pcrf::run {
+// A run runs a study: its values (pcrf::study) are this library's vocabulary.
+using namespace pcrf::study;
 
 std::string CostEstimate::text() const {
   if (sampled == 0) return "no case could be timed: no cost estimate";
@@ -51,4 +53,4 @@ CostEstimate estimate_cost(const Study& study, const CaseSpace& space, RecordCac
   return estimate;
 }
 
-}  // namespace pcrf::study
+}  // namespace pcrf::run

@@ -10,7 +10,9 @@
 #include "pcrf/schema/cube_vocabulary.hpp"
 #include "pcrf/run/result_row.hpp"
 
-namespace pcrf::study {
+namespace pcrf::run {
+// A run runs a study: its values (pcrf::study) are this library's vocabulary.
+using namespace pcrf::study;
 namespace {
 
 /// What a run tells a curve's search: a collapse for the [ida] collapse statuses, a failed
@@ -109,4 +111,4 @@ void store_ida_summaries(const Study& study, const ida::IdaCurves& curves, cube:
   writer.store_side(schema::kUnstableTo, std::move(to));
 }
 
-}  // namespace pcrf::study
+}  // namespace pcrf::run

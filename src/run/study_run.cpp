@@ -30,7 +30,9 @@
 #include "pcrf/study/study_parser.hpp"
 #include "pcrf/study/study_size.hpp"
 
-namespace pcrf::study {
+namespace pcrf::run {
+// A run runs a study: its values (pcrf::study) are this library's vocabulary.
+using namespace pcrf::study;
 namespace {
 
 /// The case space, once the study is known to fit (a plan is drawn whole when made).
@@ -497,4 +499,4 @@ std::optional<StudySummary> run_study(const StudyRunOptions& options, const para
   return summary ? summary : StudySummary{};
 }
 
-}  // namespace pcrf::study
+}  // namespace pcrf::run

@@ -24,7 +24,9 @@
 #include "pcrf/excitation/station_record.hpp"
 #include "pcrf/study/study.hpp"
 
-namespace pcrf::study {
+namespace pcrf::run {
+// A run runs a study: its values (pcrf::study) are this library's vocabulary.
+using namespace pcrf::study;
 
 class CaseRunner {
  public:
@@ -106,4 +108,4 @@ CaseStatus outcome_status(const parallel::CaseOutcome& outcome);
 /// Statuses that count as failures in progress lines and summaries.
 bool is_failure(CaseStatus status);
 
-}  // namespace pcrf::study
+}  // namespace pcrf::run

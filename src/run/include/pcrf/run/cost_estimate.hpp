@@ -11,7 +11,9 @@
 #include "pcrf/study/record_source.hpp"
 #include "pcrf/study/study.hpp"
 
-namespace pcrf::study {
+namespace pcrf::run {
+// A run runs a study: its values (pcrf::study) are this library's vocabulary.
+using namespace pcrf::study;
 
 struct CostEstimate {
   std::int64_t sampled = 0;     ///< cases run and timed
@@ -33,4 +35,4 @@ struct CostEstimate {
 CostEstimate estimate_cost(const Study& study, const CaseSpace& space, RecordCache& records, std::int64_t sample = 24,
                            double budget_s = 5.0);
 
-}  // namespace pcrf::study
+}  // namespace pcrf::run

@@ -11,7 +11,9 @@
 #include "pcrf/study/case_space.hpp"
 #include "pcrf/study/study.hpp"
 
-namespace pcrf::study {
+namespace pcrf::run {
+// A run runs a study: its values (pcrf::study) are this library's vocabulary.
+using namespace pcrf::study;
 
 /// The IDA curves of `study`, with every run `writer` already holds replayed (a resumed curve
 /// continues where it stopped). `workers`: how many will ask (batch sizes).
@@ -22,4 +24,4 @@ std::unique_ptr<ida::IdaCurves> make_ida_curves(const Study& study, const CaseSp
 /// verdict checks also the band of intensities whose verdicts were unstable.
 void store_ida_summaries(const Study& study, const ida::IdaCurves& curves, cube::CubeWriter& writer);
 
-}  // namespace pcrf::study
+}  // namespace pcrf::run

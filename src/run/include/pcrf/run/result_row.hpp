@@ -17,7 +17,9 @@
 #include "pcrf/schema/cube_vocabulary.hpp"
 #include "pcrf/study/study.hpp"
 
-namespace pcrf::study {
+namespace pcrf::run {
+// A run runs a study: its values (pcrf::study) are this library's vocabulary.
+using namespace pcrf::study;
 
 class ResultColumns {
  public:
@@ -52,4 +54,4 @@ class ResultColumns {
   std::vector<cube::MetricVariable> variables_;
 };
 
-}  // namespace pcrf::study
+}  // namespace pcrf::run
