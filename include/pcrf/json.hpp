@@ -28,6 +28,11 @@ class JsonObject {
     out_ << value;
     return *this;
   }
+  JsonObject& boolean(std::string_view key, bool value) {
+    start(key);
+    out_ << (value ? "true" : "false");
+    return *this;
+  }
   JsonObject& text(std::string_view key, std::string_view value) {
     start(key);
     write_string(value);

@@ -22,6 +22,7 @@ int& exit_code();
 void add_run_command(CLI::App& app);    ///< `pcrf run`: one case, JSON on stdout
 void add_frame_command(CLI::App& app);  ///< `pcrf frame`: a frame's properties and pushover curve
 void add_record_command(CLI::App& app); ///< `pcrf record FILE`: intensity measures, JSON on stdout
+void add_record_library_commands(CLI::App* record);  ///< `pcrf record spectra|select`
 void add_study_command(CLI::App& app);  ///< `pcrf study FILE`: a parametric study (MPI)
 void add_cube_command(CLI::App& app);   ///< `pcrf cube info|export|stats|fragility|sensitivity|merge`
 void add_plot_command(CLI::App& app);   ///< `pcrf plot KIND INPUT -o FILE`: figures (pcrf.plot of the Python module, matplotlib)

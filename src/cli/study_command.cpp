@@ -148,7 +148,9 @@ void add_study_command(CLI::App& app) {
   auto* resume = cmd->add_flag("--resume", args->run.resume, "continue an existing cube of the same study");
   auto* overwrite = cmd->add_flag("--overwrite", args->run.overwrite, "replace an existing cube");
   resume->excludes(overwrite);
-  cmd->add_flag("--check", args->run.check_only, "check the study (records, geometry) and print its size; compute nothing");
+  cmd->add_flag("--check", args->run.check_only,
+                "check the study (records, geometry), print its size and its cost estimated from a timed sample "
+                "of its cases; write nothing");
   args->run_flags = std::make_unique<SettingFlags<study::RunOptions>>(cmd, study::run_settings());
   args->shard_flag = cmd->add_option("--shard", args->shard,
                   "compute shard K of N (K/N): a deterministic 1/N of the cases; join the parts with pcrf cube merge");

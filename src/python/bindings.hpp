@@ -12,6 +12,7 @@ namespace py = pybind11;
 void bind_run(py::module_& m);       ///< run(**keywords): one case, as `pcrf run`
 void bind_frame(py::module_& m);     ///< frame(**keywords): a frame's properties, as `pcrf frame`
 void bind_record(py::module_& m);    ///< record_measures(**keywords): as `pcrf record`
+void bind_record_library(py::module_& m);  ///< pulse, record_spectra, select: as `pcrf record pulse|spectra|select`
 void bind_study(py::module_& m);     ///< study(source, **keywords): a study in process, as `pcrf study`
 void bind_settings(py::module_& m);  ///< settings(): every setting's description, as `pcrf settings`
 void bind_cube(py::module_& m);      ///< cube_report(kind, file, **keywords): as `pcrf cube KIND --json`

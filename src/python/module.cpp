@@ -43,6 +43,7 @@ PYBIND11_MODULE(_pcrf, m) {
   pcrf::python::bind_run(m);
   pcrf::python::bind_frame(m);
   pcrf::python::bind_record(m);
+  pcrf::python::bind_record_library(m);
   pcrf::python::bind_study(m);
   pcrf::python::bind_settings(m);
   pcrf::python::bind_cube(m);

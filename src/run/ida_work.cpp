@@ -50,12 +50,15 @@ class CollapseRule {
 
 }  // namespace
 
+ida::IdaCurves::CollapseTest collapse_test(const Study& study) {
+  return [rule = CollapseRule(study)](const parallel::CaseOutcome& o) { return rule(o.status, rule.theta(o.row)); };
+}
+
 std::unique_ptr<ida::IdaCurves> make_ida_curves(const Study& study, const CaseSpace& space, const cube::CubeWriter& writer,
                                                 int workers) {
   const CollapseRule rule(study);
-  auto curves = std::make_unique<ida::IdaCurves>(
-      static_cast<std::size_t>(space.curves()), study.ida->search(),
-      [rule](const parallel::CaseOutcome& o) { return rule(o.status, rule.theta(o.row)); }, workers);
+  auto curves = std::make_unique<ida::IdaCurves>(static_cast<std::size_t>(space.curves()), study.ida->search(),
+                                                 collapse_test(study), workers);
   // Resume: each curve's stored runs, in order, up to the first one not stored (a curve has
   // at most one run in flight, so a killed run leaves no gap before its last stored point).
   const auto& status = writer.status();

@@ -484,7 +484,7 @@ std::optional<StudySummary> run_study(const StudyRunOptions& options, const para
     const auto& c = setup.checked;
     StudySummary summary{prepared->space->size(), 0, 0, 0, {}, c.fingerprint, c.invalid_cases, c.invalid_frames,
                          c.first_invalid, 0, {}, {}, {}, {}, c.warnings};
-    summary.cost_estimate = estimate_cost(prepared->study, *prepared->space, *prepared->records, 16, 1.0).text();
+    summary.cost_estimate = estimate_cost(prepared->study, *prepared->space, *prepared->records, 16, 2.0).text();
     return summary;
   }
   if (auto received = receive_study(mpi, prepared.get())) prepared = std::move(received);

@@ -14,6 +14,8 @@ the command line's message, its keys spelt as keywords (``tail_s=: must be posit
 - ``Frame(model="pcrf"|"block"|"rocking-frame", **parameters)``: a scene's properties and
   pushover curve (``pcrf frame``).
 - ``record_measures(...)``: a record's intensity measures (``pcrf record``).
+- ``pulse(...)``, ``record_spectra(...)``, ``select(...)``: pulses identified, a library's
+  spectra, records selected to a target (``pcrf record pulse|spectra|select``).
 - ``study(dict or path, output=...)``: a study, returned as an xarray.Dataset (``pcrf study``).
 - ``open_cube(path)``: a result cube as an xarray.Dataset, ``status`` as integer flags.
 - ``stats``, ``fragility``, ``sensitivity``, ``p695``, ``risk``: ``pcrf cube``'s reports as DataFrames.
@@ -165,6 +167,51 @@ def record_measures(record=None, **keywords):
     return _json.loads(text)
 
 
+def pulse(record=None, series=False, **keywords):
+    """What ``pcrf record pulse`` prints, as a dict: whether the record is pulse-like and its
+    pulse period ``period_s`` (Baker 2007 on one component; with ``record_h2`` the station's
+    other horizontal, Shahi & Baker 2014 over every orientation), and each candidate pulse's
+    measures; with ``series=True`` also the velocity, the extracted pulse and the residual
+    [cm/s]. ``record`` is a file (keywords as for ``run``) or an array in g (then ``dt_s=``)."""
+    if record is not None:
+        if isinstance(record, (str, _os.PathLike)):
+            keywords["record"] = record
+        else:
+            keywords["ground_accel_g"] = record
+    text, notes = _pcrf.pulse(series=bool(series), **keywords)
+    _warn_notes(notes)
+    return _json.loads(text)
+
+
+def record_spectra(paths, periods_s=None, damping=0.05):
+    """What ``pcrf record spectra`` writes, as a pandas DataFrame: one row per horizontal
+    component (``kind`` "component") and per pair (``kind`` "rotd50"), columns ``name``,
+    ``kind``, ``file``, ``file_h2``, ``dt_s``, ``samples``, ``damping``, ``pga_g`` and
+    ``sa_g_<T>s`` per period (default 30 from 0.05 s to 10 s). ``paths``: a folder (searched
+    for .AT2 files) or files, or a list of them. Write it with ``DataFrame.to_csv(index=False)``
+    for ``select``."""
+    import io as _io
+
+    import pandas as _pd
+
+    if isinstance(paths, (str, _os.PathLike)):
+        paths = [paths]
+    periods = [] if periods_s is None else ([periods_s] if not hasattr(periods_s, "__len__") else list(periods_s))
+    text, notes = _pcrf.record_spectra([_os.fspath(p) for p in paths], [float(t) for t in periods], float(damping))
+    _warn_notes(notes)
+    return _pd.read_csv(_io.StringIO(text), comment="#", keep_default_na=False)
+
+
+def select(target, library, n, kind="rotd50", scale_min=0.25, scale_max=4.0, seed=1):
+    """What ``pcrf record select --json`` prints, as a dict: ``n`` records of the spectra table
+    ``library`` (a file of ``pcrf record spectra``) with scale factors, whose scaled ln Sa match
+    the ``target`` file's mean and sigma (Jayaram, Lin & Baker 2011; Baker & Lee 2018): the
+    records (name, kind, file, file_h2, scale, ln_sa), the set's mean and sigma of ln Sa and the
+    fit (median_error_percent, sigma_error_percent, sum_of_squares)."""
+    return _json.loads(_pcrf.select(_os.fspath(target), _os.fspath(library), int(n), kind, float(scale_min),
+                                    float(scale_max), int(seed)))
+
+
 def settings():
     """Every setting: a list of dicts (table, key, kind, unit, default, doc)."""
     return _pcrf.settings()
@@ -199,7 +246,7 @@ from ._cube import open_cube  # noqa: E402
 from ._reports import fragility, p695, risk, sensitivity, stats  # noqa: E402
 from ._study import study  # noqa: E402
 
-__all__ = ["run", "Frame", "record_measures", "study", "open_cube", "stats", "fragility", "sensitivity", "p695", "risk",
+__all__ = ["run", "Frame", "record_measures", "pulse", "record_spectra", "select", "study", "open_cube", "stats", "fragility", "sensitivity", "p695", "risk",
            "settings", "vocabulary", "check_output", "write_output", "InputError", "OutputError",
            "RecordWarning"]
 

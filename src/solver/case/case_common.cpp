@@ -53,18 +53,45 @@ double first_exceedance(const GroundMotion& rec, double t_from, double t_end, do
 
 namespace {
 
+/// The uplift threshold as a line in ü_v, a_up(0) + λ_g ü_v (docs/vertical_excitation.md), and
+/// how far that line may lie above the threshold's formula (G(g + ü_v) + K)/S as rounded, for
+/// every ü_v of a vertical component: a bound on the rounding of both, 1e-9 of the size of the
+/// terms the threshold sums (|G g/S| + |G ü_v/S| + |K/S|; K/S = threshold(0) − λ_g g), far
+/// above it. Samples where |ü_h| stays below the line less the bound cannot open the frame.
+struct ThresholdLine {
+  ThresholdLine(const Scene& scene, const GroundMotion& up)
+      : at_rest_m_s2(scene.uplift_threshold_m_s2()), lambda(scene.lambda_g()) {
+    const double g = scene.gravity_m_s2(), v_abs = std::max(-up.min_m_s2(), up.max_m_s2());
+    rounding_m_s2 = 1e-9 * (std::abs(lambda) * (g + v_abs) + std::abs(at_rest_m_s2 - lambda * g));
+  }
+  /// The line less the rounding bound at ü_v [m/s²]: below it a horizontal cannot open.
+  double floor_m_s2(double vertical_m_s2) const { return at_rest_m_s2 + lambda * vertical_m_s2 - rounding_m_s2; }
+
+  double at_rest_m_s2;  ///< a_up(0)
+  double lambda;        ///< λ_g = d a_up / d ü_v [-]
+  double rounding_m_s2 = 0.0;
+};
+
 /// True when the horizontal peak stays below the uplift threshold at every ü_v the vertical
-/// component takes (and at 0, after the record), by more than the rounding of the threshold's
-/// formula (G(g + ü_v) + K)/S: then no sample, and no point between samples, opens the frame.
-/// The threshold is affine in ü_v, so its lowest value over that range is at one end.
-bool never_opens(const Excitation& excitation, const Scene& scene) {
+/// component takes (and at 0, after the record): then no sample, and no point between
+/// samples, opens the frame. The threshold is affine in ü_v, so its lowest value over that
+/// range is at one end (for λ_g > 0: the largest horizontal against the smallest g + ü_v).
+bool never_opens(const Excitation& excitation, const ThresholdLine& line) {
   const GroundMotion& up = *excitation.vertical();
   const double v_lo = std::min(up.min_m_s2(), 0.0), v_hi = std::max(up.max_m_s2(), 0.0);
-  const double lowest = std::min(scene.uplift_threshold_m_s2(v_lo), scene.uplift_threshold_m_s2(v_hi));
-  // |G g/S| + |G ü_v/S| + |K/S|: the size of the terms the threshold sums, K/S = threshold(0) − λ_g g.
-  const double lambda = scene.lambda_g(), g = scene.gravity_m_s2();
-  const double terms = std::abs(lambda) * (g + std::max(-v_lo, v_hi)) + std::abs(scene.uplift_threshold_m_s2() - lambda * g);
-  return excitation.horizontal().pga_m_s2() < lowest - 1e-9 * terms;
+  return excitation.horizontal().pga_m_s2() < std::min(line.floor_m_s2(v_lo), line.floor_m_s2(v_hi));
+}
+
+/// The first sample index j > i_from, below `j_end`, at which the frame may open: |ü_h|
+/// reaches ThresholdLine::floor_m_s2 at that sample's ü_v (a sample below it opens neither
+/// side, whatever the rounding of the threshold's formula); `j_end` when none does. Reads
+/// the samples directly: one multiply-add and one comparison per sample.
+std::size_t next_candidate(const std::vector<double>& h, const std::vector<double>& v, const ThresholdLine& line,
+                           std::size_t i_from, std::size_t j_end) {
+  const double base = line.at_rest_m_s2 - line.rounding_m_s2, lambda = line.lambda;
+  std::size_t j = i_from + 1;
+  while (j < j_end && !(std::abs(h[j]) >= base + lambda * v[j])) ++j;
+  return j;
 }
 
 }  // namespace
@@ -72,7 +99,8 @@ bool never_opens(const Excitation& excitation, const Scene& scene) {
 double first_opening(const Excitation& excitation, const Scene& scene, double t_from, double t_end) {
   if (!excitation.has_vertical())
     return first_exceedance(excitation.horizontal(), t_from, t_end, scene.uplift_threshold_m_s2());
-  if (never_opens(excitation, scene)) return kNaN;
+  const ThresholdLine line(scene, *excitation.vertical());
+  if (never_opens(excitation, line)) return kNaN;
   // The margin ±ü_h − threshold(ü_v) of each sign is linear between samples (the threshold is
   // affine in ü_v): the first sample interval where one turns positive holds the crossing.
   auto margin = [&](GroundAcceleration a, double sign) {
@@ -81,8 +109,19 @@ double first_opening(const Excitation& excitation, const Scene& scene, double t_
   const GroundAcceleration at_from = excitation.at(t_from);
   if (!scene.holds_closed(at_from)) return t_from;
   const double dt = excitation.dt_s();
-  const std::size_t n = excitation.horizontal().size();
-  for (auto i = static_cast<std::size_t>(std::max(0.0, std::floor(t_from / dt))); i + 1 < n; ++i) {
+  const auto& h = excitation.horizontal().samples_m_s2();
+  const auto& v = excitation.vertical()->samples_m_s2();
+  const std::size_t n = h.size();
+  // Intervals up to the one holding t_end, and one more against the rounding of t_end/dt (the
+  // exact test below stops at the first interval that starts after t_end).
+  const std::size_t j_end = static_cast<std::size_t>(std::min(static_cast<double>(n), std::floor(t_end / dt) + 3.0));
+  const auto i_from = static_cast<std::size_t>(std::max(0.0, std::floor(t_from / dt)));
+  // Samples at which the frame cannot open are passed over (their margins are negative on
+  // both sides); the interval i = j − 1 that ends at a candidate sample j is then tested as
+  // every interval was before: the ground at its ends through Excitation::at (sample j
+  // exactly at t1), the margins from the threshold's formula.
+  for (std::size_t j = next_candidate(h, v, line, i_from, j_end); j < j_end; j = next_candidate(h, v, line, j, j_end)) {
+    const std::size_t i = j - 1;
     const double t0 = std::max(static_cast<double>(i) * dt, t_from);
     if (t0 > t_end) break;
     const double t1 = static_cast<double>(i + 1) * dt;

@@ -35,6 +35,8 @@ KINDS = {
     "sensitivity": "first-order and total Sobol' indices with their 90 % intervals",
     "status": "map of the status over two axes (--x, --y), the others selected with -w",
     "table3": "the paper comparison (docs/paper_comparison.csv)",
+    "pulse": "a record's velocity, its extracted velocity pulse and the residual (JSON of pcrf record pulse --series)",
+    "selection": "target median and ±σ, the selected scaled spectra and their median (JSON of pcrf record select --json)",
 }
 
 

@@ -15,6 +15,10 @@ namespace pcrf::run {
 // A run runs a study: its values (pcrf::study) are this library's vocabulary.
 using namespace pcrf::study;
 
+/// What a run's outcome tells its curve's search under the study's [ida] collapse rule (the
+/// one rule of the run and of the cost estimate's IDA curves).
+ida::IdaCurves::CollapseTest collapse_test(const Study& study);
+
 /// The IDA curves of `study`, with every run `writer` already holds replayed (a resumed curve
 /// continues where it stopped). `workers`: how many will ask (batch sizes).
 std::unique_ptr<ida::IdaCurves> make_ida_curves(const Study& study, const CaseSpace& space, const cube::CubeWriter& writer,
