@@ -15,7 +15,7 @@ Two measures, as a shared and loaded machine requires:
   start-up and reading the record excluded; the per-case set-up counted), "Collected". These
   do not depend on the load. Also the share of them spent in the right-hand side (the
   scene's terms, the record, sincos) -- what is left when the integrator's own work is small;
-- time: the solver's own wall_time_s, the two builds run in turn (A B A B ...), median of
+- time: the solver's own cpu_time_s (wall_time_s from a build before the rename), the two builds run in turn (A B A B ...), median of
   --repeat runs each, and the ratio old/new taken pair by pair (median of the pair ratios).
   On a loaded machine a long case is preempted more often than a short one, which inflates
   that ratio; so, with --old, also
@@ -40,7 +40,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 # The scenes, records and level of the scene-cost bench, and its way of calling pcrf.
 from scene_cost import RECORD_PGA_OVER_THRESHOLD as PGA_OVER_THRESHOLD  # noqa: E402
-from scene_cost import RECORDS, pcrf_json as run_json, uplift_threshold_g as threshold_g  # noqa: E402
+from scene_cost import RECORDS, case_time_s, pcrf_json as run_json, uplift_threshold_g as threshold_g  # noqa: E402
 from scene_cost import SCENES as ALL_SCENES  # noqa: E402
 
 SCENES = {name: ALL_SCENES[name] for name in ("pcrf", "block")}
@@ -75,7 +75,7 @@ def instructions(command):
 
 
 def wall_s(command):
-    return run_json(command)["wall_time_s"]
+    return case_time_s(run_json(command))
 
 
 def child_cpu_s(command):

@@ -7,7 +7,7 @@ that both give the same result.
 
 For each of the paper's records (../shared/records/paper, scale 2.5: every one rocks the
 basic frame) it runs `pcrf run` with each binary in turn, --repeat times, interleaved so that
-a loaded machine slows both alike, and keeps the median of the solver's own wall_time_s
+a loaded machine slows both alike, and keeps the median of the solver's own cpu_time_s
 (process start-up excluded). It prints a table and the geometric mean of the ratios.
 """
 import argparse
@@ -18,6 +18,9 @@ import statistics
 import subprocess
 import sys
 from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from scene_cost import case_time_s  # noqa: E402
 
 
 def run(pcrf, record):
@@ -45,8 +48,8 @@ def main():
         same = True
         for _ in range(args.repeat):
             a, b = run(args.pcrf, record), run(args.reference, record)
-            mine.append(a["wall_time_s"])
-            theirs.append(b["wall_time_s"])
+            mine.append(case_time_s(a))
+            theirs.append(case_time_s(b))
             same = same and all(a[k] == b[k] for k in ("theta_max_rad", "t_theta_max_s", "impacts", "status", "steps"))
         m, t = statistics.median(mine), statistics.median(theirs)
         ratios.append(m / t)

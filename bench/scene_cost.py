@@ -15,7 +15,7 @@ where ../shared/records exists (PCRF_RECORDS_DIR overrides; skipped cleanly othe
 the paper's far-field records at a PGA of 1.2x the threshold.
 
 For every case it runs `pcrf run` --repeat times, interleaving the scenes so that a loaded
-machine slows them alike, and keeps the median of the solver's own wall_time_s (process
+machine slows them alike, and keeps the median of the solver's own cpu_time_s (process
 start-up and reading the record excluded; the per-case set-up counted). The integrator's work
 (steps, RHS evaluations) is the same in every repeat. It prints, as markdown, one row per case
 and scene, then one summary row per scene: medians over the cases of the time per case, the
@@ -49,6 +49,12 @@ def pcrf_json(command):
     if out.returncode != 0:  # named after the bench that runs (case_cost.py imports this)
         sys.exit(f"{Path(sys.argv[0]).stem}: {' '.join(command)} failed:\n{out.stderr}")
     return json.loads(out.stdout)
+
+
+def case_time_s(result):
+    """A case's own time from `pcrf run`'s JSON: cpu_time_s (the CPU time of the thread that
+    solved it), or wall_time_s from a build older than the rename (its steady clock)."""
+    return result["cpu_time_s"] if "cpu_time_s" in result else result["wall_time_s"]
 
 
 def uplift_threshold_g(pcrf, scene):
@@ -89,7 +95,7 @@ def main():
     parser.add_argument("--records", help="records folder (default: ../shared/records or PCRF_RECORDS_DIR)")
     args = parser.parse_args()
     thresholds = {scene: uplift_threshold_g(args.pcrf, scene) for scene in SCENES}
-    print(f"Scene cost per case, medians of {args.repeat} runs of `pcrf run` (wall_time_s), this machine\n")
+    print(f"Scene cost per case, medians of {args.repeat} runs of `pcrf run` (cpu_time_s), this machine\n")
     print("| case | scene | status | impacts | steps | RHS evals | time per case [ms] | per step [µs] | per RHS eval [µs] |")
     print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     summary = {scene: [] for scene in SCENES}
@@ -99,7 +105,7 @@ def main():
         for _ in range(args.repeat):
             for scene in SCENES:
                 result = pcrf_json([args.pcrf, "run", *SCENES[scene], *arguments(thresholds[scene])])
-                times[scene].append(result["wall_time_s"])
+                times[scene].append(case_time_s(result))
                 last[scene] = result
         for scene in SCENES:
             r, t = last[scene], statistics.median(times[scene])

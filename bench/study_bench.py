@@ -37,9 +37,9 @@ def run_study(pcrf, study, ranks, cube):
 
 
 def case_median_s(pcrf, cube):
-    out = subprocess.run([pcrf, "cube", "export", cube, "-m", "wall_time_s"], capture_output=True,
+    out = subprocess.run([pcrf, "cube", "export", cube, "-m", "cpu_time_s"], capture_output=True,
                          text=True, check=True).stdout
-    times = [float(row["wall_time_s"]) for row in csv.DictReader(io.StringIO(out)) if row["wall_time_s"]]
+    times = [float(row["cpu_time_s"]) for row in csv.DictReader(io.StringIO(out)) if row["cpu_time_s"]]
     return statistics.median(times)
 
 

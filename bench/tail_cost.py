@@ -7,7 +7,7 @@ still rocking is unresolved), interleaved, --repeats times each.
     python3 bench/tail_cost.py --pcrf build/pcrf [--ranks 2] [--repeats 3]
 
 Prints, per tail: runs, unresolved runs, the study's computing time (its closing line; median
-of the repeats), the sum of the runs' wall_time_s (median), and the geometric mean of each frame's collapse
+of the repeats), the sum of the runs' cpu_time_s (median), and the geometric mean of each frame's collapse
 Sa. Needs ../shared/records; prints a note and exits 0 without them.
 """
 import argparse
@@ -37,7 +37,7 @@ def run(pcrf, ranks, physics, folder):
         code = dict(zip(ds.status.attrs["flag_meanings"].split(), ds.status.attrs["flag_values"].tolist()))
         medians = [float(np.exp(np.mean(np.log(ds.collapse_intensity.isel(case=c).values))))
                    for c in range(ds.sizes["case"])]
-        return dict(seconds=seconds, wall=float(np.nansum(ds.wall_time_s.values)), runs=int((status >= 0).sum()),
+        return dict(seconds=seconds, wall=float(np.nansum(ds.cpu_time_s.values)), runs=int((status >= 0).sum()),
                     unresolved=int((status == code["rocking_at_end"]).sum()), medians=medians,
                     labels=[str(v) for v in ds.case_label.values])
 
@@ -58,7 +58,7 @@ def main():
                 results[tail].append(run(args.pcrf, args.ranks, physics, folder))
     labels = results[next(iter(TAILS))][0]["labels"]
     print(f"\nfar-field P-695 IDA, {args.ranks} ranks, medians of {args.repeats} interleaved runs")
-    print("| tail | runs | unresolved | computing [s] | sum of wall_time_s [s] | " +
+    print("| tail | runs | unresolved | computing [s] | sum of cpu_time_s [s] | " +
           " | ".join(f"collapse Sa, {label}: geometric mean [g]" for label in labels) + " |")
     print("| --- " * (5 + len(labels)) + "|")
     for tail, rows in results.items():

@@ -8,8 +8,9 @@ rocking frame (same α and p, beam mass ratio 0.5) under the 13 far-field record
 paper at 2x and 3x each scene's uplift threshold (PGA), as the speed issue's accuracy check
 asks: each case with the `reference` preset (ARKODE ERK5, rtol 1e-10), then with the `fast`
 and `balanced` presets' tolerances under `--integrator dopri5` and `--integrator taylor`.
-Prints, per integrator and preset, how many cases end in the reference's status and the
-median and 90th-percentile relative θ_max error. Skips cleanly without the records.
+Prints, per integrator and preset, how many cases end in the reference's status and with its
+impact count (all presets share the return-to-rest cut-off, [physics] rest_rise_rad), and the
+median, 90th-percentile and worst relative θ_max error. Skips cleanly without the records.
 """
 import argparse
 import json
@@ -57,14 +58,17 @@ def main():
                     for integ in ("dopri5", "taylor"):
                         r = run(args.pcrf, [*base, "--preset", preset, "--integrator", integ])
                         err = abs(r["theta_max_rad"] - ref["theta_max_rad"]) / max(abs(ref["theta_max_rad"]), 1e-300)
-                        rows.setdefault((scene, preset, integ), []).append((r["status"] == ref["status"], err, r["steps"]))
+                        rows.setdefault((scene, preset, integ), []).append(
+                            (r["status"] == ref["status"], err, r["steps"], r["impacts"] == ref["impacts"]))
     print(f"{len(records)} records x {len(MULTIPLES)} multiples of the uplift threshold, against --preset reference\n")
-    print("| scene | preset | integrator | same status | median θ_max error | 90th pct | median steps |")
-    print("| --- | --- | --- | --- | --- | --- | --- |")
+    print("| scene | preset | integrator | same status | same impacts | median θ_max error | 90th pct | worst | "
+          "median steps |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     for (scene, preset, integ), v in rows.items():
-        errs = [e for _, e, _ in v]
-        print(f"| {scene} | {preset} | {integ} | {sum(s for s, _, _ in v)}/{len(v)} | {statistics.median(errs):.2g} | "
-              f"{percentile(errs, 0.9):.2g} | {statistics.median(s for _, _, s in v):.0f} |")
+        errs = [e for _, e, _, _ in v]
+        print(f"| {scene} | {preset} | {integ} | {sum(s for s, _, _, _ in v)}/{len(v)} | "
+              f"{sum(i for _, _, _, i in v)}/{len(v)} | {statistics.median(errs):.2g} | "
+              f"{percentile(errs, 0.9):.2g} | {max(errs):.2g} | {statistics.median(s for _, _, s, _ in v):.0f} |")
 
 
 if __name__ == "__main__":

@@ -35,7 +35,7 @@ dt_s = 0.005
 t = np.arange(0.0, 3.0, dt_s)
 pulse_g = np.where(t < 1.0, 1.6 * np.sin(2 * np.pi * t / 0.5), 0.0)  # two cycles of a 0.5 s sine
 result, history = pcrf.run(pulse_g, dt_s, frame=basic, preset="reference", tail_s=2.0, history="pandas")
-print({key: result[key] for key in ("status", "theta_max_rad", "t_uplift_s", "impacts", "wall_time_s")})
+print({key: result[key] for key in ("status", "theta_max_rad", "t_uplift_s", "impacts", "cpu_time_s")})
 events = history[history["event"] > 0]
 print(f"{len(history)} rows, {len(events)} with events; the peak row:")
 print(history.loc[history["theta1_rad"].abs().idxmax(), ["t_s", "theta1_rad", "omega1_rad_s"]])

@@ -41,10 +41,11 @@ CaseResult solve_one_case(std::unique_ptr<Scene> scene, const PhysicsOptions& ph
   return solve_case(*prepared, excitation, solver, request, sink);
 }
 
-JsonObject case_json(double scale_factor, const CaseResult& result) {
+JsonObject case_json(double scale_factor, const CaseResult& result, const PhysicsOptions& physics) {
   JsonObject json;
   json.number("scale_factor", scale_factor);
   add_to_json(json, result);
+  json.number("rest_rise_rad", physics.rest_rise_rad);
   return json;
 }
 

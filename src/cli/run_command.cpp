@@ -102,7 +102,7 @@ void run(const RunOptions& o) {
   const CaseResult result =
       api::solve_one_case(std::move(scene), physics, scaled.view(), solver, o.history_dt_s, sink);
   if (csv) csv->commit();
-  std::cout << api::case_json(scaled.factor(), result).str() << std::endl;
+  std::cout << api::case_json(scaled.factor(), result, physics).str() << std::endl;
   if (const auto note = api::verdict_note(result, physics); !note.empty()) std::cerr << "pcrf run: note: " << note << '\n';
 }
 

@@ -82,7 +82,7 @@ constexpr std::string_view kTThetaMax = "t_theta_max_s";
 constexpr std::string_view kStrainColumnMax = "strain_column_max";
 constexpr std::string_view kStrainBeamMax = "strain_beam_max";
 constexpr std::string_view kImpacts = "impacts";
-constexpr std::string_view kWallTime = "wall_time_s";
+constexpr std::string_view kCpuTime = "cpu_time_s";
 
 const MetricInfo& handle(std::string_view name) { return *find_metric(name); }
 }  // namespace
@@ -97,7 +97,7 @@ const MetricInfo& t_theta_max() { return handle(kTThetaMax); }
 const MetricInfo& strain_column_max() { return handle(kStrainColumnMax); }
 const MetricInfo& strain_beam_max() { return handle(kStrainBeamMax); }
 const MetricInfo& impacts() { return handle(kImpacts); }
-const MetricInfo& wall_time() { return handle(kWallTime); }
+const MetricInfo& cpu_time() { return handle(kCpuTime); }
 }  // namespace metric
 
 const std::vector<MetricInfo>& all_metrics() {
@@ -119,14 +119,21 @@ const std::vector<MetricInfo>& all_metrics() {
        [](const CaseResult& r) { return r.strain_column_max; }},
       {kStrainBeamMax, "1", "peak beam tendon strain, initial strain included",
        [](const CaseResult& r) { return r.strain_beam_max; }},
-      {kImpacts, "1", "number of impacts", [](const CaseResult& r) { return static_cast<double>(r.impacts); }, true},
+      {kImpacts, "1",
+       "number of impacts (theta1 crossing zero), counted until a flight would rise less than the return-to-rest "
+       "cut-off that defines them: [physics] rest_rise_rad (cube attribute physics_rest_rise_rad, pcrf run's rest_rise_rad)",
+       [](const CaseResult& r) { return static_cast<double>(r.impacts); }, true},
       {"t_end_s", "s", "time at which the case ended", [](const CaseResult& r) { return r.t_end_s; }},
       {"steps", "1", "integrator steps", [](const CaseResult& r) { return static_cast<double>(r.counts.steps); }, true},
       {"rhs_evals", "1", "right-hand-side evaluations",
        [](const CaseResult& r) { return static_cast<double>(r.counts.rhs_evals); }, true},
       {"root_evals", "1", "root-function evaluations",
        [](const CaseResult& r) { return static_cast<double>(r.counts.root_evals); }, true},
-      {kWallTime, "s", "wall-clock time of the case", [](const CaseResult& r) { return r.wall_time_s; }},
+      {kCpuTime, "s",
+       "CPU time of the thread that solved the case (set-up, integration, verdict-check twins; "
+       "CLOCK_THREAD_CPUTIME_ID); in a lane batch its share of the batch thread's CPU time, each "
+       "interval split equally among the cases then in lanes; never time descheduled or another case's",
+       [](const CaseResult& r) { return r.cpu_time_s; }, false, false, "wall_time_s"},
       {kStatusStable, "1", "1 when the verdict survives the perturbation test (record x (1 +- 1e-9, 1e-7, 1e-6)), else 0",
        [](const CaseResult& r) { return r.status_stable; }, false, true},
       {"theta_max_spread", "1", "relative spread (max - min)/theta_max of peak |theta1| across the perturbation test",

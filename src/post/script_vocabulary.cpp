@@ -55,7 +55,7 @@ std::string script_vocabulary_json() {
                                 std::pair{"T_THETA_MAX", &metric::t_theta_max()},
                                 std::pair{"STRAIN_COLUMN_MAX", &metric::strain_column_max()},
                                 std::pair{"STRAIN_BEAM_MAX", &metric::strain_beam_max()}, std::pair{"IMPACTS", &metric::impacts()},
-                                std::pair{"WALL_TIME", &metric::wall_time()}})
+                                std::pair{"CPU_TIME", &metric::cpu_time()}})
     metric_roles.text(role, m->name);
   JsonObject root;
   root.objects("curve_states", curve_states).objects("statuses", statuses).objects("history_events", events).objects("parameters", parameters);

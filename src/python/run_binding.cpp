@@ -18,7 +18,7 @@ namespace pcrf::python {
 namespace {
 
 /// The result record with the keys and values of `pcrf run`'s JSON (NaN where it writes null).
-py::dict result_dict(double scale_factor, const CaseResult& result) {
+py::dict result_dict(double scale_factor, const CaseResult& result, double rest_rise_rad) {
   py::dict d;
   d["scale_factor"] = scale_factor;
   for (const auto& m : all_metrics()) {
@@ -30,6 +30,7 @@ py::dict result_dict(double scale_factor, const CaseResult& result) {
   d["status"] = std::string(status_name(result.status));
   d["reinits"] = result.counts.reinits;
   d["message"] = result.message;
+  d["rest_rise_rad"] = rest_rise_rad;  // the cut-off that defines `impacts`
   return d;
 }
 
@@ -94,13 +95,14 @@ CaseCall read_call(const py::kwargs& kwargs) {
 py::tuple run(const py::kwargs& kwargs) {
   CaseCall call = read_call(kwargs);
   std::vector<HistorySample> rows;
-  double scale_factor = 1.0;
+  double scale_factor = 1.0, rest_rise_rad = 0.0;
   CaseResult result;
   {
     py::gil_scoped_release released;  // the case is pure C++: other Python threads run meanwhile
     const ScaledExcitation scaled = api::scaled_excitation(call.station, call.incidence_deg, call.scaling);
     scale_factor = scaled.factor();
     const PhysicsOptions physics = api::resolve_settings(physics_settings(), call.physics);
+    rest_rise_rad = physics.rest_rise_rad;
     const SolverSettings solver = api::resolve_settings(solver_settings(), call.solver);
     HistorySink sink;
     if (call.history) sink = [&rows](const HistorySample& s) { rows.push_back(s); };
@@ -109,7 +111,7 @@ py::tuple run(const py::kwargs& kwargs) {
     if (auto note = api::verdict_note(result, physics); !note.empty()) call.notes.push_back(std::move(note));
   }
   py::object history = call.history ? py::object(history_array(rows)) : py::none();
-  return py::make_tuple(result_dict(scale_factor, result), history, py::cast(call.notes), py::cast(call.warnings));
+  return py::make_tuple(result_dict(scale_factor, result, rest_rise_rad), history, py::cast(call.notes), py::cast(call.warnings));
 }
 
 }  // namespace

@@ -607,6 +607,9 @@ void read_metrics(const Fields& f, Study& s) {
   s.metrics.clear();
   for (const auto& name : names) {
     if (find_metric(name) == nullptr) {
+      for (const auto& m : all_metrics())
+        if (!m.former_name.empty() && m.former_name == name)
+          f.fail("metrics", "metric \"" + name + "\" is now \"" + std::string(m.name) + "\": " + std::string(m.description));
       const auto hint = detail::closest_word(name, known);
       f.fail("metrics", "unknown metric \"" + name + "\"" + (hint.empty() ? "" : " (did you mean \"" + hint + "\"?)"));
     }

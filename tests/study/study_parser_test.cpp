@@ -179,6 +179,8 @@ TEST(StudyParser, RejectsBadStudiesNamingFileLineKeyAndProblem) {
       {kRecords + "[physics]\nfracture_strain = \"x\"\n", "[physics] fracture_strain: expected a number, got a string"},
       {kRecords + "[solver]\nintegrator = \"euler\"\n", "t.toml:4: [solver] integrator:"},
       {kRecords + "[outputs]\nmetrics = [\"theta_max\"]\n", "unknown metric \"theta_max\" (did you mean \"theta_max_rad\"?)"},
+      {kRecords + "[outputs]\nmetrics = [\"wall_time_s\"]\n", "t.toml:4: [outputs] metrics: metric \"wall_time_s\" is now \"cpu_time_s\": CPU time"},
+      {kRecords + "[physics]\nrest_rise_rad = -1e-10\n", "t.toml:4: [physics] rest_rise_rad:"},
       {"[axes]\nkappa = 2\n", "t.toml: records: a study needs at least one [[records]]"},
       {"[[records]]\nfile = \"no/such/file.AT2\"\n", "t.toml:2: [[records]] #1 file: file not found"},
       {kRecords + "[plan]\nkind = \"random\"\n", "[plan] kind: expected " + choices(plan_kinds(), "\"")},

@@ -119,7 +119,7 @@ inline std::string station_pair(const std::filesystem::path& dir, const std::str
 
 /// Every value of every variable of `a` equals `b` (NaN equals NaN), except `ignored`.
 inline void expect_same_cube(const std::filesystem::path& a_file, const std::filesystem::path& b_file,
-                             const std::vector<std::string>& ignored = {"wall_time_s"}) {
+                             const std::vector<std::string>& ignored = {"cpu_time_s"}) {
   cube::CubeReader a(a_file), b(b_file);
   ASSERT_EQ(a.layout().shape(), b.layout().shape());
   ASSERT_EQ(a.layout().metrics.size(), b.layout().metrics.size());

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <string>
 
 #include "pcrf/excitation/excitation.hpp"
@@ -102,9 +103,17 @@ StopAngles stop_angles(const Scene& scene, const PhysicsOptions& physics);
 inline constexpr const char* kBrokenAtRestMessage = "the initial tendon strain already reaches the fracture strain";
 
 /// Branch a frame leaving rest enters: ü_g > 0 pushes it into θ₁ < 0.
-/// Seconds of the steady clock since `start` (a case's wall_time_s, a wall-time limit).
+/// Seconds of the steady clock since `start` (the wall-time limit).
 inline double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// CPU time of the calling thread [s] (CLOCK_THREAD_CPUTIME_ID): what a case's cpu_time_s
+/// counts, so that neither time descheduled nor other threads' work is in it.
+inline double thread_cpu_s() {
+  timespec now{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
 }
 
 inline int uplift_side(double ground_accel_m_s2) { return ground_accel_m_s2 > 0.0 ? -1 : +1; }

@@ -297,8 +297,9 @@ inline void CaseRun::impact(double t, double* y) {
 // v²/(2 a_min), and the next one leaves with r·v, so the whole remaining sequence ends
 // within T = 2v / (a_min (1 − r)). The frame is at rest now when either
 //  - T ≤ zeno_time_s: the sequence is over within a negligible time, or
-//  - the flight rises less than ten times the absolute tolerance on θ₁: no integrator
-//    run at that tolerance resolves it (its computed θ and θ̇ are noise).
+//  - the flight would rise less than rest_rise_rad: a motion too small to count. A physical
+//    setting, the same for every preset, so that no solver tolerance decides when a frame
+//    rests (or how many impacts it makes).
 inline bool CaseRun::returns_to_rest(double t, double omega_after) {
   if (!holds_closed(t) || restitution_ >= 1.0) return false;
   const GroundAcceleration a = problem_.ground_at(t);
@@ -306,7 +307,7 @@ inline bool CaseRun::returns_to_rest(double t, double omega_after) {
   const double v = std::abs(omega_after);
   const double remaining_s = 2.0 * v / (a_min * (1.0 - restitution_));
   const double rise_rad = v * v / (2.0 * a_min);
-  return remaining_s <= physics_.zeno_time_s || rise_rad <= 10.0 * solver_.atol_theta_rad;
+  return remaining_s <= physics_.zeno_time_s || rise_rad <= physics_.rest_rise_rad;
 }
 
 inline bool CaseRun::holds_closed(double t) {

@@ -8,7 +8,6 @@
 #include "pcrf/solver/batch_solver.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <exception>
 #include <optional>
 #include <stdexcept>
@@ -29,7 +28,7 @@ namespace {
 struct Lane {
   std::optional<CaseRun> run;
   std::size_t case_index = 0;
-  std::chrono::steady_clock::time_point start;
+  double cpu_s = 0.0;  ///< the case's share of the batch's thread CPU time so far [s]
 };
 
 /// The batch: lanes, arrays, the kernel, the queue of cases.
@@ -62,6 +61,11 @@ class Driver final : public LaneCallbacks {
   /// Moves lane l's intervals on by one when its attempt starts at t0 in the next one.
   void follow(std::size_t l, double t0_s);
   void finish(std::size_t l);
+  /// Shares the thread CPU time since the last call equally among the cases in lanes: called
+  /// whenever a case enters or leaves a lane, so that each interval has one set of cases.
+  void share_cpu();
+  /// The thread CPU time since the last share_cpu(), for a case solved alone in that time.
+  double alone_cpu_s();
   void set_block_parameters(std::size_t l, const Scene& scene);
   static bool all_rigid_rockers(std::span<PreparedFrame* const> frames);
 
@@ -80,6 +84,7 @@ class Driver final : public LaneCallbacks {
   std::vector<ExcitationCursor> cursors_;       ///< each lane's; the arrays hold their intervals
   std::vector<ExcitationCursor> next_cursors_;  ///< each lane's, on the interval after
   std::size_t next_case_ = 0;
+  double cpu_mark_s_ = 0.0;  ///< thread CPU time at the last share_cpu() [s]
 };
 
 void Driver::ground(int lane, double t_s, double& horizontal_m_s2, double& vertical_m_s2) {
@@ -148,14 +153,14 @@ bool Driver::refill(std::size_t l) {
 bool Driver::start(std::size_t l, std::size_t c) {
   Lane& lane = lanes_[l];
   PreparedFrame& frame = *frames_[c];
+  share_cpu();  // up to here the lanes' cases; a case solved alone below is its own
   validate(solver_, frame.physics());
   check_initial_state(frame.scene(), frame.physics());
-  const auto start = std::chrono::steady_clock::now();
   ++stats_.cases;
   if (auto rest = rest_throughout(frame, excitation_, request_, no_history_)) {
     ++stats_.rest_cases;
     results_[c] = std::move(*rest);
-    results_[c].wall_time_s = seconds_since(start);
+    results_[c].cpu_time_s = alone_cpu_s();
     return false;
   }
   if (!entry_for_scene(solver_.integrator, frame.scene()).can.lockstep) {
@@ -163,12 +168,12 @@ bool Driver::start(std::size_t l, std::size_t c) {
     // rest scan above already made.
     ++stats_.scalar_cases;
     results_[c] = CaseRun(frame, excitation_, solver_, request_, no_history_).run();
-    results_[c].wall_time_s = seconds_since(start);
+    results_[c].cpu_time_s = alone_cpu_s();
     return false;
   }
   lane.run.emplace(frame, excitation_, solver_, request_, no_history_, true);
   lane.case_index = c;
-  lane.start = start;
+  lane.cpu_s = 0.0;
   set_block_parameters(l, frame.scene());
   lane.run->begin();
   if (lane.run->progress()) return true;
@@ -215,12 +220,31 @@ void Driver::finish(std::size_t l) {
   Lane& lane = lanes_[l];
   CaseResult& result = results_[lane.case_index];
   result = lane.run->end();
-  result.wall_time_s = seconds_since(lane.start);
+  share_cpu();
+  result.cpu_time_s = lane.cpu_s;
   const DormandPrinceIntegrator::Tally& tally = lane.run->lockstep()->tally();
   stats_.root_searches += tally.root_searches;
   stats_.events += tally.roots;
   stats_.flights += result.counts.reinits + (result.counts.rhs_evals > 0 ? 1 : 0);
   lane.run.reset();
+}
+
+void Driver::share_cpu() {
+  const double now_s = thread_cpu_s();
+  const auto busy = std::count_if(lanes_.begin(), lanes_.end(), [](const Lane& lane) { return lane.run.has_value(); });
+  if (busy > 0) {
+    const double share_s = (now_s - cpu_mark_s_) / static_cast<double>(busy);
+    for (Lane& lane : lanes_)
+      if (lane.run) lane.cpu_s += share_s;
+  }
+  cpu_mark_s_ = now_s;
+}
+
+double Driver::alone_cpu_s() {
+  const double now_s = thread_cpu_s();
+  const double spent_s = now_s - cpu_mark_s_;
+  cpu_mark_s_ = now_s;
+  return spent_s;
 }
 
 bool Driver::all_rigid_rockers(std::span<PreparedFrame* const> frames) {
@@ -283,6 +307,7 @@ void Driver::set_block_parameters(std::size_t l, const Scene& scene) {
 }
 
 void Driver::run() {
+  cpu_mark_s_ = thread_cpu_s();
   // Every lane up to its first attempt.
   for (std::size_t l = 0; l < lanes_.size(); ++l)
     if (refill(l)) put_attempt(l);

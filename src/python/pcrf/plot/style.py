@@ -44,7 +44,7 @@ METRIC_LABELS = {
     schema.STRAIN_BEAM_MAX: "peak beam tendon strain [–]",
     schema.IMPACTS: "impacts [–]",
     schema.T_THETA_MAX: r"time of peak $|\theta_1|$ [s]",
-    schema.WALL_TIME: "wall time per case [s]",
+    schema.CPU_TIME: "CPU time per case [s]",
 }
 
 

@@ -54,7 +54,8 @@ CaseResult solve_one_case(std::unique_ptr<Scene> scene, const PhysicsOptions& ph
 std::string verdict_note(const CaseResult& result, const PhysicsOptions& physics);
 
 /// The result record as `pcrf run` prints it: the scale factor, then every metric, the
-/// status and the message.
-JsonObject case_json(double scale_factor, const CaseResult& result);
+/// status and the message, and the return-to-rest cut-off that defines `impacts`
+/// (physics.rest_rise_rad).
+JsonObject case_json(double scale_factor, const CaseResult& result, const PhysicsOptions& physics);
 
 }  // namespace pcrf::api

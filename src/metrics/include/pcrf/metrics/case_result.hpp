@@ -88,7 +88,9 @@ struct CaseResult {
   CaseStatus status = CaseStatus::kNotRun;
   double t_end_s = kNone;           ///< time at which the case ended [s]
   SolverCounts counts;
-  double wall_time_s = kNone;       ///< wall-clock time of the case [s]
+  /// CPU time of the thread that solved the case [s]; in a lane batch, its share of the
+  /// batch's (metric::cpu_time()'s doc says exactly what it counts).
+  double cpu_time_s = kNone;
   // Verdict check (SolverSettings::verdict_check); NaN when not checked.
   double status_stable = kNotChecked;     ///< 1: every perturbed twin reached the same verdict; 0: not
   double theta_max_spread = kNotChecked;  ///< (max − min)/θ_max over the case and its twins [-]
@@ -106,6 +108,8 @@ struct MetricInfo {
   double (*get)(const CaseResult&);
   bool is_count = false;  ///< an integer count (impacts, steps, ...)
   bool needs_verdict_check = false;  ///< only computed with [solver] verdict_check = true
+  /// The name older versions wrote (cubes keep it; a study file naming it is told the new one).
+  std::string_view former_name = {};
 };
 
 /// Every numeric metric of CaseResult (status excluded), in a stable order.
@@ -126,7 +130,7 @@ const MetricInfo& t_theta_max();      ///< time of peak |θ₁|
 const MetricInfo& strain_column_max();///< peak column tendon strain
 const MetricInfo& strain_beam_max();  ///< peak beam tendon strain
 const MetricInfo& impacts();          ///< number of impacts
-const MetricInfo& wall_time();        ///< wall-clock time of a case
+const MetricInfo& cpu_time();         ///< CPU time of a case
 }  // namespace metric
 
 /// The record's keys (the metrics' names, status, reinits, message; NaN as null), added to

@@ -68,6 +68,9 @@ struct PhysicsOptions {
   /// Return to rest when the remaining Zeno sequence would end within this time [s]
   /// (see README, "Return to rest").
   double zeno_time_s = 1e-4;
+  /// Return to rest when the next flight would rise less than this [rad] (docs/physics.md,
+  /// "Return to rest"): physics, one value for every preset, never a solver tolerance.
+  double rest_rise_rad = 1e-10;
   /// Initial state (free-rocking studies and tests). Zero: the frame starts at rest.
   /// A non-zero state starts in flight on the side of θ₁ (of −θ̇₁ when θ₁ = 0).
   double theta0_rad = 0.0;
@@ -92,7 +95,9 @@ struct SolverSettings {
   /// each, so the right-hand side is smooth only between them. Stopping at every sample
   /// keeps the integrators at their design order (without restarting them).
   bool stop_at_samples = true;
-  double wall_time_limit_s = 0.0;  ///< 0: no limit; else status kTimeLimit
+  /// 0: no limit; else status kTimeLimit when the case's wall-clock time (steady clock from its
+  /// start: time descheduled and, in a lane batch, its lane-mates' time included) exceeds it.
+  double wall_time_limit_s = 0.0;
   bool verdict_check = false;      ///< perturbed twin runs: status_stable, theta_max_spread, collapse_fraction
 
   bool operator==(const SolverSettings&) const = default;
@@ -100,7 +105,8 @@ struct SolverSettings {
 
 
 /// Named accuracy presets: "fast", "balanced" (the default) and "reference". Each is a
-/// complete SolverSettings; the README lists the error and cost measured for each.
+/// complete SolverSettings, numerics only (the physics, the rest cut-off included, is
+/// PhysicsOptions'); docs/results.md lists the error and cost measured for each.
 /// \throws std::invalid_argument naming the unknown preset.
 SolverSettings preset_settings(const std::string& name);
 /// Names of all presets, in order of increasing accuracy.
@@ -140,6 +146,10 @@ inline const SettingTable<PhysicsOptions>& physics_settings() {
     s.push_back(number_setting("zeno_time_s", &P::zeno_time_s, "s", Bound::kPositive,
                                "return-to-rest time scale (docs/physics.md, \"Return to rest\")"));
     s.back().aliases = {"--zeno-time"};
+    s.push_back(number_setting("rest_rise_rad", &P::rest_rise_rad, "rad", Bound::kNonNegative,
+                               "return-to-rest rise: after an impact, a flight that would rise less than this is not flown and the "
+                               "frame is at rest (so it bounds the impacts counted); physics, the same for every preset "
+                               "(docs/physics.md, \"Return to rest\")"));
     s.push_back(number_setting("theta0_rad", &P::theta0_rad, "rad", Bound::kAny,
                                "initial rotation θ₁ (0: the frame starts at rest); within the closing limit"));
     s.push_back(number_setting("omega0_rad_s", &P::omega0_rad_s, "rad/s", Bound::kAny,
@@ -160,7 +170,9 @@ inline const SettingTable<SolverSettings>& solver_settings() {
     preset.key = "preset";
     preset.type = SettingType::kChoice;
     preset.choices = preset_names();
-    preset.doc = "accuracy preset; sets every value below, which single keys then override";
+    preset.doc = "accuracy preset: numerics only, the physics (the return-to-rest cut-off included) is [physics]'s, "
+                 "the same for every preset; sets every value below, which single keys then override (measured "
+                 "errors: docs/results.md)";
     // Its whole effect is in the values it sets, and those are fingerprinted.
     preset.in_fingerprint = false;
     preset.get = [](const S& v) { return SettingValue(v.preset); };
@@ -170,7 +182,7 @@ inline const SettingTable<SolverSettings>& solver_settings() {
                                "time integrator (taylor: Taylor series steps where the scene has its series, the block and the rocking frame; dopri5 elsewhere)"));
     s.push_back(number_setting("rtol", &S::rtol, "1", Bound::kPositive, "relative tolerance"));
     s.push_back(number_setting("atol_theta_rad", &S::atol_theta_rad, "rad", Bound::kPositive,
-                               "absolute tolerance on θ₁"));
+                               "absolute tolerance on θ₁ (numerics only; when a frame rests is [physics] rest_rise_rad)"));
     s.back().aliases = {"--atol-theta"};
     s.push_back(number_setting("atol_omega_rad_s", &S::atol_omega_rad_s, "rad/s", Bound::kPositive,
                                "absolute tolerance on θ̇₁"));
@@ -185,7 +197,8 @@ inline const SettingTable<SolverSettings>& solver_settings() {
     s.push_back(integer_setting("max_steps", &S::max_steps, Bound::kAtLeastOne,
                                 "steps per case, all segments together"));
     s.push_back(number_setting("wall_time_limit_s", &S::wall_time_limit_s, "s", Bound::kNonNegative,
-                               "a case that takes longer ends as time_limit; 0: no limit"));
+                               "a case whose wall-clock time (steady clock from its start, time descheduled and lane-mates' "
+                               "time included; not its cpu_time_s) exceeds this ends as time_limit; 0: no limit"));
     s.back().aliases = {"--time-limit"};
     s.push_back(flag_setting("verdict_check", &S::verdict_check,
                              "run each case near collapse again with its record scaled by 1 ± 1e-9, 1e-7, 1e-6: "
