@@ -160,7 +160,7 @@ def main():
                 row.append(f"{1e3 * statistics.median(times[tag]):.3f}")
             if a.old:
                 if have_valgrind:
-                    row.append(f"{instr['old'][0] / instr['new'][0]:.1f}x")
+                    row.append(f"{instr['old'][0] / instr['new'][0]:.4f}x")
                 row.append(f"{median_ratio(times['old'], times['new']):.1f}x")
             print("| " + " | ".join(row) + " |")
             per_scene.setdefault(scene, []).append((instr, times))
@@ -175,7 +175,7 @@ def main():
             for scene, rows in per_scene.items():
                 old = sum(i["old"][0] for i, _ in rows)
                 new = sum(i["new"][0] for i, _ in rows)
-                print(f"{scene}: old/new instructions summed over the records: {old / new:.1f}x")
+                print(f"{scene}: old/new instructions summed over the records: {old / new:.4f}x")
     if a.old:
         cpu = study_cpu_per_case(builds, paper, threshold_g(a.pcrf, "pcrf"), a.repeat)
         print(f"\nCPU per rocking frame case in a study (400 cases, one rank, median of {a.repeat}): "

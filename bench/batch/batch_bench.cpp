@@ -26,7 +26,7 @@
 #include "pcrf/model/rigid_rocker.hpp"
 #include "pcrf/record/record_readers.hpp"
 #include "pcrf/solver/batch_solver.hpp"
-#include "solver/prepared_frame.hpp"
+#include "solver/case/prepared_frame.hpp"
 
 namespace {
 

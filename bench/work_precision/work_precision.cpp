@@ -22,7 +22,6 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
-#include <map>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -34,6 +33,7 @@
 #include "pcrf/model/frame.hpp"
 #include "pcrf/record/record_readers.hpp"
 #include "pcrf/record/synthetic.hpp"
+#include "pcrf/solver/integrator_registry.hpp"
 #include "pcrf/solver/rocking_solver.hpp"
 #include "pcrf/solver/settings.hpp"
 
@@ -408,21 +408,17 @@ std::vector<Case> make_cases(Options& o) {
 /// and the presets. \throws std::invalid_argument for an unknown integrator.
 std::vector<Contender> make_contenders(const Options& o) {
   std::vector<Contender> settings;
-  const std::map<std::string, Integrator> integrators = {{"dopri5", Integrator::kDormandPrince5},
-                                                         {"cvode-adams", Integrator::kCvodeAdams},
-                                                         {"cvode-bdf", Integrator::kCvodeBdf},
-                                                         {"arkode-erk5", Integrator::kArkodeErk5},
-                                                         {"arkode-erk8", Integrator::kArkodeErk8}};
   const auto rtols = split_doubles(o.rtols);
   for (const auto& name : split(o.integrators)) {
-    const auto it = integrators.find(name);
-    if (it == integrators.end()) throw std::invalid_argument("unknown integrator " + name);
+    // Any stepper of the registry (the fixed-step contender has no tolerance: its own sweep below).
+    const Integrator id = parse_integrator(name);
+    if (registry_entry(id).make == nullptr) throw std::invalid_argument("integrator " + name + ": no tolerance to sweep");
     for (const auto& stop : split(o.stops)) {
       const bool on = stop == "on";
       const std::string family = name + (on ? "/stop" : "/nostop");
       for (const double rt : rtols) {
         settings.push_back({family + " rtol=" + fmt(rt, 2), family, rt,
-                            tolerance(it->second, rt, on, o.theta_scale, o.omega_scale, o.time_limit_s)});
+                            tolerance(id, rt, on, o.theta_scale, o.omega_scale, o.time_limit_s)});
       }
     }
   }

@@ -178,10 +178,10 @@ void add_info(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
     guarded(args->file, [&] {
       const cube::CubeReader reader(args->file);
       for (const auto& note : post::completion_notes(args->file, reader)) std::cerr << "pcrf cube info: " << note << '\n';
-      const auto completion = study::vocabulary::completion(reader);
+      const auto completion = schema::completion(reader);
       if (args->json) cube::print_info_json(reader, std::cout, completion);
-      else cube::print_info(reader, study::vocabulary::info_heading(reader.layout()), std::cout, completion);
-      if (const auto states = study::vocabulary::curve_states_text(study::vocabulary::curve_states(reader));
+      else cube::print_info(reader, schema::info_heading(reader.layout()), std::cout, completion);
+      if (const auto states = schema::curve_states_text(schema::curve_states(reader));
           !states.empty())
         (args->json ? std::cerr : std::cout) << states << '\n';
       for (const auto& line : post::verdict_lines("info", args->file, reader)) std::cerr << "pcrf cube info: " << line << '\n';
@@ -218,7 +218,7 @@ void add_export(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) 
         return;
       }
       const auto chosen = selectors(args->where);
-      const auto leave_out = args->no_record_text ? study::vocabulary::record_text_coordinates() : std::vector<std::string>{};
+      const auto leave_out = args->no_record_text ? schema::record_text_coordinates() : std::vector<std::string>{};
       with_output(args->output, inputs_of(*args), args->overwrite,
                   [&](std::ostream& out) { cube::export_csv(reader, args->metrics, chosen, out, leave_out); });
     });
@@ -422,7 +422,7 @@ void add_merge(CLI::App* cube_cmd, const std::shared_ptr<CubeArguments>& args) {
       for (const auto& part : args->parts) note_running(part);
       if (const auto who = io::RunLock::holder(args->output); !who.empty())
         throw UserError(Where{}, args->output + ": in use by a run (" + who + "); give another {}", {"output"});
-      const auto merged = cube::merge_cubes(parts, args->output, args->overwrite, study::vocabulary::kIdaRuns,
+      const auto merged = cube::merge_cubes(parts, args->output, args->overwrite, schema::kIdaRuns,
                                             args->allow_missing);
       if (merged.missing > 0)
         std::cerr << "pcrf cube merge: " << args->output << ": " << merged.missing << " of " << merged.total

@@ -23,7 +23,7 @@ namespace {
 
 /// Command-line values; the [run] flags override the study file's table.
 struct StudyArguments {
-  study::StudyRunOptions run;
+  run::StudyRunOptions run;
   std::string shard;  ///< "K/N"
   CLI::Option* shard_flag = nullptr;
   std::unique_ptr<SettingFlags<study::RunOptions>> run_flags;
@@ -108,7 +108,7 @@ std::string shell_word(const std::string& word) {
 
 /// The whole command that continues a stopped run: under mpirun with as many ranks, the same
 /// study, cube, shard and [run] flags, and --resume.
-std::string resume_command(const StudyArguments& args, const study::StudySummary& summary, int ranks) {
+std::string resume_command(const StudyArguments& args, const run::StudySummary& summary, int ranks) {
   std::string command = ranks > 1 ? "mpirun -n " + std::to_string(ranks) + " " : "";
   command += "pcrf study " + shell_word(args.run.study_file.string()) + " -o " + shell_word(summary.output.string()) + " --resume";
   if (args.shard_flag->count() > 0) command += " --shard " + shell_word(args.shard);
@@ -129,9 +129,9 @@ void run_study_command(StudyArguments& args) {
   if (const auto problem = parallel::MpiSession::startup_problem(); !problem.empty()) throw UserError(problem);
   parallel::MpiSession mpi;
   catch_stop_signals();
-  std::optional<study::StudySummary> summary;
+  std::optional<run::StudySummary> summary;
   try {
-    summary = study::run_study(args.run, mpi);
+    summary = run::run_study(args.run, mpi);
   } catch (const UserError& e) {
     // Nothing has started. Report here, before MPI_Finalize, and not through UserError in
     // main(): once another rank has exited with code 2, mpirun may end this one at any time.
@@ -148,7 +148,7 @@ void run_study_command(StudyArguments& args) {
   }
   if (!summary) exit_code() = 2;  // rank ≠ 0 of a study that cannot run: rank 0 reported it
   if (summary && mpi.is_master() && summary->stopped_by != 0) {
-    std::cerr << "pcrf study: " << study::stop_report(*summary) << "; continue with: "
+    std::cerr << "pcrf study: " << run::stop_report(*summary) << "; continue with: "
               << resume_command(args, *summary, mpi.size()) << std::endl;
   }
   if (summary && mpi.is_master())

@@ -17,7 +17,7 @@
 #include "pcrf/record/intensity.hpp"
 #include "pcrf/units.hpp"
 
-namespace pcrf::post {
+namespace pcrf::hazard {
 namespace {
 
 constexpr const char* kRateColumn = "annual_rate_per_yr";
@@ -212,4 +212,4 @@ HazardFile read_hazard_file(const std::filesystem::path& file, risk::Tail tail) 
   return reader.finish(tail);
 }
 
-}  // namespace pcrf::post
+}  // namespace pcrf::hazard

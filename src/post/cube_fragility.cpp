@@ -6,14 +6,14 @@
 #include <map>
 
 #include "pcrf/metrics/case_result.hpp"
-#include "pcrf/ida/ida_search.hpp"
+#include "pcrf/metrics/curve_state.hpp"
 #include "pcrf/row_major.hpp"
 #include "pcrf/user_error.hpp"
 #include "pcrf/schema/cube_vocabulary.hpp"
 
 namespace pcrf::post {
 
-namespace vocabulary = study::vocabulary;
+namespace vocabulary = schema;
 namespace {
 
 
@@ -120,10 +120,10 @@ std::vector<FrameFragility> ida_fragility(const cube::CubeReader& cube, const st
   const bool has_states = layout.find_side_variable(vocabulary::kCurveState) != nullptr;
   const auto state = has_states ? cube.read_side(vocabulary::kCurveState) : std::vector<double>(collapse.size(), std::nan(""));
   const auto unbracketed = [&state](std::size_t curve) {
-    return state[curve] == static_cast<double>(ida::CurveState::kUnbracketed);
+    return state[curve] == static_cast<double>(CurveState::kUnbracketed);
   };
   const auto unresolved = [&state](std::size_t curve) {
-    return state[curve] == static_cast<double>(ida::CurveState::kUnresolved);
+    return state[curve] == static_cast<double>(CurveState::kUnresolved);
   };
   // An unresolved curve has no collapse intensity: it is censored at its last safe run (a
   // lower bound), never at max_intensity; with no safe run it has no value.

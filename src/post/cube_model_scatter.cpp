@@ -36,7 +36,7 @@ const std::vector<ModelField>& common_fields() {
 }  // namespace
 
 bool frames_are_sampled(const cube::CubeReader& cube) {
-  const std::string plan = cube.layout().text_attribute(study::vocabulary::kPlan);
+  const std::string plan = cube.layout().text_attribute(schema::kPlan);
   return plan == "lhs" || plan == "sobol" || plan == "saltelli";
 }
 

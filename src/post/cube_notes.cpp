@@ -44,7 +44,7 @@ std::string journal_note(const std::string& file, const cube::CubeReader& reader
 }
 
 std::string partial_note(const std::string& file, const cube::CubeReader& reader) {
-  const auto missing = study::vocabulary::not_run(reader);
+  const auto missing = schema::not_run(reader);
   if (missing.count == 0) return {};
   return file + ": " + std::to_string(missing.count) + " of " + std::to_string(missing.total) + " " + missing.unit +
          " not run (a partial cube): left out";
@@ -66,7 +66,7 @@ std::vector<std::string> completion_notes(const std::string& file, const cube::C
 }
 
 std::vector<std::string> verdict_lines(const std::string& kind, const std::string& file, const cube::CubeReader& reader) {
-  namespace v = study::vocabulary;
+  namespace v = schema;
   const auto& layout = reader.layout();
   const bool ida = layout.find_side_variable(v::kIdaRuns) != nullptr;
   std::vector<std::string> lines;

@@ -22,7 +22,7 @@
 namespace pcrf::post {
 namespace {
 
-namespace names = study::vocabulary;
+namespace names = schema;
 
 /// The cube's attribute of [intensity] `key` (the measure the records were scaled by).
 std::string intensity_attribute(std::string_view key) { return names::setting_attribute(intensity_settings().name, key); }

@@ -12,12 +12,12 @@
 
 #include "pcrf/post/cube_fragility.hpp"
 #include "pcrf/post/cube_sensitivity.hpp"
-#include "pcrf/ida/ida_search.hpp"
+#include "pcrf/metrics/curve_state.hpp"
 #include "pcrf/schema/cube_vocabulary.hpp"
 
 namespace pcrf::post {
 
-namespace vocabulary = study::vocabulary;
+namespace vocabulary = schema;
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -189,9 +189,9 @@ std::string censored_reduction_note(const cube::CubeReader& cube, const StatsReq
   std::size_t left_out = 0, unrefined = 0, unresolved = 0;
   for (std::size_t c = 0; c < collapse.size(); ++c) {
     if (!(runs[c] > 0.0)) continue;
-    if (state[c] == static_cast<double>(ida::CurveState::kUnresolved)) ++unresolved;
+    if (state[c] == static_cast<double>(CurveState::kUnresolved)) ++unresolved;
     else if (!std::isfinite(collapse[c])) ++left_out;
-    else if (state[c] == static_cast<double>(ida::CurveState::kUnbracketed)) ++unrefined;
+    else if (state[c] == static_cast<double>(CurveState::kUnbracketed)) ++unrefined;
   }
   std::string note;
   if (left_out > 0)

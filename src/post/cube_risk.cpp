@@ -20,7 +20,7 @@
 namespace pcrf::post {
 namespace {
 
-namespace names = study::vocabulary;
+namespace names = schema;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kBinsPerDecade = 10.0;
@@ -30,7 +30,7 @@ constexpr double kFragilityAtLowest = 1e-3; // P(C) at the curve's start above w
 
 /// The hazard's measure (and Sa period) against the cube's; the refusal names the hazard
 /// file's header line.
-std::string check_measure(const cube::CubeReader& cube, const HazardFile& hazard) {
+std::string check_measure(const cube::CubeReader& cube, const pcrf::hazard::HazardFile& hazard) {
   const auto& layout = cube.layout();
   const std::string measure = layout.text_attribute(names::setting_attribute(intensity_settings().name, "measure"));
   const Where where{{}, hazard.file.string(), static_cast<int>(hazard.header_line)};
@@ -192,7 +192,7 @@ RiskReport cube_risk(const cube::CubeReader& cube, const std::vector<cube::Selec
   if (!(in.years > 0.0) || !std::isfinite(in.years)) throw UserError("years", "must be positive");
   risk::check(in.target);
   (void)in.ratings_beta();  // an unknown rating throws before anything is read
-  RiskReport report{read_hazard_file(in.hazard, in.tail), "", {}, {}, kNaN, kNaN, {}, {}, {}, {}, {}};
+  RiskReport report{pcrf::hazard::read_hazard_file(in.hazard, in.tail), "", {}, {}, kNaN, kNaN, {}, {}, {}, {}, {}};
   report.cube_measure = check_measure(cube, report.hazard);
   for (const UserError& w : report.hazard.warnings) report.warnings.push_back(w.message(Dialect::kFlag));
   const auto& hazard = report.hazard.curve;

@@ -13,7 +13,7 @@
 
 namespace pcrf::post {
 
-namespace vocabulary = study::vocabulary;
+namespace vocabulary = schema;
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();

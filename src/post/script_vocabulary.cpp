@@ -9,7 +9,7 @@
 #include "pcrf/json.hpp"
 #include "pcrf/metrics/case_result.hpp"
 #include "pcrf/model/parameters.hpp"
-#include "pcrf/ida/ida_search.hpp"
+#include "pcrf/metrics/curve_state.hpp"
 #include "pcrf/schema/cube_vocabulary.hpp"
 #include "pcrf/solver/history.hpp"
 
@@ -37,12 +37,12 @@ std::string script_vocabulary_json() {
     parameters.emplace_back();
     parameters.back().text("name", p.name).text("long_name", p.long_name).text("units", p.units);
   }
-  for (const auto& c : ida::kCurveStateNames) {
+  for (const auto& c : kCurveStateNames) {
     curve_states.emplace_back();
     curve_states.back().text("name", c.name).integer("value", static_cast<int>(c.value));
   }
   JsonObject cube_names, metric_roles;
-  for (const auto& n : study::vocabulary::cube_names()) cube_names.text(n.role, n.name);
+  for (const auto& n : schema::cube_names()) cube_names.text(n.role, n.name);
   std::vector<JsonObject> metrics;
   for (const auto& m : all_metrics()) {
     metrics.emplace_back();

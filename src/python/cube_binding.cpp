@@ -163,7 +163,7 @@ void bind_cube(py::module_& m) {
   m.def("cube_notes", &cube_notes, py::arg("file"),
         "The notes `pcrf cube info FILE` prints on stderr: a run holding it, results in its journal, cases not run "
         "or unresolved.");
-  m.def("pulse_coordinates", &study::vocabulary::pulse_coordinates,
+  m.def("pulse_coordinates", &schema::pulse_coordinates,
         "The coordinates a study of pulses may have along `record`: pulse_shape and the pulse axes.");
 }
 

@@ -43,7 +43,7 @@ py::tuple cube_info(const std::string& file) {
     for (const auto& note : {post::running_note(file), post::journal_note(file, reader), post::partial_note(file, reader)})
       if (!note.empty()) notes.push_back(note);
     std::ostringstream json;
-    cube::print_info_json(reader, json, study::vocabulary::completion(reader));
+    cube::print_info_json(reader, json, schema::completion(reader));
     return py::make_tuple(json.str(), notes);
   });
 }

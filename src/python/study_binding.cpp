@@ -132,7 +132,7 @@ struct Interrupt {
 };
 
 py::dict study(const py::object& source, const py::kwargs& kwargs) {
-  study::StudyRunOptions options;
+  run::StudyRunOptions options;
   if (py::isinstance<py::dict>(source)) {
     options.study = parsed_study(source.cast<py::dict>());
     options.study_file = kDictSource;
@@ -157,7 +157,7 @@ py::dict study(const py::object& source, const py::kwargs& kwargs) {
 
   std::vector<std::string> notes;  // warned by pcrf.study (as the command line prints them)
   options.notes = &notes;
-  std::optional<study::StudySummary> summary;
+  std::optional<run::StudySummary> summary;
   Interrupt interrupt;  // outside the released block: its exception is let go with the GIL held
   options.stop_signal = &interrupt.stop;
   options.poll = [&interrupt] { interrupt.poll(); };
@@ -167,11 +167,11 @@ py::dict study(const py::object& source, const py::kwargs& kwargs) {
       if (const auto problem = parallel::MpiSession::startup_problem(); !problem.empty()) throw UserError(problem);
       mpi_session() = std::make_unique<parallel::MpiSession>();
     }
-    summary = study::run_study(options, *mpi_session());
+    summary = run::run_study(options, *mpi_session());
   }
   if (interrupt.exception) {
     // The cube is left as `pcrf study` leaves it on SIGINT: checkpointed, resumable.
-    const std::string note = "pcrf.study: " + study::stop_report(*summary) + "; continue with pcrf.study(..., resume=True)";
+    const std::string note = "pcrf.study: " + run::stop_report(*summary) + "; continue with pcrf.study(..., resume=True)";
     if (py::hasattr(interrupt.exception->value(), "add_note")) interrupt.exception->value().attr("add_note")(note);
     throw std::move(*interrupt.exception);
   }

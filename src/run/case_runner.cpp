@@ -9,9 +9,11 @@
 #include <stdexcept>
 #include <string>
 
-#include "pcrf/solver/batch_solver.hpp"
+#include "pcrf/solver/case_group.hpp"
 
-namespace pcrf::study {
+namespace pcrf::run {
+// A run runs a study: its values (pcrf::study) are this library's vocabulary.
+using namespace pcrf::study;
 namespace {
 
 /// A failed case: its metrics NaN (an IDA's intensity and factor columns stay).
@@ -48,7 +50,9 @@ void guarded(parallel::CaseOutcome& outcome, const ResultColumns& columns, F&& f
 }  // namespace
 
 CaseRunner::CaseRunner(const Study& study, const CaseSpace& space, RecordCache& records)
-    : study_(study), space_(space), records_(records), columns_(study) {
+    : study_(study), space_(space), records_(records), columns_(study),
+      group_(make_group_solver(study.solver, static_cast<int>(study.run.lanes))),
+      one_case_(one_at_a_time_group()) {
   // Compute only what is asked: the exact angular-velocity peak costs an extra root.
   request_.omega_peak = false;
   for (const auto* m : columns_.metrics())
@@ -109,7 +113,12 @@ std::optional<CaseRunner::Ready> CaseRunner::set_up(const parallel::WorkItem& it
   return ready;
 }
 
-void CaseRunner::conclude(const CaseResult& result, parallel::CaseOutcome& outcome) const {
+void CaseRunner::conclude(const GroupCase& answer, parallel::CaseOutcome& outcome) const {
+  if (answer.outcome == GroupOutcome::kRefused) {
+    mark_failed(outcome, columns_, answer.result.message);
+    return;
+  }
+  const CaseResult& result = answer.result;
   outcome.status = static_cast<std::int8_t>(result.status);
   const auto& metrics = columns_.metrics();
   for (std::size_t m = 0; m < metrics.size(); ++m) {
@@ -132,7 +141,8 @@ parallel::CaseOutcome CaseRunner::run(const parallel::WorkItem& item, const Hist
     if (!ready) return;
     OutputRequest request = request_;
     request.history_dt_s = history_dt_s;
-    conclude(solve_case(*ready->frame, ready->motion->view(), study_.solver, request, history), outcome);
+    PreparedFrame* const frame[] = {ready->frame.get()};
+    conclude(one_case_->solve(frame, ready->motion->view(), study_.solver, request, history).front(), outcome);
   });
   return outcome;
 }
@@ -150,8 +160,6 @@ parallel::ResultBatch CaseRunner::run(std::span<const parallel::WorkItem> items)
       }
     });
   }
-  BatchOptions options;
-  options.lanes = static_cast<int>(study_.run.lanes);
   std::vector<bool> done(waiting.size(), false);
   for (std::size_t first = 0; first < waiting.size(); ++first) {
     if (done[first]) continue;
@@ -164,22 +172,18 @@ parallel::ResultBatch CaseRunner::run(std::span<const parallel::WorkItem> items)
       group.push_back(k);
       frames.push_back(ready[k].frame.get());
     }
-    std::vector<CaseResult> results;
-    BatchOptions group_options = options;  // no wider than the group: no lane left idle throughout
-    group_options.lanes = std::min(options.lanes, static_cast<int>(group.size()));
-    if (group_options.lanes > 1 && batch_integrates(study_.solver)) {
-      try {
-        results = solve_batch(frames, ready[first].motion->view(), study_.solver, request_, group_options);
-      } catch (const std::exception&) {
-        results.clear();  // a case the solver refuses: each one alone, with its own message
-      }
-    }
+    std::vector<GroupCase> answers;
+    parallel::CaseOutcome* const first_outcome = &outcomes[waiting[group.front()]];
+    guarded(*first_outcome, columns_, [&] {  // only what is no one case's: every case of the group fails
+      answers = group_->solve(frames, ready[first].motion->view(), study_.solver, request_);
+    });
     for (std::size_t j = 0; j < group.size(); ++j) {
       parallel::CaseOutcome& outcome = outcomes[waiting[group[j]]];
-      const Ready& r = ready[group[j]];
-      guarded(outcome, columns_, [&] {
-        conclude(results.empty() ? solve_case(*r.frame, r.motion->view(), study_.solver, request_) : results[j], outcome);
-      });
+      if (answers.empty()) {
+        mark_failed(outcome, columns_, first_outcome->note);
+      } else {
+        guarded(outcome, columns_, [&] { conclude(answers[j], outcome); });
+      }
     }
   }
   return outcomes;
@@ -209,4 +213,4 @@ bool is_failure(CaseStatus status) {
   return status == CaseStatus::kSolverFailure || status == CaseStatus::kTimeLimit;
 }
 
-}  // namespace pcrf::study
+}  // namespace pcrf::run

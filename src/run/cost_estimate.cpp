@@ -12,9 +12,11 @@
 #include "pcrf/ida/ida_search.hpp"
 #include "pcrf/run/case_runner.hpp"
 #include "pcrf/run/ida_work.hpp"
-#include "pcrf/solver/batch_solver.hpp"
+#include "pcrf/solver/case_group.hpp"
 
-namespace pcrf::study {
+namespace pcrf::run {
+// A run runs a study: its values (pcrf::study) are this library's vocabulary.
+using namespace pcrf::study;
 namespace {
 
 /// CPU time this thread has used [s]: what a case costs whatever else the machine runs.
@@ -125,7 +127,7 @@ CostEstimate estimate_cost(const Study& study, const CaseSpace& space, RecordCac
   const auto collapse = estimate.ida ? collapse_test(study) : ida::IdaCurves::CollapseTest{};
   // As the run solves them: a grid's or a plan's cases in lanes where it does (study_run.cpp's
   // in_lanes), each case then costing its share of its lane batch.
-  const std::size_t lanes = !estimate.ida && study.run.lanes > 1 && batch_integrates(study.solver) ? study.run.lanes : 1;
+  const std::size_t lanes = !estimate.ida && study.run.lanes > 1 && lanes_take(study.solver) ? study.run.lanes : 1;
   estimate.lanes = lanes;
   const double begin_s = thread_cpu_s();
   for (const std::int64_t position : sample_positions(estimate.population, sample)) {
@@ -154,4 +156,4 @@ CostEstimate estimate_cost(const Study& study, const CaseSpace& space, RecordCac
   return estimate;
 }
 
-}  // namespace pcrf::study
+}  // namespace pcrf::run

@@ -10,7 +10,9 @@
 #include "pcrf/schema/cube_vocabulary.hpp"
 #include "pcrf/run/result_row.hpp"
 
-namespace pcrf::study {
+namespace pcrf::run {
+// A run runs a study: its values (pcrf::study) are this library's vocabulary.
+using namespace pcrf::study;
 namespace {
 
 /// What a run tells a curve's search: a collapse for the [ida] collapse statuses, a failed
@@ -60,7 +62,7 @@ std::unique_ptr<ida::IdaCurves> make_ida_curves(const Study& study, const CaseSp
   // Resume: each curve's stored runs, in order, up to the first one not stored (a curve has
   // at most one run in flight, so a killed run leaves no gap before its last stored point).
   const auto& status = writer.status();
-  const auto intensity = writer.read_values(vocabulary::kIdaIntensity);
+  const auto intensity = writer.read_values(schema::kIdaIntensity);
   const auto theta_values = rule.theta_column() < 0 ? std::vector<double>{} : writer.read_values(std::string(metric::theta_max().name));
   const std::vector<double>* theta = rule.theta_column() < 0 ? nullptr : &theta_values;
   const auto runs = static_cast<std::int64_t>(space.ida_runs());
@@ -89,17 +91,17 @@ void store_ida_summaries(const Study& study, const ida::IdaCurves& curves, cube:
     // A state only once the curve is done: a curve still running is neither.
     state.push_back(here && curve.done() ? static_cast<double>(curve.state()) : none);
     const std::span<const std::int8_t> runs_of_curve(status.data() + c * points, points);
-    unresolved.push_back(here ? static_cast<double>(vocabulary::unresolved_count(runs_of_curve)) : none);
+    unresolved.push_back(here ? static_cast<double>(schema::unresolved_count(runs_of_curve)) : none);
   }
-  writer.store_side(vocabulary::kCollapseIntensity, std::move(collapse));
-  writer.store_side(vocabulary::kLastSafeIntensity, std::move(safe));
-  writer.store_side(vocabulary::kIdaRuns, std::move(runs));
-  writer.store_side(vocabulary::kCurveState, std::move(state));
-  writer.store_side(vocabulary::kUnresolvedRuns, std::move(unresolved));
+  writer.store_side(schema::kCollapseIntensity, std::move(collapse));
+  writer.store_side(schema::kLastSafeIntensity, std::move(safe));
+  writer.store_side(schema::kIdaRuns, std::move(runs));
+  writer.store_side(schema::kCurveState, std::move(state));
+  writer.store_side(schema::kUnresolvedRuns, std::move(unresolved));
   if (!study.solver.verdict_check) return;
   // The band of intensities whose verdicts failed the perturbation test, per curve.
   const auto stable = writer.read_values(std::string(metric::status_stable().name));
-  const auto intensity = writer.read_values(vocabulary::kIdaIntensity);
+  const auto intensity = writer.read_values(schema::kIdaIntensity);
   std::vector<double> from(curves.curves(), std::nan("")), to(curves.curves(), std::nan(""));
   for (std::size_t c = 0; c < curves.curves(); ++c)
     for (std::size_t k = 0; k < points; ++k) {
@@ -108,8 +110,8 @@ void store_ida_summaries(const Study& study, const ida::IdaCurves& curves, cube:
       if (!(intensity[i] >= from[c])) from[c] = intensity[i];
       if (!(intensity[i] <= to[c])) to[c] = intensity[i];
     }
-  writer.store_side(vocabulary::kUnstableFrom, std::move(from));
-  writer.store_side(vocabulary::kUnstableTo, std::move(to));
+  writer.store_side(schema::kUnstableFrom, std::move(from));
+  writer.store_side(schema::kUnstableTo, std::move(to));
 }
 
-}  // namespace pcrf::study
+}  // namespace pcrf::run

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-namespace pcrf::study {
+namespace pcrf::run {
 
 std::string format_duration(double seconds) {
   char buffer[48];
@@ -57,4 +57,4 @@ void ProgressMeter::finish(const std::string& output) {
   out_ << ", " << failed_ << " failed, in " << seconds << "; cube: " << output << std::endl;
 }
 
-}  // namespace pcrf::study
+}  // namespace pcrf::run

@@ -6,7 +6,9 @@
 
 #include "pcrf/study/level_axis.hpp"
 
-namespace pcrf::study {
+namespace pcrf::run {
+// A run runs a study: its values (pcrf::study) are this library's vocabulary.
+using namespace pcrf::study;
 
 ResultColumns::ResultColumns(const Study& study) {
   for (const auto& name : study.metrics) {
@@ -36,4 +38,4 @@ void ResultColumns::clear_metrics(std::vector<double>& row) const {
   std::fill(row.begin(), row.begin() + static_cast<std::ptrdiff_t>(metrics_.size()), std::numeric_limits<double>::quiet_NaN());
 }
 
-}  // namespace pcrf::study
+}  // namespace pcrf::run

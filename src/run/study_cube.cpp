@@ -15,11 +15,13 @@
 #include "pcrf/run/result_row.hpp"
 #include "pcrf/version.hpp"
 
-namespace pcrf::study {
+namespace pcrf::run {
+// A run runs a study: its values (pcrf::study) are this library's vocabulary.
+using namespace pcrf::study;
 namespace {
 
 using cube::Attribute;
-namespace names = vocabulary;
+namespace names = schema;
 
 std::string utc_now() {
   const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
@@ -239,4 +241,4 @@ cube::HistoryTable make_history_table(const std::string& label, std::int64_t cas
   return table;
 }
 
-}  // namespace pcrf::study
+}  // namespace pcrf::run

@@ -20,7 +20,7 @@
 #include "pcrf/io/run_lock.hpp"
 #include "pcrf/parallel/scheduler.hpp"
 #include "pcrf/parallel/work_queue.hpp"
-#include "pcrf/solver/batch_solver.hpp"
+#include "pcrf/solver/case_group.hpp"
 #include "pcrf/run/case_runner.hpp"
 #include "pcrf/run/cost_estimate.hpp"
 #include "pcrf/schema/cube_vocabulary.hpp"
@@ -31,7 +31,9 @@
 #include "pcrf/study/study_parser.hpp"
 #include "pcrf/study/study_size.hpp"
 
-namespace pcrf::study {
+namespace pcrf::run {
+// A run runs a study: its values (pcrf::study) are this library's vocabulary.
+using namespace pcrf::study;
 namespace {
 
 /// The case space, once the study is known to fit (a plan is drawn whole when made).
@@ -156,7 +158,7 @@ class HistoryInbox {
 constexpr std::int64_t kFramesTogether = 64;
 
 /// True when the study's cases go to workers in blocks of one excitation (docs/batches.md).
-bool in_lanes(const Study& study) { return study.run.lanes > 1 && batch_integrates(study.solver) && !study.ida; }
+bool in_lanes(const Study& study) { return study.run.lanes > 1 && lanes_take(study.solver) && !study.ida; }
 
 /// `stop_signal`: a signal stops the workers between two cases, reporting the ones done.
 parallel::ScheduleOptions schedule_options(const Study& study, const CaseRunner& runner, const std::atomic<int>* stop_signal) {
@@ -434,7 +436,7 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
   if (stoppable.stopped()) summary.stopped_by = stop_signal->load();
   summary.error = sink.error();
   summary.error_cause = sink.error_cause();
-  summary.verdict_notes = vocabulary::verdict_notes(
+  summary.verdict_notes = schema::verdict_notes(
       m.writer->status(), p.study.ida ? std::optional<std::string>(p.study.ida->collapse) : std::nullopt,
       "neither safe nor collapsed", p.study.physics.tail_s);
   return summary;
@@ -511,4 +513,4 @@ std::optional<StudySummary> run_study(const StudyRunOptions& options, const para
   return summary ? summary : StudySummary{};
 }
 
-}  // namespace pcrf::study
+}  // namespace pcrf::run

@@ -6,10 +6,10 @@
 
 #include "pcrf/metrics/case_result.hpp"
 #include "pcrf/number_text.hpp"
-#include "pcrf/ida/ida_search.hpp"
-#include "pcrf/solver/settings.hpp"
+#include "pcrf/metrics/curve_state.hpp"
+#include "pcrf/metrics/unresolved.hpp"
 
-namespace pcrf::study::vocabulary {
+namespace pcrf::schema {
 
 const std::vector<CubeName>& cube_names() {
   static const std::vector<CubeName> names{
@@ -188,10 +188,10 @@ CurveStates curve_states(const cube::CubeReader& cube) {
   if (cube.layout().find_side_variable(kCurveState) == nullptr) return states;
   for (double code : cube.read_side(kCurveState)) {
     ++states.total;
-    if (code == static_cast<double>(ida::CurveState::kBracketed)) ++states.bracketed;
-    else if (code == static_cast<double>(ida::CurveState::kCensored)) ++states.censored;
-    else if (code == static_cast<double>(ida::CurveState::kUnbracketed)) ++states.unbracketed;
-    else if (code == static_cast<double>(ida::CurveState::kUnresolved)) ++states.unresolved;
+    if (code == static_cast<double>(CurveState::kBracketed)) ++states.bracketed;
+    else if (code == static_cast<double>(CurveState::kCensored)) ++states.censored;
+    else if (code == static_cast<double>(CurveState::kUnbracketed)) ++states.unbracketed;
+    else if (code == static_cast<double>(CurveState::kUnresolved)) ++states.unresolved;
     else ++states.unfinished;  // NaN
   }
   return states;
@@ -210,4 +210,4 @@ std::string curve_states_text(const CurveStates& states) {
   return text;
 }
 
-}  // namespace pcrf::study::vocabulary
+}  // namespace pcrf::schema

@@ -30,7 +30,7 @@ namespace pcrf {
 
 SolverSettings preset_settings(const std::string& name) {
   SolverSettings s;
-  s.integrator = Integrator::kTaylor;  // dopri5 for a scene without a Taylor series
+  s.integrator = parse_integrator("taylor");  // the registry's: its without_series (dopri5) for a scene without one
   s.stop_at_samples = true;
   s.preset = name;
   if (name == "fast") {
@@ -42,7 +42,7 @@ SolverSettings preset_settings(const std::string& name) {
     s.atol_theta_rad = 1e-11;
     s.atol_omega_rad_s = 1e-10;
   } else if (name == "reference") {
-    s.integrator = Integrator::kArkodeErk5;  // SUNDIALS: an independent check of the others
+    s.integrator = parse_integrator("arkode-erk5");  // SUNDIALS: an independent check of the others
     s.rtol = 1e-10;
     s.atol_theta_rad = 1e-14;
     s.atol_omega_rad_s = 1e-13;

@@ -10,11 +10,11 @@
 #include <stdexcept>
 #include <string>
 
-#include "case_common.hpp"
-#include "case_run.hpp"
-#include "fixed_step_solver.hpp"
+#include "case/case_common.hpp"
+#include "case/case_run.hpp"
 #include "pcrf/model/equation_of_motion.hpp"
-#include "prepared_frame.hpp"
+#include "pcrf/solver/integrator_registry.hpp"
+#include "case/prepared_frame.hpp"
 
 namespace pcrf {
 
@@ -87,8 +87,8 @@ CaseResult solve_case(PreparedFrame& frame, const Excitation& excitation, const 
   // Timed here, so that the per-case set-up (linkage limits, fracture angle, r) counts.
   const double start_cpu_s = detail::thread_cpu_s();
   CaseResult result;
-  if (solver.integrator == Integrator::kFixedRk4SignChange) {
-    result = detail::solve_case_fixed_step(frame.scene(), excitation, frame.physics(), solver, history);
+  if (const auto solve_whole = registry_entry(solver.integrator).solve) {  // a method with its own case loop
+    result = solve_whole(frame.scene(), excitation, frame.physics(), solver, history);
   } else if (auto at_rest = detail::rest_throughout(frame, excitation, request, history)) {
     result = std::move(*at_rest);
   } else {

@@ -16,15 +16,5 @@ UpliftCriterion parse_uplift_criterion(const std::string& text) {
 
 std::string to_string(UpliftCriterion c) { return name_of(detail::kUpliftNames, c); }
 
-Integrator parse_integrator(const std::string& text) { return parse_name(detail::kIntegratorNames, text, "integrator"); }
-
-std::string to_string(Integrator i) { return name_of(detail::kIntegratorNames, i); }
-
-std::string tail_advice(double tail_s) {
-  if (std::isnan(tail_s)) return "a longer physics.tail_s (fixed tail) or physics.max_tail_s (until-rest tail) resolves them";
-  if (tail_s == kTailUntilRest) return "a longer physics.max_tail_s resolves them (the until-rest tail stops there)";
-  return "a longer physics.tail_s resolves them (the tail is fixed at " + number_text(tail_s) +
-         " s; physics.max_tail_s caps only an until-rest tail)";
-}
 
 }  // namespace pcrf

@@ -20,7 +20,7 @@ CaseSpace::CaseSpace(const Study& study)
                                     : study.incidence_reference == "fault-parallel" ? strike
                                                                                     : 0.0);
   }
-  names_ = {vocabulary::kRecord};
+  names_ = {schema::kRecord};
   shape_ = {record_names_.size()};
   auto add = [&](const std::vector<cube::Dimension>& dimensions) {
     for (const auto& d : dimensions) {
@@ -31,7 +31,7 @@ CaseSpace::CaseSpace(const Study& study)
   add(level_axis_->leading_dimensions());
   if (!incidences_.empty()) {
     incidence_dim_ = shape_.size();
-    add({{vocabulary::kIncidenceDeg, incidences_.size()}});
+    add({{schema::kIncidenceDeg, incidences_.size()}});
   }
   frame_dim_ = shape_.size();
   add(plan_->dimensions());
@@ -108,7 +108,7 @@ std::int64_t CaseSpace::resolve(const HistoryRequest& request) const {
     if (it == record_names_.end()) fail_history(request, "no record is named \"" + *request.record + "\"");
     coords[0] = static_cast<std::size_t>(it - record_names_.begin());
   } else {
-    coords[0] = pick_single(request, record_names_.size(), vocabulary::kRecord);
+    coords[0] = pick_single(request, record_names_.size(), schema::kRecord);
   }
   if (request.scale) {
     coords[1] = find_value(levels_, *request.scale);
@@ -123,7 +123,7 @@ std::int64_t CaseSpace::resolve(const HistoryRequest& request) const {
       if (coords[incidence_dim_] == std::string::npos)
         fail_history(request, "incidence_deg " + number_text(*request.incidence_deg) + " is not on the incidence_deg axis");
     } else {
-      coords[incidence_dim_] = pick_single(request, incidences_.size(), vocabulary::kIncidenceDeg);
+      coords[incidence_dim_] = pick_single(request, incidences_.size(), schema::kIncidenceDeg);
     }
   } else if (request.incidence_deg) {
     fail_history(request, "the study has no incidence axis");

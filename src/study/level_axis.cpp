@@ -11,7 +11,7 @@
 namespace pcrf::study {
 namespace {
 
-namespace names = vocabulary;
+namespace names = schema;
 
 /// "how the curve ended: 0 bracketed (…), 1 censored (…), 2 unbracketed (…), 3 unresolved (…);
 /// NaN: not finished".

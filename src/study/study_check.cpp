@@ -72,7 +72,7 @@ void check_records(const Study& study, RecordCache& records, std::vector<std::st
 
 /// Hazard-consistent stripes: the curve's own warnings (post::hazard_warnings), and a
 /// warning when its intensities ask a record for a scale factor above
-/// post::kMaxHazardScaleFactor (a curve in other units than its header's, or records that
+/// hazard::kMaxHazardScaleFactor (a curve in other units than its header's, or records that
 /// are not the site's).
 void check_hazard_stripes(const Study& study, const WeakestRecord& weakest, std::vector<std::string>& warnings) {
   if (!study.hazard_stripes) return;
@@ -80,7 +80,7 @@ void check_hazard_stripes(const Study& study, const WeakestRecord& weakest, std:
   if (study.levels.empty() || !(weakest.im > 0.0) || !std::isfinite(weakest.im)) return;
   const double strongest = *std::max_element(study.levels.begin(), study.levels.end());
   const double factor = strongest / weakest.im;
-  if (factor <= post::kMaxHazardScaleFactor) return;
+  if (factor <= hazard::kMaxHazardScaleFactor) return;
   char text[64];
   std::snprintf(text, sizeof text, "%.4g", factor);
   const auto where = study.given_at.find("intensity.return_periods_yr");
@@ -88,7 +88,7 @@ void check_hazard_stripes(const Study& study, const WeakestRecord& weakest, std:
        UserError(where == study.given_at.end() ? Where{{}, study.file, 0} : where->second,
                  "the hazard curve " + study.hazard_stripes->hazard + " asks record \"" + weakest.name + "\" (" +
                      to_string(study.intensity->measure) + " " + number_text(weakest.im) + ") for a scale factor of " +
-                     text + " at " + number_text(strongest) + ", above " + number_text(post::kMaxHazardScaleFactor) +
+                     text + " at " + number_text(strongest) + ", above " + number_text(hazard::kMaxHazardScaleFactor) +
                      ": are the curve's intensities in the units its header names?"),
        warnings);
 }

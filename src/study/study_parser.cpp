@@ -38,7 +38,7 @@ using detail::with_parameter_keys;
 
 // ---- pulses ------------------------------------------------------------------------------
 
-using vocabulary::pulse_axis_keys;
+using schema::pulse_axis_keys;
 
 std::vector<std::string_view> axes_keys() {
   std::vector<std::string_view> keys{"scale", "intensity", "incidence_deg", "incidence"};
@@ -85,7 +85,7 @@ std::vector<RecordSource> read_pulse_entry(const Fields& f, const Study& s) {
     std::vector<const Study::PulseAxis*> axes;
     for (const auto& axis : s.pulse_axes) {
       const auto& key = *std::find_if(pulse_axis_keys().begin(), pulse_axis_keys().end(),
-                                      [&](const vocabulary::PulseAxisKey& k) { return k.axis_key == axis.key; });
+                                      [&](const schema::PulseAxisKey& k) { return k.axis_key == axis.key; });
       if (key.only.empty() || std::find(key.only.begin(), key.only.end(), shape) != key.only.end()) axes.push_back(&axis);
     }
     std::vector<std::size_t> at(axes.size(), 0);
@@ -227,10 +227,10 @@ std::string four_digits(double value) {
 
 /// The hazard curve of hazard-consistent stripes, read and checked against the study's
 /// measure; its refusals name the study's key and the hazard file's line.
-post::HazardFile read_stripe_hazard(const Fields& f, const Study::HazardStripes& h, const IntensitySpec& spec) {
-  std::optional<post::HazardFile> read;
+pcrf::hazard::HazardFile read_stripe_hazard(const Fields& f, const Study::HazardStripes& h, const IntensitySpec& spec) {
+  std::optional<pcrf::hazard::HazardFile> read;
   try {
-    read = post::read_hazard_file(h.file, risk::Tail::kCutOff);  // cut off: no return period beyond the curve
+    read = pcrf::hazard::read_hazard_file(h.file, risk::Tail::kCutOff);  // cut off: no return period beyond the curve
   } catch (const UserError& e) {
     f.fail(kHazardKey, e.what());
   }
@@ -257,7 +257,7 @@ void read_hazard_stripes(const Fields& f, const IntensitySpec& spec, Study& s) {
   h.file = s.base_dir / h.hazard;
   h.return_periods_yr = read_values(f, kReturnPeriodsKey);
   check_axis(f, kReturnPeriodsKey, h.return_periods_yr, nullptr);
-  const post::HazardFile hazard = read_stripe_hazard(f, h, spec);
+  const pcrf::hazard::HazardFile hazard = read_stripe_hazard(f, h, spec);
   const auto& rates = hazard.curve.rates_per_yr();
   std::vector<double> intensities;
   for (double period_yr : h.return_periods_yr) {

@@ -224,7 +224,7 @@ TEST(CubeReduce, AReducedStatisticCountsApartWhatAMovingCaseCouldChange) {
   cube::CubeReader cube(dir / "moving.h5");
   const auto& layout = cube.layout();
   const auto status = cube.read_status();
-  const auto collapses = study::vocabulary::collapse_statuses(), moving = study::vocabulary::unresolved_statuses();
+  const auto collapses = schema::collapse_statuses(), moving = schema::unresolved_statuses();
   auto is = [](const std::vector<std::int8_t>& set, std::int8_t s) { return std::find(set.begin(), set.end(), s) != set.end(); };
   const auto shape = layout.shape();
   const std::size_t incidence = *layout.find_dimension("incidence_deg"), kappa = *layout.find_dimension("kappa");

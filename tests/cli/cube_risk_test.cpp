@@ -133,7 +133,7 @@ TEST(CubeRisk, RatesAreTheFragilitysIntegratedAgainstTheCurve) {
   ASSERT_EQ(frames.size(), 1u);
   const auto& f = frames.front();
   ASSERT_TRUE(f.fit);
-  const auto hazard = post::read_hazard_file(folder() / "h.csv", risk::Tail::kCutOff);
+  const auto hazard = pcrf::hazard::read_hazard_file(folder() / "h.csv", risk::Tail::kCutOff);
   // The lognormal's rate: the library's integral to its 1e-7 (the command adds bin edges).
   const double lognormal = risk::collapse_rate(hazard.curve, *f.fit).lambda_per_yr;
   EXPECT_NEAR(std::stod(row["lambda_collapse_per_yr"]) / lognormal, 1.0, 1e-6);
@@ -188,7 +188,7 @@ TEST(CubeRisk, ALowerTailThatDecidesTheRateIsWarnedOf) {
   ASSERT_EQ(report.frames.size(), 1u);
   const auto& f = report.frames.front();
   ASSERT_TRUE(f.lognormal);
-  const auto hazard = post::read_hazard_file(in.hazard, in.tail).curve;
+  const auto hazard = pcrf::hazard::read_hazard_file(in.hazard, in.tail).curve;
   const auto split = risk::collapse_rate(hazard, *f.fit, {f.lowest_collapse});
   EXPECT_GT(f.lower_tail_share, 0.5);
   EXPECT_NEAR(f.lower_tail_share, split.rate_below(f.lowest_collapse) / split.lambda_per_yr, 1e-6);
@@ -209,7 +209,7 @@ TEST(CubeRisk, ReadsACubeOfHazardConsistentStripes) {
   EXPECT_EQ(periods->units, "yr");
   EXPECT_EQ(layout.text_attribute("intensity_hazard"), "wide.csv");
   const auto& levels = layout.find_coordinate("intensity")->numbers;
-  const auto hazard = post::read_hazard_file(folder() / "wide.csv", risk::Tail::kPowerLaw);
+  const auto hazard = pcrf::hazard::read_hazard_file(folder() / "wide.csv", risk::Tail::kPowerLaw);
   ASSERT_EQ(levels.size(), 6u);
   for (std::size_t j = 0; j < levels.size(); ++j) {
     EXPECT_NEAR(levels[j], hazard.curve.intensity_at_rate(1.0 / periods->numbers[j]), 1e-12 * levels[j]) << j;
@@ -272,7 +272,7 @@ TEST(CubeRisk, SampledFramesMeasureTheModellingDispersion) {
   // The totals with ratings B, B, B (0.2 each), and the rates they imply at the pooled median.
   EXPECT_NEAR(report.model->beta_total_measured, std::sqrt(pooled->beta * pooled->beta + 0.08), 1e-12);
   EXPECT_NEAR(report.model->beta_total_rated, std::sqrt(sum_beta2 / 4.0 + 0.12), 1e-12);
-  const auto hazard = post::read_hazard_file(in.hazard, in.tail).curve;
+  const auto hazard = pcrf::hazard::read_hazard_file(in.hazard, in.tail).curve;
   auto rate = [&](double beta) { return risk::collapse_rate(hazard, {pooled->median, beta}).lambda_per_yr; };
   EXPECT_NEAR(report.model_pooled->lambda_per_yr / rate(pooled->beta), 1.0, 1e-12);
   EXPECT_NEAR(report.model_measured->lambda_per_yr / rate(report.model->beta_total_measured), 1.0, 1e-12);

@@ -17,7 +17,7 @@
 #include "pcrf/metrics/case_result.hpp"
 #include "pcrf/model/frame.hpp"
 #include "pcrf/model/rigid_rocker.hpp"
-#include "solver/prepared_frame.hpp"  // private to the solver: the tests read the scene
+#include "solver/case/prepared_frame.hpp"  // private to the solver: the tests read the scene
 
 namespace pcrf::test {
 

@@ -16,7 +16,7 @@
 
 #include "batch_design.hpp"
 #include "pcrf/solver/batch_solver.hpp"
-#include "solver/batch/lane_arrays.hpp"
+#include "solver/lanes/lane_arrays.hpp"
 #include "solver_test_support.hpp"
 
 namespace pcrf {

@@ -1,4 +1,4 @@
-// The purpose-built integrator (src/solver/dormand_prince.hpp): its order on a problem with
+// The purpose-built integrator (src/solver/dopri5/dormand_prince.hpp): its order on a problem with
 // a closed form, its dense output, its roots and breakpoints; then, for each of the three
 // scenes, what the solver built on it must keep: energy between impacts, mirror symmetry,
 // convergence as the tolerances tighten, Housner's free rocking, and agreement with SUNDIALS.
@@ -16,8 +16,8 @@
 #include "pcrf/model/equation_of_motion.hpp"
 #include "pcrf/model/frame.hpp"
 #include "pcrf/model/rigid_rocker.hpp"
-#include "solver/dormand_prince.hpp"  // private to the solver: the test makes one directly
-#include "solver/prepared_frame.hpp"
+#include "solver/dopri5/dormand_prince.hpp"  // private to the solver: the test makes one directly
+#include "solver/case/prepared_frame.hpp"
 #include "solver_test_support.hpp"
 
 namespace pcrf {

@@ -59,9 +59,11 @@ TEST_P(FreeRocking, KineticEnergyRatioAcrossImpactIsRSquared) {
   EXPECT_GE(impacts_checked, 2);
 }
 
-INSTANTIATE_TEST_SUITE_P(Integrators, FreeRocking,
-                         ::testing::Values(Integrator::kDormandPrince5, Integrator::kCvodeAdams, Integrator::kCvodeBdf, Integrator::kArkodeErk5,
-                                           Integrator::kArkodeErk8),
+// Every integrator that locates its events (the fixed-step contender crosses θ₁ = 0 by up to a
+// step before it sees an impact, and never puts a frame back at rest: no energy balance holds
+// at its impacts). On this frame taylor takes its without_series (dopri5); its own series
+// steps are checked on the block below.
+INSTANTIATE_TEST_SUITE_P(Integrators, FreeRocking, ::testing::ValuesIn(test::event_locating_integrators()),
                          test::integrator_test_name);
 
 }  // namespace

@@ -14,7 +14,7 @@
 #include "pcrf/model/frame.hpp"
 #include "pcrf/model/rigid_rocker.hpp"
 #include "pcrf/units.hpp"
-#include "solver/case_common.hpp"
+#include "solver/case/case_common.hpp"
 
 namespace pcrf {
 namespace {

@@ -1,4 +1,4 @@
-// The root search shared by the event-locating integrators (src/solver/root_search.hpp) and
+// The root search shared by the event-locating integrators (src/solver/integrator/root_search.hpp) and
 // the breakpoint cursor of integrators.hpp: the local model's step, the bracketed search with
 // and without the curvature (probes counted, the reported root past the crossing and within
 // the tolerance of it), and NextSample against SampleGrid::next_after.
@@ -9,8 +9,8 @@
 #include <random>
 #include <vector>
 
-#include "solver/integrators.hpp"  // private to the solver: the test calls them directly
-#include "solver/root_search.hpp"
+#include "solver/integrator/integrator.hpp"  // private to the solver: the test calls them directly
+#include "solver/integrator/root_search.hpp"
 
 namespace pcrf {
 namespace {

@@ -10,6 +10,7 @@
 
 #include "pcrf/record/ground_motion.hpp"
 #include "pcrf/record/synthetic.hpp"
+#include "pcrf/solver/integrator_registry.hpp"
 #include "pcrf/solver/rocking_solver.hpp"
 
 namespace pcrf::test {
@@ -44,6 +45,25 @@ inline SolverSettings tight(Integrator i = Integrator::kDormandPrince5) {
   s.atol_theta_rad = 1e-15;
   s.atol_omega_rad_s = 1e-13;
   return s;
+}
+
+/// Every integrator of the registry: the parameters of the tests that run "every integrator",
+/// so that a family added to the registry is tested without editing them.
+inline std::vector<Integrator> every_integrator() {
+  std::vector<Integrator> ids;
+  for (const IntegratorEntry& e : integrator_registry()) ids.push_back(e.id);
+  return ids;
+}
+
+/// Those that locate their events (IntegratorCapabilities::locates_events): the tests of exact
+/// physics (energy between and across impacts, bit-for-bit mirrored motion, convergence of a
+/// located peak) leave out the fixed-step contender, which sees an impact only as a sign
+/// change at a step's end and never puts a frame back at rest.
+inline std::vector<Integrator> event_locating_integrators() {
+  std::vector<Integrator> ids;
+  for (const IntegratorEntry& e : integrator_registry())
+    if (e.can.locates_events) ids.push_back(e.id);
+  return ids;
 }
 
 /// A parameterised test's name for an integrator ("cvode_adams"): gtest names take no '-'.

@@ -7,7 +7,7 @@
 #include <regex>
 #include <string>
 
-#include "solver/integrators.hpp"  // private to the solver: the test makes one directly
+#include "solver/integrator/registry.hpp"  // private to the solver: the test makes one directly
 #include "solver_test_support.hpp"
 
 namespace pcrf {

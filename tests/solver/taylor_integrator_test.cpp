@@ -1,4 +1,4 @@
-// The Taylor-step integrator (src/solver/taylor_integrator.hpp) on a problem with a closed
+// The Taylor-step integrator (src/solver/taylor/taylor_integrator.hpp) on a problem with a closed
 // form: y'' = −ω² y (y = cos ωt) has the series a_{k+2} = −ω² a_k / ((k+1)(k+2)). Its order
 // against the tolerance, its dense output, breakpoints, the closed-form roots (y, y', y'' and
 // |y| − c) located to the time tolerance, directions, and the refusals of its constructor.
@@ -12,7 +12,7 @@
 #include <numbers>
 #include <vector>
 
-#include "solver/taylor_integrator.hpp"  // private to the solver: the test makes one directly
+#include "solver/taylor/taylor_integrator.hpp"  // private to the solver: the test makes one directly
 
 namespace pcrf {
 namespace {

@@ -15,10 +15,10 @@
 namespace pcrf::study_test {
 namespace {
 
-using study::CostEstimate;
+using run::CostEstimate;
 
 TEST(CostEstimate, SamplePositionsAreTheMiddlesOfEqualPartsAndEveryPrefixIsSpread) {
-  const auto positions = study::sample_positions(100, 16);
+  const auto positions = run::sample_positions(100, 16);
   ASSERT_EQ(positions.size(), 16u);
   std::vector<std::int64_t> sorted = positions;
   std::sort(sorted.begin(), sorted.end());
@@ -29,12 +29,12 @@ TEST(CostEstimate, SamplePositionsAreTheMiddlesOfEqualPartsAndEveryPrefixIsSprea
   for (std::size_t k = 0; k < 4; ++k) quarters.insert(positions[k] / 25);
   EXPECT_EQ(quarters.size(), 4u);
   // Fewer units than the sample: each once; none: nothing.
-  const auto all = study::sample_positions(5, 16);
+  const auto all = run::sample_positions(5, 16);
   EXPECT_EQ(std::set<std::int64_t>(all.begin(), all.end()), (std::set<std::int64_t>{0, 1, 2, 3, 4}));
   EXPECT_EQ(all.size(), 5u);
-  EXPECT_TRUE(study::sample_positions(0, 16).empty());
+  EXPECT_TRUE(run::sample_positions(0, 16).empty());
   // A sample that is not a power of two keeps every slot once.
-  const auto eleven = study::sample_positions(1000, 11);
+  const auto eleven = run::sample_positions(1000, 11);
   EXPECT_EQ(std::set<std::int64_t>(eleven.begin(), eleven.end()).size(), 11u);
 }
 
@@ -67,7 +67,7 @@ TEST(CostEstimate, AnIdaIsSampledAtTheIntensitiesItsCurvesReach) {
   const auto runs = cube.read_side("ida_runs");
 
   Parsed p(dir, ida_study());
-  const CostEstimate estimate = study::estimate_cost(p.study, p.space, p.records, 4, 1e9);
+  const CostEstimate estimate = run::estimate_cost(p.study, p.space, p.records, 4, 1e9);
   EXPECT_TRUE(estimate.ida);
   EXPECT_EQ(estimate.population, 6);
   ASSERT_EQ(estimate.sampled(), 4);
@@ -102,10 +102,10 @@ TEST(CostEstimate, AnIdaIsSampledAtTheIntensitiesItsCurvesReach) {
 TEST(CostEstimate, AGridIsSampledOverItsHandOutOrder) {
   const auto dir = test::scratch_dir("cost_estimate_grid");
   Parsed p(dir, small_grid_study("[run]\nlanes = 1\n"));
-  const CostEstimate estimate = study::estimate_cost(p.study, p.space, p.records, 8, 1e9);
+  const CostEstimate estimate = run::estimate_cost(p.study, p.space, p.records, 8, 1e9);
   EXPECT_FALSE(estimate.ida);
   EXPECT_EQ(estimate.population, 24);
-  const auto positions = study::sample_positions(24, 8);
+  const auto positions = run::sample_positions(24, 8);
   ASSERT_EQ(estimate.runs.size(), positions.size());
   for (std::size_t k = 0; k < positions.size(); ++k) {
     EXPECT_EQ(estimate.runs[k].case_index, p.space.handout_index(positions[k]));
@@ -125,8 +125,8 @@ TEST(CostEstimate, InLanesASampledCaseIsSolvedWithItsLaneMates) {
   // cases of its excitation, the sampled one first; each unit costs its share of the batch.
   const auto dir = test::scratch_dir("cost_estimate_lanes");
   Parsed p(dir, small_grid_study("[run]\nlanes = 4\n"));
-  const CostEstimate estimate = study::estimate_cost(p.study, p.space, p.records, 5, 1e9);
-  const auto positions = study::sample_positions(24, 5);
+  const CostEstimate estimate = run::estimate_cost(p.study, p.space, p.records, 5, 1e9);
+  const auto positions = run::sample_positions(24, 5);
   ASSERT_EQ(estimate.unit_runs.size(), positions.size());
   std::size_t cursor = 0;
   for (std::size_t k = 0; k < positions.size(); ++k) {

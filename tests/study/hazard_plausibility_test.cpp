@@ -34,11 +34,11 @@ std::string power_law(double scale = 1.0) {
   return text;
 }
 
-post::HazardFile read(const std::string& name, const std::string& text) {
-  return post::read_hazard_file(test::write_file(folder(), name, text), risk::Tail::kPowerLaw);
+hazard::HazardFile read(const std::string& name, const std::string& text) {
+  return hazard::read_hazard_file(test::write_file(folder(), name, text), risk::Tail::kPowerLaw);
 }
 
-std::string warnings_of(const post::HazardFile& h) {
+std::string warnings_of(const hazard::HazardFile& h) {
   std::string all;
   for (const auto& w : h.warnings) all += w.message(Dialect::kFlag) + "\n";
   return all;
@@ -93,23 +93,23 @@ TEST(HazardPlausibility, AByteOrderMarkIsSkippedAndUtf16Refused) {
 
 TEST(HazardPlausibility, TooManyPointsAreRefusedAtTheFirstOneBeyond) {
   std::string text = "pga_g,annual_rate_per_yr\n";
-  for (std::size_t i = 0; i <= post::kMaxHazardPoints; ++i) {
-    const double x = 0.01 * std::pow(1000.0, static_cast<double>(i) / post::kMaxHazardPoints);
+  for (std::size_t i = 0; i <= hazard::kMaxHazardPoints; ++i) {
+    const double x = 0.01 * std::pow(1000.0, static_cast<double>(i) / hazard::kMaxHazardPoints);
     text += number_text(x) + "," + number_text(1.0 / (1.0 + static_cast<double>(i))) + "\n";
   }
   try {
     read("many.csv", text);
     FAIL() << "read more than kMaxHazardPoints";
   } catch (const UserError& e) {
-    EXPECT_NE(std::string(e.what()).find("many.csv:" + std::to_string(post::kMaxHazardPoints + 2) + ": more than " +
-                                         std::to_string(post::kMaxHazardPoints) + " points"),
+    EXPECT_NE(std::string(e.what()).find("many.csv:" + std::to_string(hazard::kMaxHazardPoints + 2) + ": more than " +
+                                         std::to_string(hazard::kMaxHazardPoints) + " points"),
               std::string::npos)
         << e.what();
   }
 }
 
 // Hazard-consistent stripes from a curve in cm/s²: the study warns of the curve (file, line)
-// and of the scale factors it asks (above post::kMaxHazardScaleFactor); warnings as errors refuse.
+// and of the scale factors it asks (above hazard::kMaxHazardScaleFactor); warnings as errors refuse.
 TEST(HazardPlausibility, StripesFromACurveInOtherUnitsAreWarnedOf) {
   test::write_file(folder(), "cm.csv", power_law(100.0 * kGravity_m_s2));
   const std::string study = "[[records]]\nsynthetic = \"stochastic:seed=1,pga_g=0.5,duration_s=3\"\n[intensity]\n"

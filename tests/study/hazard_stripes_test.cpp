@@ -58,7 +58,7 @@ TEST(HazardStripes, StripesAreTheCurvesIntensitiesAtTheReturnPeriods) {
   // On the power-law part, the closed form: x = (k0 T)^(1/3).
   EXPECT_NEAR(s.levels[2], std::cbrt(2.625e-4 * 475.0), 1e-12);
   // And back: the curve's rate at each stripe is 1/T.
-  const auto curve = post::read_hazard_file(folder() / "site/pga.csv", risk::Tail::kCutOff).curve;
+  const auto curve = pcrf::hazard::read_hazard_file(folder() / "site/pga.csv", risk::Tail::kCutOff).curve;
   for (std::size_t j = 0; j < s.levels.size(); ++j)
     EXPECT_NEAR(curve.rate_per_yr(s.levels[j]) * s.hazard_stripes->return_periods_yr[j], 1.0, 1e-12) << j;
   // The return periods are part of the study's canonical text (its fingerprint).

@@ -20,10 +20,10 @@ const std::string kIda =
 
 TEST(ResultColumns, AnIdaRowEndsWithTheRunsIntensityAndFactor) {
   const Study study = parse_study(kIda, "t.toml", test::source_dir());
-  const ResultColumns columns(study);
+  const run::ResultColumns columns(study);
   ASSERT_EQ(columns.width(), 4u);
   EXPECT_EQ(columns.metric_column("theta_max_rad"), 1u);
-  EXPECT_EQ(columns.metric_column("omega_max_rad_s"), ResultColumns::npos);  // not stored
+  EXPECT_EQ(columns.metric_column("omega_max_rad_s"), run::ResultColumns::npos);  // not stored
   EXPECT_EQ(columns.ida_intensity_column(), 2u);
   EXPECT_EQ(columns.scale_factor_column(), 3u);
   EXPECT_EQ(columns.variables()[columns.ida_intensity_column()].name, "ida_intensity");
@@ -43,18 +43,18 @@ TEST(ResultColumns, AnIdaRowEndsWithTheRunsIntensityAndFactor) {
 TEST(ResultColumns, WithoutAnIdaTheRowIsTheMetrics) {
   const Study study = parse_study("[[records]]\nsynthetic = \"sine:amplitude_g=1.5\"\n[outputs]\nmetrics = [\"impacts\"]\n",
                                   "t.toml", test::source_dir());
-  const ResultColumns columns(study);
+  const run::ResultColumns columns(study);
   EXPECT_EQ(columns.width(), 1u);
-  EXPECT_EQ(columns.ida_intensity_column(), ResultColumns::npos);
-  EXPECT_EQ(columns.scale_factor_column(), ResultColumns::npos);
+  EXPECT_EQ(columns.ida_intensity_column(), run::ResultColumns::npos);
+  EXPECT_EQ(columns.scale_factor_column(), run::ResultColumns::npos);
 }
 
 TEST(ResultColumns, TheCubeDeclaresItsMetricVariablesInColumnOrder) {
   const Study study = parse_study(kIda, "t.toml", test::source_dir());
   const CaseSpace space(study);
   RecordCache records(study.records);
-  const auto layout = make_cube_layout(study, space, records, "0123456789abcdef");
-  const ResultColumns columns(study);
+  const auto layout = run::make_cube_layout(study, space, records, "0123456789abcdef");
+  const run::ResultColumns columns(study);
   ASSERT_EQ(layout.metrics.size(), columns.width());
   for (std::size_t c = 0; c < columns.width(); ++c) EXPECT_EQ(layout.metrics[c].name, columns.variables()[c].name) << c;
 }

@@ -58,7 +58,7 @@ TEST(Settings, EveryPhysicsAndSolverKeyIsACubeAttribute) {
   const Study s = parse_study(kRecords, "t.toml", test::source_dir());
   const CaseSpace space(s);
   RecordCache records(s.records);
-  const auto layout = make_cube_layout(s, space, records, "f");
+  const auto layout = run::make_cube_layout(s, space, records, "f");
   auto has = [&](const std::string& name) {
     for (const auto& a : layout.attributes)
       if (a.name == name) return true;

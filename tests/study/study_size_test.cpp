@@ -74,11 +74,11 @@ TEST(StudySize, HugeStudiesAreRefusedWithTheirKeyAndLine) {
 /// internal error: bad_alloc, …) fails the test.
 std::string check_in_process(const std::filesystem::path& dir, const std::string& text, const std::string& what) {
   static parallel::MpiSession mpi;  // one rank, no launcher
-  study::StudyRunOptions options;
+  run::StudyRunOptions options;
   options.study_file = test::write_file(dir, "s.toml", text);
   options.check_only = true;
   try {
-    (void)study::run_study(options, mpi);
+    (void)run::run_study(options, mpi);
     return "";
   } catch (const UserError& e) {
     const std::string message = e.what();

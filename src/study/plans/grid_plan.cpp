@@ -69,7 +69,7 @@ class GridPlan final : public Plan {
   }
 
   std::string history_key_problem(std::string_view key) const override {
-    return key == vocabulary::kCase ? "plan \"grid\" selects cases by parameter values" : "";
+    return key == schema::kCase ? "plan \"grid\" selects cases by parameter values" : "";
   }
 
   void describe(std::ostream& out) const override { describe_axes(out, *model_, given_); }

@@ -21,7 +21,7 @@ class OneAtATimePlan final : public PointPlan {
 
  protected:
   std::vector<cube::Coordinate> extra_coordinates() const override {
-    return {text_coordinate(vocabulary::kVariedParameter, vocabulary::kCase,
+    return {text_coordinate(schema::kVariedParameter, schema::kCase,
                             "parameter varied from the base point (none: the base point)", varied_)};
   }
 

@@ -94,13 +94,13 @@ void describe_parameters(std::ostream& out, const SceneModel& model, const Scene
 }
 
 PointPlan::PointPlan(const SceneModel& model, std::vector<Point> points)
-    : model_(&model), points_(std::move(points)), dimensions_{{vocabulary::kCase, points_.size()}} {
+    : model_(&model), points_(std::move(points)), dimensions_{{schema::kCase, points_.size()}} {
   for (auto& p : points_)
     if (p.model == nullptr) p.model = model_;
 }
 
 PointPlan::PointPlan(const SceneModel& model, std::size_t count)
-    : model_(&model), dimensions_{{vocabulary::kCase, count}} {}
+    : model_(&model), dimensions_{{schema::kCase, count}} {}
 
 SceneSpec PointPlan::frame_at(std::span<const std::size_t> coordinates) const {
   const std::size_t i = coordinates[0];
@@ -123,12 +123,12 @@ std::vector<cube::Coordinate> PointPlan::coordinates() const {
   const std::size_t n = point_count();
   std::vector<double> index(n);
   for (std::size_t i = 0; i < n; ++i) index[i] = static_cast<double>(i);
-  std::vector<cube::Coordinate> coords{number_coordinate(vocabulary::kCase, vocabulary::kCase, "", "frame number", std::move(index))};
+  std::vector<cube::Coordinate> coords{number_coordinate(schema::kCase, schema::kCase, "", "frame number", std::move(index))};
   coords.back().is_index = true;
   if (stores_labels()) {
     std::vector<std::string> labels;
     for (std::size_t i = 0; i < n; ++i) labels.push_back(point_label(i));
-    coords.push_back(text_coordinate(vocabulary::kCaseLabel, vocabulary::kCase, "frame label", labels));
+    coords.push_back(text_coordinate(schema::kCaseLabel, schema::kCase, "frame label", labels));
   }
   // The models present: the plan's first, then the others in catalogue order.
   std::vector<const SceneModel*> present{model_};
@@ -139,7 +139,7 @@ std::vector<cube::Coordinate> PointPlan::coordinates() const {
   if (present.size() > 1) {
     std::vector<std::string> models;
     for (std::size_t i = 0; i < n; ++i) models.emplace_back(point_model(i).name);
-    coords.push_back(text_coordinate(vocabulary::kSceneModel, vocabulary::kCase, "scene model of the frame", models));
+    coords.push_back(text_coordinate(schema::kSceneModel, schema::kCase, "scene model of the frame", models));
   }
   for (auto& c : extra_coordinates()) coords.push_back(std::move(c));
   // The plan's model's other parameters are the cube's attributes (frame_h_m, …); another
@@ -164,14 +164,14 @@ std::vector<cube::Coordinate> PointPlan::coordinates() const {
         values.push_back(position[j] == std::string::npos ? std::numeric_limits<double>::quiet_NaN()  // as SceneSpec::value
                                                           : point_value(i, position[j]));
       }
-      coords.push_back(number_coordinate(std::string(parameter.name), vocabulary::kCase, std::string(parameter.units),
+      coords.push_back(number_coordinate(std::string(parameter.name), schema::kCase, std::string(parameter.units),
                                          std::string(parameter.long_name), std::move(values)));
     }
   return coords;
 }
 
 std::vector<std::size_t> PointPlan::locate(const HistoryRequest& request) const {
-  if (!request.case_label) return {pick_single(request, point_count(), vocabulary::kCase)};
+  if (!request.case_label) return {pick_single(request, point_count(), schema::kCase)};
   for (std::size_t i = 0; i < point_count(); ++i)
     if (point_label(i) == *request.case_label) return {i};
   fail_history(request, "no case is labelled \"" + *request.case_label + "\"");
@@ -179,7 +179,7 @@ std::vector<std::size_t> PointPlan::locate(const HistoryRequest& request) const 
 }
 
 std::string PointPlan::history_key_problem(std::string_view key) const {
-  if (key == vocabulary::kCase) return "";
+  if (key == schema::kCase) return "";
   return "plan \"" + std::string(name()) + "\" selects cases by `case` label";
 }
 

@@ -153,10 +153,10 @@ class SaltelliPlan final : public SampledPlan {
       blocks.push_back(block_name(i));
       samples.push_back(static_cast<double>(study::SaltelliDesign::sample(i, varied().size())));
     }
-    auto sample = number_coordinate(vocabulary::kSaltelliSample, vocabulary::kCase, "1",
+    auto sample = number_coordinate(schema::kSaltelliSample, schema::kCase, "1",
                                     "Saltelli base sample the frame belongs to", std::move(samples));
     sample.is_index = true;  // whole numbers: stored as integers
-    return {text_coordinate(vocabulary::kSaltelliBlock, vocabulary::kCase, "Saltelli design block: A, B or AB_<parameter>",
+    return {text_coordinate(schema::kSaltelliBlock, schema::kCase, "Saltelli design block: A, B or AB_<parameter>",
                             std::move(blocks)),
             std::move(sample)};
   }

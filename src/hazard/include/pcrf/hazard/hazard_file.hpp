@@ -22,7 +22,7 @@
 #include "pcrf/analysis/risk.hpp"
 #include "pcrf/user_error.hpp"
 
-namespace pcrf::post {
+namespace pcrf::hazard {
 
 struct HazardFile {
   std::filesystem::path file;
@@ -70,4 +70,4 @@ inline constexpr double kMaxHazardScaleFactor = 100.0;
 /// (probabilities over a period in the rate column).
 std::vector<UserError> hazard_warnings(const HazardFile& hazard, std::size_t first_row, std::size_t last_row);
 
-}  // namespace pcrf::post
+}  // namespace pcrf::hazard

@@ -31,28 +31,20 @@
 #include <string>
 #include <vector>
 
+#include "pcrf/metrics/curve_state.hpp"
 #include "pcrf/setting.hpp"
 
 namespace pcrf::ida {
 
-/// How a curve ended (its value is the cube's `curve_state` code: never renumber).
-enum class CurveState {
-  kBracketed = 0,   ///< collapse / last safe − 1 ≤ resolution
-  kCensored = 1,    ///< safe at max_intensity: right-censored there
-  kUnbracketed = 2, ///< max_runs ran out before either
-  /// The lowest run that stopped the hunt gave no verdict (RunVerdict::kNoVerdict): shown
-  /// safe up to its last safe intensity at most, nothing known above.
-  kUnresolved = 3,
-};
-inline constexpr std::array<EnumName<CurveState>, 4> kCurveStateNames{{{CurveState::kBracketed, "bracketed"},
-                                                                       {CurveState::kCensored, "censored"},
-                                                                       {CurveState::kUnbracketed, "unbracketed"},
-                                                                       {CurveState::kUnresolved, "unresolved"}}};
+// How a curve ended: pcrf/metrics/curve_state.hpp (below the scheduler, so that reports name
+// curve states without MPI); here under the IDA's own names too.
+using pcrf::CurveState;
+using pcrf::curve_state_name;
+using pcrf::kCurveStateNames;
 
 /// What one run of a curve says: safe, collapsed, or nothing the search may call either
 /// (the caller decides which statuses those are: study/cube_vocabulary.hpp).
 enum class RunVerdict { kSafe, kCollapse, kNoVerdict };
-inline std::string curve_state_name(CurveState state) { return name_of(kCurveStateNames, state); }
 
 /// The hunt's default growth of its steps, measured (studies/README.md, [ida] step_factor).
 inline constexpr double kDefaultStepFactor = 2.0;

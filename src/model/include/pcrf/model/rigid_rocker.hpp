@@ -87,6 +87,9 @@ class RigidRocker final : public Scene {
   bool taylor_series(double theta1, double omega1, const GroundLine& ground, int side, int order,
                      double* a) const override;
   TaylorKernel taylor_kernel(int side, int order) const override;
+  std::optional<RockerCoefficients> rocker_coefficients() const override {
+    return RockerCoefficients{p_.slenderness_rad, moment_over_inertia_per_m_, p_.gravity_m_s2};
+  }
   static constexpr int kTaylorOrderMax = 24;
   double gravity_m_s2() const override { return p_.gravity_m_s2; }
   double restitution() const override { return restitution_; }

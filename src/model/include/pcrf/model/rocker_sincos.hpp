@@ -1,6 +1,6 @@
 /// \file rocker_sincos.hpp
 /// \brief sin x and cos x of the rigid rockers, written once over a number type: `double` for
-/// the one-case solver, a SIMD pack of cases for the batch kernels (src/solver/batch/), with
+/// the one-case solver, a SIMD pack of cases for the batch kernels (src/solver/lanes/), with
 /// the same operations in the same order, so that both give the same bits (compiled with
 /// -ffp-contract=off: no fused multiply-add that the other does not have).
 ///

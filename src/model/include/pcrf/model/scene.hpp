@@ -16,6 +16,7 @@
 
 #include <array>
 #include <limits>
+#include <optional>
 
 #include "pcrf/ground_acceleration.hpp"
 
@@ -46,6 +47,14 @@ struct TaylorKernel {
   using Series = bool (*)(const double* constants, double theta1, double omega1, const GroundLine& ground, double* a);
   Series series = nullptr;  ///< null: the scene has no series of that order
   std::array<double, 6> constants{};
+};
+
+/// A rigid rocker's right-hand side in three numbers (rigid_rocker_acceleration): what a scene
+/// that is one offers to a caller evaluating it for many cases at once (the CPU lanes' kernels).
+struct RockerCoefficients {
+  double slenderness_rad = 0.0;            ///< α
+  double moment_over_inertia_per_m = 0.0;  ///< (1 + 2γ) R / I [1/m]
+  double gravity_m_s2 = 0.0;
 };
 
 class Scene {
@@ -113,6 +122,9 @@ class Scene {
   /// taylor_series on `side` to `order` as a kernel (see TaylorKernel); a null one when the
   /// scene has none.
   virtual TaylorKernel taylor_kernel(int /*side*/, int /*order*/) const { return {}; }
+  /// The scene's right-hand side as a rigid rocker's coefficients, where it is one; nullopt
+  /// for any other (its acceleration() is then the one form of its right-hand side).
+  virtual std::optional<RockerCoefficients> rocker_coefficients() const { return std::nullopt; }
 
  protected:
   /// Derived classes call this once their terms can be evaluated.

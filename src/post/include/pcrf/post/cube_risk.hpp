@@ -60,7 +60,7 @@ struct FrameRisk {
 };
 
 struct RiskReport {
-  HazardFile hazard;
+  pcrf::hazard::HazardFile hazard;
   std::string cube_measure;
   std::vector<FrameRisk> frames;
   std::vector<double> bin_edges;    ///< deaggregation bins (10 per decade)

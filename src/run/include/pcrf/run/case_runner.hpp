@@ -1,6 +1,6 @@
 /// \file case_runner.hpp
-/// \brief Runs the cases of a study: builds the frame, scales the record, calls solve_case
-/// (or solve_batch for the cases of one excitation) and packs the stored metrics into a
+/// \brief Runs the cases of a study: builds the frame, scales the record, solves the cases of
+/// one excitation as a group (pcrf/solver/case_group.hpp) and packs the stored metrics into a
 /// result row. Knows nothing of MPI or HDF5.
 ///
 /// An outcome's status is the CaseStatus; its row's columns are the study's ResultColumns.
@@ -16,6 +16,7 @@
 #include "pcrf/metrics/case_result.hpp"
 #include "pcrf/parallel/result_batch.hpp"
 #include "pcrf/parallel/work_source.hpp"
+#include "pcrf/solver/case_group.hpp"
 #include "pcrf/solver/rocking_solver.hpp"
 #include "pcrf/study/case_space.hpp"
 #include "pcrf/study/record_source.hpp"
@@ -23,7 +24,9 @@
 #include "pcrf/excitation/station_record.hpp"
 #include "pcrf/study/study.hpp"
 
-namespace pcrf::study {
+namespace pcrf::run {
+// A run runs a study: its values (pcrf::study) are this library's vocabulary.
+using namespace pcrf::study;
 
 class CaseRunner {
  public:
@@ -39,8 +42,9 @@ class CaseRunner {
   parallel::CaseOutcome run(const parallel::WorkItem& item, const HistorySink& history = {},
                             double history_dt_s = 0.0) const noexcept;
   /// Runs `items` as run() does, one outcome each in their order; the cases that share an
-  /// excitation are solved together in lockstep lanes (solve_batch, Study::run.lanes wide)
-  /// where the solver settings allow it. The answers are run()'s, bit for bit.
+  /// excitation are solved as one group (make_group_solver: in lockstep lanes, Study::run.lanes
+  /// wide, where the solver settings allow it). A case the group refuses fails alone, with
+  /// the reason as its note. The answers are run()'s, bit for bit.
   parallel::ResultBatch run(std::span<const parallel::WorkItem> items) const noexcept;
 
  private:
@@ -61,8 +65,8 @@ class CaseRunner {
   /// Sets up `item`'s case (the IDA columns of `outcome` included); nullopt when the case
   /// ends here (an invalid frame: `outcome` says so). \throws as run() catches.
   std::optional<Ready> set_up(const parallel::WorkItem& item, parallel::CaseOutcome& outcome) const;
-  /// `outcome` from the case's result: status, metrics, note.
-  void conclude(const CaseResult& result, parallel::CaseOutcome& outcome) const;
+  /// `outcome` from the case's answer: status, metrics, note (a refused case: failed).
+  void conclude(const GroupCase& answer, parallel::CaseOutcome& outcome) const;
   /// A fresh outcome of case `index` (solver failure until concluded).
   parallel::CaseOutcome empty_outcome(std::int64_t index) const;
 
@@ -71,6 +75,8 @@ class CaseRunner {
   RecordCache& records_;
   ResultColumns columns_;
   OutputRequest request_;
+  std::unique_ptr<CaseGroupSolver> group_;     ///< the cases of one excitation
+  std::unique_ptr<CaseGroupSolver> one_case_;  ///< a case with a history
   struct LastScaled {
     std::size_t record = static_cast<std::size_t>(-1);
     std::optional<double> incidence_deg;
@@ -102,4 +108,4 @@ CaseStatus outcome_status(const parallel::CaseOutcome& outcome);
 /// Statuses that count as failures in progress lines and summaries.
 bool is_failure(CaseStatus status);
 
-}  // namespace pcrf::study
+}  // namespace pcrf::run

@@ -21,7 +21,9 @@
 #include "pcrf/study/record_source.hpp"
 #include "pcrf/study/study.hpp"
 
-namespace pcrf::study {
+namespace pcrf::run {
+// A run runs a study: its values (pcrf::study) are this library's vocabulary.
+using namespace pcrf::study;
 
 struct CostEstimate {
   bool ida = false;                 ///< units are IDA curves (all their runs), not cases
@@ -56,4 +58,4 @@ std::vector<std::int64_t> sample_positions(std::int64_t population, std::int64_t
 CostEstimate estimate_cost(const Study& study, const CaseSpace& space, RecordCache& records, std::int64_t sample = 24,
                            double budget_cpu_s = 5.0);
 
-}  // namespace pcrf::study
+}  // namespace pcrf::run

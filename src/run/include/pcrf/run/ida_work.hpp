@@ -11,7 +11,9 @@
 #include "pcrf/study/case_space.hpp"
 #include "pcrf/study/study.hpp"
 
-namespace pcrf::study {
+namespace pcrf::run {
+// A run runs a study: its values (pcrf::study) are this library's vocabulary.
+using namespace pcrf::study;
 
 /// What a run's outcome tells its curve's search under the study's [ida] collapse rule (the
 /// one rule of the run and of the cost estimate's IDA curves).
@@ -26,4 +28,4 @@ std::unique_ptr<ida::IdaCurves> make_ida_curves(const Study& study, const CaseSp
 /// verdict checks also the band of intensities whose verdicts were unstable.
 void store_ida_summaries(const Study& study, const ida::IdaCurves& curves, cube::CubeWriter& writer);
 
-}  // namespace pcrf::study
+}  // namespace pcrf::run

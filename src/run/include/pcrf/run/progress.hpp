@@ -7,7 +7,7 @@
 #include <ostream>
 #include <string>
 
-namespace pcrf::study {
+namespace pcrf::run {
 
 class ProgressMeter {
  public:
@@ -44,4 +44,4 @@ class ProgressMeter {
 /// "3.2 s", "4 min 05 s", "2 h 07 min".
 std::string format_duration(double seconds);
 
-}  // namespace pcrf::study
+}  // namespace pcrf::run

@@ -17,7 +17,9 @@
 #include "pcrf/schema/cube_vocabulary.hpp"
 #include "pcrf/study/study.hpp"
 
-namespace pcrf::study {
+namespace pcrf::run {
+// A run runs a study: its values (pcrf::study) are this library's vocabulary.
+using namespace pcrf::study;
 
 class ResultColumns {
  public:
@@ -33,8 +35,8 @@ class ResultColumns {
   std::size_t metric_column(std::string_view name) const;
   /// Columns of an IDA run's intensity and scale factor (the level axis' row variables);
   /// npos outside an IDA.
-  std::size_t ida_intensity_column() const { return column_of(vocabulary::kIdaIntensity, metrics_.size()); }
-  std::size_t scale_factor_column() const { return column_of(vocabulary::kScaleFactor, metrics_.size()); }
+  std::size_t ida_intensity_column() const { return column_of(schema::kIdaIntensity, metrics_.size()); }
+  std::size_t scale_factor_column() const { return column_of(schema::kScaleFactor, metrics_.size()); }
   /// The cube's variable of each column, in column order.
   const std::vector<cube::MetricVariable>& variables() const { return variables_; }
 
@@ -52,4 +54,4 @@ class ResultColumns {
   std::vector<cube::MetricVariable> variables_;
 };
 
-}  // namespace pcrf::study
+}  // namespace pcrf::run

@@ -13,7 +13,9 @@
 #include "pcrf/study/case_space.hpp"
 #include "pcrf/study/study.hpp"
 
-namespace pcrf::study {
+namespace pcrf::run {
+// A run runs a study: its values (pcrf::study) are this library's vocabulary.
+using namespace pcrf::study;
 
 /// The cube of a study. Dimensions as CaseSpace; `record` a text coordinate (with the
 /// auxiliary `record_source` and `record_title`); the plan's coordinates along its frame
@@ -28,4 +30,4 @@ cube::CubeLayout make_cube_layout(const Study& study, const CaseSpace& space, Re
 cube::HistoryTable make_history_table(const std::string& label, std::int64_t case_index, const Study& study,
                                       const CaseSpace& space, const std::vector<HistorySample>& samples);
 
-}  // namespace pcrf::study
+}  // namespace pcrf::run

@@ -18,7 +18,9 @@
 #include "pcrf/parallel/mpi_session.hpp"
 #include "pcrf/study/study.hpp"
 
-namespace pcrf::study {
+namespace pcrf::run {
+// A run runs a study: its values (pcrf::study) are this library's vocabulary.
+using namespace pcrf::study;
 
 struct StudyRunOptions {
   std::filesystem::path study_file;
@@ -94,4 +96,4 @@ std::filesystem::path default_output(const std::filesystem::path& study_file);
 /// Errors after work has started propagate on rank 0 (the caller must abort MPI).
 std::optional<StudySummary> run_study(const StudyRunOptions& options, const parallel::MpiSession& mpi);
 
-}  // namespace pcrf::study
+}  // namespace pcrf::run

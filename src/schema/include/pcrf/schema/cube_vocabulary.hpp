@@ -16,7 +16,7 @@
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/record/pulses.hpp"
 
-namespace pcrf::study::vocabulary {
+namespace pcrf::schema {
 
 // Coordinates.
 inline constexpr const char* kRecord = "record";
@@ -126,7 +126,7 @@ NotRun not_run(const cube::CubeReader& cube);
 cube::Completion completion(const cube::CubeReader& cube);
 inline constexpr const char* kCollapses = "collapses";
 
-/// How an IDA cube's curves ended, from its `curve_state` (ida::CurveState codes): how many
+/// How an IDA cube's curves ended, from its `curve_state` (CurveState codes, pcrf/metrics/curve_state.hpp): how many
 /// are bracketed to the resolution, censored at max_intensity, unbracketed (max_runs ran out),
 /// and not finished (not run, or still running). Empty (total 0) for other cubes and for IDA
 /// cubes written before `curve_state`.
@@ -173,4 +173,4 @@ std::vector<std::string> verdict_notes(const std::vector<std::int8_t>& status, c
 /// The attribute holding an IDA cube's collapse set (the [ida] table's `collapse`).
 inline constexpr const char* kIdaCollapseAttribute = "ida_collapse";
 
-}  // namespace pcrf::study::vocabulary
+}  // namespace pcrf::schema

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "pcrf/metrics/unresolved.hpp"
 #include "pcrf/setting.hpp"
 
 namespace pcrf {
@@ -30,11 +31,11 @@ std::string to_string(UpliftCriterion c);
 
 /// Which time integrator solves the equation of motion between impacts.
 enum class Integrator {
-  /// Dormand–Prince 5(4), purpose-built for the rocking scenes (src/solver/dormand_prince.hpp):
+  /// Dormand–Prince 5(4), purpose-built for the rocking scenes (src/solver/dopri5/dormand_prince.hpp):
   /// steps between record samples on its own, events located on its dense output.
   kDormandPrince5,
   /// Taylor series steps where the scene has its series (Housner's block, the rocking frame:
-  /// RigidRocker::taylor_series; src/solver/taylor_integrator.hpp), between record samples,
+  /// RigidRocker::taylor_series; src/solver/taylor/taylor_integrator.hpp), between record samples,
   /// events located on the series; dopri5 otherwise.
   kTaylor,
   kCvodeBdf,    ///< SUNDIALS CVODE, BDF (orders 1–5), dense Newton
@@ -46,16 +47,13 @@ enum class Integrator {
   /// contender for the work-precision study and the numerics audit, not for production.
   kFixedRk4SignChange,
 };
+/// The integrators' text forms and choices: the registry's (integrator_registry.hpp).
 Integrator parse_integrator(const std::string& text);  ///< "dopri5", "taylor", "cvode-bdf", "cvode-adams", "arkode-erk5", "arkode-erk8", "fixed-rk4"
 std::string to_string(Integrator i);
+std::vector<Integrator> integrator_choices();  ///< every registered integrator, in its order
 
-/// tail_s = "until-rest": the free vibration after the record goes on until the frame rests.
-inline constexpr double kTailUntilRest = std::numeric_limits<double>::infinity();
-
-/// The setting that resolves a case still rocking at its end (rocking_at_end) for a tail of
-/// `tail_s` [s]: "a longer physics.tail_s …" when the tail is fixed, "… physics.max_tail_s …"
-/// when it runs until rest (kTailUntilRest); both when NaN (not known).
-std::string tail_advice(double tail_s);
+// kTailUntilRest and tail_advice: pcrf/metrics/unresolved.hpp (below the solver: the schema's
+// verdict notes use them too).
 
 /// What the physics of a case includes. Every member is described (key, unit, default,
 /// check, doc) in physics_settings(); the comments here say only what the code needs.
@@ -121,14 +119,6 @@ inline constexpr std::array<EnumName<UpliftCriterion>, 3> kUpliftNames{{{UpliftC
                                                                  {UpliftCriterion::kPaper, "paper"},
                                                                  {UpliftCriterion::kPaperProcedure, "paper-procedure"}}};
 
-inline constexpr std::array<EnumName<Integrator>, 7> kIntegratorNames{{{Integrator::kDormandPrince5, "dopri5"},
-                                                                {Integrator::kTaylor, "taylor"},
-                                                                {Integrator::kArkodeErk5, "arkode-erk5"},
-                                                                {Integrator::kArkodeErk8, "arkode-erk8"},
-                                                                {Integrator::kCvodeAdams, "cvode-adams"},
-                                                                {Integrator::kCvodeBdf, "cvode-bdf"},
-                                                                {Integrator::kFixedRk4SignChange, "fixed-rk4"}}};
-
 }  // namespace detail
 
 // The tables, here beside the members they describe: a new setting is its member and its row
@@ -188,7 +178,7 @@ inline const SettingTable<SolverSettings>& solver_settings() {
     preset.get = [](const S& v) { return SettingValue(v.preset); };
     preset.set = [](S& v, const SettingValue& value) { v = preset_settings(std::get<std::string>(value)); };
     s.push_back(std::move(preset));
-    s.push_back(choice_setting("integrator", &S::integrator, values_of(detail::kIntegratorNames), &to_string, &parse_integrator,
+    s.push_back(choice_setting("integrator", &S::integrator, integrator_choices(), &to_string, &parse_integrator,
                                "time integrator (taylor: Taylor series steps where the scene has its series, the block and the rocking frame; dopri5 elsewhere)"));
     s.push_back(number_setting("rtol", &S::rtol, "1", Bound::kPositive, "relative tolerance"));
     s.push_back(number_setting("atol_theta_rad", &S::atol_theta_rad, "rad", Bound::kPositive,

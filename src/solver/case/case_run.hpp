@@ -14,8 +14,9 @@
 #include <string>
 
 #include "case_common.hpp"
-#include "dormand_prince.hpp"
-#include "integrators.hpp"
+#include "../dopri5/dormand_prince.hpp"
+#include "../integrator/integrator.hpp"
+#include "../integrator/registry.hpp"
 #include "pcrf/model/eom_table.hpp"
 #include "pcrf/solver/history.hpp"
 #include "pcrf/solver/rocking_solver.hpp"
@@ -122,6 +123,7 @@ class CaseRun {
         integrator_(make_integrator(solver, problem_, samples_, lockstep)),
         end_(excitation, frame.scene().gravity_m_s2(), physics_),
         t_end_(end_.t_end_s) {
+    // The registry's one lockstep stepper is dopri5 (make_integrator refuses any other).
     if (lockstep) lockstep_ = static_cast<DormandPrinceIntegrator*>(integrator_.get());
   }
 
@@ -140,8 +142,6 @@ class CaseRun {
   FlightProblem& flight() { return problem_; }
 
  private:
-  static std::unique_ptr<OdeIntegrator> make_integrator(const SolverSettings& solver, FlightProblem& problem,
-                                                        SampleGrid samples, bool lockstep);
   void rest_until_uplift();
   void start_displaced();
   /// One advance of the integrator and what it met; false: a lockstep attempt is pending.

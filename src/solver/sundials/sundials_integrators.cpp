@@ -1,5 +1,11 @@
 // SUNDIALS adapters for the rocking ODE: CVODE (Adams / BDF) and ARKODE ERKStep.
-#include "integrators.hpp"
+//
+// Every SUNDIALS call is checked through one helper (check_flag), which throws
+// IntegratorError naming the call and the flag; every SUNDIALS object has one owner, so a
+// throw frees what was made. Work counters are summed across re-initializations (SUNDIALS
+// resets its own at each ReInit). What differs between SUNDIALS 6 and 7 is in
+// sundials_compat.hpp.
+#include "sundials_integrators.hpp"
 
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
@@ -12,9 +18,7 @@
 #include <string>
 #include <type_traits>
 
-#include "dormand_prince.hpp"
 #include "sundials_compat.hpp"
-#include "taylor_integrator.hpp"
 
 namespace pcrf::detail {
 namespace {
@@ -287,20 +291,13 @@ class ErkIntegrator final : public SundialsBase {
 
 }  // namespace
 
-std::unique_ptr<OdeIntegrator> make_integrator(const SolverSettings& s, OdeProblem& p, SampleGrid samples) {
-  switch (s.integrator) {
-    case Integrator::kTaylor:  // Taylor steps where the problem has a series (always between samples)
-      if (p.taylor_order_max() > 0) return std::make_unique<TaylorIntegrator>(s, p, samples);
-      [[fallthrough]];
-    case Integrator::kDormandPrince5:
-      return std::make_unique<DormandPrinceIntegrator>(s, p, s.stop_at_samples ? samples : SampleGrid{});
-    case Integrator::kCvodeBdf: return std::make_unique<CvodeIntegrator>(s, p, true);
-    case Integrator::kCvodeAdams: return std::make_unique<CvodeIntegrator>(s, p, false);
-    case Integrator::kArkodeErk5: return std::make_unique<ErkIntegrator>(s, p, ARKODE_DORMAND_PRINCE_7_4_5);
-    case Integrator::kArkodeErk8: return std::make_unique<ErkIntegrator>(s, p, ARKODE_FEHLBERG_13_7_8);
-    case Integrator::kFixedRk4SignChange: break;  // not a SUNDIALS method: see fixed_step_solver.cpp
-  }
-  throw IntegratorError("unknown integrator");
+std::unique_ptr<OdeIntegrator> make_cvode(const SolverSettings& s, OdeProblem& p, bool bdf) {
+  return std::make_unique<CvodeIntegrator>(s, p, bdf);
+}
+
+std::unique_ptr<OdeIntegrator> make_arkode_erk(const SolverSettings& s, OdeProblem& p, int order) {
+  if (order != 5 && order != 8) throw IntegratorError("ARKODE ERKStep: no table of order " + std::to_string(order));
+  return std::make_unique<ErkIntegrator>(s, p, order == 5 ? ARKODE_DORMAND_PRINCE_7_4_5 : ARKODE_FEHLBERG_13_7_8);
 }
 
 }  // namespace pcrf::detail

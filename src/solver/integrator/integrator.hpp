@@ -1,19 +1,16 @@
-/// \file integrators.hpp
-/// \brief A small common face over SUNDIALS CVODE (Adams, BDF) and ARKODE ERKStep for
-/// the two-state rocking ODE with root finding. Private to the solver.
-///
-/// Every SUNDIALS call is checked through one helper (check_flag), which throws
-/// IntegratorError naming the call and the flag; every SUNDIALS object has one owner, so a
-/// throw frees what was made. Work counters are summed across re-initializations (SUNDIALS
-/// resets its own at each ReInit). What differs between SUNDIALS 6 and 7 is in
-/// sundials_compat.hpp.
+/// \file integrator.hpp
+/// \brief The interface every integrator family implements (owned by none of them): the
+/// problem (OdeProblem: the two-state ODE with root functions and their closed forms,
+/// RootForm), the integrator (OdeIntegrator) and the record's sample grid (SampleGrid,
+/// NextSample). The families sit beside this folder (sundials/, dopri5/, taylor/; the
+/// fixed-step contender fixed_rk4/ solves whole cases); registry.cpp lists them. Private to
+/// the solver.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <limits>
-#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -22,7 +19,7 @@
 
 namespace pcrf::detail {
 
-/// Setup or run-time failure inside SUNDIALS; what() names the call.
+/// Set-up or run-time failure inside an integrator (SUNDIALS: what() names the call).
 class IntegratorError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
@@ -186,10 +183,5 @@ class OdeIntegrator {
   /// one, as with the default floor, −∞.
   virtual void set_peak_floor(int /*root*/, double /*floor*/) {}
 };
-
-/// The integrator `settings` name. `samples`: the record's sample grid, for an integrator
-/// that steps between samples itself (SUNDIALS' are stopped at each by their caller).
-std::unique_ptr<OdeIntegrator> make_integrator(const SolverSettings& settings, OdeProblem& problem,
-                                               SampleGrid samples = {});
 
 }  // namespace pcrf::detail

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <limits>
 
-#include "dopri5_tableau.hpp"
+#include "../dopri5/dopri5_tableau.hpp"
 #include "pcrf/number_text.hpp"
-#include "root_search.hpp"
+#include "../integrator/root_search.hpp"
 
 namespace pcrf::detail {
 

@@ -2,7 +2,7 @@
 /// \brief One step attempt of Dormand–Prince 5(4): its stages, the embedded error norm and
 /// the coefficients of the continuous extension, written once over a number type — `double`
 /// for DormandPrinceIntegrator (one case), a SIMD pack whose lanes are cases for the batch
-/// kernels (src/solver/batch/attempt_kernel.hpp). Both do the same arithmetic in the same
+/// kernels (src/solver/lanes/attempt_kernel.hpp). Both do the same arithmetic in the same
 /// order, rounding for rounding. Private to the solver.
 #pragma once
 

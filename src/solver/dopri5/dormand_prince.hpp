@@ -29,7 +29,7 @@
 /// (the right-hand side is continuous at a kink: the last stage of a step is still the first
 /// of the next). No heap allocation after construction; no N_Vector.
 ///
-/// In lockstep (set_lockstep, the batch of src/solver/batch/) the integrator does not compute
+/// In lockstep (set_lockstep, the batch of src/solver/lanes/) the integrator does not compute
 /// its step attempts: advance() returns kPending with the attempt's inputs in attempt(); the
 /// caller fills its outputs (the same arithmetic, dopri5_attempt.hpp, for many cases at once)
 /// and calls take_attempt(), then advance() again. Everything else — the step-size control,
@@ -41,8 +41,8 @@
 #include <string>
 
 #include "dopri5_attempt.hpp"
-#include "integrators.hpp"
-#include "root_search.hpp"
+#include "../integrator/integrator.hpp"
+#include "../integrator/root_search.hpp"
 
 namespace pcrf::detail {
 

@@ -8,15 +8,17 @@
 #include "pcrf/solver/batch_solver.hpp"
 
 #include <algorithm>
+#include <exception>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
-#include "../case_common.hpp"
-#include "../case_run.hpp"
+#include "../case/case_common.hpp"
+#include "../case/case_run.hpp"
 #include "lane_arrays.hpp"
-#include "pcrf/model/rigid_rocker.hpp"
+#include "lanes.hpp"
+#include "pcrf/solver/integrator_registry.hpp"
 
 namespace pcrf {
 namespace detail::batch {
@@ -34,7 +36,7 @@ class Driver final : public LaneCallbacks {
  public:
   Driver(std::span<PreparedFrame* const> frames, const Excitation& excitation, const SolverSettings& solver,
          const OutputRequest& request, const BatchOptions& options, std::vector<CaseResult>& results,
-         BatchStats& stats);
+         std::vector<std::exception_ptr>& refused, BatchStats& stats);
   void run();
 
   void ground(int lane, double t_s, double& horizontal_m_s2, double& vertical_m_s2) override;
@@ -42,8 +44,11 @@ class Driver final : public LaneCallbacks {
 
  private:
   /// Gives lane l the next case that needs integration, up to its first attempt; false when
-  /// none is left.
+  /// none is left. A case that throws while it starts is refused (refused_).
   bool refill(std::size_t l);
+  /// Starts case c in lane l: true when it awaits its first attempt there, false when it
+  /// ended before (at rest throughout, solved one at a time, or ended at once).
+  bool start(std::size_t l, std::size_t c);
   /// Runs lane l's case to its next attempt (true), or ends it and refills the lane.
   bool progress(std::size_t l);
   /// Concludes lane l's attempt from the kernel's outputs, then progress(l).
@@ -70,6 +75,7 @@ class Driver final : public LaneCallbacks {
   OutputRequest request_;
   HistorySink no_history_;
   std::vector<CaseResult>& results_;
+  std::vector<std::exception_ptr>& refused_;  ///< each case's: null, or why the lanes refused it
   BatchStats& stats_;
   LaneArrays arrays_;
   bool block_;
@@ -130,35 +136,48 @@ bool Driver::acceleration(int lane, double t_s, double theta_rad, double omega_r
 }
 
 bool Driver::refill(std::size_t l) {
-  Lane& lane = lanes_[l];
   while (next_case_ < frames_.size()) {
     const std::size_t c = next_case_++;
-    PreparedFrame& frame = *frames_[c];
-    share_cpu();  // up to here the lanes' cases; a case solved alone below is its own
-    validate(solver_, frame.physics());
-    check_initial_state(frame.scene(), frame.physics());
-    ++stats_.cases;
-    if (auto rest = rest_throughout(frame, excitation_, request_, no_history_)) {
-      ++stats_.rest_cases;
-      results_[c] = std::move(*rest);
-      results_[c].cpu_time_s = alone_cpu_s();
-      continue;
+    try {
+      if (start(l, c)) return true;
+    } catch (const std::exception&) {
+      // A case the lanes refuse (settings or an initial state no case can have, a frame its
+      // set-up rejects): its own answer, the other cases go on.
+      lanes_[l].run.reset();
+      refused_[c] = std::current_exception();
     }
-    if (solver_.integrator == Integrator::kTaylor && frame.scene().taylor_order_max() > 0) {
-      // Taylor steps: one case at a time, the checks and the rest scan above already made.
-      ++stats_.scalar_cases;
-      results_[c] = CaseRun(frame, excitation_, solver_, request_, no_history_).run();
-      results_[c].cpu_time_s = alone_cpu_s();
-      continue;
-    }
-    lane.run.emplace(frame, excitation_, solver_, request_, no_history_, true);
-    lane.case_index = c;
-    lane.cpu_s = 0.0;
-    set_block_parameters(l, frame.scene());
-    lane.run->begin();
-    if (lane.run->progress()) return true;
-    finish(l);
   }
+  return false;
+}
+
+bool Driver::start(std::size_t l, std::size_t c) {
+  Lane& lane = lanes_[l];
+  PreparedFrame& frame = *frames_[c];
+  share_cpu();  // up to here the lanes' cases; a case solved alone below is its own
+  validate(solver_, frame.physics());
+  check_initial_state(frame.scene(), frame.physics());
+  ++stats_.cases;
+  if (auto rest = rest_throughout(frame, excitation_, request_, no_history_)) {
+    ++stats_.rest_cases;
+    results_[c] = std::move(*rest);
+    results_[c].cpu_time_s = alone_cpu_s();
+    return false;
+  }
+  if (!entry_for_scene(solver_.integrator, frame.scene()).can.lockstep) {
+    // A stepper without lockstep (Taylor steps): one case at a time, the checks and the
+    // rest scan above already made.
+    ++stats_.scalar_cases;
+    results_[c] = CaseRun(frame, excitation_, solver_, request_, no_history_).run();
+    results_[c].cpu_time_s = alone_cpu_s();
+    return false;
+  }
+  lane.run.emplace(frame, excitation_, solver_, request_, no_history_, true);
+  lane.case_index = c;
+  lane.cpu_s = 0.0;
+  set_block_parameters(l, frame.scene());
+  lane.run->begin();
+  if (lane.run->progress()) return true;
+  finish(l);
   return false;
 }
 
@@ -230,7 +249,7 @@ double Driver::alone_cpu_s() {
 
 bool Driver::all_rigid_rockers(std::span<PreparedFrame* const> frames) {
   return std::all_of(frames.begin(), frames.end(),
-                     [](PreparedFrame* f) { return dynamic_cast<const RigidRocker*>(&f->scene()) != nullptr; });
+                     [](PreparedFrame* f) { return f->scene().rocker_coefficients().has_value(); });
 }
 
 int capacity_for(int lanes, int register_lanes) {
@@ -256,12 +275,13 @@ std::string trig_label(const KernelSet& set, const std::string& trig) {
 
 Driver::Driver(std::span<PreparedFrame* const> frames, const Excitation& excitation, const SolverSettings& solver,
                const OutputRequest& request, const BatchOptions& options, std::vector<CaseResult>& results,
-               BatchStats& stats)
+               std::vector<std::exception_ptr>& refused, BatchStats& stats)
     : frames_(frames),
       excitation_(excitation),
       solver_(solver),
       request_(request),
       results_(results),
+      refused_(refused),
       stats_(stats),
       arrays_(capacity_for(options.lanes, choose_kernels(options.lanes, options.kernels).register_lanes)),
       block_(all_rigid_rockers(frames)) {
@@ -279,11 +299,11 @@ Driver::Driver(std::span<PreparedFrame* const> frames, const Excitation& excitat
 }
 
 void Driver::set_block_parameters(std::size_t l, const Scene& scene) {
-  const auto* rocker = dynamic_cast<const RigidRocker*>(&scene);
-  if (rocker == nullptr) return;
-  arrays_.alpha[l] = rocker->parameters().slenderness_rad;
-  arrays_.moment_over_inertia[l] = rocker->moment_over_inertia_per_m();
-  arrays_.gravity[l] = rocker->parameters().gravity_m_s2;
+  const std::optional<RockerCoefficients> rocker = scene.rocker_coefficients();
+  if (!rocker) return;
+  arrays_.alpha[l] = rocker->slenderness_rad;
+  arrays_.moment_over_inertia[l] = rocker->moment_over_inertia_per_m;
+  arrays_.gravity[l] = rocker->gravity_m_s2;
 }
 
 void Driver::run() {
@@ -307,24 +327,45 @@ void Driver::run() {
 }  // namespace detail::batch
 
 bool batch_integrates(const SolverSettings& solver) {
-  return (solver.integrator == Integrator::kDormandPrince5 || solver.integrator == Integrator::kTaylor) &&
-         !solver.verdict_check;
+  return registry_entry(solver.integrator).can.in_lanes && !solver.verdict_check;
 }
 
-std::vector<CaseResult> solve_batch(std::span<PreparedFrame* const> frames, const Excitation& excitation,
-                                    const SolverSettings& solver, const OutputRequest& request,
-                                    const BatchOptions& options, BatchStats* stats) {
+namespace detail {
+
+std::vector<CaseResult> solve_in_lanes(std::span<PreparedFrame* const> frames, const Excitation& excitation,
+                                       const SolverSettings& solver, const OutputRequest& request,
+                                       const BatchOptions& options, std::vector<std::exception_ptr>& refused,
+                                       BatchStats* stats) {
   if (options.lanes < 1) throw std::invalid_argument("batch lanes: must be at least 1, got " + std::to_string(options.lanes));
   std::vector<CaseResult> results(frames.size());
+  refused.assign(frames.size(), nullptr);
   BatchStats local;
   BatchStats& s = stats != nullptr ? *stats : local;
   s = {};
   if (!batch_integrates(solver)) {
     s.scalar_cases = static_cast<long>(frames.size());
-    for (std::size_t i = 0; i < frames.size(); ++i) results[i] = solve_case(*frames[i], excitation, solver, request);
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+      try {
+        results[i] = solve_case(*frames[i], excitation, solver, request);
+      } catch (const std::exception&) {
+        refused[i] = std::current_exception();
+      }
+    }
     return results;
   }
-  detail::batch::Driver(frames, excitation, solver, request, options, results, s).run();
+  batch::Driver(frames, excitation, solver, request, options, results, refused, s).run();
+  return results;
+}
+
+}  // namespace detail
+
+std::vector<CaseResult> solve_batch(std::span<PreparedFrame* const> frames, const Excitation& excitation,
+                                    const SolverSettings& solver, const OutputRequest& request,
+                                    const BatchOptions& options, BatchStats* stats) {
+  std::vector<std::exception_ptr> refused;
+  std::vector<CaseResult> results = detail::solve_in_lanes(frames, excitation, solver, request, options, refused, stats);
+  for (const std::exception_ptr& why : refused)
+    if (why) std::rethrow_exception(why);
   return results;
 }
 

@@ -46,7 +46,7 @@
 #include <limits>
 #include <string>
 
-#include "integrators.hpp"
+#include "../integrator/integrator.hpp"
 
 namespace pcrf::detail {
 

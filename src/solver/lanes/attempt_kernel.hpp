@@ -19,7 +19,7 @@
 #include <sleef.h>
 #endif
 
-#include "../dopri5_attempt.hpp"
+#include "../dopri5/dopri5_attempt.hpp"
 #include "lane_arrays.hpp"
 #include "pcrf/model/rigid_rocker.hpp"
 

@@ -86,14 +86,6 @@ bool FlightProblem::taylor(double t0, const double* y0, double h, int order, dou
   return kernel.series != nullptr && kernel.series(kernel.constants.data(), y0[0], y0[1], ground_line(t0, h, for_any_h), a);
 }
 
-std::unique_ptr<OdeIntegrator> CaseRun::make_integrator(const SolverSettings& solver, FlightProblem& problem,
-                                                        SampleGrid samples, bool lockstep) {
-  if (!lockstep) return detail::make_integrator(solver, problem, samples);
-  auto integrator = std::make_unique<DormandPrinceIntegrator>(solver, problem, samples);
-  integrator->set_lockstep(true);
-  return integrator;
-}
-
 CaseResult CaseRun::run() {
   begin();
   progress();

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <string>
 
-#include "case_common.hpp"
+#include "../case/case_common.hpp"
 
 
 namespace pcrf::detail {
