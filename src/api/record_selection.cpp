@@ -1,10 +1,39 @@
 // A record selection as JSON (see record_selection.hpp).
 #include "pcrf/api/record_selection.hpp"
 
+#include <filesystem>
+#include <fstream>
 #include <utility>
 #include <vector>
 
+#include "pcrf/user_error.hpp"
+
 namespace pcrf::api {
+
+namespace {
+
+/// `path` opened to read, once it is known to be a regular file (following links).
+std::ifstream open_table(const std::string& path) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (!std::filesystem::exists(status)) throw UserError(path + ": no such file");
+  if (!std::filesystem::is_regular_file(status)) throw UserError(path + ": not a regular file");
+  std::ifstream in(path);
+  if (!in) throw UserError(path + ": cannot open the file");
+  return in;
+}
+
+}  // namespace
+
+SelectionTarget read_selection_target_file(const std::string& path) {
+  std::ifstream in = open_table(path);
+  return read_selection_target(in, path);
+}
+
+SpectraTable read_spectra_table_file(const std::string& path) {
+  std::ifstream in = open_table(path);
+  return read_spectra_csv(in, path);
+}
 
 JsonObject selection_json(const SelectionTarget& t, const SpectraTable& table, const SelectionResult& r) {
   std::vector<JsonObject> records;

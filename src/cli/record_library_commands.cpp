@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <functional>
 #include <iostream>
 #include <memory>
@@ -78,12 +77,6 @@ struct SelectArguments {
   bool json = false, overwrite = false;
 };
 
-std::ifstream open_input(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw UserError(path + ": cannot open the file");
-  return in;
-}
-
 std::string toml_string(const std::string& text) {
   std::string out = "\"";
   for (char c : text) out += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
@@ -108,10 +101,8 @@ void write_fragment(std::ostream& out, const SelectArguments& args, const Spectr
 }
 
 void select_from_library(const SelectArguments& args) {
-  std::ifstream target_in = open_input(args.target);
-  const SelectionTarget target = read_selection_target(target_in, args.target);
-  std::ifstream library_in = open_input(args.library);
-  const SpectraTable table = read_spectra_csv(library_in, args.library);
+  const SelectionTarget target = api::read_selection_target_file(args.target);
+  const SpectraTable table = api::read_spectra_table_file(args.library);
   if (!to_stdout(args.output)) io::check_output(args.output, {args.target, args.library}, args.overwrite);
   const SelectionResult r = select_records(target, table, args.settings);
   std::cerr << "pcrf record select: largest error of the median " << number_text(std::round(r.median_error_percent * 10) / 10)

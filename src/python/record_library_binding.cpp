@@ -3,7 +3,6 @@
 #include <pybind11/stl.h>
 
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 #include "bindings.hpp"
@@ -47,18 +46,11 @@ py::tuple record_spectra(const std::vector<std::string>& paths, const std::vecto
   return py::make_tuple(out.str(), py::cast(skipped));
 }
 
-std::ifstream open_input(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw UserError(path + ": cannot open the file");
-  return in;
-}
-
 /// The selection as JSON: the records (name, kind, files, scale, scaled ln Sa) and the fit.
 std::string select(const std::string& target_path, const std::string& library_path, std::size_t count,
                    const std::string& kind, double scale_min, double scale_max, std::uint64_t seed) {
-  std::ifstream target_in = open_input(target_path), library_in = open_input(library_path);
-  const SelectionTarget target = read_selection_target(target_in, target_path);
-  const SpectraTable table = read_spectra_csv(library_in, library_path);
+  const SelectionTarget target = api::read_selection_target_file(target_path);
+  const SpectraTable table = api::read_spectra_table_file(library_path);
   SelectionSettings settings;
   settings.count = count;
   settings.kind = kind;

@@ -89,13 +89,18 @@ void check_output_is_not_an_input(const std::filesystem::path& output, const Stu
   }
 }
 
+/// A note for the user: to StudyRunOptions::notes when the caller collects them (pcrf.study
+/// warns them as PcrfWarning), else on stderr as the command line prints it.
+void say_note(const StudyRunOptions& options, const std::string& note) {
+  if (options.notes != nullptr) options.notes->push_back(note);
+  else std::cerr << "pcrf study: note: " << note << '\n';
+}
+
 MasterSetup prepare_master(const StudyRunOptions& options, const Prepared& p) {
   MasterSetup m;
   m.checked = check_study(p.study, *p.space, *p.records,
                           options.check_only ? FrameCheck::kEveryFrame : FrameCheck::kWhereNeeded);
-  for (const auto& note : m.checked.notes)
-    if (options.notes != nullptr) options.notes->push_back(note);
-    else std::cerr << "pcrf study: note: " << note << '\n';
+  for (const auto& note : m.checked.notes) say_note(options, note);
   if (options.progress != nullptr)
     for (const auto& warning : m.checked.warnings) *options.progress << "pcrf study: warning: " << warning << '\n';
   if (options.check_only) return m;
@@ -130,7 +135,7 @@ MasterSetup prepare_master(const StudyRunOptions& options, const Prepared& p) {
   } catch (const cube::CubeError& e) {
     throw UserError(e.what());
   }
-  for (const auto& note : m.writer->resume_notes()) std::cerr << "pcrf study: note: " << note << '\n';
+  for (const auto& note : m.writer->resume_notes()) say_note(options, note);
   return m;
 }
 

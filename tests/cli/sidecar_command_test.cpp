@@ -184,5 +184,21 @@ TEST(Sidecars, TheSigtermAdviceUnderMpirunIsTheWholeCommand) {
             std::string::npos) << text;
 }
 
+TEST(Sidecars, RecordSelectionReadsNoFifo) {
+  // `pcrf record select` reads its target and library as regular files: a FIFO there is
+  // refused at once (it blocked before), naming the file; nothing is written.
+  const auto dir = test::scratch_dir("sidecar_select_fifo");
+  fs::remove(dir / "t.csv");
+  fs::remove(dir / "lib.csv");
+  ASSERT_EQ(::mkfifo((dir / "t.csv").c_str(), 0600), 0);
+  ASSERT_EQ(::mkfifo((dir / "lib.csv").c_str(), 0600), 0);
+  expect_refused(in(dir, "record select --target t.csv --library lib.csv -n 2 -o sel.toml"), "t.csv: not a regular file",
+                 "target FIFO");
+  test::write_file(dir, "t2.csv", "period_s,mean_ln_sa,sigma_ln_sa\n0.5,-1,0.5\n1,-1.5,0.5\n");
+  expect_refused(in(dir, "record select --target t2.csv --library lib.csv -n 2 -o sel.toml"), "lib.csv: not a regular file",
+                 "library FIFO");
+  EXPECT_FALSE(fs::exists(dir / "sel.toml"));
+}
+
 }  // namespace
 }  // namespace pcrf

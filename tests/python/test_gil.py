@@ -9,8 +9,9 @@ import pytest
 
 import pcrf
 
-# A long case: a frame rocking through 100 s of a sine (about half a second here).
-LONG = dict(synthetic="sine:amplitude_g=1.3,period_s=0.5,cycles=200,duration_s=100", preset="reference")
+# A long case: a frame rocking through 500 s of a sine (about 0.4 s of CPU here; the 100 s it
+# rocked before the cases became cheaper took under 0.1 s, too short for 20 ticks of 5 ms).
+LONG = dict(synthetic="sine:amplitude_g=1.3,period_s=0.5,cycles=1000,duration_s=500", preset="reference")
 
 
 def test_python_runs_while_a_case_is_solved():
