@@ -277,15 +277,7 @@ class Cubes(Target):
         self.avoid = ()
 
     def seeds(self, work):
-        study = work / "seed_study.toml"
-        study.write_text(TINY_STUDY)
-        cube = work / "seed.h5"
-        if cube.exists():
-            cube.unlink()
-        done = subprocess.run([self.pcrf, "study", str(study), "-o", str(cube)], capture_output=True, text=True,
-                              timeout=max(120, 10 * self.timeout_s), cwd=work)
-        if done.returncode != 0 or not cube.is_file():
-            raise RuntimeError(f"cannot make the seed cube: {done.stderr.strip()}")
+        _, cube = make_seed_cube(self.pcrf, work, self.timeout_s, "seed.h5")
         if self.spare:
             self.avoid = global_heaps(cube.read_bytes())
         return [(f"c{i}", cube.read_bytes(), c) for i, c in enumerate(self.commands)]
@@ -347,16 +339,8 @@ class Hazards(Target):
         self.pcrf, self.timeout_s = pcrf, timeout_s
 
     def seeds(self, work):
-        study = work / "seed_study.toml"
-        study.write_text(HAZARD_STUDY)
         (work / "stripes.toml").write_text(STRIPES_STUDY)
-        cube = work / "seed.h5"
-        if cube.exists():
-            cube.unlink()
-        done = subprocess.run([self.pcrf, "study", str(study), "-o", str(cube)], capture_output=True, text=True,
-                              timeout=max(120, 10 * self.timeout_s), cwd=work)
-        if done.returncode != 0 or not cube.is_file():
-            raise RuntimeError(f"cannot make the seed cube: {done.stderr.strip()}")
+        make_seed_cube(self.pcrf, work, self.timeout_s, "seed.h5", study_text=HAZARD_STUDY)
         probabilities = "".join(f"{x:.6g},{-math.expm1(-50 * 2.625e-4 * x ** -3):.6g}\n"
                                 for x in (0.05, 0.1, 0.2, 0.5, 1.0, 2.0))
         curves = [("power_law", hazard_curve()),
@@ -374,10 +358,11 @@ class Hazards(Target):
         return [pcrf, "study", "stripes.toml", "--check"]
 
 
-def make_seed_cube(pcrf, work, timeout_s, name, shard=None):
-    """The tiny study's cube (shard K/N of it, when given) at WORK/NAME; its study file beside."""
+def make_seed_cube(pcrf, work, timeout_s, name, shard=None, study_text=TINY_STUDY):
+    """The cube of `study_text` (the tiny study; shard K/N of it, when given) at WORK/NAME; its
+    study file beside, as WORK/seed_study.toml."""
     study = work / "seed_study.toml"
-    study.write_text(TINY_STUDY)
+    study.write_text(study_text)
     cube = work / name
     for leftover in (cube, Path(str(cube) + ".journal")):
         if leftover.exists():

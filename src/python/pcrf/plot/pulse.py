@@ -1,27 +1,18 @@
 """`pulse`: a record's velocity, the velocity pulse extracted from it and the residual
 (Baker 2007; Shahi & Baker 2014 for a pair, along the pulse's orientation), from the JSON that
 ``pcrf record pulse FILE [--h2 FILE2] --series > pulse.json`` writes."""
-import json
 
 import matplotlib.pyplot as plt
 import numpy as np
 
 from . import style
-from .errors import PlotError
+from .errors import read_command_json
 
 NEEDED = ("method", "pulse_like", "dt_s", "candidates", "velocity_cm_s", "pulse_cm_s", "residual_cm_s")
 
 
 def read(path):
-    try:
-        with open(path, encoding="utf-8") as f:
-            data = json.load(f)
-    except (OSError, ValueError) as e:
-        raise PlotError(f"{path}: cannot read the JSON of pcrf record pulse --series ({e})") from None
-    missing = [k for k in NEEDED if not isinstance(data, dict) or k not in data]
-    if missing:
-        raise PlotError(f"{path}: not the JSON of pcrf record pulse --series (no {', '.join(missing)})")
-    return data
+    return read_command_json(path, "pcrf record pulse --series", NEEDED)
 
 
 def draw(args):

@@ -1,27 +1,18 @@
 """`selection`: records selected to a target spectrum: the target median and median·exp(±σ),
 each selected record's scaled spectrum and the set's median and median·exp(±σ), from the JSON
 that ``pcrf record select … --json > selection.json`` writes."""
-import json
 
 import matplotlib.pyplot as plt
 import numpy as np
 
 from . import style
-from .errors import PlotError
+from .errors import read_command_json
 
 NEEDED = ("periods_s", "target_mean_ln_sa", "target_sigma_ln_sa", "mean_ln_sa", "sigma_ln_sa", "records")
 
 
 def read(path):
-    try:
-        with open(path, encoding="utf-8") as f:
-            data = json.load(f)
-    except (OSError, ValueError) as e:
-        raise PlotError(f"{path}: cannot read the JSON of pcrf record select --json ({e})") from None
-    missing = [k for k in NEEDED if not isinstance(data, dict) or k not in data]
-    if missing:
-        raise PlotError(f"{path}: not the JSON of pcrf record select --json (no {', '.join(missing)})")
-    return data
+    return read_command_json(path, "pcrf record select --json", NEEDED)
 
 
 def draw(args):
