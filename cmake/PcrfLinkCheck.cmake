@@ -1,4 +1,5 @@
-# What each library links, all the way down, checked against what it may not (docs/developer.md,
+# What each library links, all the way down through the project's own targets (another
+# package's imported target is a leaf), checked against what it may not (docs/developer.md,
 # "Layout"): the layering the build enforces by include paths, proved for the link closure too.
 #
 #   pcrf_link_closures(FILE LIBRARY...): at configure time, writes FILE with one line per
@@ -52,6 +53,13 @@ function(pcrf_link_dependencies target out)
     if(t STREQUAL target)
       get_target_property(deps ${t} LINK_LIBRARIES)
     else()
+      # Another package's imported target is a leaf: what it links is its own build's choice,
+      # not our layering (Debian 13's SUNDIALS::core links MPI::MPI_C for its communicator
+      # type; the solver calls no MPI).
+      get_target_property(imported ${t} IMPORTED)
+      if(imported)
+        continue()
+      endif()
       get_target_property(deps ${t} INTERFACE_LINK_LIBRARIES)
     endif()
     if(NOT deps)
