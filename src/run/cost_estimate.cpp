@@ -13,18 +13,12 @@
 #include "pcrf/run/case_runner.hpp"
 #include "pcrf/run/ida_work.hpp"
 #include "pcrf/solver/case_group.hpp"
+#include "pcrf/thread_cpu.hpp"
 
 namespace pcrf::run {
 // A run runs a study: its values (pcrf::study) are this library's vocabulary.
 using namespace pcrf::study;
 namespace {
-
-/// CPU time this thread has used [s]: what a case costs whatever else the machine runs.
-double thread_cpu_s() {
-  timespec now{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
-  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
-}
 
 /// An amount of CPU time in the unit that reads best, e.g. "2.1 CPU-hours".
 std::string cpu_amount(double seconds) {

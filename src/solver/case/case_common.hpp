@@ -9,6 +9,7 @@
 #include <ctime>
 #include <string>
 
+#include "pcrf/thread_cpu.hpp"
 #include "pcrf/excitation/excitation.hpp"
 #include "pcrf/metrics/case_result.hpp"
 #include "pcrf/model/scene.hpp"
@@ -108,13 +109,8 @@ inline double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-/// CPU time of the calling thread [s] (CLOCK_THREAD_CPUTIME_ID): what a case's cpu_time_s
-/// counts, so that neither time descheduled nor other threads' work is in it.
-inline double thread_cpu_s() {
-  timespec now{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
-  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
-}
+/// CPU time of the calling thread [s]: what a case's cpu_time_s counts (pcrf/thread_cpu.hpp).
+using ::pcrf::thread_cpu_s;
 
 inline int uplift_side(double ground_accel_m_s2) { return ground_accel_m_s2 > 0.0 ? -1 : +1; }
 /// Branch of a displaced initial state: the side of θ₁, or of −θ̇₁ when θ₁ = 0.
