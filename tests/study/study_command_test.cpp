@@ -249,8 +249,8 @@ TEST(StudyCommand, KilledRunResumesToTheUninterruptedCube) {
   // 4 records × 3 scales × 9 κ × 9 tan α = 972 cases of a few ms each (~2 s on 2 ranks).
   const std::string text = std::string("[[records]]\nsynthetic = [\"") + kPulse + "\", \"" + kPulse2 + "\", \"" + kNoise +
                            "\", \"stochastic:seed=5,pga_g=1.3,duration_s=8\"]\n"
-                           "[axes]\nscale = [0.9, 1.1, 1.3]\nkappa = {from = 1.0, to = 3.0, count = 9}\n"
-                           "tan_alpha = {from = 0.16, to = 0.24, count = 9}\n";
+                           "[axes]\nscale = [0.9, 1.1, 1.3]\nkappa = {from = 1.0, to = 3.0, count = 15}\n"
+                           "tan_alpha = {from = 0.16, to = 0.24, count = 15}\n";
   const auto study = test::write_file(dir, "kill.toml", text);
   const auto err = dir / "killed.err";
   const std::string command = "cd " + quoted(dir) + " && exec " + mpirun(2) + pcrf() + " study " + quoted(study) +
