@@ -437,15 +437,17 @@ std::vector<std::size_t> whole_chunks(const cube::CubeWriter& writer, const std:
                                       const Study& study, const CaseSpace& space, int workers, const StudyRunOptions& options) {
   std::vector<std::size_t> units;
   if (study.run.batch_size > 0) return units;  // the user fixed what a hand-out is
+  // A plan handed out frame by frame (a Saltelli design) maps position 1 to its second frame;
+  // one handed out in storage order maps every position to itself (CaseSpace::handout_index).
+  if (space.size() > 1 && space.handout_index(1) != 1) return units;
   const auto [first, last] = shard_range(space.size(), options.shard_index, options.shard_count);
   const auto& grid = writer.grid();
   const auto& status = writer.status();
   for (std::size_t c = 0; c < grid.chunk_count(); ++c) {
     const auto r = grid.range(c);
     if (r.first < first || r.first + r.count > last) continue;
-    bool whole = true;
-    for (std::int64_t i = r.first; whole && i < r.first + r.count; ++i)
-      whole = status[static_cast<std::size_t>(i)] == cube::kStatusNotRun && space.handout_index(i) == i;
+    const auto begin = status.begin() + r.first;
+    bool whole = std::all_of(begin, begin + r.count, [](std::int8_t s) { return s == cube::kStatusNotRun; });
     if (whole && histories.lower_bound(r.first) != histories.lower_bound(r.first + r.count)) whole = false;
     if (whole) units.push_back(c);
   }
