@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <map>
 
@@ -11,6 +12,13 @@
 
 namespace pcrf::study {
 namespace {
+
+/// A number for a message, to four significant digits.
+std::string four_digits(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", value);
+  return text;
+}
 
 using detail::Fields;
 
@@ -112,7 +120,7 @@ void check_conditioning(const Fields& f, const SelectionTarget& t, const Intensi
   if (!(std::abs(level / stripe_intensity - 1.0) <= kConditioningRelativeTolerance))
     f.fail(kTargets, where + "mean_ln_sa: the target is conditioned on Sa(" + period + " s) = " + number_text(level) +
                          " g, but the stripe of return period " + number_text(return_period_yr) + " yr is at " +
-                         number_text(stripe_intensity) + " g on the hazard curve: make the target for that level (within " +
+                         four_digits(stripe_intensity) + " g on the hazard curve: make the target for that level (within " +
                          number_text(100.0 * kConditioningRelativeTolerance) + " %)");
   stripe.conditioning_sa_g = level;
   stripe.conditioning_line = line;
