@@ -8,6 +8,7 @@
 #include <map>
 
 #include "pcrf/number_text.hpp"
+#include "pcrf/record/horizontal_pair.hpp"
 #include "pcrf/record/record_library.hpp"
 
 namespace pcrf::study {
@@ -126,6 +127,14 @@ void check_conditioning(const Fields& f, const SelectionTarget& t, const Intensi
   stripe.conditioning_line = line;
 }
 
+/// The component part of a record file's name, after its last '_' ("RRS228" of
+/// "RSN1063_NORTHR_RRS228.AT2"), as pcrf record spectra reads it.
+std::string component_of_file(const std::string& file) {
+  const std::string stem = std::filesystem::path(file).stem().string();
+  const auto cut = stem.rfind('_');
+  return cut == std::string::npos ? stem : stem.substr(cut + 1);
+}
+
 /// A library entry as a record of the study: its file (a pair: h1 and h2), relative paths
 /// resolved against the library table's folder.
 RecordSource record_of(const LibraryEntry& e, const std::filesystem::path& library_dir, const Where& where) {
@@ -138,8 +147,14 @@ RecordSource record_of(const LibraryEntry& e, const std::filesystem::path& libra
   RecordSource source;
   source.name = e.name;
   source.file = spec(e.file);
-  if (!e.file_h2.empty()) source.h2 = spec(e.file_h2);
   source.declared_at = where;
+  if (e.file_h2.empty()) return source;
+  // A pair at the azimuths its RotD50 was computed with: those its file names state (pcrf
+  // record spectra pairs by them), which some headers do not (Chi-Chi's CHY101-E).
+  source.h2 = spec(e.file_h2);
+  auto azimuth = [](const std::string& file) { return azimuth_of_component(component_of_file(file)); };
+  source.az1_deg = azimuth(e.file);
+  source.az2_deg = azimuth(e.file_h2);
   return source;
 }
 
