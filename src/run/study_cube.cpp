@@ -264,6 +264,7 @@ cube::HistoryTable make_history_table(const std::string& label, std::int64_t cas
   table.attributes = {{"case_index", static_cast<std::int64_t>(case_index)},
                       {names::kRecord, study.records[spec.record].name},
                       {space.dimension_names()[1], spec.level}};
+  if (spec.factor) table.attributes.push_back({names::kScaleFactor, *spec.factor});  // [selection]: the record's own factor
   const auto& parameters = spec.frame.model->parameters;
   if (spec.frame.model != study.model) table.attributes.push_back({names::kSceneModel, std::string(spec.frame.model->name)});
   for (std::size_t k = 0; k < parameters.size(); ++k)

@@ -136,7 +136,9 @@ TEST(StripeSelectionCli, ALibraryStudyCubeFragilityAndRisk) {
                                 "return_periods_yr = [100, 1000, 10000]\n";
   const std::string selection = "[selection]\nlibrary = \"../lib.csv\"\ntargets = [\"../t0.csv\", \"../t1.csv\", \"../t2.csv\"]\n"
                                 "count = 4\nscale_min = 0.05\nscale_max = 50\n";
-  test::write_file(dir / "study", "s.toml", "[study]\nname = \"stripes\"\n" + intensity + selection);
+  // A history names a slot: it is the stripe's record there, with its factor.
+  test::write_file(dir / "study", "s.toml", "[study]\nname = \"stripes\"\n" + intensity + selection +
+                                                "[[outputs.histories]]\nlabel = \"top\"\nrecord = \"slot_2\"\nintensity = 2\n");
   const auto run = in_folder(dir / "study", pcrf() + " study s.toml -o s.h5 --progress-interval 0");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   expect_stripe_cube(dir / "study" / "s.h5", 4, 3, "sa_g", library);
@@ -162,6 +164,9 @@ TEST(StripeSelectionCli, ALibraryStudyCubeFragilityAndRisk) {
         "assert ds.scale_factor.dims == ('record', 'intensity') and ds.scale_factor.attrs['units'] == '1'\n"
         "assert ds.selected_record_sa_g.attrs['units'] == 'g'\n"
         "assert list(ds.return_period_yr.values) == [100, 1000, 10000]\n"
+        "h = xr.open_dataset(sys.argv[1], group='histories/top')\n"
+        "assert h.attrs['record'] == ds.selected_record_2.values[1], h.attrs\n"
+        "assert h.attrs['scale_factor'] == ds.scale_factor.values[1, 2], h.attrs\n"
         "print('ok')\n";
     test::write_file(dir, "read.py", script);
     const auto read = test::run_command("/usr/bin/python3 " + quoted(dir / "read.py") + " " + quoted(dir / "study" / "s.h5"));
