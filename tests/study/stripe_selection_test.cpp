@@ -55,7 +55,9 @@ std::map<std::string, std::vector<double>> library_ln_sa(const fs::path& table) 
 /// mean ln Sa(T) − ln Sa(1 s) above it with σ 0.3.
 const fs::path& folder() {
   static const fs::path dir = [] {
-    const auto d = test::scratch_dir("stripe_selection");
+    // One folder per test: ctest runs each test as its own process, several at once.
+    const auto d = test::scratch_dir(std::string("stripe_selection_") +
+                                     ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::create_directories(d / "lib");
     std::vector<fs::path> files;
     for (int i = 0; i < 16; ++i) {
@@ -269,6 +271,9 @@ TEST(StripeSelection, RefusalsNameTheStudyFileLineAndKey) {
 }
 
 TEST(RecordScale, ARecordsOwnFactorMultipliesTheScaleAxis) {
+  const fs::path dir = test::scratch_dir("record_scale");
+  auto parse = [&](const std::string& text) { return parse_study(text, "s.toml", dir); };
+  auto error_of = [&](const std::string& text) { return study_test::error_of(parse, text); };
   const Study s = parse("[[records]]\nsynthetic = \"sine:amplitude_g=1\"\nscale = 2.5\n"
                         "[[records]]\nsynthetic = \"sine:amplitude_g=2\"\n[axes]\nscale = [1, 3]\n");
   ASSERT_EQ(s.records.size(), 2u);
@@ -278,7 +283,7 @@ TEST(RecordScale, ARecordsOwnFactorMultipliesTheScaleAxis) {
   EXPECT_EQ(records.scale_factor(0, 3.0, s.intensity), 7.5);
   EXPECT_EQ(records.scale_factor(1, 3.0, s.intensity), 3.0);
   // In the fingerprint: another factor, another study; none given, the study as it was.
-  auto fingerprint = [](const std::string& text) {
+  auto fingerprint = [&](const std::string& text) {
     const Study study = parse(text);
     RecordCache cache(study.records);
     return canonical_description(study, CaseSpace(study), cache);
