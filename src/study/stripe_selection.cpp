@@ -14,12 +14,6 @@
 namespace pcrf::study {
 namespace {
 
-/// A number for a message, to four significant digits.
-std::string four_digits(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.4g", value);
-  return text;
-}
 
 using detail::Fields;
 
@@ -121,7 +115,7 @@ void check_conditioning(const Fields& f, const SelectionTarget& t, const Intensi
   if (!(std::abs(level / stripe_intensity - 1.0) <= kConditioningRelativeTolerance))
     f.fail(kTargets, where + "mean_ln_sa: the target is conditioned on Sa(" + period + " s) = " + number_text(level) +
                          " g, but the stripe of return period " + number_text(return_period_yr) + " yr is at " +
-                         four_digits(stripe_intensity) + " g on the hazard curve: make the target for that level (within " +
+                         selection_number_text(stripe_intensity) + " g on the hazard curve: make the target for that level (within " +
                          number_text(100.0 * kConditioningRelativeTolerance) + " %)");
   stripe.conditioning_sa_g = level;
   stripe.conditioning_line = line;
@@ -158,7 +152,31 @@ RecordSource record_of(const LibraryEntry& e, const std::filesystem::path& libra
   return source;
 }
 
+/// The targets' files: the list as given, or one file name with {return_period_yr} in it, that
+/// placeholder replaced by each return period as the study gives it ("t{return_period_yr}.csv":
+/// t475.csv, t2475.csv, …).
+std::vector<std::string> target_files(const Fields& f, const std::vector<double>& periods_yr) {
+  auto targets = f.texts(kTargets);
+  static const std::string placeholder = "{return_period_yr}";
+  if (targets.size() != 1 || targets.front().find(placeholder) == std::string::npos) return targets;
+  const std::string pattern = targets.front();
+  targets.clear();
+  for (double t : periods_yr) {
+    std::string name = pattern;
+    for (auto at = name.find(placeholder); at != std::string::npos; at = name.find(placeholder, at))
+      name.replace(at, placeholder.size(), number_text(t));
+    targets.push_back(std::move(name));
+  }
+  return targets;
+}
+
 }  // namespace
+
+std::string selection_number_text(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", value);
+  return text;
+}
 
 void read_selection(const Fields& top, Study& s) {
   const auto* table = top.subtable(kSelectionTable);
@@ -180,8 +198,8 @@ void read_selection(const Fields& top, Study& s) {
   sel.library_file = s.base_dir / sel.library;
   sel.declared_at = f.where(kLibrary);
   const SpectraTable library = read_library(f, sel.library_file, sel.library, spec);
-  const auto targets = f.texts(kTargets);
   const auto& periods_yr = s.hazard_stripes->return_periods_yr;
+  const auto targets = target_files(f, periods_yr);
   if (targets.size() != periods_yr.size())
     f.fail(kTargets, std::to_string(targets.size()) + " target(s) for " + std::to_string(periods_yr.size()) +
                          " return periods in return_periods_yr (" + file_line_text(s.where("intensity.return_periods_yr")) +

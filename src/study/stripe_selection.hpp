@@ -3,6 +3,7 @@
 /// from a library to each return period's target spectrum (Study::StripeSelection).
 #pragma once
 
+#include <string>
 #include <string_view>
 
 #include "pcrf/study/study.hpp"
@@ -17,6 +18,9 @@ inline constexpr std::string_view kSelectionTable = "selection";
 /// once scaled and the stripe's. A check that two input files agree (a target written with a
 /// few digits, another program's interpolation of the same curve), not a model parameter.
 inline constexpr double kConditioningRelativeTolerance = 0.01;
+
+/// A number for a selection message, to four significant digits ("0.2", not "0.19999999999999996").
+std::string selection_number_text(double value);
 
 /// Reads [selection] (after [intensity] and [axes]), runs the selection of every stripe, and
 /// sets Study::selection and Study::records. Nothing when the table is absent.

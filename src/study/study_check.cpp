@@ -95,13 +95,6 @@ void check_hazard_stripes(const Study& study, const WeakestRecord& weakest, std:
        warnings);
 }
 
-/// A number for a message, to four significant digits.
-std::string four_digits(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.4g", value);
-  return text;
-}
-
 /// [selection]: every selected record, scaled by its selection factor, has the stripe's
 /// intensity by the study's own measure (within kConditioningRelativeTolerance): the library's
 /// Sa (interpolated to the target's conditioning period) and the engine's measure of the
@@ -117,9 +110,9 @@ void check_selection(const Study& study, RecordCache& records) {
       const double level = study.levels.at(k);
       if (std::abs(scaled / level - 1.0) <= kConditioningRelativeTolerance) continue;
       throw UserError(study.where("selection.targets"),
-                      "record \"" + study.records[r].name + "\" of the stripe at " + four_digits(level) + " (target " +
+                      "record \"" + study.records[r].name + "\" of the stripe at " + selection_number_text(level) + " (target " +
                           stripes[k].target + ") scaled by " + number_text(stripes[k].scales[slot]) + " has " +
-                          to_string(study.intensity->measure) + " " + four_digits(scaled) +
+                          to_string(study.intensity->measure) + " " + selection_number_text(scaled) +
                           ", not the stripe's intensity: compute the library at the study's period_s (" +
                           number_text(study.intensity->period_s) + " s among its periods) and damping, from the same records");
     }

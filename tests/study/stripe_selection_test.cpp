@@ -154,8 +154,12 @@ TEST(StripeSelection, EachStripeRunsItsOwnRecordsScaledToItsIntensity) {
       EXPECT_EQ(spec.level, s.levels[k]);
     }
 
-  // Deterministic by its seed: read again, the same records and factors.
-  const Study again = parse(kIntensity + kSelection);
+  // Deterministic by its seed: read again, the same records and factors; and the targets
+  // given as one file name with the return period in it are the same files.
+  std::string pattern = kSelection;
+  pattern.replace(pattern.find("[\"t100.csv\", \"t1000.csv\", \"t10000.csv\"]"), 39, "\"t{return_period_yr}.csv\"");
+  const Study again = parse(kIntensity + pattern);
+  EXPECT_EQ(again.selection->stripes[2].target, "t10000.csv");
   for (std::size_t k = 0; k < 3; ++k) {
     EXPECT_EQ(again.selection->stripes[k].scales, sel.stripes[k].scales);
     for (std::size_t slot = 0; slot < 4; ++slot)
