@@ -142,6 +142,12 @@ TEST(StripeSelectionCli, ALibraryStudyCubeFragilityAndRisk) {
   const auto run = in_folder(dir / "study", pcrf() + " study s.toml -o s.h5 --progress-interval 0");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   expect_stripe_cube(dir / "study" / "s.h5", 4, 3, "sa_g", library);
+  // Every rank reads the study and selects alike: three ranks write the same cube.
+  if (study_test::have_mpirun()) {
+    const auto ranks = in_folder(dir / "study", study_test::mpirun(3) + pcrf() + " study s.toml -o m.h5 --progress-interval 0");
+    ASSERT_EQ(ranks.exit_code, 0) << ranks.err;
+    study_test::expect_same_cube(dir / "study" / "s.h5", dir / "study" / "m.h5");
+  }
 
   // cube fragility and cube risk, unchanged, on it.
   const auto fragility = in_folder(dir / "study", pcrf() + " cube fragility s.h5");
