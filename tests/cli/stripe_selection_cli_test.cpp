@@ -192,6 +192,11 @@ TEST(StripeSelectionCli, ALibraryStudyCubeFragilityAndRisk) {
   EXPECT_EQ(onto.exit_code, 2);
   EXPECT_NE(onto.err.find("the target ../t1.csv of [selection]"), std::string::npos) << onto.err;
   EXPECT_EQ(test::read_file(dir / "t1.csv"), target_before);
+  const std::string library_before = test::read_file(dir / "lib.csv");
+  const auto onto_library = in_folder(dir / "study", pcrf() + " study s.toml -o ../lib.csv --overwrite");
+  EXPECT_EQ(onto_library.exit_code, 2);
+  EXPECT_NE(onto_library.err.find("the record library ../lib.csv of [selection]"), std::string::npos) << onto_library.err;
+  EXPECT_EQ(test::read_file(dir / "lib.csv"), library_before);
 
   // A `pcrf record select` fragment is a study as is: its factors run times the scale axis.
   const auto select = in_folder(dir, pcrf() + " record select --target t1.csv --library lib.csv -n 3 --kind component -o frag.toml");
