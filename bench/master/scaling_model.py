@@ -35,8 +35,9 @@ WORKERS = [16, 64, 256, 2048, 16384]
 
 # Measured with rank_costs.py's method (callgrind, 1 rank, (131 072 - 65 536 cases) / 65 536, a
 # non-lifting LHS of 8 parameters, 17 metrics; whole chunks sealed by the worker; same tail):
-MASTER_PER_RESULT = 271        # rank 0's main thread during the run, per result (was 14 300 at 75d5fd5)
-MASTER_SETUP_PER_CASE = 9_450  # rank 0 before the first hand-out: coordinates deflated (8 600), plan, checks
+MASTER_PER_RESULT = 341        # rank 0's main thread during the run, per result, a checkpoint included
+                               # (271 in a run without one; 383 at 4 ranks; was 14 300 at 75d5fd5)
+MASTER_SETUP_PER_CASE = 9_450  # rank 0 before the first hand-out: coordinates deflated (8 600), the plan (850)
 NONLIFT_CASE = 13_160          # the worker's non-lifting case (19 120 in all, less its sealing)
 WORKER_OWN_PER_CASE = 5_960    # the worker sealing its chunk: shuffle and deflate 18 variables a case
 
