@@ -48,21 +48,24 @@ WORKING_FLOOR = 100.0
 
 
 # Rank 0's main thread, split by what it is doing (inclusive counts, callgrind_annotate):
-# before the first hand-out (the checks, the new cube's coordinates) and during the run
-# (hand-out, storing what comes back, checkpoints, the last fold).
-PHASES = {"setup": "run::(anonymous namespace)::prepare_master(", "run": "run::(anonymous namespace)::run_master_rank("}
+# before the first hand-out (reading the study and making its plan, the checks, the new cube
+# with its coordinates) and during the run (hand-out, storing what comes back, checkpoints,
+# the last fold): run_study less what it spends in the first two, whatever the compiler inlined.
+FUNCTIONS = {"study": "pcrf::run::run_study(", "load": "pcrf::study::load_study(", "prepare": "::prepare_master("}
+PHASES = ("setup", "run")
 
 
 def inclusive_phases(path):
-    """Inclusive instructions of each of PHASES in one callgrind file."""
+    """Instructions of each of PHASES in one callgrind file."""
     out = subprocess.run(["callgrind_annotate", "--inclusive=yes", "--threshold=100", path],
                          capture_output=True, text=True).stdout
-    found = dict.fromkeys(PHASES, 0)
+    found = dict.fromkeys(FUNCTIONS, 0)
     for line in out.splitlines():
-        for phase, name in PHASES.items():
-            if name in line and not found[phase]:
-                found[phase] = int(line.split()[0].replace(",", ""))
-    return found
+        for key, name in FUNCTIONS.items():
+            if name in line and not found[key]:
+                found[key] = int(line.split()[0].replace(",", ""))
+    setup = found["load"] + found["prepare"]
+    return {"setup": setup, "run": found["study"] - setup}
 
 
 def profile_run(pcrf, ranks, study, folder, tag):
@@ -124,7 +127,7 @@ def main():
     print(f"\nall threads together: {total_all:,.0f} instructions per case")
     print(f"rank 0's main thread (master, cube) per result beyond its own cases: {master[0]:,.0f} "
           f"({master[1]:,.0f} with MPI left out)")
-    print(f"  of which before the first hand-out (checks, the new cube's coordinates): {phases['setup']:,.0f}; "
+    print(f"  of which before the first hand-out (plan, checks, the new cube's coordinates): {phases['setup']:,.0f}; "
           f"during the run (hand-out, results, checkpoints, last fold): {phases['run']:,.0f}")
     print(f"  during the run at {large} cases alone, its fixed costs (the last chunk, case by case) included: "
           f"{run_alone:,.0f} a case")
