@@ -211,8 +211,8 @@ bool CaseRun::fly() {
     finish(CaseStatus::kSolverFailure, "non-finite state at t = " + std::to_string(t) + " s");
     return true;
   }
-  if (integrator_->counts().steps > solver_.max_steps) {
-    finish(CaseStatus::kSolverFailure, "more than max_steps steps");
+  if (const char* exceeded = exceeded_budget(solver_, integrator_->counts())) {
+    finish(CaseStatus::kSolverFailure, exceeded);
     return true;
   }
   if (outcome == detail::OdeIntegrator::Outcome::kRoot) {
