@@ -162,19 +162,18 @@ class SaltelliPlan final : public SampledPlan {
     return "s" + std::to_string(study::SaltelliDesign::sample(i, varied().size())) + ":" + block_name(i);
   }
 
+  /// Computed from the frame number, as the parameters (PointPlan::coordinates).
   std::vector<cube::Coordinate> extra_coordinates() const override {
-    std::vector<std::string> blocks;
-    std::vector<double> samples;
-    for (std::size_t i = 0; i < point_count(); ++i) {
-      blocks.push_back(block_name(i));
-      samples.push_back(static_cast<double>(study::SaltelliDesign::sample(i, varied().size())));
-    }
+    const std::size_t d = varied().size();
+    auto block = text_coordinate(schema::kSaltelliBlock, schema::kCase, "Saltelli design block: A, B or AB_<parameter>", {});
+    block.text_at = [this](std::size_t i) { return block_name(i); };
+    block.computed_size = point_count();
     auto sample = number_coordinate(schema::kSaltelliSample, schema::kCase, "1",
-                                    "Saltelli base sample the frame belongs to", std::move(samples));
+                                    "Saltelli base sample the frame belongs to", {});
+    sample.number_at = [d](std::size_t i) { return static_cast<double>(study::SaltelliDesign::sample(i, d)); };
+    sample.computed_size = point_count();
     sample.is_index = true;  // whole numbers: stored as integers
-    return {text_coordinate(schema::kSaltelliBlock, schema::kCase, "Saltelli design block: A, B or AB_<parameter>",
-                            std::move(blocks)),
-            std::move(sample)};
+    return {std::move(block), std::move(sample)};
   }
 
  private:
