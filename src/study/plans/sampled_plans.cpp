@@ -12,7 +12,6 @@
 
 #include "pcrf/study/sampling.hpp"
 #include "pcrf/schema/cube_vocabulary.hpp"
-#include "pcrf/study/study_size.hpp"
 #include "study/axis_fields.hpp"
 #include "study/plans/plan_support.hpp"
 
@@ -90,11 +89,6 @@ Sampling read_sampling(const PlanInput& input) {
       s.ranges[p] = read_sampled_range(*input.axes, input.model.parameters[p]);
   if (s.varied().empty()) input.top.fail("axes", "a sampled plan needs at least one parameter range {from, to} in [axes]");
   return s;
-}
-
-/// Refuses a plan too large to draw, before it is drawn (`frames_per_sample`: saltelli d + 2).
-void check_drawable(const PlanInput& input, const Sampling& s, double frames_per_sample) {
-  check_frame_count(static_cast<double>(s.samples) * frames_per_sample, input.plan.where("samples"));
 }
 
 /// A design's unit coordinate k of frame i, in [0, 1), computed from (i, k).
@@ -194,7 +188,6 @@ constexpr const char* kLatinHypercubeConstruction = "lhs-feistel-1";
 
 std::shared_ptr<const Plan> read_lhs_plan(const PlanInput& input) {
   const Sampling s = read_sampling(input);
-  check_drawable(input, s, 1.0);
   auto design = std::make_shared<const study::LatinHypercube>(s.samples, s.varied().size(), s.seed);
   return std::make_shared<SampledPlan>(
       input.model, "lhs", s.samples, [design](std::uint64_t i, std::size_t k) { return design->at(i, k); }, s,
@@ -203,7 +196,6 @@ std::shared_ptr<const Plan> read_lhs_plan(const PlanInput& input) {
 
 std::shared_ptr<const Plan> read_sobol_plan(const PlanInput& input) {
   const Sampling s = read_sampling(input);
-  check_drawable(input, s, 1.0);
   check_sobol_length(input, s.samples);
   auto design = std::make_shared<const study::SobolSequence>(s.varied().size(), s.scramble, s.seed);
   return std::make_shared<SampledPlan>(
@@ -215,7 +207,6 @@ std::shared_ptr<const Plan> read_saltelli_plan(const PlanInput& input) {
   const Sampling s = read_sampling(input);
   const std::size_t d = s.varied().size();
   if (d < 2) input.top.fail("axes", "plan \"saltelli\" needs at least two varied parameters (sensitivity apportions variance among them)");
-  check_drawable(input, s, static_cast<double>(d + 2));
   check_sobol_length(input, s.samples);
   auto design = std::make_shared<const study::SaltelliRows>(d, s.scramble, s.seed);
   return std::make_shared<SaltelliPlan>(
