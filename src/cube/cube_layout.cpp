@@ -16,8 +16,15 @@ CubeError::Cause CubeError::cause_of(int os_error) {
 
 
 std::string Coordinate::label(std::size_t i) const {
-  if (is_text) return strings.at(i);
-  return number_text(numbers.at(i));
+  if (is_text) return text(i);
+  return number_text(number(i));
+}
+
+void Coordinate::release_values() {
+  std::vector<double>().swap(numbers);
+  std::vector<std::string>().swap(strings);
+  number_at = nullptr;
+  text_at = nullptr;
 }
 
 std::int64_t CubeLayout::case_count() const {

@@ -64,7 +64,13 @@ void write_descriptive_attributes(hid_t object, const std::string& units, const 
   if (!long_name.empty()) h5::write_attribute(object, "long_name", long_name);
 }
 
-/// A 1-D coordinate variable (text, index or numbers).
+/// True for a coordinate whose values are written into the cube on disk after its creation,
+/// piece by piece (write_long_coordinates), not into the in-memory image: a long one (the
+/// image would hold it whole: an LHS of 10^8 frames, gigabytes) or a computed one.
+bool written_later(const Coordinate& c) { return c.computed() || c.size() > kCoordinateChunk / 16; }
+
+/// A 1-D coordinate variable (text, index or numbers); its values are written here unless
+/// written_later.
 h5::Handle create_coordinate(hid_t parent, const Coordinate& c) {
   const std::string what = "cannot create coordinate '" + c.name + "'";
   const hsize_t n = c.size();
@@ -76,21 +82,48 @@ h5::Handle create_coordinate(hid_t parent, const Coordinate& c) {
     h5::check(H5Pset_shuffle(dcpl), what);
     h5::check(H5Pset_deflate(dcpl, kDeflateLevel), what);
   }
+  const bool later = written_later(c);
   h5::Handle d;
   if (c.is_text) {
     auto t = h5::vlen_string_type();
     d = h5::dataset(H5Dcreate2(parent, c.name.c_str(), t, s, H5P_DEFAULT, dcpl, H5P_DEFAULT), what);
-    h5::write_strings(d, c.strings);
+    if (!later) h5::write_strings(d, c.strings);
   } else if (c.is_index) {
-    std::vector<std::int32_t> values(c.numbers.begin(), c.numbers.end());
     d = h5::dataset(H5Dcreate2(parent, c.name.c_str(), H5T_STD_I32LE, s, H5P_DEFAULT, dcpl, H5P_DEFAULT), what);
-    h5::check(H5Dwrite(d, H5T_NATIVE_INT32, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), what);
+    std::vector<std::int32_t> values(c.numbers.begin(), c.numbers.end());
+    if (!later) h5::check(H5Dwrite(d, H5T_NATIVE_INT32, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), what);
   } else {
     d = h5::dataset(H5Dcreate2(parent, c.name.c_str(), H5T_IEEE_F64LE, s, H5P_DEFAULT, dcpl, H5P_DEFAULT), what);
-    h5::check(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, c.numbers.data()), what);
+    if (!later) h5::check(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, c.numbers.data()), what);
   }
   write_descriptive_attributes(d, c.units, c.long_name);
   return d;
+}
+
+/// Writes values [first, first + count) of a coordinate into its dataset `d`.
+void write_coordinate_piece(hid_t d, const Coordinate& c, hsize_t first, hsize_t count, const std::string& what) {
+  auto file_space = h5::space(H5Dget_space(d), what);
+  h5::check(H5Sselect_hyperslab(file_space, H5S_SELECT_SET, &first, nullptr, &count, nullptr), what);
+  auto memory = h5::space(H5Screate_simple(1, &count, nullptr), what);
+  const auto at = [&](hsize_t k) { return static_cast<std::size_t>(first + k); };
+  if (c.is_text) {
+    std::vector<std::string> texts(count);
+    std::vector<const char*> pointers(count);
+    for (hsize_t k = 0; k < count; ++k) {
+      texts[k] = c.text(at(k));
+      pointers[k] = texts[k].c_str();
+    }
+    auto t = h5::vlen_string_type();
+    h5::check(H5Dwrite(d, t, memory, file_space, H5P_DEFAULT, pointers.data()), what);
+  } else if (c.is_index) {
+    std::vector<std::int32_t> values(count);
+    for (hsize_t k = 0; k < count; ++k) values[k] = static_cast<std::int32_t>(c.number(at(k)));
+    h5::check(H5Dwrite(d, H5T_NATIVE_INT32, memory, file_space, H5P_DEFAULT, values.data()), what);
+  } else {
+    std::vector<double> values(count);
+    for (hsize_t k = 0; k < count; ++k) values[k] = c.number(at(k));
+    h5::check(H5Dwrite(d, H5T_NATIVE_DOUBLE, memory, file_space, H5P_DEFAULT, values.data()), what);
+  }
 }
 
 void write_global_attribute(hid_t file, const Attribute& a) {
@@ -181,6 +214,7 @@ struct CubeWriter::Impl {
   void fold(const std::vector<std::int8_t>& status);
   void clear_pending();
   void write_new_file(io::AtomicFile& target);
+  void write_long_coordinates(const std::filesystem::path& target);
   void update(const std::filesystem::path& target, const std::vector<std::int8_t>& status, std::int64_t new_id);
   void check_free_space(const std::filesystem::path& target) const;
   void remember_identity();
@@ -741,13 +775,11 @@ void CubeWriter::Impl::write_new_file(io::AtomicFile& target) {
   std::vector<char> image;
   try {
     create(target.temporary());
-    // The coordinates are in the image now, and every later fold starts from a copy of the
-    // file: their values need not stay in memory, neither while the image is copied out (the
-    // peak of rank 0's memory) nor for the run (an LHS's eight parameters: 72 B a case).
-    for (auto& c : layout.coordinates) {
-      std::vector<double>().swap(c.numbers);
-      std::vector<std::string>().swap(c.strings);
-    }
+    // The short coordinates are in the image now, and every later fold starts from a copy of
+    // the file: their values need not stay in memory, neither while the image is copied out
+    // nor for the run.
+    for (auto& c : layout.coordinates)
+      if (!written_later(c)) c.release_values();
     h5::check(H5Fflush(file, H5F_SCOPE_GLOBAL), what("cannot flush"));
     const ssize_t size = H5Fget_file_image(file, nullptr, 0);
     if (size <= 0) throw CubeError(what("cannot take the file's image"));
@@ -759,6 +791,36 @@ void CubeWriter::Impl::write_new_file(io::AtomicFile& target) {
     throw;
   }
   target.write(image.data(), image.size());
+  std::vector<char>().swap(image);
+  target.close();
+  write_long_coordinates(target.temporary());
+}
+
+/// Writes the long and computed coordinates (written_later) into the new cube at `target`,
+/// on disk, one chunk of kCoordinateChunk values at a time, then drops them: whatever the
+/// number of cases, creating a cube holds one chunk of a coordinate, not the whole of it
+/// (issue 38; an LHS of 10^6 frames held its eight parameters, then their image, 130 B a case).
+void CubeWriter::Impl::write_long_coordinates(const std::filesystem::path& target) {
+  bool any = false;
+  for (const auto& c : layout.coordinates) any = any || written_later(c);
+  if (!any) return;
+  try {
+    file = h5::file(H5Fopen(target.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), what("cannot open " + target.string()));
+    for (auto& c : layout.coordinates) {
+      if (!written_later(c)) continue;
+      const std::string problem = what("cannot write coordinate '" + c.name + "'");
+      auto d = h5::dataset(H5Dopen2(file, c.name.c_str(), H5P_DEFAULT), problem);
+      const hsize_t n = c.size();
+      for (hsize_t first = 0; first < n; first += kCoordinateChunk)
+        write_coordinate_piece(d, c, first, std::min<hsize_t>(kCoordinateChunk, n - first), problem);
+      c.release_values();
+    }
+    const hid_t id = file.release();
+    h5::check(H5Fclose(id), what("cannot write " + target.string()));
+  } catch (...) {
+    close_handles();
+    throw;
+  }
 }
 
 /// Writes what changed since the last fold into `target` (a copy of it, or a new cube): the

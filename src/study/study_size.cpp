@@ -10,9 +10,6 @@
 namespace pcrf::study {
 namespace {
 
-/// A frame on rank 0: its parameters, labels and the plan's unit point, and its coordinates
-/// in the cube's case axis [bytes] (an upper estimate).
-constexpr double kFrameBytes = 512.0;
 /// More runs per curve than any IDA needs; the search counts them in an int.
 constexpr long kMaxIdaRuns = 1000000;
 
@@ -38,7 +35,8 @@ void check_study_size(const Study& study) {
     throw UserError(study.where("ida.max_runs"), "at most " + std::to_string(kMaxIdaRuns) + " runs per curve, got " +
                                                      std::to_string(study.ida->max_runs));
   const StudySize size = study_size(study);
-  const double needed = kFrameBytes * size.frames + 1.0 * size.cases + static_cast<double>(kPendingResultsBytes);
+  const double frame_bytes = study.plan->bytes_per_frame();
+  const double needed = frame_bytes * size.frames + 1.0 * size.cases + static_cast<double>(kPendingResultsBytes);
   const double memory = machine_memory_bytes();
   if (needed <= kUsableMemoryShare * memory) return;
   // The key to change: an IDA's runs, else the plan's size (the axes, or the samples).
@@ -49,20 +47,8 @@ void check_study_size(const Study& study) {
                 "%.4g frames and %.4g cases need about %.3g GB on rank 0 (%.0f bytes a frame, one byte a case, "
                 "and 0.27 GB of results between checkpoints), more than 80 %% of this machine's %.3g GB (every shard "
                 "holds them all); make the study smaller",
-                size.frames, size.cases, needed / 1e9, kFrameBytes, memory / 1e9);
+                size.frames, size.cases, needed / 1e9, frame_bytes, memory / 1e9);
   throw UserError(study.where(key), text);
-}
-
-void check_frame_count(double frames, const Where& where) {
-  const double needed = kFrameBytes * frames + static_cast<double>(kPendingResultsBytes);
-  const double memory = machine_memory_bytes();
-  if (needed <= kUsableMemoryShare * memory) return;
-  char text[300];
-  std::snprintf(text, sizeof text,
-                "%.4g frames need about %.3g GB on rank 0 (%.0f bytes a frame), more than 80 %% of this machine's "
-                "%.3g GB; make the study smaller",
-                frames, needed / 1e9, kFrameBytes, memory / 1e9);
-  throw UserError(where, text);
 }
 
 }  // namespace pcrf::study

@@ -148,6 +148,50 @@ TEST(CubeFile, CoordinatesReadBackChunkedOrNotWithOrWithoutLabels) {
   }
 }
 
+// A plan's coordinates along `case` are computed from the case number (issue 38): the writer
+// asks for them chunk by chunk while it creates the cube, and they read back exactly, the same
+// as the held ones, short (contiguous) or long (chunked, in several pieces and a partial one).
+TEST(CubeFile, ComputedCoordinatesReadBackAsHeldOnes) {
+  for (const std::size_t n : {std::size_t{100}, std::size_t{150000}}) {
+    const auto file = test::scratch_dir("cube_computed") / ("c" + std::to_string(n) + ".h5");
+    const auto held = case_layout(n, true);
+    CubeLayout computed = held;
+    std::size_t asked = 0, highest = 0;
+    for (auto& c : computed.coordinates) {
+      if (c.dimension != "case") continue;
+      c.computed_size = n;
+      if (c.is_text) {
+        c.text_at = [&asked](std::size_t i) { ++asked; return "s" + std::to_string(i); };
+        c.strings.clear();
+      } else {
+        const bool index = c.is_index;
+        c.number_at = [&asked, &highest, index](std::size_t i) {
+          ++asked;
+          highest = std::max(highest, i);
+          return index ? static_cast<double>(i) : 1.0 + 1.0 / static_cast<double>(i + 3);
+        };
+        c.numbers.clear();
+      }
+    }
+    {
+      CubeWriter writer(file, computed, OpenMode::kOverwrite);
+      EXPECT_EQ(asked, 3 * n) << "each value once, at creation";
+      EXPECT_EQ(highest, n - 1);
+      writer.store(static_cast<std::int64_t>(n - 1), 0, {0.25});
+      writer.close();
+      EXPECT_EQ(asked, 3 * n) << "never after creation";
+    }
+    CubeReader reader(file);
+    const auto& read = reader.layout();
+    EXPECT_EQ(read.find_coordinate("kappa")->numbers, held.find_coordinate("kappa")->numbers) << n;
+    EXPECT_EQ(read.find_coordinate("case")->numbers, held.find_coordinate("case")->numbers) << n;
+    EXPECT_TRUE(read.find_coordinate("case")->is_index);
+    EXPECT_EQ(read.find_coordinate("case_label")->strings, held.find_coordinate("case_label")->strings) << n;
+    EXPECT_EQ(reader.read_metric("theta_max_rad")[n - 1], 0.25);
+    EXPECT_TRUE(reader.damage().empty());
+  }
+}
+
 TEST(CubeFile, ResumeKeepsDoneCasesAndRefusesAnotherStudy) {
   const auto file = test::scratch_dir("cube_resume") / "c.h5";
   {

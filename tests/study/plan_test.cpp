@@ -96,6 +96,18 @@ TEST(Plan, AListOfScenesKeepsTheContractAndItsTextNamesTheirModels) {
       << "a list of one scene keeps the text (and fingerprint) it had";
 }
 
+// Issue 38 changed which points an LHS draws (a Feistel permutation by index instead of an
+// mt19937 shuffle): its canonical text names the construction, so the fingerprint of an LHS
+// study differs from an older cube's and --resume refuses it; Sobol' and Saltelli points did
+// not change, nor did their text.
+TEST(Plan, TheLatinHypercubesTextNamesItsConstruction) {
+  const std::string sampled = "samples = 8\nseed = 3\n[axes]\nkappa = {from = 1, to = 2}\ntan_alpha = {from = 0.1, to = 0.2}\n";
+  EXPECT_NE(canonical(*parse("[plan]\nkind = \"lhs\"\n" + sampled).plan).find(" design=lhs-feistel-1 "), std::string::npos);
+  for (const char* kind : {"sobol", "saltelli"})
+    EXPECT_EQ(canonical(*parse(std::string("[plan]\nkind = \"") + kind + "\"\n" + sampled).plan).find("design="),
+              std::string::npos) << kind;
+}
+
 TEST(Plan, AKeyOfAnotherPlanNamesThePlansThatTakeIt) {
   try {
     parse("[plan]\nkind = \"lhs\"\nsamples = 4\nscramble = true\n[axes]\nkappa = {from = 1, to = 2}\n");

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <set>
 
+#include <boost/random/sobol.hpp>
+
 #include "pcrf/study/sampling.hpp"
 
 namespace pcrf::study {
@@ -22,6 +24,84 @@ TEST(Sampling, LatinHypercubePutsOneValueInEachStratum) {
   }
   EXPECT_EQ(latin_hypercube(n, d, 7), p);
   EXPECT_NE(latin_hypercube(n, d, 8), p);
+}
+
+TEST(Sampling, IndexPermutationIsABijectionOfItsDomain) {
+  for (std::uint64_t n : {1ull, 2ull, 3ull, 5ull, 16ull, 17ull, 1000ull, 4097ull, 65536ull}) {
+    const IndexPermutation permutation(n, 12345);
+    std::vector<char> hit(n, 0);
+    for (std::uint64_t j = 0; j < n; ++j) {
+      const std::uint64_t image = permutation(j);
+      ASSERT_LT(image, n) << "n " << n;
+      EXPECT_FALSE(hit[image]) << "n " << n << ": " << image << " taken twice";
+      hit[image] = 1;
+    }
+  }
+  // Another key, another permutation (of 1000! candidates, the same one would be a defect).
+  const IndexPermutation a(1000, 1), b(1000, 2);
+  std::size_t same = 0;
+  for (std::uint64_t j = 0; j < 1000; ++j) same += a(j) == b(j);
+  EXPECT_LT(same, 20u);
+}
+
+TEST(Sampling, LatinHypercubeByIndexIsALatinHypercube) {
+  // Each stratum of each dimension exactly once, the value inside its stratum, and the
+  // whole-matrix function the same values.
+  for (std::size_t n : {2u, 3u, 97u, 1000u, 4096u}) {
+    const std::size_t d = 8;
+    const LatinHypercube design(n, d, 1);
+    const auto matrix = latin_hypercube(n, d, 1);
+    for (std::size_t i = 0; i < d; ++i) {
+      std::vector<char> taken(n, 0);
+      for (std::size_t j = 0; j < n; ++j) {
+        const std::uint64_t s = design.stratum(j, i);
+        ASSERT_LT(s, n);
+        EXPECT_FALSE(taken[s]) << "n " << n << " dimension " << i << " stratum " << s;
+        taken[s] = 1;
+        const double x = design.at(j, i);
+        EXPECT_EQ(static_cast<std::uint64_t>(std::floor(x * static_cast<double>(n))), s);
+        EXPECT_GE(x, 0.0);
+        EXPECT_LT(x, 1.0);
+        EXPECT_EQ(matrix[j * d + i], x);
+      }
+    }
+  }
+  // Uniform inside the strata: the positions within them average 1/2.
+  const std::size_t n = 20000;
+  const LatinHypercube design(n, 2, 3);
+  double mean = 0.0;
+  for (std::size_t j = 0; j < n; ++j)
+    mean += design.at(j, 0) * static_cast<double>(n) - static_cast<double>(design.stratum(j, 0));
+  EXPECT_NEAR(mean / static_cast<double>(n), 0.5, 0.01);  // 4.5 sigma of a mean of 20 000 uniforms
+}
+
+TEST(Sampling, SobolByIndexIsBoostsSequenceBitForBit) {
+  // The sequence as the plans drew it before issue 38: Boost's engine stepped point by point.
+  const std::size_t n = 5000, d = 16;
+  boost::random::sobol_engine<std::uint32_t, 32> engine(d);
+  const SobolSequence sequence(d, false, 0);
+  for (std::size_t j = 0; j < n; ++j)
+    for (std::size_t i = 0; i < d; ++i) {
+      const std::uint32_t x = j == 0 ? 0u : static_cast<std::uint32_t>(engine());
+      ASSERT_EQ(sequence.at(j, i), static_cast<double>(x) / 4294967296.0) << j << ", " << i;
+    }
+  // Far out, where stepping would take long: against Boost's own seek.
+  boost::random::sobol_engine<std::uint32_t, 32> far(3);
+  const SobolSequence three(3, false, 0);
+  for (std::uint64_t j : {1ull << 20, (1ull << 31) + 12345, (1ull << 32) - 1}) {
+    far.seed(static_cast<std::uint32_t>(j - 1));  // Boost's state after seed(s) is the sequence's point s + 1
+    for (std::size_t i = 0; i < 3; ++i) EXPECT_EQ(three.at(j, i), static_cast<double>(far()) / 4294967296.0) << j;
+  }
+}
+
+TEST(Sampling, SaltelliRowsAreTheDesignsRows) {
+  const std::size_t n = 64, d = 4;
+  for (bool scramble : {false, true}) {
+    const auto design = saltelli_design(n, d, scramble, 9);
+    const SaltelliRows rows(d, scramble, 9);
+    for (std::size_t r = 0; r < n * (d + 2); ++r)
+      for (std::size_t i = 0; i < d; ++i) ASSERT_EQ(rows.at(r, i), design.points[r * d + i]) << r << ", " << i;
+  }
 }
 
 TEST(Sampling, SobolPointsAreTheJoeKuoSequence) {

@@ -18,10 +18,17 @@ Study parse(const std::string& text) { return parse_study(text, "t.toml", test::
 
 const std::string kRecords = "[[records]]\nsynthetic = \"sine:amplitude_g=1.5\"\n";
 
-/// The plan's coordinate variable `name` (fails the test when there is none).
+/// The plan's coordinate variable `name` (fails the test when there is none), its values held
+/// (a plan computes those along `case` from the case number: every one is asked for here).
 cube::Coordinate coordinate(const Study& s, const std::string& name) {
   for (auto& c : s.plan->coordinates())
-    if (c.name == name) return c;
+    if (c.name == name) {
+      for (std::size_t i = 0; c.computed() && i < c.computed_size; ++i)
+        c.is_text ? c.strings.push_back(c.text(i)) : c.numbers.push_back(c.number(i));
+      c.number_at = nullptr;
+      c.text_at = nullptr;
+      return c;
+    }
   ADD_FAILURE() << "no coordinate " << name;
   return {};
 }

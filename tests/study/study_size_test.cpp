@@ -46,7 +46,7 @@ test::CommandResult check(const std::filesystem::path& dir, const std::string& t
 TEST(StudySize, HugeStudiesAreRefusedWithTheirKeyAndLine) {
   const auto dir = test::scratch_dir("study_size_huge");
   const std::vector<std::pair<std::string, std::string>> corpus = {
-      {kRecord + "[plan]\nkind = \"lhs\"\nsamples = 100000000\n[axes]\nkappa = {from = 1, to = 2}\n", "s.toml:5: [plan] samples: "},
+      {kRecord + "[plan]\nkind = \"lhs\"\nsamples = 100000000000\n[axes]\nkappa = {from = 1, to = 2}\n", "s.toml:5: [plan] samples: "},
       {kRecord + "[plan]\nkind = \"sobol\"\nsamples = 9223372036854775807\n[axes]\nkappa = {from = 1, to = 2}\n",
        "s.toml:5: [plan] samples: "},
       {kRecord + "[plan]\nkind = \"saltelli\"\nsamples = 1000000000000\n[axes]\nkappa = {from = 1, to = 2}\n"

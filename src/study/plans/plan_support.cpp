@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <functional>
 #include <limits>
 
 #include "pcrf/schema/cube_vocabulary.hpp"
@@ -118,29 +119,36 @@ std::vector<SceneSpec> PointPlan::frames() const {
 }
 
 std::vector<cube::Coordinate> PointPlan::coordinates() const {
-  // Each per-case vector is made only for a coordinate the cube stores (a study of 10^6
-  // cases held every label and model name twice more here).
+  // Every coordinate along `case` is computed from the case number when the writer asks
+  // (cube::Coordinate::number_at, text_at), piece by piece: nothing per case is held, however
+  // many cases (issue 38). The writer asks only while it creates the cube, when this plan is alive.
   const std::size_t n = point_count();
-  std::vector<double> index(n);
-  for (std::size_t i = 0; i < n; ++i) index[i] = static_cast<double>(i);
-  std::vector<cube::Coordinate> coords{number_coordinate(schema::kCase, schema::kCase, "", "frame number", std::move(index))};
+  const auto computed_number = [n](cube::Coordinate c, std::function<double(std::size_t)> at) {
+    c.number_at = std::move(at);
+    c.computed_size = n;
+    return c;
+  };
+  const auto computed_text = [n](cube::Coordinate c, std::function<std::string(std::size_t)> at) {
+    c.text_at = std::move(at);
+    c.computed_size = n;
+    return c;
+  };
+  std::vector<cube::Coordinate> coords{computed_number(
+      number_coordinate(schema::kCase, schema::kCase, "", "frame number", {}),
+      [](std::size_t i) { return static_cast<double>(i); })};
   coords.back().is_index = true;
-  if (stores_labels()) {
-    std::vector<std::string> labels;
-    for (std::size_t i = 0; i < n; ++i) labels.push_back(point_label(i));
-    coords.push_back(text_coordinate(schema::kCaseLabel, schema::kCase, "frame label", labels));
-  }
+  if (stores_labels())
+    coords.push_back(computed_text(text_coordinate(schema::kCaseLabel, schema::kCase, "frame label", {}),
+                                   [this](std::size_t i) { return point_label(i); }));
   // The models present: the plan's first, then the others in catalogue order.
   std::vector<const SceneModel*> present{model_};
   std::vector<char> used(scene_models().size(), 0);
   for (std::size_t i = 0; i < n; ++i) used[static_cast<std::size_t>(&point_model(i) - scene_models().data())] = 1;
   for (const auto& m : scene_models())
     if (&m != model_ && used[static_cast<std::size_t>(&m - scene_models().data())]) present.push_back(&m);
-  if (present.size() > 1) {
-    std::vector<std::string> models;
-    for (std::size_t i = 0; i < n; ++i) models.emplace_back(point_model(i).name);
-    coords.push_back(text_coordinate(schema::kSceneModel, schema::kCase, "scene model of the frame", models));
-  }
+  if (present.size() > 1)
+    coords.push_back(computed_text(text_coordinate(schema::kSceneModel, schema::kCase, "scene model of the frame", {}),
+                                   [this](std::size_t i) { return std::string(point_model(i).name); }));
   for (auto& c : extra_coordinates()) coords.push_back(std::move(c));
   // The plan's model's other parameters are the cube's attributes (frame_h_m, …); another
   // model has no base point, so all of its parameters are coordinates.
@@ -151,21 +159,19 @@ std::vector<cube::Coordinate> PointPlan::coordinates() const {
       if (m == model_ && !parameter.axis) continue;
       if (std::find(written.begin(), written.end(), parameter.name) != written.end()) continue;
       written.push_back(parameter.name);
-      // SceneSpec::value without a frame made and a search by name per case (1 k
-      // instructions a case of rank 0's set-up for an LHS): the position of the parameter in
-      // each model present, found once.
+      // SceneSpec::value without a frame made and a search by name per case: the position
+      // of the parameter in each model present, found once.
       std::vector<std::size_t> position(present.size());
       for (std::size_t j = 0; j < present.size(); ++j) position[j] = present[j]->index(parameter.name);
-      std::vector<double> values;
-      values.reserve(n);
-      for (std::size_t i = 0; i < n; ++i) {
+      auto value = [this, present, position](std::size_t i) {
         const SceneModel* own = &point_model(i);
         const std::size_t j = static_cast<std::size_t>(std::find(present.begin(), present.end(), own) - present.begin());
-        values.push_back(position[j] == std::string::npos ? std::numeric_limits<double>::quiet_NaN()  // as SceneSpec::value
-                                                          : point_value(i, position[j]));
-      }
-      coords.push_back(number_coordinate(std::string(parameter.name), schema::kCase, std::string(parameter.units),
-                                         std::string(parameter.long_name), std::move(values)));
+        return position[j] == std::string::npos ? std::numeric_limits<double>::quiet_NaN()  // as SceneSpec::value
+                                                : point_value(i, position[j]);
+      };
+      coords.push_back(computed_number(number_coordinate(std::string(parameter.name), schema::kCase,
+                                                         std::string(parameter.units), std::string(parameter.long_name), {}),
+                                       std::move(value)));
     }
   return coords;
 }

@@ -72,6 +72,8 @@ class PointPlan : public Plan {
   std::vector<cube::Coordinate> coordinates() const override;
   std::vector<std::size_t> locate(const HistoryRequest& request) const override;
   std::string history_key_problem(std::string_view key) const override;
+  /// A listed frame: its label, parameters and model, its labels and values in the cube.
+  double bytes_per_frame() const override { return points_.empty() ? 0.0 : 512.0; }
 
  protected:
   PointPlan(const SceneModel& model, std::vector<Point> points);

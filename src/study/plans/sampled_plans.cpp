@@ -1,16 +1,17 @@
 // The sampled plans: points of the unit hypercube (plan/sampling.hpp) mapped onto the
 // [axes] ranges of the varied parameters, the others at the base point, frame by frame when
-// asked (the plan holds the unit points, d doubles a frame, and nothing else per frame). lhs
+// asked: the plan computes frame i's unit point from i (LatinHypercube, SobolSequence,
+// SaltelliRows) and holds nothing per frame, whatever the number of frames (issue 38). lhs
 // and sobol label their frames "s0", "s1", …; saltelli groups them by base sample j ("s<j>:A",
 // "s<j>:B", "s<j>:AB_<parameter>") and stores each frame's block and sample.
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <optional>
 
 #include "pcrf/study/sampling.hpp"
 #include "pcrf/schema/cube_vocabulary.hpp"
-#include "pcrf/study/study_size.hpp"
 #include "study/axis_fields.hpp"
 #include "study/plans/plan_support.hpp"
 
@@ -65,6 +66,12 @@ SampledRange read_sampled_range(const Fields& fields, const SceneParameter& info
   return r;
 }
 
+/// Refuses more Sobol' points than the 32-bit sequence has (2^32).
+void check_sobol_length(const PlanInput& input, std::size_t samples) {
+  if (static_cast<double>(samples) > 4294967296.0)
+    input.plan.fail("samples", "the Sobol' sequence has 2^32 points: at most 4294967296 samples");
+}
+
 Sampling read_sampling(const PlanInput& input) {
   Sampling s;
   if (!input.plan.has("samples")) input.plan.fail("samples", "required: how many points to draw");
@@ -84,20 +91,21 @@ Sampling read_sampling(const PlanInput& input) {
   return s;
 }
 
-/// Refuses a plan too large to draw, before it is drawn (`frames_per_sample`: saltelli d + 2).
-void check_drawable(const PlanInput& input, const Sampling& s, double frames_per_sample) {
-  check_frame_count(static_cast<double>(s.samples) * frames_per_sample, input.plan.where("samples"));
-}
+/// A design's unit coordinate k of frame i, in [0, 1), computed from (i, k).
+using UnitDesign = std::function<double(std::uint64_t, std::size_t)>;
 
-/// A sampled plan holds its unit points (row-major, one row of d values per frame) and maps
-/// frame i onto the ranges when asked: no frame, label or parameter vector is held per case.
+/// A sampled plan computes frame i's unit point from i (UnitDesign) and maps it onto the
+/// ranges when asked: no frame, label, parameter vector or unit point is held per case.
 /// lhs and sobol label frame i "s<i>".
 class SampledPlan : public PointPlan {
  public:
-  SampledPlan(const SceneModel& model, std::string_view name, study::UnitPoints unit, Sampling sampling,
-              ScenePoint base)
-      : PointPlan(model, unit.size() / sampling.varied().size()), name_(name), sampling_(std::move(sampling)),
-        base_(std::move(base)), unit_(std::move(unit)), varied_(sampling_.varied()), slot_(base_.size(), kNotVaried) {
+  /// `construction`: a word for the fingerprint naming how the design draws its points
+  /// (empty: the construction the plan has had since its first fingerprints).
+  SampledPlan(const SceneModel& model, std::string_view name, std::size_t count, UnitDesign unit, Sampling sampling,
+              ScenePoint base, std::string construction = {})
+      : PointPlan(model, count), name_(name), sampling_(std::move(sampling)), base_(std::move(base)),
+        unit_(std::move(unit)), construction_(std::move(construction)), varied_(sampling_.varied()),
+        slot_(base_.size(), kNotVaried) {
     for (std::size_t k = 0; k < varied_.size(); ++k) slot_[varied_[k]] = k;
   }
 
@@ -106,6 +114,7 @@ class SampledPlan : public PointPlan {
   void describe(std::ostream& out) const override {
     describe_axes(out, model(), {});
     out << "sampled samples=" << sampling_.samples << " seed=" << sampling_.seed << " scramble=" << sampling_.scramble;
+    if (!construction_.empty()) out << " design=" << construction_;
     for (std::size_t p = 0; p < sampling_.ranges.size(); ++p)
       if (const auto& r = sampling_.ranges[p])
         out << ' ' << model().parameters[p].name << '=' << r->from << ':' << r->to << (r->log ? ":log" : "");
@@ -117,7 +126,7 @@ class SampledPlan : public PointPlan {
   /// The base point's value, or the unit coordinate mapped onto the parameter's range.
   double point_value(std::size_t i, std::size_t k) const override {
     if (slot_[k] == kNotVaried) return base_[k];
-    return sampling_.ranges[k]->at(unit_[i * varied_.size() + slot_[k]]);
+    return sampling_.ranges[k]->at(unit_(i, slot_[k]));
   }
   std::string point_label(std::size_t i) const override { return "s" + std::to_string(i); }
   /// The varied parameters (positions in the model's table), d of them.
@@ -128,16 +137,17 @@ class SampledPlan : public PointPlan {
   std::string_view name_;
   Sampling sampling_;
   ScenePoint base_;
-  study::UnitPoints unit_;
+  UnitDesign unit_;
+  std::string construction_;
   std::vector<std::size_t> varied_;
-  std::vector<std::size_t> slot_;  ///< per parameter: its column in unit_, or kNotVaried
+  std::vector<std::size_t> slot_;  ///< per parameter: its column of the design, or kNotVaried
 };
 
 /// Saltelli: frame i is row i of the design, base sample i / (d + 2), block i % (d + 2).
 class SaltelliPlan final : public SampledPlan {
  public:
-  SaltelliPlan(const SceneModel& model, study::UnitPoints unit, Sampling sampling, ScenePoint base)
-      : SampledPlan(model, "saltelli", std::move(unit), std::move(sampling), std::move(base)) {}
+  SaltelliPlan(const SceneModel& model, std::size_t count, UnitDesign unit, Sampling sampling, ScenePoint base)
+      : SampledPlan(model, "saltelli", count, std::move(unit), std::move(sampling), std::move(base)) {}
 
  protected:
   bool hands_out_by_frame() const override { return true; }  // frames are base sample by base sample
@@ -146,19 +156,18 @@ class SaltelliPlan final : public SampledPlan {
     return "s" + std::to_string(study::SaltelliDesign::sample(i, varied().size())) + ":" + block_name(i);
   }
 
+  /// Computed from the frame number, as the parameters (PointPlan::coordinates).
   std::vector<cube::Coordinate> extra_coordinates() const override {
-    std::vector<std::string> blocks;
-    std::vector<double> samples;
-    for (std::size_t i = 0; i < point_count(); ++i) {
-      blocks.push_back(block_name(i));
-      samples.push_back(static_cast<double>(study::SaltelliDesign::sample(i, varied().size())));
-    }
+    const std::size_t d = varied().size();
+    auto block = text_coordinate(schema::kSaltelliBlock, schema::kCase, "Saltelli design block: A, B or AB_<parameter>", {});
+    block.text_at = [this](std::size_t i) { return block_name(i); };
+    block.computed_size = point_count();
     auto sample = number_coordinate(schema::kSaltelliSample, schema::kCase, "1",
-                                    "Saltelli base sample the frame belongs to", std::move(samples));
+                                    "Saltelli base sample the frame belongs to", {});
+    sample.number_at = [d](std::size_t i) { return static_cast<double>(study::SaltelliDesign::sample(i, d)); };
+    sample.computed_size = point_count();
     sample.is_index = true;  // whole numbers: stored as integers
-    return {text_coordinate(schema::kSaltelliBlock, schema::kCase, "Saltelli design block: A, B or AB_<parameter>",
-                            std::move(blocks)),
-            std::move(sample)};
+    return {std::move(block), std::move(sample)};
   }
 
  private:
@@ -172,27 +181,37 @@ class SaltelliPlan final : public SampledPlan {
 
 }  // namespace
 
+/// The word the fingerprint gives the LHS construction of issue 38 (a keyed Feistel
+/// permutation per dimension, evaluable by index): a cube or journal of the earlier
+/// construction (an mt19937_64 shuffle, other points) is another study, never resumed.
+constexpr const char* kLatinHypercubeConstruction = "lhs-feistel-1";
+
 std::shared_ptr<const Plan> read_lhs_plan(const PlanInput& input) {
   const Sampling s = read_sampling(input);
-  check_drawable(input, s, 1.0);
-  return std::make_shared<SampledPlan>(input.model, "lhs", study::latin_hypercube(s.samples, s.varied().size(), s.seed),
-                                       s, input.base);
+  auto design = std::make_shared<const study::LatinHypercube>(s.samples, s.varied().size(), s.seed);
+  return std::make_shared<SampledPlan>(
+      input.model, "lhs", s.samples, [design](std::uint64_t i, std::size_t k) { return design->at(i, k); }, s,
+      input.base, kLatinHypercubeConstruction);
 }
 
 std::shared_ptr<const Plan> read_sobol_plan(const PlanInput& input) {
   const Sampling s = read_sampling(input);
-  check_drawable(input, s, 1.0);
-  return std::make_shared<SampledPlan>(input.model, "sobol",
-                                       study::sobol_points(s.samples, s.varied().size(), s.scramble, s.seed), s, input.base);
+  check_sobol_length(input, s.samples);
+  auto design = std::make_shared<const study::SobolSequence>(s.varied().size(), s.scramble, s.seed);
+  return std::make_shared<SampledPlan>(
+      input.model, "sobol", s.samples, [design](std::uint64_t i, std::size_t k) { return design->at(i, k); }, s,
+      input.base);
 }
 
 std::shared_ptr<const Plan> read_saltelli_plan(const PlanInput& input) {
   const Sampling s = read_sampling(input);
   const std::size_t d = s.varied().size();
   if (d < 2) input.top.fail("axes", "plan \"saltelli\" needs at least two varied parameters (sensitivity apportions variance among them)");
-  check_drawable(input, s, static_cast<double>(d + 2));
-  return std::make_shared<SaltelliPlan>(input.model, study::saltelli_design(s.samples, d, s.scramble, s.seed).points, s,
-                                        input.base);
+  check_sobol_length(input, s.samples);
+  auto design = std::make_shared<const study::SaltelliRows>(d, s.scramble, s.seed);
+  return std::make_shared<SaltelliPlan>(
+      input.model, s.samples * (d + 2), [design](std::uint64_t i, std::size_t k) { return design->at(i, k); }, s,
+      input.base);
 }
 
 }  // namespace pcrf::study::detail

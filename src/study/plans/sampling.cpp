@@ -4,6 +4,7 @@
 #include <boost/random/sobol.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <random>
 
@@ -37,38 +38,106 @@ std::uint32_t owen_scramble(std::uint32_t x, std::uint32_t seed) {
   return reverse_bits(laine_karras(reverse_bits(x), seed));
 }
 
+/// splitmix64's finaliser (Steele, Lea and Flood 2014): a bijective 64-bit mixer.
+std::uint64_t mix64(std::uint64_t x) {
+  x ^= x >> 30;
+  x *= 0xbf58476d1ce4e5b9ull;
+  x ^= x >> 27;
+  x *= 0x94d049bb133111ebull;
+  x ^= x >> 31;
+  return x;
+}
+
 }  // namespace
 
-UnitPoints latin_hypercube(std::size_t n, std::size_t d, std::uint64_t seed) {
-  std::mt19937_64 random(seed);
-  std::uniform_real_distribution<double> inside(0.0, 1.0);
-  UnitPoints points(n * d);
-  std::vector<std::size_t> strata(n);
-  for (std::size_t i = 0; i < d; ++i) {
-    std::iota(strata.begin(), strata.end(), 0);
-    std::shuffle(strata.begin(), strata.end(), random);
-    for (std::size_t j = 0; j < n; ++j)
-      points[j * d + i] = (static_cast<double>(strata[j]) + inside(random)) / static_cast<double>(n);
+std::uint64_t counter_hash(std::uint64_t seed, std::uint64_t a, std::uint64_t b) {
+  constexpr std::uint64_t kGolden = 0x9e3779b97f4a7c15ull;  // splitmix64's increment
+  std::uint64_t h = mix64(seed + kGolden);
+  h = mix64(h ^ (a + 2 * kGolden));
+  return mix64(h ^ (b + 3 * kGolden));
+}
+
+IndexPermutation::IndexPermutation(std::uint64_t n, std::uint64_t key) : n_(n == 0 ? 1 : n) {
+  unsigned bits = 2;
+  while (bits < 64 && (std::uint64_t{1} << bits) < n_) ++bits;
+  bits += bits % 2;
+  half_bits_ = bits / 2;
+  half_mask_ = (std::uint64_t{1} << half_bits_) - 1;
+  for (int r = 0; r < kRounds; ++r) round_keys_[static_cast<std::size_t>(r)] = counter_hash(key, 0x5045524dull, static_cast<std::uint64_t>(r));
+}
+
+std::uint64_t IndexPermutation::encrypt(std::uint64_t x) const {
+  std::uint64_t left = x >> half_bits_, right = x & half_mask_;
+  for (const std::uint64_t k : round_keys_) {
+    const std::uint64_t next = (left ^ mix64(right ^ k)) & half_mask_;
+    left = right;
+    right = next;
   }
+  return (left << half_bits_) | right;
+}
+
+std::uint64_t IndexPermutation::operator()(std::uint64_t j) const {
+  std::uint64_t x = encrypt(j);
+  while (x >= n_) x = encrypt(x);  // cycle-walking: ends, as j < n lies on x's cycle
+  return x;
+}
+
+LatinHypercube::LatinHypercube(std::uint64_t n, std::size_t d, std::uint64_t seed) : n_(n), seed_(seed) {
+  for (std::size_t i = 0; i < d; ++i) {
+    keys_.push_back(counter_hash(seed, 0x4c4853ull, i));  // "LHS"
+    permutations_.emplace_back(n, keys_.back());
+  }
+}
+
+double LatinHypercube::at(std::uint64_t j, std::size_t i) const {
+  const std::uint64_t stratum = permutations_[i](j);
+  const double u = static_cast<double>(counter_hash(keys_[i], seed_, j) >> 11) * 0x1p-53;  // [0, 1)
+  const double n = static_cast<double>(n_), s = static_cast<double>(stratum);
+  double x = (s + u) / n;
+  // Rounding must not carry the value out of its stratum (as floor(x N) reads it back).
+  while (x > 0.0 && std::floor(x * n) > s) x = std::nextafter(x, 0.0);
+  while (std::floor(x * n) < s) x = std::nextafter(x, 1.0);
+  return x;
+}
+
+SobolSequence::SobolSequence(std::size_t d, bool scramble, std::uint64_t seed)
+    : directions_(d), seeds_(d, 0), scramble_(scramble) {
+  boost::random::sobol_engine<std::uint32_t, 32> engine(d);
+  for (unsigned r = 0; r < 32; ++r) {
+    // Boost's state after seed(s) is its point s + 1 (the sequence's point, the origin being
+    // point 0), the XOR of v_k over the bits k of gray(s + 1): for s + 1 = 2^(r+1) - 1,
+    // gray(s + 1) = 2^r, and the state is v_r.
+    engine.seed(static_cast<std::uint32_t>((std::uint64_t{1} << (r + 1)) - 2));
+    for (std::size_t i = 0; i < d; ++i) directions_[i][r] = static_cast<std::uint32_t>(engine());
+  }
+  if (scramble) {
+    std::mt19937_64 random(seed);
+    for (auto& s : seeds_) s = static_cast<std::uint32_t>(random());
+  }
+}
+
+double SobolSequence::at(std::uint64_t j, std::size_t i) const {
+  std::uint64_t gray = j ^ (j >> 1);
+  std::uint32_t x = 0;
+  for (unsigned r = 0; gray != 0; ++r, gray >>= 1)
+    if (gray & 1u) x ^= directions_[i][r];
+  if (scramble_) x = owen_scramble(x, seeds_[i]);
+  return static_cast<double>(x) / kTwoTo32;
+}
+
+UnitPoints latin_hypercube(std::size_t n, std::size_t d, std::uint64_t seed) {
+  const LatinHypercube design(n, d, seed);
+  UnitPoints points(n * d);
+  for (std::size_t j = 0; j < n; ++j)
+    for (std::size_t i = 0; i < d; ++i) points[j * d + i] = design.at(j, i);
   return points;
 }
 
 UnitPoints sobol_points(std::size_t n, std::size_t d, bool scramble, std::uint64_t seed) {
-  boost::random::sobol_engine<std::uint32_t, 32> engine(d);
-  std::vector<std::uint32_t> seeds(d, 0);
-  if (scramble) {
-    std::mt19937_64 random(seed);
-    for (auto& s : seeds) s = static_cast<std::uint32_t>(random());
-  }
+  const SobolSequence sequence(d, scramble, seed);
   UnitPoints points(n * d);
-  for (std::size_t j = 0; j < n; ++j) {
-    for (std::size_t i = 0; i < d; ++i) {
-      // Boost's engine starts after the origin; the sequence itself starts at it.
-      std::uint32_t x = j == 0 ? 0u : static_cast<std::uint32_t>(engine());
-      if (scramble) x = owen_scramble(x, seeds[i]);
-      points[j * d + i] = static_cast<double>(x) / kTwoTo32;
-    }
-  }
+  for (std::size_t j = 0; j < n; ++j)
+    for (std::size_t i = 0; i < d; ++i) points[j * d + i] = sequence.at(j, i);
   return points;
 }
 

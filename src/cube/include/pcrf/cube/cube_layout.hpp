@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <optional>
@@ -52,13 +53,26 @@ struct Coordinate {
   std::string units;      ///< UDUNITS text; empty for text and index coordinates
   std::string long_name;
   std::vector<double> numbers;       ///< numeric values, or
-  std::vector<std::string> strings;  ///< text values
+  std::vector<std::string> strings;  ///< text values, or `number_at` / `text_at` below
   bool is_text = false;
   bool is_index = false;  ///< numbers are whole (an index 0, 1, 2, …, a sample number) stored as int32
+  /// Values computed from their index instead of held (a plan's coordinates along `case`:
+  /// nothing per case stays in memory; the writer asks for them piece by piece while it
+  /// creates the cube, and never after). Set: `numbers` and `strings` stay empty, and
+  /// `computed_size` is the number of values.
+  std::function<double(std::size_t)> number_at{};
+  std::function<std::string(std::size_t)> text_at{};
+  std::size_t computed_size = 0;
 
-  std::size_t size() const { return is_text ? strings.size() : numbers.size(); }
+  bool computed() const { return number_at || text_at; }
+  std::size_t size() const { return computed() ? computed_size : is_text ? strings.size() : numbers.size(); }
+  /// Value i, held or computed.
+  double number(std::size_t i) const { return number_at ? number_at(i) : numbers.at(i); }
+  std::string text(std::size_t i) const { return text_at ? text_at(i) : strings.at(i); }
   /// Value i as text ("%.17g" shortest round-trip for numbers).
   std::string label(std::size_t i) const;
+  /// Drops the values, held or computed (what a writer does once they are in the file).
+  void release_values();
 };
 
 /// A float64 variable over every dimension, NaN where not computed.

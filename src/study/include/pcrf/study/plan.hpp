@@ -62,6 +62,11 @@ class Plan {
   /// its cases out frame by frame over the whole cube (CaseSpace::handout_index), so that a
   /// partial cube holds whole base samples. False: in storage order.
   virtual bool hands_out_by_frame() const { return false; }
+
+  /// Memory the plan holds per frame [bytes] (an upper estimate), which the study's size
+  /// check counts: a plan that computes its frames from their numbers (grid, the sampled
+  /// plans) holds none, one that lists them (list, one-at-a-time) holds each.
+  virtual double bytes_per_frame() const { return 0.0; }
 };
 
 /// The names of every plan kind a study file can give ([plan] kind), the default first.

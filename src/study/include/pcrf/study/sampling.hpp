@@ -2,8 +2,14 @@
 /// \brief Sampling plans over the unit hypercube [0, 1)^d: Latin hypercube, Sobol'
 /// low-discrepancy points (optionally Owen-scrambled), and the Saltelli design for Sobol'
 /// sensitivity indices. Pure functions of (N, d, seed): the same call gives the same points.
+///
+/// Each design is evaluable by index (LatinHypercube, SobolSequence, SaltelliRows): point j's
+/// coordinate i is computed from (j, i) with nothing held per point, so that a plan of 10^8
+/// frames holds a few hundred bytes (issue 38). The whole-matrix functions below are those
+/// designs evaluated at every index.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -13,8 +19,75 @@ namespace pcrf::study {
 /// N points, row-major: point j, dimension i at [j * d + i].
 using UnitPoints = std::vector<double>;
 
+/// A bijection of [0, n) evaluable by index: a balanced Feistel network (Luby and Rackoff
+/// 1988: four rounds of pseudorandom round functions make a pseudorandom permutation) on the
+/// smallest even number of bits that holds n, its round function a keyed 64-bit mixer
+/// (splitmix64's finaliser), restricted to [0, n) by cycle-walking (Black and Rogaway 2002,
+/// "Ciphers with arbitrary finite domains", CT-RSA: apply the permutation of the larger
+/// domain again until the value falls in [0, n); fewer than 4 applications on average, as the
+/// larger domain is under 4n). Every operation is invertible, so the result is a bijection.
+class IndexPermutation {
+ public:
+  /// The permutation of [0, n) chosen by `key` (n >= 1).
+  IndexPermutation(std::uint64_t n, std::uint64_t key);
+  /// The image of j < n.
+  std::uint64_t operator()(std::uint64_t j) const;
+
+ private:
+  static constexpr int kRounds = 4;
+  std::uint64_t n_ = 1;
+  unsigned half_bits_ = 1;
+  std::uint64_t half_mask_ = 1;
+  std::array<std::uint64_t, kRounds> round_keys_{};
+  std::uint64_t encrypt(std::uint64_t x) const;  // on [0, 4^half_bits)
+};
+
+/// A counter-based hash (splitmix64's finaliser over a sequence of words): a uniform 64-bit
+/// value from (seed, a, b), the same on every machine.
+std::uint64_t counter_hash(std::uint64_t seed, std::uint64_t a, std::uint64_t b);
+
+/// Latin hypercube evaluable by index: in dimension i, point j lies in stratum
+/// π_i(j) (IndexPermutation keyed by (seed, i)), at a position inside it drawn by
+/// counter_hash(seed, i, j): the N values of every dimension fall one in each of the N strata
+/// [k/N, (k+1)/N). Defined in issue 38 (before it, an mt19937_64 shuffle that had to hold
+/// every point: the points differ, and the fingerprint says which construction drew them).
+class LatinHypercube {
+ public:
+  LatinHypercube(std::uint64_t n, std::size_t d, std::uint64_t seed);
+  std::uint64_t size() const { return n_; }
+  std::size_t dimensions() const { return keys_.size(); }
+  /// The stratum of point j in dimension i: a value in [0, N), each taken once over j.
+  std::uint64_t stratum(std::uint64_t j, std::size_t i) const { return permutations_[i](j); }
+  /// Point j's unit coordinate i, in [stratum/N, (stratum+1)/N).
+  double at(std::uint64_t j, std::size_t i) const;
+
+ private:
+  std::uint64_t n_;
+  std::uint64_t seed_;
+  std::vector<std::uint64_t> keys_;
+  std::vector<IndexPermutation> permutations_;
+};
+
+/// The Sobol' sequence of UnitPoints sobol_points (the same bits), evaluable by index: point
+/// j is the XOR of the direction numbers v_r over the bits r of j's Gray code (Antonov and
+/// Saleev 1979, the order Boost.Random's engine steps through), the direction numbers read
+/// from Boost's engine once.
+class SobolSequence {
+ public:
+  SobolSequence(std::size_t d, bool scramble, std::uint64_t seed);
+  std::size_t dimensions() const { return seeds_.size(); }
+  /// Point j's unit coordinate i (j < 2^32).
+  double at(std::uint64_t j, std::size_t i) const;
+
+ private:
+  std::vector<std::array<std::uint32_t, 32>> directions_;  ///< per dimension, v_0 … v_31
+  std::vector<std::uint32_t> seeds_;                       ///< per dimension; used when scrambled
+  bool scramble_ = false;
+};
+
 /// Latin hypercube: in every dimension, the N values fall one in each of the N strata
-/// [k/N, (k+1)/N), at a uniform position inside it, strata permuted independently.
+/// [k/N, (k+1)/N), at a uniform position inside it, strata permuted independently
+/// (LatinHypercube at every index).
 UnitPoints latin_hypercube(std::size_t n, std::size_t d, std::uint64_t seed);
 
 /// The first N points of the Sobol' sequence with Joe–Kuo direction numbers (Boost.Random's
@@ -36,5 +109,21 @@ struct SaltelliDesign {
   static std::size_t sample(std::size_t row, std::size_t d) { return row / (d + 2); }
 };
 SaltelliDesign saltelli_design(std::size_t n, std::size_t d, bool scramble, std::uint64_t seed);
+
+/// The rows of saltelli_design evaluable by index (the same values): row r's coordinate i is
+/// the 2d-dimensional Sobol' point r / (d + 2)'s coordinate i (from A) or d + i (from B).
+class SaltelliRows {
+ public:
+  SaltelliRows(std::size_t d, bool scramble, std::uint64_t seed) : d_(d), base_(2 * d, scramble, seed) {}
+  double at(std::uint64_t row, std::size_t i) const {
+    const std::uint64_t j = row / (d_ + 2), block = row % (d_ + 2);
+    const bool from_b = block == 1 || (block >= 2 && i == block - 2);
+    return base_.at(j, from_b ? d_ + i : i);
+  }
+
+ private:
+  std::size_t d_;
+  SobolSequence base_;
+};
 
 }  // namespace pcrf::study

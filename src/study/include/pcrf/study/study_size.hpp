@@ -22,13 +22,10 @@ struct StudySize {
 
 StudySize study_size(const Study& study);
 
-/// Refuses `frames` frames before a plan draws them, when they alone would not fit rank 0.
-/// \throws UserError at `where` (the key that sets the count).
-void check_frame_count(double frames, const Where& where);
-
-/// The plan's frames are counted from its dimensions (a sampled plan checks its own size
-/// before it draws: check_frame_count). Rank 0 holds every frame (kFrameBytes each, with its coordinates in the cube), the status
-/// of every case (one byte) and at most 256 MiB of results between checkpoints.
+/// The plan's frames are counted from its dimensions (a sampled plan draws nothing before
+/// its frames are asked for, one at a time). Rank 0 holds what the plan holds per frame
+/// (Plan::bytes_per_frame: nothing for a grid or a sampled plan), the status of every case
+/// (one byte) and at most 256 MiB of results between checkpoints.
 /// \throws UserError at the key that makes the study too large
 /// (plan.samples, ida.max_runs or axes) and the memory it would need, when that exceeds 80 %
 /// of this machine's.
