@@ -1,22 +1,186 @@
-// The case kernel (device/) behind the group-of-cases seam, compiled for the host
-// (pcrf/solver/case_group.hpp: kernel_host_group), and the GPU backend where this build has none.
+// The case kernel (case_kernel.hpp) behind the group-of-cases seam (pcrf/solver/case_group.hpp):
+// kernel_host_group, the kernel compiled for the host, and gpu_group, the same kernel on a
+// CUDA device (case_kernel.cu) where the build has CUDA.
+#include <exception>
+#include <stdexcept>
 #include <string>
 
+#include "kernel_cases.hpp"
+#include "../case/case_common.hpp"
+#include "../case/prepared_frame.hpp"
+#include "pcrf/number_text.hpp"
 #include "pcrf/solver/case_group.hpp"
 
+#ifdef PCRF_HAVE_CUDA
+#include "kernel_launch.hpp"
+#endif
+
 namespace pcrf {
+namespace device {
+
+std::string kernel_refuses(const Excitation& excitation, const SolverSettings& solver, bool history) {
+  if (solver.integrator != Integrator::kDormandPrince5) return "the case kernel steps integrator dopri5 only";
+  if (solver.verdict_check) return "the case kernel does not run the verdict check's twins";
+  if (solver.wall_time_limit_s > 0.0) return "the case kernel has no wall-time limit (wall_time_limit_s > 0)";
+  if (history) return "the case kernel records no history";
+  if (excitation.has_vertical()) return "the case kernel takes a horizontal record only (this one has a vertical component)";
+  return {};
+}
+
+std::string kernel_case(PreparedFrame& frame, const Excitation& excitation, const SolverSettings& solver,
+                        const OutputRequest& request, KernelCase& c) {
+  // solve_case's checks first: a case it refuses is refused here with its message.
+  detail::validate(solver, frame.physics());
+  check_initial_state(frame.scene(), frame.physics());
+  const Scene& scene = frame.scene();
+  const std::optional<RockerCoefficients> rocker = scene.rocker_coefficients();
+  if (!rocker) return "the case kernel covers the rigid rockers only (block, rocking frame)";
+  const PhysicsOptions& physics = frame.physics();
+  const detail::CaseEnd end(excitation, scene.gravity_m_s2(), physics);
+  c = KernelCase{};
+  c.slenderness_rad = rocker->slenderness_rad;
+  c.moment_over_inertia_per_m = rocker->moment_over_inertia_per_m;
+  c.gravity_m_s2 = scene.gravity_m_s2();
+  if (c.gravity_m_s2 != rocker->gravity_m_s2) return "the case kernel: a rocker whose gravity is not its scene's";
+  const EomTerms& rest = scene.rest();
+  c.rest_I = rest.I, c.rest_G = rest.G, c.rest_K = rest.K, c.rest_S = rest.S;
+  c.uplift_threshold_m_s2 = scene.uplift_threshold_m_s2();
+  c.restitution = frame.restitution();
+  c.broken_at_rest = frame.broken_at_rest();
+  c.stop_rad = c.broken_at_rest ? 0.0 : frame.stop_angles().stop_rad();
+  c.theta0_rad = physics.theta0_rad, c.omega0_rad_s = physics.omega0_rad_s;
+  c.zeno_time_s = physics.zeno_time_s, c.rest_rise_rad = physics.rest_rise_rad;
+  c.t_end_s = end.t_end_s;
+  c.record_end_s = end.record_end_s;
+  c.until_rest = end.until_rest;
+  c.rtol = solver.rtol, c.atol_theta_rad = solver.atol_theta_rad, c.atol_omega_rad_s = solver.atol_omega_rad_s;
+  c.max_step_s = solver.max_step_s;
+  c.max_steps = solver.max_steps;
+  c.omega_peak = request.omega_peak;
+  return {};
+}
+
+KernelRecord kernel_record(const GroundMotion& record) {
+  KernelRecord r;
+  r.samples_m_s2 = record.samples_m_s2().data();
+  r.count = record.size();
+  r.dt_s = record.dt_s();
+  r.inv_dt_per_s = record.inverse_dt_per_s();
+  r.pga_m_s2 = record.pga_m_s2();
+  return r;
+}
+
 namespace {
 
+/// The CPU path's message of a kernel failure (dormand_prince.cpp, case_run.cpp).
+std::string failure_message(const KernelResult& k) {
+  switch (k.error) {
+    case KernelError::kRhsAtStart: return "dopri5: the right-hand side failed at the start, t = " + number_text(k.error_a) + " s";
+    case KernelError::kNonFiniteDerivative: return "dopri5: non-finite derivative";
+    case KernelError::kTooManyFailures:
+      return "dopri5: " + std::to_string(detail::kMaxFailures) + " failed step attempts in a row at t = " +
+             number_text(k.error_a) + " s";
+    case KernelError::kStepTooSmall:
+      return "dopri5: step size " + number_text(k.error_b) + " s too small at t = " + number_text(k.error_a) + " s";
+    case KernelError::kMaxSteps: return "more than max_steps steps";
+    case KernelError::kNonFiniteState: return "non-finite state at t = " + std::to_string(k.error_a) + " s";
+    case KernelError::kNone: break;
+  }
+  return "the case kernel failed without a cause";
+}
+
+}  // namespace
+
+CaseResult kernel_result(PreparedFrame& frame, const Excitation& excitation, const OutputRequest& request,
+                         const KernelResult& k) {
+  const Scene& scene = frame.scene();
+  CaseResult r = detail::initial_result(scene, excitation, frame.restitution(), request.omega_peak);
+  const detail::CaseEnd end(excitation, scene.gravity_m_s2(), frame.physics());
+  switch (k.end) {
+    case KernelEnd::kReachedEnd:
+      r.status = end.status(k.at_rest ? CaseStatus::kAtRest : CaseStatus::kRockingAtEnd);
+      r.message = end.message();
+      break;
+    case KernelEnd::kAtRestEnd:
+      r.status = end.status(CaseStatus::kAtRest);
+      r.message = end.message();
+      break;
+    case KernelEnd::kStopped:
+      r.status = frame.stop_angles().status();
+      r.message = frame.stop_angles().message();
+      break;
+    case KernelEnd::kBrokenAtRest:
+      r.status = CaseStatus::kTendonFracture;
+      r.message = detail::kBrokenAtRestMessage;
+      break;
+    case KernelEnd::kSolverFailure:
+      r.status = CaseStatus::kSolverFailure;
+      r.message = failure_message(k);
+      break;
+  }
+  r.t_uplift_s = k.t_uplift_s;
+  r.theta_max_rad = k.theta_max_rad;
+  r.t_theta_max_s = k.t_theta_max_s;
+  r.omega_max_rad_s = k.omega_max_rad_s;
+  r.t_omega_max_s = k.t_omega_max_s;
+  r.impacts = k.impacts;
+  r.t_end_s = k.t_end_s;
+  r.counts.steps = k.steps;
+  r.counts.rhs_evals = k.rhs_evals;
+  r.counts.root_evals = k.root_evals;
+  r.counts.reinits = k.reinits;
+  detail::set_peak_strains(scene, r);
+  return r;
+}
+
+}  // namespace device
+
+namespace {
+
+/// The answer of a refused case: why, and nothing else set.
+GroupCase refused(std::string why) {
+  GroupCase c;
+  c.outcome = GroupOutcome::kRefused;
+  c.result.status = CaseStatus::kSolverFailure;
+  c.result.message = std::move(why);
+  return c;
+}
+
+void check_history(std::size_t cases, const HistorySink& history) {
+  if (history && cases != 1)
+    throw std::invalid_argument("a group's history: one case only, got " + std::to_string(cases));
+}
+
+/// The kernel compiled for the host, case by case.
 class KernelHost final : public CaseGroupSolver {
  public:
   std::string_view name() const override { return "kernel-host"; }
-  std::vector<GroupCase> solve(std::span<PreparedFrame* const> frames, const Excitation&, const SolverSettings&,
-                               const OutputRequest&, const HistorySink&) const override {
+  std::vector<GroupCase> solve(std::span<PreparedFrame* const> frames, const Excitation& excitation,
+                               const SolverSettings& solver, const OutputRequest& request,
+                               const HistorySink& history) const override {
+    check_history(frames.size(), history);
     std::vector<GroupCase> cases(frames.size());
-    for (GroupCase& c : cases) {
-      c.outcome = GroupOutcome::kRefused;
-      c.result.status = CaseStatus::kSolverFailure;
-      c.result.message = "the case kernel covers no scene yet";
+    const std::string group_why = device::kernel_refuses(excitation, solver, static_cast<bool>(history));
+    const device::KernelRecord record = device::kernel_record(excitation.horizontal());
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+      if (!group_why.empty()) {
+        cases[i] = refused(group_why);
+        continue;
+      }
+      try {
+        const double start_cpu_s = detail::thread_cpu_s();
+        device::KernelCase c;
+        if (std::string why = device::kernel_case(*frames[i], excitation, solver, request, c); !why.empty()) {
+          cases[i] = refused(std::move(why));
+          continue;
+        }
+        device::KernelResult k;
+        device::solve_kernel_case(c, record, k);
+        cases[i].result = device::kernel_result(*frames[i], excitation, request, k);
+        cases[i].result.cpu_time_s = detail::thread_cpu_s() - start_cpu_s;
+      } catch (const std::exception& e) {  // what solve_case would throw: the case's answer
+        cases[i] = refused(e.what());
+      }
     }
     return cases;
   }
