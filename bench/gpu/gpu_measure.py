@@ -53,7 +53,7 @@ SCENES = {
 }
 STUDY = ('[study]\nname = "{name}"\n[plan]\nkind = "lhs"\nsamples = {samples}\nseed = 7\n'
          '[intensity]\nmeasure = "pga_g"\n[[records]]\nfile = "{record}"\n'
-         '[outputs]\nmetrics = ["theta_max_rad", "impacts"]\n')
+         '[outputs]\nmetrics = ["theta_max_rad", "impacts"]\n[solver]\npreset = "balanced"\nintegrator = "{integrator}"\n')
 
 
 class Clock:
@@ -148,8 +148,11 @@ def records_folder(given, pkg):
     return None
 
 
+INTEGRATOR = ["dopri5"]  # --integrator: the one every backend of a run steps (the case kernel's)
+
+
 def write_study(folder, scene, record_file, samples, pga_g, name):
-    text = STUDY.format(name=name, samples=samples, record=record_file) + SCENES[scene].format(pga_g=f"{pga_g:.6f}")
+    text = STUDY.format(name=name, samples=samples, record=record_file, integrator=INTEGRATOR[0]) + SCENES[scene].format(pga_g=f"{pga_g:.6f}")
     path = folder / f"{name}.toml"
     path.write_text(text)
     return path
@@ -169,9 +172,12 @@ def main():
     p.add_argument("--study-ranks", type=int, default=4, help="ranks of the whole study (sharing the GPU)")
     p.add_argument("--budget-s", type=float, default=345.0, help="the whole run's time [s]")
     p.add_argument("--backend", default="gpu", choices=["gpu", "host-kernel"], help="what the GPU column runs")
+    p.add_argument("--integrator", default="dopri5",
+                   help="the balanced preset with this integrator, on every backend (the case kernel steps dopri5)")
     p.add_argument("--smoke", action="store_true", help="tiny sizes on this machine's host path")
     a = p.parse_args()
     a.pkg = str(Path(a.pkg).resolve()) if a.pkg else None
+    INTEGRATOR[0] = a.integrator
     clock = Clock(a.budget_s)
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
@@ -264,7 +270,8 @@ def main():
     # The table.
     commit = (Path(a.pkg) / "COMMIT").read_text().strip() if a.pkg and (Path(a.pkg) / "COMMIT").is_file() else "this checkout"
     lines = [f"GPU measurement: {device}; host: {host_cpu()}; build {commit}; "
-             f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}{' (smoke: tiny sizes)' if a.smoke else ''}",
+             f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}{' (smoke: tiny sizes)' if a.smoke else ''}; "
+             f"balanced preset, integrator {a.integrator}, on every backend",
              "",
              f"| workload | GPU cases/s{stand_in} | GPU cases (of) | {a.cpu_ranks} cores, CPU engine: cases/s | "
              "ratio GPU / cores | GPU statuses |",

@@ -52,12 +52,13 @@ class Recording final : public CaseGroupSolver {
   std::vector<GroupCase> solve(std::span<PreparedFrame* const> frames, const Excitation& excitation,
                                const SolverSettings& solver, const OutputRequest& request,
                                const HistorySink& history) const override {
-    {
-      std::lock_guard lock(*mutex_);
-      groups_->push_back(frames.size());
-    }
-    return inner_->solve(frames, excitation, solver, request, history);
+    auto answers = inner_->solve(frames, excitation, solver, request, history);
+    std::lock_guard lock(*mutex_);
+    groups_->push_back(frames.size());
+    for (const auto& a : answers) refused += a.outcome == GroupOutcome::kRefused ? 1 : 0;
+    return answers;
   }
+  static inline std::size_t refused = 0;  ///< answers refused, every instance together
 
  private:
   std::unique_ptr<CaseGroupSolver> inner_;
@@ -200,6 +201,34 @@ TEST(DeviceRun, AGpuRankSolvesLargeGroupsOfOneRecordIntoTheCube) {
   EXPECT_GT(std::count_if(impacts.begin(), impacts.end(), [](double n) { return n > 0.0; }), 1000)
       << "too few cases rock: the test sees too little";
   EXPECT_EQ(std::count(status.begin(), status.end(), cube::kStatusNotRun), 0);
+}
+
+/// The same path with the host build of the case kernel behind it (dopri5, which it steps):
+/// its answers reach the cube equal to the CPU engine's bit for bit.
+TEST(DeviceRun, TheHostKernelBehindTheGpuPathFillsTheCubeAsTheCpuEngine) {
+  const auto dir = test::scratch_dir("device_host_kernel");
+  const std::string text = block_study(2000) + "[solver]\nintegrator = \"dopri5\"\n";
+  std::vector<std::size_t> groups;
+  std::mutex mutex;
+  auto gpu = options_for(dir, text, "gpu");
+  gpu.gpu_backend = [&](std::string&) -> std::unique_ptr<CaseGroupSolver> {
+    return std::make_unique<Recording>(kernel_host_group(), &groups, &mutex);
+  };
+  Recording::refused = 0;
+  ASSERT_TRUE(run::run_study(gpu, mpi()).has_value());
+  EXPECT_EQ(groups, (std::vector<std::size_t>{2000}));
+  EXPECT_EQ(Recording::refused, 0u) << "the kernel refused cases: the CPU engine answered them";
+  const auto cpu = options_for(dir, text, "cpu");
+  ASSERT_TRUE(run::run_study(cpu, mpi()).has_value());
+  const cube::CubeReader a(gpu.output), b(cpu.output);
+  EXPECT_EQ(a.read_status(), b.read_status());
+  EXPECT_TRUE(a.read_notes().empty()) << a.read_notes().front().second;
+  for (const char* metric : {"theta_max_rad", "impacts", "t_uplift_s"}) {
+    const auto x = a.read_metric(metric), y = b.read_metric(metric);
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) differ += (x[i] == y[i] || (std::isnan(x[i]) && std::isnan(y[i]))) ? 0 : 1;
+    EXPECT_EQ(differ, 0u) << metric;
+  }
 }
 
 /// Cases the kernel refuses (a scene, integrator or output it does not cover) are the CPU
