@@ -133,18 +133,28 @@ struct KernelResult {
 
 // ---- the record ----------------------------------------------------------------------------
 
+/// Sample k of a record: through the read-only data path on the device (the record is
+/// read-only for the kernel's lifetime), a plain load on the host.
+PCRF_HD inline double load_sample(const double* samples, std::size_t k) {
+#if defined(__CUDA_ARCH__)
+  return __ldg(samples + k);
+#else
+  return samples[k];
+#endif
+}
+
 /// GroundMotion::accel_m_s2: linear between samples, the last sample at the end, zero after.
 PCRF_HD inline double ground_at(const KernelRecord& r, double t_s) {
   if (!(t_s >= 0.0)) return t_s < 0.0 ? 0.0 : t_s;
   const std::size_t last = r.count - 1;
   const double t_end_s = static_cast<double>(last) * r.dt_s;
-  if (t_s >= t_end_s) return t_s == t_end_s ? r.samples_m_s2[last] : 0.0;
+  if (t_s >= t_end_s) return t_s == t_end_s ? load_sample(r.samples_m_s2, last) : 0.0;
   auto k = static_cast<std::size_t>(t_s * r.inv_dt_per_s);  // GroundMotion::interval_of
   k -= static_cast<std::size_t>(static_cast<double>(k) * r.dt_s > t_s);
   k += static_cast<std::size_t>(static_cast<double>(k + 1) * r.dt_s <= t_s);
   const double frac = (t_s - static_cast<double>(k) * r.dt_s) * r.inv_dt_per_s;
-  const double a0 = r.samples_m_s2[k];
-  return a0 + frac * (r.samples_m_s2[k + 1] - a0);
+  const double a0 = load_sample(r.samples_m_s2, k);
+  return a0 + frac * (load_sample(r.samples_m_s2, k + 1) - a0);
 }
 
 /// first_exceedance (case_common.cpp) of the horizontal record: the first time ≥ t_from at
@@ -153,18 +163,18 @@ PCRF_HD inline double first_exceedance(const KernelRecord& r, double t_from, dou
   if (r.pga_m_s2 < threshold_m_s2 * (1.0 - 1e-9)) return knan_value();
   if (kabs(ground_at(r, t_from)) > threshold_m_s2) return t_from;
   if (threshold_m_s2 < 0.0) return t_from;
-  const double* a = r.samples_m_s2;
   const double dt = r.dt_s;
+  auto a = [&r](std::size_t k) { return load_sample(r.samples_m_s2, k); };
   auto crosses_level = [](double level, double a1) { return level > 0 ? a1 > level : a1 < level; };
   auto exceeds = [&](double a1) { return crosses_level(threshold_m_s2, a1) || crosses_level(-threshold_m_s2, a1); };
   auto i = static_cast<std::size_t>(kmax(0.0, floor(t_from / dt)));
   std::size_t end = i + 1;
-  while (end < r.count && !exceeds(a[end])) ++end;
+  while (end < r.count && !exceeds(a(end))) ++end;
   if (end >= r.count) return knan_value();
   i = end - 1;
   const double t0 = static_cast<double>(i) * dt;
   if (t0 > t_end) return knan_value();
-  const double a0 = a[i], a1 = a[i + 1];
+  const double a0 = a(i), a1 = a(i + 1);
   double best = knan_value();
   const double levels[2] = {threshold_m_s2, -threshold_m_s2};
   for (const double level : levels) {

@@ -190,7 +190,70 @@ class KernelHost final : public CaseGroupSolver {
 
 std::unique_ptr<CaseGroupSolver> kernel_host_group() { return std::make_unique<KernelHost>(); }
 
-#ifndef PCRF_HAVE_CUDA
+#ifdef PCRF_HAVE_CUDA
+namespace {
+
+/// The kernel on CUDA device 0: the cases it takes set up on the host, solved on the device
+/// together (one thread per case), their answers made on the host.
+class Gpu final : public CaseGroupSolver {
+ public:
+  explicit Gpu(std::string device) : device_(std::move(device)) {}
+  std::string_view name() const override { return "gpu"; }
+  std::vector<GroupCase> solve(std::span<PreparedFrame* const> frames, const Excitation& excitation,
+                               const SolverSettings& solver, const OutputRequest& request,
+                               const HistorySink& history) const override {
+    check_history(frames.size(), history);
+    std::vector<GroupCase> cases(frames.size());
+    const std::string group_why = device::kernel_refuses(excitation, solver, static_cast<bool>(history));
+    if (!group_why.empty()) {
+      for (GroupCase& c : cases) c = refused(group_why);
+      return cases;
+    }
+    const double start_cpu_s = detail::thread_cpu_s();
+    std::vector<device::KernelCase> taken;
+    std::vector<std::size_t> index;  // taken[j] is case index[j]
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+      try {
+        device::KernelCase c;
+        if (std::string why = device::kernel_case(*frames[i], excitation, solver, request, c); !why.empty()) {
+          cases[i] = refused(std::move(why));
+          continue;
+        }
+        taken.push_back(c);
+        index.push_back(i);
+      } catch (const std::exception& e) {
+        cases[i] = refused(e.what());
+      }
+    }
+    std::vector<device::KernelResult> results(taken.size());
+    std::string error;
+    if (!device::cuda_solve_cases(taken.data(), taken.size(), device::kernel_record(excitation.horizontal()),
+                                  results.data(), error)) {
+      for (std::size_t i : index) cases[i] = refused("the GPU (" + device_ + ") did not run the cases: " + error);
+      return cases;
+    }
+    // The host thread's CPU time (set-up, transfers, the wait), shared equally.
+    const double share_s = taken.empty() ? 0.0 : (detail::thread_cpu_s() - start_cpu_s) / static_cast<double>(taken.size());
+    for (std::size_t j = 0; j < taken.size(); ++j) {
+      cases[index[j]].result = device::kernel_result(*frames[index[j]], excitation, request, results[j]);
+      cases[index[j]].result.cpu_time_s = share_s;
+    }
+    return cases;
+  }
+
+ private:
+  std::string device_;
+};
+
+}  // namespace
+
+std::unique_ptr<CaseGroupSolver> gpu_group(std::string& why_not) {
+  std::string name;
+  why_not = device::cuda_device_problem(name);
+  if (!why_not.empty()) return nullptr;
+  return std::make_unique<Gpu>(name);
+}
+#else
 std::unique_ptr<CaseGroupSolver> gpu_group(std::string& why_not) {
   why_not = "this build has no CUDA (PCRF_CUDA=OFF or nvcc not found)";
   return nullptr;

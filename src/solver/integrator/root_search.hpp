@@ -103,7 +103,7 @@ PCRF_HD bool earliest_crossing(int n, const std::array<int, kMax>& dirs, int pre
     if (crosses(g_a[i], g_b[i], dirs[static_cast<std::size_t>(i)]) && (first < 0 || i == preferred)) first = i;
   if (first < 0) return false;
   std::array<double, kMax> when;  // NOLINT: set below for every function
-  when.fill(std::numeric_limits<double>::infinity());
+  for (double& w : when) w = std::numeric_limits<double>::infinity();  // no fill(): not constexpr before C++20 (device code)
   double earliest = 0.0;
   {
     double lo = a, glo = g_a[first], hi = b, ghi = g_b[first];
@@ -135,9 +135,9 @@ PCRF_HD bool earliest_crossing(int n, const std::array<int, kMax>& dirs, int pre
   if (current) {
     g_root = g;
   } else if (!roots_at(earliest, g_root.data())) {
-    g_root.fill(0.0);
+    for (double& v : g_root) v = 0.0;
   }
-  found.fill(0);
+  for (int& f : found) f = 0;
   for (int i = 0; i < n; ++i) {
     const auto k = static_cast<std::size_t>(i);
     if (when[k] <= earliest + ttol) found[k] = 1;

@@ -57,7 +57,10 @@ PCRF_HD inline void rocker_sincos(const T& x_rad, T& sin_x, T& cos_x) {
   const T cos_r = (T(1.0) - T(0.5) * z) + z2 * k;
   // The quadrant: n = q − 4·round(q/4) in {−2, −1, 0, 1, 2} (−2 ≡ 2, −1 ≡ 3 mod 4).
   const T n = q - T(4.0) * ((q * T(0.25) + round) - round);
-  const auto one = n == T(1.0), two = (n == T(2.0)) | (n == T(-2.0)), three = n == T(-1.0);
+  // Three declarations: for a double, `two` is an int (bool | bool), the others bools.
+  const auto one = n == T(1.0);
+  const auto two = (n == T(2.0)) | (n == T(-2.0));
+  const auto three = n == T(-1.0);
   const T s = Ops::select(one | three, cos_r, sin_r);  // odd quadrants swap sin and cos
   const T c = Ops::select(one | three, sin_r, cos_r);
   sin_x = Ops::select(two | three, -s, s);
