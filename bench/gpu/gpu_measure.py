@@ -140,7 +140,7 @@ def host_cpu():
 
 
 def records_folder(given, pkg):
-    for candidate in [given, pkg and Path(pkg) / "records", os.environ.get("PCRF_RECORDS_DIR") and
+    for candidate in [given, pkg and Path(pkg) / "records" / "paper", os.environ.get("PCRF_RECORDS_DIR") and
                       Path(os.environ["PCRF_RECORDS_DIR"]) / "paper",
                       Path(__file__).resolve().parents[3] / "shared" / "records" / "paper"]:
         if candidate and all((Path(candidate) / f).is_file() for f in RECORDS.values()):

@@ -5,17 +5,27 @@
 #
 #   bench/gpu/package.sh [--build DIR] [--dest DIR] [--records DIR] [--check]
 #
+# BUILD (default build/) should be configured with -DPCRF_CUDA=ON where nvcc is here (a
+# CUDA 13 toolkit builds for the H100/H200's sm_90; the driver there, 580, runs CUDA 13):
+#   cmake -S . -B build-cuda -DCMAKE_BUILD_TYPE=Release -DPCRF_CUDA=ON
+#   cmake --build build-cuda -j2 --target pcrf pcrf_gpu_bench test_gpu
+#   bench/gpu/package.sh --build build-cuda --check
+# A build without CUDA packages too (its --device gpu is then the error).
+#
 # DEST (default .gpu-pkg in the checkout, ignored by git; the device tool carries it when its
 # `carry` names it) then holds:
-#   bin/       pcrf, pcrf_gpu_bench, Open MPI's mpirun (orterun), orted, ompi_info
+#   bin/       pcrf, pcrf_gpu_bench, test_gpu (the gpu-labelled test) where built, Open MPI's
+#              mpirun (orterun), orted, ompi_info
 #   lib/       the ldd closure of all of them and of every Open MPI and PMIx plugin, glibc's
-#              own libraries left out (the image has a glibc at least as new); libstdc++ and
-#              libgcc_s apart in lib/fallback, used only where the image's are older
+#              own libraries left out (the image has a glibc at least as new) and the CUDA
+#              driver's (libcuda: the machine's own); libstdc++ and libgcc_s apart in
+#              lib/fallback, used only where the image's are older; CUDA's runtime included
 #   ompi/      Open MPI's plugin folder (lib/openmpi3), help and data files (share/openmpi),
 #              its mca-params file (etc), found through OPAL_PREFIX and the OPAL_* folders
 #   pmix2/     PMIx's plugins, help files and params (PMIX_INSTALL_PREFIX)
 #   hdf5/      HDF5's filter plugin folder (HDF5_PLUGIN_PATH; empty where Debian has none)
-#   records/   ER1 and ER7 of the paper (bench/gpu/gpu_measure.py's workload), from --records
+#   records/paper/  ER1 and ER7 of the paper (gpu_measure.py's workload and test_gpu's record;
+#              PCRF_RECORDS_DIR points here), from --records
 #   env.sh     `source` it: PATH, LD_LIBRARY_PATH, OPAL_*, PMIX_*, Open MPI's MCA choices for
 #              one node (shared memory, no network transport), root allowed
 #   COMMIT     the commit it was built from
@@ -48,6 +58,7 @@ limit_bytes=$((60 * 1024 * 1024))
 is_glibc() {
   case "$(basename "$1")" in
     libc.so.*|libm.so.*|libpthread.so.*|libdl.so.*|librt.so.*|libresolv.so.*|libutil.so.*|ld-linux*|libanl.so.*|libmvec.so.*) return 0 ;;
+    libcuda.so.*|libnvidia-*.so.*) return 0 ;;  # the driver's: it must match the machine's kernel module
   esac
   return 1
 }
@@ -61,13 +72,14 @@ make_package() {
   [ -x "$bench" ] || { echo "package.sh: no $bench: build the pcrf_gpu_bench target" >&2; exit 2; }
   case "$dest" in /*) ;; *) dest="$PWD/$dest" ;; esac
   rm -rf "$dest"
-  mkdir -p "$dest"/{bin,lib/fallback,ompi/lib,ompi/share,ompi/etc,pmix2/lib,pmix2/share,hdf5/plugins,records}
+  mkdir -p "$dest"/{bin,lib/fallback,ompi/lib,ompi/share,ompi/etc,pmix2/lib,pmix2/share,hdf5/plugins,records/paper}
 
   local pkglibdir pkgdatadir sysconfdir
   pkglibdir=$(ompi_info --parsable --path pkglibdir | cut -d: -f3)
   pkgdatadir=$(ompi_info --parsable --path pkgdatadir | cut -d: -f3)
   sysconfdir=$(ompi_info --parsable --path sysconfdir | cut -d: -f3)
   cp "$build/pcrf" "$bench" "$dest/bin/"
+  [ -x "$build/tests/test_gpu" ] && cp "$build/tests/test_gpu" "$dest/bin/"
   for tool in mpirun orted ompi_info; do
     cp "$(readlink -f "$(command -v $tool)")" "$dest/bin/$tool"
   done
@@ -121,13 +133,15 @@ make_package() {
   objdump -T "$dest"/bin/* "$dest"/lib/*.so* 2>/dev/null | grep -o 'GLIBCXX_[0-9.]*' | sort -uV | tail -1 > "$dest/lib/fallback/GLIBCXX_NEEDED"
 
   for r in ER1_MUL279.AT2 ER7_CAP000.AT2; do
-    if [ -f "$records/$r" ]; then cp "$records/$r" "$dest/records/"; else echo "package.sh: note: no $records/$r" >&2; fi
+    if [ -f "$records/$r" ]; then cp "$records/$r" "$dest/records/paper/"; else echo "package.sh: note: no $records/$r" >&2; fi
   done
   (cd "$root" && echo "$(git rev-parse --short HEAD)$(git diff --quiet HEAD -- . ':!.gpu-pkg' || echo '+changes')") > "$dest/COMMIT"
   write_env
   local bytes
   bytes=$(du -sb "$dest" | cut -f1)
-  echo "package.sh: $dest: $((bytes / 1024 / 1024)) MiB ($(ls "$dest/lib" | wc -l) libraries), commit $(cat "$dest/COMMIT")"
+  local cuda="without CUDA"
+  ls "$dest/lib" | grep -q '^libcudart' && cuda="with CUDA's runtime $(ls "$dest/lib" | grep '^libcudart' | head -1)"
+  echo "package.sh: $dest: $((bytes / 1024 / 1024)) MiB ($(ls "$dest/lib" | wc -l) libraries, $cuda), commit $(cat "$dest/COMMIT")"
   if [ "$bytes" -gt "$limit_bytes" ]; then
     echo "package.sh: over the 60 MiB the device tool leaves beside the working tree" >&2
     exit 1
@@ -152,7 +166,7 @@ export OPAL_PREFIX="\$pkg/ompi" OPAL_EXEC_PREFIX="\$pkg/ompi" OPAL_BINDIR="\$pkg
 export OPAL_PKGLIBDIR="\$pkg/ompi/lib/$plugins" OPAL_DATAROOTDIR="\$pkg/ompi/share" OPAL_DATADIR="\$pkg/ompi/share"
 export OPAL_PKGDATADIR="\$pkg/ompi/share/openmpi" OPAL_SYSCONFDIR="\$pkg/ompi/etc"
 export PMIX_INSTALL_PREFIX="\$pkg/pmix2" PMIX_MCA_mca_base_component_path="\$pkg/pmix2/lib/pmix"
-export HDF5_PLUGIN_PATH="\$pkg/hdf5/plugins"
+export HDF5_PLUGIN_PATH="\$pkg/hdf5/plugins" PCRF_RECORDS_DIR="\$pkg/records"
 # One node: shared memory between ranks, no network transport; no single-copy (ptrace-based
 # CMA is refused in some sandboxes); root allowed (the lent machine runs commands as root).
 export OMPI_MCA_pml=ob1 OMPI_MCA_btl=self,vader OMPI_MCA_osc=sm,pt2pt OMPI_MCA_btl_vader_single_copy_mechanism=none
@@ -172,7 +186,7 @@ set -eu
 pkg=$1; work=$2
 for lib in "$pkg"/lib/*.so* "$pkg"/lib/fallback/*.so*; do
   name=$(basename "$lib")
-  for dir in /lib/x86_64-linux-gnu /usr/lib/x86_64-linux-gnu /usr/lib/x86_64-linux-gnu/openmpi/lib; do
+  for dir in /lib/x86_64-linux-gnu /usr/lib/x86_64-linux-gnu /usr/lib/x86_64-linux-gnu/openmpi/lib /usr/local/cuda/lib /usr/local/cuda/lib64; do
     [ -e "$dir/$name" ] && mount --bind /dev/null "$(readlink -f "$dir/$name")"
   done
 done
@@ -189,6 +203,7 @@ env -i HOME="$work" PATH=/usr/bin:/bin bash -c '
   pcrf cube info two.h5 | head -3
   mpirun -n 2 pcrf_gpu_bench study.toml --backend cpu --cases 40 --group 8 | head -2
   pcrf_gpu_bench study.toml --backend gpu || test $? -eq 3
+  if command -v test_gpu >/dev/null; then PCRF_GPU_TEST_CASES=50 test_gpu || test $? -eq 77; fi
 ' "$pkg"
 EOF
   printf '[[records]]\nsynthetic = ["sine:amplitude_g=1.5,period_s=0.5,cycles=2,duration_s=3"]\n[axes]\nkappa = [1.5, 2.0, 2.5]\n' > "$work/study.toml"

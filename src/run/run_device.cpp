@@ -1,6 +1,8 @@
 // Where a run's cases are solved (see run_device.hpp).
 #include "pcrf/run/run_device.hpp"
 
+#include <atomic>
+#include <mutex>
 #include <string>
 #include <utility>
 
@@ -27,17 +29,41 @@ class GpuThenCpu final : public CaseGroupSolver {
         again.push_back(frames[i]);
       }
     if (refused.empty()) return answers;
+    refused_ += refused.size();
+    {
+      std::lock_guard lock(mutex_);
+      if (first_reason_.empty()) first_reason_ = answers[refused.front()].result.message;
+    }
     std::vector<GroupCase> cpu = cpu_->solve(again, excitation, solver, request, history);
     for (std::size_t k = 0; k < refused.size(); ++k) answers[refused[k]] = std::move(cpu[k]);
     return answers;
   }
 
+  /// Cases refused so far, and the first one's reason.
+  std::pair<std::int64_t, std::string> refusals() const {
+    std::lock_guard lock(mutex_);
+    return {static_cast<std::int64_t>(refused_.load()), first_reason_};
+  }
+
  private:
   std::unique_ptr<CaseGroupSolver> gpu_;
   std::unique_ptr<CaseGroupSolver> cpu_;
+  mutable std::atomic<std::size_t> refused_{0};
+  mutable std::mutex mutex_;
+  mutable std::string first_reason_;
 };
 
 }  // namespace
+
+std::string gpu_refusal_note(const CaseGroupSolver& group) {
+  const auto* gpu = dynamic_cast<const GpuThenCpu*>(&group);
+  if (gpu == nullptr) return {};
+  const auto [refused, reason] = gpu->refusals();
+  if (refused == 0) return {};
+  return std::to_string(refused) + " case" + (refused == 1 ? "" : "s") +
+         " of this rank went to the CPU engine, which the GPU's case kernel does not cover (the first: " + reason +
+         "); docs/gpu.md says what it covers";
+}
 
 Where device_where(const StudyRunOptions& options, const study::Study& study) {
   for (const auto& [setting, value] : options.run_overrides)

@@ -451,6 +451,7 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
                        });
   sink.close();
   meter.finish(m.output.string());
+  if (const std::string note = gpu_refusal_note(*p.group); !note.empty()) say_note(options, "rank 0: " + note);
   summary.computed = meter.computed();
   summary.failed = meter.failed();
   if (stoppable.stopped()) summary.stopped_by = stop_signal->load();
@@ -466,6 +467,8 @@ void run_worker_rank(const Prepared& p, const parallel::MpiSession& mpi, const s
   CaseRunner runner(p.study, *p.space, *p.records, p.group);
   parallel::run_worker(mpi.comm(), schedule_options(p.study, runner, stop_signal),
                        [&runner](std::span<const parallel::WorkItem> items) { return runner.run(items); });
+  if (const std::string note = gpu_refusal_note(*p.group); !note.empty())
+    std::cerr << "pcrf study: note: rank " << mpi.rank() << ": " << note << '\n';
 }
 
 /// Rank 0's [run] values, the front end's overrides applied, one "key=value" a line.

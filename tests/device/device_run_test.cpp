@@ -257,5 +257,19 @@ TEST(DeviceRun, CasesTheKernelRefusesAreSolvedByTheCpuEngine) {
   }
 }
 
+/// A run whose kernel refuses cases says so once at its end: how many, and the first reason.
+TEST(DeviceRun, ARunSaysHowManyCasesTheKernelLeftToTheCpuEngine) {
+  const auto dir = test::scratch_dir("device_refusal_note");
+  auto options = options_for(dir, block_study(64), "gpu");
+  options.gpu_backend = [](std::string&) -> std::unique_ptr<CaseGroupSolver> { return std::make_unique<RefusingOdd>(); };
+  std::vector<std::string> notes;
+  options.notes = &notes;
+  ASSERT_TRUE(run::run_study(options, mpi()).has_value());
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_NE(notes[0].find("rank 0: 32 cases of this rank went to the CPU engine"), std::string::npos) << notes[0];
+  EXPECT_NE(notes[0].find("(the first: not covered (test))"), std::string::npos) << notes[0];
+  EXPECT_EQ(cube::CubeReader(options.output).read_status().size(), 64u);
+}
+
 }  // namespace
 }  // namespace pcrf::study_test

@@ -41,6 +41,11 @@ using GpuBackend = std::function<std::unique_ptr<CaseGroupSolver>(std::string& w
 std::shared_ptr<const CaseGroupSolver> device_group_solver(const study::Study& study, const Where& where,
                                                            const GpuBackend& gpu = {});
 
+/// What the user should know of a GPU group (device_group_solver's) after a run: how many
+/// cases its kernel refused and the CPU engine solved, with the first one's reason; empty
+/// when none (or for the CPU engine's group).
+std::string gpu_refusal_note(const CaseGroupSolver& group);
+
 /// True when the study's cases are solved on a GPU.
 inline bool on_gpu(const study::Study& study) { return study.run.device == study::Device::kGpu; }
 
