@@ -1,5 +1,5 @@
 // The case kernel compiled for the host against the CPU engine at scale (issue 40's equality
-// check): for each rigid scene, a Latin hypercube of 10³ frames under the eleven paper records
+// check): for each scene (block, rocking frame, prestressed frame), a Latin hypercube of 10³ frames under the eleven paper records
 // (the work-precision set's), each scaled to twice the design's median uplift threshold;
 // every case by kernel_host_group must give solve_case's answer (integrator dopri5, balanced
 // tolerances, ω peaks) bit for bit: every metric, status, message, impact count and counter.
@@ -68,7 +68,8 @@ TEST_P(KernelLong, TenToTheThreeFramesUnderElevenRecordsAreTheOneCaseSolverBitFo
 
 INSTANTIATE_TEST_SUITE_P(Scenes, KernelLong,
                          ::testing::Values(Variant{test::SceneKind::kBlock, "block"},
-                                           Variant{test::SceneKind::kRockingFrame, "rocking_frame"}),
+                                           Variant{test::SceneKind::kRockingFrame, "rocking_frame"},
+                                           Variant{test::SceneKind::kPrestressedFrame, "prestressed_frame"}),
                          [](const auto& p) { return std::string(p.param.scene); });
 
 }  // namespace

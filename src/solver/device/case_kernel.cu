@@ -1,7 +1,8 @@
 // The case kernel on a CUDA device (kernel_launch.hpp): one thread per case over the same
 // source as the host build (case_kernel.hpp), compiled with --fmad=false (no fused
 // multiply-add the CPU path does not have). The record is copied once per group to global
-// memory and read through the read-only data path (case_kernel.hpp's load_sample: __ldg).
+// memory and read through the read-only data path (case_kernel.hpp's load_sample: __ldg), as
+// are the prestressed frames' tables.
 #include <cuda_runtime.h>
 
 #include <string>
@@ -12,12 +13,12 @@ namespace pcrf::device {
 namespace {
 
 __global__ void solve_cases_kernel(const KernelCase* __restrict__ cases, std::size_t count, KernelRecord record,
-                                   KernelResult* __restrict__ results) {
+                                   KernelTables tables, KernelResult* __restrict__ results) {
   const std::size_t i = static_cast<std::size_t>(blockIdx.x) * blockDim.x + threadIdx.x;
   if (i >= count) return;
   const KernelCase c = cases[i];  // the case's numbers in registers
   KernelResult r;
-  solve_kernel_case(c, record, r);
+  solve_kernel_case(c, record, tables, r);
   results[i] = r;
 }
 
@@ -57,22 +58,32 @@ std::string cuda_device_problem(std::string& name) {
   return {};
 }
 
-bool cuda_solve_cases(const KernelCase* cases, std::size_t count, const KernelRecord& record, KernelResult* results,
-                      std::string& error) {
+bool cuda_solve_cases(const KernelCase* cases, std::size_t count, const KernelRecord& record,
+                      const KernelTableStore& tables, KernelResult* results, std::string& error) {
   if (count == 0) return true;
   DeviceArray<KernelCase> d_cases;
   DeviceArray<KernelResult> d_results;
-  DeviceArray<double> d_samples;
-  if (!d_cases.allocate(count, error) || !d_results.allocate(count, error) || !d_samples.allocate(record.count, error))
+  DeviceArray<double> d_samples, d_coefficients;
+  DeviceArray<unsigned char> d_tabulated;
+  // One element at least: a group of rigid rockers has no table.
+  if (!d_cases.allocate(count, error) || !d_results.allocate(count, error) || !d_samples.allocate(record.count, error) ||
+      !d_coefficients.allocate(tables.coefficients.size() + 1, error) ||
+      !d_tabulated.allocate(tables.tabulated.size() + 1, error))
     return false;
   if (!ok(cudaMemcpy(d_cases.p, cases, count * sizeof(KernelCase), cudaMemcpyHostToDevice), "cudaMemcpy cases", error) ||
       !ok(cudaMemcpy(d_samples.p, record.samples_m_s2, record.count * sizeof(double), cudaMemcpyHostToDevice),
-          "cudaMemcpy record", error))
+          "cudaMemcpy record", error) ||
+      !ok(cudaMemcpy(d_coefficients.p, tables.coefficients.data(), tables.coefficients.size() * sizeof(double),
+                     cudaMemcpyHostToDevice),
+          "cudaMemcpy tables", error) ||
+      !ok(cudaMemcpy(d_tabulated.p, tables.tabulated.data(), tables.tabulated.size(), cudaMemcpyHostToDevice),
+          "cudaMemcpy tables", error))
     return false;
   KernelRecord on_device = record;
   on_device.samples_m_s2 = d_samples.p;
   const auto blocks = static_cast<unsigned>((count + kThreadsPerBlock - 1) / kThreadsPerBlock);
-  solve_cases_kernel<<<blocks, kThreadsPerBlock>>>(d_cases.p, count, on_device, d_results.p);
+  const KernelTables tables_on_device{d_coefficients.p, d_tabulated.p};
+  solve_cases_kernel<<<blocks, kThreadsPerBlock>>>(d_cases.p, count, on_device, tables_on_device, d_results.p);
   if (!ok(cudaGetLastError(), "kernel launch", error) || !ok(cudaDeviceSynchronize(), "kernel run", error)) return false;
   return ok(cudaMemcpy(results, d_results.p, count * sizeof(KernelResult), cudaMemcpyDeviceToHost), "cudaMemcpy results",
             error);

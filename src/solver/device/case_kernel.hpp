@@ -1,7 +1,8 @@
 /// \file case_kernel.hpp
-/// \brief The case kernel: one rigid-rocker case (Housner's block, the Makris–Vassiliou
-/// frame) under one horizontal record, start to end — rest scan, uplift, Dormand–Prince
-/// flights with their events, impacts, the return to rest, the stops, the until-rest tail —
+/// \brief The case kernel: one case of a rigid rocker (Housner's block, the Makris–Vassiliou
+/// frame) or of the prestressed frame (its tabulated terms, EomTable) under one horizontal
+/// record, start to end — rest scan, uplift, Dormand–Prince flights with their events,
+/// impacts, the return to rest, the stops, the until-rest tail —
 /// as one function over plain data, compiled as host C++ in every build and as CUDA device
 /// code where nvcc is found (case_kernel.cu). Private to the solver.
 ///
@@ -9,11 +10,13 @@
 /// numerics are plain functions marked PCRF_HD, the integrators never learn of the GPU):
 ///  - the arithmetic of a step is the CPU engine's own, not a copy: the attempt
 ///    (dopri5/dopri5_attempt.hpp), the right-hand side (rigid_rocker_acceleration) and its
-///    sin/cos (rocker_sincos), the root search (integrator/root_search.hpp);
+///    sin/cos (rocker_sincos), the root search (integrator/root_search.hpp), the prestressed
+///    frame's table (EomTable::all_cells: the cells the CPU builds);
 ///  - the control around it — DormandPrinceIntegrator's restart, step-size control,
 ///    breakpoints and roots (dopri5/dormand_prince.cpp), CaseRun's state machine
 ///    (case/case_run.cpp), the record's interpolation (GroundMotion::accel_m_s2, which
-///    ExcitationCursor repeats) and the rest scan (first_exceedance) — is restated here
+///    ExcitationCursor repeats), the rest scan (first_exceedance) and the table's look-up
+///    (EomTable::locate, power_series4 lane by lane) — is restated here
 ///    without exceptions, heap, strings, std::function or virtual calls, operation for
 ///    operation in the same order: the host build equals solve_case with integrator dopri5
 ///    bit for bit (tests/solver/case_kernel_test.cpp checks every metric and counter).
@@ -21,7 +24,10 @@
 ///  - the errors a step can meet are statuses (KernelError); the host turns them into the
 ///    CPU path's messages (kernel_group.cpp).
 /// What the kernel does not take (another scene, integrator or excitation, a history, the
-/// verdict check, a wall-time limit) the host refuses before it is called.
+/// verdict check, a wall-time limit) the host refuses before it is called. A prestressed
+/// frame whose stage falls where its table holds no cell (the CPU evaluates the exact terms
+/// there: a long step across θ₁ = 0 overshooting by more than a cell) ends kLeftTable, and the
+/// host refuses the case.
 #pragma once
 
 #include <array>
@@ -29,8 +35,10 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <vector>
 
 #include "pcrf/host_device.hpp"
+#include "pcrf/model/eom_table.hpp"
 #include "pcrf/model/rigid_rocker.hpp"
 #include "../dopri5/dopri5_attempt.hpp"
 #include "../integrator/root_search.hpp"
@@ -78,9 +86,30 @@ struct KernelRecord {
   double pga_m_s2 = 0.0;      ///< GroundMotion::pga_m_s2
 };
 
+/// The tables of the prestressed frames of a group (EomTable::all_cells of each, one after
+/// another): EomTable::kCellValues coefficients and a tabulated flag per cell.
+struct KernelTables {
+  const double* coefficients = nullptr;
+  const unsigned char* tabulated = nullptr;
+};
+
+/// The tables of a group's prestressed frames, appended frame by frame on the host
+/// (KernelTables views them).
+struct KernelTableStore {
+  std::vector<double> coefficients;
+  std::vector<unsigned char> tabulated;
+  /// Valid until the next append.
+  KernelTables view() const { return {coefficients.data(), tabulated.data()}; }
+};
+
 /// One case's numbers, set on the host from the prepared frame, the settings and the record.
 struct KernelCase {
-  // The rocker (rigid_rocker_acceleration) and its terms at rest (Scene::rest()).
+  /// The right-hand side: a rigid rocker's (rigid_rocker_acceleration), else the frame's
+  /// table (EomTable::acceleration: cells table_first … table_first + table_cells − 1).
+  bool rigid = true;
+  std::size_t table_first = 0, table_cells = 0;
+  double table_inv_cell_per_rad = 0.0;
+  // The rocker (rigid_rocker_acceleration) and the terms at rest (Scene::rest()).
   double slenderness_rad = 0.0, moment_over_inertia_per_m = 0.0, gravity_m_s2 = 0.0;
   double rest_I = 0.0, rest_G = 0.0, rest_K = 0.0, rest_S = 0.0;
   double uplift_threshold_m_s2 = 0.0;
@@ -106,6 +135,7 @@ enum class KernelEnd : std::int8_t {
   kStopped = 2,      ///< reached the stop angle (StopAngles::status says which)
   kBrokenAtRest = 3,
   kSolverFailure = 4,
+  kLeftTable = 5,  ///< a prestressed frame reached a state its table does not hold: no answer
 };
 
 /// A failure's cause and its numbers, for the CPU path's message.
@@ -232,7 +262,8 @@ enum KernelRoot { kImpact = 0, kThetaPeak = 1, kOmegaPeak = 2, kLimit = 3, kRoot
 /// One case: FlightProblem, DormandPrinceIntegrator (not in lockstep) and CaseRun in one.
 class CaseKernel {
  public:
-  PCRF_HD CaseKernel(const KernelCase& c, const KernelRecord& r) : c_(c), r_(r) {
+  PCRF_HD CaseKernel(const KernelCase& c, const KernelRecord& r, const KernelTables& tables)
+      : c_(c), r_(r), tables_(tables) {
     next_sample_.init(r.dt_s, r.count);
     atol_[0] = c.atol_theta_rad, atol_[1] = c.atol_omega_rad_s;
   }
@@ -258,17 +289,51 @@ class CaseKernel {
         fly();
       }
     }
+    if (left_table_) out.end = KernelEnd::kLeftTable;  // the CPU evaluates the exact terms there
     out.steps = steps_, out.rhs_evals = rhs_evals_, out.root_evals = root_evals_, out.reinits = reinits_;
   }
 
  private:
   // ---- the flight problem (FlightProblem) ----
-  PCRF_HD bool acceleration(double t, const double* y, double& acc) const {
-    acc = rigid_rocker_acceleration<KernelOps>(c_.moment_over_inertia_per_m, c_.slenderness_rad, c_.gravity_m_s2, y[0],
-                                               side_ < 0, ground_at(r_, t), 0.0);
+  PCRF_HD bool acceleration(double t, const double* y, double& acc) {
+    if (c_.rigid) {
+      acc = rigid_rocker_acceleration<KernelOps>(c_.moment_over_inertia_per_m, c_.slenderness_rad, c_.gravity_m_s2, y[0],
+                                                 side_ < 0, ground_at(r_, t), 0.0);
+      return kfinite(acc);
+    }
+    double v[4];
+    if (!table_ratios(y[0], v)) {
+      left_table_ = true;  // the case is not answered (kLeftTable)
+      return false;
+    }
+    const double s = side_ < 0 ? 1.0 : -1.0;  // detail::ratios_acceleration, no vertical component
+    acc = v[0] * ground_at(r_, t) - s * (v[1] * y[1] * y[1] + (v[2] + v[3] * 0.0));
     return kfinite(acc);
   }
-  PCRF_HD int rhs(double t, const double* y, double* ydot) const {
+  /// EomTable::locate and power_series4: the ratios A, B, C, D at θ₁ on the current side;
+  /// false where the table holds no tabulated cell (the CPU's exact terms).
+  PCRF_HD bool table_ratios(double theta1, double* v) const {
+    const double u = side_ < 0 ? -theta1 : theta1;
+    const double w = u * c_.table_inv_cell_per_rad;
+    if (!(w >= -1.0 && w < static_cast<double>(c_.table_cells))) return false;
+    auto whole = static_cast<long>(w);
+    whole -= static_cast<long>(w < static_cast<double>(whole));
+    const long index = whole + 1;
+    if (index < 0 || index >= static_cast<long>(c_.table_cells)) return false;
+    const std::size_t cell = c_.table_first + static_cast<std::size_t>(index);
+    if (!tables_.tabulated[cell]) return false;
+    const double x = 2.0 * (w - static_cast<double>(whole)) - 1.0;
+    const double* m = tables_.coefficients + cell * static_cast<std::size_t>(EomTable::kCellValues);
+    const double x2 = x * x, x4 = x2 * x2, x8 = x4 * x4;
+    for (int l = 0; l < 4; ++l) {  // power_series4's lanes, one at a time: the same operations
+      auto c = [&](int k) { return load_sample(m, static_cast<std::size_t>(4 * k + l)); };
+      const double q01 = c(0) + x * c(1), q23 = c(2) + x * c(3), q45 = c(4) + x * c(5), q67 = c(6) + x * c(7),
+                   q89 = c(8) + x * c(9);
+      v[l] = (q01 + x2 * q23) + x4 * (q45 + x2 * q67) + x8 * q89;
+    }
+    return true;
+  }
+  PCRF_HD int rhs(double t, const double* y, double* ydot) {
     double acc = 0;
     if (!acceleration(t, y, acc)) return 1;
     ydot[0] = y[1];
@@ -276,7 +341,7 @@ class CaseKernel {
     return 0;
   }
   /// θ₁, θ̇₁, θ̈₁ (or 1), |θ₁| − θ_stop: root_value of each RootForm.
-  PCRF_HD int roots(double t, const double* y, double* g) const {
+  PCRF_HD int roots(double t, const double* y, double* g) {
     double d[3] = {y[0], y[1], 0.0};
     if (c_.omega_peak && !acceleration(t, y, d[2])) return 1;
     g[kImpact] = d[0] - 0.0;
@@ -718,7 +783,9 @@ class CaseKernel {
 
   const KernelCase& c_;
   const KernelRecord& r_;
+  const KernelTables& tables_;
   KernelResult* out_ = nullptr;
+  bool left_table_ = false;
   // The case.
   bool at_rest_ = true, done_ = false;
   double t_ = 0.0;
@@ -748,8 +815,9 @@ class CaseKernel {
 };
 
 /// One case start to end: the kernel's entry, the same on host and device.
-PCRF_HD inline void solve_kernel_case(const KernelCase& c, const KernelRecord& r, KernelResult& out) {
-  CaseKernel(c, r).run(out);
+PCRF_HD inline void solve_kernel_case(const KernelCase& c, const KernelRecord& r, const KernelTables& tables,
+                                      KernelResult& out) {
+  CaseKernel(c, r, tables).run(out);
 }
 
 }  // namespace pcrf::device

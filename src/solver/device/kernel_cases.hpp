@@ -6,6 +6,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "case_kernel.hpp"
 #include "pcrf/excitation/excitation.hpp"
@@ -19,10 +20,11 @@ namespace pcrf::device {
 /// Why the kernel takes no case of this group (empty: it takes them, case by case).
 std::string kernel_refuses(const Excitation& excitation, const SolverSettings& solver, bool history);
 
-/// The case's numbers; the reason when the kernel does not take this frame (empty: `c` set).
+/// The case's numbers (a prestressed frame's table appended to `tables`); the reason when the
+/// kernel does not take this frame (empty: `c` set).
 /// \throws what solve_case throws for a case it refuses (settings, initial state).
 std::string kernel_case(PreparedFrame& frame, const Excitation& excitation, const SolverSettings& solver,
-                        const OutputRequest& request, KernelCase& c);
+                        const OutputRequest& request, KernelCase& c, KernelTableStore& tables);
 
 /// The horizontal record as the kernel reads it (the samples stay the record's).
 KernelRecord kernel_record(const GroundMotion& record);

@@ -28,20 +28,32 @@ std::string kernel_refuses(const Excitation& excitation, const SolverSettings& s
 }
 
 std::string kernel_case(PreparedFrame& frame, const Excitation& excitation, const SolverSettings& solver,
-                        const OutputRequest& request, KernelCase& c) {
+                        const OutputRequest& request, KernelCase& c, KernelTableStore& tables) {
   // solve_case's checks first: a case it refuses is refused here with its message.
   detail::validate(solver, frame.physics());
   check_initial_state(frame.scene(), frame.physics());
   const Scene& scene = frame.scene();
   const std::optional<RockerCoefficients> rocker = scene.rocker_coefficients();
-  if (!rocker) return "the case kernel covers the rigid rockers only (block, rocking frame)";
+  if (!rocker && !scene.worth_tabulating())
+    return "the case kernel covers the rigid rockers and the tabulated prestressed frame only";
   const PhysicsOptions& physics = frame.physics();
   const detail::CaseEnd end(excitation, scene.gravity_m_s2(), physics);
   c = KernelCase{};
-  c.slenderness_rad = rocker->slenderness_rad;
-  c.moment_over_inertia_per_m = rocker->moment_over_inertia_per_m;
   c.gravity_m_s2 = scene.gravity_m_s2();
-  if (c.gravity_m_s2 != rocker->gravity_m_s2) return "the case kernel: a rocker whose gravity is not its scene's";
+  if (rocker) {
+    c.rigid = true;
+    c.slenderness_rad = rocker->slenderness_rad;
+    c.moment_over_inertia_per_m = rocker->moment_over_inertia_per_m;
+    if (c.gravity_m_s2 != rocker->gravity_m_s2) return "the case kernel: a rocker whose gravity is not its scene's";
+  } else {  // the frame's table, every cell built (the CPU builds them as flights visit them: the same cells)
+    const EomTable::Cells cells = frame.table().all_cells();
+    c.rigid = false;
+    c.table_first = tables.tabulated.size();
+    c.table_cells = cells.tabulated.size();
+    c.table_inv_cell_per_rad = cells.inv_cell_per_rad;
+    tables.coefficients.insert(tables.coefficients.end(), cells.coefficients.begin(), cells.coefficients.end());
+    tables.tabulated.insert(tables.tabulated.end(), cells.tabulated.begin(), cells.tabulated.end());
+  }
   const EomTerms& rest = scene.rest();
   c.rest_I = rest.I, c.rest_G = rest.G, c.rest_K = rest.K, c.rest_S = rest.S;
   c.uplift_threshold_m_s2 = scene.uplift_threshold_m_s2();
@@ -117,6 +129,7 @@ CaseResult kernel_result(PreparedFrame& frame, const Excitation& excitation, con
       r.status = CaseStatus::kSolverFailure;
       r.message = failure_message(k);
       break;
+    case KernelEnd::kLeftTable: break;  // no answer: the caller refuses the case (kernel_answers)
   }
   r.t_uplift_s = k.t_uplift_s;
   r.theta_max_rad = k.theta_max_rad;
@@ -136,6 +149,9 @@ CaseResult kernel_result(PreparedFrame& frame, const Excitation& excitation, con
 }  // namespace device
 
 namespace {
+
+constexpr const char* kLeftTableMessage =
+    "the case kernel: the frame reached an angle its table does not hold (the CPU path's exact terms)";
 
 /// The answer of a refused case: why, and nothing else set.
 GroupCase refused(std::string why) {
@@ -170,12 +186,17 @@ class KernelHost final : public CaseGroupSolver {
       try {
         const double start_cpu_s = detail::thread_cpu_s();
         device::KernelCase c;
-        if (std::string why = device::kernel_case(*frames[i], excitation, solver, request, c); !why.empty()) {
+        device::KernelTableStore tables;
+        if (std::string why = device::kernel_case(*frames[i], excitation, solver, request, c, tables); !why.empty()) {
           cases[i] = refused(std::move(why));
           continue;
         }
         device::KernelResult k;
-        device::solve_kernel_case(c, record, k);
+        device::solve_kernel_case(c, record, tables.view(), k);
+        if (k.end == device::KernelEnd::kLeftTable) {
+          cases[i] = refused(kLeftTableMessage);
+          continue;
+        }
         cases[i].result = device::kernel_result(*frames[i], excitation, request, k);
         cases[i].result.cpu_time_s = detail::thread_cpu_s() - start_cpu_s;
       } catch (const std::exception& e) {  // what solve_case would throw: the case's answer
@@ -211,11 +232,12 @@ class Gpu final : public CaseGroupSolver {
     }
     const double start_cpu_s = detail::thread_cpu_s();
     std::vector<device::KernelCase> taken;
+    device::KernelTableStore tables;
     std::vector<std::size_t> index;  // taken[j] is case index[j]
     for (std::size_t i = 0; i < frames.size(); ++i) {
       try {
         device::KernelCase c;
-        if (std::string why = device::kernel_case(*frames[i], excitation, solver, request, c); !why.empty()) {
+        if (std::string why = device::kernel_case(*frames[i], excitation, solver, request, c, tables); !why.empty()) {
           cases[i] = refused(std::move(why));
           continue;
         }
@@ -227,7 +249,7 @@ class Gpu final : public CaseGroupSolver {
     }
     std::vector<device::KernelResult> results(taken.size());
     std::string error;
-    if (!device::cuda_solve_cases(taken.data(), taken.size(), device::kernel_record(excitation.horizontal()),
+    if (!device::cuda_solve_cases(taken.data(), taken.size(), device::kernel_record(excitation.horizontal()), tables,
                                   results.data(), error)) {
       for (std::size_t i : index) cases[i] = refused("the GPU (" + device_ + ") did not run the cases: " + error);
       return cases;
@@ -235,6 +257,10 @@ class Gpu final : public CaseGroupSolver {
     // The host thread's CPU time (set-up, transfers, the wait), shared equally.
     const double share_s = taken.empty() ? 0.0 : (detail::thread_cpu_s() - start_cpu_s) / static_cast<double>(taken.size());
     for (std::size_t j = 0; j < taken.size(); ++j) {
+      if (results[j].end == device::KernelEnd::kLeftTable) {
+        cases[index[j]] = refused(kLeftTableMessage);
+        continue;
+      }
       cases[index[j]].result = device::kernel_result(*frames[index[j]], excitation, request, results[j]);
       cases[index[j]].result.cpu_time_s = share_s;
     }

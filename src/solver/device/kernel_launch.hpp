@@ -15,10 +15,10 @@ namespace pcrf::device {
 /// is then its name).
 std::string cuda_device_problem(std::string& name);
 
-/// Solves cases[i] under `record` (its samples in host memory) into results[i] on device 0,
+/// Solves cases[i] under `record` (its samples and the tables in host memory) into results[i] on device 0,
 /// one thread per case. False, with `error` saying which CUDA call failed, when the device
 /// did not run them (no result is then set).
-bool cuda_solve_cases(const KernelCase* cases, std::size_t count, const KernelRecord& record, KernelResult* results,
-                      std::string& error);
+bool cuda_solve_cases(const KernelCase* cases, std::size_t count, const KernelRecord& record,
+                      const KernelTableStore& tables, KernelResult* results, std::string& error);
 
 }  // namespace pcrf::device
