@@ -246,6 +246,16 @@ def main():
             rows.append(row)
             raw.flush()
 
+    # The kernel at the group a rank gets when it is handed one whole cube chunk (16 384 cases):
+    # what the study below may run at, where chunks are handed out whole.
+    chunk_row = None
+    if backend and (work / "block_ER1.toml").is_file():
+        code, stdout, _, _ = run([bench, work / "block_ER1.toml", "--backend", backend, "--cases", a.cases, "--group", 16384,
+                                  "--seconds-limit", min(a.gpu_seconds, 15.0)], env, clock.limit(75), out)
+        for j in json_lines(stdout):
+            raw.write(json.dumps(dict(j, workload="block, ER1, groups of 16384")) + "\n")
+            chunk_row = j
+
     # The whole study through the cube.
     study_row = None
     block = json_lines(run([bench, work / "block_threshold.toml", "--median-threshold-g"], env, clock.limit(60), out)[1])
@@ -289,6 +299,9 @@ def main():
         statuses = ", ".join(f"{k} {v}" for k, v in g["statuses"].items()) if g else "-"
         lines.append(f"| {r['workload']} | {gpu_rate} | {g['cases']:,} ({r['cases']:,}) | {cpu_rate} | {ratio} | {statuses} |"
                      if g else f"| {r['workload']} | {gpu_rate} | - | {cpu_rate} | {ratio} | - |")
+    if chunk_row and chunk_row["cases"] > chunk_row["statuses"].get("refused", 0):
+        rate = (chunk_row["cases"] - chunk_row["statuses"].get("refused", 0)) / max(chunk_row["solve_s"], 1e-9)
+        lines.append(f"| block, ER1, groups of 16 384 (one cube chunk) | {rate:,.0f} | {chunk_row['cases']:,} | | | |")
     kernel = next((r["gpu"]["cases_per_s"] for r in rows
                    if r.get("gpu") and r["gpu"]["cases_per_s"] > 0 and r["workload"].startswith("block, ER1")), None)
     if study_row["cases"]:
