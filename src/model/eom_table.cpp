@@ -131,4 +131,20 @@ bool EomTable::acceleration_jacobian(double theta1, double omega1, GroundAcceler
   return true;
 }
 
+EomTable::Cells EomTable::all_cells() const {
+  Cells out;
+  out.inv_cell_per_rad = inv_cell_;
+  out.coefficients.assign(cells_.size() * static_cast<std::size_t>(kCellValues), 0.0);
+  out.tabulated.assign(cells_.size(), 0);
+  for (std::size_t k = 0; k < cells_.size(); ++k) {
+    Cell& cell = cells_[k];
+    if (cell.state == Cell::State::kEmpty) build(cell, static_cast<int>(k));
+    if (cell.state != Cell::State::kTabulated) continue;
+    out.tabulated[k] = 1;
+    for (std::size_t n = 0; n < static_cast<std::size_t>(kNodes); ++n)
+      for (std::size_t l = 0; l < 4; ++l) out.coefficients[k * kCellValues + 4 * n + l] = cell.abcd[n][l];
+  }
+  return out;
+}
+
 }  // namespace pcrf

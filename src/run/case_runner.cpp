@@ -49,9 +49,10 @@ void guarded(parallel::CaseOutcome& outcome, const ResultColumns& columns, F&& f
 
 }  // namespace
 
-CaseRunner::CaseRunner(const Study& study, const CaseSpace& space, RecordCache& records)
+CaseRunner::CaseRunner(const Study& study, const CaseSpace& space, RecordCache& records,
+                       std::shared_ptr<const CaseGroupSolver> group)
     : study_(study), space_(space), records_(records), columns_(study),
-      group_(make_group_solver(study.solver, static_cast<int>(study.run.lanes))),
+      group_(group ? std::move(group) : make_group_solver(study.solver, static_cast<int>(study.run.lanes))),
       one_case_(one_at_a_time_group()) {
   // Compute only what is asked: the exact angular-velocity peak costs an extra root.
   request_.omega_peak = false;

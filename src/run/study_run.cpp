@@ -28,6 +28,7 @@
 #include "pcrf/schema/cube_vocabulary.hpp"
 #include "pcrf/run/ida_work.hpp"
 #include "pcrf/run/progress.hpp"
+#include "pcrf/run/run_device.hpp"
 #include "pcrf/study/study_check.hpp"
 #include "pcrf/run/study_cube.hpp"
 #include "pcrf/study/study_parser.hpp"
@@ -49,6 +50,8 @@ struct Prepared {
   Study study;
   std::unique_ptr<CaseSpace> space;
   std::unique_ptr<RecordCache> records;
+  /// What solves the cases of one excitation: the study's [run] device (run_device.hpp).
+  std::shared_ptr<const CaseGroupSolver> group;
 
   explicit Prepared(Study s)
       : study(std::move(s)),
@@ -173,8 +176,14 @@ class HistoryInbox {
 /// signal stops a worker between two such blocks.
 constexpr std::int64_t kFramesTogether = 64;
 
-/// True when the study's cases go to workers in blocks of one excitation (docs/batches.md).
-bool in_lanes(const Study& study) { return study.run.lanes > 1 && lanes_take(study.solver) && !study.ida; }
+/// True when the study's cases go to workers in blocks of one excitation (docs/batches.md):
+/// for the CPU lanes, or for a GPU (run_device.hpp: kGpuGroupCases a block).
+bool in_lanes(const Study& study) {
+  return !study.ida && (on_gpu(study) || (study.run.lanes > 1 && lanes_take(study.solver)));
+}
+
+/// Frames of a tile whose cases go out an excitation at a time (CaseSpace::frame_major).
+std::int64_t frames_together(const Study& study) { return on_gpu(study) ? kGpuWindowCases : kFramesTogether; }
 
 /// A worker's side of the cube (issue 38: no rank handles every result): a chunk handed out
 /// whole comes back from the worker that computed it as the cube stores it, every variable
@@ -220,7 +229,7 @@ parallel::ScheduleOptions schedule_options(const Study& study, const CaseRunner&
   options.row_width = runner.row_width();
   options.fixed_batch = study.run.batch_size;
   options.interrupt = stop_signal;
-  if (in_lanes(study)) options.evaluate_together = kFramesTogether;
+  if (in_lanes(study)) options.evaluate_together = static_cast<std::size_t>(frames_together(study));
   return options;
 }
 
@@ -419,18 +428,23 @@ parallel::WorkQueue pending_cases(const cube::CubeWriter& writer, const std::map
   }
   // Positions in the hand-out order (storage order, or a Saltelli design's frame by frame).
   const bool lanes = in_lanes(study);
-  auto next_window = [pending, &histories, &space, lanes, cursor = first, last = last]() mutable {
+  const std::int64_t tile = lanes ? frames_together(study) : 1;
+  const std::int64_t window_cases = on_gpu(study) ? kGpuWindowCases : kWindowCases;
+  auto next_window = [pending, &histories, &space, tile, window_cases, cursor = first, last = last]() mutable {
     std::vector<std::int64_t> window;
     while (window.empty() && cursor < last) {
-      const std::int64_t end = std::min(last, cursor + kWindowCases);
+      const std::int64_t end = std::min(last, cursor + window_cases);
       for (std::int64_t k = cursor; k < end; ++k)
         if (const std::int64_t i = space.handout_index(k); pending(i) && !histories.count(i)) window.push_back(i);
       cursor = end;
     }
-    return space.frame_major(std::move(window), lanes ? kFramesTogether : 1);
+    return space.frame_major(std::move(window), tile);
   };
+  // A GPU rank is handed a group of one excitation at a time (unless batch_size says otherwise).
+  const std::size_t batch = study.run.batch_size == 0 && on_gpu(study) ? static_cast<std::size_t>(kGpuGroupCases)
+                                                                      : study.run.batch_size;
   parallel::WorkQueue queue(std::move(next_window), shared_total, std::move(pinned), parallel::worker_count(mpi.comm()),
-                            study.run.batch_size);
+                            batch);
   if (lanes) queue.group_by([&space](std::int64_t i) { return space.excitation_of(i); });
   return queue;
 }
@@ -519,7 +533,7 @@ class StopOnSignal final : public parallel::WorkSource {
 StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::MpiSession& mpi,
                              std::ostream& progress, const StudyRunOptions& options) {
   const std::atomic<int>* stop_signal = options.stop_signal;
-  CaseRunner runner(p.study, *p.space, *p.records);
+  CaseRunner runner(p.study, *p.space, *p.records, p.group);
   std::map<std::int64_t, const HistoryRequest*> history_requests;
   for (std::size_t h = 0; h < p.study.histories.size(); ++h)
     history_requests[m.checked.history_cases[h]] = &p.study.histories[h];
@@ -584,6 +598,7 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
                        });
   sink.close();
   meter.finish(m.output.string());
+  if (const std::string note = gpu_refusal_note(*p.group); !note.empty()) say_note(options, "rank 0: " + note);
   summary.computed = meter.computed();
   summary.failed = meter.failed();
   if (stoppable.stopped()) summary.stopped_by = stop_signal->load();
@@ -597,19 +612,46 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
 
 void run_worker_rank(const Prepared& p, const parallel::MpiSession& mpi, const std::atomic<int>* stop_signal,
                      const cube::ChunkGrid& grid) {
-  CaseRunner runner(p.study, *p.space, *p.records);
+  CaseRunner runner(p.study, *p.space, *p.records, p.group);
   parallel::run_worker(mpi.comm(), schedule_options(p.study, runner, stop_signal, grid),
                        [&runner](std::span<const parallel::WorkItem> items) { return runner.run(items); });
+  if (const std::string note = gpu_refusal_note(*p.group); !note.empty())
+    std::cerr << "pcrf study: note: rank " << mpi.rank() << ": " << note << '\n';
 }
 
-/// Workers parse the study text rank 0 checked (same base folder for relative records).
-std::unique_ptr<Prepared> receive_study(const parallel::MpiSession& mpi, const Prepared* master) {
+/// Rank 0's [run] values, the front end's overrides applied, one "key=value" a line.
+std::string run_settings_text(const RunOptions& run) {
+  std::string text;
+  for (const auto& s : run_settings().settings) text += std::string(s.key) + "=" + setting_text(s.get(run)) + "\n";
+  return text;
+}
+
+/// Sets `run` from run_settings_text (rank 0's values, already checked there).
+void apply_run_settings_text(const std::string& text, RunOptions& run) {
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    const auto equals = line.find('=');
+    const auto* setting = run_settings().find(line.substr(0, equals));
+    if (setting == nullptr) continue;
+    SettingValue value = parse_setting_text(*setting, line.substr(equals + 1));
+    if (check_setting(*setting, value).empty()) setting->set(run, value);
+  }
+}
+
+/// Workers parse the study text rank 0 checked (same base folder for relative records), and
+/// take rank 0's [run] values (its flags and keywords included: --device, --lanes).
+std::unique_ptr<Prepared> receive_study(const parallel::MpiSession& mpi, const Prepared* master,
+                                        const GpuBackend& gpu) {
   const std::string text = mpi.broadcast(master ? master->study.text : std::string());
   const std::string file = mpi.broadcast(master ? master->study.file : std::string());
   const std::string base = mpi.broadcast(master ? master->study.base_dir.string() : std::string());
+  const std::string run = mpi.broadcast(master ? run_settings_text(master->study.run) : std::string());
   if (master != nullptr) return nullptr;
   try {
-    return std::make_unique<Prepared>(parse_study(text, file, base));
+    auto prepared = std::make_unique<Prepared>(parse_study(text, file, base));
+    apply_run_settings_text(run, prepared->study.run);
+    prepared->group = device_group_solver(prepared->study, prepared->study.where("run.device"), gpu);  // this rank's device
+    return prepared;
   } catch (const std::exception& e) {  // e.g. records not visible from this node
     std::cerr << "pcrf: error on rank " << mpi.rank() << ": " << e.what() << std::endl;
     mpi.abort(2);
@@ -645,6 +687,8 @@ std::optional<StudySummary> run_study(const StudyRunOptions& options, const para
     try {
       prepared = std::make_unique<Prepared>(options.study ? *options.study : load_study(options.study_file));
       apply_overrides(options, prepared->study.run);
+      // Before anything is written: a GPU asked for and not usable is the user's to fix.
+      prepared->group = device_group_solver(prepared->study, device_where(options, prepared->study), options.gpu_backend);
       setup = prepare_master(options, *prepared);
     } catch (const UserError&) {
       error = std::current_exception();
@@ -663,7 +707,7 @@ std::optional<StudySummary> run_study(const StudyRunOptions& options, const para
     summary.cost_estimate = estimate_cost(prepared->study, *prepared->space, *prepared->records, 16, 2.0).text();
     return summary;
   }
-  if (auto received = receive_study(mpi, prepared.get())) prepared = std::move(received);
+  if (auto received = receive_study(mpi, prepared.get(), options.gpu_backend)) prepared = std::move(received);
   // The cube's shape, so that workers seal the chunks rank 0's writer stores.
   std::string shape_text;
   if (mpi.is_master())

@@ -154,6 +154,7 @@ STDERR_LINES = {
     ("src/cli/study_command.cpp", "pcrf study: "): (1, "the stop report: a note of the KeyboardInterrupt"),
     ("src/cli/study_command.cpp", "pcrf study: note: "): (1, "verdict notes: PcrfWarning (test_a_studys_notes_…)"),
     ("src/run/study_run.cpp", "pcrf study: note: "): (1, "the study's notes: StudyRunOptions::notes, PcrfWarning"),
+    ("src/run/study_run.cpp", "pcrf study: note: rank "): (1, "a worker rank's GPU refusals: a note line, PcrfWarning under mpirun"),
     ("src/run/study_run.cpp", "pcrf study: warning: "): (1, "record checks: RecordWarning (test_record_checks.py)"),
     ("src/run/study_run.cpp", "pcrf: error on rank "): (1, "an internal error on a rank: RuntimeError"),
     ("src/run/progress.cpp", "pcrf study: "): (2, "progress lines: printed with progress=True"),

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "dopri5_tableau.hpp"
+#include "pcrf/host_device.hpp"
 
 namespace pcrf::detail {
 
@@ -29,7 +30,7 @@ struct Dopri5Stages {
 /// finite(p), abs(p), sqrt(p), none(m). Always inlined: it is the body of the integrator's
 /// inner loop, and a call would keep the stages' numbers in memory.
 template <class Ops, class F>
-[[gnu::always_inline]] inline typename Ops::M dopri5_attempt(const typename Ops::P& t, const typename Ops::P& h, const typename Ops::P (&y0)[2],
+[[gnu::always_inline]] PCRF_HD inline typename Ops::M dopri5_attempt(const typename Ops::P& t, const typename Ops::P& h, const typename Ops::P (&y0)[2],
                                const typename Ops::P (&k1)[2], const typename Ops::P (&atol)[2],
                                const typename Ops::P& rtol, F&& f, Dopri5Stages<typename Ops::P>& out) {
   using P = typename Ops::P;

@@ -10,10 +10,12 @@
 #include <cstddef>
 #include <limits>
 
+#include "pcrf/host_device.hpp"
+
 namespace pcrf::detail {
 
 /// Time tolerance of a located root, as SUNDIALS' (100 ulp of the time and step).
-inline double root_tolerance(double t, double h) {
+PCRF_HD inline double root_tolerance(double t, double h) {
   return 100.0 * std::numeric_limits<double>::epsilon() * (std::abs(t) + std::abs(h));
 }
 
@@ -22,7 +24,7 @@ inline double root_tolerance(double t, double h) {
 /// model has no real root. With the curvature, the step of Euler and Chebyshev: cubic
 /// convergence, and near a double root (a flight starting where θ̈ ≈ 0, the ground at the
 /// uplift threshold) the model's root where Newton's steps only halve the distance.
-inline double model_step(double v, double slope, double curvature) {
+PCRF_HD inline double model_step(double v, double slope, double curvature) {
   if (curvature != 0.0) {
     const double disc = slope * slope - 2.0 * v * curvature;
     if (disc >= 0.0) {
@@ -47,7 +49,7 @@ inline double model_step(double v, double slope, double curvature) {
 /// past the root with a step back below half the tolerance ends the search (hi within ttol of
 /// the root; lo not narrowed): one probe fewer than closing the bracket from both sides.
 template <class ValueSlope>
-void newton_in_bracket(ValueSlope&& value_slope, double& lo, double& glo, double& hi, double& ghi, double ttol,
+PCRF_HD void newton_in_bracket(ValueSlope&& value_slope, double& lo, double& glo, double& hi, double& ghi, double ttol,
                        double t_first = std::numeric_limits<double>::quiet_NaN()) {
   double t = t_first > lo && t_first < hi ? t_first : hi - ghi * (hi - lo) / (ghi - glo);
   for (int it = 0; it < 100 && hi - lo > ttol && ghi != 0.0; ++it) {
@@ -77,7 +79,7 @@ void newton_in_bracket(ValueSlope&& value_slope, double& lo, double& glo, double
 }
 
 /// Whether root function i may cross, in its direction, from g_a to g_b.
-inline bool crosses(double g_a, double g_b, int dir) {
+PCRF_HD inline bool crosses(double g_a, double g_b, int dir) {
   return g_a != 0.0 && g_a * g_b <= 0.0 && !(dir != 0 && dir * g_a > 0.0);
 }
 
@@ -93,7 +95,7 @@ inline bool crosses(double g_a, double g_b, int dir) {
 /// Returns false when nothing crosses; else the root's time, the functions found there (within
 /// ttol of it) and their values at it (zeros when the problem failed there).
 template <std::size_t kMax, class RootsAt, class Locate>
-bool earliest_crossing(int n, const std::array<int, kMax>& dirs, int preferred, double a, const double* g_a, double b,
+PCRF_HD bool earliest_crossing(int n, const std::array<int, kMax>& dirs, int preferred, double a, const double* g_a, double b,
                        const double* g_b, double ttol, RootsAt&& roots_at, Locate&& locate, double& root_time,
                        std::array<int, kMax>& found, std::array<double, kMax>& g_root) {
   int first = -1;
@@ -101,7 +103,7 @@ bool earliest_crossing(int n, const std::array<int, kMax>& dirs, int preferred, 
     if (crosses(g_a[i], g_b[i], dirs[static_cast<std::size_t>(i)]) && (first < 0 || i == preferred)) first = i;
   if (first < 0) return false;
   std::array<double, kMax> when;  // NOLINT: set below for every function
-  when.fill(std::numeric_limits<double>::infinity());
+  for (double& w : when) w = std::numeric_limits<double>::infinity();  // no fill(): not constexpr before C++20 (device code)
   double earliest = 0.0;
   {
     double lo = a, glo = g_a[first], hi = b, ghi = g_b[first];
@@ -133,9 +135,9 @@ bool earliest_crossing(int n, const std::array<int, kMax>& dirs, int preferred, 
   if (current) {
     g_root = g;
   } else if (!roots_at(earliest, g_root.data())) {
-    g_root.fill(0.0);
+    for (double& v : g_root) v = 0.0;
   }
-  found.fill(0);
+  for (int& f : found) f = 0;
   for (int i = 0; i < n; ++i) {
     const auto k = static_cast<std::size_t>(i);
     if (when[k] <= earliest + ttol) found[k] = 1;

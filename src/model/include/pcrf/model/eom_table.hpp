@@ -47,8 +47,21 @@ class EomTable {
   /// Number of cells built so far (for tests and benchmarks).
   int cells_built() const { return built_; }
 
+  /// Every cell built, as the case kernel reads the table (src/solver/device/): cell k's
+  /// power series at coefficients[kCellValues·k …], row by row (degree 0 … kNodes − 1 of A,
+  /// B, C, D, as power_series4 reads them), and whether it is tabulated (else the exact terms
+  /// hold there). No cells for a scene evaluated exactly throughout.
+  static constexpr int kSeriesDegree = 9;
+  static constexpr int kCellValues = 4 * (kSeriesDegree + 1);
+  struct Cells {
+    double inv_cell_per_rad = 0.0;  ///< 1 / the cell width
+    std::vector<double> coefficients;
+    std::vector<unsigned char> tabulated;
+  };
+  Cells all_cells() const;
+
  private:
-  static constexpr int kNodes = 10;
+  static constexpr int kNodes = kSeriesDegree + 1;
   /// Power-series coefficients in x of A, B, C, D (lanes 0…3), lowest degree first.
   struct alignas(32) Lanes4 : std::array<double, 4> {};
   using Series4 = std::array<Lanes4, kNodes>;

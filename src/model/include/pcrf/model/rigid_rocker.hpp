@@ -27,6 +27,7 @@
 
 #include <optional>
 
+#include "pcrf/host_device.hpp"
 #include "pcrf/model/rocker_sincos.hpp"
 #include "pcrf/model/scene.hpp"
 #include "pcrf/units.hpp"
@@ -51,7 +52,7 @@ struct RockerParameters {
 /// give select(mask, a, b) and sincos(x, sin, cos): rocker_sincos (rocker_sincos.hpp), the
 /// same bits for both, unless a batch asks for another.
 template <class Ops, class T, class Mask>
-T rigid_rocker_acceleration(const T& moment_over_inertia_per_m, const T& slenderness_rad, const T& gravity_m_s2,
+PCRF_HD T rigid_rocker_acceleration(const T& moment_over_inertia_per_m, const T& slenderness_rad, const T& gravity_m_s2,
                             const T& theta1, const Mask& left, const T& ground_h_m_s2, const T& ground_v_m_s2) {
   const T phi = Ops::select(left, theta1, -theta1);
   T sin_a, cos_a;

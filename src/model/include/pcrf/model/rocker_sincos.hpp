@@ -20,12 +20,14 @@
 
 #include <type_traits>
 
+#include "pcrf/host_device.hpp"
+
 namespace pcrf {
 namespace detail {
 
 /// x − q·π/2, π/2 in three parts (Cody & Waite).
 template <class T>
-inline T reduce_quadrant(const T& x_rad, const T& q) {
+PCRF_HD inline T reduce_quadrant(const T& x_rad, const T& q) {
   return ((x_rad - q * T(1.57079625129699707031)) - q * T(7.54978941586159635335e-8)) - q * T(5.39030285815811905290e-15);
 }
 
@@ -33,7 +35,7 @@ inline T reduce_quadrant(const T& x_rad, const T& q) {
 
 /// sin and cos of x [rad]. `Ops` gives select(mask, a, b) for T (comparisons of T give the mask).
 template <class Ops, class T>
-inline void rocker_sincos(const T& x_rad, T& sin_x, T& cos_x) {
+PCRF_HD inline void rocker_sincos(const T& x_rad, T& sin_x, T& cos_x) {
   const T round(6755399441055744.0);  // 1.5·2⁵²: v + round − round is v rounded to an integer
   const T q = (x_rad * T(0.63661977236758134308) + round) - round;  // 2/π
   T r = x_rad;  // x − q·π/2: x itself for q = 0 (every term 0), a rocker's usual quadrant
@@ -55,7 +57,10 @@ inline void rocker_sincos(const T& x_rad, T& sin_x, T& cos_x) {
   const T cos_r = (T(1.0) - T(0.5) * z) + z2 * k;
   // The quadrant: n = q − 4·round(q/4) in {−2, −1, 0, 1, 2} (−2 ≡ 2, −1 ≡ 3 mod 4).
   const T n = q - T(4.0) * ((q * T(0.25) + round) - round);
-  const auto one = n == T(1.0), two = (n == T(2.0)) | (n == T(-2.0)), three = n == T(-1.0);
+  // Three declarations: for a double, `two` is an int (bool | bool), the others bools.
+  const auto one = n == T(1.0);
+  const auto two = (n == T(2.0)) | (n == T(-2.0));
+  const auto three = n == T(-1.0);
   const T s = Ops::select(one | three, cos_r, sin_r);  // odd quadrants swap sin and cos
   const T c = Ops::select(one | three, sin_r, cos_r);
   sin_x = Ops::select(two | three, -s, s);

@@ -100,6 +100,9 @@ class Scene {
   /// Its sign says whether the force opens the scene into that side (side·θ̈ > 0) or holds it
   /// closed. Every rest, uplift and return-to-rest decision derives from it.
   double rest_acceleration(GroundAcceleration ground, int side) const;
+  /// The terms at rest, θ₁ = 0⁻ (I, G, K, S: what rest_acceleration and the threshold are
+  /// made of; the case kernel of src/solver/device/ repeats their arithmetic).
+  const EomTerms& rest() const { return rest_; }
   /// True while the net force at rest holds the scene closed on both sides.
   bool holds_closed(GroundAcceleration ground) const;
   /// θ̈₁ [rad/s²] for state (θ₁, θ̇₁) on `side` under `ground`, from the exact terms:
@@ -130,9 +133,6 @@ class Scene {
   /// Derived classes call this once their terms can be evaluated.
   /// \throws std::invalid_argument when the mechanism does not exist at rest.
   void settle_rest();
-  /// The terms at rest, θ₁ = 0⁻.
-  const EomTerms& rest() const { return rest_; }
-
  private:
   EomTerms rest_;
   double lambda_g_ = 0.0;

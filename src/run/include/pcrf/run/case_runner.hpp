@@ -30,8 +30,11 @@ using namespace pcrf::study;
 
 class CaseRunner {
  public:
-  /// Keeps references: the study, the space and the cache must outlive the runner.
-  CaseRunner(const Study& study, const CaseSpace& space, RecordCache& records);
+  /// Keeps references: the study, the space and the cache must outlive the runner. `group`
+  /// solves the cases of one excitation (run_device.hpp: the study's [run] device); null:
+  /// the CPU engine's, make_group_solver.
+  CaseRunner(const Study& study, const CaseSpace& space, RecordCache& records,
+             std::shared_ptr<const CaseGroupSolver> group = nullptr);
 
   std::size_t row_width() const { return columns_.width(); }
 
@@ -42,8 +45,9 @@ class CaseRunner {
   parallel::CaseOutcome run(const parallel::WorkItem& item, const HistorySink& history = {},
                             double history_dt_s = 0.0) const noexcept;
   /// Runs `items` as run() does, one outcome each in their order; the cases that share an
-  /// excitation are solved as one group (make_group_solver: in lockstep lanes, Study::run.lanes
-  /// wide, where the solver settings allow it). A case the group refuses fails alone, with
+  /// excitation are solved as one group (the constructor's `group`; by default
+  /// make_group_solver: in lockstep lanes, Study::run.lanes wide, where the solver settings
+  /// allow it). A case the group refuses fails alone, with
   /// the reason as its note. The answers are run()'s, bit for bit.
   parallel::ResultBatch run(std::span<const parallel::WorkItem> items) const noexcept;
 
@@ -75,7 +79,7 @@ class CaseRunner {
   RecordCache& records_;
   ResultColumns columns_;
   OutputRequest request_;
-  std::unique_ptr<CaseGroupSolver> group_;     ///< the cases of one excitation
+  std::shared_ptr<const CaseGroupSolver> group_;  ///< the cases of one excitation
   std::unique_ptr<CaseGroupSolver> one_case_;  ///< a case with a history
   struct LastScaled {
     std::size_t record = static_cast<std::size_t>(-1);

@@ -16,6 +16,7 @@
 
 #include "pcrf/cube/cube_layout.hpp"
 #include "pcrf/parallel/mpi_session.hpp"
+#include "pcrf/solver/case_group.hpp"
 #include "pcrf/study/study.hpp"
 
 namespace pcrf::run {
@@ -51,6 +52,10 @@ struct StudyRunOptions {
   std::function<void()> poll;
   /// [run] values that override the study file's (already checked against run_settings()).
   std::vector<std::pair<const Setting<RunOptions>*, SettingValue>> run_overrides;
+  /// The GPU backend of a run with [run] device = "gpu" (nullptr and why where there is
+  /// none); empty: gpu_group. A test gives the host build of the case kernel, to run the
+  /// GPU's path (its hand-out, its groups, its cube) where no device is.
+  std::function<std::unique_ptr<CaseGroupSolver>(std::string& why_not)> gpu_backend;
 };
 
 /// What rank 0 reports when the study is done.

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -63,5 +64,11 @@ bool lanes_take(const SolverSettings& solver);
 /// The group solver for `lanes` lanes: the CPU lanes where more than one and lanes_take,
 /// else one at a time.
 std::unique_ptr<CaseGroupSolver> make_group_solver(const SolverSettings& solver, int lanes);
+
+/// The case kernel (src/solver/device/) compiled for the host: the device's code path, case by case.
+/// A case the kernel does not cover (scene, integrator, output) is GroupOutcome::kRefused, with why.
+std::unique_ptr<CaseGroupSolver> kernel_host_group();
+/// The GPU backend; nullptr where this build has no CUDA or the machine no usable device, `why_not` saying which.
+std::unique_ptr<CaseGroupSolver> gpu_group(std::string& why_not);
 
 }  // namespace pcrf

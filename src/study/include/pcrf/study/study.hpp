@@ -46,6 +46,13 @@ struct HistoryRequest {
   Where declared_at;                      ///< its `label`: the entry, file and line, for messages
 };
 
+/// Where a run's cases are solved: the CPU engine, or the case kernel on a CUDA device
+/// (docs/gpu.md). The answers are the same; only the speed differs.
+enum class Device : std::int8_t { kCpu, kGpu };
+inline constexpr std::array<EnumName<Device>, 2> kDeviceNames{{{Device::kCpu, "cpu"}, {Device::kGpu, "gpu"}}};
+inline std::string device_name(Device device) { return name_of(kDeviceNames, device); }
+inline Device parse_device(const std::string& text) { return parse_name(kDeviceNames, text, "device"); }
+
 /// How a run behaves; not part of what the study computes (not in its fingerprint).
 /// Described in run_settings().
 struct RunOptions {
@@ -54,6 +61,7 @@ struct RunOptions {
   std::size_t batch_size = 0;
   std::size_t lanes = 8;  ///< cases of one excitation integrated together (docs/batches.md)
   bool warnings_as_errors = false;  ///< a record warning (implausible PGA, units, PGV/PGA) stops the study
+  Device device = Device::kCpu;     ///< where the cases are solved (docs/gpu.md)
 };
 
 /// The [run] table; `pcrf study` also takes each key as a flag (`--flush-interval-s`). Here,
@@ -76,6 +84,10 @@ inline const SettingTable<RunOptions>& run_settings() {
     s.push_back(flag_setting("warnings_as_errors", &R::warnings_as_errors,
                              "a record whose PGA, PGV/PGA or units look wrong stops the study (exit code 2) "
                              "instead of a warning"));
+    s.push_back(choice_setting("device", &R::device, values_of(kDeviceNames), &device_name, &parse_device,
+                               "where the cases are solved: the CPU engine, or the case kernel on a CUDA device "
+                               "(a build with PCRF_CUDA and a usable device; each rank takes large groups of one "
+                               "record; docs/gpu.md)"));
     for (auto& setting : s) setting.in_fingerprint = false;  // how, not what
     return t;
   }();
