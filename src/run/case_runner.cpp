@@ -96,7 +96,7 @@ std::optional<CaseRunner::Ready> CaseRunner::set_up(const parallel::WorkItem& it
                                                     parallel::CaseOutcome& outcome) const {
   CaseSpec spec = space_.case_at(item.case_index);
   spec.level = level_of(spec, item);
-  const double factor = records_.scale_factor(spec.record, spec.level, study_.intensity);
+  const double factor = spec.factor ? *spec.factor : records_.scale_factor(spec.record, spec.level, study_.intensity);
   if (study_.ida) {  // the run's intensity and factor travel with it, whatever happens next
     outcome.row[columns_.ida_intensity_column()] = spec.level;
     outcome.row[columns_.scale_factor_column()] = factor;

@@ -36,12 +36,32 @@ std::string utc_now() {
 
 void add_components(const Study& study, RecordCache& records, cube::CubeLayout& layout);
 
+/// Records given their own factor ([[records]] scale): `record_scale` along `record` (the
+/// factor before the scale axis' value). Nothing when every record has none.
+void add_record_scales(const Study& study, cube::CubeLayout& layout) {
+  if (std::all_of(study.records.begin(), study.records.end(), [](const RecordSource& r) { return r.scale == 1.0; })) return;
+  std::vector<double> scales;
+  for (const auto& r : study.records) scales.push_back(r.scale);
+  layout.coordinates.push_back(number_coordinate("record_scale", names::kRecord, "1",
+                                                 "the record's own factor on its accelerations ([[records]] scale), "
+                                                 "before the scale axis' value",
+                                                 scales));
+}
+
 /// The record axis (names, sources, titles), then the level axis' coordinates along it and
 /// along its own dimensions (level_axis.hpp).
 void add_record_and_level(const Study& study, const CaseSpace& space, RecordCache& records,
                           cube::CubeLayout& layout) {
   auto& coords = layout.coordinates;
+  if (study.selection) {  // `record` holds a stripe's slots; the level axis names each stripe's records
+    coords.push_back(text_coordinate(names::kRecord, names::kRecord,
+                                     "slot of a stripe's selected set (selected_record_<stripe> names its record)",
+                                     space.record_names()));
+    space.level_axis().add_leading(layout, records);
+    return;
+  }
   coords.push_back(text_coordinate(names::kRecord, names::kRecord, "ground motion record", space.record_names()));
+  add_record_scales(study, layout);
   std::vector<std::string> sources, titles;
   for (std::size_t r = 0; r < study.records.size(); ++r) {
     sources.push_back(study.records[r].describe());
@@ -264,6 +284,16 @@ std::vector<Attribute> global_attributes(const Study& study, const std::string& 
   };
   if (study.intensity) add_settings(a, intensity_settings(), *study.intensity);
   if (study.hazard_stripes) a.push_back({names::kIntensityHazard, study.hazard_stripes->hazard});
+  if (const auto& sel = study.selection) {  // Jayaram, Lin & Baker (2011); Baker & Lee (2018)
+    a.push_back({"selection_library", sel->library});
+    a.push_back({"selection_kind", sel->settings.kind});
+    a.push_back({"selection_count", static_cast<std::int64_t>(sel->settings.count)});
+    a.push_back({"selection_scale_min", sel->settings.scale_min});
+    a.push_back({"selection_scale_max", sel->settings.scale_max});
+    a.push_back({"selection_seed", static_cast<std::int64_t>(sel->settings.seed)});
+    a.push_back({"selection_trials", static_cast<std::int64_t>(sel->settings.trials)});
+    a.push_back({"selection_loops", static_cast<std::int64_t>(sel->settings.loops)});
+  }
   if (study.ida) add_settings(a, ida_settings(), *study.ida);
   add_settings(a, physics_settings(), study.physics);
   add_settings(a, solver_settings(), study.solver);
@@ -313,6 +343,7 @@ cube::HistoryTable make_history_table(const std::string& label, std::int64_t cas
   table.attributes = {{"case_index", static_cast<std::int64_t>(case_index)},
                       {names::kRecord, study.records[spec.record].name},
                       {space.dimension_names()[1], spec.level}};
+  if (spec.factor) table.attributes.push_back({names::kScaleFactor, *spec.factor});  // [selection]: the record's own factor
   const auto& parameters = spec.frame.model->parameters;
   if (spec.frame.model != study.model) table.attributes.push_back({names::kSceneModel, std::string(spec.frame.model->name)});
   for (std::size_t k = 0; k < parameters.size(); ++k)

@@ -83,6 +83,15 @@ void check_output_is_not_an_input(const std::filesystem::path& output, const Stu
         if (same_file(written, file->path))
           throw UserError(Where{}, as + "the record file of \"" + r.name +
                                        "\"; choose another output ({} does not apply to inputs)", {"output", "overwrite"});
+    if (const auto& sel = study.selection) {  // its library and targets
+      if (same_file(written, sel->library_file))
+        throw UserError(Where{}, as + "the record library " + sel->library +
+                                     " of [selection]; choose another output ({} does not apply to inputs)", {"output", "overwrite"});
+      for (const auto& stripe : sel->stripes)
+        if (same_file(written, study.base_dir / stripe.target))
+          throw UserError(Where{}, as + "the target " + stripe.target +
+                                       " of [selection]; choose another output ({} does not apply to inputs)", {"output", "overwrite"});
+    }
     if (study.hazard_stripes && same_file(written, study.hazard_stripes->file))
       throw UserError(Where{}, as + "the hazard curve " + study.hazard_stripes->hazard +
                                    " of [intensity]; choose another output ({} does not apply to inputs)", {"output", "overwrite"});

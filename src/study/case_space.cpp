@@ -13,8 +13,11 @@ namespace pcrf::study {
 CaseSpace::CaseSpace(const Study& study)
     : plan_(study.plan), level_axis_(make_level_axis(study)), levels_(level_axis_->levels()),
       incidences_(study.incidence_deg) {
+  selection_ = study.selection;
+  if (selection_)
+    for (std::size_t k = 0; k < selection_->settings.count; ++k) record_names_.push_back("slot_" + std::to_string(k + 1));
   for (const auto& r : study.records) {
-    record_names_.push_back(r.name);
+    if (!selection_) record_names_.push_back(r.name);
     const double strike = r.strike_deg.value_or(0.0);  // the parser requires it where it is used
     incidence_origin_deg_.push_back(study.incidence_reference == "fault-normal"     ? strike + 90.0
                                     : study.incidence_reference == "fault-parallel" ? strike
@@ -50,9 +53,16 @@ std::int64_t CaseSpace::index(const std::vector<std::size_t>& coordinates) const
 CaseSpec CaseSpace::case_at(std::int64_t index) const {
   const auto c = coordinates(index);
   const std::span<const std::size_t> frame(c.data() + frame_dim_, plan_->dimensions().size());
-  CaseSpec spec{c[0], levels_.empty() ? std::nan("") : levels_[c[1]], plan_->frame_at(frame), std::nullopt};
-  if (incidence_dim_ > 0) spec.incidence_deg = frame_azimuth_deg(c[0], incidences_[c[incidence_dim_]]);
+  const auto [record, factor] = record_at(c[0], levels_.empty() ? 0 : c[1]);
+  CaseSpec spec{record, levels_.empty() ? std::nan("") : levels_[c[1]], plan_->frame_at(frame), std::nullopt, factor};
+  if (incidence_dim_ > 0) spec.incidence_deg = frame_azimuth_deg(record, incidences_[c[incidence_dim_]]);
   return spec;
+}
+
+std::pair<std::size_t, std::optional<double>> CaseSpace::record_at(std::size_t slot, std::size_t stripe) const {
+  if (!selection_) return {slot, std::nullopt};
+  const auto& s = selection_->stripes.at(stripe);
+  return {s.records.at(slot), s.scales.at(slot)};
 }
 
 std::vector<std::int64_t> CaseSpace::frame_major(std::vector<std::int64_t> indices, std::int64_t frames_together) const {

@@ -59,10 +59,22 @@ std::string canonical_description(const Study& study, const CaseSpace& space, Re
       out << " az1_deg=" << station.az1_deg.value_or(std::nan("")) << " az2_deg=" << station.az2_deg.value_or(std::nan(""))
           << " strike_deg=" << source.strike_deg.value_or(std::nan(""));
     }
+    if (source.scale != 1.0) out << " scale=" << source.scale;  // studies without: as they were
     out << '\n';
   }
   if (study.intensity) describe_settings(out, intensity_settings(), *study.intensity);
   if (study.ida) describe_settings(out, ida_settings(), *study.ida);
+  if (const auto& sel = study.selection) {  // what each stripe runs: its records (above, by samples) and their factors
+    const auto& w = sel->settings;
+    out << "selection kind=" << w.kind << " count=" << w.count << " scale_min=" << w.scale_min << " scale_max=" << w.scale_max
+        << " seed=" << w.seed << " trials=" << w.trials << " loops=" << w.loops << '\n';
+    for (const auto& stripe : sel->stripes) {
+      out << "stripe";
+      for (std::size_t k = 0; k < stripe.records.size(); ++k)
+        out << ' ' << study.records[stripe.records[k]].name << '*' << stripe.scales[k];
+      out << '\n';
+    }
+  }
   space.level_axis().describe(out);
   if (!study.incidence_deg.empty()) {
     out << "\nincidence " << study.incidence_reference;

@@ -4,6 +4,7 @@
 #include <iterator>
 #include <optional>
 
+#include "pcrf/number_text.hpp"
 #include "pcrf/schema/cube_vocabulary.hpp"
 #include "pcrf/ida/ida_search.hpp"
 #include "pcrf/study/plan.hpp"
@@ -71,13 +72,13 @@ class MeasuredAxis : public LevelAxis {
 class IntensityStripes final : public MeasuredAxis {
  public:
   IntensityStripes(const IntensitySpec& measure, std::vector<double> intensities,
-                   const std::optional<Study::HazardStripes>& hazard)
-      : MeasuredAxis(measure), intensities_(std::move(intensities)), hazard_(hazard) {}
+                   const std::optional<Study::HazardStripes>& hazard, const std::optional<Study::StripeSelection>& selection)
+      : MeasuredAxis(measure), intensities_(std::move(intensities)), hazard_(hazard), selection_(selection) {}
 
   std::vector<cube::Dimension> leading_dimensions() const override { return {{names::kIntensity, intensities_.size()}}; }
   const std::vector<double>& levels() const override { return intensities_; }
   void add_leading(cube::CubeLayout& layout, RecordCache& records) const override {
-    add_unscaled(layout, records);
+    if (!selection_) add_unscaled(layout, records);  // with a selection, each stripe's records are their own
     layout.coordinates.push_back(number_coordinate(names::kIntensity, names::kIntensity, units_, long_name_, intensities_));
     if (hazard_)
       layout.coordinates.push_back(number_coordinate(
@@ -85,11 +86,62 @@ class IntensityStripes final : public MeasuredAxis {
           "return period of the stripe's intensity on the hazard curve " + hazard_->hazard +
               " (1 / its mean annual rate of exceedance, the curve interpolated log-log)",
           hazard_->return_periods_yr));
+    if (selection_) return add_selection(layout, records);
     cube::SideVariable factor{names::kScaleFactor, "1", "factor applied to the record's accelerations to reach the intensity",
                               {names::kRecord, names::kIntensity}, {}};
     for (std::size_t r = 0; r < records.size(); ++r)
       for (double level : intensities_) factor.values.push_back(records.scale_factor(r, level, measure_));
     layout.side_variables.push_back(std::move(factor));
+  }
+
+  /// [selection]: per stripe, the record in each slot (a text coordinate along `record` per
+  /// stripe, `selected_record_<k>` for the k-th stripe from 0) and its target file (along
+  /// `intensity`); over (record, intensity) the selection's scale factor (`scale_factor`, as
+  /// every stripe cube has it) and the record's unscaled intensity; per stripe the set's fit.
+  void add_selection(cube::CubeLayout& layout, RecordCache& records) const {
+    const auto& stripes = selection_->stripes;
+    const std::size_t slots = selection_->settings.count;
+    const std::string library = " from the library " + selection_->library;
+    std::vector<std::string> targets;
+    for (std::size_t k = 0; k < stripes.size(); ++k) {
+      std::vector<std::string> chosen;
+      for (std::size_t r : stripes[k].records) chosen.push_back(records_name(records, r));
+      layout.coordinates.push_back(text_coordinate(
+          selected_record_name(k), names::kRecord,
+          "record selected for slot of stripe " + std::to_string(k) + " (intensity " + number_text(intensities_[k]) + " " + units_ +
+              (hazard_ ? ", return period " + number_text(hazard_->return_periods_yr[k]) + " yr" : std::string()) + ")" + library,
+          chosen));
+      targets.push_back(stripes[k].target);
+    }
+    layout.coordinates.push_back(text_coordinate("selection_target", names::kIntensity,
+                                                 "target spectrum the stripe's records were selected to", targets));
+    const std::vector<std::string> over{names::kRecord, names::kIntensity};
+    cube::SideVariable factor{names::kScaleFactor, "1",
+                              "factor applied to the record's accelerations: the selection's scale factor of the stripe's record in the slot",
+                              over, {}};
+    cube::SideVariable unscaled{"selected_record_" + to_string(measure_.measure), units_,
+                                "unscaled " + long_name_ + " of the stripe's record in the slot", over, {}};
+    for (std::size_t slot = 0; slot < slots; ++slot)
+      for (const auto& stripe : stripes) {
+        factor.values.push_back(stripe.scales.at(slot));
+        unscaled.values.push_back(records.intensity(stripe.records.at(slot), measure_));
+      }
+    layout.side_variables.push_back(std::move(factor));
+    layout.side_variables.push_back(std::move(unscaled));
+    auto per_stripe = [&](const std::string& name, const std::string& unit, const std::string& long_name, auto member) {
+      cube::SideVariable v{name, unit, long_name, {names::kIntensity}, {}};
+      for (const auto& stripe : stripes) v.values.push_back(stripe.fit.*member);
+      layout.side_variables.push_back(std::move(v));
+    };
+    per_stripe("selection_median_error_percent", "percent",
+               "largest error of the selected set's median Sa against the target's, over the target's periods",
+               &SelectionResult::median_error_percent);
+    per_stripe("selection_sigma_error_percent", "percent",
+               "largest error of the selected set's sigma ln Sa against the target's, over periods where it is not 0",
+               &SelectionResult::sigma_error_percent);
+    per_stripe("selection_sum_of_squares", "1",
+               "Baker & Lee (2018) figure of merit: w_mean sum (m - mu)^2 + w_sigma sum (s - sigma)^2 of ln Sa",
+               &SelectionResult::sum_of_squares);
   }
   void describe(std::ostream& out) const override {
     out << "intensity";
@@ -100,8 +152,11 @@ class IntensityStripes final : public MeasuredAxis {
   }
 
  private:
+  static std::string records_name(RecordCache& records, std::size_t r) { return records.source(r).name; }
+
   std::vector<double> intensities_;
   std::optional<Study::HazardStripes> hazard_;
+  std::optional<Study::StripeSelection> selection_;
 };
 
 class IdaAxis final : public MeasuredAxis {
@@ -160,11 +215,14 @@ class IdaAxis final : public MeasuredAxis {
 
 }  // namespace
 
+std::string selected_record_name(std::size_t stripe) { return "selected_record_" + std::to_string(stripe); }
+
 std::shared_ptr<const LevelAxis> make_level_axis(const Study& study) {
   if (study.ida)
     return std::make_shared<IdaAxis>(*study.intensity, static_cast<std::size_t>(study.ida->max_runs), study.solver.verdict_check,
                                      study.levels);
-  if (study.intensity) return std::make_shared<IntensityStripes>(*study.intensity, study.levels, study.hazard_stripes);
+  if (study.intensity)
+    return std::make_shared<IntensityStripes>(*study.intensity, study.levels, study.hazard_stripes, study.selection);
   return std::make_shared<ScaleAxis>(study.levels);
 }
 

@@ -144,7 +144,7 @@ double RecordCache::intensity(std::size_t index, const IntensitySpec& spec) {
 }
 
 double RecordCache::scale_factor(std::size_t index, double level, const std::optional<IntensitySpec>& intensity) {
-  if (!intensity) return level;
+  if (!intensity) return level * sources_.at(index).scale;  // the record's own factor, then the axis
   return intensity_scale_factor(level, this->intensity(index, *intensity));
 }
 

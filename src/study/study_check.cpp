@@ -14,6 +14,7 @@
 #include "pcrf/record/horizontal_pair.hpp"
 #include "pcrf/study/fingerprint.hpp"
 #include "pcrf/study/plan.hpp"
+#include "study/stripe_selection.hpp"
 #include "pcrf/solver/rocking_solver.hpp"
 #include "pcrf/user_error.hpp"
 
@@ -77,6 +78,7 @@ void check_records(const Study& study, RecordCache& records, std::vector<std::st
 void check_hazard_stripes(const Study& study, const WeakestRecord& weakest, std::vector<std::string>& warnings) {
   if (!study.hazard_stripes) return;
   for (const UserError& w : study.hazard_stripes->warnings) warn(study, w, warnings);
+  if (study.selection) return;  // the selection's factors, within its scale limits, are what run
   if (study.levels.empty() || !(weakest.im > 0.0) || !std::isfinite(weakest.im)) return;
   const double strongest = *std::max_element(study.levels.begin(), study.levels.end());
   const double factor = strongest / weakest.im;
@@ -91,6 +93,29 @@ void check_hazard_stripes(const Study& study, const WeakestRecord& weakest, std:
                      text + " at " + number_text(strongest) + ", above " + number_text(hazard::kMaxHazardScaleFactor) +
                      ": are the curve's intensities in the units its header names?"),
        warnings);
+}
+
+/// [selection]: every selected record, scaled by its selection factor, has the stripe's
+/// intensity by the study's own measure (within kConditioningRelativeTolerance): the library's
+/// Sa (interpolated to the target's conditioning period) and the engine's measure of the
+/// record agree, so that the cube's `intensity` is what each case feels and cube risk's rate
+/// is the study's.
+void check_selection(const Study& study, RecordCache& records) {
+  if (!study.selection) return;
+  const auto& stripes = study.selection->stripes;
+  for (std::size_t k = 0; k < stripes.size(); ++k)
+    for (std::size_t slot = 0; slot < stripes[k].records.size(); ++slot) {
+      const std::size_t r = stripes[k].records[slot];
+      const double scaled = stripes[k].scales[slot] * records.intensity(r, *study.intensity);
+      const double level = study.levels.at(k);
+      if (std::abs(scaled / level - 1.0) <= kConditioningRelativeTolerance) continue;
+      throw UserError(study.where("selection.targets"),
+                      "record \"" + study.records[r].name + "\" of the stripe at " + selection_number_text(level) + " (target " +
+                          stripes[k].target + ") scaled by " + number_text(stripes[k].scales[slot]) + " has " +
+                          to_string(study.intensity->measure) + " " + selection_number_text(scaled) +
+                          ", not the stripe's intensity: compute the library at the study's period_s (" +
+                          number_text(study.intensity->period_s) + " s among its periods) and damping, from the same records");
+    }
 }
 
 std::string describe(const Study& study, const SceneSpec& frame) {
@@ -154,6 +179,7 @@ CheckedStudy check_study(const Study& study, const CaseSpace& space, RecordCache
   WeakestRecord weakest;
   check_records(study, records, checked.notes, checked.warnings, weakest);
   check_hazard_stripes(study, weakest, checked.warnings);
+  check_selection(study, records);
   check_incidence(study, checked.warnings);
   // A displaced start must lie below every frame's overturning angle: an input error, found
   // before the run. Otherwise the worker that runs a frame's cases builds it, once per case.

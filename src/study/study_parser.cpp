@@ -21,6 +21,7 @@
 #include "pcrf/study/plan.hpp"
 #include "study/axis_fields.hpp"
 #include "study/plans/plan_support.hpp"
+#include "study/stripe_selection.hpp"
 #include "study/toml_depth.hpp"
 #include "study/toml_fields.hpp"
 
@@ -465,6 +466,20 @@ std::optional<double> read_angle(const Fields& f, std::string_view key) {
   return value;
 }
 
+/// [[records]] scale: the record's own factor (pcrf record select's fragment gives one per
+/// record). It multiplies a scale axis' values; beside [intensity] it would cancel (every
+/// record is scaled to each intensity by its own measure), so it is refused there.
+std::optional<double> read_record_scale(const Fields& f, const Study& s) {
+  const auto scale = f.number("scale");
+  if (!scale) return std::nullopt;
+  if (!(*scale > 0.0) || !std::isfinite(*scale)) f.fail("scale", "must be a positive number (a factor on the accelerations), got " + number_text(*scale));
+  if (s.intensity)
+    f.fail("scale", "[intensity] scales every record to each of its intensities, which would cancel a record's own "
+                    "factor: drop [intensity] to run the records with these factors (times [axes] scale), or let "
+                    "[selection] choose records and factors per stripe");
+  return scale;
+}
+
 std::vector<RecordSource> read_record_entry(const Fields& f, const Study& s) {
   const int given =
       int(f.has("file")) + int(f.has("files")) + int(f.has("synthetic")) + int(f.has("h1")) + int(f.has("pulse"));
@@ -476,7 +491,7 @@ std::vector<RecordSource> read_record_entry(const Fields& f, const Study& s) {
   for (const auto& key : need_h1)
     if (f.has(key) && !f.has("h1")) f.fail(key, "a station's components are " + and_list(components) + ": give h1");
   if (f.has("pulse")) {
-    for (const auto key : {"format", "units", "skip_rows", "column", "name", "strike_deg"})
+    for (const auto key : {"format", "units", "skip_rows", "column", "name", "strike_deg", "scale"})
       if (f.has(key)) f.fail(key, "does not apply to pulse records (each is named by its text)");
     return read_pulse_entry(f, s);
   }
@@ -538,6 +553,8 @@ std::vector<RecordSource> read_record_entry(const Fields& f, const Study& s) {
     }
   }
   if (f.has("strike_deg") && f.has("synthetic")) f.fail("strike_deg", "only applies to record files");
+  if (const auto scale = read_record_scale(f, s))
+    for (auto& source : sources) source.scale = *scale;
   if (f.has("name")) {
     if (sources.size() != 1) f.fail("name", "only an entry that gives exactly one record can name it");
     sources.front().name = *f.text("name");
@@ -567,6 +584,11 @@ void check_pulse_axes_used(const Study& s) {
 }
 
 void read_records(const Fields& top, Study& s) {
+  if (s.selection) {
+    if (top.has("records"))
+      top.fail("records", "[selection] chooses each stripe's records from its library: give no [[records]]");
+    return;
+  }
   const auto* array = top.array("records");
   if (array == nullptr || array->empty())
     top.fail("records", "a study needs at least one [[records]] table (file, files, h1 or synthetic)");
@@ -576,7 +598,7 @@ void read_records(const Fields& top, Study& s) {
     const auto* table = (*array)[i].as_table();
     if (table == nullptr) Fields::fail_at(s.file, &(*array)[i], path, "expected a table ([[records]])");
     std::vector<std::string_view> keys{"file", "files", "synthetic", "pulse", "format", "units", "dt_s", "duration_s",
-                                       "skip_rows", "column", "name", "h1"};
+                                       "skip_rows", "column", "name", "h1", "scale"};
     for (const auto& c : kStationComponents) keys.push_back(c.key);
     keys.insert(keys.end(), {"az1_deg", "az2_deg", "strike_deg"});
     Fields f(*table, path, s.file, keys);
@@ -705,12 +727,13 @@ Study parse_study_table(const toml::table& root, const std::string& text, const 
   s.text = text;
   Fields top(root, {}, file,
              {"study", "plan", "records", "axes", "frame", "base", "cases", intensity_settings().name, ida_settings().name,
-              physics_settings().name, solver_settings().name, "outputs", run_settings().name});
+              kSelectionTable, physics_settings().name, solver_settings().name, "outputs", run_settings().name});
   read_study_section(top, s);
   read_base(top, s);  // before the plan: its frames start from the base point
   read_intensity(top, s);  // before axes: it decides what the second axis is
   read_ida(top, s);
   read_axes(top, s);  // and the plan
+  read_selection(top, s);  // after the stripes and the incidence axis: it makes the records
   read_records(top, s);
   check_pulse_axes_used(s);
   detail::read_setting_table(top, physics_settings(), s.physics, s.given_at);

@@ -28,7 +28,8 @@ StudySize study_size(const Study& study) {
   StudySize size;
   size.frames = frames_of(study);
   const double levels = study.ida ? static_cast<double>(study.ida->max_runs) : static_cast<double>(study.levels.size());
-  size.cases = size.frames * static_cast<double>(study.records.size()) * levels;
+  const std::size_t records = study.selection ? study.selection->settings.count : study.records.size();  // slots per stripe
+  size.cases = size.frames * static_cast<double>(records) * levels;
   return size;
 }
 

@@ -7,6 +7,7 @@
 
 #include "pcrf/model/equation_of_motion.hpp"
 #include "pcrf/model/impact.hpp"
+#include "pcrf/user_error.hpp"
 
 namespace pcrf {
 namespace {
@@ -36,6 +37,37 @@ TEST(Restitution, MomentumBalanceEqualsClosedFormOverParameterSpread) {
     }
   }
   EXPECT_GT(n, 250);
+}
+
+TEST(Restitution, ExtremeMassRatiosAreSolvedOrRefusedNeverAnInternalError) {
+  // A beam 10^12 times the columns' mass makes the momentum system's rows differ by more than
+  // double precision resolves: the QR calls it rank-deficient, and the closed form (the same
+  // balance, exact there) answers. The answers approach the heavy-beam limit smoothly, and a
+  // frame nothing can compute is refused as the user's input (UserError), not a bug.
+  double previous = 0.0;
+  for (double kappa : {1e6, 1e8, 1e9, 1e10, 1e11, 1e12, 1e15, 1e20}) {
+    FrameParameters p;
+    p.kappa = kappa;
+    const EquationOfMotion eom(make_frame(p));
+    const double r_m = restitution_momentum(eom);
+    EXPECT_NEAR(r_m, restitution_closed_form(eom), 1e-9 * r_m) << "kappa=" << kappa;
+    EXPECT_GT(r_m, 0.0);
+    EXPECT_LT(r_m, 1.0);
+    if (kappa > 1e6) {
+      EXPECT_NEAR(r_m, previous, 1e-5) << "kappa=" << kappa;  // the limit, O(1/kappa)
+    }
+    previous = r_m;
+  }
+  for (double kappa : {1e-12, 1e300}) {
+    FrameParameters p;
+    p.kappa = kappa;
+    try {
+      const EquationOfMotion eom(make_frame(p));
+      EXPECT_GT(restitution_momentum(eom), 0.0) << "kappa=" << kappa;
+      EXPECT_LT(restitution_momentum(eom), 1.0) << "kappa=" << kappa;
+    } catch (const UserError&) {
+    }
+  }
 }
 
 TEST(Restitution, PrintedSignOfLambdaLMissesTheMomentumBalance) {

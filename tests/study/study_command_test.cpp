@@ -553,6 +553,7 @@ TEST(StudyCommand, PaperStudiesFindTheirRecords) {
       {"risk.toml", ": ok, " + std::to_string(far_field_components * 2 * 10) + " cases"},
       {"risk_stripes.toml", ": ok, " + std::to_string(far_field_components * 6) + " cases"},  // six return periods
       {"model_uncertainty.toml", ": ok, " + std::to_string(far_field_components * 16 * 10) + " cases"},  // 16 LHS frames
+      {"selection_stripes/selection_stripes.toml", ": ok, 40 cases"},  // ten pairs selected per stripe × four stripes
       {"numerics_audit/exact.toml", ": ok, 11 cases"},
       {"numerics_audit/fixed_rk4_h1e-2.toml", ": ok, 11 cases"},
       {"numerics_audit/fixed_rk4_h1e-3.toml", ": ok, 11 cases"},

@@ -13,6 +13,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "pcrf/study/level_axis.hpp"
@@ -29,6 +30,9 @@ struct CaseSpec {
   /// The azimuth of the frame's plane [deg from north] (its incidence resolved for this
   /// record); none without an incidence axis (the frame lies along the first component).
   std::optional<double> incidence_deg;
+  /// The factor on the record's accelerations when the study fixes it per case ([selection]:
+  /// the selection's scale factor of the record in its stripe); none: RecordCache::scale_factor.
+  std::optional<double> factor = std::nullopt;
 };
 
 class CaseSpace {
@@ -45,7 +49,12 @@ class CaseSpace {
   std::int64_t index(const std::vector<std::size_t>& coordinates) const;
   CaseSpec case_at(std::int64_t index) const;
 
+  /// The values of the `record` dimension: the records' names, or with [selection] the slots
+  /// of a stripe's set ("slot_1", …), each stripe's record in a slot being its own.
   const std::vector<std::string>& record_names() const { return record_names_; }
+  /// [selection]: the record (index into Study::records) and its scale factor in slot `slot`
+  /// of stripe `stripe`; without one, the record `slot` itself and no factor.
+  std::pair<std::size_t, std::optional<double>> record_at(std::size_t slot, std::size_t stripe) const;
   /// Values of the second axis (`scale` or `intensity`, see Study::levels).
   const std::vector<double>& levels() const { return levels_; }
   /// `indices` reordered so that the cases of one frame (every record and level) are
@@ -91,6 +100,7 @@ class CaseSpace {
   std::vector<std::size_t> shape_;
   std::int64_t size_ = 1;
   std::vector<std::string> record_names_;
+  std::optional<Study::StripeSelection> selection_;
   std::vector<double> levels_;
   std::size_t frame_dim_ = 2;  ///< first frame axis (after record and the level axis, if any)
   std::vector<double> incidences_;

@@ -45,6 +45,10 @@ class LevelAxis {
   virtual void describe(std::ostream& out) const = 0;
 };
 
+/// The name of the text coordinate along `record` that names the records of stripe `stripe`
+/// (from 0) of a [selection] study: "selected_record_0", …
+std::string selected_record_name(std::size_t stripe);
+
 /// The axis a study gives: [ida], else [axes] intensity with [intensity], else [axes] scale.
 std::shared_ptr<const LevelAxis> make_level_axis(const Study& study);
 

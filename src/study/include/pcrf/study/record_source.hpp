@@ -32,6 +32,9 @@ struct RecordSource {
   std::optional<double> az1_deg = std::nullopt;  ///< given azimuths [deg from north]; else from the headers
   std::optional<double> az2_deg = std::nullopt;
   std::optional<double> strike_deg = std::nullopt;  ///< the fault's strike [deg from north], for fault-normal incidence
+  /// [[records]] scale: the record's own factor on its accelerations, applied before a scale
+  /// axis' value (the study refuses it beside [intensity], whose scaling it would cancel).
+  double scale = 1.0;
 
   bool has_components() const;
   /// Every file it reads: the first component's, then the others'.
@@ -96,10 +99,12 @@ class RecordCache {
   double intensity(std::size_t index, const IntensitySpec& spec);
 
   /// The factor record `index` is multiplied by for a value of the study's second axis: the
-  /// value itself on a scale axis (no `intensity`), else intensity_scale_factor(level, IM).
+  /// value times the record's own `scale` on a scale axis (no `intensity`), else
+  /// intensity_scale_factor(level, IM).
   double scale_factor(std::size_t index, double level, const std::optional<IntensitySpec>& intensity);
 
   std::size_t size() const { return sources_.size(); }
+  const RecordSource& source(std::size_t index) const { return sources_.at(index); }
 
  private:
   std::vector<RecordSource> sources_;

@@ -23,6 +23,7 @@
 #include "pcrf/model/scene_catalog.hpp"
 #include "pcrf/ida/ida_search.hpp"
 #include "pcrf/record/intensity.hpp"
+#include "pcrf/record/selection.hpp"
 #include "pcrf/setting.hpp"
 #include "pcrf/solver/settings.hpp"
 #include "pcrf/study/record_source.hpp"
@@ -135,6 +136,28 @@ struct Study {
     std::vector<UserError> warnings;        ///< the curve's post::hazard_warnings, for the study's check
   };
   std::optional<HazardStripes> hazard_stripes;
+  /// [selection]: records selected per stripe of hazard-consistent stripes, each stripe's set
+  /// from a library (pcrf record spectra's table) to its own target spectrum (one per return
+  /// period), by select_records (Jayaram, Lin & Baker 2011; Baker & Lee 2018). `records` then
+  /// holds every record some stripe uses (each once, in the order first selected), and the
+  /// cube's `record` dimension is the `count` slots of a stripe's set: the case (slot k,
+  /// stripe j) runs record stripes[j].records[k] scaled by stripes[j].scales[k].
+  struct StripeSelection {
+    std::string library;                 ///< the library table as the study gives it
+    std::filesystem::path library_file;  ///< resolved against base_dir
+    SelectionSettings settings;
+    struct Stripe {
+      std::string target;                ///< its target file as the study gives it
+      std::vector<std::size_t> records;  ///< per slot: index into Study::records
+      std::vector<double> scales;        ///< per slot: the selection's scale factor
+      SelectionResult fit;               ///< the set's fit to the target
+      double conditioning_sa_g = 0.0;    ///< the target's exp(mean_ln_sa) at the measure's period [g]
+      int conditioning_line = 0;         ///< the target file's line of that period
+    };
+    std::vector<Stripe> stripes;  ///< one per return period, in return_periods_yr's order
+    Where declared_at;            ///< the [selection] library key
+  };
+  std::optional<StripeSelection> selection;
   /// The [ida] table, when given: the intensity axis becomes a search, `levels` is unused.
   std::optional<IdaOptions> ida;
   /// The scene ([frame] model; the prestressed frame by default) and its base point (the
