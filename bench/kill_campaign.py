@@ -4,6 +4,7 @@ tiny flush interval, each run resuming the last; after every kill the cube must 
 (`pcrf cube info` exit 0), and the resumed cube must equal an uninterrupted run.
 
     python3 bench/kill_campaign.py --pcrf build/pcrf [--kills 300] [--ranks 1]
+    python3 bench/kill_campaign.py --pcrf build/pcrf --study units --kills 60   # chunks sealed by workers
 
 Prints how many kills hit, how many left a cube, whether any cube was unreadable, and
 whether the final cube equals the uninterrupted one (status and every metric but wall time).
@@ -29,6 +30,19 @@ scale = [0.9, 1.1, 1.3]
 kappa = {from = 1.0, to = 3.0, count = 8}
 tan_alpha = {from = 0.16, to = 0.24, count = 8}
 """
+# 70 000 frames that never lift: five chunks of the cube, so that workers seal whole chunks
+# (issue 38) and the kills land in sealed chunks' checkpoints and folds too.
+UNITS = """[plan]
+kind = "lhs"
+samples = 70000
+seed = 4
+[[records]]
+synthetic = "stochastic:seed=1,pga_g=0.026,duration_s=4,dt_s=0.01"
+[axes]
+kappa = {from = 1.26, to = 2.34}
+tan_alpha = {from = 0.14, to = 0.26}
+lambda_h = {from = 0.14, to = 0.26}
+"""
 
 
 def command(pcrf, ranks, output, extra):
@@ -53,11 +67,13 @@ def main():
     parser.add_argument("--kills", type=int, default=300)
     parser.add_argument("--ranks", type=int, default=1)
     parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--study", choices=["grid", "units"], default="grid",
+                        help="grid: 1 728 rocking cases; units: 70 000 non-lifting ones in sealed chunks")
     args = parser.parse_args()
     pcrf = os.path.abspath(args.pcrf)
     work = tempfile.mkdtemp(prefix="pcrf_kills_")
     os.chdir(work)
-    open("k.toml", "w").write(STUDY)
+    open("k.toml", "w").write(STUDY if args.study == "grid" else UNITS)
     t0 = time.time()
     subprocess.run(command(pcrf, args.ranks, "whole.h5", []), check=True, capture_output=True, env=ENV)
     whole_s = time.time() - t0

@@ -5,6 +5,13 @@ study: each case a scan of one weak record, so that what surrounds a case is wha
 
     python3 bench/master/rank_costs.py --pcrf build/pcrf                    # 1 rank
     python3 bench/master/rank_costs.py --pcrf build/pcrf --ranks 4 --small 1000 3000
+    python3 bench/master/rank_costs.py --pcrf build/pcrf --small 65536 131072   # whole chunks
+
+Workers compute and seal whole chunks of the cube (16 384 cases) once a study has at least two
+a worker and one more (study_run.cpp, kUnitsPerWorker): below that, cases go one by one as
+before. The last chunk always goes case by case (the tail that balances the end); two sizes
+with the same tail (multiples of 16 384 cases) cancel it, and the count at the larger size
+alone says what it adds.
 
 Every rank runs under `valgrind --tool=callgrind --separate-threads=yes` at two study sizes;
 the difference over the difference in cases cancels start-up (MPI's, the record's, the cube's
@@ -15,7 +22,9 @@ Open MPI's progress and polling (objects of libmpi, open-pal, pmix, ucx, hwloc, 
 ld.so and the kernel's vdso), which on an oversubscribed machine count how long a thread waited,
 not what it did. Then:
 - rank 0's main thread (the master: hand-out, results, the cube) per result, beyond its own
-  cases (it computes none; rank 0's cases run in its worker thread);
+  cases (it computes none; rank 0's cases run in its worker thread), and how much of it is
+  spent before the first hand-out (checks, creating the cube with its coordinates) and during
+  the run (hand-out, storing what comes back, checkpoints, the last fold);
 - the balance: the busiest thread's marginal instructions (MPI left out) over the mean of the
   threads that work (issue 38 item 5 asks for at most 1.25).
 """
@@ -38,8 +47,30 @@ MPI_OBJECTS = re.compile(r"libmpi|open-pal|open-rte|libpmix|pmix|libucs|libucp|l
 WORKING_FLOOR = 100.0
 
 
+# Rank 0's main thread, split by what it is doing (inclusive counts, callgrind_annotate):
+# before the first hand-out (reading the study and making its plan, the checks, the new cube
+# with its coordinates) and during the run (hand-out, storing what comes back, checkpoints,
+# the last fold): run_study less what it spends in the first two, whatever the compiler inlined.
+FUNCTIONS = {"study": "pcrf::run::run_study(", "load": "pcrf::study::load_study(", "prepare": "::prepare_master("}
+PHASES = ("setup", "run")
+
+
+def inclusive_phases(path):
+    """Instructions of each of PHASES in one callgrind file."""
+    out = subprocess.run(["callgrind_annotate", "--inclusive=yes", "--threshold=100", path],
+                         capture_output=True, text=True).stdout
+    found = dict.fromkeys(FUNCTIONS, 0)
+    for line in out.splitlines():
+        for key, name in FUNCTIONS.items():
+            if name in line and not found[key]:
+                found[key] = int(line.split()[0].replace(",", ""))
+    setup = found["load"] + found["prepare"]
+    return {"setup": setup, "run": found["study"] - setup}
+
+
 def profile_run(pcrf, ranks, study, folder, tag):
-    """Runs the study under callgrind on every rank; returns {(rank, thread): (all, own)} counts."""
+    """Runs the study under callgrind on every rank; returns {(rank, thread): (all, own)} counts
+    and rank 0's main thread's PHASES."""
     out = os.path.join(folder, f"{tag}.%q{{OMPI_COMM_WORLD_RANK}}")
     valgrind = ["valgrind", "--tool=callgrind", "--separate-threads=yes", f"--callgrind-out-file={out}"]
     command = valgrind + [pcrf, "study", study, "-o", os.path.join(folder, "cube.h5"), "--overwrite",
@@ -50,17 +81,19 @@ def profile_run(pcrf, ranks, study, folder, tag):
     done = subprocess.run(command, capture_output=True, text=True, env=env)
     if done.returncode != 0:
         sys.exit(f"rank_costs: {' '.join(command)} failed:\n{done.stderr[-3000:]}")
-    counts = {}
+    counts, phases = {}, dict.fromkeys(PHASES, 0)
     for path in glob.glob(os.path.join(folder, f"{tag}.*")):
         match = re.search(r"\.(\d+)-(\d+)$", path)
         if not match:
             continue
+        if (int(match.group(1)), int(match.group(2))) == (0, 1):
+            phases = inclusive_phases(path)
         costs = function_costs(path)
         total = sum(costs.values())
         own = sum(c for (obj, _), c in costs.items() if not MPI_OBJECTS.search(obj))
         counts[(int(match.group(1)), int(match.group(2)))] = (total, own)
         os.remove(path)
-    return counts
+    return counts, phases
 
 
 def main():
@@ -77,6 +110,9 @@ def main():
     with tempfile.TemporaryDirectory() as folder:
         runs = [profile_run(pcrf, args.ranks, write_study(folder, n, records, scale), folder, f"cg{n}")
                 for n in (small, large)]
+    phases = {p: (runs[1][1][p] - runs[0][1][p]) / (large - small) for p in PHASES}
+    run_alone = runs[1][1]["run"] / large  # the run's fixed costs (its tail) included
+    runs = [counts for counts, _ in runs]
     keys = sorted(set(runs[0]) & set(runs[1]))
     per_case = {k: tuple((runs[1][k][i] - runs[0][k][i]) / (large - small) for i in (0, 1)) for k in keys}
     print(f"rank_costs: non-lifting LHS over eight parameters, record {label}, {args.ranks} rank(s);")
@@ -91,6 +127,10 @@ def main():
     print(f"\nall threads together: {total_all:,.0f} instructions per case")
     print(f"rank 0's main thread (master, cube) per result beyond its own cases: {master[0]:,.0f} "
           f"({master[1]:,.0f} with MPI left out)")
+    print(f"  of which before the first hand-out (plan, checks, the new cube's coordinates): {phases['setup']:,.0f}; "
+          f"during the run (hand-out, results, checkpoints, last fold): {phases['run']:,.0f}")
+    print(f"  during the run at {large} cases alone, its fixed costs (the last chunk, case by case) included: "
+          f"{run_alone:,.0f} a case")
     if working:
         mean = sum(working) / len(working)
         print(f"balance: busiest thread {max(working):,.0f} / mean of {len(working)} working threads "

@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Same answers (issue 38 item 4): every metric and status of every case, wall time aside, of
 a reference pcrf (e.g. main's build) against this one, bit for bit, for small studies of every
-plan and level axis (grid, list, LHS, Sobol', Saltelli, IDA, stripes, pairs, pulses) at 1, 2,
-3, 4 and 8 ranks (mpirun --oversubscribe). Not a test (it needs two builds); a check to run
+plan and level axis (grid, list, LHS, Sobol', Saltelli, IDA, stripes, pairs, pulses), and two
+large ones whose whole chunks workers seal (lhs-units, grid-units: 300 000 frames that never
+lift), at 1, 2, 3, 4 and 8 ranks (mpirun --oversubscribe). Not a test (it needs two builds); a check to run
 after any change to the scheduling or the writing.
 
     python3 bench/master/same_answers.py --baseline /work/main/build/pcrf --pcrf build/pcrf
@@ -31,6 +32,8 @@ SINES = '[[records]]\nsynthetic = ["sine:amplitude_g=1.5,period_s=0.5,cycles=2,d
 NOISE = '[[records]]\nsynthetic = ["stochastic:seed=1,pga_g=1,duration_s=6", "stochastic:seed=2,pga_g=1,duration_s=6"]\n'
 SAMPLED = "[axes]\nscale = [1.0, 2.0]\nkappa = {from = 1.2, to = 2.4}\ntan_alpha = {from = 0.15, to = 0.25}\n"
 PAIR = "nearfault_hsiifu3/RSN181_IMPVALL.H_H-E06"
+WEAK = '[[records]]\nsynthetic = ["stochastic:seed=1,pga_g=0.026,duration_s=3,dt_s=0.01"]\n'
+FRAME_RANGES = "[axes]\nkappa = {from = 1.26, to = 2.34}\ntan_alpha = {from = 0.14, to = 0.26}\nlambda_h = {from = 0.14, to = 0.26}\n"
 
 STUDIES = {
     "grid": SINES + "[axes]\nscale = [0.5, 1.0, 2.0]\nkappa = [1.4, 2.2]\ntan_alpha = [0.15, 0.2]\n",
@@ -45,6 +48,12 @@ STUDIES = {
     "pairs": '[[records]]\nh1 = "{records}/' + PAIR + '140.AT2"\nh2 = "{records}/' + PAIR + '230.AT2"\n'
              'name = "RSN181"\n[intensity]\nmeasure = "pga_rotd50_g"\n[axes]\nintensity = [0.3, 0.8]\n'
              'incidence_deg = {{from = 0, to = 120, count = 3}}\n',
+    # Large enough that workers seal whole chunks of the cube at up to 8 ranks (at least two
+    # 16 384-case chunks a worker and one more): frames that never lift, so that it stays cheap.
+    "lhs-units": WEAK + '[plan]\nkind = "lhs"\nsamples = 300000\nseed = 7\n' + FRAME_RANGES,
+    "grid-units": WEAK.replace('"]', '", "stochastic:seed=2,pga_g=0.02,duration_s=3,dt_s=0.01"]') +
+                  "[axes]\nkappa = {from = 1.3, to = 2.3, count = 100}\ntan_alpha = {from = 0.14, to = 0.26, count = 100}\n"
+                  "lambda_h = {from = 0.14, to = 0.26, count = 15}\n",
     "pulses": ('[[records]]\npulse = ["pulse-sine", "ricker"]\n[intensity]\nmeasure = "pga_g"\n'
                      "[axes]\npulse_period_s = [0.4, 1.0]\nkappa = [1.4, 2.2]\nintensity = [0.3, 0.9]\n"),
 }

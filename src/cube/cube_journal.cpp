@@ -13,9 +13,9 @@ namespace pcrf::cube {
 namespace {
 
 constexpr auto kHeader = kJournalHeader, kCases = kJournalCases, kNotes = kJournalNotes, kHistory = kJournalHistory,
-               kCommit = kJournalCommit;
+               kCommit = kJournalCommit, kSealed = kJournalSealed;
 constexpr std::size_t kHeaderBytes = 8 + 8 + 4;
-constexpr std::size_t kCasesHeadBytes = 8 + 4;  // chunk, n
+constexpr std::size_t kCasesHeadBytes = 8 + 4;  // chunk, n (of a record of cases or of a sealed chunk)
 enum AttributeType : std::uint8_t { kText = 0, kReal = 1, kInteger = 2 };
 
 /// A payload that does not say what its kind must (caught and named by JournalReader).
@@ -187,6 +187,11 @@ HistoryTable take_history(Cursor& in) {
   return table;
 }
 
+/// Most bytes a sealed record of a chunk of `count` cases (`padded` values stored) may hold.
+std::uint64_t sealed_payload_bound(std::uint64_t count, std::size_t metrics, std::size_t padded) {
+  return kCasesHeadBytes + count + 4 + metrics * (8 + filtered_bound(padded, sizeof(double))) + 8 + filtered_bound(padded, 1);
+}
+
 }  // namespace
 
 std::filesystem::path journal_path(const std::filesystem::path& cube) { return cube.string() + ".journal"; }
@@ -224,18 +229,28 @@ JournalReader::JournalReader(const std::filesystem::path& cube, const CubeLayout
   dropped_records_ = records.size() - kept_;
   damaged_ = log_->valid_bytes() < log_->file_bytes();
   for (std::size_t r = kept_; r < records.size(); ++r)  // what the dropped records held
-    if (records[r].kind == kCases && records[r].size >= kCasesHeadBytes)
+    if ((records[r].kind == kCases || records[r].kind == kSealed) && records[r].size >= kCasesHeadBytes)
       dropped_results_ += static_cast<std::int64_t>(
           io::load_le(payload_head(records[r]).data() + 8, 4));
   for (std::size_t r = 1; r < kept_; ++r) {
     const auto& record = records[r];
     if (record.kind == kNotes || record.kind == kHistory || record.kind == kCommit) continue;
-    if (record.kind != kCases) fail(r, "is of an unknown kind " + std::to_string(record.kind) + " (another version's journal?)");
+    if (record.kind != kCases && record.kind != kSealed)
+      fail(r, "is of an unknown kind " + std::to_string(record.kind) + " (another version's journal?)");
     if (record.size < kCasesHeadBytes) fail(r, "is too short for cases");
     const std::string head = payload_head(record);
     const auto chunk = io::load_le(head.data(), 8), n = io::load_le(head.data() + 8, 4);
     if (chunk >= grid_.chunk_count())
       fail(r, "names chunk " + std::to_string(chunk) + " of a cube of " + std::to_string(grid_.chunk_count()));
+    if (record.kind == kSealed) {
+      const auto count = static_cast<std::uint64_t>(grid_.range(static_cast<std::size_t>(chunk)).count);
+      if (n != count) fail(r, "seals " + std::to_string(n) + " cases of a chunk of " + std::to_string(count));
+      if (record.size > sealed_payload_bound(count, metrics_, padded_elements(grid_)))
+        fail(r, "holds " + std::to_string(record.size) + " bytes, more than a sealed chunk can");
+      sealed_[static_cast<std::size_t>(chunk)].push_back(r);
+      results_ += static_cast<std::int64_t>(n);
+      continue;
+    }
     if (n > static_cast<std::uint64_t>(grid_.range(static_cast<std::size_t>(chunk)).count) ||
         record.size > cases_payload_bytes(n, metrics_, true) || record.size < cases_payload_bytes(n, metrics_, false))
       fail(r, "holds " + std::to_string(record.size) + " bytes, not the " + std::to_string(n) + " cases it declares");
@@ -262,6 +277,24 @@ void JournalReader::fail(std::size_t record, const std::string& problem) const {
 
 void JournalReader::check_all() const {
   for_each_cases([](const JournalCases&) {});
+  // A sealed chunk is folded by a raw write: what it holds must inflate to the chunk, and its
+  // status variable say what its statuses say, before it may reach the cube.
+  const std::size_t padded = padded_elements(grid_);
+  for (const auto& [chunk, records] : sealed_)
+    for (const std::size_t r : records) {
+      const SealedChunk c = sealed(r);
+      const std::string what = file_.string() + ": record " + std::to_string(r);
+      try {
+        for (std::size_t m = 0; m < metrics_; ++m) (void)unfilter(c.filtered[m], padded, sizeof(double), what);
+        const std::vector<char> codes = unfilter(c.filtered[metrics_], padded, 1, what);
+        if (std::memcmp(codes.data(), c.status.data(), c.status.size()) != 0)
+          fail(r, "seals statuses that are not its status variable's");
+      } catch (const JournalDamage&) {
+        throw;
+      } catch (const CubeError&) {
+        fail(r, "holds a sealed chunk that does not inflate to its chunk");
+      }
+    }
   (void)notes();
   for_each_history([](HistoryTable&&) {});
 }
@@ -301,6 +334,34 @@ JournalCases JournalReader::cases(std::size_t record) const {
       const auto column = in.doubles(form == kEach ? n : 1);
       if (form == kEach) c.values.insert(c.values.end(), column.begin(), column.end());
       else c.values.insert(c.values.end(), n, column.front());
+    }
+    in.expect_end();
+  } catch (const Malformed& m) {
+    fail(record, m.problem);
+  }
+  return c;
+}
+
+SealedChunk JournalReader::sealed(std::size_t record) const {
+  const std::string bytes = payload(record);  // its size was checked against its bound
+  Cursor in(bytes);
+  SealedChunk c;
+  try {
+    c.chunk = static_cast<std::size_t>(in.number(8));
+    const auto n = static_cast<std::size_t>(in.number(4));  // the chunk's count, checked
+    const auto* status = reinterpret_cast<const std::int8_t*>(in.take(n));
+    c.status.assign(status, status + n);
+    for (const std::int8_t s : c.status)
+      if (!statuses_.empty() && std::find(statuses_.begin(), statuses_.end(), s) == statuses_.end())
+        throw Malformed{"has the status code " + std::to_string(s) + ", which the cube's flags do not name"};
+    if (in.number(4) != metrics_ + 1) throw Malformed{"seals another number of variables than the cube has"};
+    const std::size_t padded = padded_elements(grid_);
+    for (std::size_t v = 0; v <= metrics_; ++v) {
+      const auto size = in.number(8);
+      if (size == 0 || size > filtered_bound(padded, v < metrics_ ? sizeof(double) : 1))
+        throw Malformed{"seals a variable of a wrong size"};
+      const char* p = in.take(size);
+      c.filtered.emplace_back(p, p + size);
     }
     in.expect_end();
   } catch (const Malformed& m) {
@@ -400,6 +461,19 @@ void JournalWriter::add_cases(std::size_t chunk, const std::vector<char>& stored
     put_doubles(payload_, column_.data(), same ? 1 : column_.size());
   }
   guarded([&] { log_->add(kCases, payload_); });
+}
+
+void JournalWriter::add_sealed(const SealedChunk& sealed) {
+  payload_.clear();
+  put(payload_, sealed.chunk, 8);
+  put(payload_, sealed.status.size(), 4);
+  payload_.append(reinterpret_cast<const char*>(sealed.status.data()), sealed.status.size());
+  put(payload_, sealed.filtered.size(), 4);
+  for (const auto& f : sealed.filtered) {
+    put(payload_, f.size(), 8);
+    payload_.append(f.data(), f.size());
+  }
+  guarded([&] { log_->add(kSealed, payload_); });
 }
 
 void JournalWriter::add_notes(const std::vector<std::pair<std::int64_t, std::string>>& notes) {

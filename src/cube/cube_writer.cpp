@@ -25,6 +25,7 @@
 #include "pcrf/cube/chunk_grid.hpp"
 #include "pcrf/cube/cube_journal.hpp"
 #include "pcrf/cube/cube_reader.hpp"
+#include "pcrf/cube/sealed_chunk.hpp"
 #include "pcrf/io/atomic_file.hpp"
 #include "pcrf/io/checked_stream.hpp"
 #include "pcrf/io/file_kind.hpp"
@@ -34,9 +35,7 @@ namespace {
 
 constexpr const char* kMessagesGroup = "messages";
 constexpr const char* kHistoriesGroup = "histories";
-// zlib level 1 (its fast path): against level 4, 11 % fewer instructions per non-lifting
-// case (31.2 k -> 27.8 k) for a cube 0.5 % larger (docs/throughput.md).
-constexpr unsigned kDeflateLevel = 1;
+// kDeflateLevel (sealed_chunk.hpp): the one zlib level of the cube's chunked variables.
 constexpr hsize_t kNotesChunk = 256;
 // A numeric coordinate longer than this is chunked, shuffled and deflated like the metrics
 // (an LHS's eight parameters were 64 B a case stored plain): pieces of this many values.
@@ -146,6 +145,8 @@ struct CubeWriter::Impl {
     std::vector<char> stored;    ///< [k]: this case has values here
   };
   std::map<std::size_t, ChunkValues> pending_chunks;
+  /// Chunks sealed whole by a worker since the last checkpoint (their results never unpacked here).
+  std::map<std::size_t, SealedChunk> pending_sealed;
   std::size_t pending_bytes = 0;
   std::vector<std::pair<std::int64_t, std::string>> pending_notes;  // since the last checkpoint
   bool rewrite_notes = false;  // the file's notes are all in pending_notes: write them anew
@@ -195,6 +196,8 @@ struct CubeWriter::Impl {
   void write_side(std::size_t index);
   void write_chunk(std::size_t chunk, const std::vector<JournalCases>& journaled, const ChunkValues* pending,
                    const std::vector<std::int8_t>& status);
+  bool raw_writable() const;
+  void write_sealed(const SealedChunk& sealed, bool raw, std::vector<JournalCases>& unsealed);
   void append_notes(const std::vector<std::pair<std::int64_t, std::string>>& notes);
   void write_history(const HistoryTable& table);
 };
@@ -388,10 +391,20 @@ void CubeWriter::Impl::replay_journal(std::vector<std::int8_t>& status) {
   }
   const JournalReader& journaled = *read;
   if (!journaled.current()) return;  // none, or stale: the first append starts it anew
-  journaled.for_each_cases([&](const JournalCases& c) {
-    const auto first = static_cast<std::size_t>(grid.range(c.chunk).first);
-    for (std::size_t j = 0; j < c.offsets.size(); ++j) status[first + c.offsets[j]] = c.status[j];
-  });
+  // A chunk's last sealed record, then its records of cases that came after it.
+  std::map<std::size_t, std::size_t> sealed_at;
+  for (const auto& [chunk, records] : journaled.sealed_chunks()) {
+    sealed_at[chunk] = records.back();
+    const SealedChunk c = journaled.sealed(records.back());
+    std::copy(c.status.begin(), c.status.end(), status.begin() + grid.range(chunk).first);
+  }
+  for (const auto& [chunk, records] : journaled.chunks())
+    for (const std::size_t r : records) {
+      if (const auto s = sealed_at.find(chunk); s != sealed_at.end() && r < s->second) continue;
+      const JournalCases c = journaled.cases(r);
+      const auto first = static_cast<std::size_t>(grid.range(c.chunk).first);
+      for (std::size_t j = 0; j < c.offsets.size(); ++j) status[first + c.offsets[j]] = c.status[j];
+    }
   if (journaled.dropped_bytes() > 0) {
     std::string text = journal_path(path).string() + ": its last " + std::to_string(journaled.dropped_bytes()) +
                        " bytes are dropped: ";
@@ -436,11 +449,28 @@ std::vector<double> CubeWriter::read_values(const std::string& metric) const {
   if (m == metrics.size()) throw CubeError(impl_->what("has no metric '" + metric + "'"));
   std::vector<double> values = impl_->on_disk ? CubeReader(impl_->path).read_metric(metric)
                                               : std::vector<double>(status_.size(), kNaN);
-  if (impl_->journal_records > 0)
-    JournalReader(impl_->path, impl_->layout, impl_->journal_id).for_each_cases([&](const JournalCases& c) {
-      const auto first = static_cast<std::size_t>(impl_->grid.range(c.chunk).first);
-      for (std::size_t j = 0; j < c.offsets.size(); ++j) values[first + c.offsets[j]] = c.values[m * c.offsets.size() + j];
-    });
+  const std::size_t padded = padded_elements(impl_->grid);
+  auto lay_sealed = [&](const SealedChunk& c) {
+    const auto r = impl_->grid.range(c.chunk);
+    const std::vector<char> plain = unfilter(c.filtered[m], padded, sizeof(double), impl_->what("chunk " + std::to_string(c.chunk)));
+    std::memcpy(values.data() + r.first, plain.data(), static_cast<std::size_t>(r.count) * sizeof(double));
+  };
+  if (impl_->journal_records > 0) {
+    const JournalReader journaled(impl_->path, impl_->layout, impl_->journal_id);
+    std::map<std::size_t, std::size_t> sealed_at;
+    for (const auto& [chunk, records] : journaled.sealed_chunks()) {
+      sealed_at[chunk] = records.back();
+      lay_sealed(journaled.sealed(records.back()));
+    }
+    for (const auto& [chunk, records] : journaled.chunks())
+      for (const std::size_t r : records) {
+        if (const auto s = sealed_at.find(chunk); s != sealed_at.end() && r < s->second) continue;
+        const JournalCases c = journaled.cases(r);
+        const auto first = static_cast<std::size_t>(impl_->grid.range(c.chunk).first);
+        for (std::size_t j = 0; j < c.offsets.size(); ++j) values[first + c.offsets[j]] = c.values[m * c.offsets.size() + j];
+      }
+  }
+  for (const auto& [chunk, sealed] : impl_->pending_sealed) lay_sealed(sealed);
   for (const auto& [chunk, stored] : impl_->pending_chunks) {
     const auto r = impl_->grid.range(chunk);
     for (std::int64_t k = 0; k < r.count; ++k)
@@ -479,6 +509,31 @@ void CubeWriter::store(std::int64_t index, std::int8_t status, const std::vector
   ++impl_->pending_results;
   for (std::size_t m = 0; m < metrics; ++m) pending.values[m * count + k] = values[m];
 }
+
+void CubeWriter::store_sealed(SealedChunk sealed) {
+  auto& impl = *impl_;
+  if (sealed.chunk >= impl.grid.chunk_count() || sealed.filtered.size() != impl.layout.metrics.size() + 1 ||
+      sealed.status.size() != static_cast<std::size_t>(impl.grid.range(sealed.chunk).count))
+    throw CubeError(impl.what("a sealed chunk (" + std::to_string(sealed.chunk) + ") does not fit the cube"));
+  const auto r = impl.grid.range(sealed.chunk);
+  std::copy(sealed.status.begin(), sealed.status.end(), status_.begin() + r.first);
+  if (const auto plain = impl.pending_chunks.find(sealed.chunk); plain != impl.pending_chunks.end()) {
+    impl.pending_bytes -= plain->second.values.size() * sizeof(double) + plain->second.stored.size();
+    impl.pending_chunks.erase(plain);  // the sealed chunk holds every case of it, newer
+  }
+  for (auto& note : sealed.notes) impl.pending_notes.push_back(std::move(note));
+  sealed.notes.clear();
+  std::size_t bytes = sealed.status.size();
+  for (const auto& f : sealed.filtered) bytes += f.size();
+  impl.pending_bytes += bytes;
+  impl.pending_results += r.count;
+  const std::size_t chunk = sealed.chunk;
+  impl.pending_sealed.insert_or_assign(chunk, std::move(sealed));
+}
+
+const ChunkGrid& CubeWriter::grid() const { return impl_->grid; }
+
+std::vector<std::size_t> CubeWriter::shape() const { return impl_->layout.shape(); }
 
 void CubeWriter::store_note(std::int64_t index, std::string note) {
   impl_->pending_notes.emplace_back(index, std::move(note));
@@ -523,6 +578,62 @@ void CubeWriter::Impl::write_chunk(std::size_t chunk, const std::vector<JournalC
   const auto selection = select(status_set, kStatusName);
   h5::check(H5Dwrite(status_set, H5T_NATIVE_INT8, memory, selection, H5P_DEFAULT, status.data() + r.first),
             what("cannot write '" + std::string(kStatusName) + "'"));
+}
+
+/// True when every metric and the status are stored as a sealed chunk is filtered: chunks of
+/// the grid's shape, shuffled, then deflated (a cube of an earlier version may differ: its
+/// sealed chunks are then written value by value).
+bool CubeWriter::Impl::raw_writable() const {
+  auto stores_sealed = [&](hid_t set) {
+    auto dcpl = h5::plist(H5Dget_create_plist(set), what("cannot read a variable's storage"));
+    const auto& shape = grid.chunk_shape();
+    std::vector<hsize_t> chunk(shape.size() + 1, 0);
+    if (H5Pget_chunk(dcpl, static_cast<int>(chunk.size()), chunk.data()) != static_cast<int>(shape.size())) return false;
+    for (std::size_t d = 0; d < shape.size(); ++d)
+      if (chunk[d] != shape[d]) return false;
+    if (H5Pget_nfilters(dcpl) != 2) return false;
+    auto filter = [&](unsigned k) {
+      unsigned flags = 0, config = 0, values[8] = {};
+      std::size_t n = 8;
+      char name[64] = {};
+      return H5Pget_filter2(dcpl, k, &flags, &n, values, sizeof name, name, &config);
+    };
+    return filter(0) == H5Z_FILTER_SHUFFLE && filter(1) == H5Z_FILTER_DEFLATE;
+  };
+  return std::all_of(metric_sets.begin(), metric_sets.end(), [&](const h5::Handle& m) { return stores_sealed(m); }) &&
+         stores_sealed(status_set);
+}
+
+/// A sealed chunk into the file: raw, its filtered bytes as they are (H5Dwrite_chunk, no
+/// filter skipped); otherwise unfiltered into `unsealed`, a record of every case of the chunk
+/// for write_chunk.
+void CubeWriter::Impl::write_sealed(const SealedChunk& sealed, bool raw, std::vector<JournalCases>& unsealed) {
+  const auto r = grid.range(sealed.chunk);
+  const std::size_t metrics = metric_sets.size();
+  if (sealed.filtered.size() != metrics + 1 || sealed.status.size() != static_cast<std::size_t>(r.count))
+    throw CubeError(what("a sealed chunk does not fit the cube"));
+  if (raw) {
+    const auto offset = to_hsize(r.start);
+    for (std::size_t v = 0; v <= metrics; ++v) {
+      const hid_t set = v < metrics ? static_cast<hid_t>(metric_sets[v]) : static_cast<hid_t>(status_set);
+      const auto& bytes = sealed.filtered[v];
+      h5::check(H5Dwrite_chunk(set, H5P_DEFAULT, 0, offset.data(), bytes.size(), bytes.data()),
+                what("cannot write a chunk of '" + (v < metrics ? layout.metrics[v].name : std::string(kStatusName)) + "'"));
+    }
+    return;
+  }
+  JournalCases all;
+  all.chunk = sealed.chunk;
+  const auto count = static_cast<std::size_t>(r.count);
+  for (std::size_t k = 0; k < count; ++k) all.offsets.push_back(static_cast<std::uint32_t>(k));
+  all.status = sealed.status;
+  const std::size_t padded = padded_elements(grid);
+  for (std::size_t m = 0; m < metrics; ++m) {
+    const std::vector<char> plain = unfilter(sealed.filtered[m], padded, sizeof(double), what("chunk " + std::to_string(sealed.chunk)));
+    const auto* values = reinterpret_cast<const double*>(plain.data());
+    all.values.insert(all.values.end(), values, values + count);
+  }
+  unsealed.push_back(std::move(all));
 }
 
 /// Notes appended to /messages/case_index and /messages/text (extendible along their one
@@ -660,13 +771,29 @@ void CubeWriter::Impl::update(const std::filesystem::path& target, const std::ve
       metric_sets.push_back(h5::dataset(H5Dopen2(file, m.name.c_str(), H5P_DEFAULT), what("cannot open '" + m.name + "'")));
     status_set = h5::dataset(H5Dopen2(file, kStatusName, H5P_DEFAULT), what("cannot open 'status'"));
     const JournalReader journaled(path, layout, journal_records > 0 ? journal_id : 0);
+    // Sealed chunks go in as their filtered bytes (one raw write a variable), the newest of
+    // each chunk: the pending one, else the journal's last. Cases of the chunk stored after
+    // it (records later in the journal, or pending) are laid over it below.
+    const bool raw = raw_writable();
+    std::map<std::size_t, std::size_t> sealed_at;  // chunk -> its last sealed record (SIZE_MAX: pending)
+    for (const auto& [chunk, records] : journaled.sealed_chunks()) sealed_at[chunk] = records.back();
+    for (const auto& [chunk, sealed] : pending_sealed) sealed_at[chunk] = std::numeric_limits<std::size_t>::max();
+    std::map<std::size_t, std::vector<JournalCases>> unsealed;  // sealed chunks this file cannot take raw
+    for (const auto& [chunk, record] : sealed_at) {
+      const auto it = pending_sealed.find(chunk);
+      write_sealed(it != pending_sealed.end() ? it->second : journaled.sealed(record), raw, unsealed[chunk]);
+    }
     std::set<std::size_t> chunks;  // in order: each chunk read and written once
     for (const auto& [chunk, records] : journaled.chunks()) chunks.insert(chunk);
     for (const auto& [chunk, stored] : pending_chunks) chunks.insert(chunk);
+    for (const auto& [chunk, cases] : unsealed)
+      if (!cases.empty()) chunks.insert(chunk);
     for (const std::size_t chunk : chunks) {
-      std::vector<JournalCases> records;
+      std::vector<JournalCases> records = std::move(unsealed[chunk]);
+      const auto last_sealed = sealed_at.find(chunk);
       if (const auto it = journaled.chunks().find(chunk); it != journaled.chunks().end())
-        for (const std::size_t r : it->second) records.push_back(journaled.cases(r));
+        for (const std::size_t r : it->second)
+          if (last_sealed == sealed_at.end() || r > last_sealed->second) records.push_back(journaled.cases(r));
       const auto it = pending_chunks.find(chunk);
       write_chunk(chunk, records, it == pending_chunks.end() ? nullptr : &it->second, status);
     }
@@ -750,7 +877,8 @@ void CubeWriter::Impl::fail(const CubeError& error) const {
 /// docs/checkpoint.md): a kill at any moment leaves the last folded cube whole, and a
 /// journal whose complete records extend it, or a stale one that --resume ignores.
 void CubeWriter::Impl::checkpoint(const std::vector<std::int8_t>& status, Checkpoint how) {
-  const bool changed = !pending_chunks.empty() || !pending_notes.empty() || !pending_histories.empty();
+  const bool changed = !pending_chunks.empty() || !pending_sealed.empty() || !pending_notes.empty() ||
+                       !pending_histories.empty();
   if (how == Checkpoint::kFold || !on_disk || journal_id == 0 || (how == Checkpoint::kAppendOrFold && fold_due())) {
     // Nothing new: the cube on disk is already this state.
     if (on_disk && journal_id != 0 && !changed && !sides_changed && journal_records == 0) return;
@@ -784,6 +912,8 @@ void CubeWriter::Impl::append(const std::vector<std::int8_t>& status) {
       throw CubeError(what("its journal " + journal_path(path).string() + " was removed or replaced during the run; "
                            "the results since the last fold are lost with it"));
     }
+    // Sealed chunks first: a chunk's cases stored after it was sealed come after it on replay.
+    for (const auto& [chunk, sealed] : pending_sealed) journal->add_sealed(sealed);
     for (const auto& [chunk, stored] : pending_chunks)
       journal->add_cases(chunk, stored.stored, stored.values, status.data() + grid.range(chunk).first);
     journal->add_notes(pending_notes);
@@ -795,7 +925,8 @@ void CubeWriter::Impl::append(const std::vector<std::int8_t>& status) {
   } catch (const CubeError& e) {
     fail(e);
   }
-  journal_records += static_cast<std::int64_t>(pending_chunks.size() + pending_histories.size() + !pending_notes.empty());
+  journal_records += static_cast<std::int64_t>(pending_chunks.size() + pending_sealed.size() + pending_histories.size() +
+                                               !pending_notes.empty());
   journal_results += pending_results;
   clear_pending();
 }
@@ -852,6 +983,7 @@ void CubeWriter::Impl::fold(const std::vector<std::int8_t>& status) {
 
 void CubeWriter::Impl::clear_pending() {
   pending_chunks.clear();
+  pending_sealed.clear();
   pending_bytes = 0;
   pending_results = 0;
   pending_notes.clear();

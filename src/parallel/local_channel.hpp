@@ -17,14 +17,19 @@ struct Incoming {
   int worker = 0;         ///< MPI rank; 0 for the in-process worker
   bool finished = false;  ///< true: the worker's last message
   ResultBatch results;
+  SealedUnits sealed;
 };
 
 /// Two queues under one mutex: requests (worker → master) and batches (master → worker).
 class LocalChannel final : public MasterLink {
  public:
   // Worker side.
-  void request(ResultBatch finished) override { push({0, false, std::move(finished)}); }
-  void finish(ResultBatch finished) override { push({0, true, std::move(finished)}); }
+  void request(ResultBatch finished, SealedUnits sealed) override {
+    push({0, false, std::move(finished), std::move(sealed)});
+  }
+  void finish(ResultBatch finished, SealedUnits sealed) override {
+    push({0, true, std::move(finished), std::move(sealed)});
+  }
   WorkBatch receive_batch() override {
     std::unique_lock lock(mutex_);
     batch_ready_.wait(lock, [this] { return !batches_.empty() || stop_; });

@@ -25,7 +25,7 @@ class Writer {
 
 class Reader {
  public:
-  explicit Reader(const std::vector<char>& bytes) : bytes_(bytes) {}
+  explicit Reader(const std::vector<char>& bytes, std::size_t end) : bytes_(bytes), end_(end) {}
   template <class T>
   T get() {
     T value{};
@@ -33,22 +33,21 @@ class Reader {
     return value;
   }
   const char* take(std::size_t n) {
-    if (n > bytes_.size() - pos_) throw std::runtime_error("result message is truncated");
+    if (n > end_ - pos_) throw std::runtime_error("result message is truncated");
     const char* p = bytes_.data() + pos_;
     pos_ += n;
     return p;
   }
-  bool at_end() const { return pos_ == bytes_.size(); }
+  bool at_end() const { return pos_ == end_; }
+  std::size_t position() const { return pos_; }
 
  private:
   const std::vector<char>& bytes_;
+  std::size_t end_;
   std::size_t pos_ = 0;
 };
 
-}  // namespace
-
-std::vector<char> pack_results(const ResultBatch& batch, std::size_t row_width) {
-  Writer w;
+void put_results(Writer& w, const ResultBatch& batch, std::size_t row_width) {
   w.put(static_cast<std::uint64_t>(batch.size()));
   w.put(static_cast<std::uint64_t>(row_width));
   for (const auto& outcome : batch) {
@@ -62,11 +61,9 @@ std::vector<char> pack_results(const ResultBatch& batch, std::size_t row_width) 
     w.put(static_cast<std::uint64_t>(outcome.note.size()));
     w.put_bytes(outcome.note.data(), outcome.note.size());
   }
-  return w.take();
 }
 
-ResultBatch unpack_results(const std::vector<char>& bytes, std::size_t row_width) {
-  Reader r(bytes);
+ResultBatch get_results(Reader& r, std::size_t row_width) {
   const auto count = r.get<std::uint64_t>();
   const auto width = r.get<std::uint64_t>();
   if (width != row_width)
@@ -81,8 +78,53 @@ ResultBatch unpack_results(const std::vector<char>& bytes, std::size_t row_width
     const auto note_size = r.get<std::uint64_t>();
     outcome.note.assign(r.take(note_size), note_size);
   }
+  return batch;
+}
+
+}  // namespace
+
+std::vector<char> pack_results(const ResultBatch& batch, std::size_t row_width) {
+  Writer w;
+  put_results(w, batch, row_width);
+  return w.take();
+}
+
+ResultBatch unpack_results(const std::vector<char>& bytes, std::size_t row_width) {
+  Reader r(bytes, bytes.size());
+  ResultBatch batch = get_results(r, row_width);
   if (!r.at_end()) throw std::runtime_error("result message has trailing bytes");
   return batch;
+}
+
+std::vector<char> pack_message(const ResultBatch& batch, const SealedUnits& sealed, std::size_t row_width) {
+  Writer w;
+  put_results(w, batch, row_width);
+  w.put(static_cast<std::uint64_t>(sealed.size()));
+  for (const auto& s : sealed) {
+    w.put(s.unit);
+    w.put(s.cases);
+    w.put(static_cast<std::uint64_t>(s.bytes.size()));
+    w.put_bytes(s.bytes.data(), s.bytes.size());
+  }
+  return w.take();
+}
+
+std::pair<ResultBatch, SealedUnits> unpack_message(const std::vector<char>& bytes, std::size_t row_width) {
+  Reader r(bytes, bytes.size());
+  ResultBatch batch = get_results(r, row_width);
+  const auto count = r.get<std::uint64_t>();
+  if (count > bytes.size()) throw std::runtime_error("result message counts more sealed units than it has bytes");
+  SealedUnits sealed(count);
+  for (auto& s : sealed) {
+    s.unit = r.get<std::int64_t>();
+    s.cases = r.get<std::int64_t>();
+    const auto size = r.get<std::uint64_t>();
+    if (s.cases < 0) throw std::runtime_error("result message has a sealed unit of negative size");
+    const char* data = r.take(size);
+    s.bytes.assign(data, data + size);
+  }
+  if (!r.at_end()) throw std::runtime_error("result message has trailing bytes");
+  return {std::move(batch), std::move(sealed)};
 }
 
 }  // namespace pcrf::parallel

@@ -1,8 +1,9 @@
 // Master–worker scheduling over MPI (see scheduler.hpp). Message protocol:
-//   worker → master  kTagRequest  packed ResultBatch (finished cases), asks for a batch
-//   worker → master  kTagFinish   packed ResultBatch, the worker's last message
+//   worker → master  kTagRequest  pack_message: finished cases and sealed units, asks for a batch
+//   worker → master  kTagFinish   pack_message, the worker's last message
 //   master → worker  kTagBatch    WorkItems (index, argument) as bytes; empty means "stop",
-//                                 one item of index kWaitIndex "nothing ready: report and ask again"
+//                                 one item of index kWaitIndex "nothing ready: report and ask again",
+//                                 a first item of index kUnitIndex "compute these whole and seal them"
 #include "pcrf/parallel/scheduler.hpp"
 
 #include <algorithm>
@@ -37,9 +38,9 @@ class MpiMasterLink final : public detail::MasterLink {
   MpiMasterLink(MPI_Comm comm, std::size_t row_width) : comm_(comm), row_width_(row_width) {}
   ~MpiMasterLink() override { wait_send(); }
 
-  void request(ResultBatch finished) override { send(kTagRequest, finished); }
-  void finish(ResultBatch finished) override {
-    send(kTagFinish, finished);
+  void request(ResultBatch finished, SealedUnits sealed) override { send(kTagRequest, finished, sealed); }
+  void finish(ResultBatch finished, SealedUnits sealed) override {
+    send(kTagFinish, finished, sealed);
     wait_send();
   }
   WorkBatch receive_batch() override {
@@ -57,9 +58,9 @@ class MpiMasterLink final : public detail::MasterLink {
   }
 
  private:
-  void send(int tag, const ResultBatch& finished) {
+  void send(int tag, const ResultBatch& finished, const SealedUnits& sealed) {
     wait_send();
-    buffer_ = pack_results(finished, row_width_);
+    buffer_ = pack_message(finished, sealed, row_width_);
     MPI_Isend(buffer_.data(), static_cast<int>(buffer_.size()), MPI_BYTE, 0, tag, comm_, &pending_);
   }
   void wait_send() {
@@ -91,8 +92,8 @@ class MpiWorkers {
     std::vector<char> bytes(static_cast<std::size_t>(count));
     MPI_Recv(bytes.data(), count, MPI_BYTE, status.MPI_SOURCE, status.MPI_TAG, comm_,
              MPI_STATUS_IGNORE);
-    return Incoming{status.MPI_SOURCE, status.MPI_TAG == kTagFinish,
-                    unpack_results(bytes, row_width_)};
+    auto [results, sealed] = unpack_message(bytes, row_width_);
+    return Incoming{status.MPI_SOURCE, status.MPI_TAG == kTagFinish, std::move(results), std::move(sealed)};
   }
 
   /// Non-blocking: a worker posts its receive only after its current batch, and the
@@ -138,7 +139,7 @@ class Master {
            const IdleHandler& on_idle) {
     std::thread local_worker([&] {
       detail::worker_loop(local_, evaluate, options_.row_width, together(options_), local_.stop_flag(),
-                          options_.interrupt);
+                          options_.interrupt, &options_.seal);
     });
     try {
       loop(on_outcomes, on_idle);
@@ -166,8 +167,13 @@ class Master {
   bool handle(Incoming message, const OutcomeHandler& on_outcomes) {
     const auto worker = static_cast<std::size_t>(message.worker);
     in_flight_[worker] -= message.results.size();
+    for (const auto& unit : message.sealed) in_flight_[worker] -= static_cast<std::size_t>(unit.cases);
     for (const auto& outcome : message.results) work_.completed(outcome);
     if (!message.results.empty()) on_outcomes(std::move(message.results));
+    if (!message.sealed.empty()) {
+      if (!options_.on_sealed) throw std::logic_error("scheduler: a worker sealed units and nobody takes them");
+      options_.on_sealed(std::move(message.sealed));
+    }
     if (message.finished) {
       --active_workers_;
       return true;
@@ -187,7 +193,7 @@ class Master {
   bool serve(int worker) {
     WorkBatch batch = work_.take(worker == 0);
     if (batch.empty() && !work_.exhausted()) return false;
-    in_flight_[static_cast<std::size_t>(worker)] += batch.size();
+    in_flight_[static_cast<std::size_t>(worker)] += detail::cases_in(batch);
     reply(worker, std::move(batch));
     return true;
   }
@@ -237,7 +243,7 @@ void run_master(MPI_Comm comm, WorkSource& work, const ScheduleOptions& options,
 
 void run_worker(MPI_Comm comm, const ScheduleOptions& options, const CasesEvaluator& evaluate) {
   MpiMasterLink link(comm, options.row_width);
-  detail::worker_loop(link, evaluate, options.row_width, together(options), nullptr, options.interrupt);
+  detail::worker_loop(link, evaluate, options.row_width, together(options), nullptr, options.interrupt, &options.seal);
 }
 
 void run_worker(MPI_Comm comm, const ScheduleOptions& options, const CaseEvaluator& evaluate) {

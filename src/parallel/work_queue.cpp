@@ -3,7 +3,17 @@
 
 #include <algorithm>
 
+#include "parallel/worker_loop.hpp"
+
 namespace pcrf::parallel {
+
+WorkBatch unit_batch(std::int64_t unit, const std::vector<std::int64_t>& cases) {
+  WorkBatch batch;
+  batch.reserve(cases.size() + 1);
+  batch.push_back({detail::kUnitIndex, static_cast<double>(unit)});
+  for (const std::int64_t c : cases) batch.push_back({c, 0.0});
+  return batch;
+}
 
 WorkQueue::WorkQueue(std::vector<std::int64_t> shared, std::vector<std::int64_t> pinned,
                      int workers, std::size_t fixed_batch, std::size_t max_batch)

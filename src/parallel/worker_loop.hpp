@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <exception>
 #include <limits>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -22,17 +23,24 @@ inline constexpr std::int64_t kWaitIndex = -1;
 inline WorkBatch wait_batch() { return {WorkItem{kWaitIndex, 0.0}}; }
 inline bool is_wait(const WorkBatch& batch) { return batch.size() == 1 && batch.front().case_index == kWaitIndex; }
 
+/// A batch that is one unit to seal whole (ScheduleOptions::seal) starts with one item of
+/// this index, whose argument is the unit's number; its cases follow.
+inline constexpr std::int64_t kUnitIndex = -2;
+inline bool is_unit(const WorkBatch& batch) { return !batch.empty() && batch.front().case_index == kUnitIndex; }
+/// The cases a batch hands out (its unit marker, if any, is none).
+inline std::size_t cases_in(const WorkBatch& batch) { return batch.size() - (is_unit(batch) ? 1 : 0); }
+
 /// How a worker talks to its master.
 class MasterLink {
  public:
   virtual ~MasterLink() = default;
-  /// Reports finished cases and asks for the next batch (answered by receive_batch).
-  virtual void request(ResultBatch finished) = 0;
+  /// Reports finished cases and sealed units, and asks for the next batch (answered by receive_batch).
+  virtual void request(ResultBatch finished, SealedUnits sealed) = 0;
   /// Blocks until the master's answer to the oldest open request: work, "wait" (is_wait),
   /// or empty: stop.
   virtual WorkBatch receive_batch() = 0;
   /// Reports the last finished cases; the master expects nothing more from this worker.
-  virtual void finish(ResultBatch finished) = 0;
+  virtual void finish(ResultBatch finished, SealedUnits sealed) = 0;
 };
 
 /// The outcomes of `items`; an exception from `evaluate` marks every one of them.
@@ -65,33 +73,48 @@ inline ResultBatch evaluate_guarded(const CasesEvaluator& evaluate, std::span<co
 /// master is failing). `interrupt` (optional) ends the loop between two calls too, but
 /// reports the cases done: a run stopped by a signal keeps them even when the rest of the
 /// batch would outlast the time the launcher gives before SIGKILL.
+/// A unit batch (is_unit) computed whole is handed to `seal`; what it makes is reported
+/// instead of its outcomes. A unit interrupted, or one `seal` declines (nullopt), is
+/// reported case by case.
 inline void worker_loop(MasterLink& link, const CasesEvaluator& evaluate, std::size_t row_width,
                         std::size_t together, const std::atomic<bool>* stop = nullptr,
-                        const std::atomic<int>* interrupt = nullptr) {
+                        const std::atomic<int>* interrupt = nullptr, const Sealer* seal = nullptr) {
   auto stopping = [stop] { return stop != nullptr && stop->load(); };
   auto interrupted = [interrupt] { return interrupt != nullptr && interrupt->load() != 0; };
-  link.request({});
+  link.request({}, {});
   WorkBatch batch = link.receive_batch();
   ResultBatch finished;
+  SealedUnits sealed;
   while (!batch.empty()) {
-    link.request(std::move(finished));  // prefetch the next batch (or, after "wait", report)
+    link.request(std::move(finished), std::move(sealed));  // prefetch the next batch (or, after "wait", report)
     finished.clear();
+    sealed.clear();
     if (!is_wait(batch)) {
-      const std::span<const WorkItem> items(batch);
+      const bool unit = is_unit(batch);
+      const std::span<const WorkItem> items = std::span<const WorkItem>(batch).subspan(unit ? 1 : 0);
+      const std::size_t before = finished.size();
       for (std::size_t first = 0; first < items.size(); first += together) {
         if (stopping()) return;
         if (interrupted()) {
           (void)link.receive_batch();  // the prefetched answer: its cases stay not run
-          link.finish(std::move(finished));
+          link.finish(std::move(finished), std::move(sealed));
           return;
         }
         for (CaseOutcome& outcome : evaluate_guarded(evaluate, items.subspan(first, std::min(together, items.size() - first)), row_width))
           finished.push_back(std::move(outcome));
       }
+      if (unit && seal != nullptr && *seal) {
+        const auto number = static_cast<std::int64_t>(batch.front().argument);
+        const std::span<const CaseOutcome> outcomes(finished.data() + before, finished.size() - before);
+        if (std::optional<std::vector<char>> bytes = (*seal)(number, outcomes)) {
+          sealed.push_back({number, static_cast<std::int64_t>(outcomes.size()), std::move(*bytes)});
+          finished.resize(before);
+        }
+      }
     }
     batch = link.receive_batch();
   }
-  link.finish(std::move(finished));
+  link.finish(std::move(finished), std::move(sealed));
 }
 
 }  // namespace pcrf::parallel::detail

@@ -12,10 +12,12 @@
 #include <memory>
 #include <mutex>
 #include <span>
+#include <sstream>
 
 #include "pcrf/cube/cube_journal.hpp"
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/cube/cube_writer.hpp"
+#include "pcrf/cube/sealed_chunk.hpp"
 #include "pcrf/io/output_file.hpp"
 #include "pcrf/io/run_lock.hpp"
 #include "pcrf/parallel/scheduler.hpp"
@@ -174,9 +176,47 @@ constexpr std::int64_t kFramesTogether = 64;
 /// True when the study's cases go to workers in blocks of one excitation (docs/batches.md).
 bool in_lanes(const Study& study) { return study.run.lanes > 1 && lanes_take(study.solver) && !study.ida; }
 
+/// A worker's side of the cube (issue 38: no rank handles every result): a chunk handed out
+/// whole comes back from the worker that computed it as the cube stores it, every variable
+/// shuffled and deflated (cube::seal_chunk); the writing rank copies its bytes.
+class ChunkSealer {
+ public:
+  ChunkSealer(cube::ChunkGrid grid, std::size_t metrics) : grid_(std::move(grid)), metrics_(metrics) {}
+
+  /// nullopt (the cases then go back one by one) unless `outcomes` are every case of the chunk once.
+  std::optional<std::vector<char>> operator()(std::int64_t unit, std::span<const parallel::CaseOutcome> outcomes) const {
+    if (unit < 0 || static_cast<std::size_t>(unit) >= grid_.chunk_count()) return std::nullopt;
+    const auto chunk = static_cast<std::size_t>(unit);
+    const auto r = grid_.range(chunk);
+    const auto count = static_cast<std::size_t>(r.count);
+    if (outcomes.size() != count) return std::nullopt;
+    std::vector<std::int8_t> status(count);
+    std::vector<char> seen(count, 0);
+    std::vector<double> values(metrics_ * count);
+    std::vector<std::pair<std::int64_t, std::string>> notes;
+    for (const parallel::CaseOutcome& outcome : outcomes) {
+      const std::int64_t k = outcome.case_index - r.first;
+      if (k < 0 || k >= r.count || seen[static_cast<std::size_t>(k)] || outcome.row.size() != metrics_) return std::nullopt;
+      const auto at = static_cast<std::size_t>(k);
+      seen[at] = 1;
+      status[at] = static_cast<std::int8_t>(outcome_status(outcome));
+      for (std::size_t m = 0; m < metrics_; ++m) values[m * count + at] = outcome.row[m];
+      if (!outcome.note.empty()) notes.emplace_back(outcome.case_index, outcome.note);
+    }
+    return cube::to_bytes(cube::seal_chunk(grid_, chunk, metrics_, status, values, std::move(notes)));
+  }
+
+ private:
+  cube::ChunkGrid grid_;
+  std::size_t metrics_;
+};
+
 /// `stop_signal`: a signal stops the workers between two cases, reporting the ones done.
-parallel::ScheduleOptions schedule_options(const Study& study, const CaseRunner& runner, const std::atomic<int>* stop_signal) {
+/// `grid`: the cube's chunks, which workers seal when handed one whole.
+parallel::ScheduleOptions schedule_options(const Study& study, const CaseRunner& runner, const std::atomic<int>* stop_signal,
+                                           const cube::ChunkGrid& grid) {
   parallel::ScheduleOptions options;
+  options.seal = ChunkSealer(grid, runner.row_width());
   options.row_width = runner.row_width();
   options.fixed_batch = study.run.batch_size;
   options.interrupt = stop_signal;
@@ -203,6 +243,28 @@ class ResultSink {
       failed += is_failure(status) ? 1 : 0;
     }
     meter_.add(static_cast<std::int64_t>(batch.size()), failed);
+    after_store();
+  }
+
+  /// Chunks a worker sealed: their bytes go to the writer as they are (no result unpacked).
+  void store_sealed(parallel::SealedUnits&& units) {
+    for (auto& unit : units) {
+      cube::SealedChunk chunk = cube::sealed_from_bytes(unit.bytes, writer_.grid(), metrics_, "a worker's message");
+      std::vector<char>().swap(unit.bytes);
+      std::int64_t failed = 0;
+      for (const std::int8_t s : chunk.status) failed += is_failure(static_cast<CaseStatus>(s)) ? 1 : 0;
+      const auto cases = static_cast<std::int64_t>(chunk.status.size());
+      writer_.store_sealed(std::move(chunk));
+      meter_.add(cases, failed);
+    }
+    after_store();
+  }
+
+  /// Values per result row (the cube's metrics).
+  void row_width(std::size_t metrics) { metrics_ = metrics; }
+
+ private:
+  void after_store() {
     // Stopping on a signal: each batch that comes back goes to disk at once (the launcher's
     // SIGKILL may follow within a second).
     if (error_.empty() && stop_flushed_) {
@@ -214,6 +276,7 @@ class ResultSink {
     if (error_.empty() && writer_.pending_bytes() > kPendingLimitBytes) checkpoint();
   }
 
+ public:
   void idle() {
     take_histories();
     // A stop signal: checkpoint at once, before the cases in flight come back. Under mpirun
@@ -303,6 +366,7 @@ class ResultSink {
   }
 
   cube::CubeWriter& writer_;
+  std::size_t metrics_ = 0;
   ProgressMeter& meter_;
   HistoryInbox& inbox_;
   double flush_interval_s_;
@@ -335,12 +399,16 @@ constexpr std::int64_t kWindowCases = 65536;
 /// checkpoint. Inside a window the cases of a frame come together (CaseSpace::frame_major),
 /// so a worker prepares each frame once per window; in lanes, those of a tile of frames, an
 /// excitation at a time, in blocks of one excitation. Cases with a history stay on rank 0.
+/// Cases in a chunk handed out whole (those of `units`) are not in the queue.
 parallel::WorkQueue pending_cases(const cube::CubeWriter& writer, const std::map<std::int64_t, const HistoryRequest*>& histories,
                                   const Study& study, const CaseSpace& space, const parallel::MpiSession& mpi,
-                                  const StudyRunOptions& options) {
+                                  const StudyRunOptions& options, std::vector<char> in_unit) {
   const auto [first, last] = shard_range(space.size(), options.shard_index, options.shard_count);
   const auto& status = writer.status();
-  auto pending = [&status](std::int64_t i) { return status[static_cast<std::size_t>(i)] == cube::kStatusNotRun; };
+  const auto& grid = writer.grid();
+  auto pending = [&status, &grid, in_unit](std::int64_t i) {  // a copy: the windows outlive the caller's
+    return status[static_cast<std::size_t>(i)] == cube::kStatusNotRun && !in_unit[grid.chunk_of(i)];
+  };
   std::vector<std::int64_t> pinned;
   std::int64_t shared_total = 0;
   for (std::int64_t k = first; k < last; ++k) {
@@ -366,6 +434,68 @@ parallel::WorkQueue pending_cases(const cube::CubeWriter& writer, const std::map
   if (lanes) queue.group_by([&space](std::int64_t i) { return space.excitation_of(i); });
   return queue;
 }
+
+/// Chunks of the cube a worker computes whole and seals (issue 38; docs/checkpoint.md): every
+/// case of the chunk in this shard and not done, none with a history, in a plan handed out in
+/// storage order, with guided sizes. The last kTailChunks of them, and all when there are fewer
+/// than kUnitsPerWorker per worker, go case by case instead, so that the run still ends balanced.
+constexpr std::size_t kUnitsPerWorker = 2;
+constexpr std::size_t kTailChunks = 1;
+
+std::vector<std::size_t> whole_chunks(const cube::CubeWriter& writer, const std::map<std::int64_t, const HistoryRequest*>& histories,
+                                      const Study& study, const CaseSpace& space, int workers, const StudyRunOptions& options) {
+  std::vector<std::size_t> units;
+  if (study.run.batch_size > 0) return units;  // the user fixed what a hand-out is
+  // A plan handed out frame by frame (a Saltelli design) maps position 1 to its second frame;
+  // one handed out in storage order maps every position to itself (CaseSpace::handout_index).
+  if (space.size() > 1 && space.handout_index(1) != 1) return units;
+  const auto [first, last] = shard_range(space.size(), options.shard_index, options.shard_count);
+  const auto& grid = writer.grid();
+  const auto& status = writer.status();
+  for (std::size_t c = 0; c < grid.chunk_count(); ++c) {
+    const auto r = grid.range(c);
+    if (r.first < first || r.first + r.count > last) continue;
+    const auto begin = status.begin() + r.first;
+    bool whole = std::all_of(begin, begin + r.count, [](std::int8_t s) { return s == cube::kStatusNotRun; });
+    if (whole && histories.lower_bound(r.first) != histories.lower_bound(r.first + r.count)) whole = false;
+    if (whole) units.push_back(c);
+  }
+  if (units.size() < kUnitsPerWorker * static_cast<std::size_t>(std::max(workers, 1)) + kTailChunks) return {};
+  units.resize(units.size() - kTailChunks);
+  return units;
+}
+
+/// Whole chunks first (each one batch, its cases a frame at a time), then the other cases
+/// from the queue.
+class UnitsThenCases final : public parallel::WorkSource {
+ public:
+  UnitsThenCases(std::vector<std::size_t> units, const cube::ChunkGrid& grid, const CaseSpace& space, bool lanes,
+                 parallel::WorkQueue rest)
+      : units_(std::move(units)), grid_(grid), space_(space), lanes_(lanes), rest_(std::move(rest)) {}
+  parallel::WorkBatch take(bool in_process) override {
+    if (next_ == units_.size()) return rest_.take(in_process);
+    const std::size_t chunk = units_[next_++];
+    const auto r = grid_.range(chunk);
+    std::vector<std::int64_t> cases(static_cast<std::size_t>(r.count));
+    for (std::size_t k = 0; k < cases.size(); ++k) cases[k] = r.first + static_cast<std::int64_t>(k);
+    // Storage order has the frame axes fastest: in lanes, a call's cases already share their
+    // excitation, and where every case is a frame of its own there is nothing to reorder.
+    // Otherwise a frame's cases come together (prepared once): on the master, a sort of the
+    // chunk (about 300 instructions a case).
+    if (!lanes_ && space_.distinct_frames() < space_.size()) cases = space_.frame_major(std::move(cases), 1);
+    return parallel::unit_batch(static_cast<std::int64_t>(chunk), cases);
+  }
+  void completed(const parallel::CaseOutcome& o) override { rest_.completed(o); }
+  bool exhausted() const override { return next_ == units_.size() && rest_.exhausted(); }
+
+ private:
+  std::vector<std::size_t> units_;
+  std::size_t next_ = 0;
+  const cube::ChunkGrid& grid_;
+  const CaseSpace& space_;
+  bool lanes_;
+  parallel::WorkQueue rest_;
+};
 
 /// A work source that runs dry when a stop signal arrives or the cube cannot be written: the
 /// master then tells every worker to stop and collects the cases in flight, and the run ends
@@ -411,9 +541,16 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
     };
     work = std::move(ida);
   } else {
-    work = std::make_unique<parallel::WorkQueue>(pending_cases(*m.writer, history_requests, p.study, *p.space, mpi, options));
+    const int workers = parallel::worker_count(mpi.comm());
+    auto units = whole_chunks(*m.writer, history_requests, p.study, *p.space, workers, options);
+    std::vector<char> in_unit(m.writer->grid().chunk_count(), 0);
+    for (const std::size_t c : units) in_unit[c] = 1;
+    work = std::make_unique<UnitsThenCases>(std::move(units), m.writer->grid(), *p.space, in_lanes(p.study),
+                                            pending_cases(*m.writer, history_requests, p.study, *p.space, mpi, options,
+                                                          std::move(in_unit)));
   }
   ResultSink sink(*m.writer, meter, inbox, p.study.run.flush_interval_s, before_flush);
+  sink.row_width(runner.row_width());
   sink.flush_on(stop_signal);
   sink.guard_with(m.lock.get(), m.output.string());
 
@@ -437,7 +574,9 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
   };
   StopOnSignal stoppable(*work, stop_signal);
   sink.on_error([&stoppable] { stoppable.fail(); });
-  parallel::run_master(mpi.comm(), stoppable, schedule_options(p.study, runner, stop_signal),
+  auto schedule = schedule_options(p.study, runner, stop_signal, m.writer->grid());
+  schedule.on_sealed = [&sink](parallel::SealedUnits&& units) { sink.store_sealed(std::move(units)); };
+  parallel::run_master(mpi.comm(), stoppable, schedule,
                        evaluate, [&sink](parallel::ResultBatch&& batch) { sink.store(std::move(batch)); },
                        [&sink, &options] {
                          if (options.poll) options.poll();
@@ -456,9 +595,10 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
   return summary;
 }
 
-void run_worker_rank(const Prepared& p, const parallel::MpiSession& mpi, const std::atomic<int>* stop_signal) {
+void run_worker_rank(const Prepared& p, const parallel::MpiSession& mpi, const std::atomic<int>* stop_signal,
+                     const cube::ChunkGrid& grid) {
   CaseRunner runner(p.study, *p.space, *p.records);
-  parallel::run_worker(mpi.comm(), schedule_options(p.study, runner, stop_signal),
+  parallel::run_worker(mpi.comm(), schedule_options(p.study, runner, stop_signal, grid),
                        [&runner](std::span<const parallel::WorkItem> items) { return runner.run(items); });
 }
 
@@ -474,6 +614,14 @@ std::unique_ptr<Prepared> receive_study(const parallel::MpiSession& mpi, const P
     std::cerr << "pcrf: error on rank " << mpi.rank() << ": " << e.what() << std::endl;
     mpi.abort(2);
   }
+}
+
+/// The shape rank 0 sent (numbers separated by spaces).
+std::vector<std::size_t> parse_shape(const std::string& text) {
+  std::istringstream in(text);
+  std::vector<std::size_t> shape;
+  for (std::size_t n = 0; in >> n;) shape.push_back(n);
+  return shape;
 }
 
 }  // namespace
@@ -516,13 +664,18 @@ std::optional<StudySummary> run_study(const StudyRunOptions& options, const para
     return summary;
   }
   if (auto received = receive_study(mpi, prepared.get())) prepared = std::move(received);
+  // The cube's shape, so that workers seal the chunks rank 0's writer stores.
+  std::string shape_text;
+  if (mpi.is_master())
+    for (const std::size_t n : setup.writer->shape()) shape_text += std::to_string(n) + " ";
+  shape_text = mpi.broadcast(shape_text);
 
   std::optional<StudySummary> summary;
   static std::ostream nowhere(nullptr);  // a stream without a buffer discards what it is given
   if (mpi.is_master())
     summary = run_master_rank(*prepared, setup, mpi, options.progress ? *options.progress : nowhere, options);
   else
-    run_worker_rank(*prepared, mpi, options.stop_signal);
+    run_worker_rank(*prepared, mpi, options.stop_signal, cube::ChunkGrid(parse_shape(shape_text)));
   mpi.quiet_barrier();
   return summary ? summary : StudySummary{};
 }

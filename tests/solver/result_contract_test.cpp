@@ -68,12 +68,18 @@ void expect_contract(const CaseResult& r, bool omega_requested, bool verdict_che
       EXPECT_EQ(std::isnan(v), !verdict_checked);
     } else if (name == "t_trigger_paper_s" || name == "t_uplift_s") {
       EXPECT_TRUE(std::isnan(v) || v >= 0.0);
-    } else if (name == "t_theta_max_s") {
-      EXPECT_EQ(std::isnan(v), !(r.theta_max_rad > 0.0));
+    } else if (!m.exists_with.empty()) {
+      // The time of an event (t_theta_max_s, t_omega_max_s, ...): NaN exactly when the event
+      // did not happen, as the table says (MetricInfo::exists_with), else within the case.
+      const MetricInfo* event = find_metric(m.exists_with);
+      ASSERT_NE(event, nullptr) << m.exists_with;
+      EXPECT_EQ(std::isnan(v), !(event->get(r) > 0.0));
+      if (!std::isnan(v)) {
+        EXPECT_GE(v, 0.0);
+        EXPECT_LE(v, r.t_end_s);
+      }
     } else if (name == "omega_max_rad_s") {
       EXPECT_EQ(std::isnan(v), !omega_requested);
-    } else if (name == "t_omega_max_s") {
-      EXPECT_EQ(std::isnan(v), !omega_requested || !(r.omega_max_rad_s > 0.0));
     } else if (name == "strain_column_max" || name == "strain_beam_max") {
       EXPECT_EQ(std::isnan(v), !tendons);
     } else {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <ctime>
 #include <string>
 
@@ -61,6 +62,18 @@ CaseResult initial_result(const Scene& scene, const Excitation& excitation, doub
 
 /// Peak strains from the peak rotation (every |θ₁| up to it has been visited).
 void set_peak_strains(const Scene& scene, CaseResult& result);
+
+// What the result records at a case's events, for both case loops (the case machine,
+// case_run.cpp, which every stepper and the CPU lanes run, and the fixed-step contender's): a
+// metric set at an event is one line here (docs/developer.md, "What a new thing costs"). At
+// the case's end: set_peak_strains.
+
+/// The frame lifts off at t [s] (its first lift-off is t_uplift_s).
+inline void note_uplift(CaseResult& result, double t) {
+  if (std::isnan(result.t_uplift_s)) result.t_uplift_s = t;
+}
+/// An impact at t [s].
+inline void note_impact(CaseResult& result, double /*t*/) { ++result.impacts; }
 
 /// Builds a case's history rows and hands them to the sink in strictly increasing time:
 /// rows added at the same instant (an impact and the restart after it, an impact and the

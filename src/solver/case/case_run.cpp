@@ -141,7 +141,7 @@ void CaseRun::rest_until_uplift() {
   }
   emit_rest_until(t_open);
   t_ = t_open;
-  if (std::isnan(result_.t_uplift_s)) result_.t_uplift_s = t_open;
+  note_uplift(result_, t_open);
   problem_.side = detail::uplift_side(excitation_.at(t_open).horizontal_m_s2);
   const double y0[2] = {0.0, 0.0};
   at_rest_ = false;
@@ -153,7 +153,7 @@ void CaseRun::start_displaced() {
   problem_.side = detail::initial_side(th, w);
   const double y0[2] = {th, w};
   at_rest_ = false;
-  result_.t_uplift_s = 0.0;
+  note_uplift(result_, 0.0);
   note_theta(0.0, th);
   if (request_.omega_peak) note_omega(0.0, w);
   start_flight(0.0, y0, kEventUplift);
@@ -211,8 +211,8 @@ bool CaseRun::fly() {
     finish(CaseStatus::kSolverFailure, "non-finite state at t = " + std::to_string(t) + " s");
     return true;
   }
-  if (integrator_->counts().steps > solver_.max_steps) {
-    finish(CaseStatus::kSolverFailure, "more than max_steps steps");
+  if (const char* exceeded = exceeded_budget(solver_, integrator_->counts())) {
+    finish(CaseStatus::kSolverFailure, exceeded);
     return true;
   }
   if (outcome == detail::OdeIntegrator::Outcome::kRoot) {
@@ -280,7 +280,7 @@ inline void CaseRun::impact(double t, double* y) {
   const double omega_before = y[1];
   if (request_.omega_peak) note_omega(t, omega_before);
   emit(t, 0.0, omega_before, kEventImpact);
-  ++result_.impacts;
+  note_impact(result_, t);
   const double omega_after = restitution_ * omega_before;
   problem_.side = -problem_.side;
   if (returns_to_rest(t, omega_after)) {

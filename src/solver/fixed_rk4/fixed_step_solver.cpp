@@ -47,7 +47,7 @@ class FixedStepRun {
     } else {
       side_ = initial_side(y.theta, y.omega);
     }
-    result_.t_uplift_s = t;
+    note_uplift(result_, t);
     emit(t, y, kEventUplift);
     const double t_start = t;
     long k = 0;
@@ -65,7 +65,7 @@ class FixedStepRun {
         // Sign change over the step: impact at the step end, not located.
         next.omega *= r_;
         side_ = -side_;
-        ++result_.impacts;
+        note_impact(result_, t);
         events = kEventImpact;
       }
       y = next;

@@ -18,6 +18,9 @@
 ///            that is 0 or NaN wherever frames never lift costs 9 bytes, not 8 n)
 ///   notes    n u32, then n × (case i64, length u32, text)
 ///   history  a HistoryTable: name, attributes, columns and their values
+///   sealed   chunk u64, n u32 (the chunk's cases), n statuses i8, variables u32 (metrics,
+///            then status), per variable: size u64 and the chunk's bytes as the cube's
+///            filters store them (sealed_chunk.hpp; folded by a raw chunk write)
 ///   commit   nothing: the records since the last commit are one checkpoint
 /// A checkpoint's records count only once its commit record is complete: a tail torn
 /// anywhere drops the whole checkpoint (never a case's values without its note).
@@ -57,6 +60,7 @@ enum JournalRecord : std::uint32_t {
   kJournalNotes = 3,
   kJournalHistory = 4,
   kJournalCommit = 5,
+  kJournalSealed = 6,
 };
 
 /// `<cube>.journal`.
@@ -120,6 +124,10 @@ class JournalReader {
   const std::map<std::size_t, std::vector<std::size_t>>& chunks() const { return chunks_; }
   /// One record of cases, decoded and checked against the layout.
   JournalCases cases(std::size_t record) const;
+  /// Chunks with sealed records, each with its records in journal order (for sealed()).
+  const std::map<std::size_t, std::vector<std::size_t>>& sealed_chunks() const { return sealed_; }
+  /// One sealed record, its sizes and statuses checked (check_all() also inflates it).
+  SealedChunk sealed(std::size_t record) const;
   /// Every record of cases, in journal order.
   void for_each_cases(const std::function<void(const JournalCases&)>& visit) const;
   /// The notes, in journal order.
@@ -147,6 +155,7 @@ class JournalReader {
   std::vector<std::int8_t> statuses_;  ///< the codes a case may have: the layout's flags but not_run
   std::int64_t results_ = 0;
   std::map<std::size_t, std::vector<std::size_t>> chunks_;
+  std::map<std::size_t, std::vector<std::size_t>> sealed_;
 };
 
 /// Appends to the journal of a cube. \throws CubeError naming the journal on every failure.
@@ -164,6 +173,8 @@ class JournalWriter {
   /// chunk, `values` holds [metric * count + k], `status` the chunk's statuses.
   void add_cases(std::size_t chunk, const std::vector<char>& stored, const std::vector<double>& values,
                  const std::int8_t* status);
+  /// Writes a sealed chunk's statuses and filtered bytes (not synced; its notes go by add_notes).
+  void add_sealed(const SealedChunk& sealed);
   void add_notes(const std::vector<std::pair<std::int64_t, std::string>>& notes);
   void add_history(const HistoryTable& table);
   /// Writes the commit record that makes the records added since the last one a checkpoint.

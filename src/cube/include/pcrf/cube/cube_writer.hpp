@@ -33,7 +33,9 @@
 #include <string_view>
 #include <vector>
 
+#include "pcrf/cube/chunk_grid.hpp"
 #include "pcrf/cube/cube_layout.hpp"
+#include "pcrf/cube/sealed_chunk.hpp"
 
 namespace pcrf::cube {
 
@@ -105,6 +107,13 @@ class CubeWriter {
 
   /// Stores one case in memory. `values` holds one value per metric, in layout order.
   void store(std::int64_t index, std::int8_t status, const std::vector<double>& values);
+  /// Stores a chunk whose every case a worker computed and sealed (sealed_chunk.hpp): its
+  /// statuses join the cube's, its filtered bytes are journaled and folded as they are.
+  /// \throws CubeError when the chunk is outside the cube or not whole.
+  void store_sealed(SealedChunk sealed);
+  /// How the cube is cut into chunks (what a worker seals), and its shape.
+  const ChunkGrid& grid() const;
+  std::vector<std::size_t> shape() const;
   /// Stores a message for a case (written under /messages).
   void store_note(std::int64_t index, std::string note);
   /// Queues a history group (written at the next flush).

@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pcrf::parallel {
@@ -29,10 +30,24 @@ struct CaseOutcome {
 /// Outcomes travelling together in one message.
 using ResultBatch = std::vector<CaseOutcome>;
 
+/// A unit of work a worker finished whole and sealed itself (e.g. one chunk of a result
+/// cube, compressed): the master passes its bytes on without looking at each case.
+struct SealedUnit {
+  std::int64_t unit = -1;   ///< which unit (the work source's number)
+  std::int64_t cases = 0;   ///< cases it holds
+  std::vector<char> bytes;  ///< what the sealer made of them (opaque here)
+};
+using SealedUnits = std::vector<SealedUnit>;
+
 /// Serializes a batch. \throws std::invalid_argument if a row's width is not `row_width`.
 std::vector<char> pack_results(const ResultBatch& batch, std::size_t row_width);
 
 /// Inverse of pack_results. \throws std::runtime_error on a malformed or mismatched buffer.
 ResultBatch unpack_results(const std::vector<char>& bytes, std::size_t row_width);
+
+/// A worker's message: its outcomes, then its sealed units.
+std::vector<char> pack_message(const ResultBatch& batch, const SealedUnits& sealed, std::size_t row_width);
+/// Inverse of pack_message. \throws std::runtime_error on a malformed or mismatched buffer.
+std::pair<ResultBatch, SealedUnits> unpack_message(const std::vector<char>& bytes, std::size_t row_width);
 
 }  // namespace pcrf::parallel

@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -37,6 +38,14 @@ using CasesEvaluator = std::function<ResultBatch(std::span<const WorkItem> items
 /// Master thread: receives outcomes as they arrive.
 using OutcomeHandler = std::function<void(ResultBatch&&)>;
 
+/// Worker: turns the outcomes of a whole unit (a batch the work source marked as one, see
+/// WorkSource) into bytes the master passes on as they are (e.g. a compressed chunk of the
+/// result cube, so that no rank handles every result). nullopt: report them case by case.
+using Sealer = std::function<std::optional<std::vector<char>>(std::int64_t unit, std::span<const CaseOutcome> outcomes)>;
+
+/// Master thread: receives the sealed units as they arrive.
+using SealedHandler = std::function<void(SealedUnits&&)>;
+
 /// Master thread: called between messages, at least every poll interval (flushes, progress).
 using IdleHandler = std::function<void()>;
 
@@ -51,6 +60,10 @@ struct ScheduleOptions {
   /// Set (nonzero) when the run is being stopped (a signal): every worker then reports the
   /// cases of its batch done so far at once, leaves the rest, and stops. Null: never.
   const std::atomic<int>* interrupt = nullptr;
+  /// Workers: seals the units the work source hands out whole (null: every case is reported).
+  Sealer seal;
+  /// Master: receives what workers sealed (must be set when the work source hands out units).
+  SealedHandler on_sealed;
 };
 
 /// Rank 0. Returns when `work` is exhausted, every case handed out has come back and every

@@ -19,6 +19,10 @@ struct WorkItem {
 };
 using WorkBatch = std::vector<WorkItem>;
 
+/// A batch a worker computes whole and seals (ScheduleOptions::seal): a marker item, then its
+/// cases. The marker's argument is the unit's number, which comes back with what was sealed.
+WorkBatch unit_batch(std::int64_t unit, const std::vector<std::int64_t>& cases);
+
 class WorkSource {
  public:
   virtual ~WorkSource() = default;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "pcrf/metrics/case_result.hpp"
 #include "pcrf/metrics/unresolved.hpp"
 #include "pcrf/setting.hpp"
 
@@ -206,6 +207,16 @@ inline const SettingTable<SolverSettings>& solver_settings() {
     return t;
   }();
   return table;
+}
+
+/// The work budgets of one case, beside the rows that set them: the message of the first one
+/// `counts` (the integrator's, all segments together) exceeds, or null. The case machine
+/// checks them after every advance, for every stepper and in the CPU lanes (the fixed-step
+/// contender has no budget); such a case ends as solver_failure. A new cap is its member,
+/// its row and its line here (docs/developer.md, "What a new thing costs").
+inline const char* exceeded_budget(const SolverSettings& s, const SolverCounts& counts) {
+  if (counts.steps > s.max_steps) return "more than max_steps steps";
+  return nullptr;
 }
 
 }  // namespace pcrf

@@ -1,0 +1,62 @@
+/// \file sealed_chunk.hpp
+/// \brief One chunk of a result cube, every variable of it already filtered (shuffled and
+/// deflated) exactly as the cube's HDF5 filter pipeline stores it, so that the rank that
+/// writes the cube copies its bytes into the file (H5Dwrite_chunk) and never touches its
+/// results one by one (issue 38: no rank handles every result; docs/checkpoint.md).
+///
+/// A worker that computed every case of a chunk seals it (seal_chunk); the bytes travel
+/// (to_bytes/from_bytes), are journaled as they are (JournalWriter::add_sealed) and folded
+/// into the cube by a raw chunk write.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "pcrf/cube/chunk_grid.hpp"
+
+namespace pcrf::cube {
+
+/// zlib level of every chunked variable of a cube (metrics, status, long coordinates).
+/// Level 1 (zlib's fast path): against level 4, 11 % fewer instructions per non-lifting case
+/// (31.2 k -> 27.8 k) for a cube 0.5 % larger (docs/throughput.md).
+inline constexpr unsigned kDeflateLevel = 1;
+
+struct SealedChunk {
+  std::size_t chunk = 0;
+  std::vector<std::int8_t> status;  ///< the chunk's cases in order (ChunkGrid::range(chunk).count)
+  /// Per metric (layout order), then the status: the variable's whole chunk (padded to the
+  /// chunk's full shape at the cube's edge) shuffled and deflated.
+  std::vector<std::vector<char>> filtered;
+  std::vector<std::pair<std::int64_t, std::string>> notes;  ///< case index, message
+};
+
+/// Seals a chunk all of whose cases were computed: `values` holds [metric * count + k],
+/// `status` one code per case. \throws std::invalid_argument for sizes that do not match.
+SealedChunk seal_chunk(const ChunkGrid& grid, std::size_t chunk, std::size_t metrics,
+                       std::span<const std::int8_t> status, std::span<const double> values,
+                       std::vector<std::pair<std::int64_t, std::string>> notes);
+
+/// The bytes of a sealed chunk (one process's, to another running the same binary).
+std::vector<char> to_bytes(const SealedChunk& sealed);
+/// Inverse of to_bytes, checked against the cube's grid and metrics (counts, sizes, the
+/// chunk's number, note case indices). \throws CubeError naming `what` when they do not fit.
+SealedChunk sealed_from_bytes(const std::vector<char>& bytes, const ChunkGrid& grid, std::size_t metrics,
+                              const std::string& what);
+
+/// Most bytes a filtered variable of a chunk of `elements` values of `element_bytes` may take
+/// (zlib's compressBound: a deflate stream of stored blocks and its header and checksum).
+std::size_t filtered_bound(std::size_t elements, std::size_t element_bytes);
+
+/// Undoes the filters of one variable: its chunk's `elements` values of `element_bytes`
+/// each. \throws CubeError naming `what` when the bytes are not such a chunk.
+std::vector<char> unfilter(const std::vector<char>& filtered, std::size_t elements, std::size_t element_bytes,
+                           const std::string& what);
+
+/// Values of the chunk's padded shape (ChunkGrid::chunk_shape's product).
+std::size_t padded_elements(const ChunkGrid& grid);
+
+}  // namespace pcrf::cube

@@ -1,0 +1,182 @@
+// Sealed chunks (issue 38): a chunk a worker computed whole reaches the cube as the bytes the
+// cube's filters make of it (one raw chunk write a variable), through a checkpoint's journal
+// and --resume as well, and reads back bit for bit; cases stored after it are laid over it;
+// a journal whose sealed chunk does not inflate is set aside, never folded.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "pcrf/cube/cube_journal.hpp"
+#include "pcrf/cube/cube_reader.hpp"
+#include "pcrf/cube/cube_writer.hpp"
+#include "pcrf/cube/sealed_chunk.hpp"
+#include "pcrf/io/record_log.hpp"
+#include "support/test_support.hpp"
+
+namespace pcrf::cube {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr std::int64_t kCases = 40000;  // chunks of 16 384, 16 384 and 7 232 (an edge chunk, stored padded)
+
+CubeLayout sealed_layout() {
+  CubeLayout l;
+  l.dimensions = {{"case", static_cast<std::size_t>(kCases)}};
+  Coordinate index{"case", "case", "", "", {}, {}, false, true};
+  for (std::int64_t i = 0; i < kCases; ++i) index.numbers.push_back(static_cast<double>(i));
+  l.coordinates = {index};
+  l.metrics = {{"theta_max_rad", "rad", ""}, {"impacts", "1", ""}, {"uplift_m", "m", ""}};
+  l.status_flags = {{0, "at_rest"}, {3, "overturned"}};
+  l.attributes = {{kFingerprintName, std::string("sealed-test")}};
+  return l;
+}
+
+/// Case i's values as a run computes them (`round` 1: what a later run stores over them).
+std::vector<double> row_of(std::int64_t i, int round = 0) {
+  return {1e-5 * static_cast<double>(i) + round, static_cast<double>(i % 7), i % 5 == 0 ? std::nan("") : 0.0};
+}
+std::int8_t status_of(std::int64_t i) { return i % 11 == 0 ? 3 : 0; }
+
+/// Chunk `chunk` of the cube computed whole and sealed, as a worker does it.
+SealedChunk sealed_of(const ChunkGrid& grid, std::size_t chunk) {
+  const auto r = grid.range(chunk);
+  const auto count = static_cast<std::size_t>(r.count);
+  std::vector<std::int8_t> status(count);
+  std::vector<double> values(3 * count);
+  std::vector<std::pair<std::int64_t, std::string>> notes;
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::int64_t i = r.first + static_cast<std::int64_t>(k);
+    status[k] = status_of(i);
+    for (std::size_t m = 0; m < 3; ++m) values[m * count + k] = row_of(i)[m];
+    if (i % 997 == 0) notes.emplace_back(i, "note of case " + std::to_string(i));
+  }
+  return seal_chunk(grid, chunk, 3, status, values, std::move(notes));
+}
+
+/// Every case of the cube holds what row_of and status_of say (cases in `over`: round 1).
+void expect_cube(const fs::path& file, const std::vector<std::int64_t>& over = {}) {
+  const CubeReader reader(file);
+  const auto status = reader.read_status();
+  std::vector<std::vector<double>> metric{reader.read_metric("theta_max_rad"), reader.read_metric("impacts"),
+                                          reader.read_metric("uplift_m")};
+  std::size_t wrong = 0;
+  for (std::int64_t i = 0; i < kCases; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const bool later = std::find(over.begin(), over.end(), i) != over.end();
+    const auto row = row_of(i, later ? 1 : 0);
+    wrong += status[k] != status_of(i);
+    for (std::size_t m = 0; m < 3; ++m)
+      wrong += std::isnan(row[m]) ? !std::isnan(metric[m][k]) : metric[m][k] != row[m];
+  }
+  EXPECT_EQ(wrong, 0u) << file;
+  std::size_t notes = 0;
+  for (const auto& [index, text] : reader.read_notes()) {
+    EXPECT_EQ(text, "note of case " + std::to_string(index));
+    ++notes;
+  }
+  EXPECT_EQ(notes, static_cast<std::size_t>((kCases + 996) / 997));
+}
+
+TEST(SealedChunk, ASealedChunkFoldsRawAndReadsBackBitForBit) {
+  const auto dir = test::scratch_dir("sealed_fold");
+  const auto file = dir / "c.h5";
+  {
+    CubeWriter writer(file, sealed_layout(), OpenMode::kCreate);
+    ASSERT_EQ(writer.grid().chunk_count(), 3u);
+    writer.store_sealed(sealed_of(writer.grid(), 0));
+    writer.store_sealed(sealed_of(writer.grid(), 2));  // the edge chunk
+    for (std::int64_t i = 16384; i < 32768; ++i) {
+      writer.store(i, status_of(i), row_of(i));
+      if (i % 997 == 0) writer.store_note(i, "note of case " + std::to_string(i));
+    }
+    EXPECT_EQ(writer.done_count(), kCases);
+    writer.close();
+  }
+  expect_cube(file);
+  EXPECT_THROW(CubeWriter(dir / "d.h5", sealed_layout(), OpenMode::kCreate).store_sealed(SealedChunk{7, {}, {}, {}}),
+               CubeError);
+}
+
+TEST(SealedChunk, AJournaledSealedChunkResumesAndLaterCasesLieOverIt) {
+  const auto dir = test::scratch_dir("sealed_journal");
+  const auto file = dir / "c.h5";
+  {
+    CubeWriter writer(file, sealed_layout(), OpenMode::kCreate);
+    for (std::int64_t i = 16384; i < 32768; ++i) {
+      writer.store(i, status_of(i), row_of(i));
+      if (i % 997 == 0) writer.store_note(i, "note of case " + std::to_string(i));
+    }
+    writer.flush();  // the first results fold
+    writer.store_sealed(sealed_of(writer.grid(), 0));
+    writer.append();  // the sealed chunk goes to the journal
+    writer.store(5, status_of(5), row_of(5, 1));  // a case of it stored again, later
+    writer.append();
+  }
+  const CubeReader folded(file);
+  const JournalReader journal(file, folded.layout(), journal_id_of(folded.layout()));
+  ASSERT_TRUE(journal.current());
+  EXPECT_EQ(journal.results(), 16384 + 1);
+  ASSERT_EQ(journal.sealed_chunks().size(), 1u);
+  journal.check_all();  // inflates the sealed chunk
+  {
+    CubeWriter resumed(file, sealed_layout(), OpenMode::kResume);
+    EXPECT_EQ(resumed.done_count(), 2 * 16384);
+    const auto theta = resumed.read_values("theta_max_rad");
+    EXPECT_EQ(theta[5], row_of(5, 1)[0]);
+    EXPECT_EQ(theta[6], row_of(6)[0]);
+    resumed.store_sealed(sealed_of(resumed.grid(), 2));
+    resumed.close();
+  }
+  expect_cube(file, {5});
+}
+
+TEST(SealedChunk, ASealedRecordThatDoesNotInflateIsSetAside) {
+  const auto dir = test::scratch_dir("sealed_forged");
+  const auto file = dir / "c.h5";
+  {
+    CubeWriter writer(file, sealed_layout(), OpenMode::kCreate);
+    for (std::int64_t i = 16384; i < 32768; ++i) writer.store(i, status_of(i), row_of(i));
+    writer.flush();
+    SealedChunk forged = sealed_of(writer.grid(), 0);
+    forged.filtered[1][forged.filtered[1].size() / 2] ^= 0x5a;  // its CRC will hold: the journal frames it as it is
+    writer.store_sealed(std::move(forged));
+    writer.append();
+  }
+  std::vector<std::string> notes;
+  {
+    CubeWriter resumed(file, sealed_layout(), OpenMode::kResume);
+    notes = resumed.resume_notes();
+    EXPECT_EQ(resumed.done_count(), 16384) << "nothing of a journal set aside is used";
+  }
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_NE(notes[0].find("does not inflate"), std::string::npos) << notes[0];
+  EXPECT_NE(notes[0].find("set aside"), std::string::npos) << notes[0];
+}
+
+TEST(SealedChunk, BytesRoundTripAndForeignBytesAreRefused) {
+  const ChunkGrid grid({static_cast<std::size_t>(kCases)});
+  const SealedChunk sealed = sealed_of(grid, 2);
+  const auto bytes = to_bytes(sealed);
+  const SealedChunk back = sealed_from_bytes(bytes, grid, 3, "test");
+  EXPECT_EQ(back.chunk, 2u);
+  EXPECT_EQ(back.status, sealed.status);
+  EXPECT_EQ(back.filtered, sealed.filtered);
+  EXPECT_EQ(back.notes, sealed.notes);
+  // The filters undo to the chunk at its full shape: the values, then the fill.
+  const auto plain = unfilter(back.filtered[0], padded_elements(grid), sizeof(double), "test");
+  const auto* theta = reinterpret_cast<const double*>(plain.data());
+  EXPECT_EQ(theta[0], row_of(32768)[0]);
+  EXPECT_TRUE(std::isnan(theta[padded_elements(grid) - 1]));
+  EXPECT_THROW(sealed_from_bytes(bytes, grid, 4, "test"), CubeError);
+  EXPECT_THROW(sealed_from_bytes(bytes, ChunkGrid({10}), 3, "test"), CubeError);
+  auto cut = bytes;
+  cut.resize(cut.size() - 3);
+  EXPECT_THROW(sealed_from_bytes(cut, grid, 3, "test"), CubeError);
+}
+
+}  // namespace
+}  // namespace pcrf::cube

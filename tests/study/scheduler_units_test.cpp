@@ -1,0 +1,119 @@
+// Units (issue 38): a batch the work source marks as one unit is computed whole by one worker
+// and comes back sealed, as the sealer made it, never case by case; a unit the sealer declines
+// comes back case by case; the master's count of cases in flight holds either way.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <map>
+#include <set>
+
+#include "pcrf/parallel/mpi_session.hpp"
+#include "pcrf/parallel/scheduler.hpp"
+#include "pcrf/parallel/work_queue.hpp"
+
+namespace pcrf::parallel {
+namespace {
+
+/// Units 0..3 of 100 cases each (unit 3 declined by the sealer), then cases 400..449 one by one.
+class Units final : public WorkSource {
+ public:
+  WorkBatch take(bool in_process) override {
+    if (next_ < 4) {
+      std::vector<std::int64_t> cases;
+      for (std::int64_t i = 0; i < 100; ++i) cases.push_back(100 * next_ + (99 - i));  // any order
+      return unit_batch(next_++, cases);
+    }
+    return rest_.take(in_process);
+  }
+  bool exhausted() const override { return next_ == 4 && rest_.exhausted(); }
+
+ private:
+  std::int64_t next_ = 0;
+  WorkQueue rest_{[] {
+    std::vector<std::int64_t> cases;
+    for (std::int64_t i = 400; i < 450; ++i) cases.push_back(i);
+    return cases;
+  }(), {}, 1};
+};
+
+TEST(Scheduler, AUnitComesBackSealedByItsWorkerAndADeclinedOneCaseByCase) {
+  MpiSession mpi;
+  ASSERT_EQ(mpi.size(), 1);
+  Units work;
+  ScheduleOptions options;
+  options.row_width = 1;
+  options.seal = [](std::int64_t unit, std::span<const CaseOutcome> outcomes) -> std::optional<std::vector<char>> {
+    if (unit == 3) return std::nullopt;
+    std::set<std::int64_t> seen;
+    for (const auto& o : outcomes) seen.insert(o.case_index);
+    if (seen.size() != 100 || *seen.begin() != 100 * unit) return std::vector<char>{'b', 'a', 'd'};
+    return std::vector<char>{'o', 'k', static_cast<char>('0' + unit)};
+  };
+  std::map<std::int64_t, std::string> sealed;
+  options.on_sealed = [&](SealedUnits&& units) {
+    for (auto& u : units) {
+      EXPECT_EQ(u.cases, 100);
+      sealed[u.unit] = std::string(u.bytes.begin(), u.bytes.end());
+    }
+  };
+  std::set<std::int64_t> one_by_one;
+  run_master(mpi.comm(), work, options,
+             [](const WorkItem& item) { return CaseOutcome{item.case_index, 0, {static_cast<double>(item.case_index)}, ""}; },
+             [&](ResultBatch&& batch) {
+               for (const auto& o : batch) EXPECT_TRUE(one_by_one.insert(o.case_index).second) << o.case_index;
+             },
+             [] {});
+  EXPECT_EQ(sealed, (std::map<std::int64_t, std::string>{{0, "ok0"}, {1, "ok1"}, {2, "ok2"}}));
+  ASSERT_EQ(one_by_one.size(), 150u);  // unit 3, declined, and the 50 cases after the units
+  EXPECT_EQ(*one_by_one.begin(), 300);
+  EXPECT_EQ(*one_by_one.rbegin(), 449);
+}
+
+// A signal ends a unit half done: the cases done so far come back one by one, nothing sealed.
+TEST(Scheduler, AnInterruptedUnitReportsItsCasesDoneOneByOne) {
+  MpiSession mpi;
+  Units work;
+  std::atomic<int> interrupt{0};
+  ScheduleOptions options;
+  options.row_width = 1;
+  options.interrupt = &interrupt;
+  options.seal = [](std::int64_t, std::span<const CaseOutcome>) -> std::optional<std::vector<char>> {
+    return std::vector<char>{'s'};
+  };
+  std::set<std::int64_t> sealed, one_by_one;
+  options.on_sealed = [&](SealedUnits&& units) {
+    for (auto& u : units) sealed.insert(u.unit);
+  };
+  run_master(mpi.comm(), work, options,
+             [&](const WorkItem& item) {
+               if (item.case_index == 150) interrupt = 1;
+               return CaseOutcome{item.case_index, 0, {0.0}, ""};
+             },
+             [&](ResultBatch&& batch) {
+               for (const auto& o : batch) one_by_one.insert(o.case_index);
+             },
+             [] {});
+  EXPECT_EQ(sealed, std::set<std::int64_t>{0});
+  ASSERT_FALSE(one_by_one.empty());
+  EXPECT_EQ(*one_by_one.begin(), 150) << "unit 1 is computed from its last case to its first";
+  EXPECT_EQ(*one_by_one.rbegin(), 199);
+}
+
+TEST(ResultBatch, AMessageCarriesOutcomesAndSealedUnits) {
+  const ResultBatch batch{{4, 1, {1.5, 2.5}, "n"}};
+  const SealedUnits units{{7, 100, {'x', 'y'}}, {8, 3, {}}};
+  const auto [back, sealed] = unpack_message(pack_message(batch, units, 2), 2);
+  ASSERT_EQ(back.size(), 1u);
+  EXPECT_EQ(back[0].row, batch[0].row);
+  ASSERT_EQ(sealed.size(), 2u);
+  EXPECT_EQ(sealed[0].unit, 7);
+  EXPECT_EQ(sealed[0].cases, 100);
+  EXPECT_EQ(sealed[0].bytes, units[0].bytes);
+  EXPECT_TRUE(sealed[1].bytes.empty());
+  auto cut = pack_message(batch, units, 2);
+  cut.pop_back();
+  EXPECT_THROW(unpack_message(cut, 2), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace pcrf::parallel
