@@ -1,19 +1,7 @@
 // Pulse identification of a station's record as JSON (see record_pulse.hpp).
 #include "pcrf/api/record_pulse.hpp"
 
-#include "pcrf/user_error.hpp"
-
 namespace pcrf::api {
-
-PulseClassification classify_station_pulse(const StationRecord& station) {
-  if (!station.h2) return classify_pulse(station.h1);
-  if (!station.az1_deg || !station.az2_deg)
-    throw UserError("azimuth_deg",
-                    "the azimuths of the two horizontals are not known (their files state none): give "
-                    "{} and --h2-azimuth-deg",
-                    {"azimuth_deg"});
-  return classify_pulse(HorizontalPair{station.h1, *station.az1_deg, *station.h2, *station.az2_deg});
-}
 
 namespace {
 

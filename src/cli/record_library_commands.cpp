@@ -88,8 +88,10 @@ void write_fragment(std::ostream& out, const SelectArguments& args, const Spectr
       << ") for the target " << args.target << "\n"
       << "# Jayaram, Lin & Baker (2011); Baker & Lee (2018). Fit of the scaled set's ln Sa at the target's periods:\n"
       << "#   largest error of the median " << number_text(std::round(r.median_error_percent * 100) / 100) << " %, of sigma ln Sa "
-      << number_text(std::round(r.sigma_error_percent * 100) / 100) << " %, sum of squared errors " << number_text(r.sum_of_squares)
-      << " (w_mean " << number_text(args.settings.w_mean) << ", w_sigma " << number_text(args.settings.w_sigma) << ")\n"
+      << number_text(std::round(r.sigma_error_percent * 100) / 100) << " %, Baker & Lee's sum of squared errors "
+      << number_text(r.sum_of_squares) << " (w_mean 1, w_sigma 2)\n"
+      << "#   optimised: w_mean " << number_text(args.settings.w_mean) << ", w_sigma " << number_text(args.settings.w_sigma)
+      << (args.settings.relative_sigma ? " on relative sigma errors" : "") << ", " << args.settings.starts << " starts\n"
       << "# File paths are as the library table names them.\n";
   for (const auto& rec : r.records) {
     const LibraryEntry& e = table.entries[rec.entry];
@@ -135,7 +137,14 @@ void add_record_library_commands(CLI::App* record) {
   c->add_option("--scale-max", select->settings.scale_max, "largest scale factor")->capture_default_str();
   c->add_option("--seed", select->settings.seed, "seed of the simulated spectra")->capture_default_str();
   c->add_option("--trials", select->settings.trials, "simulated sets")->capture_default_str();
-  c->add_option("--loops", select->settings.loops, "greedy passes")->capture_default_str();
+  c->add_option("--starts", select->settings.starts, "greedy optimisations, from the best simulated sets (1: Baker & Lee's one)")
+      ->capture_default_str();
+  c->add_option("--loops", select->settings.loops, "greedy passes at most (it stops when a pass improves nothing)")
+      ->capture_default_str();
+  c->add_option("--w-mean", select->settings.w_mean, "weight of the mean's squared errors in the objective")->capture_default_str();
+  c->add_option("--w-sigma", select->settings.w_sigma, "weight of sigma's squared errors in the objective")->capture_default_str();
+  c->add_flag("--relative-sigma", select->settings.relative_sigma,
+              "optimise sigma ln Sa on relative errors (w_sigma sum ((s - sigma)/sigma)^2), not Baker & Lee's absolute ones");
   c->add_flag("--json", select->json, "print the selection as JSON (spectra and fit) instead of [[records]]");
   c->add_option("-o,--output", select->output, "output file; default stdout");
   c->add_flag("--overwrite", select->overwrite, "replace an existing output file");

@@ -72,7 +72,11 @@ SetStats stats_of(const Matrix& set, bool skewness) {
 double deviation(const SetStats& s, const SelectionTarget& t, const SelectionSettings& w, bool skewness) {
   double total = 0.0;
   for (std::size_t j = 0; j < t.periods_s.size(); ++j) {
-    total += w.w_mean * std::pow(s.mean[j] - t.mean_ln_sa[j], 2) + w.w_sigma * std::pow(s.sigma[j] - t.sigma_ln_sa[j], 2);
+    const double sigma_error = s.sigma[j] - t.sigma_ln_sa[j];
+    const double sigma_term = !w.relative_sigma ? sigma_error * sigma_error
+                              : t.sigma_ln_sa[j] > 0.0 ? std::pow(sigma_error / t.sigma_ln_sa[j], 2)
+                                                       : 0.0;  // σ = 0: the conditioning period, fixed by the scales
+    total += w.w_mean * std::pow(s.mean[j] - t.mean_ln_sa[j], 2) + w.w_sigma * sigma_term;
     if (skewness) total += w.w_skew * s.skew[j] * s.skew[j];
   }
   return total;
@@ -94,14 +98,14 @@ Eigen::MatrixXd covariance_factor(const SelectionTarget& t) {
   return a;
 }
 
-/// Step 1: the best of `trials` simulated sets of N spectra (ln Sa).
-Matrix simulated_set(const SelectionTarget& t, const SelectionSettings& w) {
+/// Step 1: `trials` simulated sets of N spectra (ln Sa), best first by the deviation of their
+/// mean, σ and skewness from the target's (a stable sort: ties keep the order drawn).
+std::vector<Matrix> simulated_sets(const SelectionTarget& t, const SelectionSettings& w) {
   const Eigen::MatrixXd a = covariance_factor(t);
   const auto p = static_cast<Eigen::Index>(t.periods_s.size());
   std::mt19937_64 rng(w.seed);
   std::normal_distribution<double> normal(0.0, 1.0);
-  Matrix best;
-  double best_dev = std::numeric_limits<double>::infinity();
+  std::vector<std::pair<double, Matrix>> sets;
   for (int trial = 0; trial < w.trials; ++trial) {
     Matrix set(w.count, std::vector<double>(t.periods_s.size()));
     for (auto& row : set) {
@@ -110,9 +114,13 @@ Matrix simulated_set(const SelectionTarget& t, const SelectionSettings& w) {
       const Eigen::VectorXd x = a * z;
       for (Eigen::Index i = 0; i < p; ++i) row[static_cast<std::size_t>(i)] = t.mean_ln_sa[static_cast<std::size_t>(i)] + x(i);
     }
-    if (const double d = deviation(stats_of(set, true), t, w, true); d < best_dev) best_dev = d, best = std::move(set);
+    const double d = deviation(stats_of(set, true), t, w, true);
+    sets.emplace_back(d, std::move(set));
   }
-  return best;
+  std::stable_sort(sets.begin(), sets.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::vector<Matrix> out;
+  for (auto& entry : sets) out.push_back(std::move(entry.second));
+  return out;
 }
 
 /// The library's ln Sa at the target's periods, linear in (ln T, ln Sa) between grid points.
@@ -230,7 +238,10 @@ SelectionResult select_records(const SelectionTarget& target, const SpectraTable
   if (!(w.scale_min > 0.0 && w.scale_min <= w.scale_max && std::isfinite(w.scale_max)))
     throw UserError("scale_min", "scale limits must satisfy 0 < min ≤ max", {"scale_min"});
   if (w.trials < 1 || w.trials > 100000) throw UserError("trials", "must be 1 to 100000", {"trials"});
+  if (!(w.w_mean >= 0.0 && w.w_sigma >= 0.0 && w.w_mean + w.w_sigma > 0.0 && std::isfinite(w.w_mean + w.w_sigma)))
+    throw UserError("w_mean", "the weights must be finite, not negative, and not both 0", {"w_mean"});
   if (w.loops < 0 || w.loops > 1000) throw UserError("loops", "must be 0 to 1000", {"loops"});
+  if (w.starts < 1 || w.starts > 100000) throw UserError("starts", "must be 1 to 100000", {"starts"});
   if (w.kind != "rotd50" && w.kind != "component") throw UserError("kind", "'" + w.kind + "' is not rotd50 or component", {"kind"});
   const auto& grid = table.periods_s;
   for (std::size_t j = 0; j < target.periods_s.size(); ++j) {
@@ -259,86 +270,151 @@ SelectionResult select_records(const SelectionTarget& target, const SpectraTable
                              ", " + number_text(w.scale_max) + "]; " + std::to_string(w.count) + " asked",
                     {"count"});
 
-  // Step 2: the nearest entry to each simulated spectrum.
-  const Matrix sim = simulated_set(target, w);
-  std::vector<std::size_t> chosen;
-  std::vector<double> chosen_ln_s;
-  for (const auto& s : sim) {
-    double best = std::numeric_limits<double>::infinity();
-    std::size_t best_k = lib.size();
-    double best_ln_s = 0.0;
-    for (std::size_t k = 0; k < lib.size(); ++k) {
-      if (std::find(chosen.begin(), chosen.end(), k) != chosen.end()) continue;
-      double ln_s = fixed_ln_s[k];
-      if (cond == periods.size()) {  // least squares on Sa (Jayaram et al.)
-        double num = 0.0, den = 0.0;
-        for (std::size_t j = 0; j < periods.size(); ++j) num += std::exp(lib[k][j] + s[j]), den += std::exp(2 * lib[k][j]);
-        ln_s = std::log(num / den);
-      }
-      if (!allowed(std::exp(ln_s), w)) continue;
-      double err = 0.0;
-      for (std::size_t j = 0; j < periods.size(); ++j) err += std::pow(lib[k][j] + ln_s - s[j], 2);
-      if (err < best) best = err, best_k = k, best_ln_s = ln_s;
-    }
-    if (best_k == lib.size()) throw UserError("count", "no library entry left within the scale limits", {"count"});
-    chosen.push_back(best_k);
-    chosen_ln_s.push_back(best_ln_s);
-  }
+  const double ln_min = std::log(w.scale_min), ln_max = std::log(w.scale_max);
+  const std::size_t p = periods.size();
+  const bool free_scale = cond == periods.size();
 
-  // Step 3: greedy replacement.
-  auto set_of = [&](const std::vector<std::size_t>& ks, const std::vector<double>& ln_s) {
-    Matrix set;
-    for (std::size_t i = 0; i < ks.size(); ++i) set.push_back(shifted(lib[ks[i]], ln_s[i]));
-    return set;
-  };
-  for (int loop = 0; loop < w.loops; ++loop) {
-    bool changed = false;
-    for (std::size_t i = 0; i < chosen.size(); ++i) {
+  // Step 2: the nearest entry to each simulated spectrum; a free scale is Jayaram et al.'s
+  // least squares on Sa, kept within the limits.
+  auto nearest = [&](const Matrix& sim, std::vector<std::size_t>& chosen, std::vector<double>& chosen_ln_s) {
+    for (const auto& s : sim) {
       double best = std::numeric_limits<double>::infinity();
-      std::size_t best_k = chosen[i];
-      double best_ln_s = chosen_ln_s[i];
-      // Sums of ln Sa and its square over the set without entry i: each candidate is then
-      // judged in O(periods).
-      const std::size_t p = periods.size();
-      std::vector<double> s1(p, 0.0), s2(p, 0.0);
-      for (std::size_t m = 0; m < chosen.size(); ++m)
-        if (m != i)
-          for (std::size_t j = 0; j < p; ++j) {
-            const double x = lib[chosen[m]][j] + chosen_ln_s[m];
-            s1[j] += x, s2[j] += x * x;
-          }
-      const double n = static_cast<double>(chosen.size());
-      SetStats stats{std::vector<double>(p), std::vector<double>(p), {}};
+      std::size_t best_k = lib.size();
+      double best_ln_s = 0.0;
       for (std::size_t k = 0; k < lib.size(); ++k) {
-        if (k != chosen[i] && std::find(chosen.begin(), chosen.end(), k) != chosen.end()) continue;
-        std::vector<double> tries;
-        if (cond < periods.size()) tries.push_back(fixed_ln_s[k]);
-        else
-          for (int step = 0; step <= 64; ++step)
-            tries.push_back(std::log(w.scale_min) + (std::log(w.scale_max) - std::log(w.scale_min)) * step / 64.0);
-        for (double ln_s : tries) {
-          if (!allowed(std::exp(ln_s), w)) continue;
+        if (std::find(chosen.begin(), chosen.end(), k) != chosen.end()) continue;
+        double ln_s = fixed_ln_s[k];
+        if (free_scale) {
+          double num = 0.0, den = 0.0;
+          for (std::size_t j = 0; j < p; ++j) num += std::exp(lib[k][j] + s[j]), den += std::exp(2 * lib[k][j]);
+          ln_s = std::clamp(std::log(num / den), ln_min, ln_max);
+        } else if (!allowed(std::exp(ln_s), w)) {
+          continue;
+        }
+        double err = 0.0;
+        for (std::size_t j = 0; j < p; ++j) err += std::pow(lib[k][j] + ln_s - s[j], 2);
+        if (err < best) best = err, best_k = k, best_ln_s = ln_s;
+      }
+      if (best_k == lib.size()) throw UserError("count", "no library entry left within the scale limits", {"count"});
+      chosen.push_back(best_k);
+      chosen_ln_s.push_back(best_ln_s);
+    }
+  };
+
+  // The fit of a set: w_mean Σ (m̂ − μ)² + w_sigma Σ (ŝ − σ)² (or its relative form).
+  auto fit_of = [&](const std::vector<std::size_t>& chosen, const std::vector<double>& chosen_ln_s) {
+    Matrix set;
+    for (std::size_t i = 0; i < chosen.size(); ++i) set.push_back(shifted(lib[chosen[i]], chosen_ln_s[i]));
+    return deviation(stats_of(set, false), target, w, false);
+  };
+
+  // Step 3: greedy replacement. In a pass, entry i is replaced by the entry and scale that give
+  // the best fit with the others; a free scale is searched on 64 steps of ln s between the
+  // limits, then refined by golden-section search between the neighbours of the best step
+  // (the fit is smooth in ln s). The entry in place, at its scale, is the first candidate, so
+  // that no replacement makes the fit worse. Passes follow one another until one replaces no
+  // entry; then the scales alone are optimised (passes over the entries in place, coordinate
+  // descent) until a pass improves the fit by less than a relative 1e-12, and one more pass
+  // over every entry ends the optimisation unless it replaces one (at most `loops` passes that
+  // may replace entries).
+  auto greedy = [&](std::vector<std::size_t>& chosen, std::vector<double>& chosen_ln_s) {
+    const double n = static_cast<double>(chosen.size());
+    std::vector<double> s1(p), s2(p);
+    SetStats stats{std::vector<double>(p), std::vector<double>(p), {}};
+    auto pass = [&](bool scales_only) {
+      bool swapped = false;
+      for (std::size_t i = 0; i < chosen.size(); ++i) {
+        // Sums of ln Sa and its square over the set without entry i: each candidate is then
+        // judged in O(periods).
+        std::fill(s1.begin(), s1.end(), 0.0), std::fill(s2.begin(), s2.end(), 0.0);
+        for (std::size_t m = 0; m < chosen.size(); ++m)
+          if (m != i)
+            for (std::size_t j = 0; j < p; ++j) {
+              const double x = lib[chosen[m]][j] + chosen_ln_s[m];
+              s1[j] += x, s2[j] += x * x;
+            }
+        auto fit_with = [&](std::size_t k, double ln_s) {
           for (std::size_t j = 0; j < p; ++j) {
             const double y = lib[k][j] + ln_s, mean = (s1[j] + y) / n;
             stats.mean[j] = mean;
             stats.sigma[j] = std::sqrt(std::max(0.0, (s2[j] + y * y) / n - mean * mean));
           }
-          if (const double d = deviation(stats, target, w, false); d < best) best = d, best_k = k, best_ln_s = ln_s;
+          return deviation(stats, target, w, false);
+        };
+        double best = fit_with(chosen[i], chosen_ln_s[i]);
+        std::size_t best_k = chosen[i];
+        double best_ln_s = chosen_ln_s[i];
+        for (std::size_t k = 0; k < lib.size(); ++k) {
+          if (k != chosen[i] && (scales_only || std::find(chosen.begin(), chosen.end(), k) != chosen.end())) continue;
+          if (!free_scale) {
+            if (!allowed(std::exp(fixed_ln_s[k]), w)) continue;
+            if (const double d = fit_with(k, fixed_ln_s[k]); d < best) best = d, best_k = k, best_ln_s = fixed_ln_s[k];
+            continue;
+          }
+          constexpr int kSteps = 64;
+          auto step_ln_s = [&](int step) { return ln_min + (ln_max - ln_min) * step / kSteps; };
+          int best_step = 0;
+          double best_step_fit = std::numeric_limits<double>::infinity();
+          for (int step = 0; step <= kSteps; ++step)
+            if (const double d = fit_with(k, step_ln_s(step)); d < best_step_fit) best_step_fit = d, best_step = step;
+          double lo = step_ln_s(std::max(0, best_step - 1)), hi = step_ln_s(std::min(kSteps, best_step + 1));
+          const double golden = (std::sqrt(5.0) - 1.0) / 2.0;
+          double x1 = hi - golden * (hi - lo), x2 = lo + golden * (hi - lo);
+          double f1 = fit_with(k, x1), f2 = fit_with(k, x2);
+          while (hi - lo > 1e-9) {
+            if (f1 < f2) hi = x2, x2 = x1, f2 = f1, x1 = hi - golden * (hi - lo), f1 = fit_with(k, x1);
+            else lo = x1, x1 = x2, f1 = f2, x2 = lo + golden * (hi - lo), f2 = fit_with(k, x2);
+          }
+          double ln_s = step_ln_s(best_step), d = best_step_fit;
+          if (f1 < d) ln_s = x1, d = f1;
+          if (f2 < d) ln_s = x2, d = f2;
+          if (d < best) best = d, best_k = k, best_ln_s = ln_s;
         }
+        swapped = swapped || best_k != chosen[i];
+        chosen[i] = best_k;
+        chosen_ln_s[i] = best_ln_s;
       }
-      changed = changed || best_k != chosen[i];
-      chosen[i] = best_k;
-      chosen_ln_s[i] = best_ln_s;
+      return swapped;
+    };
+    for (int loop = 0; loop < w.loops; ++loop) {
+      if (pass(false)) continue;
+      if (!free_scale) break;  // fixed scales: nothing more to optimise
+      for (int sweep = 0; sweep < 1000; ++sweep) {
+        const double before = fit_of(chosen, chosen_ln_s);
+        pass(true);
+        if (!(before - fit_of(chosen, chosen_ln_s) > 1e-12 * before)) break;
+      }
+      if (++loop < w.loops && pass(false)) continue;
+      break;
     }
-    if (!changed) break;
+  };
+
+  // Steps 2 and 3 from each of the best `starts` simulated sets; the best fit is kept.
+  const std::vector<Matrix> sims = simulated_sets(target, w);
+  std::vector<std::size_t> chosen;
+  std::vector<double> chosen_ln_s;
+  double best_fit = std::numeric_limits<double>::infinity();
+  for (int start = 0; start < std::min(w.starts, w.trials); ++start) {
+    std::vector<std::size_t> ks;
+    std::vector<double> ln_s;
+    nearest(sims[static_cast<std::size_t>(start)], ks, ln_s);
+    greedy(ks, ln_s);
+    if (const double d = fit_of(ks, ln_s); d < best_fit) best_fit = d, chosen = std::move(ks), chosen_ln_s = std::move(ln_s);
   }
+  auto set_of = [&](const std::vector<std::size_t>& ks, const std::vector<double>& ln_s) {
+    Matrix set;
+    for (std::size_t i = 0; i < ks.size(); ++i) set.push_back(shifted(lib[ks[i]], ln_s[i]));
+    return set;
+  };
 
   SelectionResult r;
   r.ln_sa = set_of(chosen, chosen_ln_s);
   const SetStats s = stats_of(r.ln_sa, false);
   r.mean_ln_sa = s.mean;
   r.sigma_ln_sa = s.sigma;
-  r.sum_of_squares = deviation(s, target, w, false);
+  // The figure of merit is always Baker & Lee's: absolute σ errors, their weights 1 and 2.
+  SelectionSettings baker_lee;
+  r.sum_of_squares = deviation(s, target, baker_lee, false);
   for (std::size_t j = 0; j < periods.size(); ++j) {
     r.median_error_percent = std::max(r.median_error_percent, 100.0 * std::fabs(std::exp(s.mean[j] - target.mean_ln_sa[j]) - 1.0));
     if (target.sigma_ln_sa[j] > 0.0)

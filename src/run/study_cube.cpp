@@ -9,8 +9,10 @@
 #include <type_traits>
 #include <variant>
 
+#include "pcrf/excitation/station_pulse.hpp"
 #include "pcrf/metrics/case_result.hpp"
 #include "pcrf/model/frame_properties.hpp"
+#include "pcrf/record/pulses.hpp"
 #include "pcrf/schema/cube_vocabulary.hpp"
 #include "pcrf/run/result_row.hpp"
 #include "pcrf/version.hpp"
@@ -112,20 +114,73 @@ void add_incidence(const Study& study, const CaseSpace& space, cube::CubeLayout&
   layout.side_variables.push_back(std::move(azimuth));
 }
 
+/// Each record's velocity pulse ([outputs] record_pulses): identified in recorded and
+/// synthetic motions (excitation/station_pulse.hpp), given for [[records]] pulse entries
+/// (pulse-like by construction, T_p their period).
+struct RecordPulse {
+  bool pulse_like = false;
+  std::string method;                 ///< "baker-2007", "shahi-baker-2014", or "synthetic-pulse"
+  double period_s = std::nan("");     ///< T_p; NaN when not pulse-like, so that ω_p/p is NaN too
+  double azimuth_deg = std::nan("");  ///< the pulse's azimuth (pairs); NaN else
+};
+
+/// The T_p of a [[records]] pulse entry: its [axes] pulse_period_s value, else the default.
+double synthetic_pulse_period_s(const RecordSource& r) {
+  const auto it = std::find_if(r.pulse_values.begin(), r.pulse_values.end(),
+                               [](const auto& kv) { return kv.first == names::kPulsePeriod; });
+  return it == r.pulse_values.end() ? PulseSpec{}.period_s : it->second;
+}
+
+/// Identifies every record's pulse. \throws UserError at the record's [[records]] entry when
+/// its motion cannot be classified (a pair without azimuths, a record too short).
+std::vector<RecordPulse> identify_record_pulses(const Study& study, RecordCache& records) {
+  std::vector<RecordPulse> pulses;
+  for (std::size_t r = 0; r < study.records.size(); ++r) {
+    const RecordSource& source = study.records[r];
+    RecordPulse p;
+    if (!source.pulse_shape.empty()) {
+      p = {true, "synthetic-pulse", synthetic_pulse_period_s(source), std::nan("")};
+    } else {
+      const std::string context = "[outputs] record_pulses: record \"" + source.name + "\": ";
+      const StationRecord& station = records.station(r);
+      if (station.h2 && !(station.az1_deg && station.az2_deg))
+        throw UserError(source.declared_at, context + "the azimuths of its two horizontals are not known (their files state "
+                                                      "none): give az1_deg and az2_deg");
+      PulseClassification c;
+      try {
+        c = classify_station_pulse(station);
+      } catch (const UserError& e) {
+        throw UserError(source.declared_at, context + e.problem(Dialect::kStudy));
+      }
+      p.pulse_like = c.pulse_like;
+      p.method = to_string(c.method);
+      if (c.pulse_like) {
+        p.period_s = c.period_s;
+        if (c.method == PulseMethod::kShahiBaker2014) p.azimuth_deg = c.candidates[c.decided_by].azimuth_deg;
+      }
+    }
+    pulses.push_back(std::move(p));
+  }
+  return pulses;
+}
+
 /// Pulse records ([[records]] pulse): their shape and [axes] pulse values along `record` (""
 /// and NaN for other records); each frame's frequency parameter p and uplift threshold over
 /// the frame dimensions, and ω_p/p = 2π/(T_p p) over record and frame, so that spectra of
 /// different frames share axes (a_p over the uplift threshold: the intensity over
-/// uplift_threshold_g).
-void add_pulse_coordinates(const Study& study, const CaseSpace& space, cube::CubeLayout& layout) {
-  if (study.pulse_axes.empty() && std::none_of(study.records.begin(), study.records.end(),
-                                               [](const RecordSource& r) { return !r.pulse_shape.empty(); }))
+/// uplift_threshold_g). With [outputs] record_pulses, every record's identified pulse as well
+/// (record_pulse_like, record_pulse_method, pulse_period_s, record_pulse_azimuth_deg): ω_p/p for real records, NaN
+/// where a record is not pulse-like.
+void add_pulse_coordinates(const Study& study, const CaseSpace& space, RecordCache& records, cube::CubeLayout& layout) {
+  if (!study.record_pulses && study.pulse_axes.empty() &&
+      std::none_of(study.records.begin(), study.records.end(), [](const RecordSource& r) { return !r.pulse_shape.empty(); }))
     return;
   std::vector<std::string> shapes;
   for (const auto& r : study.records) shapes.push_back(r.pulse_shape);
   layout.coordinates.push_back(text_coordinate(names::kPulseShape, names::kRecord, "pulse of the record (empty: not a pulse)", shapes));
   std::vector<double> periods;
   for (const auto& axis : study.pulse_axes) {
+    if (study.record_pulses && axis.key == names::kPulsePeriod) continue;  // written below, with every record's
     std::vector<double> values;
     for (const auto& r : study.records) {
       const auto it = std::find_if(r.pulse_values.begin(), r.pulse_values.end(), [&](const auto& kv) { return kv.first == axis.key; });
@@ -136,6 +191,30 @@ void add_pulse_coordinates(const Study& study, const CaseSpace& space, cube::Cub
                                                    units == "s" ? "s" : units == "g" ? "g" : units == "deg" ? "degree" : "1",
                                                    "pulse parameter " + axis.key.substr(6) + " (record/pulses.hpp)", values));
     if (axis.key == names::kPulsePeriod) periods = values;
+  }
+  if (study.record_pulses) {
+    const auto pulses = identify_record_pulses(study, records);
+    std::vector<double> like, azimuths;
+    std::vector<std::string> methods;
+    periods.clear();
+    for (const auto& p : pulses) {
+      like.push_back(p.pulse_like ? 1.0 : 0.0);
+      methods.push_back(p.method);
+      periods.push_back(p.period_s);
+      azimuths.push_back(p.azimuth_deg);
+    }
+    auto& coords = layout.coordinates;
+    coords.push_back(number_coordinate(names::kPulseLike, names::kRecord, "",
+                                       "1: the record carries a strong velocity pulse (by pulse_method), 0: not", like));
+    coords.back().is_index = true;  // 0 or 1, stored as an integer
+    coords.push_back(text_coordinate(names::kPulseMethod, names::kRecord,
+                                     "how the pulse was found: baker-2007 (one component), shahi-baker-2014 (a pair), "
+                                     "synthetic-pulse ([[records]] pulse)",
+                                     methods));
+    coords.push_back(number_coordinate(names::kPulsePeriod, names::kRecord, "s",
+                                       "pulse period T_p (NaN: not pulse-like; record/pulse_identification.hpp)", periods));
+    coords.push_back(number_coordinate(names::kPulseAzimuth, names::kRecord, "degree",
+                                       "azimuth of the identified pulse, clockwise from north (pairs; NaN else)", azimuths));
   }
   std::vector<std::string> frame_dimensions;
   for (const auto& d : space.plan().dimensions()) frame_dimensions.push_back(d.name);
@@ -237,7 +316,7 @@ cube::CubeLayout make_cube_layout(const Study& study, const CaseSpace& space, Re
     layout.dimensions.push_back({space.dimension_names()[d], space.shape()[d]});
   add_record_and_level(study, space, records, layout);
   add_incidence(study, space, layout);
-  add_pulse_coordinates(study, space, layout);
+  add_pulse_coordinates(study, space, records, layout);
   for (auto& c : space.plan().coordinates()) layout.coordinates.push_back(std::move(c));
   layout.metrics = ResultColumns(study).variables();
   const auto& names = space.dimension_names();

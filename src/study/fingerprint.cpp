@@ -91,6 +91,7 @@ std::string canonical_description(const Study& study, const CaseSpace& space, Re
   for (const auto& m : study.metrics) out << ' ' << m;
   out << '\n';
   for (const auto& h : study.histories) out << "history " << h.label << ' ' << space.resolve(h) << '\n';
+  if (study.record_pulses) out << "record_pulses\n";  // the cube's pulse coordinates; studies without: as they were
   return out.str();
 }
 

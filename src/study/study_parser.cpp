@@ -687,9 +687,10 @@ void read_outputs(const Fields& top, Study& s) {
   s.metrics = metric_names(s.solver.verdict_check);
   const auto* table = top.subtable("outputs");
   if (table == nullptr) return;
-  Fields f(*table, {"outputs"}, s.file, {"metrics", "histories"});
+  Fields f(*table, {"outputs"}, s.file, {"metrics", "histories", "record_pulses"});
   read_metrics(f, s);
   read_histories(f, s);
+  s.record_pulses = f.flag("record_pulses").value_or(false);
 }
 
 }  // namespace

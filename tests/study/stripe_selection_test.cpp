@@ -179,7 +179,7 @@ TEST(StripeSelection, TheSelectionIsPartOfTheFingerprintAndPassesTheChecks) {
   std::string description;
   const std::string base = fingerprint(kIntensity + kSelection, &description);
   EXPECT_NE(description.find("selection kind=component count=4 scale_min=0.05"), std::string::npos) << description;
-  EXPECT_NE(description.find(" scale_max=50 seed=3 trials=20 loops=2\n"), std::string::npos) << description;
+  EXPECT_NE(description.find(" scale_max=50 seed=3 trials=20 loops=100\n"), std::string::npos) << description;
   const Study s = parse(kIntensity + kSelection);
   std::ostringstream stripe;
   stripe.precision(17);

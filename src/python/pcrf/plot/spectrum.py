@@ -1,6 +1,8 @@
 """`spectrum`: a rocking (collapse) spectrum of an IDA cube over pulse records ([[records]]
 pulse, [axes] pulse_period_s): each curve's collapse amplitude, over the frame's uplift
-threshold, against ω_p/p, one line per pulse shape, one panel per frame. The marker says how
+threshold, against ω_p/p, one line per pulse shape, one panel per frame; recorded motions of a
+study with [outputs] record_pulses are points at their identified T_p (those without a pulse
+have no ω_p/p and are left out). The marker says how
 the run at the collapse amplitude ended: overturned (filled circle) or tendon fracture
 (cross); a curve safe up to max_intensity is a triangle at the cap (its amplitude is above),
 an unbracketed one (max_runs ran out) a hollow triangle at its last safe amplitude, and an
@@ -27,7 +29,8 @@ def minor_label(value, _position):
 def draw(args):
     cube = engine.Cube(args.input)
     for needed, why in ((schema.COLLAPSE_INTENSITY, "an IDA cube ([ida] table)"),
-                        (schema.OMEGA_OVER_P, "pulse records ([[records]] pulse with [axes] pulse_period_s)")):
+                        (schema.OMEGA_OVER_P, "pulse records ([[records]] pulse with [axes] pulse_period_s) or "
+                                              "[outputs] record_pulses")):
         if cube.variable(needed) is None:
             raise PlotError(f"{args.input}: not a rocking-spectrum cube (no {needed}): it needs {why}")
     units = cube.variable(schema.COLLAPSE_INTENSITY)["units"]
@@ -69,7 +72,10 @@ def draw(args):
                             if "point" in p and math.isfinite(p["x"]))
             if not points:
                 continue
-            ax.plot([p[0] for p in points], [p[1] for p in points], "-", color=colour, lw=1.4, label=shape)
+            # Recorded motions ([outputs] record_pulses: no pulse_shape, T_p identified) are points
+            # of different records, not a curve: markers only.
+            ax.plot([p[0] for p in points], [p[1] for p in points], linestyle="-" if shape else "none", color=colour,
+                    lw=1.4, marker=None if shape else "o", mfc="none", label=shape or "records (T_p identified)")
             for kind, (marker, _) in markers.items():
                 chosen = [p for p in points if p[2] == kind]
                 counts[kind] += len(chosen)

@@ -193,6 +193,11 @@ struct Study {
   Where where(const std::string& table_key) const;
   std::vector<std::string> metrics;  ///< metric names to store, in all_metrics() order
   std::vector<HistoryRequest> histories;
+  /// [outputs] record_pulses: each record's velocity pulse is identified (Baker 2007 on one
+  /// component, Shahi & Baker 2014 on a station's pair; excitation/station_pulse.hpp) and the
+  /// cube gets record_pulse_like, record_pulse_method, pulse_period_s (NaN when not pulse-like) and
+  /// record_pulse_azimuth_deg along `record`, and ω_p/p over record and frame. Part of the fingerprint.
+  bool record_pulses = false;
   RunOptions run;
 };
 
