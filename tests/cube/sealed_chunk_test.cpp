@@ -4,6 +4,7 @@
 // a journal whose sealed chunk does not inflate is set aside, never folded.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>

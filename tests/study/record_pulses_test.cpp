@@ -50,9 +50,9 @@ TEST(RecordPulses, EveryRecordGetsItsPulseAndOmegaOverP) {
                            "[outputs]\nrecord_pulses = true\n";
   const auto [study, layout] = layout_of(text);
   ASSERT_EQ(study.records.size(), 3u);
-  const auto& like = coordinate(layout, "record_pulse_like");
-  const auto& method = coordinate(layout, "record_pulse_method");
-  const auto& period = coordinate(layout, "pulse_period_s");
+  const cube::Coordinate like = coordinate(layout, "record_pulse_like");
+  const cube::Coordinate method = coordinate(layout, "record_pulse_method");
+  const cube::Coordinate period = coordinate(layout, "pulse_period_s");
   EXPECT_TRUE(like.is_index);
   EXPECT_EQ(like.numbers, (std::vector<double>{1.0, 0.0, 1.0}));
   EXPECT_EQ(method.strings, (std::vector<std::string>{"baker-2007", "baker-2007", "synthetic-pulse"}));
