@@ -539,31 +539,6 @@ class CaseKernel {
     return roots(t, y, g) == 0;
   }
 
-  PCRF_HD bool illinois(int i, double& lo, double& glo, double& hi, double& ghi, double ttol) {
-    double g[kMaxRoots];
-    int last = 0;
-    for (int it = 0; it < 200 && hi - lo > ttol && ghi != 0.0; ++it) {
-      double t = hi - ghi * (hi - lo) / (ghi - glo);
-      const double margin = 0.5 * ttol;
-      t = kclamp(t, lo + margin, hi - margin);
-      if (!roots_at(t, g)) return false;
-      const double gt = g[i];
-      if (gt == 0.0) {
-        hi = t;
-        ghi = 0.0;
-      } else if ((gt > 0.0) == (glo > 0.0)) {
-        lo = t, glo = gt;
-        if (last == -1) ghi *= 0.5;
-        last = -1;
-      } else {
-        hi = t, ghi = gt;
-        if (last == 1) glo *= 0.5;
-        last = 1;
-      }
-    }
-    return true;
-  }
-
   /// Root i's state component (OdeProblem::root_state_index of FlightProblem's forms): θ₁
   /// for the impact, θ̇₁ for the θ peak; −1 for the others.
   PCRF_HD static int root_state_index(int i) { return i == kImpact ? 0 : i == kThetaPeak ? 1 : -1; }
@@ -575,7 +550,8 @@ class CaseKernel {
           [&](double t, double& v, double& slope, double&) { v = dense_component(t, component), slope = dense_slope(t, component); },
           lo, glo, hi, ghi, ttol);
     } else {
-      illinois(i, lo, glo, hi, ghi, ttol);
+      detail::illinois_in_bracket<kMaxRoots>([this](double t, double* g) { return roots_at(t, g); }, i, lo, glo, hi, ghi,
+                                             ttol);
     }
   }
 

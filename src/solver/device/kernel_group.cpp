@@ -8,6 +8,7 @@
 #include "kernel_cases.hpp"
 #include "../case/case_common.hpp"
 #include "../case/prepared_frame.hpp"
+#include "../group/group_answers.hpp"
 #include "pcrf/number_text.hpp"
 #include "pcrf/solver/case_group.hpp"
 
@@ -153,19 +154,8 @@ namespace {
 constexpr const char* kLeftTableMessage =
     "the case kernel: the frame reached an angle its table does not hold (the CPU path's exact terms)";
 
-/// The answer of a refused case: why, and nothing else set.
-GroupCase refused(std::string why) {
-  GroupCase c;
-  c.outcome = GroupOutcome::kRefused;
-  c.result.status = CaseStatus::kSolverFailure;
-  c.result.message = std::move(why);
-  return c;
-}
-
-void check_history(std::size_t cases, const HistorySink& history) {
-  if (history && cases != 1)
-    throw std::invalid_argument("a group's history: one case only, got " + std::to_string(cases));
-}
+using detail::check_group_history;
+using detail::refused_case;
 
 /// The kernel compiled for the host, case by case.
 class KernelHost final : public CaseGroupSolver {
@@ -174,13 +164,13 @@ class KernelHost final : public CaseGroupSolver {
   std::vector<GroupCase> solve(std::span<PreparedFrame* const> frames, const Excitation& excitation,
                                const SolverSettings& solver, const OutputRequest& request,
                                const HistorySink& history) const override {
-    check_history(frames.size(), history);
+    check_group_history(frames.size(), history);
     std::vector<GroupCase> cases(frames.size());
     const std::string group_why = device::kernel_refuses(excitation, solver, static_cast<bool>(history));
     const device::KernelRecord record = device::kernel_record(excitation.horizontal());
     for (std::size_t i = 0; i < frames.size(); ++i) {
       if (!group_why.empty()) {
-        cases[i] = refused(group_why);
+        cases[i] = refused_case(group_why);
         continue;
       }
       try {
@@ -188,19 +178,19 @@ class KernelHost final : public CaseGroupSolver {
         device::KernelCase c;
         device::KernelTableStore tables;
         if (std::string why = device::kernel_case(*frames[i], excitation, solver, request, c, tables); !why.empty()) {
-          cases[i] = refused(std::move(why));
+          cases[i] = refused_case(std::move(why));
           continue;
         }
         device::KernelResult k;
         device::solve_kernel_case(c, record, tables.view(), k);
         if (k.end == device::KernelEnd::kLeftTable) {
-          cases[i] = refused(kLeftTableMessage);
+          cases[i] = refused_case(kLeftTableMessage);
           continue;
         }
         cases[i].result = device::kernel_result(*frames[i], excitation, request, k);
         cases[i].result.cpu_time_s = detail::thread_cpu_s() - start_cpu_s;
       } catch (const std::exception& e) {  // what solve_case would throw: the case's answer
-        cases[i] = refused(e.what());
+        cases[i] = refused_case(e.what());
       }
     }
     return cases;
@@ -223,11 +213,11 @@ class Gpu final : public CaseGroupSolver {
   std::vector<GroupCase> solve(std::span<PreparedFrame* const> frames, const Excitation& excitation,
                                const SolverSettings& solver, const OutputRequest& request,
                                const HistorySink& history) const override {
-    check_history(frames.size(), history);
+    check_group_history(frames.size(), history);
     std::vector<GroupCase> cases(frames.size());
     const std::string group_why = device::kernel_refuses(excitation, solver, static_cast<bool>(history));
     if (!group_why.empty()) {
-      for (GroupCase& c : cases) c = refused(group_why);
+      for (GroupCase& c : cases) c = refused_case(group_why);
       return cases;
     }
     const double start_cpu_s = detail::thread_cpu_s();
@@ -238,27 +228,27 @@ class Gpu final : public CaseGroupSolver {
       try {
         device::KernelCase c;
         if (std::string why = device::kernel_case(*frames[i], excitation, solver, request, c, tables); !why.empty()) {
-          cases[i] = refused(std::move(why));
+          cases[i] = refused_case(std::move(why));
           continue;
         }
         taken.push_back(c);
         index.push_back(i);
       } catch (const std::exception& e) {
-        cases[i] = refused(e.what());
+        cases[i] = refused_case(e.what());
       }
     }
     std::vector<device::KernelResult> results(taken.size());
     std::string error;
     if (!device::cuda_solve_cases(taken.data(), taken.size(), device::kernel_record(excitation.horizontal()), tables,
                                   results.data(), error)) {
-      for (std::size_t i : index) cases[i] = refused("the GPU (" + device_ + ") did not run the cases: " + error);
+      for (std::size_t i : index) cases[i] = refused_case("the GPU (" + device_ + ") did not run the cases: " + error);
       return cases;
     }
     // The host thread's CPU time (set-up, transfers, the wait), shared equally.
     const double share_s = taken.empty() ? 0.0 : (detail::thread_cpu_s() - start_cpu_s) / static_cast<double>(taken.size());
     for (std::size_t j = 0; j < taken.size(); ++j) {
       if (results[j].end == device::KernelEnd::kLeftTable) {
-        cases[index[j]] = refused(kLeftTableMessage);
+        cases[index[j]] = refused_case(kLeftTableMessage);
         continue;
       }
       cases[index[j]].result = device::kernel_result(*frames[index[j]], excitation, request, results[j]);

@@ -242,33 +242,6 @@ bool DormandPrinceIntegrator::roots_at(double t, double* g) {
   return problem_.roots(t, y.data(), g) == 0;
 }
 
-bool DormandPrinceIntegrator::illinois(int i, double& lo, double& glo, double& hi, double& ghi, double ttol) {
-  // Regula falsi that halves the stale end's value when an end repeats.
-  std::array<double, kMaxRoots> g;  // NOLINT: filled by roots_at before use
-  const auto k = static_cast<std::size_t>(i);
-  int last = 0;
-  for (int it = 0; it < 200 && hi - lo > ttol && ghi != 0.0; ++it) {
-    double t = hi - ghi * (hi - lo) / (ghi - glo);
-    const double margin = 0.5 * ttol;
-    t = std::clamp(t, lo + margin, hi - margin);
-    if (!roots_at(t, g.data())) return false;
-    const double gt = g[k];
-    if (gt == 0.0) {
-      hi = t;
-      ghi = 0.0;
-    } else if ((gt > 0.0) == (glo > 0.0)) {
-      lo = t, glo = gt;
-      if (last == -1) ghi *= 0.5;
-      last = -1;
-    } else {
-      hi = t, ghi = gt;
-      if (last == 1) glo *= 0.5;
-      last = 1;
-    }
-  }
-  return true;
-}
-
 void DormandPrinceIntegrator::locate(int i, double& lo, double& glo, double& hi, double& ghi, double ttol) {
   // A root that is a state component: Newton on the interpolant, no call of the problem.
   const int component = problem_.root_state_index(i);
@@ -276,7 +249,7 @@ void DormandPrinceIntegrator::locate(int i, double& lo, double& glo, double& hi,
     newton_in_bracket([&](double t, double& v, double& slope, double&) { dense_value_slope(t, component, v, slope); },
                       lo, glo, hi, ghi, ttol);
   } else {
-    illinois(i, lo, glo, hi, ghi, ttol);
+    illinois_in_bracket<kMaxRoots>([this](double t, double* g) { return roots_at(t, g); }, i, lo, glo, hi, ghi, ttol);
   }
 }
 

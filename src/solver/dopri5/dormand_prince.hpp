@@ -123,11 +123,9 @@ class DormandPrinceIntegrator final : public OdeIntegrator {
   /// (root_search.hpp). Fills root_time_, found_ and g_root_ and returns true when one exists.
   bool find_roots(double a, const double* g_a, double b, const double* g_b);
   /// Narrows [lo, hi] (values glo, ghi of opposite signs) around the root of function i to
-  /// ttol: Newton on the interpolant for a state component, else illinois.
+  /// ttol: Newton on the interpolant for a state component, else the Illinois method
+  /// (root_search.hpp: newton_in_bracket, illinois_in_bracket).
   void locate(int i, double& lo, double& glo, double& hi, double& ghi, double ttol);
-  /// Narrows [lo, hi] around the root of function i by the Illinois method (g on the dense
-  /// output); false when the problem's root functions failed.
-  bool illinois(int i, double& lo, double& glo, double& hi, double& ghi, double ttol);
   /// g at time t of the current step, from the dense output.
   bool roots_at(double t, double* g);
   void dense(double t, Vec& y) const;

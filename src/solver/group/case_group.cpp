@@ -8,18 +8,27 @@
 #include <string>
 
 #include "../lanes/lanes.hpp"
+#include "group_answers.hpp"
 
 namespace pcrf {
-namespace {
 
-/// The answer of a refused case: why, and nothing else set.
-GroupCase refused(std::string why) {
+GroupCase detail::refused_case(std::string why) {
   GroupCase c;
   c.outcome = GroupOutcome::kRefused;
   c.result.status = CaseStatus::kSolverFailure;
   c.result.message = std::move(why);
   return c;
 }
+
+void detail::check_group_history(std::size_t cases, const HistorySink& history) {
+  if (history && cases != 1)
+    throw std::invalid_argument("a group's history: one case only, got " + std::to_string(cases));
+}
+
+namespace {
+
+using detail::check_group_history;
+using detail::refused_case;
 
 std::string what_of(const std::exception_ptr& e) {
   try {
@@ -31,24 +40,19 @@ std::string what_of(const std::exception_ptr& e) {
   }
 }
 
-void check_history(std::size_t cases, const HistorySink& history) {
-  if (history && cases != 1)
-    throw std::invalid_argument("a group's history: one case only, got " + std::to_string(cases));
-}
-
 class OneAtATime final : public CaseGroupSolver {
  public:
   std::string_view name() const override { return "one-at-a-time"; }
   std::vector<GroupCase> solve(std::span<PreparedFrame* const> frames, const Excitation& excitation,
                                const SolverSettings& solver, const OutputRequest& request,
                                const HistorySink& history) const override {
-    check_history(frames.size(), history);
+    check_group_history(frames.size(), history);
     std::vector<GroupCase> cases(frames.size());
     for (std::size_t i = 0; i < frames.size(); ++i) {
       try {
         cases[i].result = solve_case(*frames[i], excitation, solver, request, history);
       } catch (const std::exception& e) {  // solve_case throws only for a case it refuses
-        cases[i] = refused(e.what());
+        cases[i] = refused_case(e.what());
       }
     }
     return cases;
@@ -71,7 +75,7 @@ class CpuLanes final : public CaseGroupSolver {
     std::vector<GroupCase> cases(frames.size());
     for (std::size_t i = 0; i < frames.size(); ++i) {
       if (why[i]) {
-        cases[i] = refused(what_of(why[i]));
+        cases[i] = refused_case(what_of(why[i]));
       } else {
         cases[i].result = std::move(results[i]);
       }

@@ -78,6 +78,37 @@ PCRF_HD void newton_in_bracket(ValueSlope&& value_slope, double& lo, double& glo
   }
 }
 
+/// Narrows the bracket [lo, hi] of root function i (values glo, ghi) to ttol by the Illinois
+/// method: regula falsi that halves the stale end's value when an end repeats. For a root that
+/// is no state component (newton_in_bracket takes those). `roots_at(t, g)` sets the kMax (or
+/// fewer) functions at t; false when the problem failed there, which this returns.
+template <std::size_t kMax, class RootsAt>
+PCRF_HD bool illinois_in_bracket(RootsAt&& roots_at, int i, double& lo, double& glo, double& hi, double& ghi,
+                                 double ttol) {
+  double g[kMax];  // NOLINT: filled by roots_at before use
+  int last = 0;
+  for (int it = 0; it < 200 && hi - lo > ttol && ghi != 0.0; ++it) {
+    double t = hi - ghi * (hi - lo) / (ghi - glo);
+    const double margin = 0.5 * ttol;
+    t = std::clamp(t, lo + margin, hi - margin);
+    if (!roots_at(t, g)) return false;
+    const double gt = g[i];
+    if (gt == 0.0) {
+      hi = t;
+      ghi = 0.0;
+    } else if ((gt > 0.0) == (glo > 0.0)) {
+      lo = t, glo = gt;
+      if (last == -1) ghi *= 0.5;
+      last = -1;
+    } else {
+      hi = t, ghi = gt;
+      if (last == 1) glo *= 0.5;
+      last = 1;
+    }
+  }
+  return true;
+}
+
 /// Whether root function i may cross, in its direction, from g_a to g_b.
 PCRF_HD inline bool crosses(double g_a, double g_b, int dir) {
   return g_a != 0.0 && g_a * g_b <= 0.0 && !(dir != 0 && dir * g_a > 0.0);
