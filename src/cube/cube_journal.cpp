@@ -205,8 +205,8 @@ std::int64_t journal_id_of(const CubeLayout& layout) {
 
 // ---- reading ----
 
-JournalReader::JournalReader(const std::filesystem::path& cube, const CubeLayout& layout, std::int64_t id)
-    : file_(journal_path(cube)), metrics_(layout.metrics.size()), cases_(layout.case_count()), grid_(layout.shape()) {
+JournalReader::JournalReader(std::filesystem::path file, const CubeLayout& layout)
+    : file_(std::move(file)), metrics_(layout.metrics.size()), cases_(layout.case_count()), grid_(layout.shape()) {
   for (const auto& flag : layout.status_flags)
     if (flag.value != kStatusNotRun) statuses_.push_back(flag.value);
   try {
@@ -214,12 +214,38 @@ JournalReader::JournalReader(const std::filesystem::path& cube, const CubeLayout
   } catch (const io::OutputError& e) {
     throw CubeError(e.what(), CubeError::cause_of(e.os_error()));
   }
+}
+
+JournalReader::JournalReader(const std::filesystem::path& cube, const CubeLayout& layout, std::int64_t id)
+    : JournalReader(journal_path(cube), layout) {
   const auto& records = log_->records();
   if (id == 0 || records.empty() || records.front().kind != kHeader || records.front().size != kHeaderBytes) return;
   const std::string header = payload(0);
   if (static_cast<std::int64_t>(io::load_le(header.data(), 8)) != id) return;  // stale: another fold's
   if (static_cast<std::int64_t>(io::load_le(header.data() + 8, 8)) != cases_ || io::load_le(header.data() + 16, 4) != metrics_)
     fail(0, "carries this cube's id but another shape (a forged or foreign journal)");
+  index(false);
+}
+
+JournalReader::JournalReader(const std::filesystem::path& part, const CubeLayout& layout, const std::string& part_header)
+    : JournalReader(part, layout) {
+  const auto& records = log_->records();
+  if (!log_->exists() || log_->file_bytes() == 0) return;  // nothing, or a kill as it was created
+  if (!log_->is_log()) {
+    foreign_ = true;
+    return;
+  }
+  if (records.empty()) return;  // its header torn: it holds nothing
+  if (records.front().kind != kPartHeader || records.front().size != part_header.size() || payload(0) != part_header) {
+    foreign_ = true;
+    return;
+  }
+  index(true);
+}
+
+/// The records of a current journal or part, up to its last commit, checked against the cube.
+void JournalReader::index(bool part) {
+  const auto& records = log_->records();
   current_ = true;
   kept_ = 1;  // the header is committed alone
   for (std::size_t r = 1; r < records.size(); ++r)
@@ -234,7 +260,10 @@ JournalReader::JournalReader(const std::filesystem::path& cube, const CubeLayout
           io::load_le(payload_head(records[r]).data() + 8, 4));
   for (std::size_t r = 1; r < kept_; ++r) {
     const auto& record = records[r];
-    if (record.kind == kNotes || record.kind == kHistory || record.kind == kCommit) continue;
+    if (record.kind == kNotes || record.kind == kCommit) continue;
+    if (part && record.kind != kSealed)
+      fail(r, "is of kind " + std::to_string(record.kind) + ", which a part does not hold (sealed chunks, their notes, commits)");
+    if (record.kind == kHistory) continue;
     if (record.kind != kCases && record.kind != kSealed)
       fail(r, "is of an unknown kind " + std::to_string(record.kind) + " (another version's journal?)");
     if (record.size < kCasesHeadBytes) fail(r, "is too short for cases");
@@ -248,6 +277,8 @@ JournalReader::JournalReader(const std::filesystem::path& cube, const CubeLayout
       if (record.size > sealed_payload_bound(count, metrics_, padded_elements(grid_)))
         fail(r, "holds " + std::to_string(record.size) + " bytes, more than a sealed chunk can");
       sealed_[static_cast<std::size_t>(chunk)].push_back(r);
+      sealed_record_chunk_.resize(records.size(), kNoChunk);
+      sealed_record_chunk_[r] = static_cast<std::size_t>(chunk);
       results_ += static_cast<std::int64_t>(n);
       continue;
     }
@@ -296,6 +327,8 @@ void JournalReader::check_all() const {
       }
     }
   (void)notes();
+  for (const auto& [chunk, records] : sealed_)
+    for (const std::size_t r : records) (void)notes_after(r);
   for_each_history([](HistoryTable&&) {});
 }
 
@@ -351,9 +384,7 @@ SealedChunk JournalReader::sealed(std::size_t record) const {
     const auto n = static_cast<std::size_t>(in.number(4));  // the chunk's count, checked
     const auto* status = reinterpret_cast<const std::int8_t*>(in.take(n));
     c.status.assign(status, status + n);
-    for (const std::int8_t s : c.status)
-      if (!statuses_.empty() && std::find(statuses_.begin(), statuses_.end(), s) == statuses_.end())
-        throw Malformed{"has the status code " + std::to_string(s) + ", which the cube's flags do not name"};
+    check_statuses(record, c.status.data(), n);
     if (in.number(4) != metrics_ + 1) throw Malformed{"seals another number of variables than the cube has"};
     const std::size_t padded = padded_elements(grid_);
     for (std::size_t v = 0; v <= metrics_; ++v) {
@@ -370,6 +401,47 @@ SealedChunk JournalReader::sealed(std::size_t record) const {
   return c;
 }
 
+/// Only the statuses the cube's flags name reach it (never not_run, 99 or -128).
+void JournalReader::check_statuses(std::size_t record, const std::int8_t* status, std::size_t n) const {
+  if (statuses_.empty()) return;
+  bool allowed[256] = {};
+  for (const std::int8_t s : statuses_) allowed[static_cast<std::uint8_t>(s)] = true;
+  for (std::size_t k = 0; k < n; ++k)
+    if (!allowed[static_cast<std::uint8_t>(status[k])])
+      fail(record, "has the status code " + std::to_string(status[k]) + ", which the cube's flags do not name");
+}
+
+std::vector<std::int8_t> JournalReader::sealed_status(std::size_t record) const {
+  const auto& r = log_->records().at(record);
+  const auto n = static_cast<std::uint64_t>(grid_.range(sealed_chunk_of(record)).count);  // checked when indexed
+  std::string head;
+  try {
+    head = log_->payload({r.kind, r.offset, kCasesHeadBytes + n});
+  } catch (const io::OutputError& e) {
+    throw CubeError(e.what(), CubeError::cause_of(e.os_error()));
+  }
+  std::vector<std::int8_t> status(reinterpret_cast<const std::int8_t*>(head.data() + kCasesHeadBytes),
+                                  reinterpret_cast<const std::int8_t*>(head.data() + head.size()));
+  check_statuses(record, status.data(), status.size());
+  return status;
+}
+
+std::size_t JournalReader::sealed_chunk_of(std::size_t record) const {
+  if (record >= sealed_record_chunk_.size() || sealed_record_chunk_[record] == kNoChunk) fail(record, "is not a sealed chunk");
+  return sealed_record_chunk_[record];
+}
+
+std::vector<std::pair<std::int64_t, std::string>> JournalReader::notes_after(std::size_t sealed_record) const {
+  const std::size_t next = sealed_record + 1;
+  if (!current_ || next >= kept_ || log_->records()[next].kind != kNotes) return {};
+  auto notes = notes_of(next);
+  const auto range = grid_.range(sealed_chunk_of(sealed_record));
+  for (const auto& [index, text] : notes)
+    if (index < range.first || index >= range.first + range.count)
+      fail(next, "has a note of case " + std::to_string(index) + ", outside the chunk sealed before it");
+  return notes;
+}
+
 void JournalReader::for_each_cases(const std::function<void(const JournalCases&)>& visit) const {
   if (!current_) return;
   const auto& records = log_->records();
@@ -383,19 +455,26 @@ std::vector<std::pair<std::int64_t, std::string>> JournalReader::notes() const {
   const auto& records = log_->records();
   for (std::size_t r = 1; r < kept_; ++r) {
     if (records[r].kind != kNotes) continue;
-    const std::string bytes = payload(r);
-    Cursor in(bytes);
-    try {
-      const std::size_t n = in.count(4, 8 + 4);
-      for (std::size_t k = 0; k < n; ++k) {
-        const auto index = static_cast<std::int64_t>(in.number(8));
-        if (index < 0 || index >= cases_) fail(r, "has a note of case " + std::to_string(index) + ", outside the cube");
-        all.emplace_back(index, in.text());
-      }
-      in.expect_end();
-    } catch (const Malformed& m) {
-      fail(r, m.problem);
+    auto some = notes_of(r);
+    all.insert(all.end(), std::make_move_iterator(some.begin()), std::make_move_iterator(some.end()));
+  }
+  return all;
+}
+
+std::vector<std::pair<std::int64_t, std::string>> JournalReader::notes_of(std::size_t r) const {
+  std::vector<std::pair<std::int64_t, std::string>> all;
+  const std::string bytes = payload(r);
+  Cursor in(bytes);
+  try {
+    const std::size_t n = in.count(4, 8 + 4);
+    for (std::size_t k = 0; k < n; ++k) {
+      const auto index = static_cast<std::int64_t>(in.number(8));
+      if (index < 0 || index >= cases_) fail(r, "has a note of case " + std::to_string(index) + ", outside the cube");
+      all.emplace_back(index, in.text());
     }
+    in.expect_end();
+  } catch (const Malformed& m) {
+    fail(r, m.problem);
   }
   return all;
 }
@@ -426,6 +505,15 @@ JournalWriter::JournalWriter(const std::filesystem::path& cube, const CubeLayout
     log_ = std::make_unique<io::LogWriter>(file_, keep_bytes);
     if (keep_bytes > 0) return;
     log_->add(kHeader, header_payload(id, layout.case_count(), metrics_));
+    log_->sync();
+  });
+}
+
+JournalWriter::JournalWriter(const std::filesystem::path& part, std::size_t metrics, const std::string& part_header)
+    : file_(part), metrics_(metrics) {
+  guarded([&] {
+    log_ = std::make_unique<io::LogWriter>(file_, 0);
+    log_->add(kPartHeader, part_header);
     log_->sync();
   });
 }

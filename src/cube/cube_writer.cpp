@@ -24,6 +24,7 @@
 #include "cube/hdf5_util.hpp"
 #include "pcrf/cube/chunk_grid.hpp"
 #include "pcrf/cube/cube_journal.hpp"
+#include "pcrf/cube/cube_part.hpp"
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/cube/sealed_chunk.hpp"
 #include "pcrf/io/atomic_file.hpp"
@@ -197,11 +198,21 @@ struct CubeWriter::Impl {
   std::int64_t journal_results = 0;        // case results among them
   std::int64_t folded_results = 0;         // cases done in the folded cube
   std::vector<std::string> resume_notes;   // what --resume did to the journal (CubeWriter::resume_notes)
+  // Ranks' parts (cube_part.hpp): chunks workers sealed and kept, folded by the next fold.
+  std::int64_t part_id = 0;  // the cube's; 0: an earlier version's cube, whose workers send their chunks
+  struct PartChunk {
+    std::size_t part = 0;    // in `parts`
+    std::size_t record = 0;  // its sealed record there
+  };
+  std::vector<std::unique_ptr<JournalReader>> parts;   // the parts read, open: records are read by reference
+  std::map<std::size_t, PartChunk> part_chunks;         // chunks the next fold takes from them
+  std::vector<std::filesystem::path> parts_to_remove;  // after the next fold's rename
 
   Impl(std::filesystem::path p, CubeLayout l)
       : path(std::move(p)), layout(std::move(l)), grid(layout.shape()) {
     // The id is the writer's to draw (a merged cube's layout comes from a part).
-    std::erase_if(layout.attributes, [](const Attribute& a) { return a.name == kJournalIdName; });
+    std::erase_if(layout.attributes,
+                  [](const Attribute& a) { return a.name == kJournalIdName || a.name == kPartIdName; });
   }
 
   std::string what(const std::string& problem) const { return path.string() + ": " + problem; }
@@ -224,6 +235,13 @@ struct CubeWriter::Impl {
   void open_existing(std::vector<std::int8_t>& status);
   void replay_journal(std::vector<std::int8_t>& status);
   void set_aside_journal(const std::string& problem);
+  void set_aside(const std::filesystem::path& from, const std::string& problem, const std::string& what);
+  void read_part(const std::filesystem::path& part, std::vector<std::int8_t>& status, bool inflate);
+  void write_parts(std::vector<std::pair<std::int64_t, std::string>>& notes, const std::vector<std::int8_t>& status);
+  PartHeader part_header_of_cube() const {
+    return {part_id, layout.case_count(), layout.metrics.size(), layout.text_attribute(kFingerprintName)};
+  }
+  void remove_parts();
   h5::Handle create_cube_variable(const std::string& name, hid_t file_type, hid_t memory_type,
                                   const void* fill);
   h5::Handle create_side_variable(const SideVariable& v);
@@ -244,8 +262,9 @@ CubeWriter::CubeWriter(std::filesystem::path file, CubeLayout layout, OpenMode m
   // The files beside the cube are made by the writer alone: a symbolic link, a FIFO or a
   // second name of another file there is refused before anything is read or written.
   try {
-    io::check_sidecar(journal_path(impl_->path), "journal");
-    io::check_sidecar(impl_->path.string() + ".partial", "partial cube (a fold's temporary)");
+    io::check_sidecar(journal_path(impl_->path), io::kJournalWhat);
+    io::check_sidecar(impl_->path.string() + ".partial", io::kPartialWhat);
+    for (const auto& part : part_files(impl_->path)) io::check_sidecar(part, io::kPartWhat);
   } catch (const io::OutputError& e) {
     throw CubeError(e.what());
   }
@@ -258,6 +277,15 @@ CubeWriter::CubeWriter(std::filesystem::path file, CubeLayout layout, OpenMode m
     impl_->on_disk = true;
     impl_->remember_identity();
     resumed_ = true;
+    // The parts of the stopped run: untrusted, read whole (a forged or foreign one is set
+    // aside); their chunks not done yet count as done and go in at the first fold, below.
+    for (const auto& part : part_files(impl_->path)) impl_->read_part(part, status_, true);
+  } else {
+    // A new cube (--overwrite's included) has parts of its own: any left here are another
+    // cube's, removed (regular files only, checked above) once the new cube is in place.
+    impl_->part_id = draw_journal_id();
+    impl_->layout.attributes.push_back({kPartIdName, impl_->part_id});
+    impl_->parts_to_remove = part_files(impl_->path);
   }
   flush();  // the file exists, complete, from the start (an overwritten one is replaced whole)
 }
@@ -398,6 +426,7 @@ void CubeWriter::Impl::open_existing(std::vector<std::int8_t>& status) {
   status = reader.read_status();
   folded_results = std::count_if(status.begin(), status.end(), [](std::int8_t s) { return s != kStatusNotRun; });
   journal_id = journal_id_of(old);
+  part_id = part_id_of(old);
   // Values, notes and histories stay in the file (each fold starts from a copy of it) and in
   // the journal (each fold lays it over that copy). A cube of an earlier version has no
   // journal id, and fixed-size notes that cannot take more: its first checkpoint is a fold
@@ -456,7 +485,12 @@ void CubeWriter::Impl::replay_journal(std::vector<std::int8_t>& status) {
 /// Renames a journal that cannot be replayed out of the way, exclusively (never over a file
 /// there: <journal>.set-aside-1, -2, …), and says so: the next append starts a new journal.
 void CubeWriter::Impl::set_aside_journal(const std::string& problem) {
-  const std::filesystem::path from = journal_path(path);
+  set_aside(journal_path(path), problem, "journal");
+}
+
+/// Renames a journal or a part that cannot be used out of the way, exclusively (never over a
+/// file there: <file>.set-aside-1, -2, …), and says so.
+void CubeWriter::Impl::set_aside(const std::filesystem::path& from, const std::string& problem, const std::string& what) {
   for (int k = 1; k <= 1000; ++k) {
     const std::filesystem::path to = from.string() + ".set-aside-" + std::to_string(k);
     bool moved = ::renameat2(AT_FDCWD, from.c_str(), AT_FDCWD, to.c_str(), RENAME_NOREPLACE) == 0;
@@ -465,7 +499,7 @@ void CubeWriter::Impl::set_aside_journal(const std::string& problem) {
       if (moved) ::unlink(from.c_str());
     }
     if (moved) {
-      resume_notes.push_back(problem + ": the journal cannot be replayed, so it is set aside as " + to.string() +
+      resume_notes.push_back(problem + ": the " + what + " cannot be replayed, so it is set aside as " + to.string() +
                              " and nothing of it is used; the cases it held are computed again (the cube's last fold holds " +
                              std::to_string(folded_results) + " of " + std::to_string(layout.case_count()) + " cases)");
       return;
@@ -473,6 +507,48 @@ void CubeWriter::Impl::set_aside_journal(const std::string& problem) {
     if (errno != EEXIST) break;
   }
   throw CubeError(problem + "; it cannot be set aside (" + std::strerror(errno) + "): move it away to resume from the cube's last fold");
+}
+
+/// A rank's part (cube_part.hpp), read up to its first invalid record and checked against the
+/// cube (`inflate`: every sealed chunk inflated too, as --resume checks the journal; a part of
+/// this run, made by its workers under its lock, is not). Its chunks that `status` has not
+/// done yet count as done (their statuses into it) and are taken by the next fold, read from
+/// the part then; a chunk done already (in the cube, its journal or an earlier part) is
+/// skipped. A part that cannot be used (forged, foreign: another cube's or study's) is set
+/// aside and its cases computed again; one that holds nothing is removed by the next fold.
+void CubeWriter::Impl::read_part(const std::filesystem::path& part, std::vector<std::int8_t>& status, bool inflate) {
+  std::unique_ptr<JournalReader> read;
+  try {
+    read = std::make_unique<JournalReader>(part, layout, part_header_payload(part_header_of_cube()));
+    if (inflate) read->check_all();
+  } catch (const JournalDamage& e) {
+    set_aside(part, e.what(), "part");
+    return;
+  }
+  if (read->foreign()) {
+    set_aside(part, part.string() + ": is not a part of this cube (no part header of its id, cases, metrics and study)",
+              "part");
+    return;
+  }
+  parts_to_remove.push_back(part);
+  if (!read->current()) return;  // its header torn as it was made: nothing in it
+  if (read->dropped_bytes() > 0)
+    resume_notes.push_back(part.string() + ": its last " + std::to_string(read->dropped_bytes()) + " bytes are dropped (" +
+                           std::to_string(read->dropped_records()) + " complete records of a chunk never committed" +
+                           (read->damaged() ? ", then a torn or damaged record" : "") +
+                           "): a rank killed while it wrote, or damage; their cases are computed again");
+  bool used = false;
+  for (const auto& [chunk, records] : read->sealed_chunks()) {
+    if (part_chunks.count(chunk) > 0) continue;
+    const auto r = grid.range(chunk);
+    const auto first = status.begin() + r.first;
+    if (!std::all_of(first, first + r.count, [](std::int8_t s) { return s == kStatusNotRun; })) continue;
+    const std::vector<std::int8_t> codes = read->sealed_status(records.front());
+    std::copy(codes.begin(), codes.end(), first);
+    part_chunks[chunk] = {parts.size(), records.front()};
+    used = true;
+  }
+  if (used) parts.push_back(std::move(read));
 }
 
 std::vector<double> CubeWriter::read_values(const std::string& metric) const {
@@ -833,6 +909,9 @@ void CubeWriter::Impl::update(const std::filesystem::path& target, const std::ve
       metric_sets.push_back(h5::dataset(H5Dopen2(file, m.name.c_str(), H5P_DEFAULT), what("cannot open '" + m.name + "'")));
     status_set = h5::dataset(H5Dopen2(file, kStatusName, H5P_DEFAULT), what("cannot open 'status'"));
     const JournalReader journaled(path, layout, journal_records > 0 ? journal_id : 0);
+    // The ranks' parts first (chunks no journal record touches: each went to one worker).
+    std::vector<std::pair<std::int64_t, std::string>> notes;
+    write_parts(notes, status);
     // Sealed chunks go in as their filtered bytes (one raw write a variable), the newest of
     // each chunk: the pending one, else the journal's last. Cases of the chunk stored after
     // it (records later in the journal, or pending) are laid over it below.
@@ -859,7 +938,8 @@ void CubeWriter::Impl::update(const std::filesystem::path& target, const std::ve
       const auto it = pending_chunks.find(chunk);
       write_chunk(chunk, records, it == pending_chunks.end() ? nullptr : &it->second, status);
     }
-    auto notes = journaled.notes();
+    auto journal_notes = journaled.notes();
+    notes.insert(notes.end(), std::make_move_iterator(journal_notes.begin()), std::make_move_iterator(journal_notes.end()));
     notes.insert(notes.end(), pending_notes.begin(), pending_notes.end());
     append_notes(notes);
     journaled.for_each_history([&](HistoryTable&& table) { write_history(table); });
@@ -895,6 +975,7 @@ void CubeWriter::Impl::check_free_space(const std::filesystem::path& target) con
   double needed = 0.0;
   if (on_disk) needed += size_of(path);
   if (journal_records > 0) needed += size_of(journal_path(path));  // its results, uncompressed
+  for (const auto& part : parts) needed += size_of(part->file());   // its chunks, as the cube stores them
   needed += static_cast<double>(pending_bytes);
   for (const auto& [index, text] : pending_notes) needed += 16.0 + static_cast<double>(text.size());
   for (const auto& table : pending_histories)
@@ -941,7 +1022,11 @@ void CubeWriter::Impl::fail(const CubeError& error) const {
 void CubeWriter::Impl::checkpoint(const std::vector<std::int8_t>& status, Checkpoint how) {
   const bool changed = !pending_chunks.empty() || !pending_sealed.empty() || !pending_notes.empty() ||
                        !pending_histories.empty();
-  if (how == Checkpoint::kFold || !on_disk || journal_id == 0 || (how == Checkpoint::kAppendOrFold && fold_due())) {
+  // Parts found (a --resume's, or another cube's left beside a new one) go in, or go, at once.
+  const bool parts_due = !parts_to_remove.empty() && how != Checkpoint::kAppend;
+  if (how == Checkpoint::kFold || !on_disk || journal_id == 0 || parts_due ||
+      (how == Checkpoint::kAppendOrFold && fold_due())) {
+    if (parts_due) return fold(status);
     // Nothing new: the cube on disk is already this state.
     if (on_disk && journal_id != 0 && !changed && !sides_changed && journal_records == 0) return;
     fold(status);
@@ -1033,6 +1118,7 @@ void CubeWriter::Impl::fold(const std::vector<std::int8_t>& status) {
   std::error_code ignored;  // a journal left behind is stale (another id): tidiness, not safety
   std::filesystem::remove(journal_path(path), ignored);
   reached(CheckpointStep::kJournalRemoved);
+  remove_parts();
   on_disk = true;
   remember_identity();
   journal_id = new_id;
@@ -1041,6 +1127,36 @@ void CubeWriter::Impl::fold(const std::vector<std::int8_t>& status) {
   folded_results = std::count_if(status.begin(), status.end(), [](std::int8_t s) { return s != kStatusNotRun; });
   clear_pending();
   sides_changed = false;
+}
+
+/// The parts' chunks into the file being folded, in chunk order: each sealed record read from
+/// its part by reference when its turn comes (one chunk in memory at a time, whatever the
+/// number of cases) and written raw; their notes added to `notes`.
+void CubeWriter::Impl::write_parts(std::vector<std::pair<std::int64_t, std::string>>& notes,
+                                   const std::vector<std::int8_t>& status) {
+  if (part_chunks.empty()) return;
+  const bool raw = raw_writable();
+  for (const auto& [chunk, at] : part_chunks) {
+    const JournalReader& part = *parts[at.part];
+    std::vector<JournalCases> unsealed;
+    write_sealed(part.sealed(at.record), raw, unsealed);
+    if (!unsealed.empty()) write_chunk(chunk, unsealed, nullptr, status);
+    for (auto& note : part.notes_after(at.record)) notes.push_back(std::move(note));
+  }
+}
+
+/// After a fold's rename: the parts it took (or found beside a new cube) go. A kill before
+/// leaves them beside a cube that holds their chunks: --resume skips those (done) and removes
+/// them at its first fold.
+///   kPartsRemoved: the parts are gone.
+void CubeWriter::Impl::remove_parts() {
+  if (parts_to_remove.empty()) return;
+  parts.clear();
+  part_chunks.clear();
+  std::error_code ignored;  // a part left behind holds chunks the cube has: tidiness, not safety
+  for (const auto& part : parts_to_remove) std::filesystem::remove(part, ignored);
+  parts_to_remove.clear();
+  reached(CheckpointStep::kPartsRemoved);
 }
 
 void CubeWriter::Impl::clear_pending() {
@@ -1054,6 +1170,8 @@ void CubeWriter::Impl::clear_pending() {
 
 const std::vector<std::string>& CubeWriter::resume_notes() const { return impl_->resume_notes; }
 
+PartHeader CubeWriter::part_header() const { return impl_->part_header_of_cube(); }
+
 void CubeWriter::flush() { impl_->checkpoint(status_, Impl::Checkpoint::kAppendOrFold); }
 
 void CubeWriter::append() { impl_->checkpoint(status_, Impl::Checkpoint::kAppend); }
@@ -1061,6 +1179,19 @@ void CubeWriter::append() { impl_->checkpoint(status_, Impl::Checkpoint::kAppend
 void CubeWriter::fold() { impl_->checkpoint(status_, Impl::Checkpoint::kFold); }
 
 void CubeWriter::close() {
+  // The ranks' parts of this run (its workers', made under its lock) go in with this fold.
+  if (impl_->part_id != 0) {
+    for (const auto& part : part_files(impl_->path)) {
+      if (std::find(impl_->parts_to_remove.begin(), impl_->parts_to_remove.end(), part) != impl_->parts_to_remove.end())
+        continue;
+      try {
+        io::check_sidecar(part, io::kPartWhat);
+      } catch (const io::OutputError& e) {
+        throw CubeError(e.what());
+      }
+      impl_->read_part(part, status_, false);
+    }
+  }
   fold();
   impl_->closed = true;
 }

@@ -103,6 +103,8 @@ std::vector<char> pack_message(const ResultBatch& batch, const SealedUnits& seal
   for (const auto& s : sealed) {
     w.put(s.unit);
     w.put(s.cases);
+    w.put(static_cast<std::uint8_t>(s.kept ? 1 : 0));
+    w.put(s.failed);
     w.put(static_cast<std::uint64_t>(s.bytes.size()));
     w.put_bytes(s.bytes.data(), s.bytes.size());
   }
@@ -118,8 +120,11 @@ std::pair<ResultBatch, SealedUnits> unpack_message(const std::vector<char>& byte
   for (auto& s : sealed) {
     s.unit = r.get<std::int64_t>();
     s.cases = r.get<std::int64_t>();
+    s.kept = r.get<std::uint8_t>() != 0;
+    s.failed = r.get<std::int64_t>();
     const auto size = r.get<std::uint64_t>();
     if (s.cases < 0) throw std::runtime_error("result message has a sealed unit of negative size");
+    if (s.failed < 0 || s.failed > s.cases) throw std::runtime_error("result message has a sealed unit of more failures than cases");
     const char* data = r.take(size);
     s.bytes.assign(data, data + size);
   }

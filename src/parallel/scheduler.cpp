@@ -1,5 +1,5 @@
 // Master–worker scheduling over MPI (see scheduler.hpp). Message protocol:
-//   worker → master  kTagRequest  pack_message: finished cases and sealed units, asks for a batch
+//   worker → master  kTagRequest  pack_message: finished cases and sealed (or kept) units, asks for a batch
 //   worker → master  kTagFinish   pack_message, the worker's last message
 //   master → worker  kTagBatch    WorkItems (index, argument) as bytes; empty means "stop",
 //                                 one item of index kWaitIndex "nothing ready: report and ask again",
@@ -243,7 +243,8 @@ void run_master(MPI_Comm comm, WorkSource& work, const ScheduleOptions& options,
 
 void run_worker(MPI_Comm comm, const ScheduleOptions& options, const CasesEvaluator& evaluate) {
   MpiMasterLink link(comm, options.row_width);
-  detail::worker_loop(link, evaluate, options.row_width, together(options), nullptr, options.interrupt, &options.seal);
+  detail::worker_loop(link, evaluate, options.row_width, together(options), nullptr, options.interrupt, &options.seal,
+                      &options.keep);
 }
 
 void run_worker(MPI_Comm comm, const ScheduleOptions& options, const CaseEvaluator& evaluate) {

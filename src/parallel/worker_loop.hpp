@@ -74,11 +74,13 @@ inline ResultBatch evaluate_guarded(const CasesEvaluator& evaluate, std::span<co
 /// reports the cases done: a run stopped by a signal keeps them even when the rest of the
 /// batch would outlast the time the launcher gives before SIGKILL.
 /// A unit batch (is_unit) computed whole is handed to `seal`; what it makes is reported
-/// instead of its outcomes. A unit interrupted, or one `seal` declines (nullopt), is
+/// instead of its outcomes, or, when `keep` keeps it (a remote worker's own file), only its
+/// number and counts. A unit interrupted, or one `seal` declines (nullopt), is
 /// reported case by case.
 inline void worker_loop(MasterLink& link, const CasesEvaluator& evaluate, std::size_t row_width,
                         std::size_t together, const std::atomic<bool>* stop = nullptr,
-                        const std::atomic<int>* interrupt = nullptr, const Sealer* seal = nullptr) {
+                        const std::atomic<int>* interrupt = nullptr, const Sealer* seal = nullptr,
+                        const Keeper* keep = nullptr) {
   auto stopping = [stop] { return stop != nullptr && stop->load(); };
   auto interrupted = [interrupt] { return interrupt != nullptr && interrupt->load() != 0; };
   link.request({}, {});
@@ -107,7 +109,11 @@ inline void worker_loop(MasterLink& link, const CasesEvaluator& evaluate, std::s
         const auto number = static_cast<std::int64_t>(batch.front().argument);
         const std::span<const CaseOutcome> outcomes(finished.data() + before, finished.size() - before);
         if (std::optional<std::vector<char>> bytes = (*seal)(number, outcomes)) {
-          sealed.push_back({number, static_cast<std::int64_t>(outcomes.size()), std::move(*bytes)});
+          const auto cases = static_cast<std::int64_t>(outcomes.size());
+          std::optional<std::int64_t> failed;
+          if (keep != nullptr && *keep) failed = (*keep)(number, *bytes);
+          if (failed) sealed.push_back({number, cases, {}, true, *failed});
+          else sealed.push_back({number, cases, std::move(*bytes)});
           finished.resize(before);
         }
       }

@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "pcrf/cube/cube_journal.hpp"
+#include "pcrf/cube/cube_part.hpp"
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/cube/cube_writer.hpp"
 #include "pcrf/cube/sealed_chunk.hpp"
@@ -73,12 +74,14 @@ void apply_overrides(const StudyRunOptions& options, RunOptions& run) {
 
 /// An output must never be one of the study's inputs (the study file, its records, its
 /// hazard curve), whatever --overwrite says; nor may a file the run writes beside it (its
-/// lock, journal and fold's .partial).
+/// lock, journal, fold's .partial and the ranks' parts there).
 void check_output_is_not_an_input(const std::filesystem::path& output, const StudyRunOptions& options, const Study& study) {
   using io::same_file;  // the one rule of every command's outputs (symbolic and hard links)
   const std::string cube = output.string();
-  for (const std::filesystem::path& written : {output, io::RunLock::lock_path(output), cube::journal_path(output),
-                                              std::filesystem::path(cube + ".partial")}) {
+  std::vector<std::filesystem::path> beside{output, io::RunLock::lock_path(output), cube::journal_path(output),
+                                            std::filesystem::path(cube + ".partial")};
+  for (auto& part : cube::part_files(output)) beside.push_back(std::move(part));  // a part not there is made exclusively
+  for (const std::filesystem::path& written : beside) {
     const std::string as = written == output ? cube + ": {} names " : cube + ": {}'s " + written.string() + " is ";
     if (same_file(written, options.study_file))
       throw UserError(Where{}, as + "the study file itself; choose another output ({} does not apply to inputs)",
@@ -220,6 +223,70 @@ class ChunkSealer {
   std::size_t metrics_;
 };
 
+/// A worker rank's own part of the cube (issue 38; cube_part.hpp): each unit it sealed is
+/// appended to `<cube>.part-<rank>` and synced before the unit is reported, so that rank 0
+/// hears only its number and counts. The part is made at the first unit. If it cannot be (a
+/// file already there, a folder this node does not see) or a write fails, the rank says so
+/// once and its units travel to rank 0 as before (rank 0 journals them).
+class PartKeeper {
+ public:
+  PartKeeper(std::filesystem::path part, cube::PartHeader header, cube::ChunkGrid grid, std::size_t metrics, int rank)
+      : state_(std::make_shared<State>(State{std::move(part), std::move(header), std::move(grid), metrics, rank, {}, false})) {}
+
+  /// The unit's failures once it is durable in the part; nullopt when it is not kept.
+  std::optional<std::int64_t> operator()(std::int64_t unit, const std::vector<char>& bytes) const {
+    State& s = *state_;
+    if (s.broken) return std::nullopt;
+    try {
+      const cube::SealedChunk chunk = cube::sealed_from_bytes(bytes, s.grid, s.metrics, "unit " + std::to_string(unit));
+      if (!s.writer) s.writer = std::make_unique<cube::PartWriter>(s.part, s.header);
+      s.writer->add(chunk);
+      std::int64_t failed = 0;
+      for (const std::int8_t code : chunk.status) failed += is_failure(static_cast<CaseStatus>(code)) ? 1 : 0;
+      return failed;
+    } catch (const cube::CubeError& e) {
+      s.broken = true;
+      std::cerr << "pcrf study: note: rank " << s.rank << ": " << e.what()
+                << "; this rank's chunks go to rank 0 instead of its part\n";
+      return std::nullopt;
+    }
+  }
+
+ private:
+  struct State {
+    std::filesystem::path part;
+    cube::PartHeader header;
+    cube::ChunkGrid grid;
+    std::size_t metrics;
+    int rank;
+    std::unique_ptr<cube::PartWriter> writer;
+    bool broken;
+  };
+  std::shared_ptr<State> state_;  // one part per rank: shared by the copies a std::function makes
+};
+
+/// What rank 0 tells workers about their parts: its header and the cube's path (empty: no
+/// parts, a cube of an earlier version). One line each; the path last (it may hold anything).
+std::string part_text(const cube::CubeWriter& writer, const std::filesystem::path& output) {
+  const cube::PartHeader h = writer.part_header();
+  if (h.id == 0) return {};
+  return std::to_string(h.id) + " " + std::to_string(h.cases) + " " + std::to_string(h.metrics) + "\n" + h.fingerprint +
+         "\n" + std::filesystem::absolute(output).string();
+}
+
+/// Inverse of part_text: the header and the path of rank `rank`'s part, if any.
+std::optional<std::pair<cube::PartHeader, std::filesystem::path>> parse_part_text(const std::string& text, int rank) {
+  if (text.empty()) return std::nullopt;
+  std::istringstream in(text);
+  cube::PartHeader h;
+  std::string line, cube;
+  in >> h.id >> h.cases >> h.metrics;
+  std::getline(in, line);
+  std::getline(in, h.fingerprint);
+  std::getline(in, cube, '\0');
+  return std::make_pair(h, cube::part_path(cube, rank));
+}
+
 /// `stop_signal`: a signal stops the workers between two cases, reporting the ones done.
 /// `grid`: the cube's chunks, which workers seal when handed one whole.
 parallel::ScheduleOptions schedule_options(const Study& study, const CaseRunner& runner, const std::atomic<int>* stop_signal,
@@ -258,6 +325,11 @@ class ResultSink {
   /// Chunks a worker sealed: their bytes go to the writer as they are (no result unpacked).
   void store_sealed(parallel::SealedUnits&& units) {
     for (auto& unit : units) {
+      if (unit.kept) {  // durable in its worker's part: the final fold takes it from there
+        meter_.add(unit.cases, unit.failed);
+        kept_.push_back(static_cast<std::size_t>(unit.unit));
+        continue;
+      }
       cube::SealedChunk chunk = cube::sealed_from_bytes(unit.bytes, writer_.grid(), metrics_, "a worker's message");
       std::vector<char>().swap(unit.bytes);
       std::int64_t failed = 0;
@@ -325,6 +397,7 @@ class ResultSink {
       if (before_flush_) before_flush_();
       writer_.close();
     });
+    check_kept();
   }
 
   /// The first write error (a full disk, an I/O error), naming the file and the reason.
@@ -334,6 +407,21 @@ class ResultSink {
   void on_error(std::function<void()> stop) { stop_ = std::move(stop); }
 
  private:
+  /// Every chunk a worker said it kept in its part is in the closed cube: a part rank 0 could
+  /// not see (a folder not shared between the nodes) is a failed write, never a success.
+  void check_kept() {
+    if (!error_.empty()) return;
+    std::size_t missing = 0;
+    for (const std::size_t chunk : kept_)
+      if (writer_.status()[static_cast<std::size_t>(writer_.grid().range(chunk).first)] == cube::kStatusNotRun) ++missing;
+    if (missing == 0) return;
+    error_ = cube_ + ": " + std::to_string(missing) + " of the " + std::to_string(kept_.size()) +
+             " chunks that worker ranks kept in their parts (" + cube_ + ".part-<rank>) were not found there by rank 0 "
+             "(is the cube's folder one shared file system on every node?); the cube holds the rest, and --resume "
+             "computes them again";
+    error_cause_ = cube::CubeError::Cause::kOther;
+  }
+
   void take_histories() {
     for (auto& table : inbox_.take()) writer_.store_history(std::move(table));
   }
@@ -389,6 +477,7 @@ class ResultSink {
   cube::CubeError::Cause error_cause_ = cube::CubeError::Cause::kOther;
   double last_checkpoint_s_ = 0.0;
   std::chrono::steady_clock::time_point last_flush_ = std::chrono::steady_clock::now();
+  std::vector<std::size_t> kept_;  ///< chunks workers kept in their parts (one number a chunk)
 };
 
 /// Cases not done yet; the cases with a history stay on rank 0 (pinned).
@@ -596,7 +685,9 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
                          if (options.poll) options.poll();
                          sink.idle();
                        });
+  const std::size_t notes_said = m.writer->resume_notes().size();  // prepare_master said these
   sink.close();
+  for (std::size_t n = notes_said; n < m.writer->resume_notes().size(); ++n) say_note(options, m.writer->resume_notes()[n]);
   meter.finish(m.output.string());
   if (const std::string note = gpu_refusal_note(*p.group); !note.empty()) say_note(options, "rank 0: " + note);
   summary.computed = meter.computed();
@@ -611,9 +702,12 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
 }
 
 void run_worker_rank(const Prepared& p, const parallel::MpiSession& mpi, const std::atomic<int>* stop_signal,
-                     const cube::ChunkGrid& grid) {
+                     const cube::ChunkGrid& grid, const std::string& parts) {
   CaseRunner runner(p.study, *p.space, *p.records, p.group);
-  parallel::run_worker(mpi.comm(), schedule_options(p.study, runner, stop_signal, grid),
+  auto schedule = schedule_options(p.study, runner, stop_signal, grid);
+  if (auto part = parse_part_text(parts, mpi.rank()))
+    schedule.keep = PartKeeper(part->second, part->first, grid, runner.row_width(), mpi.rank());
+  parallel::run_worker(mpi.comm(), schedule,
                        [&runner](std::span<const parallel::WorkItem> items) { return runner.run(items); });
   if (const std::string note = gpu_refusal_note(*p.group); !note.empty())
     std::cerr << "pcrf study: note: rank " << mpi.rank() << ": " << note << '\n';
@@ -713,13 +807,15 @@ std::optional<StudySummary> run_study(const StudyRunOptions& options, const para
   if (mpi.is_master())
     for (const std::size_t n : setup.writer->shape()) shape_text += std::to_string(n) + " ";
   shape_text = mpi.broadcast(shape_text);
+  // Where each worker keeps the chunks it seals (its part), and what ties it to the cube.
+  const std::string parts = mpi.broadcast(mpi.is_master() ? part_text(*setup.writer, setup.output) : std::string());
 
   std::optional<StudySummary> summary;
   static std::ostream nowhere(nullptr);  // a stream without a buffer discards what it is given
   if (mpi.is_master())
     summary = run_master_rank(*prepared, setup, mpi, options.progress ? *options.progress : nowhere, options);
   else
-    run_worker_rank(*prepared, mpi, options.stop_signal, cube::ChunkGrid(parse_shape(shape_text)));
+    run_worker_rank(*prepared, mpi, options.stop_signal, cube::ChunkGrid(parse_shape(shape_text)), parts);
   mpi.quiet_barrier();
   return summary ? summary : StudySummary{};
 }

@@ -61,6 +61,8 @@ enum JournalRecord : std::uint32_t {
   kJournalHistory = 4,
   kJournalCommit = 5,
   kJournalSealed = 6,
+  /// The first record of a rank's part (cube_part.hpp), instead of kJournalHeader.
+  kPartHeader = 7,
 };
 
 /// `<cube>.journal`.
@@ -98,12 +100,22 @@ class JournalReader {
   /// \throws CubeError naming the journal when it cannot be read (a symbolic link or a FIFO
   /// there included); JournalDamage when a record whose CRC holds does not fit the cube.
   JournalReader(const std::filesystem::path& cube, const CubeLayout& layout, std::int64_t id);
+  /// Reads a rank's part of the cube (cube_part.hpp) at `part`: the same records, sealed
+  /// chunks each with its notes and a commit, after a kPartHeader record whose payload must be
+  /// `part_header` (part_header_payload). A part headed otherwise, or that is no log at all, is
+  /// foreign(); one without a complete header (a kill as it was made) is neither current nor
+  /// foreign: it holds nothing. Records of other kinds make it a JournalDamage.
+  JournalReader(const std::filesystem::path& part, const CubeLayout& layout, const std::string& part_header);
   ~JournalReader();
   JournalReader(const JournalReader&) = delete;
   JournalReader& operator=(const JournalReader&) = delete;
 
   /// True when the journal extends this cube (its header carries the cube's id).
   bool current() const { return current_; }
+  /// A part (the part constructor) of another cube or another study, or no part at all.
+  bool foreign() const { return foreign_; }
+  /// The file read.
+  const std::filesystem::path& file() const { return file_; }
   /// Case results in its records (a case stored twice counts twice).
   std::int64_t results() const { return results_; }
   /// Where a writer continues it [bytes] (the end of its last commit); 0 when not current.
@@ -128,6 +140,11 @@ class JournalReader {
   const std::map<std::size_t, std::vector<std::size_t>>& sealed_chunks() const { return sealed_; }
   /// One sealed record, its sizes and statuses checked (check_all() also inflates it).
   SealedChunk sealed(std::size_t record) const;
+  /// The statuses of one sealed record only (its head, checked as sealed() checks them).
+  std::vector<std::int8_t> sealed_status(std::size_t record) const;
+  /// The notes of a part's sealed record: those of the notes record right after it (before
+  /// its commit), each of a case of its chunk. \throws JournalDamage for a note outside it.
+  std::vector<std::pair<std::int64_t, std::string>> notes_after(std::size_t sealed_record) const;
   /// Every record of cases, in journal order.
   void for_each_cases(const std::function<void(const JournalCases&)>& visit) const;
   /// The notes, in journal order.
@@ -136,6 +153,11 @@ class JournalReader {
   void for_each_history(const std::function<void(HistoryTable&&)>& visit) const;
 
  private:
+  JournalReader(std::filesystem::path file, const CubeLayout& layout);
+  void index(bool part);
+  void check_statuses(std::size_t record, const std::int8_t* status, std::size_t n) const;
+  std::size_t sealed_chunk_of(std::size_t record) const;
+  std::vector<std::pair<std::int64_t, std::string>> notes_of(std::size_t record) const;
   std::string payload(std::size_t record) const;
   std::string payload_head(const io::LogRecord& record) const;
   [[noreturn]] void fail(std::size_t record, const std::string& problem) const;
@@ -146,6 +168,7 @@ class JournalReader {
   ChunkGrid grid_;
   std::unique_ptr<io::LogReader> log_;
   bool current_ = false;
+  bool foreign_ = false;
   std::size_t kept_ = 0;  ///< records kept: those up to the last commit
   std::uint64_t valid_bytes_ = 0;
   std::uint64_t dropped_bytes_ = 0;
@@ -156,6 +179,8 @@ class JournalReader {
   std::int64_t results_ = 0;
   std::map<std::size_t, std::vector<std::size_t>> chunks_;
   std::map<std::size_t, std::vector<std::size_t>> sealed_;
+  static constexpr std::size_t kNoChunk = static_cast<std::size_t>(-1);
+  std::vector<std::size_t> sealed_record_chunk_;  ///< [record]: its chunk when sealed, else kNoChunk
 };
 
 /// Appends to the journal of a cube. \throws CubeError naming the journal on every failure.
@@ -165,6 +190,9 @@ class JournalWriter {
   /// with `keep_bytes` > 0 (a current JournalReader's valid_bytes()), continues it there.
   JournalWriter(const std::filesystem::path& cube, const CubeLayout& layout, std::int64_t id,
                 std::uint64_t keep_bytes);
+  /// Starts a rank's part (cube_part.hpp) at `part`, of a cube of `metrics` metrics, headed by
+  /// `part_header` (part_header_payload) and synced. The caller makes sure nothing is there.
+  JournalWriter(const std::filesystem::path& part, std::size_t metrics, const std::string& part_header);
   ~JournalWriter();
   JournalWriter(const JournalWriter&) = delete;
   JournalWriter& operator=(const JournalWriter&) = delete;

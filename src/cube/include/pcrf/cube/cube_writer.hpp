@@ -35,6 +35,7 @@
 
 #include "pcrf/cube/chunk_grid.hpp"
 #include "pcrf/cube/cube_layout.hpp"
+#include "pcrf/cube/cube_part.hpp"
 #include "pcrf/cube/sealed_chunk.hpp"
 
 namespace pcrf::cube {
@@ -60,7 +61,8 @@ enum class CheckpointStep {
   kFoldCopied,      ///< a fold's <file>.partial holds a copy of the cube
   kFoldWritten,     ///< … with every change written into it, synced; the cube is still the old one
   kFoldRenamed,     ///< the new cube is in place; the old journal not yet removed (stale)
-  kJournalRemoved,  ///< the fold is complete
+  kJournalRemoved,  ///< the fold is complete (but for the parts it took)
+  kPartsRemoved,    ///< … and the ranks' parts it took are removed (cube_part.hpp)
 };
 /// Called at each CheckpointStep of every writer of the process (null: nothing). For crash
 /// tests, which stop the process there.
@@ -95,6 +97,9 @@ class CubeWriter {
   /// each: records dropped (a torn or damaged tail) and how many, or a journal that cannot be
   /// replayed set aside, and that their cases are computed again. Empty otherwise.
   const std::vector<std::string>& resume_notes() const;
+  /// What ties a rank's part to this cube (cube_part.hpp); id 0 for a cube of an earlier
+  /// version, which has no parts (its workers send their chunks).
+  PartHeader part_header() const;
   /// Status of every case (kStatusNotRun where not computed yet).
   const std::vector<std::int8_t>& status() const { return status_; }
   std::int64_t done_count() const;
@@ -130,7 +135,9 @@ class CubeWriter {
   void append();
   /// A checkpoint that folds the journal and what changed into the cube, and removes the journal.
   void fold();
-  /// fold() and close. Further calls are invalid.
+  /// fold() and close: the ranks' parts beside the cube (this run's workers') go in with the
+  /// fold, read from their files chunk by chunk (a part that does not fit the cube is set
+  /// aside, noted in resume_notes()), and are removed after it. Further calls are invalid.
   void close();
 
  private:

@@ -1,6 +1,7 @@
 /// \file file_kind.hpp
-/// \brief The rules by which every file beside an output (a cube's lock, journal and
-/// `.partial`, an output's temporary) and every file read is opened:
+/// \brief The rules by which every file beside an output (a cube's lock, journal,
+/// `.partial` and ranks' parts `<cube>.part-<rank>`, an output's temporary) and every file read
+/// is opened:
 ///
 /// - a file read is a regular file, opened without blocking (O_NONBLOCK: a FIFO, which would
 ///   wait for a writer for ever, is refused at once by its type);
@@ -19,6 +20,13 @@
 #include <string>
 
 namespace pcrf::io {
+
+/// What a cube's files beside it are called in messages ("pcrf makes its WHAT itself"): the
+/// writer's own files, each refused when anything but a regular file of one name is there.
+inline constexpr const char* kJournalWhat = "journal";
+inline constexpr const char* kPartialWhat = "partial cube (a fold's temporary)";
+/// `<cube>.part-<rank>` (cube_part.hpp): a worker rank's sealed chunks, made by that rank.
+inline constexpr const char* kPartWhat = "part (a rank's sealed chunks)";
 
 /// "a symbolic link", "a FIFO", "a folder", "a device", "a socket", "a regular file".
 std::string kind_of(mode_t mode);

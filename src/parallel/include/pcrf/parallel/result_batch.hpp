@@ -32,10 +32,14 @@ using ResultBatch = std::vector<CaseOutcome>;
 
 /// A unit of work a worker finished whole and sealed itself (e.g. one chunk of a result
 /// cube, compressed): the master passes its bytes on without looking at each case.
+/// Or one the worker kept itself (ScheduleOptions::keep: e.g. in a file of its own, durable
+/// before it is reported): then only its number, its case count and its failure count travel.
 struct SealedUnit {
   std::int64_t unit = -1;   ///< which unit (the work source's number)
   std::int64_t cases = 0;   ///< cases it holds
-  std::vector<char> bytes;  ///< what the sealer made of them (opaque here)
+  std::vector<char> bytes;  ///< what the sealer made of them (opaque here); empty when kept
+  bool kept = false;        ///< true: the worker kept the bytes itself
+  std::int64_t failed = 0;  ///< when kept: its cases that failed (the keeper's count)
 };
 using SealedUnits = std::vector<SealedUnit>;
 
