@@ -9,6 +9,7 @@
 #include <string>
 
 #include "pcrf/cube/cube_journal.hpp"
+#include "pcrf/cube/cube_part.hpp"
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/cube/cube_writer.hpp"
 #include "pcrf/io/file_kind.hpp"
@@ -42,6 +43,9 @@ MergeResult merge_cubes(const std::vector<std::filesystem::path>& parts, const s
       throw CubeError(std::string(e.what()) + ": --resume its run (which sets the journal aside and computes its cases "
                       "again), then merge");
     }
+    if (const auto kept = part_files(part); !kept.empty())
+      throw CubeError(part.string() + ": its ranks' parts (" + kept.front().string() + (kept.size() > 1 ? ", …" : "") +
+                      ") hold results not in the cube yet: --resume its run first (which folds them in), then merge");
   }
   const CubeLayout& first = readers.front()->layout();
   const std::string fingerprint = first.text_attribute(kFingerprintName);

@@ -4,6 +4,8 @@
 #include <sys/stat.h>
 
 #include "pcrf/cube/cube_journal.hpp"
+#include "pcrf/cube/cube_part.hpp"
+#include "pcrf/io/file_kind.hpp"
 #include "pcrf/io/run_lock.hpp"
 #include "pcrf/schema/cube_vocabulary.hpp"
 
@@ -43,6 +45,43 @@ std::string journal_note(const std::string& file, const cube::CubeReader& reader
   }
 }
 
+std::string parts_note(const std::string& file, const cube::CubeReader& reader) {
+  const auto parts = cube::part_files(file);
+  if (parts.empty()) return {};
+  const std::string header = cube::part_header_payload(cube::part_header_of(reader.layout()));
+  std::int64_t waiting = 0;
+  std::vector<std::string> named, problems;
+  for (const auto& part : parts) {
+    try {
+      io::check_sidecar(part, io::kPartWhat);
+      const cube::JournalReader read(part, reader.layout(), header);
+      if (read.foreign()) {
+        problems.push_back(part.string() + " is not a part of this cube (--resume sets it aside)");
+        continue;
+      }
+      read.check_all();
+      waiting += read.results();
+      named.push_back(part.filename().string());
+      if (read.dropped_bytes() > 0)
+        problems.push_back(part.string() + "'s last " + std::to_string(read.dropped_bytes()) +
+                           " bytes (a chunk never committed) are dropped by --resume, which computes their cases again");
+    } catch (const cube::JournalDamage& e) {
+      problems.push_back(std::string(e.what()) + ": the part cannot be used; --resume sets it aside and computes its cases again");
+    } catch (const std::exception& e) {
+      problems.push_back(std::string(e.what()));
+    }
+  }
+  std::string note;
+  if (!named.empty()) {
+    note = file + ": " + std::to_string(waiting) + " results wait in its ranks' parts (";
+    for (std::size_t k = 0; k < named.size(); ++k) note += (k > 0 ? ", " : "") + named[k];
+    note += "), not read here (the run's end folds them in; --resume folds those of a stopped run, skipping chunks "
+            "the cube holds)";
+  }
+  for (const auto& problem : problems) note += (note.empty() ? file + ": " : "; ") + problem;
+  return note;
+}
+
 std::string partial_note(const std::string& file, const cube::CubeReader& reader) {
   const auto missing = schema::not_run(reader);
   if (missing.count == 0) return {};
@@ -60,7 +99,7 @@ std::string unresolved_treatment(const std::string& kind) {
 
 std::vector<std::string> completion_notes(const std::string& file, const cube::CubeReader& reader) {
   std::vector<std::string> notes;
-  for (auto& note : {journal_note(file, reader), partial_note(file, reader)})
+  for (auto& note : {journal_note(file, reader), parts_note(file, reader), partial_note(file, reader)})
     if (!note.empty()) notes.push_back(note);
   return notes;
 }

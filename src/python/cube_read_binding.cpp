@@ -40,7 +40,8 @@ auto reading(const std::string& file, Read read) {
 py::tuple cube_info(const std::string& file) {
   return reading(file, [&](const cube::CubeReader& reader) {
     std::vector<std::string> notes;
-    for (const auto& note : {post::running_note(file), post::journal_note(file, reader), post::partial_note(file, reader)})
+    for (const auto& note : {post::running_note(file), post::journal_note(file, reader), post::parts_note(file, reader),
+                              post::partial_note(file, reader)})
       if (!note.empty()) notes.push_back(note);
     std::ostringstream json;
     cube::print_info_json(reader, json, schema::completion(reader));

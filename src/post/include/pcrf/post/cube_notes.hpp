@@ -20,6 +20,12 @@ std::string running_note(const std::string& file);
 /// when there is no journal, or a stale one; a journal that cannot be read is said so.
 std::string journal_note(const std::string& file, const cube::CubeReader& reader);
 
+/// "FILE: N results wait in its ranks' parts (FILE.part-1, …), not read here …" when worker
+/// ranks kept sealed chunks beside the cube (cube_part.hpp) that no fold took yet (a stopped
+/// run), and any part that cannot be used (foreign, damaged, not a regular file). Empty when
+/// there is none.
+std::string parts_note(const std::string& file, const cube::CubeReader& reader);
+
 /// "FILE: N of M cases not run (a partial cube): left out" (an IDA counts curves) for a cube
 /// stopped early or merged from some shards; empty for a complete one.
 /// \throws cube::CubeError when the cube cannot be read.
@@ -30,7 +36,7 @@ std::string partial_note(const std::string& file, const cube::CubeReader& reader
 /// \throws std::invalid_argument for another kind (a bug).
 std::string unresolved_treatment(const std::string& kind);
 
-/// journal_note and partial_note, those not empty.
+/// journal_note, parts_note and partial_note, those not empty.
 std::vector<std::string> completion_notes(const std::string& file, const cube::CubeReader& reader);
 
 /// "FILE: …" for each line of vocabulary::verdict_notes of the cube (unresolved cases and what
