@@ -23,8 +23,9 @@ ld.so and the kernel's vdso), which on an oversubscribed machine count how long 
 not what it did. Then:
 - rank 0's main thread (the master: hand-out, results, the cube) per result, beyond its own
   cases (it computes none; rank 0's cases run in its worker thread), and how much of it is
-  spent before the first hand-out (checks, creating the cube with its coordinates) and during
-  the run (hand-out, storing what comes back, checkpoints, the last fold);
+  spent before the first hand-out (checks, creating the cube with its coordinates), during
+  the run (hand-out, storing what comes back, checkpoints) and in the assembly (the last fold,
+  CubeWriter::close: the worker ranks' parts and rank 0's journal written into the cube);
 - the balance: the busiest thread's marginal instructions (MPI left out) over the mean of the
   threads that work (issue 38 item 5 asks for at most 1.25).
 """
@@ -51,8 +52,11 @@ WORKING_FLOOR = 100.0
 # before the first hand-out (reading the study and making its plan, the checks, the new cube
 # with its coordinates) and during the run (hand-out, storing what comes back, checkpoints,
 # the last fold): run_study less what it spends in the first two, whatever the compiler inlined.
-FUNCTIONS = {"study": "pcrf::run::run_study(", "load": "pcrf::study::load_study(", "prepare": "::prepare_master("}
-PHASES = ("setup", "run")
+# The assembly: the writer's last fold (CubeWriter::close), which writes the ranks' parts (and
+# rank 0's own journal) into the cube; "run" below is what the run costs besides it.
+FUNCTIONS = {"study": "pcrf::run::run_study(", "load": "pcrf::study::load_study(", "prepare": "::prepare_master(",
+             "close": "pcrf::cube::CubeWriter::close("}
+PHASES = ("setup", "run", "assembly")
 
 
 def inclusive_phases(path):
@@ -65,7 +69,7 @@ def inclusive_phases(path):
             if name in line and not found[key]:
                 found[key] = int(line.split()[0].replace(",", ""))
     setup = found["load"] + found["prepare"]
-    return {"setup": setup, "run": found["study"] - setup}
+    return {"setup": setup, "run": found["study"] - setup - found["close"], "assembly": found["close"]}
 
 
 def profile_run(pcrf, ranks, study, folder, tag):
@@ -111,7 +115,7 @@ def main():
         runs = [profile_run(pcrf, args.ranks, write_study(folder, n, records, scale), folder, f"cg{n}")
                 for n in (small, large)]
     phases = {p: (runs[1][1][p] - runs[0][1][p]) / (large - small) for p in PHASES}
-    run_alone = runs[1][1]["run"] / large  # the run's fixed costs (its tail) included
+    run_alone = (runs[1][1]["run"] + runs[1][1]["assembly"]) / large  # the run's fixed costs (its tail) included
     runs = [counts for counts, _ in runs]
     keys = sorted(set(runs[0]) & set(runs[1]))
     per_case = {k: tuple((runs[1][k][i] - runs[0][k][i]) / (large - small) for i in (0, 1)) for k in keys}
@@ -128,7 +132,9 @@ def main():
     print(f"rank 0's main thread (master, cube) per result beyond its own cases: {master[0]:,.0f} "
           f"({master[1]:,.0f} with MPI left out)")
     print(f"  of which before the first hand-out (plan, checks, the new cube's coordinates): {phases['setup']:,.0f}; "
-          f"during the run (hand-out, results, checkpoints, last fold): {phases['run']:,.0f}")
+          f"during the run (hand-out, results, checkpoints): {phases['run']:,.0f}; "
+          f"the assembly (the last fold, CubeWriter::close: the parts' chunks and rank 0's journal into the cube): "
+          f"{phases['assembly']:,.0f}")
     print(f"  during the run at {large} cases alone, its fixed costs (the last chunk, case by case) included: "
           f"{run_alone:,.0f} a case")
     if working:

@@ -247,6 +247,7 @@ JournalReader::JournalReader(const std::filesystem::path& part, const CubeLayout
 void JournalReader::index(bool part) {
   const auto& records = log_->records();
   current_ = true;
+  part_ = part;
   kept_ = 1;  // the header is committed alone
   for (std::size_t r = 1; r < records.size(); ++r)
     if (records[r].kind == kCommit) kept_ = r + 1;
@@ -327,8 +328,9 @@ void JournalReader::check_all() const {
       }
     }
   (void)notes();
-  for (const auto& [chunk, records] : sealed_)
-    for (const std::size_t r : records) (void)notes_after(r);
+  if (part_)  // a part's notes follow their chunk's sealed record (a journal's follow all its chunks)
+    for (const auto& [chunk, records] : sealed_)
+      for (const std::size_t r : records) (void)notes_after(r);
   for_each_history([](HistoryTable&&) {});
 }
 
@@ -433,7 +435,7 @@ std::size_t JournalReader::sealed_chunk_of(std::size_t record) const {
 
 std::vector<std::pair<std::int64_t, std::string>> JournalReader::notes_after(std::size_t sealed_record) const {
   const std::size_t next = sealed_record + 1;
-  if (!current_ || next >= kept_ || log_->records()[next].kind != kNotes) return {};
+  if (!current_ || !part_ || next >= kept_ || log_->records()[next].kind != kNotes) return {};
   auto notes = notes_of(next);
   const auto range = grid_.range(sealed_chunk_of(sealed_record));
   for (const auto& [index, text] : notes)

@@ -143,7 +143,8 @@ class JournalReader {
   /// The statuses of one sealed record only (its head, checked as sealed() checks them).
   std::vector<std::int8_t> sealed_status(std::size_t record) const;
   /// The notes of a part's sealed record: those of the notes record right after it (before
-  /// its commit), each of a case of its chunk. \throws JournalDamage for a note outside it.
+  /// its commit), each of a case of its chunk (none for a journal's, whose notes are notes()).
+  /// \throws JournalDamage for a note outside it.
   std::vector<std::pair<std::int64_t, std::string>> notes_after(std::size_t sealed_record) const;
   /// Every record of cases, in journal order.
   void for_each_cases(const std::function<void(const JournalCases&)>& visit) const;
@@ -169,6 +170,7 @@ class JournalReader {
   std::unique_ptr<io::LogReader> log_;
   bool current_ = false;
   bool foreign_ = false;
+  bool part_ = false;  ///< a part: its notes follow their chunk's sealed record
   std::size_t kept_ = 0;  ///< records kept: those up to the last commit
   std::uint64_t valid_bytes_ = 0;
   std::uint64_t dropped_bytes_ = 0;
