@@ -413,7 +413,9 @@ class ResultSink {
     if (!error_.empty()) return;
     std::size_t missing = 0;
     for (const std::size_t chunk : kept_)
-      if (writer_.status()[static_cast<std::size_t>(writer_.grid().range(chunk).first)] == cube::kStatusNotRun) ++missing;
+      if (chunk >= writer_.grid().chunk_count() ||
+          writer_.status()[static_cast<std::size_t>(writer_.grid().range(chunk).first)] == cube::kStatusNotRun)
+        ++missing;
     if (missing == 0) return;
     error_ = cube_ + ": " + std::to_string(missing) + " of the " + std::to_string(kept_.size()) +
              " chunks that worker ranks kept in their parts (" + cube_ + ".part-<rank>) were not found there by rank 0 "

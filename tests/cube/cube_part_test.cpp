@@ -229,6 +229,25 @@ TEST(CubePart, ATornTailIsDroppedAndSaid) {
   expect_chunks(file, {0, 1});
 }
 
+TEST(CubePart, OverwriteRemovesTheOldParts) {
+  const auto dir = test::scratch_dir("part_overwrite");
+  const auto file = dir / "c.h5";
+  make_cube(file);
+  const auto old_id = header_of(file).id;
+  {
+    PartWriter part(part_path(file, 1), header_of(file));
+    part.add(sealed_of(ChunkGrid(part_layout().shape()), 0));
+  }
+  {
+    CubeWriter fresh(file, part_layout(), OpenMode::kOverwrite);
+    EXPECT_EQ(fresh.done_count(), 0);
+    EXPECT_NE(fresh.part_header().id, old_id) << "a new cube, a new part id";
+    EXPECT_FALSE(fs::exists(part_path(file, 1)));
+    fresh.close();
+  }
+  expect_chunks(file, {});
+}
+
 TEST(CubePart, ALinkAtAPartNameIsRefusedBeforeAnythingIsWritten) {
   const auto dir = test::scratch_dir("part_link");
   const auto file = dir / "c.h5";

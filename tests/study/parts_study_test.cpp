@@ -11,7 +11,10 @@
 #include <fstream>
 #include <thread>
 
+#include "pcrf/cube/chunk_grid.hpp"
+#include "pcrf/cube/cube_part.hpp"
 #include "pcrf/cube/cube_reader.hpp"
+#include "pcrf/cube/sealed_chunk.hpp"
 #include "study/study_test_support.hpp"
 
 namespace pcrf::study_test {
@@ -93,6 +96,36 @@ TEST(PartsStudy, ARunKilledAtThreeRanksResumesToTheUninterruptedCube) {
   expect_same_cube(dir / "whole.h5", dir / "killed.h5", kTimes);
   EXPECT_FALSE(std::filesystem::exists(dir / "killed.h5.part-1"));
   if (!parts_seen) std::cerr << "note: no kill left a part (the run was too quick to catch)\n";
+}
+
+// A stopped run's parts: cube info says what waits in them, cube merge refuses the cube until
+// --resume folds them in (a chunk the cube holds already is skipped) and removes them.
+TEST(PartsStudy, ReadersMentionPartsAndMergeWaitsForTheResume) {
+  const auto dir = test::scratch_dir("parts_readers");
+  test::write_file(dir, "p.toml", parts_study());
+  ASSERT_EQ(study_in(dir, "-o c.h5").exit_code, 0);
+  {  // chunk 2 as a worker of a stopped run kept it (the cube holds it too: a kill after the last fold's rename)
+    const cube::CubeReader reader(dir / "c.h5");
+    const cube::ChunkGrid grid(reader.layout().shape());
+    const auto status = reader.read_status();
+    const auto r = grid.range(2);
+    const std::size_t metrics = reader.layout().metrics.size();
+    std::vector<std::int8_t> codes(status.begin() + r.first, status.begin() + r.first + r.count);
+    std::vector<double> values(metrics * codes.size(), 0.0);
+    cube::PartWriter part(dir / "c.h5.part-1", cube::part_header_of(reader.layout()));
+    part.add(cube::seal_chunk(grid, 2, metrics, codes, values, {}));
+  }
+  const auto info = test::run_command(pcrf() + " cube info " + quoted(dir / "c.h5"));
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_NE(info.err.find("16384 results wait in its ranks' parts (c.h5.part-1)"), std::string::npos) << info.err;
+  const auto merge = test::run_command("cd " + quoted(dir) + " && " + pcrf() + " cube merge c.h5 -o m.h5");
+  EXPECT_NE(merge.exit_code, 0);
+  EXPECT_NE(merge.err.find("--resume its run first"), std::string::npos) << merge.err;
+  ASSERT_EQ(study_in(dir, "-o c.h5 --resume").exit_code, 0);
+  EXPECT_FALSE(std::filesystem::exists(dir / "c.h5.part-1"));
+  EXPECT_EQ(test::run_command(pcrf() + " cube info " + quoted(dir / "c.h5")).err.find("parts"), std::string::npos);
+  ASSERT_EQ(study_in(dir, "--batch-size 64 -o cases.h5").exit_code, 0);
+  expect_same_cube(dir / "cases.h5", dir / "c.h5", kTimes);  // the part's zeros were not laid over the cube
 }
 
 }  // namespace
