@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <string>
 #include <vector>
@@ -100,6 +101,34 @@ TEST(SealedChunk, ASealedChunkFoldsRawAndReadsBackBitForBit) {
   expect_cube(file);
   EXPECT_THROW(CubeWriter(dir / "d.h5", sealed_layout(), OpenMode::kCreate).store_sealed(SealedChunk{7, {}, {}, {}}),
                CubeError);
+}
+
+// A chunk whose every value is the same (what frames that never lift make of most metrics)
+// is deflated once and its stream reused: each reuse must still inflate to its own values,
+// and values that compare equal but differ in their bits (0 and -0, two NaNs) must not share one.
+TEST(SealedChunk, RepeatedValuesInflateToThemselvesEveryTime) {
+  const ChunkGrid grid({static_cast<std::size_t>(kCases)});
+  const std::size_t padded = padded_elements(grid);
+  const double quiet = std::numeric_limits<double>::quiet_NaN();
+  const double other_nan = -quiet;  // another NaN: its sign bit set
+  const std::vector<double> constants{0.0, -0.0, 0.0, quiet, other_nan, 2.5, quiet};
+  for (std::size_t round = 0; round < 2; ++round)  // the second round finds every stream kept
+    for (const double c : constants) {
+      const auto count = static_cast<std::size_t>(grid.range(0).count);
+      const std::vector<double> values(count, c);
+      const std::vector<std::int8_t> status(count, 0);
+      const SealedChunk sealed = seal_chunk(grid, 0, 1, status, values, {});
+      const auto plain = unfilter(sealed.filtered[0], padded, sizeof(double), "test");
+      std::size_t wrong = 0;
+      for (std::size_t k = 0; k < count; ++k) {
+        double v = 0.0;
+        std::memcpy(&v, plain.data() + k * sizeof(double), sizeof(double));
+        wrong += std::memcmp(&v, &c, sizeof(double)) != 0;
+      }
+      EXPECT_EQ(wrong, 0u) << "the constant " << c << " (round " << round << ")";
+      const auto codes = unfilter(sealed.filtered[1], padded, 1, "test");
+      EXPECT_TRUE(std::all_of(codes.begin(), codes.begin() + static_cast<std::ptrdiff_t>(count), [](char s) { return s == 0; }));
+    }
 }
 
 TEST(SealedChunk, AJournaledSealedChunkResumesAndLaterCasesLieOverIt) {
