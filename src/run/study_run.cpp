@@ -113,6 +113,12 @@ void say_note(const StudyRunOptions& options, const std::string& note) {
   else std::cerr << "pcrf study: note: " << note << '\n';
 }
 
+/// A worker rank's note (it has no StudyRunOptions::notes): a line on stderr, which pcrf.study
+/// under mpirun warns as a PcrfWarning.
+void say_rank_note(int rank, const std::string& note) {
+  std::cerr << "pcrf study: note: rank " << rank << ": " << note << '\n';
+}
+
 MasterSetup prepare_master(const StudyRunOptions& options, const Prepared& p) {
   MasterSetup m;
   m.checked = check_study(p.study, *p.space, *p.records,
@@ -246,8 +252,7 @@ class PartKeeper {
       return failed;
     } catch (const cube::CubeError& e) {
       s.broken = true;
-      std::cerr << "pcrf study: note: rank " << s.rank << ": " << e.what()
-                << "; this rank's chunks go to rank 0 instead of its part\n";
+      say_rank_note(s.rank, std::string(e.what()) + "; this rank's chunks go to rank 0 instead of its part");
       return std::nullopt;
     }
   }
@@ -723,7 +728,7 @@ void run_worker_rank(const Prepared& p, const parallel::MpiSession& mpi, const s
   parallel::run_worker(mpi.comm(), schedule,
                        [&runner](std::span<const parallel::WorkItem> items) { return runner.run(items); });
   if (const std::string note = gpu_refusal_note(*p.group); !note.empty())
-    std::cerr << "pcrf study: note: rank " << mpi.rank() << ": " << note << '\n';
+    say_rank_note(mpi.rank(), note);
 }
 
 /// Rank 0's [run] values, the front end's overrides applied, one "key=value" a line.
