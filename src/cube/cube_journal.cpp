@@ -293,6 +293,16 @@ void JournalReader::index(bool part) {
 
 JournalReader::~JournalReader() = default;
 
+void JournalReader::release_file() { log_->release(); }
+
+void JournalReader::reopen_file() {
+  try {
+    log_->reopen();
+  } catch (const io::OutputError& e) {
+    throw CubeError(e.what(), CubeError::cause_of(e.os_error()));
+  }
+}
+
 std::string JournalReader::payload_head(const io::LogRecord& record) const {
   try {
     return log_->payload({record.kind, record.offset, kCasesHeadBytes});

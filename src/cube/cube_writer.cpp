@@ -548,7 +548,9 @@ void CubeWriter::Impl::read_part(const std::filesystem::path& part, std::vector<
     part_chunks[chunk] = {parts.size(), records.front()};
     used = true;
   }
-  if (used) parts.push_back(std::move(read));
+  if (!used) return;
+  read->release_file();  // one part open at a time, however many ranks there were (write_parts)
+  parts.push_back(std::move(read));
 }
 
 std::vector<double> CubeWriter::read_values(const std::string& metric) const {
@@ -1129,19 +1131,26 @@ void CubeWriter::Impl::fold(const std::vector<std::int8_t>& status) {
   sides_changed = false;
 }
 
-/// The parts' chunks into the file being folded, in chunk order: each sealed record read from
-/// its part by reference when its turn comes (one chunk in memory at a time, whatever the
-/// number of cases) and written raw; their notes added to `notes`.
+/// The parts' chunks into the file being folded, part by part (one part open at a time,
+/// whatever the number of ranks): each sealed record read from its part by reference when its
+/// turn comes (one chunk in memory at a time, whatever the number of cases) and written raw;
+/// their notes added to `notes`.
 void CubeWriter::Impl::write_parts(std::vector<std::pair<std::int64_t, std::string>>& notes,
                                    const std::vector<std::int8_t>& status) {
   if (part_chunks.empty()) return;
   const bool raw = raw_writable();
-  for (const auto& [chunk, at] : part_chunks) {
-    const JournalReader& part = *parts[at.part];
-    std::vector<JournalCases> unsealed;
-    write_sealed(part.sealed(at.record), raw, unsealed);
-    if (!unsealed.empty()) write_chunk(chunk, unsealed, nullptr, status);
-    for (auto& note : part.notes_after(at.record)) notes.push_back(std::move(note));
+  std::vector<std::vector<std::pair<std::size_t, std::size_t>>> by_part(parts.size());  // (chunk, record)
+  for (const auto& [chunk, at] : part_chunks) by_part[at.part].emplace_back(chunk, at.record);
+  for (std::size_t p = 0; p < parts.size(); ++p) {
+    JournalReader& part = *parts[p];
+    part.reopen_file();
+    for (const auto& [chunk, record] : by_part[p]) {
+      std::vector<JournalCases> unsealed;
+      write_sealed(part.sealed(record), raw, unsealed);
+      if (!unsealed.empty()) write_chunk(chunk, unsealed, nullptr, status);
+      for (auto& note : part.notes_after(record)) notes.push_back(std::move(note));
+    }
+    part.release_file();
   }
 }
 

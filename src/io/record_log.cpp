@@ -71,6 +71,8 @@ LogReader::LogReader(const fs::path& file) : file_(file) {
     throw OutputError(file_.string() + ": cannot read: " + std::strerror(error), error);
   }
   file_bytes_ = static_cast<std::uint64_t>(st.st_size);
+  device_ = st.st_dev;
+  inode_ = st.st_ino;
   // Where the file's data end: its first hole (SEEK_HOLE; the end of the file where there is
   // none, or where the file system cannot tell). An appended log has no hole: a record
   // reaching into one was never written (a sparse, forged file) and is not checksummed.
@@ -82,6 +84,23 @@ LogReader::LogReader(const fs::path& file) : file_(file) {
 
 LogReader::~LogReader() {
   if (fd_ >= 0) ::close(fd_);
+}
+
+void LogReader::release() {
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
+}
+
+void LogReader::reopen() {
+  if (fd_ >= 0 || !is_log_) return;
+  const int fd = open_regular_to_read(file_, false, false);
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || st.st_dev != device_ || st.st_ino != inode_ ||
+      static_cast<std::uint64_t>(st.st_size) < valid_bytes_) {
+    ::close(fd);
+    throw OutputError(file_.string() + ": was replaced or cut since it was read; pcrf reads a log it checked only", 0);
+  }
+  fd_ = fd;
 }
 
 bool LogReader::read_at(std::uint64_t offset, char* data, std::size_t size) const {

@@ -229,6 +229,31 @@ TEST(CubePart, ATornTailIsDroppedAndSaid) {
   expect_chunks(file, {0, 1});
 }
 
+// A fold holds one part open at a time: a part released after it was read is reopened only
+// when it is still the file read (not replaced, not cut).
+TEST(CubePart, AReleasedPartIsReopenedOnlyWhenItIsTheFileRead) {
+  const auto dir = test::scratch_dir("part_reopen");
+  const auto file = dir / "c.h5";
+  make_cube(file);
+  const ChunkGrid grid(part_layout().shape());
+  {
+    PartWriter part(part_path(file, 1), header_of(file));
+    part.add(sealed_of(grid, 0));
+    PartWriter other(dir / "other", header_of(file));
+    other.add(sealed_of(grid, 2));
+  }
+  const std::string header = part_header_payload(header_of(file));
+  JournalReader read(part_path(file, 1), CubeReader(file).layout(), header);
+  ASSERT_TRUE(read.current());
+  const std::size_t record = read.sealed_chunks().at(0).front();
+  read.release_file();
+  read.reopen_file();
+  EXPECT_EQ(read.sealed(record).status, sealed_of(grid, 0).status);
+  read.release_file();
+  fs::rename(dir / "other", part_path(file, 1));  // another file at its name since
+  EXPECT_THROW(read.reopen_file(), CubeError);
+}
+
 TEST(CubePart, OverwriteRemovesTheOldParts) {
   const auto dir = test::scratch_dir("part_overwrite");
   const auto file = dir / "c.h5";

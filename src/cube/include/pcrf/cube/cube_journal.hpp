@@ -116,6 +116,11 @@ class JournalReader {
   bool foreign() const { return foreign_; }
   /// The file read.
   const std::filesystem::path& file() const { return file_; }
+  /// Closes the file, keeping what was read of it (a fold that takes many parts holds one
+  /// open at a time); reopen_file() before reading a record again. \throws CubeError when the
+  /// file is no longer the one read.
+  void release_file();
+  void reopen_file();
   /// Case results in its records (a case stored twice counts twice).
   std::int64_t results() const { return results_; }
   /// Where a writer continues it [bytes] (the end of its last commit); 0 when not current.

@@ -15,6 +15,8 @@
 /// does not fit or does not match its CRC ends what is read (nothing after it is trusted).
 #pragma once
 
+#include <sys/types.h>
+
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -59,6 +61,11 @@ class LogReader {
   /// A record's payload (its size was checked against the file when scanned).
   /// \throws OutputError naming the file when it cannot be read.
   std::string payload(const LogRecord& record) const;
+  /// Closes the file, keeping what was scanned (a reader of many logs holds one open at a time).
+  void release();
+  /// Opens the released file again for payload(): the same file (device and inode) with at
+  /// least the bytes scanned. \throws OutputError naming it when it is gone or was replaced.
+  void reopen();
 
  private:
   void scan();
@@ -72,6 +79,8 @@ class LogReader {
   std::uint64_t file_bytes_ = 0;
   std::uint64_t data_bytes_ = 0;       ///< up to the file's first hole (its real data)
   std::uint64_t max_record_bytes_ = 0;  ///< a memory budget: kUsableMemoryShare of the machine's
+  dev_t device_ = 0;                    ///< of the file scanned (reopen checks it is the same)
+  ino_t inode_ = 0;
 };
 
 /// Appends records to a log. One writer per file (its owner's lock keeps others off).
