@@ -205,12 +205,13 @@ std::int64_t journal_id_of(const CubeLayout& layout) {
 
 // ---- reading ----
 
-JournalReader::JournalReader(std::filesystem::path file, const CubeLayout& layout)
+JournalReader::JournalReader(std::filesystem::path file, const CubeLayout& layout, bool verify_checksums)
     : file_(std::move(file)), metrics_(layout.metrics.size()), cases_(layout.case_count()), grid_(layout.shape()) {
   for (const auto& flag : layout.status_flags)
     if (flag.value != kStatusNotRun) statuses_.push_back(flag.value);
   try {
-    log_ = std::make_unique<io::LogReader>(file_);
+    log_ = std::make_unique<io::LogReader>(
+        file_, verify_checksums ? io::LogReader::Checksums::kVerify : io::LogReader::Checksums::kFramesOnly);
   } catch (const io::OutputError& e) {
     throw CubeError(e.what(), CubeError::cause_of(e.os_error()));
   }
@@ -227,8 +228,9 @@ JournalReader::JournalReader(const std::filesystem::path& cube, const CubeLayout
   index(false);
 }
 
-JournalReader::JournalReader(const std::filesystem::path& part, const CubeLayout& layout, const std::string& part_header)
-    : JournalReader(part, layout) {
+JournalReader::JournalReader(const std::filesystem::path& part, const CubeLayout& layout, const std::string& part_header,
+                             bool verify_checksums)
+    : JournalReader(part, layout, verify_checksums) {
   const auto& records = log_->records();
   if (!log_->exists() || log_->file_bytes() == 0) return;  // nothing, or a kill as it was created
   if (!log_->is_log()) {

@@ -510,8 +510,10 @@ void CubeWriter::Impl::set_aside(const std::filesystem::path& from, const std::s
 }
 
 /// A rank's part (cube_part.hpp), read up to its first invalid record and checked against the
-/// cube (`inflate`: every sealed chunk inflated too, as --resume checks the journal; a part of
-/// this run, made by its workers under its lock, is not). Its chunks that `status` has not
+/// cube (`inflate`: every CRC computed and every sealed chunk inflated too, as --resume checks
+/// the journal; a part of this run at its end, which its workers synced under its lock before
+/// they reported each chunk and no kill can have torn since, is checked by its frames, sizes
+/// and statuses only: its CRCs were 150 instructions a result, nearly all of the assembly). Its chunks that `status` has not
 /// done yet count as done (their statuses into it) and are taken by the next fold, read from
 /// the part then; a chunk done already (in the cube, its journal or an earlier part) is
 /// skipped. A part that cannot be used (forged, foreign: another cube's or study's) is set
@@ -519,7 +521,7 @@ void CubeWriter::Impl::set_aside(const std::filesystem::path& from, const std::s
 void CubeWriter::Impl::read_part(const std::filesystem::path& part, std::vector<std::int8_t>& status, bool inflate) {
   std::unique_ptr<JournalReader> read;
   try {
-    read = std::make_unique<JournalReader>(part, layout, part_header_payload(part_header_of_cube()));
+    read = std::make_unique<JournalReader>(part, layout, part_header_payload(part_header_of_cube()), inflate);
     if (inflate) read->check_all();
   } catch (const JournalDamage& e) {
     set_aside(part, e.what(), "part");

@@ -105,7 +105,10 @@ class JournalReader {
   /// `part_header` (part_header_payload). A part headed otherwise, or that is no log at all, is
   /// foreign(); one without a complete header (a kill as it was made) is neither current nor
   /// foreign: it holds nothing. Records of other kinds make it a JournalDamage.
-  JournalReader(const std::filesystem::path& part, const CubeLayout& layout, const std::string& part_header);
+  /// `verify_checksums` false: the frames' CRCs are not computed (a part this run's workers
+  /// synced, read at its end: io::LogReader::Checksums::kFramesOnly); every other check holds.
+  JournalReader(const std::filesystem::path& part, const CubeLayout& layout, const std::string& part_header,
+                bool verify_checksums = true);
   ~JournalReader();
   JournalReader(const JournalReader&) = delete;
   JournalReader& operator=(const JournalReader&) = delete;
@@ -159,7 +162,7 @@ class JournalReader {
   void for_each_history(const std::function<void(HistoryTable&&)>& visit) const;
 
  private:
-  JournalReader(std::filesystem::path file, const CubeLayout& layout);
+  JournalReader(std::filesystem::path file, const CubeLayout& layout, bool verify_checksums = true);
   void index(bool part);
   void check_statuses(std::size_t record, const std::int8_t* status, std::size_t n) const;
   std::size_t sealed_chunk_of(std::size_t record) const;

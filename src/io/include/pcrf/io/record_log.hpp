@@ -42,9 +42,17 @@ struct LogRecord {
 /// Reads a log: its valid records, then their payloads on demand.
 class LogReader {
  public:
+  /// How a scan checks the records' payloads.
+  enum class Checksums {
+    kVerify,  ///< every record's CRC-32 (an untrusted file: what a kill or damage left)
+    /// Frames only (kinds, sizes against the file's bytes and the memory budget), not the
+    /// CRCs: for a log its writer synced within this same run and that no kill can have torn
+    /// since (a rank's part at the run's end, cube_part.hpp). Its content is checked by its reader.
+    kFramesOnly,
+  };
   /// Opens and scans `file`. A missing file reads as a log of no record.
   /// \throws OutputError naming the file when it exists but cannot be read.
-  explicit LogReader(const std::filesystem::path& file);
+  explicit LogReader(const std::filesystem::path& file, Checksums checksums = Checksums::kVerify);
   ~LogReader();
   LogReader(const LogReader&) = delete;
   LogReader& operator=(const LogReader&) = delete;
@@ -79,6 +87,7 @@ class LogReader {
   std::uint64_t file_bytes_ = 0;
   std::uint64_t data_bytes_ = 0;       ///< up to the file's first hole (its real data)
   std::uint64_t max_record_bytes_ = 0;  ///< a memory budget: kUsableMemoryShare of the machine's
+  bool verify_ = true;                  ///< Checksums::kVerify
   dev_t device_ = 0;                    ///< of the file scanned (reopen checks it is the same)
   ino_t inode_ = 0;
 };
