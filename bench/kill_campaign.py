@@ -5,6 +5,7 @@ tiny flush interval, each run resuming the last; after every kill the cube must 
 
     python3 bench/kill_campaign.py --pcrf build/pcrf [--kills 300] [--ranks 1]
     python3 bench/kill_campaign.py --pcrf build/pcrf --study units --kills 60   # chunks sealed by workers
+    python3 bench/kill_campaign.py --pcrf build/pcrf --study units --ranks 3 --samples 120000 --kills 60  # ranks' parts
 
 Prints how many kills hit, how many left a cube, whether any cube was unreadable, and
 whether the final cube equals the uninterrupted one (status and every metric but wall time).
@@ -69,11 +70,15 @@ def main():
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--study", choices=["grid", "units"], default="grid",
                         help="grid: 1 728 rocking cases; units: 70 000 non-lifting ones in sealed chunks")
+    parser.add_argument("--samples", type=int, default=70000,
+                        help="cases of the units study (units need 2 chunks of 16 384 a rank and one more: "
+                             "120000 for 3 ranks, where worker ranks keep their chunks in parts)")
     args = parser.parse_args()
     pcrf = os.path.abspath(args.pcrf)
     work = tempfile.mkdtemp(prefix="pcrf_kills_")
     os.chdir(work)
-    open("k.toml", "w").write(STUDY if args.study == "grid" else UNITS)
+    open("k.toml", "w").write(STUDY if args.study == "grid" else UNITS.replace("samples = 70000",
+                                                                                 f"samples = {args.samples}"))
     t0 = time.time()
     subprocess.run(command(pcrf, args.ranks, "whole.h5", []), check=True, capture_output=True, env=ENV)
     whole_s = time.time() - t0
