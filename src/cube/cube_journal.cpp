@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <bit>
 #include <cstring>
+#include <memory>
+#include <string_view>
 
 #include "pcrf/io/checked_stream.hpp"
 #include "pcrf/io/record_log.hpp"
@@ -41,7 +43,7 @@ void put_doubles(std::string& out, const double* values, std::size_t n) {
 /// Reads a payload front to back; every length is checked against the bytes left before use.
 class Cursor {
  public:
-  explicit Cursor(const std::string& bytes) : bytes_(bytes) {}
+  explicit Cursor(std::string_view bytes) : bytes_(bytes) {}
   std::size_t left() const { return bytes_.size() - at_; }
   const char* take(std::uint64_t n) {
     if (n > left()) throw Malformed{"ends " + std::to_string(n - left()) + " bytes early"};
@@ -78,7 +80,7 @@ class Cursor {
   }
 
  private:
-  const std::string& bytes_;
+  std::string_view bytes_;
   std::size_t at_ = 0;
 };
 
@@ -423,6 +425,35 @@ void JournalReader::check_statuses(std::size_t record, const std::int8_t* status
   for (std::size_t k = 0; k < n; ++k)
     if (!allowed[static_cast<std::uint8_t>(status[k])])
       fail(record, "has the status code " + std::to_string(status[k]) + ", which the cube's flags do not name");
+}
+
+void JournalReader::with_sealed(std::size_t record,
+                                const std::function<void(std::size_t, const char*, std::size_t)>& variable) const {
+  const auto& r = log_->records().at(record);
+  const auto bytes = std::make_unique_for_overwrite<char[]>(static_cast<std::size_t>(r.size));  // its size was checked
+  try {
+    log_->read_payload(r, bytes.get());
+  } catch (const io::OutputError& e) {
+    throw CubeError(e.what(), CubeError::cause_of(e.os_error()));
+  }
+  Cursor in(std::string_view(bytes.get(), static_cast<std::size_t>(r.size)));
+  try {
+    (void)in.number(8);                                     // the chunk, checked when indexed
+    const auto n = static_cast<std::size_t>(in.number(4));  // its count, likewise
+    check_statuses(record, reinterpret_cast<const std::int8_t*>(in.take(n)), n);
+    if (in.number(4) != metrics_ + 1) throw Malformed{"seals another number of variables than the cube has"};
+    const std::size_t padded = padded_elements(grid_);
+    for (std::size_t v = 0; v <= metrics_; ++v) {
+      const auto size = in.number(8);
+      if (size == 0 || size > filtered_bound(padded, v < metrics_ ? sizeof(double) : 1))
+        throw Malformed{"seals a variable of a wrong size"};
+      const char* p = in.take(size);
+      variable(v, p, static_cast<std::size_t>(size));
+    }
+    in.expect_end();
+  } catch (const Malformed& m) {
+    fail(record, m.problem);
+  }
 }
 
 std::vector<std::int8_t> JournalReader::sealed_status(std::size_t record) const {

@@ -1147,9 +1147,18 @@ void CubeWriter::Impl::write_parts(std::vector<std::pair<std::int64_t, std::stri
     JournalReader& part = *parts[p];
     part.reopen_file();
     for (const auto& [chunk, record] : by_part[p]) {
-      std::vector<JournalCases> unsealed;
-      write_sealed(part.sealed(record), raw, unsealed);
-      if (!unsealed.empty()) write_chunk(chunk, unsealed, nullptr, status);
+      if (raw) {  // each variable's bytes from the part's one read of the record to the file
+        const auto offset = to_hsize(grid.range(chunk).start);
+        part.with_sealed(record, [&](std::size_t v, const char* bytes, std::size_t size) {
+          const hid_t set = v < metric_sets.size() ? static_cast<hid_t>(metric_sets[v]) : static_cast<hid_t>(status_set);
+          h5::check(H5Dwrite_chunk(set, H5P_DEFAULT, 0, offset.data(), size, bytes),
+                    what("cannot write a chunk of '" + (v < metric_sets.size() ? layout.metrics[v].name : std::string(kStatusName)) + "'"));
+        });
+      } else {
+        std::vector<JournalCases> unsealed;
+        write_sealed(part.sealed(record), raw, unsealed);
+        write_chunk(chunk, unsealed, nullptr, status);
+      }
       for (auto& note : part.notes_after(record)) notes.push_back(std::move(note));
     }
     part.release_file();

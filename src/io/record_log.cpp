@@ -163,6 +163,11 @@ std::string LogReader::payload(const LogRecord& record) const {
   return bytes;
 }
 
+void LogReader::read_payload(const LogRecord& record, char* out) const {
+  if (!read_at(record.offset, out, static_cast<std::size_t>(record.size)))
+    throw OutputError(file_.string() + ": cannot read: the file was cut short while read");
+}
+
 // ---- writing ----
 
 LogWriter::LogWriter(fs::path file, std::uint64_t keep_bytes) : file_(std::move(file)) {

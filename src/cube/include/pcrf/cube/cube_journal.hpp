@@ -148,6 +148,10 @@ class JournalReader {
   const std::map<std::size_t, std::vector<std::size_t>>& sealed_chunks() const { return sealed_; }
   /// One sealed record, its sizes and statuses checked (check_all() also inflates it).
   SealedChunk sealed(std::size_t record) const;
+  /// One sealed record's variables (metrics, then the status) as the file holds them, from one
+  /// read of the record and without a copy, each checked as sealed() checks it before
+  /// `variable(index, bytes, size)` receives it (a raw chunk write).
+  void with_sealed(std::size_t record, const std::function<void(std::size_t, const char*, std::size_t)>& variable) const;
   /// The statuses of one sealed record only (its head, checked as sealed() checks them).
   std::vector<std::int8_t> sealed_status(std::size_t record) const;
   /// The notes of a part's sealed record: those of the notes record right after it (before

@@ -69,6 +69,8 @@ class LogReader {
   /// A record's payload (its size was checked against the file when scanned).
   /// \throws OutputError naming the file when it cannot be read.
   std::string payload(const LogRecord& record) const;
+  /// The same into `out`, which has room for record.size bytes (no string to fill first).
+  void read_payload(const LogRecord& record, char* out) const;
   /// Closes the file, keeping what was scanned (a reader of many logs holds one open at a time).
   void release();
   /// Opens the released file again for payload(): the same file (device and inode) with at
