@@ -49,9 +49,12 @@ WORKING_FLOOR = 100.0
 
 # Rank 0's main thread, split by what it is doing (inclusive counts, callgrind_annotate):
 # before the first hand-out (reading the study and making its plan, the checks, the new cube
-# with its coordinates) and during the run (hand-out, storing what comes back, checkpoints,
-# the last fold): run_study less what it spends in the first two, whatever the compiler inlined.
-FUNCTIONS = {"study": "pcrf::run::run_study(", "load": "pcrf::study::load_study(", "prepare": "::prepare_master("}
+# with its coordinates: in prepare_master up to da9ce77, in create_cube since, which waits
+# while the other ranks seal the coordinates) and during the run (hand-out, storing what
+# comes back, checkpoints, the last fold): run_study less what it spends in those, whatever
+# the compiler inlined.
+FUNCTIONS = {"study": "pcrf::run::run_study(", "load": "pcrf::study::load_study(", "prepare": "::prepare_master(",
+             "create": "::create_cube("}
 PHASES = ("setup", "run")
 
 
@@ -64,7 +67,7 @@ def inclusive_phases(path):
         for key, name in FUNCTIONS.items():
             if name in line and not found[key]:
                 found[key] = int(line.split()[0].replace(",", ""))
-    setup = found["load"] + found["prepare"]
+    setup = found["load"] + found["prepare"] + found["create"]  # create_cube: the new cube, made with every rank
     return {"setup": setup, "run": found["study"] - setup}
 
 
