@@ -9,8 +9,10 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <stdexcept>
@@ -39,28 +41,97 @@ std::vector<char> unshuffled(const std::vector<char>& data, std::size_t elements
   return out;
 }
 
+/// Shannon entropy of a byte plane [bits a byte] above which the plane is noise: stored in
+/// the stream as it is rather than coded (a random value's low mantissa bytes: coding them
+/// gains nothing and costs most of a chunk's deflate).
+constexpr double kNoiseBitsPerByte = 7.9;
+/// Planes shorter than this [bytes] are always coded (their entropy cannot show noise).
+constexpr std::size_t kNoiseMinBytes = 4096;
+
+bool is_noise(const unsigned char* plane, std::size_t bytes) {
+  if (bytes < kNoiseMinBytes) return false;
+  std::array<std::uint32_t, 256> count{};
+  for (std::size_t i = 0; i < bytes; ++i) ++count[plane[i]];
+  double bits = 0.0;
+  for (const std::uint32_t c : count)
+    if (c > 0) {
+      const double p = static_cast<double>(c) / static_cast<double>(bytes);
+      bits -= p * std::log2(p);
+    }
+  return bits > kNoiseBitsPerByte;
+}
+
+/// How a chunk's byte planes are coded: each by runs, a noise plane stored (metrics, float64
+/// coordinates), or all by zlib's default strategy, which finds repeats at any distance (an
+/// index 0, 1, 2, ...: its low plane repeats at distance 256, noise to a count of its bytes).
+enum class Coding { kRunsOrStored, kRepeats };
+
 /// A zlib stream, as H5Z's deflate filter reads it. Its strategy is zlib's run-length one
 /// (Z_RLE: matches at distance 1 only), which HDF5's own filter cannot choose: on the shuffled
 /// metrics of a non-lifting LHS (16 384 cases, 17 metrics) 36.9 B a case in 296 ns, against
 /// 37.6 B in 685 ns with the default strategy at the same level (zlib via Python on this
 /// machine): the byte planes of a shuffled chunk are runs and skewed bytes, not repeats.
-/// `strategy`: zlib's (Z_RLE, or Z_DEFAULT_STRATEGY where a chunk's bytes repeat at longer distances).
-std::vector<char> filtered(const char* data, std::size_t elements, std::size_t element_bytes, int strategy = Z_RLE) {
+/// A plane that is noise (is_noise) goes in as stored blocks (zlib's level 0, switched by
+/// deflateParams between planes; one stream of mixed blocks, which any inflate reads): the
+/// same size within a few bytes, at a copy's cost (zlib via Python: 31-39 ns a random value
+/// coded, 5-9 stored). Coding::kRepeats: every plane coded, by the default strategy.
+std::vector<char> deflated(const char* data, std::size_t elements, std::size_t element_bytes,
+                           Coding coding = Coding::kRunsOrStored) {
   std::vector<char> plain = shuffled(data, elements, element_bytes);
   z_stream z{};
-  if (deflateInit2(&z, static_cast<int>(kDeflateLevel), Z_DEFLATED, 15, 8, strategy) != Z_OK)
-    throw std::runtime_error("cannot deflate a chunk");
-  std::vector<char> out(deflateBound(&z, static_cast<uLong>(plain.size())));
-  z.next_in = reinterpret_cast<Bytef*>(plain.data());
-  z.avail_in = static_cast<uInt>(plain.size());
+  int level = static_cast<int>(kDeflateLevel);
+  const int strategy = coding == Coding::kRepeats ? Z_DEFAULT_STRATEGY : Z_RLE;
+  if (deflateInit2(&z, level, Z_DEFLATED, 15, 8, strategy) != Z_OK) throw std::runtime_error("cannot deflate a chunk");
+  // Stored blocks add 5 bytes a block of at most 64 KiB, and each switch ends a block.
+  std::vector<char> out(deflateBound(&z, static_cast<uLong>(plain.size())) + 64 * (element_bytes + plain.size() / 65535 + 1));
   z.next_out = reinterpret_cast<Bytef*>(out.data());
   z.avail_out = static_cast<uInt>(out.size());
-  const int done = deflate(&z, Z_FINISH);
+  bool failed = false;
+  for (std::size_t b = 0; b < element_bytes && !failed; ++b) {
+    auto* plane = reinterpret_cast<unsigned char*>(plain.data() + b * elements);
+    const int want = coding == Coding::kRunsOrStored && is_noise(plane, elements) ? 0 : static_cast<int>(kDeflateLevel);
+    // A switch that zlib declines (Z_BUF_ERROR: never with this much room) keeps the level:
+    // the stream is the same data either way.
+    if (want != level && deflateParams(&z, want, strategy) == Z_OK) level = want;
+    z.next_in = plane;
+    z.avail_in = static_cast<uInt>(elements);
+    while (z.avail_in > 0 && !failed) failed = deflate(&z, Z_NO_FLUSH) != Z_OK;
+  }
+  const int done = failed ? Z_STREAM_ERROR : deflate(&z, Z_FINISH);
   const auto size = z.total_out;
   deflateEnd(&z);
   if (done != Z_STREAM_END) throw std::runtime_error("cannot deflate a chunk");
   out.resize(size);
   return out;
+}
+
+/// True when every element of `data` has the same bytes (a chunk equal to its shift by one
+/// element is periodic in it).
+bool every_element_same(const char* data, std::size_t elements, std::size_t element_bytes) {
+  return elements < 2 || std::memcmp(data, data + element_bytes, (elements - 1) * element_bytes) == 0;
+}
+
+/// The stream of a chunk, as `deflated` makes it. A chunk of one repeated element (a metric
+/// that is 0 or NaN for every case where frames never lift, a status that is the same for
+/// all) is deflated once per thread and element, and its stream reused: the same bytes, at
+/// the cost of a comparison (about a third of a worker's sealing on a non-lifting study).
+std::vector<char> filtered(const char* data, std::size_t elements, std::size_t element_bytes) {
+  if (element_bytes > sizeof(std::uint64_t) || !every_element_same(data, elements, element_bytes))
+    return deflated(data, elements, element_bytes);
+  struct Repeated {
+    std::uint64_t element = 0;
+    std::size_t elements = 0, element_bytes = 0;
+    std::vector<char> stream;
+  };
+  constexpr std::size_t kRepeatedKept = 64;  // distinct repeated chunks a thread keeps [chunks]
+  thread_local std::vector<Repeated> kept;
+  std::uint64_t element = 0;
+  std::memcpy(&element, data, element_bytes);
+  for (const Repeated& r : kept)
+    if (r.element == element && r.elements == elements && r.element_bytes == element_bytes) return r.stream;
+  std::vector<char> stream = deflated(data, elements, element_bytes);
+  if (kept.size() < kRepeatedKept) kept.push_back({element, elements, element_bytes, stream});
+  return stream;
 }
 
 void put_bytes(std::vector<char>& out, const void* data, std::size_t n) {
@@ -157,11 +228,11 @@ std::vector<char> seal_coordinate_piece(const Coordinate& c, std::size_t piece) 
   if (c.is_index) {  // whole numbers, stored as int32 (the conversion H5Dwrite made from int32 memory)
     std::vector<std::int32_t> values(chunk, 0);
     for (std::size_t k = 0; k < count; ++k) values[k] = static_cast<std::int32_t>(c.number(first + k));
-    return filtered(reinterpret_cast<const char*>(values.data()), chunk, sizeof(std::int32_t), Z_DEFAULT_STRATEGY);
+    return deflated(reinterpret_cast<const char*>(values.data()), chunk, sizeof(std::int32_t), Coding::kRepeats);
   }
   std::vector<double> values(chunk, 0.0);
   for (std::size_t k = 0; k < count; ++k) values[k] = c.number(first + k);
-  return filtered(reinterpret_cast<const char*>(values.data()), chunk, sizeof(double));
+  return deflated(reinterpret_cast<const char*>(values.data()), chunk, sizeof(double));
 }
 
 std::vector<char> to_bytes(const SealedChunk& sealed) {

@@ -458,12 +458,22 @@ parallel::WorkQueue pending_cases(const cube::CubeWriter& writer, const std::map
   const auto [first, last] = shard_range(space.size(), options.shard_index, options.shard_count);
   const auto& status = writer.status();
   const auto& grid = writer.grid();
-  auto pending = [&status, &grid, in_unit](std::int64_t i) {  // a copy: the windows outlive the caller's
-    return status[static_cast<std::size_t>(i)] == cube::kStatusNotRun && !in_unit[grid.chunk_of(i)];
+  auto pending = [&status](std::int64_t i) { return status[static_cast<std::size_t>(i)] == cube::kStatusNotRun; };
+  // The first position from k on that is not in a chunk handed out whole: such a chunk is
+  // skipped at once. Units exist only where positions are storage order (whole_chunks), so no
+  // case of theirs is looked at, and the scan costs rank 0 a few instructions a chunk, not a
+  // case (issue 38). `in_unit` is copied: the windows outlive the caller's.
+  const bool skipping = std::find(in_unit.begin(), in_unit.end(), 1) != in_unit.end();
+  auto from = [&grid, skipping, in_unit = std::move(in_unit), total = space.size()](std::int64_t k) {
+    while (skipping && k < total && in_unit[grid.chunk_of(k)]) {
+      const auto r = grid.range(grid.chunk_of(k));
+      k = r.first + r.count;
+    }
+    return k;
   };
   std::vector<std::int64_t> pinned;
   std::int64_t shared_total = 0;
-  for (std::int64_t k = first; k < last; ++k) {
+  for (std::int64_t k = from(first); k < last; k = from(k + 1)) {
     const std::int64_t i = space.handout_index(k);
     if (!pending(i)) continue;
     if (histories.count(i)) pinned.push_back(i);
@@ -473,13 +483,14 @@ parallel::WorkQueue pending_cases(const cube::CubeWriter& writer, const std::map
   const bool lanes = in_lanes(study);
   const std::int64_t tile = lanes ? frames_together(study) : 1;
   const std::int64_t window_cases = on_gpu(study) ? kGpuWindowCases : kWindowCases;
-  auto next_window = [pending, &histories, &space, tile, window_cases, cursor = first, last = last]() mutable {
+  auto next_window = [pending, from, &histories, &space, tile, window_cases, cursor = first, last = last]() mutable {
     std::vector<std::int64_t> window;
     while (window.empty() && cursor < last) {
       const std::int64_t end = std::min(last, cursor + window_cases);
-      for (std::int64_t k = cursor; k < end; ++k)
+      std::int64_t k = from(cursor);
+      for (; k < end; k = from(k + 1))
         if (const std::int64_t i = space.handout_index(k); pending(i) && !histories.count(i)) window.push_back(i);
-      cursor = end;
+      cursor = std::min(last, std::max(end, k));
     }
     return space.frame_major(std::move(window), tile);
   };

@@ -3,10 +3,14 @@
 // and --resume as well, and reads back bit for bit; cases stored after it are laid over it;
 // a journal whose sealed chunk does not inflate is set aside, never folded.
 #include <gtest/gtest.h>
+#include <zlib.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstring>
 #include <limits>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -100,6 +104,77 @@ TEST(SealedChunk, ASealedChunkFoldsRawAndReadsBackBitForBit) {
   expect_cube(file);
   EXPECT_THROW(CubeWriter(dir / "d.h5", sealed_layout(), OpenMode::kCreate).store_sealed(SealedChunk{7, {}, {}, {}}),
                CubeError);
+}
+
+// A chunk whose every value is the same (what frames that never lift make of most metrics)
+// is deflated once and its stream reused: each reuse must still inflate to its own values,
+// and values that compare equal but differ in their bits (0 and -0, two NaNs) must not share one.
+TEST(SealedChunk, RepeatedValuesInflateToThemselvesEveryTime) {
+  const ChunkGrid grid({static_cast<std::size_t>(kCases)});
+  const std::size_t padded = padded_elements(grid);
+  const double quiet = std::numeric_limits<double>::quiet_NaN();
+  const double other_nan = -quiet;  // another NaN: its sign bit set
+  const std::vector<double> constants{0.0, -0.0, 0.0, quiet, other_nan, 2.5, quiet};
+  for (std::size_t round = 0; round < 2; ++round)  // the second round finds every stream kept
+    for (const double c : constants) {
+      const auto count = static_cast<std::size_t>(grid.range(0).count);
+      const std::vector<double> values(count, c);
+      const std::vector<std::int8_t> status(count, 0);
+      const SealedChunk sealed = seal_chunk(grid, 0, 1, status, values, {});
+      const auto plain = unfilter(sealed.filtered[0], padded, sizeof(double), "test");
+      std::size_t wrong = 0;
+      for (std::size_t k = 0; k < count; ++k) {
+        double v = 0.0;
+        std::memcpy(&v, plain.data() + k * sizeof(double), sizeof(double));
+        wrong += std::memcmp(&v, &c, sizeof(double)) != 0;
+      }
+      EXPECT_EQ(wrong, 0u) << "the constant " << c << " (round " << round << ")";
+      const auto codes = unfilter(sealed.filtered[1], padded, 1, "test");
+      EXPECT_TRUE(std::all_of(codes.begin(), codes.begin() + static_cast<std::ptrdiff_t>(count), [](char s) { return s == 0; }));
+    }
+}
+
+// Values whose low bytes are noise (a random frame's parameters and what follows from them)
+// are sealed with those byte planes stored, not coded: the stream must still inflate to every
+// value bit for bit, for every mix of noise and structure, and be no larger than coding every
+// plane (zlib's run-length strategy at the cube's level, what sealing did before) but for a
+// block's headers a plane.
+TEST(SealedChunk, NoisyValuesInflateBitForBitAndNoLarger) {
+  const ChunkGrid grid({static_cast<std::size_t>(kCases)});
+  const std::size_t padded = padded_elements(grid);
+  const auto count = static_cast<std::size_t>(grid.range(0).count);
+  std::mt19937_64 random(38);
+  std::uniform_real_distribution<double> uniform(0.05, 0.2);
+  std::vector<double> values(4 * count);
+  for (std::size_t k = 0; k < count; ++k) {
+    values[k] = uniform(random);                                   // noise below the exponent
+    values[count + k] = std::bit_cast<double>(random());            // every byte noise (NaNs too)
+    values[2 * count + k] = k % 3 == 0 ? uniform(random) : 0.0;     // noise in a third of the cases
+    values[3 * count + k] = 1e-5 * static_cast<double>(k);          // a smooth ramp
+  }
+  const SealedChunk sealed = seal_chunk(grid, 0, 4, std::vector<std::int8_t>(count, 0), values, {});
+  for (std::size_t m = 0; m < 4; ++m) {
+    const auto plain = unfilter(sealed.filtered[m], padded, sizeof(double), "test");
+    EXPECT_EQ(std::memcmp(plain.data(), values.data() + m * count, count * sizeof(double)), 0) << "metric " << m;
+    // The same chunk shuffled and coded whole by zlib at the cube's level, for comparison.
+    std::vector<double> column(padded, std::numeric_limits<double>::quiet_NaN());
+    std::memcpy(column.data(), values.data() + m * count, count * sizeof(double));
+    std::vector<unsigned char> planes(padded * sizeof(double));
+    for (std::size_t b = 0; b < sizeof(double); ++b)
+      for (std::size_t k = 0; k < padded; ++k) planes[b * padded + k] = reinterpret_cast<const unsigned char*>(column.data())[k * sizeof(double) + b];
+    z_stream z{};
+    ASSERT_EQ(deflateInit2(&z, static_cast<int>(kDeflateLevel), Z_DEFLATED, 15, 8, Z_RLE), Z_OK);
+    std::vector<unsigned char> all(deflateBound(&z, static_cast<uLong>(planes.size())));
+    z.next_in = planes.data();
+    z.avail_in = static_cast<uInt>(planes.size());
+    z.next_out = all.data();
+    z.avail_out = static_cast<uInt>(all.size());
+    ASSERT_EQ(deflate(&z, Z_FINISH), Z_STREAM_END);
+    const auto coded = z.total_out;
+    deflateEnd(&z);
+    // At most one block's headers more a byte plane (a switch between coded and stored ends a block).
+    EXPECT_LE(sealed.filtered[m].size(), coded + 32 * sizeof(double)) << "metric " << m;
+  }
 }
 
 TEST(SealedChunk, AJournaledSealedChunkResumesAndLaterCasesLieOverIt) {
