@@ -112,6 +112,13 @@ void say_note(const StudyRunOptions& options, const std::string& note) {
   else std::cerr << "pcrf study: note: " << note << '\n';
 }
 
+/// A worker's failure before the run (its study, its share of the cube's creation): said on
+/// its stderr, and every rank ends at once (exit code 2), as MPI_Abort ends them.
+[[noreturn]] void end_every_rank(const parallel::MpiSession& mpi, const std::exception& e) {
+  std::cerr << "pcrf: error on rank " << mpi.rank() << ": " << e.what() << std::endl;
+  mpi.abort(2);
+}
+
 /// The cube's shard attribute ("2/8"); empty when unsharded.
 std::string shard_text(const StudyRunOptions& options) {
   return options.shard_count > 1 ? std::to_string(options.shard_index + 1) + "/" + std::to_string(options.shard_count) : "";
@@ -191,8 +198,7 @@ void open_cube(const StudyRunOptions& options, const Prepared& p, MasterSetup& m
   try {
     return seal_coordinates_for_rank0(mpi, [&] { return make_cube_layout(p.study, *p.space, *p.records, fingerprint); });
   } catch (const std::exception& e) {
-    std::cerr << "pcrf: error on rank " << mpi.rank() << ": " << e.what() << std::endl;
-    mpi.abort(2);
+    end_every_rank(mpi, e);
   }
 }
 
@@ -707,8 +713,7 @@ std::unique_ptr<Prepared> receive_study(const parallel::MpiSession& mpi, const P
     prepared->group = device_group_solver(prepared->study, prepared->study.where("run.device"), gpu);  // this rank's device
     return prepared;
   } catch (const std::exception& e) {  // e.g. records not visible from this node
-    std::cerr << "pcrf: error on rank " << mpi.rank() << ": " << e.what() << std::endl;
-    mpi.abort(2);
+    end_every_rank(mpi, e);
   }
 }
 
