@@ -50,12 +50,13 @@ WORKING_FLOOR = 100.0
 
 # Rank 0's main thread, split by what it is doing (inclusive counts, callgrind_annotate):
 # before the first hand-out (reading the study and making its plan, the checks, the new cube
-# with its coordinates) and during the run (hand-out, storing what comes back, checkpoints,
-# the last fold): run_study less what it spends in the first two, whatever the compiler inlined.
-# The assembly: the writer's last fold (CubeWriter::close), which writes the ranks' parts (and
-# rank 0's own journal) into the cube; "run" below is what the run costs besides it.
+# with its coordinates: in prepare_master up to da9ce77, in create_cube since, which waits
+# while the other ranks seal the coordinates) and during the run (hand-out, storing what
+# comes back, checkpoints): run_study less what it spends in those and in the assembly,
+# whatever the compiler inlined. The assembly: the writer's last fold (CubeWriter::close),
+# which writes the ranks' parts (and rank 0's own journal) into the cube.
 FUNCTIONS = {"study": "pcrf::run::run_study(", "load": "pcrf::study::load_study(", "prepare": "::prepare_master(",
-             "close": "pcrf::cube::CubeWriter::close("}
+             "create": "::create_cube(", "close": "pcrf::cube::CubeWriter::close("}
 PHASES = ("setup", "run", "assembly")
 
 
@@ -68,7 +69,7 @@ def inclusive_phases(path):
         for key, name in FUNCTIONS.items():
             if name in line and not found[key]:
                 found[key] = int(line.split()[0].replace(",", ""))
-    setup = found["load"] + found["prepare"]
+    setup = found["load"] + found["prepare"] + found["create"]  # create_cube: the new cube, made with every rank
     return {"setup": setup, "run": found["study"] - setup - found["close"], "assembly": found["close"]}
 
 

@@ -38,13 +38,7 @@ constexpr const char* kMessagesGroup = "messages";
 constexpr const char* kHistoriesGroup = "histories";
 // kDeflateLevel (sealed_chunk.hpp): the one zlib level of the cube's chunked variables.
 constexpr hsize_t kNotesChunk = 256;
-// A numeric coordinate longer than this is chunked, shuffled and deflated like the metrics
-// (an LHS's eight parameters were 64 B a case stored plain): pieces of this many values.
-// Measured on a 4 x 10^5-case LHS (bench/master/pcrf_cube_filters): a random parameter costs
-// 7.27, 6.88, 6.83 and 6.80 B a value in pieces of 1 Ki, 8 Ki, 64 Ki and 256 Ki values
-// (shuffle, level 1), 8 B plain; the case number 0.31, 0.07, 0.03, 0.03 B against 4 B.
-// Levels 4 and 9 gain under 1 %, without shuffle 9 % is lost: level 1 with shuffle, as the metrics.
-constexpr hsize_t kCoordinateChunk = 65536;
+// kCoordinateChunk (cube_layout.hpp): values per chunk of a chunked coordinate.
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// Creation-order tracking as netCDF-4 files have it (readers then list in that order).
@@ -66,9 +60,8 @@ void write_descriptive_attributes(hid_t object, const std::string& units, const 
 }
 
 /// True for a coordinate whose values are written into the cube on disk after its creation,
-/// piece by piece (write_long_coordinates), not into the in-memory image: a long one (the
-/// image would hold it whole: an LHS of 10^8 frames, gigabytes) or a computed one.
-bool written_later(const Coordinate& c) { return c.computed() || c.size() > kCoordinateChunk / 16; }
+/// piece by piece (write_long_coordinates), not into the in-memory image.
+bool written_later(const Coordinate& c) { return c.written_later(); }
 
 /// A 1-D coordinate variable (text, index or numbers); its values are written here unless
 /// written_later.
@@ -77,8 +70,8 @@ h5::Handle create_coordinate(hid_t parent, const Coordinate& c) {
   const hsize_t n = c.size();
   auto s = h5::space(H5Screate_simple(1, &n, nullptr), what);
   auto dcpl = ordered_plist(H5P_DATASET_CREATE);
-  if (!c.is_text && n > kCoordinateChunk / 16) {  // a short one stays contiguous: a chunk index costs more
-    const hsize_t chunk = std::min(n, kCoordinateChunk);
+  if (c.chunked()) {
+    const hsize_t chunk = c.chunk_values();
     h5::check(H5Pset_chunk(dcpl, 1, &chunk), what);
     h5::check(H5Pset_shuffle(dcpl), what);
     h5::check(H5Pset_deflate(dcpl, kDeflateLevel), what);
@@ -207,6 +200,7 @@ struct CubeWriter::Impl {
   std::vector<std::unique_ptr<JournalReader>> parts;   // the parts read, open: records are read by reference
   std::map<std::size_t, PartChunk> part_chunks;         // chunks the next fold takes from them
   std::vector<std::filesystem::path> parts_to_remove;  // after the next fold's rename
+  CoordinateSource* coordinate_source = nullptr;  // while the constructor creates the cube; null: seal here
 
   Impl(std::filesystem::path p, CubeLayout l)
       : path(std::move(p)), layout(std::move(l)), grid(layout.shape()) {
@@ -226,6 +220,7 @@ struct CubeWriter::Impl {
   void clear_pending();
   void write_new_file(io::AtomicFile& target);
   void write_long_coordinates(const std::filesystem::path& target);
+  void write_sealed_piece(hid_t d, const CoordinatePiece& piece, const std::string& problem);
   void update(const std::filesystem::path& target, const std::vector<std::int8_t>& status, std::int64_t new_id);
   void check_free_space(const std::filesystem::path& target) const;
   void remember_identity();
@@ -254,8 +249,13 @@ struct CubeWriter::Impl {
   void write_history(const HistoryTable& table);
 };
 
-CubeWriter::CubeWriter(std::filesystem::path file, CubeLayout layout, OpenMode mode)
+CubeWriter::CubeWriter(std::filesystem::path file, CubeLayout layout, OpenMode mode, CoordinateSource* coordinates)
     : impl_(std::make_unique<Impl>(std::move(file), std::move(layout))) {
+  impl_->coordinate_source = coordinates;
+  struct Forget {  // the source serves the creation only: it may not outlive the constructor
+    Impl& impl;
+    ~Forget() { impl.coordinate_source = nullptr; }
+  } forget{*impl_};
   h5::silence_library_errors();
   const auto n = static_cast<std::size_t>(impl_->layout.case_count());
   status_.assign(n, kStatusNotRun);
@@ -880,19 +880,27 @@ void CubeWriter::Impl::write_new_file(io::AtomicFile& target) {
 /// on disk, one chunk of kCoordinateChunk values at a time, then drops them: whatever the
 /// number of cases, creating a cube holds one chunk of a coordinate, not the whole of it
 /// (issue 38; an LHS of 10^6 frames held its eight parameters, then their image, 130 B a case).
+/// A chunked one goes in as sealed pieces, each written raw (H5Dwrite_chunk, no filter
+/// skipped): from `coordinate_source` (other ranks computed and compressed them), or sealed
+/// here; any other (text, or short) value by value.
 void CubeWriter::Impl::write_long_coordinates(const std::filesystem::path& target) {
   bool any = false;
   for (const auto& c : layout.coordinates) any = any || written_later(c);
   if (!any) return;
   try {
     file = h5::file(H5Fopen(target.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), what("cannot open " + target.string()));
-    for (auto& c : layout.coordinates) {
+    for (std::size_t k = 0; k < layout.coordinates.size(); ++k) {
+      auto& c = layout.coordinates[k];
       if (!written_later(c)) continue;
       const std::string problem = what("cannot write coordinate '" + c.name + "'");
       auto d = h5::dataset(H5Dopen2(file, c.name.c_str(), H5P_DEFAULT), problem);
-      const hsize_t n = c.size();
-      for (hsize_t first = 0; first < n; first += kCoordinateChunk)
-        write_coordinate_piece(d, c, first, std::min<hsize_t>(kCoordinateChunk, n - first), problem);
+      if (c.chunked()) {
+        for (std::size_t p = 0; p < c.piece_count(); ++p) write_sealed_piece(d, {k, p}, problem);
+      } else {
+        const hsize_t n = c.size();
+        for (hsize_t first = 0; first < n; first += kCoordinateChunk)
+          write_coordinate_piece(d, c, first, std::min<hsize_t>(kCoordinateChunk, n - first), problem);
+      }
       c.release_values();
     }
     const hid_t id = file.release();
@@ -901,6 +909,22 @@ void CubeWriter::Impl::write_long_coordinates(const std::filesystem::path& targe
     close_handles();
     throw;
   }
+}
+
+/// One sealed piece of a chunked coordinate into its dataset `d`, raw. Bytes from another
+/// rank are checked for their size; HDF5 inflates them only when read (the creating rank
+/// trusts the ranks of its own run, which run this binary).
+void CubeWriter::Impl::write_sealed_piece(hid_t d, const CoordinatePiece& piece, const std::string& problem) {
+  const Coordinate& c = layout.coordinates[piece.coordinate];
+  std::vector<char> here;
+  const std::span<const char> bytes = coordinate_source != nullptr
+                                          ? coordinate_source->sealed(layout, piece)
+                                          : std::span<const char>(here = seal_coordinate_piece(c, piece.piece));
+  if (bytes.empty() || bytes.size() > sealed_piece_bound(c))
+    throw CubeError(problem + ": piece " + std::to_string(piece.piece) + " has " + std::to_string(bytes.size()) +
+                    " bytes, not a sealed chunk");
+  const hsize_t offset = static_cast<hsize_t>(piece.piece) * kCoordinateChunk;
+  h5::check(H5Dwrite_chunk(d, H5P_DEFAULT, 0, &offset, bytes.size(), bytes.data()), problem);
 }
 
 /// Writes what changed since the last fold into `target` (a copy of it, or a new cube): the

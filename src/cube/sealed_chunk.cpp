@@ -8,7 +8,9 @@
 
 #include <zlib.h>
 
+#include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -59,6 +61,11 @@ bool is_noise(const unsigned char* plane, std::size_t bytes) {
   return bits > kNoiseBitsPerByte;
 }
 
+/// How a chunk's byte planes are coded: each by runs, a noise plane stored (metrics, float64
+/// coordinates), or all by zlib's default strategy, which finds repeats at any distance (an
+/// index 0, 1, 2, ...: its low plane repeats at distance 256, noise to a count of its bytes).
+enum class Coding { kRunsOrStored, kRepeats };
+
 /// A zlib stream, as H5Z's deflate filter reads it. Its strategy is zlib's run-length one
 /// (Z_RLE: matches at distance 1 only), which HDF5's own filter cannot choose: on the shuffled
 /// metrics of a non-lifting LHS (16 384 cases, 17 metrics) 36.9 B a case in 296 ns, against
@@ -67,12 +74,14 @@ bool is_noise(const unsigned char* plane, std::size_t bytes) {
 /// A plane that is noise (is_noise) goes in as stored blocks (zlib's level 0, switched by
 /// deflateParams between planes; one stream of mixed blocks, which any inflate reads): the
 /// same size within a few bytes, at a copy's cost (zlib via Python: 31-39 ns a random value
-/// coded, 5-9 stored).
-std::vector<char> deflated(const char* data, std::size_t elements, std::size_t element_bytes) {
+/// coded, 5-9 stored). Coding::kRepeats: every plane coded, by the default strategy.
+std::vector<char> deflated(const char* data, std::size_t elements, std::size_t element_bytes,
+                           Coding coding = Coding::kRunsOrStored) {
   std::vector<char> plain = shuffled(data, elements, element_bytes);
   z_stream z{};
   int level = static_cast<int>(kDeflateLevel);
-  if (deflateInit2(&z, level, Z_DEFLATED, 15, 8, Z_RLE) != Z_OK) throw std::runtime_error("cannot deflate a chunk");
+  const int strategy = coding == Coding::kRepeats ? Z_DEFAULT_STRATEGY : Z_RLE;
+  if (deflateInit2(&z, level, Z_DEFLATED, 15, 8, strategy) != Z_OK) throw std::runtime_error("cannot deflate a chunk");
   // Stored blocks add 5 bytes a block of at most 64 KiB, and each switch ends a block.
   std::vector<char> out(deflateBound(&z, static_cast<uLong>(plain.size())) + 64 * (element_bytes + plain.size() / 65535 + 1));
   z.next_out = reinterpret_cast<Bytef*>(out.data());
@@ -80,10 +89,10 @@ std::vector<char> deflated(const char* data, std::size_t elements, std::size_t e
   bool failed = false;
   for (std::size_t b = 0; b < element_bytes && !failed; ++b) {
     auto* plane = reinterpret_cast<unsigned char*>(plain.data() + b * elements);
-    const int want = is_noise(plane, elements) ? 0 : static_cast<int>(kDeflateLevel);
+    const int want = coding == Coding::kRunsOrStored && is_noise(plane, elements) ? 0 : static_cast<int>(kDeflateLevel);
     // A switch that zlib declines (Z_BUF_ERROR: never with this much room) keeps the level:
     // the stream is the same data either way.
-    if (want != level && deflateParams(&z, want, Z_RLE) == Z_OK) level = want;
+    if (want != level && deflateParams(&z, want, strategy) == Z_OK) level = want;
     z.next_in = plane;
     z.avail_in = static_cast<uInt>(elements);
     while (z.avail_in > 0 && !failed) failed = deflate(&z, Z_NO_FLUSH) != Z_OK;
@@ -193,6 +202,37 @@ SealedChunk seal_chunk(const ChunkGrid& grid, std::size_t chunk, std::size_t met
   std::memcpy(codes.data(), status.data(), count);
   sealed.filtered.push_back(filtered(reinterpret_cast<const char*>(codes.data()), padded, 1));
   return sealed;
+}
+
+std::vector<CoordinatePiece> coordinate_pieces(const CubeLayout& layout) {
+  std::vector<CoordinatePiece> pieces;
+  for (std::size_t k = 0; k < layout.coordinates.size(); ++k) {
+    const Coordinate& c = layout.coordinates[k];
+    if (!c.written_later() || !c.chunked()) continue;
+    for (std::size_t p = 0; p < c.piece_count(); ++p) pieces.push_back({k, p});
+  }
+  return pieces;
+}
+
+std::size_t sealed_piece_bound(const Coordinate& c) {
+  return filtered_bound(c.chunk_values(), c.is_index ? sizeof(std::int32_t) : sizeof(double));
+}
+
+std::vector<char> seal_coordinate_piece(const Coordinate& c, std::size_t piece) {
+  static_assert(std::endian::native == std::endian::little, "a sealed piece holds the file's little-endian values");
+  if (!c.chunked() || piece >= c.piece_count())
+    throw std::invalid_argument("seal_coordinate_piece: '" + c.name + "' has no chunk " + std::to_string(piece));
+  const std::size_t chunk = c.chunk_values();
+  const std::size_t first = piece * kCoordinateChunk;
+  const std::size_t count = std::min(chunk, c.size() - first);
+  if (c.is_index) {  // whole numbers, stored as int32 (the conversion H5Dwrite made from int32 memory)
+    std::vector<std::int32_t> values(chunk, 0);
+    for (std::size_t k = 0; k < count; ++k) values[k] = static_cast<std::int32_t>(c.number(first + k));
+    return deflated(reinterpret_cast<const char*>(values.data()), chunk, sizeof(std::int32_t), Coding::kRepeats);
+  }
+  std::vector<double> values(chunk, 0.0);
+  for (std::size_t k = 0; k < count; ++k) values[k] = c.number(first + k);
+  return deflated(reinterpret_cast<const char*>(values.data()), chunk, sizeof(double));
 }
 
 std::vector<char> to_bytes(const SealedChunk& sealed) {

@@ -26,6 +26,7 @@
 #include "pcrf/solver/case_group.hpp"
 #include "pcrf/run/case_runner.hpp"
 #include "pcrf/run/cost_estimate.hpp"
+#include "pcrf/run/cube_creation.hpp"
 #include "pcrf/schema/cube_vocabulary.hpp"
 #include "pcrf/run/ida_work.hpp"
 #include "pcrf/run/progress.hpp"
@@ -60,7 +61,8 @@ struct Prepared {
         records(std::make_unique<RecordCache>(study.records)) {}
 };
 
-/// Rank 0's part of the preparation: the checks and the open cube.
+/// Rank 0's part of the preparation: the checks and the lock (prepare_master), then the open
+/// cube (create_cube, with every rank).
 struct MasterSetup {
   CheckedStudy checked;
   std::filesystem::path output;
@@ -119,6 +121,18 @@ void say_rank_note(int rank, const std::string& note) {
   std::cerr << "pcrf study: note: rank " << rank << ": " << note << '\n';
 }
 
+/// A worker's failure before the run (its study, its share of the cube's creation): said on
+/// its stderr, and every rank ends at once (exit code 2), as MPI_Abort ends them.
+[[noreturn]] void end_every_rank(const parallel::MpiSession& mpi, const std::exception& e) {
+  std::cerr << "pcrf: error on rank " << mpi.rank() << ": " << e.what() << std::endl;
+  mpi.abort(2);
+}
+
+/// The cube's shard attribute ("2/8"); empty when unsharded.
+std::string shard_text(const StudyRunOptions& options) {
+  return options.shard_count > 1 ? std::to_string(options.shard_index + 1) + "/" + std::to_string(options.shard_count) : "";
+}
+
 MasterSetup prepare_master(const StudyRunOptions& options, const Prepared& p) {
   MasterSetup m;
   m.checked = check_study(p.study, *p.space, *p.records,
@@ -134,8 +148,7 @@ MasterSetup prepare_master(const StudyRunOptions& options, const Prepared& p) {
   } catch (const io::OutputError& e) {
     throw UserError(e.what());
   }
-  const std::string shard = options.shard_count > 1 ? std::to_string(options.shard_index + 1) + "/" +
-                                                           std::to_string(options.shard_count) : "";
+  const std::string shard = shard_text(options);
   if (options.resume && std::filesystem::exists(m.output)) {
     try {
       const std::string theirs = cube::CubeReader(m.output).layout().text_attribute(cube::kShardName);
@@ -149,17 +162,53 @@ MasterSetup prepare_master(const StudyRunOptions& options, const Prepared& p) {
   if (std::filesystem::exists(m.output) && !options.resume && !options.overwrite)
     throw UserError(Where{}, m.output.string() + ": already exists; use {} to continue it or {} to replace it",
                     {"resume", "overwrite"});
+  return m;
+}
+
+/// Rank 0's cube: a new one (its coordinates sealed by `coordinates`, or here when null) or
+/// the one --resume continues. The lock and every check of prepare_master come first.
+void open_cube(const StudyRunOptions& options, const Prepared& p, MasterSetup& m, cube::CoordinateSource* coordinates) {
+  const std::string shard = shard_text(options);
   const auto mode = options.resume ? cube::OpenMode::kResume
                                    : (options.overwrite ? cube::OpenMode::kOverwrite : cube::OpenMode::kCreate);
   try {
     auto layout = make_cube_layout(p.study, *p.space, *p.records, m.checked.fingerprint);
     if (!shard.empty()) layout.attributes.push_back({cube::kShardName, shard});
-    m.writer = std::make_unique<cube::CubeWriter>(m.output, std::move(layout), mode);
+    m.writer = std::make_unique<cube::CubeWriter>(m.output, std::move(layout), mode, coordinates);
   } catch (const cube::CubeError& e) {
     throw UserError(e.what());
   }
   for (const auto& note : m.writer->resume_notes()) say_note(options, note);
-  return m;
+}
+
+/// The cube made by every rank together (cube_creation.hpp), once every rank has the study:
+/// rank 0 writes it, the workers seal its coordinates. True when it is made; false on a worker
+/// when rank 0 failed, which then rethrows its error (a UserError: every rank ends in order,
+/// as after a failed check). A worker that fails here ends the run, as receive_study does.
+/// Never inlined: its own frame in a profile, where bench/master/rank_costs.py counts it in the set-up.
+[[gnu::noinline]] bool create_cube(const StudyRunOptions& options, const Prepared& p, MasterSetup& m,
+                                   const parallel::MpiSession& mpi) {
+  const std::string fingerprint = mpi.broadcast(mpi.is_master() ? m.checked.fingerprint : std::string());
+  if (mpi.is_master()) {
+    if (mpi.size() == 1) {  // no other rank: rank 0 seals the pieces itself
+      open_cube(options, p, m, nullptr);
+      return true;
+    }
+    WorkerCoordinates workers(mpi);
+    try {
+      open_cube(options, p, m, &workers);
+    } catch (...) {
+      workers.finish(false);
+      throw;
+    }
+    workers.finish(true);
+    return true;
+  }
+  try {
+    return seal_coordinates_for_rank0(mpi, [&] { return make_cube_layout(p.study, *p.space, *p.records, fingerprint); });
+  } catch (const std::exception& e) {
+    end_every_rank(mpi, e);
+  }
 }
 
 /// Time histories made in rank 0's worker thread, waiting for the master thread to store them.
@@ -765,8 +814,7 @@ std::unique_ptr<Prepared> receive_study(const parallel::MpiSession& mpi, const P
     prepared->group = device_group_solver(prepared->study, prepared->study.where("run.device"), gpu);  // this rank's device
     return prepared;
   } catch (const std::exception& e) {  // e.g. records not visible from this node
-    std::cerr << "pcrf: error on rank " << mpi.rank() << ": " << e.what() << std::endl;
-    mpi.abort(2);
+    end_every_rank(mpi, e);
   }
 }
 
@@ -820,6 +868,10 @@ std::optional<StudySummary> run_study(const StudyRunOptions& options, const para
     return summary;
   }
   if (auto received = receive_study(mpi, prepared.get(), options.gpu_backend)) prepared = std::move(received);
+  if (!create_cube(options, *prepared, setup, mpi)) {  // rank 0 failed: it threw, and reports it
+    mpi.quiet_barrier();
+    return std::nullopt;
+  }
   // The cube's shape, so that workers seal the chunks rank 0's writer stores.
   std::string shape_text;
   if (mpi.is_master())

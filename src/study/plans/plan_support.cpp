@@ -143,7 +143,9 @@ std::vector<cube::Coordinate> PointPlan::coordinates() const {
   // The models present: the plan's first, then the others in catalogue order.
   std::vector<const SceneModel*> present{model_};
   std::vector<char> used(scene_models().size(), 0);
-  for (std::size_t i = 0; i < n; ++i) used[static_cast<std::size_t>(&point_model(i) - scene_models().data())] = 1;
+  // Held frames say their model; computed ones are all of the plan's (no pass over every case:
+  // 42 instructions a case on each rank that makes the cube's layout, issue 38).
+  for (const Point& p : points_) used[static_cast<std::size_t>(p.model - scene_models().data())] = 1;
   for (const auto& m : scene_models())
     if (&m != model_ && used[static_cast<std::size_t>(&m - scene_models().data())]) present.push_back(&m);
   if (present.size() > 1)

@@ -77,7 +77,8 @@ class PointPlan : public Plan {
 
  protected:
   PointPlan(const SceneModel& model, std::vector<Point> points);
-  /// A plan of `count` frames that it computes (it overrides the point_* functions).
+  /// A plan of `count` frames that it computes, every one of `model` (it overrides the
+  /// point_* functions).
   PointPlan(const SceneModel& model, std::size_t count);
   const SceneModel& model() const { return *model_; }
   std::size_t point_count() const { return dimensions_[0].size; }

@@ -29,6 +29,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -81,11 +82,25 @@ struct HistoryTable {
   std::vector<std::vector<double>> values;  ///< one vector per column, equal lengths
 };
 
+/// Where a new cube's coordinate pieces come from, already sealed (seal_coordinate_piece):
+/// from other ranks, which compute and compress them while the creating rank writes them
+/// (run/cube_creation.hpp). Without one the writer seals them itself.
+class CoordinateSource {
+ public:
+  virtual ~CoordinateSource() = default;
+  /// The sealed bytes of `piece` of `layout` (the writer's layout), valid until the next
+  /// call (a source keeps one buffer: no piece is copied or cleared on its way into the file).
+  /// Asked only while a new cube is created, in coordinate_pieces(layout)'s order, each once.
+  virtual std::span<const char> sealed(const CubeLayout& layout, const CoordinatePiece& piece) = 0;
+};
+
 class CubeWriter {
  public:
   /// \throws CubeError naming the file: exists (kCreate), belongs to another study or has
   /// another layout (kResume), or cannot be written.
-  CubeWriter(std::filesystem::path file, CubeLayout layout, OpenMode mode);
+  /// `coordinates` (optional, used only within the constructor): where a new cube's sealed
+  /// coordinate pieces come from; null: sealed here.
+  CubeWriter(std::filesystem::path file, CubeLayout layout, OpenMode mode, CoordinateSource* coordinates = nullptr);
   /// Unless closed: append() (errors ignored), keeping what was stored.
   ~CubeWriter();
   CubeWriter(const CubeWriter&) = delete;

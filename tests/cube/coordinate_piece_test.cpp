@@ -1,0 +1,178 @@
+// Coordinate pieces (issue 38: the cube's creation off rank 0's serial path): a chunked
+// coordinate's chunk sealed anywhere (seal_coordinate_piece) is the bytes its variable stores,
+// and a cube made from pieces another party sealed (a CoordinateSource: other ranks) reads
+// back exactly as one that sealed them itself; a creation whose pieces fail leaves no cube,
+// or the old one with --overwrite.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "pcrf/cube/cube_reader.hpp"
+#include "pcrf/cube/cube_writer.hpp"
+#include "pcrf/cube/sealed_chunk.hpp"
+#include "support/test_support.hpp"
+
+namespace pcrf::cube {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// 150 000 cases: pieces of 65 536, 65 536 and 18 928 values (an edge chunk, stored padded).
+constexpr std::size_t kCases = 150000;
+
+double kappa_at(std::size_t i) { return 1.0 + 1.0 / static_cast<double>(i + 3); }  // no two alike
+
+/// A cube along `case`: the case number (an index: int32), a computed parameter, a held one
+/// (long: written later, chunked), a short held one over `record` (in the image), and a
+/// computed text label (written value by value).
+CubeLayout piece_layout(std::size_t n = kCases) {
+  CubeLayout l;
+  l.dimensions = {{"record", 2}, {"case", n}};
+  Coordinate record{"record", "record", "", "ground motion", {}, {"ER1", "ER2"}, true, false};
+  Coordinate scale{"record_scale", "record", "1", "", {1.0, 0.5}, {}, false, false};
+  Coordinate index{"case", "case", "", "frame number", {}, {}, false, true};
+  index.number_at = [](std::size_t i) { return static_cast<double>(i); };
+  index.computed_size = n;
+  Coordinate kappa{"kappa", "case", "1", "", {}, {}, false, false};
+  kappa.number_at = kappa_at;
+  kappa.computed_size = n;
+  Coordinate held{"lambda", "case", "1", "", {}, {}, false, false};
+  for (std::size_t i = 0; i < n; ++i) held.numbers.push_back(2.0 - 1.0 / static_cast<double>(i + 7));
+  Coordinate label{"case_label", "case", "", "frame label", {}, {}, true, false};
+  label.text_at = [](std::size_t i) { return "s" + std::to_string(i); };
+  label.computed_size = n;
+  l.coordinates = {record, scale, index, kappa, held, label};
+  l.metrics = {{"theta_max_rad", "rad", "peak"}};
+  l.status_flags = {{0, "at_rest"}};
+  l.attributes = {{kFingerprintName, std::string("pieces")}};
+  return l;
+}
+
+/// Pieces sealed here, as another rank would: each asked once, in order, and counted.
+class CountingSource final : public CoordinateSource {
+ public:
+  explicit CountingSource(CubeLayout own, std::size_t fail_at = SIZE_MAX) : own_(std::move(own)), fail_at_(fail_at) {}
+  std::span<const char> sealed(const CubeLayout& layout, const CoordinatePiece& piece) override {
+    EXPECT_EQ(layout.coordinates.size(), own_.coordinates.size());
+    asked.push_back(piece);
+    if (asked.size() > fail_at_) throw CubeError("a worker is gone");
+    last_ = seal_coordinate_piece(own_.coordinates[piece.coordinate], piece.piece);
+    return last_;
+  }
+  std::vector<CoordinatePiece> asked;
+
+ private:
+  std::vector<char> last_;
+  CubeLayout own_;
+  std::size_t fail_at_;
+};
+
+TEST(CoordinatePiece, PiecesAreEveryChunkOfTheLongCoordinatesInOrder) {
+  const auto layout = piece_layout();
+  const auto pieces = coordinate_pieces(layout);
+  // case (2), kappa (3), lambda (4): three chunks each; record_scale is short, case_label text.
+  std::vector<CoordinatePiece> expected;
+  for (std::size_t c : {2u, 3u, 4u})
+    for (std::size_t p = 0; p < 3; ++p) expected.push_back({c, p});
+  EXPECT_EQ(pieces, expected);
+  EXPECT_EQ(layout.coordinates[3].chunk_values(), kCoordinateChunk);
+  EXPECT_TRUE(coordinate_pieces(piece_layout(4000)).empty()) << "short coordinates stay contiguous";
+  EXPECT_THROW(seal_coordinate_piece(layout.coordinates[3], 3), std::invalid_argument);
+  EXPECT_THROW(seal_coordinate_piece(layout.coordinates[5], 0), std::invalid_argument);
+}
+
+TEST(CoordinatePiece, ASealedPieceInflatesToItsValuesPaddedWithZeros) {
+  const auto layout = piece_layout();
+  const Coordinate& kappa = layout.coordinates[3];
+  const Coordinate& index = layout.coordinates[2];
+  const std::size_t edge = kCases - 2 * kCoordinateChunk;
+  const auto plain = unfilter(seal_coordinate_piece(kappa, 2), kCoordinateChunk, sizeof(double), "kappa");
+  std::vector<double> values(kCoordinateChunk);
+  std::memcpy(values.data(), plain.data(), plain.size());
+  for (std::size_t k = 0; k < kCoordinateChunk; ++k)
+    ASSERT_EQ(values[k], k < edge ? kappa_at(2 * kCoordinateChunk + k) : 0.0) << k;
+  const auto sealed_index = seal_coordinate_piece(index, 1);
+  EXPECT_LT(sealed_index.size(), kCoordinateChunk / 8) << "0, 1, 2, … deflate to almost nothing";
+  const auto ints = unfilter(sealed_index, kCoordinateChunk, sizeof(std::int32_t), "case");
+  std::vector<std::int32_t> numbers(kCoordinateChunk);
+  std::memcpy(numbers.data(), ints.data(), ints.size());
+  for (std::size_t k = 0; k < kCoordinateChunk; ++k) ASSERT_EQ(numbers[k], static_cast<std::int32_t>(kCoordinateChunk + k));
+  EXPECT_LE(seal_coordinate_piece(kappa, 0).size(), sealed_piece_bound(kappa));
+}
+
+// The cube a source's pieces make equals the one the writer seals itself, value for value,
+// and the source is asked for each piece once, in order, during the creation only.
+TEST(CoordinatePiece, ACubeFromAnotherPartysPiecesEqualsOneSealedHere) {
+  const auto dir = test::scratch_dir("coordinate_pieces");
+  {
+    CubeWriter here(dir / "here.h5", piece_layout(), OpenMode::kOverwrite);
+    here.close();
+  }
+  CountingSource source(piece_layout());
+  {
+    CubeWriter there(dir / "there.h5", piece_layout(), OpenMode::kOverwrite, &source);
+    EXPECT_EQ(source.asked, coordinate_pieces(piece_layout()));
+    there.store(0, 0, {0.5});
+    there.close();
+  }
+  EXPECT_EQ(source.asked.size(), 9u) << "never after the creation";
+  CubeReader here(dir / "here.h5"), there(dir / "there.h5");
+  for (const auto& c : piece_layout().coordinates) {
+    const Coordinate* a = here.layout().find_coordinate(c.name);
+    const Coordinate* b = there.layout().find_coordinate(c.name);
+    ASSERT_TRUE(a != nullptr && b != nullptr) << c.name;
+    EXPECT_EQ(a->numbers, b->numbers) << c.name;
+    EXPECT_EQ(a->strings, b->strings) << c.name;
+    EXPECT_EQ(a->is_index, b->is_index) << c.name;
+    ASSERT_EQ(b->size(), c.size()) << c.name;
+    for (std::size_t i = 0; i < c.size(); i += 997) EXPECT_EQ(b->label(i), c.label(i)) << c.name << " " << i;
+  }
+  EXPECT_EQ(there.read_metric("theta_max_rad")[0], 0.5);
+  EXPECT_TRUE(there.damage().empty());
+}
+
+std::string bytes_of(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// A creation stopped while its pieces come in (a worker gone, bytes that are not a piece)
+// leaves no cube, nor its temporary; with --overwrite the old cube stays as it was.
+TEST(CoordinatePiece, ACreationWhosePiecesFailLeavesNoCubeOrTheOldOne) {
+  const auto dir = test::scratch_dir("coordinate_pieces_fail");
+  CountingSource failing(piece_layout(), 4);
+  EXPECT_THROW(CubeWriter(dir / "new.h5", piece_layout(), OpenMode::kCreate, &failing), CubeError);
+  EXPECT_EQ(failing.asked.size(), 5u);
+  EXPECT_FALSE(fs::exists(dir / "new.h5"));
+  EXPECT_FALSE(fs::exists(dir / "new.h5.partial"));
+
+  {
+    CubeWriter old(dir / "old.h5", piece_layout(5000), OpenMode::kOverwrite);
+    old.store(3, 0, {0.25});
+    old.close();
+  }
+  const std::string before = bytes_of(dir / "old.h5");
+  struct Garbage final : CoordinateSource {
+    std::span<const char> sealed(const CubeLayout&, const CoordinatePiece&) override { return {}; }
+  } garbage;
+  EXPECT_THROW(CubeWriter(dir / "old.h5", piece_layout(), OpenMode::kOverwrite, &garbage), CubeError);
+  struct TooLarge final : CoordinateSource {
+    std::span<const char> sealed(const CubeLayout& l, const CoordinatePiece& p) override {
+      bytes.assign(sealed_piece_bound(l.coordinates[p.coordinate]) + 1, 'x');
+      return bytes;
+    }
+    std::vector<char> bytes;
+  } too_large;
+  EXPECT_THROW(CubeWriter(dir / "old.h5", piece_layout(), OpenMode::kOverwrite, &too_large), CubeError);
+  EXPECT_EQ(bytes_of(dir / "old.h5"), before);
+  EXPECT_FALSE(fs::exists(dir / "old.h5.partial"));
+  EXPECT_EQ(CubeReader(dir / "old.h5").read_metric("theta_max_rad")[3], 0.25);
+}
+
+}  // namespace
+}  // namespace pcrf::cube
