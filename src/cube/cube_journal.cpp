@@ -194,6 +194,22 @@ std::uint64_t sealed_payload_bound(std::uint64_t count, std::size_t metrics, std
   return kCasesHeadBytes + count + 4 + metrics * (8 + filtered_bound(padded, sizeof(double))) + 8 + filtered_bound(padded, 1);
 }
 
+/// The variables of a sealed record, after its statuses: their number checked against the
+/// cube's metrics (and the status) and each size against its bound; `variable` is given each
+/// one's bytes, in order. The record must end there.
+void take_sealed_variables(Cursor& in, std::size_t metrics, const ChunkGrid& grid,
+                           const std::function<void(std::size_t, const char*, std::size_t)>& variable) {
+  if (in.number(4) != metrics + 1) throw Malformed{"seals another number of variables than the cube has"};
+  const std::size_t padded = padded_elements(grid);
+  for (std::size_t v = 0; v <= metrics; ++v) {
+    const auto size = in.number(8);
+    if (size == 0 || size > filtered_bound(padded, v < metrics ? sizeof(double) : 1))
+      throw Malformed{"seals a variable of a wrong size"};
+    variable(v, in.take(size), static_cast<std::size_t>(size));
+  }
+  in.expect_end();
+}
+
 }  // namespace
 
 std::filesystem::path journal_path(const std::filesystem::path& cube) { return cube.string() + ".journal"; }
@@ -401,16 +417,9 @@ SealedChunk JournalReader::sealed(std::size_t record) const {
     const auto* status = reinterpret_cast<const std::int8_t*>(in.take(n));
     c.status.assign(status, status + n);
     check_statuses(record, c.status.data(), n);
-    if (in.number(4) != metrics_ + 1) throw Malformed{"seals another number of variables than the cube has"};
-    const std::size_t padded = padded_elements(grid_);
-    for (std::size_t v = 0; v <= metrics_; ++v) {
-      const auto size = in.number(8);
-      if (size == 0 || size > filtered_bound(padded, v < metrics_ ? sizeof(double) : 1))
-        throw Malformed{"seals a variable of a wrong size"};
-      const char* p = in.take(size);
+    take_sealed_variables(in, metrics_, grid_, [&c](std::size_t, const char* p, std::size_t size) {
       c.filtered.emplace_back(p, p + size);
-    }
-    in.expect_end();
+    });
   } catch (const Malformed& m) {
     fail(record, m.problem);
   }
@@ -441,16 +450,7 @@ void JournalReader::with_sealed(std::size_t record,
     (void)in.number(8);                                     // the chunk, checked when indexed
     const auto n = static_cast<std::size_t>(in.number(4));  // its count, likewise
     check_statuses(record, reinterpret_cast<const std::int8_t*>(in.take(n)), n);
-    if (in.number(4) != metrics_ + 1) throw Malformed{"seals another number of variables than the cube has"};
-    const std::size_t padded = padded_elements(grid_);
-    for (std::size_t v = 0; v <= metrics_; ++v) {
-      const auto size = in.number(8);
-      if (size == 0 || size > filtered_bound(padded, v < metrics_ ? sizeof(double) : 1))
-        throw Malformed{"seals a variable of a wrong size"};
-      const char* p = in.take(size);
-      variable(v, p, static_cast<std::size_t>(size));
-    }
-    in.expect_end();
+    take_sealed_variables(in, metrics_, grid_, variable);
   } catch (const Malformed& m) {
     fail(record, m.problem);
   }
