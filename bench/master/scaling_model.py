@@ -44,9 +44,9 @@ WORKERS = [16, 64, 256, 2048, 16384]
 # so that start-up cancels; the workers' split from the same profiles, callgrind_annotate
 # --inclusive=yes; studies/README.md "The master at cluster scale"):
 MASTER_SETUP_PER_CASE = 7         # rank 0's main thread before the first hand-out (was 11 600 at da9ce77)
-MASTER_RUN_PER_RESULT = 64        # rank 0's main thread during the run (a quarter of these results came
-                                  # from rank 0's own worker thread, through its journal)
-MASTER_ASSEMBLY_PER_RESULT = 21   # rank 0's main thread in the last fold: the parts' chunks into the cube
+MASTER_RUN_PER_RESULT = 51        # rank 0's main thread during the run (49 and 51 in two runs; a quarter of
+                                  # these results came from rank 0's own worker thread, through its journal)
+MASTER_ASSEMBLY_PER_RESULT = 25   # rank 0's main thread in the last fold: the parts' chunks into the cube
 NONLIFT_CASE = 15_810             # a worker's non-lifting case (CaseRunner::run; the LHS point included)
 WORKER_OWN_PER_CASE = 3_240       # sealing its chunk 2 700, keeping it in its part 225, messages 315
 WORKER_CREATION_PER_CASE = 6_040  # the cube's coordinates computed and sealed by the workers, per case of the study

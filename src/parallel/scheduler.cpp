@@ -4,6 +4,7 @@
 //   master → worker  kTagBatch    WorkItems (index, argument) as bytes; empty means "stop",
 //                                 one item of index kWaitIndex "nothing ready: report and ask again",
 //                                 a first item of index kUnitIndex "compute these whole and seal them"
+//                                 (then the cases, or an item of index kRangeIndex: consecutive ones)
 #include "pcrf/parallel/scheduler.hpp"
 
 #include <algorithm>

@@ -15,6 +15,10 @@ WorkBatch unit_batch(std::int64_t unit, const std::vector<std::int64_t>& cases) 
   return batch;
 }
 
+WorkBatch unit_range_batch(std::int64_t unit, std::int64_t first, std::int64_t count) {
+  return {{detail::kUnitIndex, static_cast<double>(unit)}, {detail::kRangeIndex, static_cast<double>(count)}, {first, 0.0}};
+}
+
 WorkQueue::WorkQueue(std::vector<std::int64_t> shared, std::vector<std::int64_t> pinned,
                      int workers, std::size_t fixed_batch, std::size_t max_batch)
     : shared_left_(shared.size()),

@@ -27,8 +27,29 @@ inline bool is_wait(const WorkBatch& batch) { return batch.size() == 1 && batch.
 /// this index, whose argument is the unit's number; its cases follow.
 inline constexpr std::int64_t kUnitIndex = -2;
 inline bool is_unit(const WorkBatch& batch) { return !batch.empty() && batch.front().case_index == kUnitIndex; }
+/// A unit of consecutive cases (unit_range_batch): after the unit marker, one item of this
+/// index whose argument is the number of cases, then one item, the first case.
+inline constexpr std::int64_t kRangeIndex = -3;
+inline bool is_range_unit(const WorkBatch& batch) {
+  return batch.size() == 3 && batch[0].case_index == kUnitIndex && batch[1].case_index == kRangeIndex;
+}
+/// The number of cases of a range unit (0 for a count that is not one).
+inline std::size_t range_count(const WorkBatch& batch) {
+  const double count = batch[1].argument;
+  return count >= 1.0 && count <= 9.0e15 ? static_cast<std::size_t>(count) : 0;
+}
 /// The cases a batch hands out (its unit marker, if any, is none).
-inline std::size_t cases_in(const WorkBatch& batch) { return batch.size() - (is_unit(batch) ? 1 : 0); }
+inline std::size_t cases_in(const WorkBatch& batch) {
+  return is_range_unit(batch) ? range_count(batch) : batch.size() - (is_unit(batch) ? 1 : 0);
+}
+/// A range unit as the unit it stands for: its marker, then each of its cases.
+inline WorkBatch listed(const WorkBatch& range) {
+  const std::size_t count = range_count(range);
+  WorkBatch batch(count + 1);
+  batch[0] = range[0];
+  for (std::size_t k = 0; k < count; ++k) batch[k + 1] = {range[2].case_index + static_cast<std::int64_t>(k), 0.0};
+  return batch;
+}
 
 /// How a worker talks to its master.
 class MasterLink {
@@ -92,6 +113,7 @@ inline void worker_loop(MasterLink& link, const CasesEvaluator& evaluate, std::s
     finished.clear();
     sealed.clear();
     if (!is_wait(batch)) {
+      if (is_range_unit(batch)) batch = listed(batch);
       const bool unit = is_unit(batch);
       const std::span<const WorkItem> items = std::span<const WorkItem>(batch).subspan(unit ? 1 : 0);
       const std::size_t before = finished.size();

@@ -646,14 +646,16 @@ class UnitsThenCases final : public parallel::WorkSource {
     if (next_ == units_.size()) return rest_.take(in_process);
     const std::size_t chunk = units_[next_++];
     const auto r = grid_.range(chunk);
+    // Storage order has the frame axes fastest: in lanes, a call's cases already share their
+    // excitation, and where every case is a frame of its own there is nothing to reorder, so
+    // the unit goes out as its range (three items; the worker lists its cases). Otherwise a
+    // frame's cases come together (prepared once): on the master, a sort of the chunk (about
+    // 300 instructions a case).
+    if (lanes_ || space_.distinct_frames() == space_.size())
+      return parallel::unit_range_batch(static_cast<std::int64_t>(chunk), r.first, r.count);
     std::vector<std::int64_t> cases(static_cast<std::size_t>(r.count));
     for (std::size_t k = 0; k < cases.size(); ++k) cases[k] = r.first + static_cast<std::int64_t>(k);
-    // Storage order has the frame axes fastest: in lanes, a call's cases already share their
-    // excitation, and where every case is a frame of its own there is nothing to reorder.
-    // Otherwise a frame's cases come together (prepared once): on the master, a sort of the
-    // chunk (about 300 instructions a case).
-    if (!lanes_ && space_.distinct_frames() < space_.size()) cases = space_.frame_major(std::move(cases), 1);
-    return parallel::unit_batch(static_cast<std::int64_t>(chunk), cases);
+    return parallel::unit_batch(static_cast<std::int64_t>(chunk), space_.frame_major(std::move(cases), 1));
   }
   void completed(const parallel::CaseOutcome& o) override { rest_.completed(o); }
   bool exhausted() const override { return next_ == units_.size() && rest_.exhausted(); }

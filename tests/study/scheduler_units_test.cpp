@@ -15,9 +15,15 @@ namespace pcrf::parallel {
 namespace {
 
 /// Units 0..3 of 100 cases each (unit 3 declined by the sealer), then cases 400..449 one by one.
+/// The units list their cases, or (`ranges`) give them as a range.
 class Units final : public WorkSource {
  public:
+  explicit Units(bool ranges = false) : ranges_(ranges) {}
   WorkBatch take(bool in_process) override {
+    if (next_ < 4 && ranges_) {
+      ++next_;
+      return unit_range_batch(next_ - 1, 100 * (next_ - 1), 100);
+    }
     if (next_ < 4) {
       std::vector<std::int64_t> cases;
       for (std::int64_t i = 0; i < 100; ++i) cases.push_back(100 * next_ + (99 - i));  // any order
@@ -28,6 +34,7 @@ class Units final : public WorkSource {
   bool exhausted() const override { return next_ == 4 && rest_.exhausted(); }
 
  private:
+  bool ranges_;
   std::int64_t next_ = 0;
   WorkQueue rest_{[] {
     std::vector<std::int64_t> cases;
@@ -36,10 +43,12 @@ class Units final : public WorkSource {
   }(), {}, 1};
 };
 
-TEST(Scheduler, AUnitComesBackSealedByItsWorkerAndADeclinedOneCaseByCase) {
+/// Runs Units to the end: each unit sealed has every one of its 100 cases once, and what comes
+/// back one by one is unit 3 (declined) and the 50 cases after the units, each once.
+void expect_units_sealed_and_declined_one_by_one(bool ranges) {
   MpiSession mpi;
   ASSERT_EQ(mpi.size(), 1);
-  Units work;
+  Units work(ranges);
   ScheduleOptions options;
   options.row_width = 1;
   options.seal = [](std::int64_t unit, std::span<const CaseOutcome> outcomes) -> std::optional<std::vector<char>> {
@@ -68,6 +77,14 @@ TEST(Scheduler, AUnitComesBackSealedByItsWorkerAndADeclinedOneCaseByCase) {
   EXPECT_EQ(*one_by_one.begin(), 300);
   EXPECT_EQ(*one_by_one.rbegin(), 449);
 }
+
+TEST(Scheduler, AUnitComesBackSealedByItsWorkerAndADeclinedOneCaseByCase) {
+  expect_units_sealed_and_declined_one_by_one(false);
+}
+
+// A unit handed out as its range (three items, whatever its size) reaches the worker as each of
+// its cases once, and the master's count of cases in flight holds (run_master returns).
+TEST(Scheduler, ARangeUnitIsEveryCaseOfItsRangeOnce) { expect_units_sealed_and_declined_one_by_one(true); }
 
 // A signal ends a unit half done: the cases done so far come back one by one, nothing sealed.
 TEST(Scheduler, AnInterruptedUnitReportsItsCasesDoneOneByOne) {

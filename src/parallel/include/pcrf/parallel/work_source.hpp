@@ -22,6 +22,10 @@ using WorkBatch = std::vector<WorkItem>;
 /// A batch a worker computes whole and seals (ScheduleOptions::seal): a marker item, then its
 /// cases. The marker's argument is the unit's number, which comes back with what was sealed.
 WorkBatch unit_batch(std::int64_t unit, const std::vector<std::int64_t>& cases);
+/// The same for a unit whose cases are the `count` consecutive ones from `first`: three items
+/// however many cases, so that handing it out costs the master nothing a case (the worker
+/// lists them).
+WorkBatch unit_range_batch(std::int64_t unit, std::int64_t first, std::int64_t count);
 
 class WorkSource {
  public:
