@@ -388,10 +388,7 @@ JournalCases JournalReader::cases(std::size_t record) const {
     }
     const auto* status = reinterpret_cast<const std::int8_t*>(in.take(n));
     c.status.assign(status, status + n);
-    // Only the statuses the cube's flags name reach it (never not_run, 99 or -128).
-    for (const std::int8_t s : c.status)
-      if (!statuses_.empty() && std::find(statuses_.begin(), statuses_.end(), s) == statuses_.end())
-        throw Malformed{"has the status code " + std::to_string(s) + ", which the cube's flags do not name"};
+    check_statuses(record, c.status.data(), n);
     c.values.reserve(n * metrics_);  // bounded by the chunk's size, checked above
     for (std::size_t m = 0; m < metrics_; ++m) {
       const auto form = in.number(1);

@@ -245,6 +245,7 @@ struct CubeWriter::Impl {
                    const std::vector<std::int8_t>& status);
   bool raw_writable() const;
   void write_sealed(const SealedChunk& sealed, bool raw, std::vector<JournalCases>& unsealed);
+  void write_variable_raw(const std::vector<hsize_t>& offset, std::size_t v, const char* bytes, std::size_t size);
   void append_notes(const std::vector<std::pair<std::int64_t, std::string>>& notes);
   void write_history(const HistoryTable& table);
 };
@@ -721,6 +722,16 @@ bool CubeWriter::Impl::raw_writable() const {
 /// A sealed chunk into the file: raw, its filtered bytes as they are (H5Dwrite_chunk, no
 /// filter skipped); otherwise unfiltered into `unsealed`, a record of every case of the chunk
 /// for write_chunk.
+/// One variable of a sealed chunk (metric v, or the status after the metrics) written raw, its
+/// filtered bytes as they are, at the chunk that starts at `offset`.
+void CubeWriter::Impl::write_variable_raw(const std::vector<hsize_t>& offset, std::size_t v, const char* bytes,
+                                          std::size_t size) {
+  const std::size_t metrics = metric_sets.size();
+  const hid_t set = v < metrics ? static_cast<hid_t>(metric_sets[v]) : static_cast<hid_t>(status_set);
+  h5::check(H5Dwrite_chunk(set, H5P_DEFAULT, 0, offset.data(), size, bytes),
+            what("cannot write a chunk of '" + (v < metrics ? layout.metrics[v].name : std::string(kStatusName)) + "'"));
+}
+
 void CubeWriter::Impl::write_sealed(const SealedChunk& sealed, bool raw, std::vector<JournalCases>& unsealed) {
   const auto r = grid.range(sealed.chunk);
   const std::size_t metrics = metric_sets.size();
@@ -728,12 +739,7 @@ void CubeWriter::Impl::write_sealed(const SealedChunk& sealed, bool raw, std::ve
     throw CubeError(what("a sealed chunk does not fit the cube"));
   if (raw) {
     const auto offset = to_hsize(r.start);
-    for (std::size_t v = 0; v <= metrics; ++v) {
-      const hid_t set = v < metrics ? static_cast<hid_t>(metric_sets[v]) : static_cast<hid_t>(status_set);
-      const auto& bytes = sealed.filtered[v];
-      h5::check(H5Dwrite_chunk(set, H5P_DEFAULT, 0, offset.data(), bytes.size(), bytes.data()),
-                what("cannot write a chunk of '" + (v < metrics ? layout.metrics[v].name : std::string(kStatusName)) + "'"));
-    }
+    for (std::size_t v = 0; v <= metrics; ++v) write_variable_raw(offset, v, sealed.filtered[v].data(), sealed.filtered[v].size());
     return;
   }
   JournalCases all;
@@ -1174,9 +1180,7 @@ void CubeWriter::Impl::write_parts(std::vector<std::pair<std::int64_t, std::stri
       if (raw) {  // each variable's bytes from the part's one read of the record to the file
         const auto offset = to_hsize(grid.range(chunk).start);
         part.with_sealed(record, [&](std::size_t v, const char* bytes, std::size_t size) {
-          const hid_t set = v < metric_sets.size() ? static_cast<hid_t>(metric_sets[v]) : static_cast<hid_t>(status_set);
-          h5::check(H5Dwrite_chunk(set, H5P_DEFAULT, 0, offset.data(), size, bytes),
-                    what("cannot write a chunk of '" + (v < metric_sets.size() ? layout.metrics[v].name : std::string(kStatusName)) + "'"));
+          write_variable_raw(offset, v, bytes, size);
         });
       } else {
         std::vector<JournalCases> unsealed;

@@ -567,8 +567,10 @@ parallel::WorkQueue pending_cases(const cube::CubeWriter& writer, const std::map
   // case (issue 38). `in_unit` is copied: the windows outlive the caller's.
   const bool skipping = std::find(in_unit.begin(), in_unit.end(), 1) != in_unit.end();
   auto from = [&grid, skipping, in_unit = std::move(in_unit), total = space.size()](std::int64_t k) {
-    while (skipping && k < total && in_unit[grid.chunk_of(k)]) {
-      const auto r = grid.range(grid.chunk_of(k));
+    while (skipping && k < total) {
+      const std::size_t c = grid.chunk_of(k);
+      if (!in_unit[c]) break;
+      const auto r = grid.range(c);
       k = r.first + r.count;
     }
     return k;
