@@ -433,7 +433,12 @@ void JournalReader::check_statuses(std::size_t record, const std::int8_t* status
       fail(record, "has the status code " + std::to_string(status[k]) + ", which the cube's flags do not name");
 }
 
-void JournalReader::with_sealed(std::size_t record,
+/// True when a case may have `code` in this cube (check_statuses' rule).
+bool JournalReader::names(std::int8_t code) const {
+  return statuses_.empty() || std::find(statuses_.begin(), statuses_.end(), code) != statuses_.end();
+}
+
+void JournalReader::with_sealed(std::size_t record, const std::function<void(const SealedStatuses&)>& statuses,
                                 const std::function<void(std::size_t, const char*, std::size_t)>& variable) const {
   const auto& r = log_->records().at(record);
   const auto bytes = std::make_unique_for_overwrite<char[]>(static_cast<std::size_t>(r.size));  // its size was checked
@@ -443,14 +448,33 @@ void JournalReader::with_sealed(std::size_t record,
     throw CubeError(e.what(), CubeError::cause_of(e.os_error()));
   }
   Cursor in(std::string_view(bytes.get(), static_cast<std::size_t>(r.size)));
+  std::vector<std::pair<const char*, std::size_t>> variables;
+  SealedStatuses status;
   try {
     (void)in.number(8);                                     // the chunk, checked when indexed
     const auto n = static_cast<std::size_t>(in.number(4));  // its count, likewise
-    check_statuses(record, reinterpret_cast<const std::int8_t*>(in.take(n)), n);
-    take_sealed_variables(in, metrics_, grid_, variable);
+    const auto* head = reinterpret_cast<const std::int8_t*>(in.take(n));
+    variables.reserve(metrics_ + 1);
+    take_sealed_variables(in, metrics_, grid_, [&variables](std::size_t, const char* p, std::size_t size) {
+      variables.emplace_back(p, size);
+    });
+    // A whole chunk of one code: its status variable is that chunk's one stream (a chunk at
+    // the cube's edge, padded with not_run, never is), recognised by its bytes.
+    if (n > 0 && head[0] != kStatusNotRun && names(head[0])) {
+      const std::vector<char>& alike = uniform_status_stream(padded_elements(grid_), head[0]);
+      const auto& [p, size] = variables.back();
+      status.alike = size == alike.size() && std::memcmp(p, alike.data(), size) == 0;
+      status.code = head[0];
+    }
+    if (!status.alike) {
+      check_statuses(record, head, n);
+      status.each = std::span<const std::int8_t>(head, n);
+    }
   } catch (const Malformed& m) {
     fail(record, m.problem);
   }
+  statuses(status);
+  for (std::size_t v = 0; v < variables.size(); ++v) variable(v, variables[v].first, variables[v].second);
 }
 
 std::vector<std::int8_t> JournalReader::sealed_status(std::size_t record) const {

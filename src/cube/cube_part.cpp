@@ -27,7 +27,7 @@ std::vector<std::filesystem::path> part_files(const std::filesystem::path& cube)
     const std::string name = it->path().filename().string();
     if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
     const std::string rank = name.substr(prefix.size());
-    if (rank.size() > 6 || rank.front() == '0' ||
+    if (rank.size() > 6 || (rank.front() == '0' && rank.size() > 1) ||
         !std::all_of(rank.begin(), rank.end(), [](char c) { return c >= '0' && c <= '9'; }))
       continue;
     found.emplace_back(std::stol(rank), cube.parent_path() / name);

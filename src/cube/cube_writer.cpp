@@ -196,6 +196,7 @@ struct CubeWriter::Impl {
   struct PartChunk {
     std::size_t part = 0;    // in `parts`
     std::size_t record = 0;  // its sealed record there
+    bool counted = false;    // its statuses are in the writer's already (a --resume's part, read whole)
   };
   std::vector<std::unique_ptr<JournalReader>> parts;   // the parts read, open: records are read by reference
   std::map<std::size_t, PartChunk> part_chunks;         // chunks the next fold takes from them
@@ -213,26 +214,26 @@ struct CubeWriter::Impl {
 
   void create(const std::filesystem::path& target);
   enum class Checkpoint { kAppendOrFold, kAppend, kFold };
-  void checkpoint(const std::vector<std::int8_t>& status, Checkpoint how);
+  void checkpoint(StatusBook& status, Checkpoint how);
   bool fold_due() const;
-  void append(const std::vector<std::int8_t>& status);
-  void fold(const std::vector<std::int8_t>& status);
+  void append(const StatusBook& status);
+  void fold(StatusBook& status);
   void clear_pending();
   void write_new_file(io::AtomicFile& target);
   void write_long_coordinates(const std::filesystem::path& target);
   void write_sealed_piece(hid_t d, const CoordinatePiece& piece, const std::string& problem);
-  void update(const std::filesystem::path& target, const std::vector<std::int8_t>& status, std::int64_t new_id);
+  void update(const std::filesystem::path& target, StatusBook& status, std::int64_t new_id);
   void check_free_space(const std::filesystem::path& target) const;
   void remember_identity();
   void check_identity() const;
   [[noreturn]] void fail(const CubeError& error) const;
   void close_handles();
-  void open_existing(std::vector<std::int8_t>& status);
-  void replay_journal(std::vector<std::int8_t>& status);
+  void open_existing(StatusBook& status);
+  void replay_journal(StatusBook& status);
   void set_aside_journal(const std::string& problem);
   void set_aside(const std::filesystem::path& from, const std::string& problem, const std::string& what);
-  void read_part(const std::filesystem::path& part, std::vector<std::int8_t>& status, bool inflate);
-  void write_parts(std::vector<std::pair<std::int64_t, std::string>>& notes, const std::vector<std::int8_t>& status);
+  void read_part(const std::filesystem::path& part, StatusBook& status, bool inflate);
+  void write_parts(std::vector<std::pair<std::int64_t, std::string>>& notes, StatusBook& status);
   PartHeader part_header_of_cube() const {
     return {part_id, layout.case_count(), layout.metrics.size(), layout.text_attribute(kFingerprintName)};
   }
@@ -242,7 +243,7 @@ struct CubeWriter::Impl {
   h5::Handle create_side_variable(const SideVariable& v);
   void write_side(std::size_t index);
   void write_chunk(std::size_t chunk, const std::vector<JournalCases>& journaled, const ChunkValues* pending,
-                   const std::vector<std::int8_t>& status);
+                   const StatusBook& status);
   bool raw_writable() const;
   void write_sealed(const SealedChunk& sealed, bool raw, std::vector<JournalCases>& unsealed);
   void write_variable_raw(const std::vector<hsize_t>& offset, std::size_t v, const char* bytes, std::size_t size);
@@ -251,15 +252,14 @@ struct CubeWriter::Impl {
 };
 
 CubeWriter::CubeWriter(std::filesystem::path file, CubeLayout layout, OpenMode mode, CoordinateSource* coordinates)
-    : impl_(std::make_unique<Impl>(std::move(file), std::move(layout))) {
+    : impl_(std::make_unique<Impl>(std::move(file), std::move(layout))),
+      statuses_(impl_->grid, static_cast<std::size_t>(impl_->layout.case_count())) {
   impl_->coordinate_source = coordinates;
   struct Forget {  // the source serves the creation only: it may not outlive the constructor
     Impl& impl;
     ~Forget() { impl.coordinate_source = nullptr; }
   } forget{*impl_};
   h5::silence_library_errors();
-  const auto n = static_cast<std::size_t>(impl_->layout.case_count());
-  status_.assign(n, kStatusNotRun);
   // The files beside the cube are made by the writer alone: a symbolic link, a FIFO or a
   // second name of another file there is refused before anything is read or written.
   try {
@@ -274,13 +274,13 @@ CubeWriter::CubeWriter(std::filesystem::path file, CubeLayout layout, OpenMode m
   if (error) throw CubeError(impl_->what("cannot open: " + error.message()));
   if (mode == OpenMode::kCreate && exists) throw CubeError(impl_->what("already exists"));
   if (mode == OpenMode::kResume && exists) {
-    impl_->open_existing(status_);
+    impl_->open_existing(statuses_);
     impl_->on_disk = true;
     impl_->remember_identity();
     resumed_ = true;
     // The parts of the stopped run: untrusted, read whole (a forged or foreign one is set
     // aside); their chunks not done yet count as done and go in at the first fold, below.
-    for (const auto& part : part_files(impl_->path)) impl_->read_part(part, status_, true);
+    for (const auto& part : part_files(impl_->path)) impl_->read_part(part, statuses_, true);
   } else {
     // A new cube (--overwrite's included) has parts of its own: any left here are another
     // cube's, removed (regular files only, checked above) once the new cube is in place.
@@ -414,7 +414,7 @@ void CubeWriter::store_side(const std::string& name, std::vector<double> values)
   throw CubeError(impl_->what("has no side variable '" + name + "'"));
 }
 
-void CubeWriter::Impl::open_existing(std::vector<std::int8_t>& status) {
+void CubeWriter::Impl::open_existing(StatusBook& status) {
   CubeReader reader(path);
   const auto& old = reader.layout();
   const std::string ours = layout.text_attribute(kFingerprintName);
@@ -424,8 +424,8 @@ void CubeWriter::Impl::open_existing(std::vector<std::int8_t>& status) {
                          ", this study's " + ours + "); give another output file or use --overwrite"));
   if (old.shape() != layout.shape() || old.metrics.size() != layout.metrics.size())
     throw CubeError(what("has another shape or other metrics than this study"));
-  status = reader.read_status();
-  folded_results = std::count_if(status.begin(), status.end(), [](std::int8_t s) { return s != kStatusNotRun; });
+  status.assign(reader.read_status());
+  folded_results = status.done();
   journal_id = journal_id_of(old);
   part_id = part_id_of(old);
   // Values, notes and histories stay in the file (each fold starts from a copy of it) and in
@@ -444,7 +444,7 @@ void CubeWriter::Impl::open_existing(std::vector<std::int8_t>& status) {
 /// The statuses of the journal's cases over the cube's; where appends continue it (its torn
 /// tail, if any, cut off then). Every record is read once here, so that a damaged one stops
 /// the run before it starts, not at a fold.
-void CubeWriter::Impl::replay_journal(std::vector<std::int8_t>& status) {
+void CubeWriter::Impl::replay_journal(StatusBook& status) {
   std::optional<JournalReader> read;
   try {
     read.emplace(path, layout, journal_id);
@@ -460,14 +460,15 @@ void CubeWriter::Impl::replay_journal(std::vector<std::int8_t>& status) {
   for (const auto& [chunk, records] : journaled.sealed_chunks()) {
     sealed_at[chunk] = records.back();
     const SealedChunk c = journaled.sealed(records.back());
-    std::copy(c.status.begin(), c.status.end(), status.begin() + grid.range(chunk).first);
+    status.set_chunk(chunk, c.status);
   }
   for (const auto& [chunk, records] : journaled.chunks())
     for (const std::size_t r : records) {
       if (const auto s = sealed_at.find(chunk); s != sealed_at.end() && r < s->second) continue;
       const JournalCases c = journaled.cases(r);
       const auto first = static_cast<std::size_t>(grid.range(c.chunk).first);
-      for (std::size_t j = 0; j < c.offsets.size(); ++j) status[first + c.offsets[j]] = c.status[j];
+      for (std::size_t j = 0; j < c.offsets.size(); ++j)
+        status.set(c.chunk, static_cast<std::int64_t>(first + c.offsets[j]), c.status[j]);
     }
   if (journaled.dropped_bytes() > 0) {
     std::string text = journal_path(path).string() + ": its last " + std::to_string(journaled.dropped_bytes()) +
@@ -513,13 +514,16 @@ void CubeWriter::Impl::set_aside(const std::filesystem::path& from, const std::s
 /// A rank's part (cube_part.hpp), read up to its first invalid record and checked against the
 /// cube (`inflate`: every CRC computed and every sealed chunk inflated too, as --resume checks
 /// the journal; a part of this run at its end, which its workers synced under its lock before
-/// they reported each chunk and no kill can have torn since, is checked by its frames, sizes
-/// and statuses only: its CRCs were 150 instructions a result, nearly all of the assembly). Its chunks that `status` has not
-/// done yet count as done (their statuses into it) and are taken by the next fold, read from
-/// the part then; a chunk done already (in the cube, its journal or an earlier part) is
-/// skipped. A part that cannot be used (forged, foreign: another cube's or study's) is set
-/// aside and its cases computed again; one that holds nothing is removed by the next fold.
-void CubeWriter::Impl::read_part(const std::filesystem::path& part, std::vector<std::int8_t>& status, bool inflate) {
+/// they reported each chunk and no kill can have torn since, is checked by its frames and
+/// sizes here and by its statuses when each record is written: its CRCs were 150 instructions
+/// a result, nearly all of the assembly). Its chunks that `status` has none done of are taken
+/// by the next fold, read from the part then; a chunk done already (in the cube, its journal
+/// or an earlier part) is skipped. With `inflate` (--resume) their statuses count at once (the
+/// run that continues must not compute them); at the end of a run they count when the fold
+/// writes them (write_parts), chunk by chunk, not case by case. A part that cannot be used
+/// (forged, foreign: another cube's or study's) is set aside and its cases computed again; one
+/// that holds nothing is removed by the next fold.
+void CubeWriter::Impl::read_part(const std::filesystem::path& part, StatusBook& status, bool inflate) {
   std::unique_ptr<JournalReader> read;
   try {
     read = std::make_unique<JournalReader>(part, layout, part_header_payload(part_header_of_cube()), inflate);
@@ -542,13 +546,9 @@ void CubeWriter::Impl::read_part(const std::filesystem::path& part, std::vector<
                            "): a rank killed while it wrote, or damage; their cases are computed again");
   bool used = false;
   for (const auto& [chunk, records] : read->sealed_chunks()) {
-    if (part_chunks.count(chunk) > 0) continue;
-    const auto r = grid.range(chunk);
-    const auto first = status.begin() + r.first;
-    if (!std::all_of(first, first + r.count, [](std::int8_t s) { return s == kStatusNotRun; })) continue;
-    const std::vector<std::int8_t> codes = read->sealed_status(records.front());
-    std::copy(codes.begin(), codes.end(), first);
-    part_chunks[chunk] = {parts.size(), records.front()};
+    if (part_chunks.count(chunk) > 0 || status.chunk_done(chunk) > 0) continue;
+    if (inflate) status.set_chunk(chunk, read->sealed_status(records.front()));
+    part_chunks[chunk] = {parts.size(), records.front(), inflate};
     used = true;
   }
   if (!used) return;
@@ -563,7 +563,7 @@ std::vector<double> CubeWriter::read_values(const std::string& metric) const {
       metrics.begin());
   if (m == metrics.size()) throw CubeError(impl_->what("has no metric '" + metric + "'"));
   std::vector<double> values = impl_->on_disk ? CubeReader(impl_->path).read_metric(metric)
-                                              : std::vector<double>(status_.size(), kNaN);
+                                              : std::vector<double>(statuses_.codes().size(), kNaN);
   const std::size_t padded = padded_elements(impl_->grid);
   auto lay_sealed = [&](const SealedChunk& c) {
     const auto r = impl_->grid.range(c.chunk);
@@ -597,19 +597,15 @@ std::vector<double> CubeWriter::read_values(const std::string& metric) const {
 
 std::size_t CubeWriter::pending_bytes() const { return impl_->pending_bytes; }
 
-std::int64_t CubeWriter::done_count() const {
-  return std::count_if(status_.begin(), status_.end(), [](std::int8_t s) { return s != kStatusNotRun; });
-}
-
 void CubeWriter::store(std::int64_t index, std::int8_t status, const std::vector<double>& values) {
-  if (index < 0 || static_cast<std::size_t>(index) >= status_.size())
+  if (index < 0 || static_cast<std::size_t>(index) >= statuses_.codes().size())
     throw CubeError(impl_->what("case index " + std::to_string(index) + " is outside the cube"));
   const std::size_t metrics = impl_->layout.metrics.size();
   if (values.size() != metrics)
     throw CubeError(impl_->what("case " + std::to_string(index) + " has " + std::to_string(values.size()) +
                                 " values for " + std::to_string(metrics) + " metrics"));
-  status_[static_cast<std::size_t>(index)] = status;
   const std::size_t chunk = impl_->grid.chunk_of(index);
+  statuses_.set(chunk, index, status);
   const auto r = impl_->grid.range(chunk);
   auto [it, fresh] = impl_->pending_chunks.try_emplace(chunk);
   auto& pending = it->second;
@@ -631,7 +627,7 @@ void CubeWriter::store_sealed(SealedChunk sealed) {
       sealed.status.size() != static_cast<std::size_t>(impl.grid.range(sealed.chunk).count))
     throw CubeError(impl.what("a sealed chunk (" + std::to_string(sealed.chunk) + ") does not fit the cube"));
   const auto r = impl.grid.range(sealed.chunk);
-  std::copy(sealed.status.begin(), sealed.status.end(), status_.begin() + r.first);
+  statuses_.set_chunk(sealed.chunk, sealed.status);
   if (const auto plain = impl.pending_chunks.find(sealed.chunk); plain != impl.pending_chunks.end()) {
     impl.pending_bytes -= plain->second.values.size() * sizeof(double) + plain->second.stored.size();
     impl.pending_chunks.erase(plain);  // the sealed chunk holds every case of it, newer
@@ -664,7 +660,7 @@ void CubeWriter::store_history(HistoryTable table) {
 /// checkpoint (`pending`, may be null), laid over what the file holds (a chunk may be
 /// finished over several checkpoints), and the chunk's status.
 void CubeWriter::Impl::write_chunk(std::size_t chunk, const std::vector<JournalCases>& journaled,
-                                   const ChunkValues* pending, const std::vector<std::int8_t>& status) {
+                                   const ChunkValues* pending, const StatusBook& status) {
   const auto r = grid.range(chunk);
   const auto start = to_hsize(r.start);
   const auto extent = to_hsize(r.extent);
@@ -691,7 +687,7 @@ void CubeWriter::Impl::write_chunk(std::size_t chunk, const std::vector<JournalC
               what("cannot write '" + name + "'"));
   }
   const auto selection = select(status_set, kStatusName);
-  h5::check(H5Dwrite(status_set, H5T_NATIVE_INT8, memory, selection, H5P_DEFAULT, status.data() + r.first),
+  h5::check(H5Dwrite(status_set, H5T_NATIVE_INT8, memory, selection, H5P_DEFAULT, status.codes().data() + r.first),
             what("cannot write '" + std::string(kStatusName) + "'"));
 }
 
@@ -935,7 +931,7 @@ void CubeWriter::Impl::write_sealed_piece(hid_t d, const CoordinatePiece& piece,
 
 /// Writes what changed since the last fold into `target` (a copy of it, or a new cube): the
 /// journal's records, then what was stored since the last checkpoint, and the new journal id.
-void CubeWriter::Impl::update(const std::filesystem::path& target, const std::vector<std::int8_t>& status,
+void CubeWriter::Impl::update(const std::filesystem::path& target, StatusBook& status,
                               std::int64_t new_id) {
   try {
     file = h5::file(H5Fopen(target.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), what("cannot open " + target.string()));
@@ -1053,7 +1049,7 @@ void CubeWriter::Impl::fail(const CubeError& error) const {
 /// (cost: what changed) or by a fold (cost: the cube). Kill points (CheckpointStep, and
 /// docs/checkpoint.md): a kill at any moment leaves the last folded cube whole, and a
 /// journal whose complete records extend it, or a stale one that --resume ignores.
-void CubeWriter::Impl::checkpoint(const std::vector<std::int8_t>& status, Checkpoint how) {
+void CubeWriter::Impl::checkpoint(StatusBook& status, Checkpoint how) {
   const bool changed = !pending_chunks.empty() || !pending_sealed.empty() || !pending_notes.empty() ||
                        !pending_histories.empty();
   // Parts found (a --resume's, or another cube's left beside a new one) go in, or go, at once.
@@ -1083,7 +1079,7 @@ bool CubeWriter::Impl::fold_due() const {
 ///   kJournalWritten: the records are complete in the page cache: --resume keeps them (a
 ///     power loss now may tear them: dropped as above);
 ///   kJournalSynced: the checkpoint is durable.
-void CubeWriter::Impl::append(const std::vector<std::int8_t>& status) {
+void CubeWriter::Impl::append(const StatusBook& status) {
   check_identity();
   try {
     if (!journal) {
@@ -1096,7 +1092,7 @@ void CubeWriter::Impl::append(const std::vector<std::int8_t>& status) {
     // Sealed chunks first: a chunk's cases stored after it was sealed come after it on replay.
     for (const auto& [chunk, sealed] : pending_sealed) journal->add_sealed(sealed);
     for (const auto& [chunk, stored] : pending_chunks)
-      journal->add_cases(chunk, stored.stored, stored.values, status.data() + grid.range(chunk).first);
+      journal->add_cases(chunk, stored.stored, stored.values, status.codes().data() + grid.range(chunk).first);
     journal->add_notes(pending_notes);
     for (const auto& table : pending_histories) journal->add_history(table);
     journal->commit();
@@ -1123,7 +1119,7 @@ void CubeWriter::Impl::append(const std::vector<std::int8_t>& status) {
 ///     removed, is stale (its results are in the cube): ignored, then replaced;
 ///   kJournalRemoved: the fold is complete.
 /// On failure the cube and its journal are untouched: only the new file goes.
-void CubeWriter::Impl::fold(const std::vector<std::int8_t>& status) {
+void CubeWriter::Impl::fold(StatusBook& status) {
   if (on_disk) check_identity();
   const std::int64_t new_id = draw_journal_id();
   try {
@@ -1158,7 +1154,7 @@ void CubeWriter::Impl::fold(const std::vector<std::int8_t>& status) {
   journal_id = new_id;
   journal_keep_bytes = 0;
   journal_records = journal_results = 0;
-  folded_results = std::count_if(status.begin(), status.end(), [](std::int8_t s) { return s != kStatusNotRun; });
+  folded_results = status.done();
   clear_pending();
   sides_changed = false;
 }
@@ -1166,25 +1162,34 @@ void CubeWriter::Impl::fold(const std::vector<std::int8_t>& status) {
 /// The parts' chunks into the file being folded, part by part (one part open at a time,
 /// whatever the number of ranks): each sealed record read from its part by reference when its
 /// turn comes (one chunk in memory at a time, whatever the number of cases) and written raw;
-/// their notes added to `notes`.
-void CubeWriter::Impl::write_parts(std::vector<std::pair<std::int64_t, std::string>>& notes,
-                                   const std::vector<std::int8_t>& status) {
+/// their statuses into `status` (unless counted when read), per chunk where the record's status
+/// variable says one code for all (JournalReader::with_sealed), else case by case; their notes
+/// added to `notes`.
+void CubeWriter::Impl::write_parts(std::vector<std::pair<std::int64_t, std::string>>& notes, StatusBook& status) {
   if (part_chunks.empty()) return;
   const bool raw = raw_writable();
-  std::vector<std::vector<std::pair<std::size_t, std::size_t>>> by_part(parts.size());  // (chunk, record)
-  for (const auto& [chunk, at] : part_chunks) by_part[at.part].emplace_back(chunk, at.record);
+  std::vector<std::vector<std::pair<std::size_t, PartChunk>>> by_part(parts.size());
+  for (const auto& [chunk, at] : part_chunks) by_part[at.part].emplace_back(chunk, at);
   for (std::size_t p = 0; p < parts.size(); ++p) {
     JournalReader& part = *parts[p];
     part.reopen_file();
-    for (const auto& [chunk, record] : by_part[p]) {
+    for (const auto& [chunk, at] : by_part[p]) {
+      const std::size_t record = at.record;
       if (raw) {  // each variable's bytes from the part's one read of the record to the file
         const auto offset = to_hsize(grid.range(chunk).start);
-        part.with_sealed(record, [&](std::size_t v, const char* bytes, std::size_t size) {
-          write_variable_raw(offset, v, bytes, size);
-        });
+        part.with_sealed(
+            record,
+            [&](const SealedStatuses& s) {
+              if (at.counted) return;
+              if (s.alike) status.set_chunk_to(chunk, s.code);
+              else status.set_chunk(chunk, s.each);
+            },
+            [&](std::size_t v, const char* bytes, std::size_t size) { write_variable_raw(offset, v, bytes, size); });
       } else {
+        const SealedChunk sealed = part.sealed(record);
+        if (!at.counted) status.set_chunk(chunk, sealed.status);
         std::vector<JournalCases> unsealed;
-        write_sealed(part.sealed(record), raw, unsealed);
+        write_sealed(sealed, raw, unsealed);
         write_chunk(chunk, unsealed, nullptr, status);
       }
       for (auto& note : part.notes_after(record)) notes.push_back(std::move(note));
@@ -1220,11 +1225,11 @@ const std::vector<std::string>& CubeWriter::resume_notes() const { return impl_-
 
 PartHeader CubeWriter::part_header() const { return impl_->part_header_of_cube(); }
 
-void CubeWriter::flush() { impl_->checkpoint(status_, Impl::Checkpoint::kAppendOrFold); }
+void CubeWriter::flush() { impl_->checkpoint(statuses_, Impl::Checkpoint::kAppendOrFold); }
 
-void CubeWriter::append() { impl_->checkpoint(status_, Impl::Checkpoint::kAppend); }
+void CubeWriter::append() { impl_->checkpoint(statuses_, Impl::Checkpoint::kAppend); }
 
-void CubeWriter::fold() { impl_->checkpoint(status_, Impl::Checkpoint::kFold); }
+void CubeWriter::fold() { impl_->checkpoint(statuses_, Impl::Checkpoint::kFold); }
 
 void CubeWriter::close() {
   // The ranks' parts of this run (its workers', made under its lock) go in with this fold.
@@ -1237,7 +1242,7 @@ void CubeWriter::close() {
       } catch (const io::OutputError& e) {
         throw CubeError(e.what());
       }
-      impl_->read_part(part, status_, false);
+      impl_->read_part(part, statuses_, false);
     }
   }
   fold();

@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <map>
 #include <stdexcept>
 
 #include "pcrf/cube/cube_layout.hpp"
@@ -202,6 +203,16 @@ SealedChunk seal_chunk(const ChunkGrid& grid, std::size_t chunk, std::size_t met
   std::memcpy(codes.data(), status.data(), count);
   sealed.filtered.push_back(filtered(reinterpret_cast<const char*>(codes.data()), padded, 1));
   return sealed;
+}
+
+const std::vector<char>& uniform_status_stream(std::size_t padded, std::int8_t code) {
+  thread_local std::map<std::pair<std::size_t, std::int8_t>, std::vector<char>> streams;
+  auto [it, fresh] = streams.try_emplace({padded, code});
+  if (fresh) {  // seal_chunk's own path: the status codes of the padded chunk, filtered
+    const std::vector<std::int8_t> codes(padded, code);
+    it->second = filtered(reinterpret_cast<const char*>(codes.data()), padded, 1);
+  }
+  return it->second;
 }
 
 std::vector<CoordinatePiece> coordinate_pieces(const CubeLayout& layout) {

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -142,12 +143,13 @@ TEST(CubePart, AStoppedRunsPartsResumeAndAChunkTheCubeHoldsIsSkipped) {
   expect_chunks(file, {0, 1});
 }
 
-TEST(CubePart, AKillAfterTheFoldLeavesPartsTheResumeSkipsAndRemoves) {
-  const auto dir = test::scratch_dir("part_kill");
+/// A resume's first fold killed at kFoldWritten and kJournalRemoved, with rank `rank`'s part.
+void expect_kill_after_fold_skips_and_removes(int rank) {
+  const auto dir = test::scratch_dir("part_kill_" + std::to_string(rank));
   const auto file = dir / "c.h5";
   make_cube(file);
   {
-    PartWriter part(part_path(file, 1), header_of(file));
+    PartWriter part(part_path(file, rank), header_of(file));
     part.add(sealed_of(ChunkGrid(part_layout().shape()), 2));
   }
   for (const auto step : {CheckpointStep::kFoldWritten, CheckpointStep::kJournalRemoved}) {
@@ -165,16 +167,21 @@ TEST(CubePart, AKillAfterTheFoldLeavesPartsTheResumeSkipsAndRemoves) {
     int status = 0;
     ::waitpid(child, &status, 0);
     ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 7);
-    EXPECT_TRUE(fs::exists(part_path(file, 1)));
+    EXPECT_TRUE(fs::exists(part_path(file, rank)));
     expect_chunks(file, step == CheckpointStep::kFoldWritten ? std::vector<std::size_t>{1} : std::vector<std::size_t>{1, 2});
   }
   {
     CubeWriter resumed(file, part_layout(), OpenMode::kResume);
     EXPECT_EQ(resumed.done_count(), 16384 + 7232);
-    EXPECT_FALSE(fs::exists(part_path(file, 1)));
+    EXPECT_FALSE(fs::exists(part_path(file, rank)));
     resumed.close();
   }
   expect_chunks(file, {1, 2});
+}
+
+TEST(CubePart, AKillAfterTheFoldLeavesPartsTheResumeSkipsAndRemoves) {
+  expect_kill_after_fold_skips_and_removes(1);
+  expect_kill_after_fold_skips_and_removes(0);  // rank 0's own worker thread's part
 }
 
 TEST(CubePart, AForgedPartIsSetAsideAndItsCasesComputedAgain) {
@@ -209,17 +216,18 @@ TEST(CubePart, AForgedPartIsSetAsideAndItsCasesComputedAgain) {
   expect_chunks(file, {1});
 }
 
-TEST(CubePart, ATornTailIsDroppedAndSaid) {
-  const auto dir = test::scratch_dir("part_torn");
+/// Rank `rank`'s part cut in the middle of its last chunk.
+void expect_torn_tail_dropped(int rank) {
+  const auto dir = test::scratch_dir("part_torn_" + std::to_string(rank));
   const auto file = dir / "c.h5";
   make_cube(file);
   const ChunkGrid grid(part_layout().shape());
   {
-    PartWriter part(part_path(file, 1), header_of(file));
+    PartWriter part(part_path(file, rank), header_of(file));
     part.add(sealed_of(grid, 0));
     part.add(sealed_of(grid, 2));
   }
-  fs::resize_file(part_path(file, 1), fs::file_size(part_path(file, 1)) - 9);  // a kill in the middle of the last append
+  fs::resize_file(part_path(file, rank), fs::file_size(part_path(file, rank)) - 9);  // a kill in the middle of the last append
   {
     CubeWriter resumed(file, part_layout(), OpenMode::kResume);
     EXPECT_EQ(resumed.done_count(), 2 * 16384);
@@ -228,6 +236,11 @@ TEST(CubePart, ATornTailIsDroppedAndSaid) {
     resumed.close();
   }
   expect_chunks(file, {0, 1});
+}
+
+TEST(CubePart, ATornTailIsDroppedAndSaid) {
+  expect_torn_tail_dropped(1);
+  expect_torn_tail_dropped(0);
 }
 
 // A fold holds one part open at a time: a part released after it was read is reopened only
@@ -293,6 +306,94 @@ TEST(CubePart, ALinkAtAPartNameIsRefusedBeforeAnythingIsWritten) {
   fs::remove(part_path(file, 1));
   fs::create_directory(part_path(file, 2));
   EXPECT_THROW(CubeWriter(file, part_layout(), OpenMode::kCreate), CubeError);
+  fs::remove(part_path(file, 2));
+  fs::create_symlink(dir / "mine.txt", part_path(file, 0));  // rank 0's part name too
+  EXPECT_THROW(CubeWriter(file, part_layout(), OpenMode::kCreate), CubeError);
+  EXPECT_FALSE(fs::exists(file));
+  EXPECT_TRUE(fs::is_symlink(part_path(file, 0)));
+}
+
+TEST(CubePart, APartIsNamedByItsRankFromZeroWithoutLeadingZeros) {
+  const auto dir = test::scratch_dir("part_names");
+  const auto file = dir / "c.h5";
+  for (const char* name : {"c.h5.part-0", "c.h5.part-00", "c.h5.part-01", "c.h5.part-10", "c.h5.part-2", "c.h5.part-x",
+                           "c.h5.part-", "d.h5.part-1"})
+    std::ofstream(dir / name) << "x";
+  EXPECT_EQ(part_files(file), (std::vector<fs::path>{part_path(file, 0), part_path(file, 2), part_path(file, 10)}));
+}
+
+/// The sealed records of rank `rank`'s part of `file`, each chunk's statuses as a raw write
+/// takes them: the code of a chunk whose status variable says one for all, else -2.
+std::map<std::size_t, int> statuses_as_written(const fs::path& file, int rank) {
+  const JournalReader read(part_path(file, rank), CubeReader(file).layout(), part_header_payload(header_of(file)), false);
+  std::map<std::size_t, int> found;
+  for (const auto& [chunk, records] : read.sealed_chunks())
+    read.with_sealed(
+        records.front(), [&, chunk = chunk](const SealedStatuses& s) { found[chunk] = s.alike ? s.code : -2; },
+        [](std::size_t, const char*, std::size_t) {});
+  return found;
+}
+
+// Rank 0's own worker thread keeps a part as the worker ranks do (at two ranks or more): it goes
+// in at the run's last fold like theirs. The assembly counts a whole chunk whose cases all ended
+// alike by its status variable, one comparison and one memset (a mixed chunk, or one at the
+// cube's edge, case by case): the writer's statuses, counts per code and per chunk are then
+// those of the cube.
+TEST(CubePart, RankZerosPartGoesInAndAChunkOfOneCodeIsCountedWhole) {
+  const auto dir = test::scratch_dir("part_zero");
+  const auto file = dir / "c.h5";
+  CubeWriter writer(file, part_layout(), OpenMode::kCreate);
+  {
+    PartWriter zero(part_path(file, 0), writer.part_header());
+    zero.add(sealed_of(writer.grid(), 0, 0));  // every case at rest
+    PartWriter one(part_path(file, 1), writer.part_header());
+    one.add(sealed_of(writer.grid(), 1));     // mixed
+    one.add(sealed_of(writer.grid(), 2, 3));  // one code, at the cube's edge
+  }
+  EXPECT_EQ(statuses_as_written(file, 0), (std::map<std::size_t, int>{{0, 0}}));
+  EXPECT_EQ(statuses_as_written(file, 1), (std::map<std::size_t, int>{{1, -2}, {2, -2}}));
+  EXPECT_EQ(writer.done_count(), 0) << "nothing counted before the parts go in";
+  writer.close();
+  EXPECT_FALSE(fs::exists(part_path(file, 0)));
+  EXPECT_FALSE(fs::exists(part_path(file, 1)));
+  const auto status = CubeReader(file).read_status();
+  EXPECT_EQ(writer.status(), status);
+  EXPECT_EQ(writer.status_counts(), count_statuses(status));
+  EXPECT_EQ(writer.done_count(), kCases);
+  for (std::size_t c = 0; c < writer.grid().chunk_count(); ++c) EXPECT_EQ(writer.chunk_done(c), writer.grid().range(c).count);
+  std::int64_t overturned_in_1 = 0;  // chunk 1's mixed statuses: status_of
+  for (std::int64_t i = 16384; i < 32768; ++i) overturned_in_1 += status_of(i) == 3;
+  EXPECT_EQ(count_of(writer.status_counts(), 0), 2 * 16384 - overturned_in_1);
+  EXPECT_EQ(count_of(writer.status_counts(), 3), overturned_in_1 + 7232);
+}
+
+// At the run's end the writer counts what the cube receives: a record whose status variable
+// says one code for every case while its statuses (its head) say otherwise is counted as its
+// variable, which is what is written; a mixed record with a code the cube's flags do not name
+// fails the assembly (the run reports it), as before.
+TEST(CubePart, TheAssemblyCountsTheStatusesTheCubeReceives) {
+  const auto dir = test::scratch_dir("part_close_forged");
+  const auto file = dir / "c.h5";
+  {
+    CubeWriter writer(file, part_layout(), OpenMode::kCreate);
+    SealedChunk forged = sealed_of(writer.grid(), 0, 0);
+    forged.status[5] = 3;  // the head says one case overturned; the variable, all at rest
+    PartWriter(part_path(file, 0), writer.part_header()).add(forged);
+    writer.close();
+    EXPECT_EQ(writer.status(), CubeReader(file).read_status());
+    EXPECT_EQ(count_of(writer.status_counts(), 3), 0);
+    EXPECT_EQ(writer.status()[5], 0);
+  }
+  const auto other = dir / "d.h5";
+  CubeWriter writer(other, part_layout(), OpenMode::kCreate);
+  PartWriter(part_path(other, 2), writer.part_header()).add(sealed_of(writer.grid(), 1, 99));
+  try {
+    writer.close();
+    ADD_FAILURE() << "a status code 99 reached the cube";
+  } catch (const CubeError& e) {
+    EXPECT_NE(std::string(e.what()).find("status code 99"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(CubeReader(other).read_status(), std::vector<std::int8_t>(kCases, kStatusNotRun)) << "the last fold stays";
 }
 
 }  // namespace

@@ -256,3 +256,32 @@ TEST(SealedChunk, BytesRoundTripAndForeignBytesAreRefused) {
 
 }  // namespace
 }  // namespace pcrf::cube
+
+namespace pcrf::cube {
+namespace {
+
+// A whole chunk whose cases all ended alike has the one status stream uniform_status_stream
+// makes (a reader knows it by one comparison); a mixed chunk, or one at the cube's edge
+// (padded with not run), has another; the stream inflates to the chunk of that code.
+TEST(SealedChunk, AWholeChunkOfOneCodeHasTheUniformStatusStream) {
+  const ChunkGrid grid(sealed_layout().shape());
+  const std::size_t padded = padded_elements(grid);
+  for (const std::int8_t code : {std::int8_t{0}, std::int8_t{3}}) {
+    const auto r = grid.range(0);
+    const auto count = static_cast<std::size_t>(r.count);
+    const std::vector<std::int8_t> status(count, code);
+    const std::vector<double> values(3 * count, 0.0);
+    const SealedChunk alike = seal_chunk(grid, 0, 3, status, values, {});
+    EXPECT_EQ(alike.filtered.back(), uniform_status_stream(padded, code)) << int{code};
+    const std::vector<char> codes = unfilter(uniform_status_stream(padded, code), padded, 1, "test");
+    EXPECT_TRUE(std::all_of(codes.begin(), codes.end(), [code](char c) { return c == static_cast<char>(code); }));
+    const auto e = grid.range(2);  // the edge chunk: 7 232 cases, padded to 16 384
+    const SealedChunk edge = seal_chunk(grid, 2, 3, std::vector<std::int8_t>(static_cast<std::size_t>(e.count), code),
+                                        std::vector<double>(3 * static_cast<std::size_t>(e.count), 0.0), {});
+    EXPECT_NE(edge.filtered.back(), uniform_status_stream(padded, code));
+  }
+  EXPECT_NE(sealed_of(grid, 0).filtered.back(), uniform_status_stream(padded, 0)) << "a mixed chunk";
+}
+
+}  // namespace
+}  // namespace pcrf::cube

@@ -33,6 +33,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -85,6 +86,16 @@ struct JournalCases {
   std::vector<std::uint32_t> offsets;  ///< in the chunk, ascending
   std::vector<std::int8_t> status;     ///< one per offset
   std::vector<double> values;          ///< [metric * offsets.size() + j]
+};
+
+/// The statuses of a sealed record as a raw write of it takes them (JournalReader::with_sealed).
+struct SealedStatuses {
+  /// True when the record's status variable is the stream of a whole chunk of one code
+  /// (uniform_status_stream of `code`): known from one comparison of its bytes, the record's
+  /// statuses not looked at one by one.
+  bool alike = false;
+  std::int8_t code = kStatusNotRun;   ///< when alike: every case's
+  std::span<const std::int8_t> each;  ///< otherwise: each case's, in order, checked
 };
 
 /// The journal beside a cube, as a reader or a resuming writer finds it.
@@ -148,10 +159,15 @@ class JournalReader {
   const std::map<std::size_t, std::vector<std::size_t>>& sealed_chunks() const { return sealed_; }
   /// One sealed record, its sizes and statuses checked (check_all() also inflates it).
   SealedChunk sealed(std::size_t record) const;
-  /// One sealed record's variables (metrics, then the status) as the file holds them, from one
-  /// read of the record and without a copy, each checked as sealed() checks it before
-  /// `variable(index, bytes, size)` receives it (a raw chunk write).
-  void with_sealed(std::size_t record, const std::function<void(std::size_t, const char*, std::size_t)>& variable) const;
+  /// One sealed record's statuses, then its variables (metrics, then the status) as the file
+  /// holds them, from one read of the record and without a copy (a raw chunk write). Every
+  /// size is checked as sealed() checks it before anything is handed out. The statuses go to
+  /// `statuses` first: per chunk when the status variable is a whole chunk of one code the
+  /// cube's flags name (SealedStatuses::alike: one comparison with uniform_status_stream, so
+  /// that what the cube receives is what was checked), else case by case (each code one the
+  /// flags name); then `variable(index, bytes, size)` receives each variable.
+  void with_sealed(std::size_t record, const std::function<void(const SealedStatuses&)>& statuses,
+                   const std::function<void(std::size_t, const char*, std::size_t)>& variable) const;
   /// The statuses of one sealed record only (its head, checked as sealed() checks them).
   std::vector<std::int8_t> sealed_status(std::size_t record) const;
   /// The notes of a part's sealed record: those of the notes record right after it (before
@@ -169,6 +185,7 @@ class JournalReader {
   JournalReader(std::filesystem::path file, const CubeLayout& layout, bool verify_checksums = true);
   void index(bool part);
   void check_statuses(std::size_t record, const std::int8_t* status, std::size_t n) const;
+  bool names(std::int8_t code) const;
   std::size_t sealed_chunk_of(std::size_t record) const;
   std::vector<std::pair<std::int64_t, std::string>> notes_of(std::size_t record) const;
   std::string payload(std::size_t record) const;

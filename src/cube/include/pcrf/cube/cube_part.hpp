@@ -1,8 +1,10 @@
 /// \file cube_part.hpp
 /// \brief A rank's own part of a result cube, `<cube>.part-<rank>` (issue 38: no rank handles
-/// every result; docs/checkpoint.md). A worker rank that computed and sealed a whole chunk of
-/// the cube (sealed_chunk.hpp) appends it to its part and makes it durable before it reports
-/// the chunk done; rank 0 hears only the chunk's number and counts. The end of the run (the
+/// every result; docs/checkpoint.md). A worker that computed and sealed a whole chunk of the
+/// cube (sealed_chunk.hpp) appends it to its rank's part and makes it durable before it reports
+/// the chunk done; rank 0 hears only the chunk's number and counts. Rank 0's own worker thread
+/// keeps `<cube>.part-0` when the run has other ranks (alone, it hands its chunks to rank 0's
+/// journal in memory). The end of the run (the
 /// writer's last fold), or the first fold of a `--resume`, writes the parts' chunks into the
 /// cube by raw chunk writes, reading each record from its part by reference, and then removes
 /// the parts.
@@ -35,7 +37,7 @@ inline constexpr const char* kPartIdName = "part_id";
 std::filesystem::path part_path(const std::filesystem::path& cube, int rank);
 
 /// Every entry of the cube's folder named as one of its parts (`<cube name>.part-<rank>`,
-/// rank 1 to 999999 without leading zeros), whatever it is (a symbolic link included), in
+/// rank 0 to 999999 without leading zeros), whatever it is (a symbolic link included), in
 /// rank order. Nothing when the folder cannot be read.
 std::vector<std::filesystem::path> part_files(const std::filesystem::path& cube);
 

@@ -11,8 +11,9 @@
 ///   /histories/<name>/ time histories of selected cases (each its own time dimension)
 /// Variables are chunked (each chunk one contiguous range of cases) and deflated.
 ///
-/// Memory: the status of every case (1 byte each) and the values stored since the last
-/// flush, chunk by chunk; nothing else of the cube.
+/// Memory: the status of every case (1 byte each, status_book.hpp: with how many cases have
+/// each code and how many of each chunk are done) and the values stored since the last flush,
+/// chunk by chunk; nothing else of the cube.
 ///
 /// Checkpoints (docs/checkpoint.md): flush() appends what was stored since the last one to
 /// the cube's journal, `<file>.journal` (cube_journal.hpp), and syncs it: its cost follows
@@ -38,6 +39,7 @@
 #include "pcrf/cube/cube_layout.hpp"
 #include "pcrf/cube/cube_part.hpp"
 #include "pcrf/cube/sealed_chunk.hpp"
+#include "pcrf/cube/status_book.hpp"
 
 namespace pcrf::cube {
 
@@ -115,9 +117,15 @@ class CubeWriter {
   /// What ties a rank's part to this cube (cube_part.hpp); id 0 for a cube of an earlier
   /// version, which has no parts (its workers send their chunks).
   PartHeader part_header() const;
-  /// Status of every case (kStatusNotRun where not computed yet).
-  const std::vector<std::int8_t>& status() const { return status_; }
-  std::int64_t done_count() const;
+  /// Status of every case (kStatusNotRun where not computed yet). A chunk a rank kept in its
+  /// part (cube_part.hpp) is not run here until close() (or a --resume) takes it in.
+  const std::vector<std::int8_t>& status() const { return statuses_.codes(); }
+  /// How many cases have each status code (those of status()), without a pass over them.
+  const StatusCounts& status_counts() const { return statuses_.counts(); }
+  /// Cases done (status() not kStatusNotRun), without a pass over them.
+  std::int64_t done_count() const { return statuses_.done(); }
+  /// Cases of chunk `chunk` (grid()) done.
+  std::int64_t chunk_done(std::size_t chunk) const { return statuses_.chunk_done(chunk); }
   /// A metric of every case (NaN where not computed): the last checkpoint's values with
   /// those stored since laid over them. Reads the whole variable: meant for small cubes
   /// (an IDA's). \throws CubeError for an unknown metric.
@@ -158,7 +166,7 @@ class CubeWriter {
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
-  std::vector<std::int8_t> status_;
+  StatusBook statuses_;
   bool resumed_ = false;
 };
 

@@ -41,6 +41,12 @@ SealedChunk seal_chunk(const ChunkGrid& grid, std::size_t chunk, std::size_t met
                        std::span<const std::int8_t> status, std::span<const double> values,
                        std::vector<std::pair<std::int64_t, std::string>> notes);
 
+/// The status variable of a sealed chunk of `padded` values (padded_elements) that all have
+/// `code`, as seal_chunk makes it: the same bytes, so that a reader knows such a chunk (every
+/// case of a whole chunk ended alike: at rest, where frames never lift) from one comparison,
+/// not from a look at each case. Made once per thread, size and code.
+const std::vector<char>& uniform_status_stream(std::size_t padded, std::int8_t code);
+
 /// The bytes of a sealed chunk (one process's, to another running the same binary).
 std::vector<char> to_bytes(const SealedChunk& sealed);
 /// Inverse of to_bytes, checked against the cube's grid and metrics (counts, sizes, the
