@@ -140,7 +140,7 @@ class Master {
            const IdleHandler& on_idle) {
     std::thread local_worker([&] {
       detail::worker_loop(local_, evaluate, options_.row_width, together(options_), local_.stop_flag(),
-                          options_.interrupt, &options_.seal);
+                          options_.interrupt, &options_.seal, &options_.keep);
     });
     try {
       loop(on_outcomes, on_idle);

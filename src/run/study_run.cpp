@@ -301,7 +301,7 @@ class PartKeeper {
       return failed;
     } catch (const cube::CubeError& e) {
       s.broken = true;
-      say_rank_note(s.rank, std::string(e.what()) + "; this rank's chunks go to rank 0 instead of its part");
+      say_rank_note(s.rank, std::string(e.what()) + "; this rank's chunks go to rank 0's journal instead of its part");
       return std::nullopt;
     }
   }
@@ -339,6 +339,17 @@ std::optional<std::pair<cube::PartHeader, std::filesystem::path>> parse_part_tex
   std::getline(in, h.fingerprint);
   std::getline(in, cube, '\0');
   return std::make_pair(h, cube::part_path(cube, rank));
+}
+
+/// Rank 0's own worker thread keeps its chunks in `<cube>.part-0` as the other ranks keep
+/// theirs, when there are any (issue 38: rank 0's main thread then hears a number and counts a
+/// chunk, and takes the chunk in at the end by a raw write, never through its journal). Alone,
+/// it hands them over in memory to the journal, as before.
+void keep_rank0_part(parallel::ScheduleOptions& schedule, const cube::CubeWriter& writer,
+                     const std::filesystem::path& output, std::size_t metrics, const parallel::MpiSession& mpi) {
+  if (mpi.size() < 2) return;
+  if (auto part = parse_part_text(part_text(writer, output), 0))
+    schedule.keep = PartKeeper(part->second, part->first, writer.grid(), metrics, 0);
 }
 
 /// `stop_signal`: a signal stops the workers between two cases, reporting the ones done.
@@ -461,18 +472,18 @@ class ResultSink {
   void on_error(std::function<void()> stop) { stop_ = std::move(stop); }
 
  private:
-  /// Every chunk a worker said it kept in its part is in the closed cube: a part rank 0 could
-  /// not see (a folder not shared between the nodes) is a failed write, never a success.
+  /// Every chunk a worker said it kept in its part is in the closed cube (each of its cases
+  /// done, counted per chunk): a part rank 0 could not see (a folder not shared between the
+  /// nodes) is a failed write, never a success.
   void check_kept() {
     if (!error_.empty()) return;
     std::size_t missing = 0;
     for (const std::size_t chunk : kept_)
-      if (chunk >= writer_.grid().chunk_count() ||
-          writer_.status()[static_cast<std::size_t>(writer_.grid().range(chunk).first)] == cube::kStatusNotRun)
+      if (chunk >= writer_.grid().chunk_count() || writer_.chunk_done(chunk) != writer_.grid().range(chunk).count)
         ++missing;
     if (missing == 0) return;
     error_ = cube_ + ": " + std::to_string(missing) + " of the " + std::to_string(kept_.size()) +
-             " chunks that worker ranks kept in their parts (" + cube_ + ".part-<rank>) were not found there by rank 0 "
+             " chunks that workers kept in their ranks' parts (" + cube_ + ".part-<rank>) were not found there by rank 0 "
              "(is the cube's folder one shared file system on every node?); the cube holds the rest, and --resume "
              "computes them again";
     error_cause_ = cube::CubeError::Cause::kOther;
@@ -623,12 +634,10 @@ std::vector<std::size_t> whole_chunks(const cube::CubeWriter& writer, const std:
   if (space.size() > 1 && space.handout_index(1) != 1) return units;
   const auto [first, last] = shard_range(space.size(), options.shard_index, options.shard_count);
   const auto& grid = writer.grid();
-  const auto& status = writer.status();
   for (std::size_t c = 0; c < grid.chunk_count(); ++c) {
     const auto r = grid.range(c);
     if (r.first < first || r.first + r.count > last) continue;
-    const auto begin = status.begin() + r.first;
-    bool whole = std::all_of(begin, begin + r.count, [](std::int8_t s) { return s == cube::kStatusNotRun; });
+    bool whole = writer.chunk_done(c) == 0;  // counted per chunk by the writer: no case looked at
     if (whole && histories.lower_bound(r.first) != histories.lower_bound(r.first + r.count)) whole = false;
     if (whole) units.push_back(c);
   }
@@ -750,6 +759,7 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
   sink.on_error([&stoppable] { stoppable.fail(); });
   auto schedule = schedule_options(p.study, runner, stop_signal, m.writer->grid());
   schedule.on_sealed = [&sink](parallel::SealedUnits&& units) { sink.store_sealed(std::move(units)); };
+  keep_rank0_part(schedule, *m.writer, m.output, runner.row_width(), mpi);
   parallel::run_master(mpi.comm(), stoppable, schedule,
                        evaluate, [&sink](parallel::ResultBatch&& batch) { sink.store(std::move(batch)); },
                        [&sink, &options] {
@@ -757,6 +767,7 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
                          sink.idle();
                        });
   const std::size_t notes_said = m.writer->resume_notes().size();  // prepare_master said these
+  schedule.keep = nullptr;  // rank 0's part closed: the last fold takes it in
   sink.close();
   for (std::size_t n = notes_said; n < m.writer->resume_notes().size(); ++n) say_note(options, m.writer->resume_notes()[n]);
   meter.finish(m.output.string());
@@ -767,7 +778,7 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
   summary.error = sink.error();
   summary.error_cause = sink.error_cause();
   summary.verdict_notes = schema::verdict_notes(
-      m.writer->status(), p.study.ida ? std::optional<std::string>(p.study.ida->collapse) : std::nullopt,
+      m.writer->status_counts(), p.study.ida ? std::optional<std::string>(p.study.ida->collapse) : std::nullopt,
       "neither safe nor collapsed", p.study.physics.tail_s);
   return summary;
 }

@@ -88,16 +88,14 @@ std::vector<std::int8_t> unresolved_statuses() {
   return codes;
 }
 
-std::int64_t unresolved_count(std::span<const std::int8_t> status) {
-  // A count of each code first, then the codes asked about: a pass over the statuses costs
-  // a few instructions a case (rank 0 makes it for every case of a study, issue 38).
-  std::array<std::int64_t, 256> of_code{};
-  for (const std::int8_t s : status) ++of_code[static_cast<std::uint8_t>(s)];
+std::int64_t unresolved_count(std::span<const std::int8_t> status) { return unresolved_count(cube::count_statuses(status)); }
+
+std::int64_t unresolved_count(const cube::StatusCounts& counts) {
   std::int64_t n = 0;
   for (int code = -128; code < 128; ++code)
-    if (of_code[static_cast<std::uint8_t>(code)] > 0 && code != cube::kStatusNotRun &&
+    if (cube::count_of(counts, static_cast<std::int8_t>(code)) > 0 && code != cube::kStatusNotRun &&
         is_unresolved(static_cast<CaseStatus>(code)))
-      n += of_code[static_cast<std::uint8_t>(code)];
+      n += cube::count_of(counts, static_cast<std::int8_t>(code));
   return n;
 }
 
@@ -114,12 +112,12 @@ std::string unresolved_note(std::int64_t count, const std::string& unit, const s
          "first): unresolved, " + what + "; " + tail_advice(tail_s);
 }
 
-std::string outside_model_note(const std::vector<std::int8_t>& status, const std::string& unit, const std::string& what) {
+std::string outside_model_note(const cube::StatusCounts& of_code, const std::string& unit, const std::string& what) {
   std::string counts;
   std::int64_t total = 0;
   for (CaseStatus s : all_final_statuses()) {
     if (!is_outside_model(s)) continue;
-    const auto n = std::count(status.begin(), status.end(), static_cast<std::int8_t>(s));
+    const auto n = cube::count_of(of_code, static_cast<std::int8_t>(s));
     if (n == 0) continue;
     total += n;
     counts += (counts.empty() ? "" : ", ") + std::to_string(n) + " " + std::string(status_name(s));
@@ -129,7 +127,7 @@ std::string outside_model_note(const std::vector<std::int8_t>& status, const std
          what;
 }
 
-std::vector<std::pair<std::string, std::int64_t>> uncounted_collapses(const std::vector<std::int8_t>& status,
+std::vector<std::pair<std::string, std::int64_t>> uncounted_collapses(const cube::StatusCounts& counts,
                                                                       const std::string& collapse) {
   std::vector<std::pair<std::string, std::int64_t>> result;
   const std::string listed = "," + collapse + ",";
@@ -137,15 +135,15 @@ std::vector<std::pair<std::string, std::int64_t>> uncounted_collapses(const std:
     if (!is_collapse(s)) continue;
     const std::string name(status_name(s));
     if (listed.find("," + name + ",") != std::string::npos) continue;
-    const auto n = std::count(status.begin(), status.end(), static_cast<std::int8_t>(s));
+    const auto n = cube::count_of(counts, static_cast<std::int8_t>(s));
     if (n > 0) result.emplace_back(name, n);
   }
   return result;
 }
 
-std::vector<std::string> uncounted_collapse_notes(const std::vector<std::int8_t>& status, const std::string& collapse) {
+std::vector<std::string> uncounted_collapse_notes(const cube::StatusCounts& counts, const std::string& collapse) {
   std::vector<std::string> notes;
-  for (const auto& [name, n] : uncounted_collapses(status, collapse))
+  for (const auto& [name, n] : uncounted_collapses(counts, collapse))
     notes.push_back(std::to_string(n) + (n == 1 ? " run" : " runs") + " ended in " + name +
                     ", which this study does not count as collapse ([ida] collapse = \"" + collapse +
                     "\"): its curves call them safe");
@@ -153,6 +151,11 @@ std::vector<std::string> uncounted_collapse_notes(const std::vector<std::int8_t>
 }
 
 std::vector<std::string> verdict_notes(const std::vector<std::int8_t>& status, const std::optional<std::string>& ida_collapse,
+                                       const std::string& treatment, double tail_s) {
+  return verdict_notes(cube::count_statuses(status), ida_collapse, treatment, tail_s);
+}
+
+std::vector<std::string> verdict_notes(const cube::StatusCounts& status, const std::optional<std::string>& ida_collapse,
                                        const std::string& treatment, double tail_s) {
   std::vector<std::string> notes;
   const std::string unit = ida_collapse ? "runs" : "cases";

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <map>
 #include <set>
+#include <thread>
 
 #include "pcrf/parallel/mpi_session.hpp"
 #include "pcrf/parallel/scheduler.hpp"
@@ -114,6 +115,44 @@ TEST(Scheduler, AnInterruptedUnitReportsItsCasesDoneOneByOne) {
   ASSERT_FALSE(one_by_one.empty());
   EXPECT_EQ(*one_by_one.begin(), 150) << "unit 1 is computed from its last case to its first";
   EXPECT_EQ(*one_by_one.rbegin(), 199);
+}
+
+// Rank 0's worker thread keeps the units it seals when the options have a keeper (its part, at
+// two ranks or more), called in that thread: the master hears each unit's number, case count
+// and failures, never its bytes; a unit the keeper declines travels as before.
+TEST(Scheduler, RankZerosWorkerThreadKeepsItsUnitsWhenGivenAKeeper) {
+  MpiSession mpi;
+  ASSERT_EQ(mpi.size(), 1);
+  Units work;
+  ScheduleOptions options;
+  options.row_width = 1;
+  options.seal = [](std::int64_t unit, std::span<const CaseOutcome>) -> std::optional<std::vector<char>> {
+    return std::vector<char>{'u', static_cast<char>('0' + unit)};
+  };
+  const std::thread::id master = std::this_thread::get_id();
+  std::atomic<bool> kept_in_master{false};
+  options.keep = [&](std::int64_t unit, const std::vector<char>& bytes) -> std::optional<std::int64_t> {
+    kept_in_master = kept_in_master || std::this_thread::get_id() == master;
+    if (unit == 2) return std::nullopt;  // not kept: the bytes travel
+    EXPECT_EQ(bytes, (std::vector<char>{'u', static_cast<char>('0' + unit)}));
+    return unit + 10;                    // its failures, as the keeper counted them
+  };
+  std::map<std::int64_t, SealedUnit> sealed;
+  options.on_sealed = [&](SealedUnits&& units) {
+    for (auto& u : units) sealed[u.unit] = std::move(u);
+  };
+  run_master(mpi.comm(), work, options, [](const WorkItem& item) { return CaseOutcome{item.case_index, 0, {0.0}, ""}; },
+             [](ResultBatch&&) {}, [] {});
+  EXPECT_FALSE(kept_in_master) << "the keeper runs in the worker thread";
+  ASSERT_EQ(sealed.size(), 4u);
+  for (const std::int64_t unit : {0, 1, 3}) {
+    EXPECT_TRUE(sealed[unit].kept) << unit;
+    EXPECT_TRUE(sealed[unit].bytes.empty()) << unit;
+    EXPECT_EQ(sealed[unit].failed, unit + 10);
+    EXPECT_EQ(sealed[unit].cases, 100);
+  }
+  EXPECT_FALSE(sealed[2].kept);
+  EXPECT_EQ(sealed[2].bytes, (std::vector<char>{'u', '2'}));
 }
 
 TEST(ResultBatch, AMessageCarriesOutcomesAndSealedUnits) {

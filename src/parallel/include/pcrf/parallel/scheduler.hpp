@@ -43,9 +43,9 @@ using OutcomeHandler = std::function<void(ResultBatch&&)>;
 /// result cube, so that no rank handles every result). nullopt: report them case by case.
 using Sealer = std::function<std::optional<std::vector<char>>(std::int64_t unit, std::span<const CaseOutcome> outcomes)>;
 
-/// Worker ranks: keeps what the sealer made of a unit itself (e.g. appends it to a file of its
-/// own and makes it durable) instead of sending the bytes to the master, and returns how many
-/// of its cases failed (reported with it). nullopt: not kept, the bytes travel as before.
+/// Worker: keeps what the sealer made of a unit itself (e.g. appends it to a file of its own
+/// and makes it durable) instead of sending the bytes to the master, and returns how many of
+/// its cases failed (reported with it). nullopt: not kept, the bytes travel as before.
 using Keeper = std::function<std::optional<std::int64_t>(std::int64_t unit, const std::vector<char>& bytes)>;
 
 /// Master thread: receives the sealed units as they arrive.
@@ -67,8 +67,9 @@ struct ScheduleOptions {
   const std::atomic<int>* interrupt = nullptr;
   /// Workers: seals the units the work source hands out whole (null: every case is reported).
   Sealer seal;
-  /// Remote workers (ranks ≥ 1) only: keeps sealed units on the worker (null: they travel).
-  /// Rank 0's own worker thread never keeps: its units reach the master without a copy.
+  /// Workers: keeps sealed units on the worker (null: they travel). Rank 0's worker thread
+  /// keeps too when the options given to run_master have one (called in that thread); without,
+  /// its units reach the master in memory, without a copy.
   Keeper keep;
   /// Master: receives what workers sealed (must be set when the work source hands out units).
   SealedHandler on_sealed;

@@ -14,6 +14,7 @@
 #include "pcrf/cube/cube_layout.hpp"
 #include "pcrf/cube/cube_query.hpp"
 #include "pcrf/cube/cube_reader.hpp"
+#include "pcrf/cube/status_book.hpp"
 #include "pcrf/record/pulses.hpp"
 
 namespace pcrf::schema {
@@ -147,6 +148,8 @@ std::string curve_states_text(const CurveStates& states);
 std::vector<std::int8_t> unresolved_statuses();
 /// Cases (IDA: runs) of `status` still rocking at their end (rocking_at_end).
 std::int64_t unresolved_count(std::span<const std::int8_t> status);
+/// The same of statuses counted by code (cube::count_statuses, or a writer's).
+std::int64_t unresolved_count(const cube::StatusCounts& counts);
 /// The attribute holding a study's physics.tail_s (inf: until rest).
 inline constexpr const char* kTailAttribute = "physics_tail_s";
 /// A cube's physics.tail_s [s] (inf: until rest; NaN: the cube does not say).
@@ -156,21 +159,25 @@ double tail_s_of(const cube::CubeLayout& layout);
 std::string unresolved_note(std::int64_t count, const std::string& unit, const std::string& what, double tail_s);
 /// "N cases ended where the model no longer applies (2 ground_free_fall, …): no verdict, …"
 /// (is_outside_model; `what`: how they are treated), or "" when none.
-std::string outside_model_note(const std::vector<std::int8_t>& status, const std::string& unit, const std::string& what);
+std::string outside_model_note(const cube::StatusCounts& counts, const std::string& unit, const std::string& what);
 
-/// Collapse statuses that occur in `status` but are not in `collapse` (an IDA's [ida]
+/// Collapse statuses that occur in `counts` but are not in `collapse` (an IDA's [ida]
 /// collapse, comma-separated), with how many cases ended in each.
-std::vector<std::pair<std::string, std::int64_t>> uncounted_collapses(const std::vector<std::int8_t>& status,
+std::vector<std::pair<std::string, std::int64_t>> uncounted_collapses(const cube::StatusCounts& counts,
                                                                       const std::string& collapse);
 /// One line per uncounted status: "413 runs ended in tendon_fracture, which this study does
 /// not count as collapse ([ida] collapse = overturned)".
-std::vector<std::string> uncounted_collapse_notes(const std::vector<std::int8_t>& status, const std::string& collapse);
+std::vector<std::string> uncounted_collapse_notes(const cube::StatusCounts& counts, const std::string& collapse);
 /// What a run's or a cube's statuses say that its answers cannot show, one line each: the
 /// unresolved cases and those outside the model (an IDA, `ida_collapse` set to its [ida]
 /// collapse: "runs", which stop their curves as unresolved; else "cases", treated as
 /// `treatment` says; `tail_s` picks the advice, tail_advice), and for an IDA each
 /// collapse status that occurred but its collapse set leaves out. Empty when there is nothing
 /// to say. The end of `pcrf study` and the `pcrf cube` commands print the same lines.
+/// From statuses counted by code (a writer's, kept as they are stored: no pass over the cases).
+std::vector<std::string> verdict_notes(const cube::StatusCounts& counts, const std::optional<std::string>& ida_collapse,
+                                       const std::string& treatment, double tail_s);
+/// The same of every case's status (one pass to count them).
 std::vector<std::string> verdict_notes(const std::vector<std::int8_t>& status, const std::optional<std::string>& ida_collapse,
                                        const std::string& treatment, double tail_s);
 /// The attribute holding an IDA cube's collapse set (the [ida] table's `collapse`).
