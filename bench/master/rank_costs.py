@@ -37,6 +37,7 @@ import argparse
 import glob
 import os
 import re
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -78,9 +79,10 @@ def inclusive_phases(path):
     return {"setup": setup, "run": found["study"] - setup - found["close"], "assembly": found["close"]}
 
 
-def profile_run(pcrf, ranks, study, folder, tag):
+def profile_run(pcrf, ranks, study, folder, tag, keep=None):
     """Runs the study under callgrind on every rank; returns {(rank, thread): (all, own)} counts
-    and rank 0's main thread's PHASES."""
+    and rank 0's main thread's PHASES. `keep` (a folder): rank 0's main thread's profile is
+    copied there (for callgrind_annotate)."""
     out = os.path.join(folder, f"{tag}.%q{{OMPI_COMM_WORLD_RANK}}")
     valgrind = ["valgrind", "--tool=callgrind", "--separate-threads=yes", f"--callgrind-out-file={out}"]
     command = valgrind + [pcrf, "study", study, "-o", os.path.join(folder, "cube.h5"), "--overwrite",
@@ -98,6 +100,8 @@ def profile_run(pcrf, ranks, study, folder, tag):
             continue
         if (int(match.group(1)), int(match.group(2))) == (0, 1):
             phases = inclusive_phases(path)
+            if keep:
+                shutil.copy(path, os.path.join(keep, f"{tag}.rank0-main"))
         costs = function_costs(path)
         total = sum(costs.values())
         own = sum(c for (obj, _), c in costs.items() if not MPI_OBJECTS.search(obj))
@@ -114,12 +118,16 @@ def main():
     parser.add_argument("--small", type=int, nargs=2, default=[2000, 10000], metavar=("N1", "N2"),
                         help="the two study sizes (default 2000 10000)")
     parser.add_argument("--source", default=os.path.join(HERE, "..", ".."), help="source tree (../shared/records)")
+    parser.add_argument("--keep", metavar="DIR", help="copy rank 0's main thread's callgrind profiles here "
+                        "(<DIR>/cg<N>.rank0-main: compare them with callgrind_annotate)")
     args = parser.parse_args()
     pcrf = os.path.abspath(args.pcrf)
     label, scale, records = record_table(args.source)
     small, large = args.small
     with tempfile.TemporaryDirectory() as folder:
-        runs = [profile_run(pcrf, args.ranks, write_study(folder, n, records, scale), folder, f"cg{n}")
+        if args.keep:
+            os.makedirs(args.keep, exist_ok=True)
+        runs = [profile_run(pcrf, args.ranks, write_study(folder, n, records, scale), folder, f"cg{n}", args.keep)
                 for n in (small, large)]
     phases = {p: (runs[1][1][p] - runs[0][1][p]) / (large - small) for p in PHASES}
     run_alone = (runs[1][1]["run"] + runs[1][1]["assembly"]) / large  # the run's fixed costs (its tail) included

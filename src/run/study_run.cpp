@@ -278,7 +278,8 @@ class ChunkSealer {
   std::size_t metrics_;
 };
 
-/// A worker rank's own part of the cube (issue 38; cube_part.hpp): each unit it sealed is
+/// A rank's own part of the cube (issue 38; cube_part.hpp): each unit its worker sealed (a
+/// worker rank's, or rank 0's worker thread's at two ranks or more: keep_rank0_part) is
 /// appended to `<cube>.part-<rank>` and synced before the unit is reported, so that rank 0
 /// hears only its number and counts. The part is made at the first unit. If it cannot be (a
 /// file already there, a folder this node does not see) or a write fails, the rank says so

@@ -160,7 +160,9 @@ class CubeWriter {
   void fold();
   /// fold() and close: the ranks' parts beside the cube (this run's workers') go in with the
   /// fold, read from their files chunk by chunk (a part that does not fit the cube is set
-  /// aside, noted in resume_notes()), and are removed after it. Further calls are invalid.
+  /// aside, noted in resume_notes()), and are removed after it; their statuses join status()
+  /// chunk by chunk (a whole chunk of one code by one comparison and one memset:
+  /// JournalReader::with_sealed). Further calls are invalid.
   void close();
 
  private:
