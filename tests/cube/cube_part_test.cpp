@@ -184,13 +184,14 @@ TEST(CubePart, AKillAfterTheFoldLeavesPartsTheResumeSkipsAndRemoves) {
   expect_kill_after_fold_skips_and_removes(0);  // rank 0's own worker thread's part
 }
 
-TEST(CubePart, AForgedPartIsSetAsideAndItsCasesComputedAgain) {
-  const auto dir = test::scratch_dir("part_forged");
+/// Rank `forged`'s part holds a status code 99 (its CRC holds), rank 2's is another cube's.
+void expect_forged_part_set_aside(int forged) {
+  const auto dir = test::scratch_dir("part_forged_" + std::to_string(forged));
   const auto file = dir / "c.h5";
   make_cube(file);
   const ChunkGrid grid(part_layout().shape());
   {
-    PartWriter part(part_path(file, 1), header_of(file));
+    PartWriter part(part_path(file, forged), header_of(file));
     part.add(sealed_of(grid, 0));
     part.add(sealed_of(grid, 2, 99));  // its CRC holds; the status code 99 is none of the cube's
   }
@@ -205,15 +206,20 @@ TEST(CubePart, AForgedPartIsSetAsideAndItsCasesComputedAgain) {
     EXPECT_EQ(resumed.done_count(), 16384);
     ASSERT_EQ(resumed.resume_notes().size(), 2u);
     EXPECT_NE(resumed.resume_notes()[0].find("status code 99"), std::string::npos) << resumed.resume_notes()[0];
-    EXPECT_NE(resumed.resume_notes()[0].find("set aside as " + part_path(file, 1).string() + ".set-aside-1"),
+    EXPECT_NE(resumed.resume_notes()[0].find("set aside as " + part_path(file, forged).string() + ".set-aside-1"),
               std::string::npos);
     EXPECT_NE(resumed.resume_notes()[1].find("is not a part of this cube"), std::string::npos) << resumed.resume_notes()[1];
     resumed.close();
   }
-  EXPECT_TRUE(fs::exists(part_path(file, 1).string() + ".set-aside-1"));
+  EXPECT_TRUE(fs::exists(part_path(file, forged).string() + ".set-aside-1"));
   EXPECT_TRUE(fs::exists(part_path(file, 2).string() + ".set-aside-1"));
-  EXPECT_FALSE(fs::exists(part_path(file, 1)));
+  EXPECT_FALSE(fs::exists(part_path(file, forged)));
   expect_chunks(file, {1});
+}
+
+TEST(CubePart, AForgedPartIsSetAsideAndItsCasesComputedAgain) {
+  expect_forged_part_set_aside(1);
+  expect_forged_part_set_aside(0);  // rank 0's own worker thread's part
 }
 
 /// Rank `rank`'s part cut in the middle of its last chunk.
