@@ -51,10 +51,11 @@ WORKERS = [16, 64, 256, 2048, 16384]
 # so that start-up cancels; the workers' split from the same profiles, callgrind_annotate
 # --inclusive=yes; studies/README.md "The master at cluster scale"):
 MASTER_SETUP_PER_CASE = 4         # rank 0's main thread before the first hand-out (was 11 600 at da9ce77, 7 at
-                                  # 291f9a0): a memset of its statuses (1), the coordinates' raw writes and its
-                                  # wait for the workers' pieces (MPI polling: 2 to 10 in three runs, with load)
+                                  # 291f9a0): a memset of its statuses (1), the coordinates' raw writes (1) and its
+                                  # polling while it waits for the workers' pieces (WorkerCoordinates::take: 2 to 13
+                                  # in four runs, with the load; that wait is the workers' creation, counted apart)
 MASTER_RUN_PER_RESULT = 1         # rank 0's main thread during the run (51 at 291f9a0, when rank 0's own worker
-                                  # thread journaled its chunks; now it keeps part-0): 1 to 6 in three runs
+                                  # thread journaled its chunks; now it keeps part-0): 1 to 6 in four runs
 MASTER_ASSEMBLY_PER_RESULT = 11   # rank 0's main thread in the last fold: the parts' chunks into the cube, each
                                   # counted per chunk (25 at 291f9a0); 7 of it HDF5's H5Dwrite_chunk
 NONLIFT_CASE = 15_810             # a worker's non-lifting case (CaseRunner::run; the LHS point included)
