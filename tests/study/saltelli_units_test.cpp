@@ -214,6 +214,70 @@ TEST(SaltelliUnits, AStoppedCubeHoldsWholeColumnsAndItsSobolIndicesUseOnlyWholeB
     EXPECT_DOUBLE_EQ(std::stod(row.at("S1")), expected[p].s1) << names[p];
     EXPECT_DOUBLE_EQ(std::stod(row.at("ST")), expected[p].st) << names[p];
   }
+  // Resumed (at three ranks: the rest in units, the chunk in part case by case, frame by
+  // frame), it is the cube of the frame-by-frame hand-out.
+  const auto resumed = study_in(dir, "-o s.h5 --resume", have_mpirun() ? mpirun(3) : "");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  ASSERT_EQ(study_in(dir, "--batch-size 64 -o cases.h5").exit_code, 0);
+  expect_same_cube(dir / "cases.h5", dir / "s.h5", kTimes);
+}
+
+/// A cube as an earlier version left it when killed: its chunks by the rule without groups
+/// (16 384 frames), the first `folded` cases in hand-out order (frame by frame) from `whole`
+/// in the cube, the next `journaled` in its journal (chunks numbered by those chunks).
+void write_earlier_cube(const std::filesystem::path& whole, const std::filesystem::path& file, std::int64_t folded,
+                        std::int64_t journaled, const study::CaseSpace& space) {
+  const cube::CubeReader reader(whole);
+  cube::CubeLayout layout = reader.layout();
+  layout.chunk_shape.clear();
+  const auto status = reader.read_status();
+  std::vector<std::vector<double>> metrics;
+  for (const auto& m : layout.metrics) metrics.push_back(reader.read_metric(m.name));
+  cube::CubeWriter writer(file, layout, cube::OpenMode::kCreate);
+  std::vector<double> row(metrics.size());
+  auto store = [&](std::int64_t from, std::int64_t to) {
+    for (std::int64_t p = from; p < to; ++p) {
+      const auto i = static_cast<std::size_t>(space.handout_index(p));
+      for (std::size_t m = 0; m < row.size(); ++m) row[m] = metrics[m][i];
+      writer.store(static_cast<std::int64_t>(i), status[i], row);
+    }
+  };
+  store(0, folded);
+  writer.flush();  // a new cube's first checkpoint: a fold
+  store(folded, folded + journaled);
+  writer.flush();  // under a quarter of the folded results: appended to the journal
+}  // not closed, as a killed run: the journal stays
+
+// A cube of an earlier version keeps its chunks: --resume reads them from the file (its
+// journal, parts and the workers' units count them so). Three parameters: 16 384 frames split
+// base samples of 5, so no columns: case by case, frame by frame, as before. Two parameters:
+// 16 384 frames are whole base samples of 4, so its own chunks go out as units by column.
+TEST(SaltelliUnits, ACubeOfAnEarlierVersionResumesInItsOwnChunks) {
+  const auto dir = test::scratch_dir("saltelli_units_earlier");
+  for (const bool two_parameters : {false, true}) {
+    std::string text = saltelli_study(two_parameters ? 32768 : 16384);
+    if (two_parameters) text = text.substr(0, text.find("lambda_h"));
+    test::write_file(dir, "s.toml", text);
+    const study::CaseSpace space(parse(text));
+    ASSERT_EQ(study_in(dir, "-o whole.h5 --overwrite").exit_code, 0);
+    const std::vector<std::size_t> earlier_chunks{1, 1, 16384};
+    std::filesystem::remove(dir / "earlier.h5");
+    const std::int64_t folded = space.size() / 10, journaled = space.size() / 50;
+    write_earlier_cube(dir / "whole.h5", dir / "earlier.h5", folded, journaled, space);
+    EXPECT_EQ(cube::CubeReader(dir / "earlier.h5").layout().chunk_shape, earlier_chunks);
+    ASSERT_TRUE(std::filesystem::exists(dir / "earlier.h5.journal"));
+    EXPECT_EQ(static_cast<bool>(run::frame_columns(cube::ChunkGrid(space.shape()), space)), two_parameters);
+    const auto resumed = study_in(dir, "-o earlier.h5 --resume", have_mpirun() ? mpirun(3) : "");
+    ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+    // The journal's chunks are the cube's: it replays whole (nothing set aside, recomputed).
+    EXPECT_NE(resumed.err.find("(" + std::to_string(folded + journaled) + " already done)"), std::string::npos) << resumed.err;
+    EXPECT_EQ(resumed.err.find("set aside"), std::string::npos) << resumed.err;
+    expect_same_cube(dir / "whole.h5", dir / "earlier.h5", kTimes);
+    EXPECT_EQ(cube::CubeReader(dir / "earlier.h5").layout().chunk_shape, earlier_chunks);
+    // This version cuts 16 380 frames (whole base samples of 5); 16 384 are whole ones of 4.
+    const std::vector<std::size_t> this_version = two_parameters ? earlier_chunks : std::vector<std::size_t>{1, 1, 16380};
+    EXPECT_EQ(cube::CubeReader(dir / "whole.h5").layout().chunk_shape, this_version);
+  }
 }
 
 }  // namespace
