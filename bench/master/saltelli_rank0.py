@@ -11,7 +11,8 @@ The study: a Saltelli design over eight parameters (d + 2 = 10 frames a base sam
 frames a chunk: 1 638 base samples) under two weak synthetic records, so that no frame lifts
 and what surrounds a case is what shows. Its two sizes are whole columns (`--columns K1 K2`:
 K chunks along `case` for each record), so that the tail (the last chunk, case by case)
-cancels. Every rank runs under `valgrind --tool=callgrind --separate-threads=yes`
+cancels; the smaller must already give units (at least two chunks a worker and one more:
+2·K1 ≥ 2·ranks + 1, e.g. --ranks 4 --columns 6 14). Every rank runs under `valgrind --tool=callgrind --separate-threads=yes`
 (bench/master/rank_costs.py's profile_run); rank 0's main thread (the master: hand-out, results,
 the cube; it computes no case) per result = (count at the larger size - count at the smaller)
 / the difference in cases. Instruction counts do not depend on the machine's load. Prints a
