@@ -1,10 +1,11 @@
 #!/usr/bin/env python3
 """Same answers (issue 38 item 4): every metric and status of every case, wall time aside, of
 a reference pcrf (e.g. main's build) against this one, bit for bit, for small studies of every
-plan and level axis (grid, list, LHS, Sobol', Saltelli, IDA, stripes, pairs, pulses), and two
+plan and level axis (grid, list, LHS, Sobol', Saltelli, IDA, stripes, pairs, pulses), and three
 large ones whose whole chunks workers seal (lhs-units, grid-units: 300 000 frames that never
-lift), at 1, 2, 3, 4 and 8 ranks (mpirun --oversubscribe). Not a test (it needs two builds); a check to run
-after any change to the scheduling or the writing.
+lift; saltelli-units: 327 680 such cases, base samples whole in a chunk, column by column), at
+1, 2, 3, 4 and 8 ranks (mpirun --oversubscribe). Not a test (it needs two builds); a check to
+run after any change to the scheduling or the writing.
 
     python3 bench/master/same_answers.py --baseline /work/main/build/pcrf --pcrf build/pcrf
     python3 bench/master/same_answers.py --baseline OLD --pcrf NEW --ranks 1 4 --studies lhs ida
@@ -54,6 +55,10 @@ STUDIES = {
     "grid-units": WEAK.replace('"]', '", "stochastic:seed=2,pga_g=0.02,duration_s=3,dt_s=0.01"]') +
                   "[axes]\nkappa = {from = 1.3, to = 2.3, count = 100}\ntan_alpha = {from = 0.14, to = 0.26, count = 100}\n"
                   "lambda_h = {from = 0.14, to = 0.26, count = 15}\n",
+    # A Saltelli design cut into chunks of whole base samples (16 380 frames: 3 276 base samples
+    # of 5), 11 columns of two records, whose units go out column by column.
+    "saltelli-units": WEAK.replace('"]', '", "stochastic:seed=2,pga_g=0.02,duration_s=3,dt_s=0.01"]') +
+                      '[plan]\nkind = "saltelli"\nsamples = 32768\nseed = 7\n' + FRAME_RANGES,
     "pulses": ('[[records]]\npulse = ["pulse-sine", "ricker"]\n[intensity]\nmeasure = "pga_g"\n'
                      "[axes]\npulse_period_s = [0.4, 1.0]\nkappa = [1.4, 2.2]\nintensity = [0.3, 0.9]\n"),
 }

@@ -204,7 +204,7 @@ struct CubeWriter::Impl {
   CoordinateSource* coordinate_source = nullptr;  // while the constructor creates the cube; null: seal here
 
   Impl(std::filesystem::path p, CubeLayout l)
-      : path(std::move(p)), layout(std::move(l)), grid(layout.shape()) {
+      : path(std::move(p)), layout(std::move(l)), grid(layout_grid(layout)) {
     // The id is the writer's to draw (a merged cube's layout comes from a part).
     std::erase_if(layout.attributes,
                   [](const Attribute& a) { return a.name == kJournalIdName || a.name == kPartIdName; });
@@ -424,6 +424,12 @@ void CubeWriter::Impl::open_existing(StatusBook& status) {
                          ", this study's " + ours + "); give another output file or use --overwrite"));
   if (old.shape() != layout.shape() || old.metrics.size() != layout.metrics.size())
     throw CubeError(what("has another shape or other metrics than this study"));
+  // Its chunks as its file has them (an earlier version's may be cut otherwise than this
+  // study's would be): its journal, its parts and the workers' units count them so, and so
+  // do its statuses, per chunk.
+  layout.chunk_shape = old.chunk_shape;
+  grid = layout_grid(layout);
+  status = StatusBook(grid, static_cast<std::size_t>(layout.case_count()));
   status.assign(reader.read_status());
   folded_results = status.done();
   journal_id = journal_id_of(old);
