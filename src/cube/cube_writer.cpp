@@ -585,6 +585,16 @@ std::vector<double> CubeWriter::read_values(const std::string& metric) const {
         for (std::size_t j = 0; j < c.offsets.size(); ++j) values[first + c.offsets[j]] = c.values[m * c.offsets.size() + j];
       }
   }
+  // The ranks' parts taken (--resume, take_parts): part by part, one open at a time, as a fold reads them.
+  std::vector<std::vector<std::size_t>> by_part(impl_->parts.size());  // their records
+  for (const auto& [chunk, at] : impl_->part_chunks) by_part[at.part].push_back(at.record);
+  for (std::size_t p = 0; p < by_part.size(); ++p) {
+    if (by_part[p].empty()) continue;
+    JournalReader& part = *impl_->parts[p];
+    part.reopen_file();
+    for (const std::size_t record : by_part[p]) lay_sealed(part.sealed(record));
+    part.release_file();
+  }
   for (const auto& [chunk, sealed] : impl_->pending_sealed) lay_sealed(sealed);
   for (const auto& [chunk, stored] : impl_->pending_chunks) {
     const auto r = impl_->grid.range(chunk);
@@ -1227,7 +1237,13 @@ void CubeWriter::append() { impl_->checkpoint(status_, Impl::Checkpoint::kAppend
 void CubeWriter::fold() { impl_->checkpoint(status_, Impl::Checkpoint::kFold); }
 
 void CubeWriter::close() {
-  // The ranks' parts of this run (its workers', made under its lock) go in with this fold.
+  take_parts();
+  fold();
+  impl_->closed = true;
+}
+
+void CubeWriter::take_parts() {
+  // The ranks' parts of this run (its workers', made under its lock) go in with the next fold.
   if (impl_->part_id != 0) {
     for (const auto& part : part_files(impl_->path)) {
       if (std::find(impl_->parts_to_remove.begin(), impl_->parts_to_remove.end(), part) != impl_->parts_to_remove.end())
@@ -1240,8 +1256,6 @@ void CubeWriter::close() {
       impl_->read_part(part, status_, false);
     }
   }
-  fold();
-  impl_->closed = true;
 }
 
 }  // namespace pcrf::cube

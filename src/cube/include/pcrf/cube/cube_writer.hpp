@@ -119,7 +119,7 @@ class CubeWriter {
   const std::vector<std::int8_t>& status() const { return status_; }
   std::int64_t done_count() const;
   /// A metric of every case (NaN where not computed): the last checkpoint's values with
-  /// those stored since laid over them. Reads the whole variable: meant for small cubes
+  /// those stored since, and the chunks of the parts taken (take_parts, --resume), laid over them. Reads the whole variable: meant for small cubes
   /// (an IDA's). \throws CubeError for an unknown metric.
   std::vector<double> read_values(const std::string& metric) const;
   /// Memory held by the values stored since the last checkpoint [bytes].
@@ -150,6 +150,11 @@ class CubeWriter {
   void append();
   /// A checkpoint that folds the journal and what changed into the cube, and removes the journal.
   void fold();
+  /// Takes the ranks' parts beside the cube (this run's workers') now, as close() does: their
+  /// chunks' statuses join status(), read_values() reads their values, and the next fold puts
+  /// them in. For a producer whose side variables are derived from every result (an IDA's
+  /// summaries of the curves its workers searched), before close().
+  void take_parts();
   /// fold() and close: the ranks' parts beside the cube (this run's workers') go in with the
   /// fold, read from their files chunk by chunk (a part that does not fit the cube is set
   /// aside, noted in resume_notes()), and are removed after it. Further calls are invalid.
