@@ -132,6 +132,18 @@ TEST_F(IdaUnits, CurvesSearchedInWholeChunksGiveTheRunByRunCubeAtOneAndThreeRank
     EXPECT_FALSE(std::filesystem::exists(dir_ / part)) << part << " is removed by the run's last fold";
 }
 
+// A shard's whole chunks are those whose curves are all the shard's (12 288 curves a shard:
+// three whole chunks, two of them units at one rank); the merged shards are the whole cube.
+TEST_F(IdaUnits, ShardsSearchTheirOwnWholeChunksAndMergeToTheSameCube) {
+  for (const char* k : {"1", "2"}) {
+    const auto shard = study_in(dir_, std::string("--shard ") + k + "/2 -o part" + k + ".h5");
+    ASSERT_EQ(shard.exit_code, 0) << shard.err;
+  }
+  const auto merged = test::run_command("cd " + quoted(dir_) + " && " + pcrf() + " cube merge part1.h5 part2.h5 -o all.h5");
+  ASSERT_EQ(merged.exit_code, 0) << merged.err;
+  expect_same_ida(dir_ / "runs.h5", dir_ / "all.h5");
+}
+
 TEST_F(IdaUnits, ARunStoppedBySigtermInsideAChunkResumesToTheSameCube) {
   const auto err = dir_ / "sig.err";
   const pid_t pid = spawn_shell("cd " + quoted(dir_) + " && exec " + pcrf() +
