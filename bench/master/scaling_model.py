@@ -25,9 +25,16 @@ against N t_case / W for perfect workers, so the per-worker efficiency is
 
 A deterministic bound: queueing below saturation and the end of a run (a worker may wait up to
 one chunk of 16 384 cases for the others) only lower it. Instructions are turned into time at
---ns-per-instruction (0.145 ns measured on this project's machine, issue 38). It counts
-instructions only: the bytes rank 0 copies at the assembly (about 90 B a result, a disk's write)
-are in docs as a wall time. Case costs: a frame that never lifts (measured by callgrind), 0.3 ms
+--ns-per-instruction (0.145 ns measured on this project's machine, issue 38).
+
+Two more things. The last column, "no rank 0", is the bound with rank 0 free (t_setup =
+t_serial = t_assembly = 0): t_case / (t_case + t_own + t_create), what the workers' own side
+allows at any W. The second table adds the bytes that one writer puts in the cube serially:
+the cube's --cube-bytes-per-case (88.4 B measured on the non-lifting LHS: the coordinates'
+chunks at the creation, the parts' chunks at the assembly; HDF5's direct chunk write is "not
+supported with parallel HDF5", H5Dpublic.h of 1.10.8 and of 1.14) at --write-gb-s, an assumed
+sustained single-writer bandwidth (no cluster file system can be measured here): t_setup
+grows by bytes / bandwidth. Case costs: a frame that never lifts (measured by callgrind), 0.3 ms
 (a typical rocking case) and 3.6 ms (a long record's IDA step).
 """
 import argparse
@@ -58,6 +65,17 @@ def efficiency(workers, t_case, t_own, t_create, t_serial, t_setup, t_assembly):
     return t_case / (workers * (t_setup + t_assembly) + t_create + (t_case + t_own) * max(1.0, rho))
 
 
+def table(cases, t_own, t_create, t_serial, t_setup, t_assembly):
+    """Prints E(W) for each case cost, with rank 0's saturation and the bound without rank 0."""
+    print("| case | workers rank 0 feeds in the run | " + " | ".join(f"E({w})" for w in WORKERS) + " | no rank 0 |")
+    print("| --- | --- |" + " --- |" * (len(WORKERS) + 1))
+    for name, t_case in cases:
+        saturation = (t_case + t_own) / t_serial if t_serial > 0 else float("inf")
+        cells = [f"{efficiency(w, t_case, t_own, t_create, t_serial, t_setup, t_assembly):.2f}" for w in WORKERS]
+        bound = t_case / (t_case + t_own + t_create)
+        print(f"| {name} ({t_case * 1e6:.1f} us) | {saturation:,.0f} | {' | '.join(cells)} | {bound:.2f} |")
+
+
 def measure(pcrf):
     """Rank 0's set-up, run and assembly per case now (rank_costs.py at 4 ranks, a few minutes)."""
     out = subprocess.run([sys.executable, os.path.join(HERE, "rank_costs.py"), "--pcrf", pcrf, "--ranks", "4",
@@ -83,6 +101,10 @@ def main():
     parser.add_argument("--creation-per-case", type=float, default=WORKER_CREATION_PER_CASE,
                         help="instructions the workers spend together per case of the study creating the cube")
     parser.add_argument("--ns-per-instruction", type=float, default=0.145)
+    parser.add_argument("--cube-bytes-per-case", type=float, default=88.4,
+                        help="bytes a case the cube stores [B] (pcrf_cube_filters on the non-lifting LHS)")
+    parser.add_argument("--write-gb-s", type=float, default=1.0,
+                        help="sustained bandwidth of the cube's one writer [GB/s] (an assumption)")
     args = parser.parse_args()
     setup, serial, assembly = args.setup_per_case, args.serial_per_result, args.assembly_per_result
     source = "counts measured for this design (4 ranks, callgrind)"
@@ -96,13 +118,11 @@ def main():
     print(f"scaling_model: {source}; rank 0: set-up {setup:,.0f}, run {serial:,.0f}, assembly {assembly:,.0f} "
           f"instructions a case; a worker's own {args.worker_own:,.0f} a case, the cube's creation "
           f"{args.creation_per_case:,.0f} a case of the study; {args.ns_per_instruction} ns an instruction\n")
-    print("| case | workers rank 0 feeds in the run | " + " | ".join(f"E({w})" for w in WORKERS) + " |")
-    print("| --- | --- |" + " --- |" * len(WORKERS))
-    for name, t_case in cases:
-        saturation = (t_case + t_own) / t_serial
-        cells = [f"{efficiency(w, t_case, t_own, t_create, t_serial, t_setup, t_assembly):.2f}" for w in WORKERS]
-        print(f"| {name} ({t_case * 1e6:.1f} us) | {saturation:,.0f} | {' | '.join(cells)} |")
-
+    table(cases, t_own, t_create, t_serial, t_setup, t_assembly)
+    write_s = args.cube_bytes_per_case / (args.write_gb_s * 1e9)
+    print(f"\nWith the cube's {args.cube_bytes_per_case:.1f} B a case written by one writer at {args.write_gb_s} GB/s "
+          f"({write_s * 1e9:.0f} ns a case, serial: the creation's coordinates and the assembly's chunks):\n")
+    table(cases, t_own, t_create, t_serial, t_setup + write_s, t_assembly)
 
 if __name__ == "__main__":
     main()
