@@ -2,6 +2,7 @@
 #include "pcrf/run/ida_work.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <span>
 #include <sstream>
@@ -42,6 +43,8 @@ class CollapseRule {
   /// θ_max of a row (NaN when not stored).
   double theta(const std::vector<double>& row) const { return theta_column_ < 0 ? std::nan("") : row[static_cast<std::size_t>(theta_column_)]; }
   int theta_column() const { return theta_column_; }
+  /// True when a verdict depends on θ_max (theta_limit_rad set and stored).
+  bool uses_theta() const { return limit_rad_ > 0.0 && theta_column_ >= 0; }
 
  private:
   double limit_rad_;
@@ -62,6 +65,17 @@ void stored_runs(std::int64_t c, std::int64_t runs, const std::vector<std::int8_
   }
 }
 
+/// 1 for each status code schema::unresolved_count counts (the one rule), by code's byte: a
+/// curve's few runs are counted by table, not by that function's pass over every code.
+std::array<std::int64_t, 256> unresolved_codes() {
+  std::array<std::int64_t, 256> table{};
+  for (int code = -128; code < 128; ++code) {
+    const auto s = static_cast<std::int8_t>(code);
+    table[static_cast<std::uint8_t>(s)] = schema::unresolved_count(std::span<const std::int8_t>(&s, 1));
+  }
+  return table;
+}
+
 }  // namespace
 
 ida::IdaCurves::CollapseTest collapse_test(const Study& study) {
@@ -76,9 +90,10 @@ std::unique_ptr<ida::IdaCurves> make_ida_curves(const Study& study, const CaseSp
   // Resume: each curve's stored runs, in order, up to the first one not stored (a curve has
   // at most one run in flight, so a killed run leaves no gap before its last stored point).
   const auto& status = writer.status();
+  if (writer.done_count() == 0) return curves;  // a new cube: nothing stored to replay
   const auto intensity = writer.read_values(schema::kIdaIntensity);
-  const auto theta_values = rule.theta_column() < 0 ? std::vector<double>{} : writer.read_values(std::string(metric::theta_max().name));
-  const std::vector<double>* theta = rule.theta_column() < 0 ? nullptr : &theta_values;
+  const auto theta_values = rule.uses_theta() ? writer.read_values(std::string(metric::theta_max().name)) : std::vector<double>{};
+  const std::vector<double>* theta = rule.uses_theta() ? &theta_values : nullptr;
   const auto runs = static_cast<std::int64_t>(space.ida_runs());
   for (std::int64_t c = 0; c < space.curves(); ++c)
     stored_runs(c, runs, status, intensity, theta, rule, [&](int k, double x, ida::RunVerdict verdict) {
@@ -118,7 +133,8 @@ parallel::UnitEvaluator ida_unit_evaluator(const Study& study) {
     const std::int64_t first = cases.front().case_index;
     const std::int64_t end = first + static_cast<std::int64_t>(cases.size());
     for (std::int64_t c = first / settings.max_runs; c < end / settings.max_runs; ++c) {
-      const bool whole = ida::search_curve(c, settings, [&](std::int64_t index, double intensity) -> std::optional<ida::RunVerdict> {
+      ida::IdaSearch search(settings);
+      const bool whole = ida::search_curve(search, c, settings.max_runs, [&](std::int64_t index, double intensity) -> std::optional<ida::RunVerdict> {
         const parallel::WorkItem item{index, intensity};
         const auto outcome = run(std::span<const parallel::WorkItem>(&item, 1));
         if (!outcome) return std::nullopt;  // the run is being stopped
@@ -160,21 +176,28 @@ void store_ida_summaries(const Study& study, const IdaWork& work, cube::CubeWrit
   if (replay) writer.take_parts();  // the workers' chunks: their statuses join the writer's
   const auto& status = writer.status();
   const auto points = static_cast<std::size_t>(curves.max_runs());
-  // The curves searched by workers, replayed from what is stored (their runs are in the cube,
-  // its journal or the workers' parts), one curve at a time.
+  // The curves searched by workers, replayed from what is stored (their runs' statuses, in the
+  // cube, its journal or the workers' parts; θ_max only where the collapse rule reads it): the
+  // search the worker made, each run's verdict read back, one curve at a time. The intensities
+  // are the search's own, as the worker's were: no value of the cube is read for them.
   const CollapseRule rule(study);
-  const std::vector<double> intensity = replay ? writer.read_values(schema::kIdaIntensity) : std::vector<double>{};
-  const std::vector<double> theta = replay && rule.theta_column() >= 0 ? writer.read_values(std::string(metric::theta_max().name))
-                                                                      : std::vector<double>{};
-  ida::IdaSearch replayed(study.ida->search());
+  const std::vector<double> theta = replay && rule.uses_theta() ? writer.read_values(std::string(metric::theta_max().name))
+                                                               : std::vector<double>{};
+  const auto settings = study.ida->search();
+  ida::IdaSearch replayed(settings);
+  const auto unresolved_of = unresolved_codes();
   for (std::size_t c = 0; c < curves.curves(); ++c) {
     const bool unit = work.in_unit(c);
     const bool here = unit ? replay : !curves.skipped(c);
     const ida::IdaSearch* curve = &curves.curve(c);
     if (unit && replay) {
-      replayed = ida::IdaSearch(study.ida->search());
-      stored_runs(static_cast<std::int64_t>(c), static_cast<std::int64_t>(points), status, intensity,
-                  theta.empty() ? nullptr : &theta, rule, [&](int, double x, ida::RunVerdict v) { replayed.add(x, v); });
+      replayed = ida::IdaSearch(settings);
+      ida::search_curve(replayed, static_cast<std::int64_t>(c), settings.max_runs,
+                        [&](std::int64_t i, double) -> std::optional<ida::RunVerdict> {
+                          const auto k = static_cast<std::size_t>(i);
+                          if (status[k] == cube::kStatusNotRun) return std::nullopt;  // the curve's last stored run
+                          return rule(status[k], theta.empty() ? std::nan("") : theta[k]);
+                        });
       curve = &replayed;
     }
     collapse.push_back(here ? curve->collapse_intensity() : none);
@@ -182,8 +205,9 @@ void store_ida_summaries(const Study& study, const IdaWork& work, cube::CubeWrit
     runs.push_back(here ? static_cast<double>(curve->runs()) : none);
     // A state only once the curve is done: a curve still running is neither.
     state.push_back(here && curve->done() ? static_cast<double>(curve->state()) : none);
-    const std::span<const std::int8_t> runs_of_curve(status.data() + c * points, points);
-    unresolved.push_back(here ? static_cast<double>(schema::unresolved_count(runs_of_curve)) : none);
+    std::int64_t unresolved_runs = 0;
+    for (std::size_t k = 0; here && k < points; ++k) unresolved_runs += unresolved_of[static_cast<std::uint8_t>(status[c * points + k])];
+    unresolved.push_back(here ? static_cast<double>(unresolved_runs) : none);
   }
   writer.store_side(schema::kCollapseIntensity, std::move(collapse));
   writer.store_side(schema::kLastSafeIntensity, std::move(safe));
@@ -193,8 +217,7 @@ void store_ida_summaries(const Study& study, const IdaWork& work, cube::CubeWrit
   if (!study.solver.verdict_check) return;
   // The band of intensities whose verdicts failed the perturbation test, per curve.
   const auto stable = writer.read_values(std::string(metric::status_stable().name));
-  const auto read_intensity = replay ? std::vector<double>{} : writer.read_values(schema::kIdaIntensity);
-  const std::vector<double>& x = replay ? intensity : read_intensity;
+  const auto x = writer.read_values(schema::kIdaIntensity);
   std::vector<double> from(curves.curves(), std::nan("")), to(curves.curves(), std::nan(""));
   for (std::size_t c = 0; c < curves.curves(); ++c)
     for (std::size_t k = 0; k < points; ++k) {
