@@ -191,7 +191,7 @@ void store_ida_summaries(const Study& study, const IdaWork& work, cube::CubeWrit
     const bool here = unit ? replay : !curves.skipped(c);
     const ida::IdaSearch* curve = &curves.curve(c);
     if (unit && replay) {
-      replayed = ida::IdaSearch(settings);
+      replayed.restart();
       ida::search_curve(replayed, static_cast<std::int64_t>(c), settings.max_runs,
                         [&](std::int64_t i, double) -> std::optional<ida::RunVerdict> {
                           const auto k = static_cast<std::size_t>(i);
