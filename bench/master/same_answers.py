@@ -1,10 +1,12 @@
 #!/usr/bin/env python3
 """Same answers (issue 38 item 4): every metric and status of every case, wall time aside, of
 a reference pcrf (e.g. main's build) against this one, bit for bit, for small studies of every
-plan and level axis (grid, list, LHS, Sobol', Saltelli, IDA, stripes, pairs, pulses), and three
+plan and level axis (grid, list, LHS, Sobol', Saltelli, IDA, stripes, pairs, pulses), and four
 large ones whose whole chunks workers seal (lhs-units, grid-units: 300 000 frames that never
-lift; ida-units: 57 344 IDA curves, each searched whole by the worker of its chunk), at 1, 2, 3, 4 and 8 ranks (mpirun --oversubscribe). Not a test (it needs two builds); a check to run
-after any change to the scheduling or the writing.
+lift; saltelli-units: 327 680 such cases, base samples whole in a chunk, column by column;
+ida-units: 57 344 IDA curves, each searched whole by the worker of its chunk), at 1, 2, 3, 4
+and 8 ranks (mpirun --oversubscribe). Not a test (it needs two builds); a check to run after
+any change to the scheduling or the writing.
 
     python3 bench/master/same_answers.py --baseline /work/main/build/pcrf --pcrf build/pcrf
     python3 bench/master/same_answers.py --baseline OLD --pcrf NEW --ranks 1 4 --studies lhs ida
@@ -63,6 +65,10 @@ STUDIES = {
                   'lambda_h = {from = 0.14, to = 0.26}\n[intensity]\nmeasure = "pga_g"\n'
                   "[ida]\nstart = 0.5\nmax_intensity = 2.5\nresolution = 0.2\nmax_runs = 5\n"
                   '[outputs]\nmetrics = ["theta_max_rad", "impacts"]\n'),
+    # A Saltelli design cut into chunks of whole base samples (16 380 frames: 3 276 base samples
+    # of 5), 11 columns of two records, whose units go out column by column.
+    "saltelli-units": WEAK.replace('"]', '", "stochastic:seed=2,pga_g=0.02,duration_s=3,dt_s=0.01"]') +
+                      '[plan]\nkind = "saltelli"\nsamples = 32768\nseed = 7\n' + FRAME_RANGES,
     "pulses": ('[[records]]\npulse = ["pulse-sine", "ricker"]\n[intensity]\nmeasure = "pga_g"\n'
                      "[axes]\npulse_period_s = [0.4, 1.0]\nkappa = [1.4, 2.2]\nintensity = [0.3, 0.9]\n"),
 }

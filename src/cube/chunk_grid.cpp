@@ -8,24 +8,60 @@
 
 namespace pcrf::cube {
 
-ChunkGrid::ChunkGrid(std::vector<std::size_t> shape, std::size_t target_cases)
+ChunkGrid::ChunkGrid(std::vector<std::size_t> shape, std::size_t target_cases, std::vector<std::size_t> multiples)
     : shape_(std::move(shape)), chunk_(shape_.size(), 1) {
   if (shape_.empty()) throw std::invalid_argument("ChunkGrid: a cube needs a dimension");
   for (auto n : shape_)
     if (n == 0) throw std::invalid_argument("ChunkGrid: empty dimension");
+  if (!multiples.empty() && multiples.size() != shape_.size())
+    throw std::invalid_argument("ChunkGrid: one multiple per dimension");
+  if (std::find(multiples.begin(), multiples.end(), std::size_t{0}) != multiples.end())
+    throw std::invalid_argument("ChunkGrid: a multiple of 0");
   target_cases = std::max<std::size_t>(target_cases, 1);
-  // Take whole dimensions from the fastest one while they fit, then part of the next.
-  // When everything fits, split_ stays 0 and the single chunk is the whole cube.
+  // Take whole dimensions from the fastest one while they fit, then part of the next: as
+  // many whole groups of it as fit, at least one. When everything fits, split_ stays 0 and
+  // the single chunk is the whole cube.
   std::size_t cases = 1;
   for (std::size_t d = shape_.size(); d-- > 0;) {
     if (cases * shape_[d] > target_cases) {
       split_ = d;
-      chunk_[d] = std::max<std::size_t>(1, target_cases / cases);
+      const std::size_t group = multiples.empty() ? 1 : multiples[d];
+      chunk_[d] = std::min(shape_[d], std::max(group, target_cases / cases / group * group));
       break;
     }
     chunk_[d] = shape_[d];
     cases *= shape_[d];
   }
+  derive();
+}
+
+bool ChunkGrid::valid_chunk_shape(const std::vector<std::size_t>& shape, const std::vector<std::size_t>& chunk) {
+  if (shape.empty() || chunk.size() != shape.size()) return false;
+  for (std::size_t d = 0; d < shape.size(); ++d)
+    if (shape[d] == 0 || chunk[d] == 0 || chunk[d] > shape[d]) return false;
+  // The cut: the last dimension not taken whole; every one before it is taken 1 at a time.
+  std::size_t cut = shape.size();
+  while (cut > 0 && chunk[cut - 1] == shape[cut - 1]) --cut;
+  if (cut == 0) return true;  // one chunk: the whole cube
+  for (std::size_t d = 0; d + 1 < cut; ++d)
+    if (chunk[d] != 1) return false;
+  return true;
+}
+
+ChunkGrid ChunkGrid::of_chunk_shape(std::vector<std::size_t> shape, const std::vector<std::size_t>& chunk) {
+  if (!valid_chunk_shape(shape, chunk))
+    throw std::invalid_argument("ChunkGrid: chunks that are not contiguous ranges of the cube's cases");
+  ChunkGrid grid;
+  grid.shape_ = std::move(shape);
+  grid.chunk_ = chunk;
+  std::size_t cut = grid.shape_.size();
+  while (cut > 0 && grid.chunk_[cut - 1] == grid.shape_[cut - 1]) --cut;
+  grid.split_ = cut == 0 ? 0 : cut - 1;
+  grid.derive();
+  return grid;
+}
+
+void ChunkGrid::derive() {
   // inner_ is the product of the dimensions after split_.
   inner_ = 1;
   for (std::size_t k = split_ + 1; k < shape_.size(); ++k) inner_ *= shape_[k];
@@ -57,6 +93,11 @@ ChunkGrid::Range ChunkGrid::range(std::size_t chunk) const {
   r.extent[split_] = along;
   for (std::size_t k = split_ + 1; k < shape_.size(); ++k) r.extent[k] = shape_[k];
   return r;
+}
+
+ChunkGrid layout_grid(const CubeLayout& layout) {
+  if (layout.chunk_shape.empty()) return ChunkGrid(layout.shape());
+  return ChunkGrid::of_chunk_shape(layout.shape(), layout.chunk_shape);
 }
 
 }  // namespace pcrf::cube

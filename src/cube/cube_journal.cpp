@@ -224,7 +224,7 @@ std::int64_t journal_id_of(const CubeLayout& layout) {
 // ---- reading ----
 
 JournalReader::JournalReader(std::filesystem::path file, const CubeLayout& layout, bool verify_checksums)
-    : file_(std::move(file)), metrics_(layout.metrics.size()), cases_(layout.case_count()), grid_(layout.shape()) {
+    : file_(std::move(file)), metrics_(layout.metrics.size()), cases_(layout.case_count()), grid_(layout_grid(layout)) {
   for (const auto& flag : layout.status_flags)
     if (flag.value != kStatusNotRun) statuses_.push_back(flag.value);
   try {

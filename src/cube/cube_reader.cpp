@@ -12,6 +12,7 @@
 #include <system_error>
 
 #include "cube/hdf5_util.hpp"
+#include "pcrf/cube/chunk_grid.hpp"
 
 namespace pcrf::cube {
 namespace {
@@ -37,6 +38,17 @@ std::string dimension_name(hid_t dataset, unsigned dim) {
   if (H5DSget_num_scales(dataset, dim) <= 0) return name;
   H5DSiterate_scales(dataset, dim, nullptr, scale_name, &name);
   return name;
+}
+
+/// The extents of a variable's chunks when they cut the cube as a ChunkGrid does (every cube
+/// pcrf writes); empty otherwise (a cube rechunked by another tool: the grid's rule then).
+std::vector<std::size_t> grid_chunk_shape(hid_t dataset, const std::vector<std::size_t>& shape) {
+  const h5::Handle dcpl(H5Dget_create_plist(dataset), H5Pclose);
+  if (dcpl < 0 || H5Pget_layout(dcpl) != H5D_CHUNKED) return {};
+  std::vector<hsize_t> chunk(shape.size() + 1, 0);
+  if (H5Pget_chunk(dcpl, static_cast<int>(chunk.size()), chunk.data()) != static_cast<int>(shape.size())) return {};
+  std::vector<std::size_t> extents(chunk.begin(), chunk.begin() + static_cast<std::ptrdiff_t>(shape.size()));
+  return ChunkGrid::valid_chunk_shape(shape, extents) ? extents : std::vector<std::size_t>{};
 }
 
 std::vector<std::string> split_words(const std::string& text) {
@@ -184,6 +196,7 @@ CubeReader::CubeReader(const std::filesystem::path& file) : file_(file), impl_(s
     }
     // Every case's status is read whole: refused here when the file cannot hold so many.
     status = impl_->open_checked(kStatusName, {H5T_INTEGER}, dims, 1.0);
+    layout_.chunk_shape = grid_chunk_shape(status, layout_.shape());
     for (const auto& dimension : layout_.dimensions)
       layout_.coordinates.push_back(impl_->read_coordinate(dimension.name, layout_.dimensions));
     for (const auto& name : split_words(h5::read_text_attribute(status, "coordinates")))

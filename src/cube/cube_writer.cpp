@@ -203,7 +203,7 @@ struct CubeWriter::Impl {
   CoordinateSource* coordinate_source = nullptr;  // while the constructor creates the cube; null: seal here
 
   Impl(std::filesystem::path p, CubeLayout l)
-      : path(std::move(p)), layout(std::move(l)), grid(layout.shape()) {
+      : path(std::move(p)), layout(std::move(l)), grid(layout_grid(layout)) {
     // The id is the writer's to draw (a merged cube's layout comes from a part).
     std::erase_if(layout.attributes,
                   [](const Attribute& a) { return a.name == kJournalIdName || a.name == kPartIdName; });
@@ -424,6 +424,10 @@ void CubeWriter::Impl::open_existing(std::vector<std::int8_t>& status) {
                          ", this study's " + ours + "); give another output file or use --overwrite"));
   if (old.shape() != layout.shape() || old.metrics.size() != layout.metrics.size())
     throw CubeError(what("has another shape or other metrics than this study"));
+  // Its chunks as its file has them (an earlier version's may be cut otherwise than this
+  // study's would be): its journal, its parts and the workers' units count them so.
+  layout.chunk_shape = old.chunk_shape;
+  grid = layout_grid(layout);
   status = reader.read_status();
   folded_results = std::count_if(status.begin(), status.end(), [](std::int8_t s) { return s != kStatusNotRun; });
   journal_id = journal_id_of(old);

@@ -9,6 +9,7 @@
 #include <type_traits>
 #include <variant>
 
+#include "pcrf/cube/chunk_grid.hpp"
 #include "pcrf/excitation/station_pulse.hpp"
 #include "pcrf/metrics/case_result.hpp"
 #include "pcrf/model/frame_properties.hpp"
@@ -325,6 +326,8 @@ cube::CubeLayout make_cube_layout(const Study& study, const CaseSpace& space, Re
   for (CaseStatus status : all_final_statuses())
     layout.status_flags.push_back({static_cast<std::int8_t>(status), std::string(status_name(status))});
   layout.attributes = global_attributes(study, fingerprint, layout.find_coordinate(names::kSceneModel) != nullptr);
+  // Chunks hold whole groups of frames (a Saltelli base sample) where they cut the frame axis.
+  layout.chunk_shape = cube::ChunkGrid(space.shape(), cube::kChunkCases, space.chunk_multiples()).chunk_shape();
   return layout;
 }
 

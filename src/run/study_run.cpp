@@ -33,6 +33,7 @@
 #include "pcrf/run/run_device.hpp"
 #include "pcrf/study/study_check.hpp"
 #include "pcrf/run/study_cube.hpp"
+#include "pcrf/run/unit_order.hpp"
 #include "pcrf/study/study_parser.hpp"
 #include "pcrf/study/study_size.hpp"
 
@@ -572,16 +573,32 @@ parallel::WorkQueue pending_cases(const cube::CubeWriter& writer, const std::map
   const auto& grid = writer.grid();
   auto pending = [&status](std::int64_t i) { return status[static_cast<std::size_t>(i)] == cube::kStatusNotRun; };
   // The first position from k on that is not in a chunk handed out whole: such a chunk is
-  // skipped at once. Units exist only where positions are storage order (whole_chunks), so no
-  // case of theirs is looked at, and the scan costs rank 0 a few instructions a chunk, not a
-  // case (issue 38). `in_unit` is copied: the windows outlive the caller's.
+  // skipped at once. In storage order a chunk is a run of positions; frame by frame, a column
+  // (FrameColumns) every chunk of which is handed out whole is one, and only the columns with
+  // chunks of both kinds (the tail's, a resumed run's partly done ones, one pinned by a
+  // history) are looked at case by case. So the scan costs rank 0 a few instructions a chunk,
+  // not a case (issue 38). `in_unit` is copied: the windows outlive the caller's.
   const bool skipping = std::find(in_unit.begin(), in_unit.end(), 1) != in_unit.end();
-  auto from = [&grid, skipping, in_unit = std::move(in_unit), total = space.size()](std::int64_t k) {
+  const FrameColumns columns = hands_out_by_frame(space) ? frame_columns(grid, space) : FrameColumns{};
+  std::vector<char> column_whole;  // [q]: every chunk of column q is handed out whole
+  if (skipping && columns) {
+    column_whole.assign(columns.columns, 1);
+    for (std::size_t c = 0; c < in_unit.size(); ++c)
+      if (!in_unit[c]) column_whole[columns.column_of(c)] = 0;
+  }
+  auto from = [&grid, &space, skipping, columns, column_whole = std::move(column_whole), in_unit = std::move(in_unit),
+               total = space.size()](std::int64_t k) {
     while (skipping && k < total) {
-      const std::size_t c = grid.chunk_of(k);
+      const std::size_t c = grid.chunk_of(columns ? space.handout_index(k) : k);
       if (!in_unit[c]) break;
-      const auto r = grid.range(c);
-      k = r.first + r.count;
+      if (!columns) {
+        const auto r = grid.range(c);
+        k = r.first + r.count;
+      } else if (const std::size_t q = columns.column_of(c); column_whole[q]) {
+        k = columns.positions(grid, q).second;
+      } else {
+        ++k;
+      }
     }
     return k;
   };
@@ -618,9 +635,11 @@ parallel::WorkQueue pending_cases(const cube::CubeWriter& writer, const std::map
 }
 
 /// Chunks of the cube a worker computes whole and seals (issue 38; docs/checkpoint.md): every
-/// case of the chunk in this shard and not done, none with a history, in a plan handed out in
-/// storage order, with guided sizes. The last kTailChunks of them, and all when there are fewer
-/// than kUnitsPerWorker per worker, go case by case instead, so that the run still ends balanced.
+/// case of the chunk in this shard and not done, none with a history, with guided sizes; in
+/// storage order, or for a plan handed out frame by frame column by column (FrameColumns; none
+/// where its chunks allow no columns: its cases go case by case, frame by frame). The last
+/// kTailChunks of them, and all when there are fewer than kUnitsPerWorker per worker, go case
+/// by case instead, so that the run still ends balanced.
 constexpr std::size_t kUnitsPerWorker = 2;
 constexpr std::size_t kTailChunks = 1;
 
@@ -628,15 +647,13 @@ std::vector<std::size_t> whole_chunks(const cube::CubeWriter& writer, const std:
                                       const Study& study, const CaseSpace& space, int workers, const StudyRunOptions& options) {
   std::vector<std::size_t> units;
   if (study.run.batch_size > 0) return units;  // the user fixed what a hand-out is
-  // A plan handed out frame by frame (a Saltelli design) maps position 1 to its second frame;
-  // one handed out in storage order maps every position to itself (CaseSpace::handout_index).
-  if (space.size() > 1 && space.handout_index(1) != 1) return units;
-  const auto [first, last] = shard_range(space.size(), options.shard_index, options.shard_count);
   const auto& grid = writer.grid();
+  const auto [first, last] = shard_range(space.size(), options.shard_index, options.shard_count);
   const auto& status = writer.status();
-  for (std::size_t c = 0; c < grid.chunk_count(); ++c) {
+  for (const std::size_t c : unit_order(grid, space)) {
     const auto r = grid.range(c);
-    if (r.first < first || r.first + r.count > last) continue;
+    // The shard owns hand-out positions; a chunk's first and last cases are its least and greatest.
+    if (space.handout_position(r.first) < first || space.handout_position(r.first + r.count - 1) >= last) continue;
     const auto begin = status.begin() + r.first;
     bool whole = std::all_of(begin, begin + r.count, [](std::int8_t s) { return s == cube::kStatusNotRun; });
     if (whole && histories.lower_bound(r.first) != histories.lower_bound(r.first + r.count)) whole = false;
@@ -653,17 +670,26 @@ class UnitsThenCases final : public parallel::WorkSource {
  public:
   UnitsThenCases(std::vector<std::size_t> units, const cube::ChunkGrid& grid, const CaseSpace& space, bool lanes,
                  parallel::WorkQueue rest)
-      : units_(std::move(units)), grid_(grid), space_(space), lanes_(lanes), rest_(std::move(rest)) {}
+      : units_(std::move(units)), grid_(grid), space_(space), lanes_(lanes), rest_(std::move(rest)) {
+    // A chunk within one excitation (1 along every axis before the frame axes, no IDA runs
+    // after them) holds a frame of its own in every case, in storage order.
+    const auto& chunk = grid_.chunk_shape();
+    own_frames_ = space_.distinct_frames() == space_.size() ||
+                  (space_.ida_runs() == 0 &&
+                   std::all_of(chunk.begin(), chunk.begin() + static_cast<std::ptrdiff_t>(space_.frame_dimension()),
+                               [](std::size_t n) { return n == 1; }));
+  }
   parallel::WorkBatch take(bool in_process) override {
     if (next_ == units_.size()) return rest_.take(in_process);
     const std::size_t chunk = units_[next_++];
     const auto r = grid_.range(chunk);
     // Storage order has the frame axes fastest: in lanes, a call's cases already share their
-    // excitation, and where every case is a frame of its own there is nothing to reorder, so
-    // the unit goes out as its range (three items; the worker lists its cases). Otherwise a
-    // frame's cases come together (prepared once): on the master, a sort of the chunk (about
-    // 300 instructions a case).
-    if (lanes_ || space_.distinct_frames() == space_.size())
+    // excitation, and where every case is a frame of its own (every chunk lies within one
+    // excitation: a Saltelli design's columns) there is nothing to reorder, so the unit goes
+    // out as its range (three items; the worker lists its cases). Otherwise a frame's cases
+    // come together (prepared once): on the master, a sort of the chunk (about 300
+    // instructions a case).
+    if (lanes_ || own_frames_)
       return parallel::unit_range_batch(static_cast<std::int64_t>(chunk), r.first, r.count);
     std::vector<std::int64_t> cases(static_cast<std::size_t>(r.count));
     for (std::size_t k = 0; k < cases.size(); ++k) cases[k] = r.first + static_cast<std::int64_t>(k);
@@ -678,6 +704,7 @@ class UnitsThenCases final : public parallel::WorkSource {
   const cube::ChunkGrid& grid_;
   const CaseSpace& space_;
   bool lanes_;
+  bool own_frames_ = false;  ///< every case of a chunk is a frame of its own
   parallel::WorkQueue rest_;
 };
 
@@ -842,12 +869,26 @@ std::unique_ptr<Prepared> receive_study(const parallel::MpiSession& mpi, const P
   }
 }
 
-/// The shape rank 0 sent (numbers separated by spaces).
-std::vector<std::size_t> parse_shape(const std::string& text) {
-  std::istringstream in(text);
-  std::vector<std::size_t> shape;
-  for (std::size_t n = 0; in >> n;) shape.push_back(n);
-  return shape;
+/// The cube's shape and its chunks' (as its file has them), for the workers: the numbers of
+/// each separated by spaces, the two lists by '/'.
+std::string grid_text(const cube::ChunkGrid& grid) {
+  std::string text;
+  for (const std::size_t n : grid.shape()) text += std::to_string(n) + " ";
+  text += "/";
+  for (const std::size_t n : grid.chunk_shape()) text += " " + std::to_string(n);
+  return text;
+}
+
+/// The grid rank 0 sent (grid_text).
+cube::ChunkGrid parse_grid(const std::string& text) {
+  auto numbers = [](const std::string& part) {
+    std::istringstream in(part);
+    std::vector<std::size_t> values;
+    for (std::size_t n = 0; in >> n;) values.push_back(n);
+    return values;
+  };
+  const auto slash = text.find('/');
+  return cube::ChunkGrid::of_chunk_shape(numbers(text.substr(0, slash)), numbers(text.substr(slash + 1)));
 }
 
 }  // namespace
@@ -896,11 +937,8 @@ std::optional<StudySummary> run_study(const StudyRunOptions& options, const para
     mpi.quiet_barrier();
     return std::nullopt;
   }
-  // The cube's shape, so that workers seal the chunks rank 0's writer stores.
-  std::string shape_text;
-  if (mpi.is_master())
-    for (const std::size_t n : setup.writer->shape()) shape_text += std::to_string(n) + " ";
-  shape_text = mpi.broadcast(shape_text);
+  // The cube's shape and chunks, so that workers seal the chunks rank 0's writer stores.
+  const std::string shape_text = mpi.broadcast(mpi.is_master() ? grid_text(setup.writer->grid()) : std::string());
   // Where each worker keeps the chunks it seals (its part), and what ties it to the cube.
   const std::string parts = mpi.broadcast(mpi.is_master() ? part_text(*setup.writer, setup.output) : std::string());
 
@@ -909,7 +947,7 @@ std::optional<StudySummary> run_study(const StudyRunOptions& options, const para
   if (mpi.is_master())
     summary = run_master_rank(*prepared, setup, mpi, options.progress ? *options.progress : nowhere, options);
   else
-    run_worker_rank(*prepared, mpi, options.stop_signal, cube::ChunkGrid(parse_shape(shape_text)), parts);
+    run_worker_rank(*prepared, mpi, options.stop_signal, parse_grid(shape_text), parts);
   mpi.quiet_barrier();
   return summary ? summary : StudySummary{};
 }

@@ -96,6 +96,20 @@ std::int64_t CaseSpace::handout_index(std::int64_t position) const {
   return (position % per_frame) * frames + position / per_frame;
 }
 
+std::int64_t CaseSpace::handout_position(std::int64_t index) const {
+  if (!plan_->hands_out_by_frame() || ida_runs_ > 0) return index;
+  const std::int64_t frames = frame_count();
+  const std::int64_t per_frame = size_ / frames;
+  return (index % frames) * per_frame + index / frames;
+}
+
+std::vector<std::size_t> CaseSpace::chunk_multiples() const {
+  std::vector<std::size_t> multiples(shape_.size(), 1);
+  const std::size_t frame_axes = plan_->dimensions().size();
+  if (frame_axes > 0) multiples[frame_dim_ + frame_axes - 1] = std::max<std::size_t>(plan_->frames_per_group(), 1);
+  return multiples;
+}
+
 std::vector<SceneSpec> CaseSpace::frames() const { return plan_->frames(); }
 
 std::int64_t CaseSpace::distinct_frames() const {

@@ -151,6 +151,7 @@ class SaltelliPlan final : public SampledPlan {
 
  protected:
   bool hands_out_by_frame() const override { return true; }  // frames are base sample by base sample
+  std::size_t frames_per_group() const override { return varied().size() + 2; }  // a base sample
 
   std::string point_label(std::size_t i) const override {
     return "s" + std::to_string(study::SaltelliDesign::sample(i, varied().size())) + ":" + block_name(i);

@@ -1,9 +1,13 @@
 /// \file chunk_grid.hpp
 /// \brief How a cube is cut into HDF5 chunks so that each chunk is one contiguous range of
-/// linear case indices: whole trailing dimensions, then part of one dimension, then 1.
+/// linear case indices: whole trailing dimensions, then part of one dimension (the cut), then 1.
 ///
 /// That makes a chunk one contiguous run of results: the writer collects a chunk's results
 /// as they come back and writes each chunk that changed as one hyperslab.
+///
+/// Values that belong together along a dimension (a Saltelli base sample's d + 2 frames along
+/// `case`) stay in one chunk: where the cut falls on such a dimension, the chunk's extent
+/// along it is a whole number of groups (`multiples`).
 #pragma once
 
 #include <cstddef>
@@ -12,14 +16,30 @@
 
 namespace pcrf::cube {
 
+struct CubeLayout;
+
+/// About how many cases a chunk holds (ChunkGrid's rule): 16 384, 128 KiB of a metric.
+inline constexpr std::size_t kChunkCases = 16384;
+
 class ChunkGrid {
  public:
   /// \param shape cube shape (every size ≥ 1)
   /// \param target_cases about how many cases a chunk should hold
-  explicit ChunkGrid(std::vector<std::size_t> shape, std::size_t target_cases = 16384);
+  /// \param multiples per dimension (empty: 1 each; every value ≥ 1): where the cut falls on
+  ///        dimension d, the chunk's extent along it is a multiple of multiples[d] (the last
+  ///        piece along it excepted, when the size is not one), above the target if need be
+  explicit ChunkGrid(std::vector<std::size_t> shape, std::size_t target_cases = kChunkCases,
+                     std::vector<std::size_t> multiples = {});
+  /// The grid whose chunks have the extents `chunk` (a cube's, as its file stores them).
+  /// \throws std::invalid_argument unless valid_chunk_shape(shape, chunk)
+  static ChunkGrid of_chunk_shape(std::vector<std::size_t> shape, const std::vector<std::size_t>& chunk);
+  /// True when `chunk` cuts `shape` as a grid does: 1 along the leading dimensions, then from 1
+  /// to the whole of one dimension, then the whole of every later one.
+  static bool valid_chunk_shape(const std::vector<std::size_t>& shape, const std::vector<std::size_t>& chunk);
 
   /// Chunk extent per dimension (for H5Pset_chunk).
   const std::vector<std::size_t>& chunk_shape() const { return chunk_; }
+  const std::vector<std::size_t>& shape() const { return shape_; }
   std::size_t chunk_count() const;
   /// The chunk that holds a linear index.
   std::size_t chunk_of(std::int64_t index) const;
@@ -33,12 +53,23 @@ class ChunkGrid {
   };
   Range range(std::size_t chunk) const;
 
+  /// Two grids cut a cube alike.
+  bool operator==(const ChunkGrid& other) const { return shape_ == other.shape_ && chunk_ == other.chunk_; }
+
  private:
+  ChunkGrid() = default;
+  void derive();  ///< inner_ and pieces_ from shape_, chunk_ and split_
+
   std::vector<std::size_t> shape_;
   std::vector<std::size_t> chunk_;
   std::size_t split_ = 0;        ///< the dimension that is cut
   std::size_t inner_ = 1;        ///< cases per step of the cut dimension
   std::size_t pieces_ = 1;       ///< chunks along the cut dimension
 };
+
+/// The grid of a cube's layout: its `chunk_shape` (a new cube's, as its maker chose it, or an
+/// existing one's, as its file stores it), or when that is empty the rule's with no multiples
+/// (every cube before chunks held whole groups).
+ChunkGrid layout_grid(const CubeLayout& layout);
 
 }  // namespace pcrf::cube

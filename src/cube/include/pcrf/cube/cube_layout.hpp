@@ -142,6 +142,12 @@ struct CubeLayout {
   std::vector<SideVariable> side_variables;
   std::vector<StatusFlag> status_flags;
   std::vector<Attribute> attributes;
+  /// The extent of the cube's chunks along each dimension (ChunkGrid; HDF5's chunk shape of
+  /// every metric and the status): a new cube's as its maker chose it (a study's: the rule of
+  /// ChunkGrid with its plan's groups of frames), an existing one's as its file stores it
+  /// (CubeReader). Empty: the rule of ChunkGrid with no groups (layout_grid), the chunks of
+  /// every cube made before chunks held whole groups.
+  std::vector<std::size_t> chunk_shape;
 
   std::int64_t case_count() const;
   std::vector<std::size_t> shape() const;

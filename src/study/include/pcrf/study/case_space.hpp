@@ -69,6 +69,14 @@ class CaseSpace {
   /// hands out by frame (Plan::hands_out_by_frame) frame-major over the whole cube: every
   /// record, level and incidence of frame 0, then of frame 1, … A bijection of [0, size()).
   std::int64_t handout_index(std::int64_t position) const;
+  /// The position at which case `index` is handed out: the inverse of handout_index.
+  std::int64_t handout_position(std::int64_t index) const;
+  /// Per dimension, the multiple a chunk of the cube holds along it where it cuts it
+  /// (cube::ChunkGrid): the plan's frames_per_group along its last frame axis, 1 elsewhere.
+  std::vector<std::size_t> chunk_multiples() const;
+  /// The first of the plan's frame axes (after record, the level axis and the incidence
+  /// axis); they run to the end of the shape but in an IDA, whose runs (ida_point) follow.
+  std::size_t frame_dimension() const { return frame_dim_; }
   /// Distinct frames of the study (every parameter combination), for up-front checks.
   std::vector<SceneSpec> frames() const;
   /// Number of distinct frames (frames().size()).

@@ -63,6 +63,11 @@ class Plan {
   /// partial cube holds whole base samples. False: in storage order.
   virtual bool hands_out_by_frame() const { return false; }
 
+  /// Frames that belong together along the plan's last frame dimension (a Saltelli base
+  /// sample: its d + 2 frames A, B, AB_1 … AB_d, one after another): a chunk of the cube that
+  /// cuts that dimension holds whole groups of them (cube::ChunkGrid's multiples). 1: none.
+  virtual std::size_t frames_per_group() const { return 1; }
+
   /// Memory the plan holds per frame [bytes] (an upper estimate), which the study's size
   /// check counts: a plan that computes its frames from their numbers (grid, the sampled
   /// plans) holds none, one that lists them (list, one-at-a-time) holds each.
