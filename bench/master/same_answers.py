@@ -1,11 +1,12 @@
 #!/usr/bin/env python3
 """Same answers (issue 38 item 4): every metric and status of every case, wall time aside, of
 a reference pcrf (e.g. main's build) against this one, bit for bit, for small studies of every
-plan and level axis (grid, list, LHS, Sobol', Saltelli, IDA, stripes, pairs, pulses), and three
+plan and level axis (grid, list, LHS, Sobol', Saltelli, IDA, stripes, pairs, pulses), and four
 large ones whose whole chunks workers seal (lhs-units, grid-units: 300 000 frames that never
-lift; saltelli-units: 327 680 such cases, base samples whole in a chunk, column by column), at
-1, 2, 3, 4 and 8 ranks (mpirun --oversubscribe). Not a test (it needs two builds); a check to
-run after any change to the scheduling or the writing.
+lift; saltelli-units: 327 680 such cases, base samples whole in a chunk, column by column;
+ida-units: 57 344 IDA curves, each searched whole by the worker of its chunk), at 1, 2, 3, 4
+and 8 ranks (mpirun --oversubscribe). Not a test (it needs two builds); a check to run after
+any change to the scheduling or the writing.
 
     python3 bench/master/same_answers.py --baseline /work/main/build/pcrf --pcrf build/pcrf
     python3 bench/master/same_answers.py --baseline OLD --pcrf NEW --ranks 1 4 --studies lhs ida
@@ -55,6 +56,15 @@ STUDIES = {
     "grid-units": WEAK.replace('"]', '", "stochastic:seed=2,pga_g=0.02,duration_s=3,dt_s=0.01"]') +
                   "[axes]\nkappa = {from = 1.3, to = 2.3, count = 100}\ntan_alpha = {from = 0.14, to = 0.26, count = 100}\n"
                   "lambda_h = {from = 0.14, to = 0.26, count = 15}\n",
+    # An IDA whose curves workers search whole in chunks of the cube at up to 8 ranks (18 chunks of
+    # 3 276 curves of 5 runs): LHS frames from stocky to slender from 0.5 g to 2.5 g, most never
+    # lift, some collapse, the deepest are outside the model (unresolved curves).
+    "ida-units": ('[plan]\nkind = "lhs"\nsamples = 57344\nseed = 4\n'
+                  '[[records]]\nsynthetic = ["stochastic:seed=1,pga_g=0.1,duration_s=2,dt_s=0.01"]\n'
+                  "[axes]\nkappa = {from = 1.26, to = 2.34}\ntan_alpha = {from = 0.15, to = 1.5}\n"
+                  'lambda_h = {from = 0.14, to = 0.26}\n[intensity]\nmeasure = "pga_g"\n'
+                  "[ida]\nstart = 0.5\nmax_intensity = 2.5\nresolution = 0.2\nmax_runs = 5\n"
+                  '[outputs]\nmetrics = ["theta_max_rad", "impacts"]\n'),
     # A Saltelli design cut into chunks of whole base samples (16 380 frames: 3 276 base samples
     # of 5), 11 columns of two records, whose units go out column by column.
     "saltelli-units": WEAK.replace('"]', '", "stochastic:seed=2,pga_g=0.02,duration_s=3,dt_s=0.01"]') +

@@ -413,7 +413,7 @@ SealedChunk JournalReader::sealed(std::size_t record) const {
     const auto n = static_cast<std::size_t>(in.number(4));  // the chunk's count, checked
     const auto* status = reinterpret_cast<const std::int8_t*>(in.take(n));
     c.status.assign(status, status + n);
-    check_statuses(record, c.status.data(), n);
+    check_statuses(record, c.status.data(), n, true);
     take_sealed_variables(in, metrics_, grid_, [&c](std::size_t, const char* p, std::size_t size) {
       c.filtered.emplace_back(p, p + size);
     });
@@ -423,11 +423,14 @@ SealedChunk JournalReader::sealed(std::size_t record) const {
   return c;
 }
 
-/// Only the statuses the cube's flags name reach it (never not_run, 99 or -128).
-void JournalReader::check_statuses(std::size_t record, const std::int8_t* status, std::size_t n) const {
+/// Only the statuses the cube's flags name reach it (never 99 or -128); not_run only in a
+/// sealed chunk (`sealed`), whose cases a worker chose not to run (an IDA curve's points past
+/// its last run), never in a record of cases.
+void JournalReader::check_statuses(std::size_t record, const std::int8_t* status, std::size_t n, bool sealed) const {
   if (statuses_.empty()) return;
   bool allowed[256] = {};
   for (const std::int8_t s : statuses_) allowed[static_cast<std::uint8_t>(s)] = true;
+  if (sealed) allowed[static_cast<std::uint8_t>(kStatusNotRun)] = true;
   for (std::size_t k = 0; k < n; ++k)
     if (!allowed[static_cast<std::uint8_t>(status[k])])
       fail(record, "has the status code " + std::to_string(status[k]) + ", which the cube's flags do not name");
@@ -467,7 +470,7 @@ void JournalReader::with_sealed(std::size_t record, const std::function<void(con
       status.code = head[0];
     }
     if (!status.alike) {
-      check_statuses(record, head, n);
+      check_statuses(record, head, n, true);
       status.each = std::span<const std::int8_t>(head, n);
     }
   } catch (const Malformed& m) {
@@ -488,7 +491,7 @@ std::vector<std::int8_t> JournalReader::sealed_status(std::size_t record) const 
   }
   std::vector<std::int8_t> status(reinterpret_cast<const std::int8_t*>(head.data() + kCasesHeadBytes),
                                   reinterpret_cast<const std::int8_t*>(head.data() + head.size()));
-  check_statuses(record, status.data(), status.size());
+  check_statuses(record, status.data(), status.size(), true);
   return status;
 }
 

@@ -232,7 +232,8 @@ struct CubeWriter::Impl {
   void replay_journal(StatusBook& status);
   void set_aside_journal(const std::string& problem);
   void set_aside(const std::filesystem::path& from, const std::string& problem, const std::string& what);
-  void read_part(const std::filesystem::path& part, StatusBook& status, bool inflate);
+  void read_part(const std::filesystem::path& part, StatusBook& status, bool inflate, bool count_now);
+  void take_run_parts(StatusBook& status, bool count_now);
   void write_parts(std::vector<std::pair<std::int64_t, std::string>>& notes, StatusBook& status);
   PartHeader part_header_of_cube() const {
     return {part_id, layout.case_count(), layout.metrics.size(), layout.text_attribute(kFingerprintName)};
@@ -280,7 +281,7 @@ CubeWriter::CubeWriter(std::filesystem::path file, CubeLayout layout, OpenMode m
     resumed_ = true;
     // The parts of the stopped run: untrusted, read whole (a forged or foreign one is set
     // aside); their chunks not done yet count as done and go in at the first fold, below.
-    for (const auto& part : part_files(impl_->path)) impl_->read_part(part, statuses_, true);
+    for (const auto& part : part_files(impl_->path)) impl_->read_part(part, statuses_, true, true);
   } else {
     // A new cube (--overwrite's included) has parts of its own: any left here are another
     // cube's, removed (regular files only, checked above) once the new cube is in place.
@@ -524,12 +525,13 @@ void CubeWriter::Impl::set_aside(const std::filesystem::path& from, const std::s
 /// sizes here and by its statuses when each record is written: its CRCs were 150 instructions
 /// a result, nearly all of the assembly). Its chunks that `status` has none done of are taken
 /// by the next fold, read from the part then; a chunk done already (in the cube, its journal
-/// or an earlier part) is skipped. With `inflate` (--resume) their statuses count at once (the
-/// run that continues must not compute them); at the end of a run they count when the fold
-/// writes them (write_parts), chunk by chunk, not case by case. A part that cannot be used
+/// or an earlier part) is skipped. With `count_now` their statuses count at once, each case's
+/// (--resume: the run that continues must not compute them; take_parts: a producer reads
+/// them before the last fold); at the end of a run they count when the fold writes them
+/// (write_parts), chunk by chunk, not case by case. A part that cannot be used
 /// (forged, foreign: another cube's or study's) is set aside and its cases computed again; one
 /// that holds nothing is removed by the next fold.
-void CubeWriter::Impl::read_part(const std::filesystem::path& part, StatusBook& status, bool inflate) {
+void CubeWriter::Impl::read_part(const std::filesystem::path& part, StatusBook& status, bool inflate, bool count_now) {
   std::unique_ptr<JournalReader> read;
   try {
     read = std::make_unique<JournalReader>(part, layout, part_header_payload(part_header_of_cube()), inflate);
@@ -553,8 +555,8 @@ void CubeWriter::Impl::read_part(const std::filesystem::path& part, StatusBook& 
   bool used = false;
   for (const auto& [chunk, records] : read->sealed_chunks()) {
     if (part_chunks.count(chunk) > 0 || status.chunk_done(chunk) > 0) continue;
-    if (inflate) status.set_chunk(chunk, read->sealed_status(records.front()));
-    part_chunks[chunk] = {parts.size(), records.front(), inflate};
+    if (count_now) status.set_chunk(chunk, read->sealed_status(records.front()));
+    part_chunks[chunk] = {parts.size(), records.front(), count_now};
     used = true;
   }
   if (!used) return;
@@ -590,6 +592,16 @@ std::vector<double> CubeWriter::read_values(const std::string& metric) const {
         const auto first = static_cast<std::size_t>(impl_->grid.range(c.chunk).first);
         for (std::size_t j = 0; j < c.offsets.size(); ++j) values[first + c.offsets[j]] = c.values[m * c.offsets.size() + j];
       }
+  }
+  // The ranks' parts taken (--resume, take_parts): part by part, one open at a time, as a fold reads them.
+  std::vector<std::vector<std::size_t>> by_part(impl_->parts.size());  // their records
+  for (const auto& [chunk, at] : impl_->part_chunks) by_part[at.part].push_back(at.record);
+  for (std::size_t p = 0; p < by_part.size(); ++p) {
+    if (by_part[p].empty()) continue;
+    JournalReader& part = *impl_->parts[p];
+    part.reopen_file();
+    for (const std::size_t record : by_part[p]) lay_sealed(part.sealed(record));
+    part.release_file();
   }
   for (const auto& [chunk, sealed] : impl_->pending_sealed) lay_sealed(sealed);
   for (const auto& [chunk, stored] : impl_->pending_chunks) {
@@ -1238,21 +1250,26 @@ void CubeWriter::append() { impl_->checkpoint(statuses_, Impl::Checkpoint::kAppe
 void CubeWriter::fold() { impl_->checkpoint(statuses_, Impl::Checkpoint::kFold); }
 
 void CubeWriter::close() {
-  // The ranks' parts of this run (its workers', made under its lock) go in with this fold.
-  if (impl_->part_id != 0) {
-    for (const auto& part : part_files(impl_->path)) {
-      if (std::find(impl_->parts_to_remove.begin(), impl_->parts_to_remove.end(), part) != impl_->parts_to_remove.end())
-        continue;
-      try {
-        io::check_sidecar(part, io::kPartWhat);
-      } catch (const io::OutputError& e) {
-        throw CubeError(e.what());
-      }
-      impl_->read_part(part, statuses_, false);
-    }
-  }
+  impl_->take_run_parts(statuses_, false);  // their statuses counted chunk by chunk as the fold writes them
   fold();
   impl_->closed = true;
+}
+
+void CubeWriter::take_parts() { impl_->take_run_parts(statuses_, true); }
+
+/// The ranks' parts of this run (its workers', made under its lock), to go in with the next
+/// fold; `count_now`: their statuses join `status` at once (read_part).
+void CubeWriter::Impl::take_run_parts(StatusBook& status, bool count_now) {
+  if (part_id == 0) return;
+  for (const auto& part : part_files(path)) {
+    if (std::find(parts_to_remove.begin(), parts_to_remove.end(), part) != parts_to_remove.end()) continue;
+    try {
+      io::check_sidecar(part, io::kPartWhat);
+    } catch (const io::OutputError& e) {
+      throw CubeError(e.what());
+    }
+    read_part(part, status, false, count_now);
+  }
 }
 
 }  // namespace pcrf::cube

@@ -63,7 +63,7 @@ parallel::WorkBatch IdaCurves::take(bool) {
     const double x = *searches_[c].next();
     in_flight_[c] = x;
     ++running_;
-    const auto index = static_cast<std::int64_t>(c) * settings_.max_runs + searches_[c].runs();
+    const auto index = ida_case(static_cast<std::int64_t>(c), searches_[c].runs(), settings_.max_runs);
     batch.push_back({index, x});
   }
   return batch;

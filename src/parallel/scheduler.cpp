@@ -134,13 +134,13 @@ class Master {
  public:
   Master(MPI_Comm comm, WorkSource& work, const ScheduleOptions& options, int ranks)
       : options_(options), work_(work), remote_(comm, options.row_width), active_workers_(ranks),
-        in_flight_(static_cast<std::size_t>(ranks), 0) {}
+        in_flight_(static_cast<std::size_t>(ranks), 0), units_out_(static_cast<std::size_t>(ranks)) {}
 
   void run(const CasesEvaluator& evaluate, const OutcomeHandler& on_outcomes,
            const IdleHandler& on_idle) {
     std::thread local_worker([&] {
       detail::worker_loop(local_, evaluate, options_.row_width, together(options_), local_.stop_flag(),
-                          options_.interrupt, &options_.seal, &options_.keep);
+                          options_.interrupt, &options_.seal, &options_.keep, &options_.evaluate_unit);
     });
     try {
       loop(on_outcomes, on_idle);
@@ -167,8 +167,8 @@ class Master {
 
   bool handle(Incoming message, const OutcomeHandler& on_outcomes) {
     const auto worker = static_cast<std::size_t>(message.worker);
-    in_flight_[worker] -= message.results.size();
-    for (const auto& unit : message.sealed) in_flight_[worker] -= static_cast<std::size_t>(unit.cases);
+    in_flight_[worker] -= std::min(in_flight_[worker], message.results.size());
+    for (const auto& unit : message.sealed) in_flight_[worker] -= std::min(in_flight_[worker], handed_back(worker, unit));
     for (const auto& outcome : message.results) work_.completed(outcome);
     if (!message.results.empty()) on_outcomes(std::move(message.results));
     if (!message.sealed.empty()) {
@@ -194,9 +194,23 @@ class Master {
   bool serve(int worker) {
     WorkBatch batch = work_.take(worker == 0);
     if (batch.empty() && !work_.exhausted()) return false;
-    in_flight_[static_cast<std::size_t>(worker)] += detail::cases_in(batch);
+    const std::size_t cases = detail::cases_in(batch);
+    in_flight_[static_cast<std::size_t>(worker)] += cases;
+    if (options_.evaluate_unit && detail::is_unit(batch))
+      units_out_[static_cast<std::size_t>(worker)].push_back({static_cast<std::int64_t>(batch.front().argument), cases});
     reply(worker, std::move(batch));
     return true;
+  }
+
+  /// The cases a sealed unit gives back to its worker's count in flight: those it was handed
+  /// (a unit evaluator may run fewer of them, ScheduleOptions::evaluate_unit), else those it holds.
+  std::size_t handed_back(std::size_t worker, const SealedUnit& unit) {
+    auto& out = units_out_[worker];
+    const auto it = std::find_if(out.begin(), out.end(), [&](const auto& u) { return u.first == unit.unit; });
+    if (it == out.end()) return static_cast<std::size_t>(unit.cases);
+    const std::size_t cases = it->second;
+    out.erase(it);
+    return cases;
   }
 
   void serve_held() {
@@ -216,6 +230,9 @@ class Master {
   MpiWorkers remote_;
   int active_workers_;
   std::vector<std::size_t> in_flight_;  ///< cases handed to each worker and not back yet
+  /// Units handed to each worker that a unit evaluator computes (number, cases handed): at
+  /// most two a worker (the one it computes and the one it prefetched).
+  std::vector<std::vector<std::pair<std::int64_t, std::size_t>>> units_out_;
   std::list<int> held_;                 ///< workers waiting for work to appear
 };
 
@@ -245,7 +262,7 @@ void run_master(MPI_Comm comm, WorkSource& work, const ScheduleOptions& options,
 void run_worker(MPI_Comm comm, const ScheduleOptions& options, const CasesEvaluator& evaluate) {
   MpiMasterLink link(comm, options.row_width);
   detail::worker_loop(link, evaluate, options.row_width, together(options), nullptr, options.interrupt, &options.seal,
-                      &options.keep);
+                      &options.keep, &options.evaluate_unit);
 }
 
 void run_worker(MPI_Comm comm, const ScheduleOptions& options, const CaseEvaluator& evaluate) {

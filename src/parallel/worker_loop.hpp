@@ -86,6 +86,33 @@ inline ResultBatch evaluate_guarded(const CasesEvaluator& evaluate, std::span<co
   }
 }
 
+/// How a unit computed by a UnitEvaluator ended: every case it chose run, stopped by the run's
+/// stop (its cases run so far are reported one by one), or the evaluator threw (likewise, and
+/// the worker goes on).
+enum class UnitState { kWhole, kCut, kThrew };
+
+/// Computes one unit by `evaluate_unit`, its outcomes appended to `finished` as its cases run.
+template <class Stopping>
+UnitState run_unit(const UnitEvaluator& evaluate_unit, const WorkItem& marker, std::span<const WorkItem> cases,
+                   const CasesEvaluator& evaluate, std::size_t row_width, ResultBatch& finished, Stopping stopping) {
+  bool cut = false;
+  const UnitCases run = [&](std::span<const WorkItem> items) -> std::optional<std::span<const CaseOutcome>> {
+    if (cut || stopping()) {
+      cut = true;
+      return std::nullopt;
+    }
+    const std::size_t at = finished.size();
+    for (CaseOutcome& outcome : evaluate_guarded(evaluate, items, row_width)) finished.push_back(std::move(outcome));
+    return std::span<const CaseOutcome>(finished.data() + at, finished.size() - at);
+  };
+  try {
+    evaluate_unit(static_cast<std::int64_t>(marker.argument), cases, run);
+  } catch (...) {
+    return cut ? UnitState::kCut : UnitState::kThrew;
+  }
+  return cut ? UnitState::kCut : UnitState::kWhole;
+}
+
 /// Request, compute, report — with one request always in flight so that the next batch
 /// is on its way while the current one is computed. When the master has nothing ready it
 /// answers "wait": the worker then reports what it computed (an adaptive plan may need it to
@@ -97,11 +124,12 @@ inline ResultBatch evaluate_guarded(const CasesEvaluator& evaluate, std::span<co
 /// A unit batch (is_unit) computed whole is handed to `seal`; what it makes is reported
 /// instead of its outcomes, or, when `keep` keeps it (a remote worker's own file), only its
 /// number and counts. A unit interrupted, or one `seal` declines (nullopt), is
-/// reported case by case.
+/// reported case by case. With `evaluate_unit` (set), a unit is computed by it
+/// (run_unit) instead of case by case.
 inline void worker_loop(MasterLink& link, const CasesEvaluator& evaluate, std::size_t row_width,
                         std::size_t together, const std::atomic<bool>* stop = nullptr,
                         const std::atomic<int>* interrupt = nullptr, const Sealer* seal = nullptr,
-                        const Keeper* keep = nullptr) {
+                        const Keeper* keep = nullptr, const UnitEvaluator* evaluate_unit = nullptr) {
   auto stopping = [stop] { return stop != nullptr && stop->load(); };
   auto interrupted = [interrupt] { return interrupt != nullptr && interrupt->load() != 0; };
   link.request({}, {});
@@ -117,17 +145,30 @@ inline void worker_loop(MasterLink& link, const CasesEvaluator& evaluate, std::s
       const bool unit = is_unit(batch);
       const std::span<const WorkItem> items = std::span<const WorkItem>(batch).subspan(unit ? 1 : 0);
       const std::size_t before = finished.size();
-      for (std::size_t first = 0; first < items.size(); first += together) {
-        if (stopping()) return;
-        if (interrupted()) {
+      bool whole = true;  // the unit ran to its end (false: an evaluate_unit that threw)
+      if (unit && evaluate_unit != nullptr && *evaluate_unit) {
+        const UnitState state = run_unit(*evaluate_unit, batch.front(), items, evaluate, row_width, finished,
+                                         [&] { return stopping() || interrupted(); });
+        if (state == UnitState::kCut) {
+          if (stopping()) return;
           (void)link.receive_batch();  // the prefetched answer: its cases stay not run
           link.finish(std::move(finished), std::move(sealed));
           return;
         }
-        for (CaseOutcome& outcome : evaluate_guarded(evaluate, items.subspan(first, std::min(together, items.size() - first)), row_width))
-          finished.push_back(std::move(outcome));
+        whole = state == UnitState::kWhole;
+      } else {
+        for (std::size_t first = 0; first < items.size(); first += together) {
+          if (stopping()) return;
+          if (interrupted()) {
+            (void)link.receive_batch();  // the prefetched answer: its cases stay not run
+            link.finish(std::move(finished), std::move(sealed));
+            return;
+          }
+          for (CaseOutcome& outcome : evaluate_guarded(evaluate, items.subspan(first, std::min(together, items.size() - first)), row_width))
+            finished.push_back(std::move(outcome));
+        }
       }
-      if (unit && seal != nullptr && *seal) {
+      if (unit && whole && seal != nullptr && *seal) {
         const auto number = static_cast<std::int64_t>(batch.front().argument);
         const std::span<const CaseOutcome> outcomes(finished.data() + before, finished.size() - before);
         if (std::optional<std::vector<char>> bytes = (*seal)(number, outcomes)) {

@@ -2,7 +2,9 @@
 #include "pcrf/run/ida_work.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <span>
 #include <sstream>
 
 #include "pcrf/metrics/case_result.hpp"
@@ -41,12 +43,38 @@ class CollapseRule {
   /// θ_max of a row (NaN when not stored).
   double theta(const std::vector<double>& row) const { return theta_column_ < 0 ? std::nan("") : row[static_cast<std::size_t>(theta_column_)]; }
   int theta_column() const { return theta_column_; }
+  /// True when a verdict depends on θ_max (theta_limit_rad set and stored).
+  bool uses_theta() const { return limit_rad_ > 0.0 && theta_column_ >= 0; }
 
  private:
   double limit_rad_;
   std::vector<std::int8_t> statuses_;
   int theta_column_;
 };
+
+/// Each stored run of curve `c`, in order, up to the first one not stored (a curve's runs are
+/// stored as a prefix: it has at most one run in flight, and a worker searching a whole chunk
+/// reports its curves' runs in order), as add(point, intensity, verdict).
+template <class Add>
+void stored_runs(std::int64_t c, std::int64_t runs, const std::vector<std::int8_t>& status, const std::vector<double>& intensity,
+                 const std::vector<double>* theta, const CollapseRule& rule, Add add) {
+  for (std::int64_t k = 0; k < runs; ++k) {
+    const auto i = static_cast<std::size_t>(c * runs + k);
+    if (status[i] == cube::kStatusNotRun) break;
+    add(static_cast<int>(k), intensity[i], rule(status[i], theta ? (*theta)[i] : std::nan("")));
+  }
+}
+
+/// 1 for each status code schema::unresolved_count counts (the one rule), by code's byte: a
+/// curve's few runs are counted by table, not by that function's pass over every code.
+std::array<std::int64_t, 256> unresolved_codes() {
+  std::array<std::int64_t, 256> table{};
+  for (int code = -128; code < 128; ++code) {
+    const auto s = static_cast<std::int8_t>(code);
+    table[static_cast<std::uint8_t>(s)] = schema::unresolved_count(std::span<const std::int8_t>(&s, 1));
+  }
+  return table;
+}
 
 }  // namespace
 
@@ -62,36 +90,124 @@ std::unique_ptr<ida::IdaCurves> make_ida_curves(const Study& study, const CaseSp
   // Resume: each curve's stored runs, in order, up to the first one not stored (a curve has
   // at most one run in flight, so a killed run leaves no gap before its last stored point).
   const auto& status = writer.status();
+  if (writer.done_count() == 0) return curves;  // a new cube: nothing stored to replay
   const auto intensity = writer.read_values(schema::kIdaIntensity);
-  const auto theta_values = rule.theta_column() < 0 ? std::vector<double>{} : writer.read_values(std::string(metric::theta_max().name));
-  const std::vector<double>* theta = rule.theta_column() < 0 ? nullptr : &theta_values;
+  const auto theta_values = rule.uses_theta() ? writer.read_values(std::string(metric::theta_max().name)) : std::vector<double>{};
+  const std::vector<double>* theta = rule.uses_theta() ? &theta_values : nullptr;
   const auto runs = static_cast<std::int64_t>(space.ida_runs());
-  for (std::int64_t c = 0; c < space.curves(); ++c) {
-    for (std::int64_t k = 0; k < runs; ++k) {
-      const auto i = static_cast<std::size_t>(c * runs + k);
-      if (status[i] == cube::kStatusNotRun) break;
-      curves->replay(static_cast<std::size_t>(c), static_cast<int>(k), intensity[i],
-                   rule(status[i], theta ? (*theta)[i] : std::nan("")));
-    }
-  }
+  for (std::int64_t c = 0; c < space.curves(); ++c)
+    stored_runs(c, runs, status, intensity, theta, rule, [&](int k, double x, ida::RunVerdict verdict) {
+      curves->replay(static_cast<std::size_t>(c), k, x, verdict);
+    });
   return curves;
 }
 
-void store_ida_summaries(const Study& study, const ida::IdaCurves& curves, cube::CubeWriter& writer) {
+std::vector<std::size_t> ida_unit_chunks(const cube::CubeWriter& writer, const std::vector<std::int64_t>& histories,
+                                         const CaseSpace& space, std::int64_t first_curve, std::int64_t last_curve,
+                                         std::size_t least, std::size_t tail) {
+  const auto runs = static_cast<std::int64_t>(space.ida_runs());
+  const auto& grid = writer.grid();
+  const auto& status = writer.status();
+  std::vector<std::size_t> units;
+  for (std::size_t c = 0; c < grid.chunk_count(); ++c) {
+    const auto r = grid.range(c);
+    if (runs <= 0 || r.first % runs != 0 || r.count % runs != 0) continue;  // not whole curves
+    if (r.first < first_curve * runs || r.first + r.count > last_curve * runs) continue;
+    const auto begin = status.begin() + r.first;
+    if (!std::all_of(begin, begin + r.count, [](std::int8_t s) { return s == cube::kStatusNotRun; })) continue;
+    if (std::any_of(histories.begin(), histories.end(), [&](std::int64_t i) { return i >= r.first && i < r.first + r.count; }))
+      continue;
+    units.push_back(c);
+  }
+  if (units.size() < least || units.size() < tail) return {};
+  units.resize(units.size() - tail);
+  return units;
+}
+
+parallel::UnitEvaluator ida_unit_evaluator(const Study& study) {
+  return [settings = study.ida->search(), collapsed = collapse_test(study)](
+             std::int64_t, std::span<const parallel::WorkItem> cases, const parallel::UnitCases& run) {
+    if (cases.empty()) return;
+    // A unit is whole curves (ida_unit_chunks), its cases consecutive: curve c's points are
+    // c · max_runs + k.
+    const std::int64_t first = cases.front().case_index;
+    const std::int64_t end = first + static_cast<std::int64_t>(cases.size());
+    for (std::int64_t c = first / settings.max_runs; c < end / settings.max_runs; ++c) {
+      ida::IdaSearch search(settings);
+      const bool whole = ida::search_curve(search, c, settings.max_runs, [&](std::int64_t index, double intensity) -> std::optional<ida::RunVerdict> {
+        const parallel::WorkItem item{index, intensity};
+        const auto outcome = run(std::span<const parallel::WorkItem>(&item, 1));
+        if (!outcome) return std::nullopt;  // the run is being stopped
+        return collapsed(outcome->front());
+      });
+      if (!whole) return;
+    }
+  };
+}
+
+IdaWork::IdaWork(std::unique_ptr<ida::IdaCurves> curves, std::vector<std::size_t> units, const cube::ChunkGrid& grid)
+    : curves_(std::move(curves)), units_(std::move(units)), grid_(grid) {
+  std::sort(units_.begin(), units_.end());
+  const auto runs = static_cast<std::int64_t>(curves_->max_runs());
+  for (const std::size_t chunk : units_) {
+    const auto r = grid_.range(chunk);
+    for (std::int64_t c = r.first / runs; c < (r.first + r.count) / runs; ++c) curves_->skip(static_cast<std::size_t>(c));
+  }
+}
+
+parallel::WorkBatch IdaWork::take(bool in_process_worker) {
+  if (next_ == units_.size()) return curves_->take(in_process_worker);
+  const std::size_t chunk = units_[next_++];
+  const auto r = grid_.range(chunk);
+  return parallel::unit_range_batch(static_cast<std::int64_t>(chunk), r.first, r.count);
+}
+
+bool IdaWork::in_unit(std::size_t curve) const {
+  if (units_.empty()) return false;
+  const std::size_t chunk = grid_.chunk_of(ida::ida_case(static_cast<std::int64_t>(curve), 0, curves_->max_runs()));
+  return std::binary_search(units_.begin(), units_.end(), chunk);
+}
+
+void store_ida_summaries(const Study& study, const IdaWork& work, cube::CubeWriter& writer, bool final) {
+  const ida::IdaCurves& curves = work.curves();
   std::vector<double> collapse, safe, runs, state, unresolved;
   const double none = std::nan("");  // a curve another shard computes: nothing known here
+  const bool replay = final && work.has_units();
+  if (replay) writer.take_parts();  // the workers' chunks: their statuses join the writer's
   const auto& status = writer.status();
   const auto points = static_cast<std::size_t>(curves.max_runs());
+  // The curves searched by workers, replayed from what is stored (their runs' statuses, in the
+  // cube, its journal or the workers' parts; θ_max only where the collapse rule reads it): the
+  // search the worker made, each run's verdict read back, one curve at a time. The intensities
+  // are the search's own, as the worker's were: no value of the cube is read for them.
+  const CollapseRule rule(study);
+  const std::vector<double> theta = replay && rule.uses_theta() ? writer.read_values(std::string(metric::theta_max().name))
+                                                               : std::vector<double>{};
+  const auto settings = study.ida->search();
+  ida::IdaSearch replayed(settings);
+  const auto unresolved_of = unresolved_codes();
   for (std::size_t c = 0; c < curves.curves(); ++c) {
-    const bool here = !curves.skipped(c);
-    const auto& curve = curves.curve(c);
-    collapse.push_back(here ? curve.collapse_intensity() : none);
-    safe.push_back(here ? curve.last_safe_intensity() : none);
-    runs.push_back(here ? static_cast<double>(curve.runs()) : none);
+    const bool unit = work.in_unit(c);
+    const bool here = unit ? replay : !curves.skipped(c);
+    const ida::IdaSearch* curve = &curves.curve(c);
+    if (unit && replay) {
+      replayed.restart();
+      ida::search_curve(replayed, static_cast<std::int64_t>(c), settings.max_runs,
+                        [&](std::int64_t i, double) -> std::optional<ida::RunVerdict> {
+                          const auto k = static_cast<std::size_t>(i);
+                          if (status[k] == cube::kStatusNotRun) return std::nullopt;  // the curve's last stored run
+                          return rule(status[k], theta.empty() ? std::nan("") : theta[k]);
+                        });
+      curve = &replayed;
+    }
+    collapse.push_back(here ? curve->collapse_intensity() : none);
+    safe.push_back(here ? curve->last_safe_intensity() : none);
+    runs.push_back(here ? static_cast<double>(curve->runs()) : none);
     // A state only once the curve is done: a curve still running is neither.
-    state.push_back(here && curve.done() ? static_cast<double>(curve.state()) : none);
-    const std::span<const std::int8_t> runs_of_curve(status.data() + c * points, points);
-    unresolved.push_back(here ? static_cast<double>(schema::unresolved_count(runs_of_curve)) : none);
+    state.push_back(here && curve->done() ? static_cast<double>(curve->state()) : none);
+    std::int64_t unresolved_runs = 0;
+    for (std::size_t k = 0; here && k < points; ++k) unresolved_runs += unresolved_of[static_cast<std::uint8_t>(status[c * points + k])];
+    unresolved.push_back(here ? static_cast<double>(unresolved_runs) : none);
   }
   writer.store_side(schema::kCollapseIntensity, std::move(collapse));
   writer.store_side(schema::kLastSafeIntensity, std::move(safe));
@@ -101,14 +217,14 @@ void store_ida_summaries(const Study& study, const ida::IdaCurves& curves, cube:
   if (!study.solver.verdict_check) return;
   // The band of intensities whose verdicts failed the perturbation test, per curve.
   const auto stable = writer.read_values(std::string(metric::status_stable().name));
-  const auto intensity = writer.read_values(schema::kIdaIntensity);
+  const auto x = writer.read_values(schema::kIdaIntensity);
   std::vector<double> from(curves.curves(), std::nan("")), to(curves.curves(), std::nan(""));
   for (std::size_t c = 0; c < curves.curves(); ++c)
     for (std::size_t k = 0; k < points; ++k) {
       const std::size_t i = c * points + k;
       if (stable[i] != 0.0) continue;
-      if (!(intensity[i] >= from[c])) from[c] = intensity[i];
-      if (!(intensity[i] <= to[c])) to[c] = intensity[i];
+      if (!(x[i] >= from[c])) from[c] = x[i];
+      if (!(x[i] <= to[c])) to[c] = x[i];
     }
   writer.store_side(schema::kUnstableFrom, std::move(from));
   writer.store_side(schema::kUnstableTo, std::move(to));

@@ -249,18 +249,22 @@ std::int64_t frames_together(const Study& study) { return on_gpu(study) ? kGpuWi
 /// shuffled and deflated (cube::seal_chunk); the writing rank copies its bytes.
 class ChunkSealer {
  public:
-  ChunkSealer(cube::ChunkGrid grid, std::size_t metrics) : grid_(std::move(grid)), metrics_(metrics) {}
+  /// `gaps`: a case of the chunk without an outcome is sealed not run (status not_run, every
+  /// metric NaN: the cube's fill), as an IDA curve's points past its last run are.
+  ChunkSealer(cube::ChunkGrid grid, std::size_t metrics, bool gaps = false)
+      : grid_(std::move(grid)), metrics_(metrics), gaps_(gaps) {}
 
-  /// nullopt (the cases then go back one by one) unless `outcomes` are every case of the chunk once.
+  /// nullopt (the cases then go back one by one) unless `outcomes` are every case of the chunk
+  /// once (with gaps: cases of the chunk, each at most once).
   std::optional<std::vector<char>> operator()(std::int64_t unit, std::span<const parallel::CaseOutcome> outcomes) const {
     if (unit < 0 || static_cast<std::size_t>(unit) >= grid_.chunk_count()) return std::nullopt;
     const auto chunk = static_cast<std::size_t>(unit);
     const auto r = grid_.range(chunk);
     const auto count = static_cast<std::size_t>(r.count);
-    if (outcomes.size() != count) return std::nullopt;
-    std::vector<std::int8_t> status(count);
+    if (gaps_ ? outcomes.size() > count : outcomes.size() != count) return std::nullopt;
+    std::vector<std::int8_t> status(count, gaps_ ? cube::kStatusNotRun : std::int8_t{0});
     std::vector<char> seen(count, 0);
-    std::vector<double> values(metrics_ * count);
+    std::vector<double> values(metrics_ * count, gaps_ ? std::nan("") : 0.0);
     std::vector<std::pair<std::int64_t, std::string>> notes;
     for (const parallel::CaseOutcome& outcome : outcomes) {
       const std::int64_t k = outcome.case_index - r.first;
@@ -277,6 +281,7 @@ class ChunkSealer {
  private:
   cube::ChunkGrid grid_;
   std::size_t metrics_;
+  bool gaps_;
 };
 
 /// A rank's own part of the cube (issue 38; cube_part.hpp): each unit its worker sealed (a
@@ -359,7 +364,10 @@ void keep_rank0_part(parallel::ScheduleOptions& schedule, const cube::CubeWriter
 parallel::ScheduleOptions schedule_options(const Study& study, const CaseRunner& runner, const std::atomic<int>* stop_signal,
                                            const cube::ChunkGrid& grid) {
   parallel::ScheduleOptions options;
-  options.seal = ChunkSealer(grid, runner.row_width());
+  // An IDA's chunks handed out whole are searched curve by curve on the worker (ida_work.hpp);
+  // the points a curve never runs stay not run.
+  options.seal = ChunkSealer(grid, runner.row_width(), study.ida.has_value());
+  if (study.ida) options.evaluate_unit = ida_unit_evaluator(study);
   options.row_width = runner.row_width();
   options.fixed_batch = study.run.batch_size;
   options.interrupt = stop_signal;
@@ -399,9 +407,11 @@ class ResultSink {
       }
       cube::SealedChunk chunk = cube::sealed_from_bytes(unit.bytes, writer_.grid(), metrics_, "a worker's message");
       std::vector<char>().swap(unit.bytes);
-      std::int64_t failed = 0;
-      for (const std::int8_t s : chunk.status) failed += is_failure(static_cast<CaseStatus>(s)) ? 1 : 0;
-      const auto cases = static_cast<std::int64_t>(chunk.status.size());
+      std::int64_t failed = 0, cases = 0;  // an IDA chunk's points never run are no cases computed
+      for (const std::int8_t s : chunk.status) {
+        failed += is_failure(static_cast<CaseStatus>(s)) ? 1 : 0;
+        cases += s != cube::kStatusNotRun ? 1 : 0;
+      }
       writer_.store_sealed(std::move(chunk));
       meter_.add(cases, failed);
     }
@@ -474,15 +484,14 @@ class ResultSink {
   void on_error(std::function<void()> stop) { stop_ = std::move(stop); }
 
  private:
-  /// Every chunk a worker said it kept in its part is in the closed cube (each of its cases
-  /// done, counted per chunk): a part rank 0 could not see (a folder not shared between the
-  /// nodes) is a failed write, never a success.
+  /// Every chunk a worker said it kept in its part is in the closed cube (cases of it done,
+  /// counted per chunk; an IDA's chunk may hold runs never run): a part rank 0 could not see
+  /// (a folder not shared between the nodes) is a failed write, never a success.
   void check_kept() {
     if (!error_.empty()) return;
     std::size_t missing = 0;
     for (const std::size_t chunk : kept_)
-      if (chunk >= writer_.grid().chunk_count() || writer_.chunk_done(chunk) != writer_.grid().range(chunk).count)
-        ++missing;
+      if (chunk >= writer_.grid().chunk_count() || writer_.chunk_done(chunk) == 0) ++missing;
     if (missing == 0) return;
     error_ = cube_ + ": " + std::to_string(missing) + " of the " + std::to_string(kept_.size()) +
              " chunks that workers kept in their ranks' parts (" + cube_ + ".part-<rank>) were not found there by rank 0 "
@@ -742,15 +751,24 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
   // The cases come from the IDA's search, or from the list of cases not done yet.
   std::unique_ptr<parallel::WorkSource> work;
   std::function<void()> before_flush;
+  bool finishing = false;  // every result is back: the IDA's summaries of its whole chunks are due
   if (p.study.ida) {
-    auto ida = make_ida_curves(p.study, *p.space, *m.writer, parallel::worker_count(mpi.comm()));
+    const int workers = parallel::worker_count(mpi.comm());
+    auto ida = make_ida_curves(p.study, *p.space, *m.writer, workers);
     const auto [first, last] = shard_range(p.space->curves(), options.shard_index, options.shard_count);
     for (std::int64_t c = 0; c < p.space->curves(); ++c)
       if (c < first || c >= last) ida->skip(static_cast<std::size_t>(c));
-    before_flush = [&study = p.study, curves = ida.get(), writer = m.writer.get()] {
-      store_ida_summaries(study, *curves, *writer);
+    // Whole chunks by the rule of every plan's (whole_chunks); --batch-size keeps every run apart.
+    auto units = p.study.run.batch_size > 0
+                     ? std::vector<std::size_t>{}
+                     : ida_unit_chunks(*m.writer, m.checked.history_cases, *p.space, first, last,
+                                       kUnitsPerWorker * static_cast<std::size_t>(std::max(workers, 1)) + kTailChunks,
+                                       kTailChunks);
+    auto ida_work = std::make_unique<IdaWork>(std::move(ida), std::move(units), m.writer->grid());
+    before_flush = [&study = p.study, work = ida_work.get(), writer = m.writer.get(), &finishing] {
+      store_ida_summaries(study, *work, *writer, finishing);
     };
-    work = std::move(ida);
+    work = std::move(ida_work);
   } else {
     const int workers = parallel::worker_count(mpi.comm());
     auto units = whole_chunks(*m.writer, history_requests, p.study, *p.space, workers, options);
@@ -796,6 +814,7 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
                        });
   const std::size_t notes_said = m.writer->resume_notes().size();  // prepare_master said these
   schedule.keep = nullptr;  // rank 0's part closed: the last fold takes it in
+  finishing = true;
   sink.close();
   for (std::size_t n = notes_said; n < m.writer->resume_notes().size(); ++n) say_note(options, m.writer->resume_notes()[n]);
   meter.finish(m.output.string());

@@ -184,7 +184,7 @@ class JournalReader {
  private:
   JournalReader(std::filesystem::path file, const CubeLayout& layout, bool verify_checksums = true);
   void index(bool part);
-  void check_statuses(std::size_t record, const std::int8_t* status, std::size_t n) const;
+  void check_statuses(std::size_t record, const std::int8_t* status, std::size_t n, bool sealed = false) const;
   bool names(std::int8_t code) const;
   std::size_t sealed_chunk_of(std::size_t record) const;
   std::vector<std::pair<std::int64_t, std::string>> notes_of(std::size_t record) const;

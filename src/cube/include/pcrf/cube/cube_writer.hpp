@@ -127,7 +127,7 @@ class CubeWriter {
   /// Cases of chunk `chunk` (grid()) done.
   std::int64_t chunk_done(std::size_t chunk) const { return statuses_.chunk_done(chunk); }
   /// A metric of every case (NaN where not computed): the last checkpoint's values with
-  /// those stored since laid over them. Reads the whole variable: meant for small cubes
+  /// those stored since, and the chunks of the parts taken (take_parts, --resume), laid over them. Reads the whole variable: meant for small cubes
   /// (an IDA's). \throws CubeError for an unknown metric.
   std::vector<double> read_values(const std::string& metric) const;
   /// Memory held by the values stored since the last checkpoint [bytes].
@@ -158,6 +158,12 @@ class CubeWriter {
   void append();
   /// A checkpoint that folds the journal and what changed into the cube, and removes the journal.
   void fold();
+  /// Takes the ranks' parts beside the cube (this run's workers') now, as close() does: their
+  /// chunks' statuses join status() at once (each case's, read from the part; close() alone
+  /// counts them chunk by chunk as it writes them), read_values() reads their values, and the
+  /// next fold puts them in. For a producer whose side variables are derived from every result (an IDA's
+  /// summaries of the curves its workers searched), before close().
+  void take_parts();
   /// fold() and close: the ranks' parts beside the cube (this run's workers') go in with the
   /// fold, read from their files chunk by chunk (a part that does not fit the cube is set
   /// aside, noted in resume_notes()), and are removed after it; their statuses join status()

@@ -13,12 +13,34 @@
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "pcrf/parallel/work_source.hpp"
 #include "pcrf/ida/ida_search.hpp"
 
 namespace pcrf::ida {
+
+/// The case of point `point` (the point-th run) of curve `curve`: curve · max_runs + point.
+inline std::int64_t ida_case(std::int64_t curve, std::int64_t point, int max_runs) {
+  return curve * max_runs + point;
+}
+
+/// Runs the search of curve `curve` on from where `search` stands to its end, each run by
+/// `run` (its case and intensity -> its verdict, nullopt: stop here), in order: what a worker
+/// handed the curves of a chunk whole does (the runs of a curve are sequential: each depends
+/// on the last), the same search as IdaCurves makes curve by curve; and, with the stored
+/// verdicts as `run`, the replay of a curve from what a cube holds (the intensities are the
+/// search's own). Returns false when `run` stopped it.
+template <class Run>
+bool search_curve(IdaSearch& search, std::int64_t curve, int max_runs, Run run) {
+  for (std::optional<double> x = search.next(); x; x = search.next()) {
+    const std::optional<RunVerdict> verdict = run(ida_case(curve, search.runs(), max_runs), *x);
+    if (!verdict) return false;
+    search.add(*x, *verdict);
+  }
+  return true;
+}
 
 class IdaCurves final : public parallel::WorkSource {
  public:

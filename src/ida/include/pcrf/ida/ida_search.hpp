@@ -67,6 +67,9 @@ class IdaSearch {
  public:
   explicit IdaSearch(const IdaSearchSettings& settings);
 
+  /// Forgets every run (the search starts anew, its memory kept: a replay of many curves).
+  void restart() { runs_.clear(); }
+
   /// Intensity of the next run; nullopt when the curve is done.
   std::optional<double> next() const;
   /// Records the verdict of a run at `intensity` (normally next()).

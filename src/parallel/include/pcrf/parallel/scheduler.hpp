@@ -48,6 +48,21 @@ using Sealer = std::function<std::optional<std::vector<char>>(std::int64_t unit,
 /// its cases failed (reported with it). nullopt: not kept, the bytes travel as before.
 using Keeper = std::function<std::optional<std::int64_t>(std::int64_t unit, const std::vector<char>& bytes)>;
 
+/// Worker: what a UnitEvaluator computes cases with. Computes `items` as the worker's
+/// evaluator does (a throw becomes a kEvaluatorThrew outcome) and returns their outcomes
+/// (valid until the next call), or nullopt once the run is being stopped (an interrupt, a
+/// failing master): the unit evaluator then returns at once, and the cases it ran are
+/// reported one by one.
+using UnitCases = std::function<std::optional<std::span<const CaseOutcome>>(std::span<const WorkItem> items)>;
+
+/// Worker: computes a unit itself instead of its listed cases one by one, for a plan whose
+/// cases within a unit depend on each other's results (an IDA's curves of one chunk of the
+/// cube: which run a curve makes next depends on its last one). `cases` lists the unit's
+/// cases (arguments 0); the evaluator runs those it chooses, with the arguments it chooses,
+/// through `run`. The cases it never runs stay not run: the sealer must allow them.
+/// Should not throw: if it does anyway, the cases it ran are reported one by one.
+using UnitEvaluator = std::function<void(std::int64_t unit, std::span<const WorkItem> cases, const UnitCases& run)>;
+
 /// Master thread: receives the sealed units as they arrive.
 using SealedHandler = std::function<void(SealedUnits&&)>;
 
@@ -73,6 +88,10 @@ struct ScheduleOptions {
   Keeper keep;
   /// Master: receives what workers sealed (must be set when the work source hands out units).
   SealedHandler on_sealed;
+  /// Workers: computes each unit itself (null: a unit's listed cases are evaluated one by
+  /// one). A unit so computed may report fewer cases than it was handed (SealedUnit::cases:
+  /// those it ran); the master counts the unit back whole.
+  UnitEvaluator evaluate_unit;
 };
 
 /// Rank 0. Returns when `work` is exhausted, every case handed out has come back and every
