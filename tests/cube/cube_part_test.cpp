@@ -373,6 +373,25 @@ TEST(CubePart, RankZerosPartGoesInAndAChunkOfOneCodeIsCountedWhole) {
   EXPECT_EQ(count_of(writer.status_counts(), 3), overturned_in_1 + 7232);
 }
 
+// take_parts (a producer that reads every result before the last fold: an IDA's replay) counts
+// the parts' statuses at once, each case's; close() then writes them without counting again.
+TEST(CubePart, TakenPartsCountTheirStatusesAtOnce) {
+  const auto dir = test::scratch_dir("part_take");
+  const auto file = dir / "c.h5";
+  CubeWriter writer(file, part_layout(), OpenMode::kCreate);
+  PartWriter(part_path(file, 0), writer.part_header()).add(sealed_of(writer.grid(), 1));  // mixed
+  PartWriter(part_path(file, 1), writer.part_header()).add(sealed_of(writer.grid(), 0, 0));
+  writer.take_parts();
+  EXPECT_EQ(writer.done_count(), 2 * 16384);
+  for (std::int64_t i = 0; i < 2 * 16384; ++i)
+    ASSERT_EQ(writer.status()[static_cast<std::size_t>(i)], i < 16384 ? 0 : status_of(i)) << i;
+  EXPECT_EQ(writer.read_values("theta_max_rad")[16384 + 5], row_of(16384 + 5)[0]);
+  writer.close();
+  EXPECT_EQ(writer.done_count(), 2 * 16384);
+  EXPECT_EQ(writer.status(), CubeReader(file).read_status());
+  EXPECT_EQ(writer.status_counts(), count_statuses(writer.status()));
+}
+
 // At the run's end the writer counts what the cube receives: a record whose status variable
 // says one code for every case while its statuses (its head) say otherwise is counted as its
 // variable, which is what is written; a mixed record with a code the cube's flags do not name
