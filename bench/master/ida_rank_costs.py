@@ -18,18 +18,14 @@ instructions and with Open MPI's progress and polling left out (rank_costs.MPI_O
 every thread's marginal instructions per result.
 """
 import argparse
-import glob
 import os
-import re
-import subprocess
 import sys
 import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.dirname(HERE))
-from nonlift_cost import ENV, function_costs  # noqa: E402
-from rank_costs import MPI_OBJECTS  # noqa: E402 (one list of what is MPI's)
+from rank_costs import profile_run  # noqa: E402 (one profiler, one parser)
 
 CURVES_PER_CHUNK = 4096  # 16 384 cases of 4 points
 RUNS_PER_CURVE = 3
@@ -47,30 +43,6 @@ def write_study(folder, curves):
     return path
 
 
-def profile(pcrf, ranks, study, folder, tag):
-    """{(rank, thread): (all, MPI left out)} instructions, and the runs the study computed."""
-    out = os.path.join(folder, f"{tag}.%q{{OMPI_COMM_WORLD_RANK}}")
-    command = ["valgrind", "--tool=callgrind", "--separate-threads=yes", f"--callgrind-out-file={out}", pcrf, "study",
-               study, "-o", os.path.join(folder, "cube.h5"), "--overwrite", "--progress-interval", "0"]
-    if ranks > 1:
-        command = ["mpirun", "--oversubscribe", "-n", str(ranks)] + command
-    env = dict(ENV, OMPI_COMM_WORLD_RANK=ENV.get("OMPI_COMM_WORLD_RANK", "0"))
-    done = subprocess.run(command, capture_output=True, text=True, env=env)
-    if done.returncode != 0:
-        sys.exit(f"ida_rank_costs: {' '.join(command)} failed:\n{done.stderr[-3000:]}")
-    said = re.search(r"(\d+) cases computed", done.stderr)
-    counts = {}
-    for path in glob.glob(os.path.join(folder, f"{tag}.*")):
-        match = re.search(r"\.(\d+)-(\d+)$", path)
-        if not match:
-            continue
-        costs = function_costs(path)
-        own = sum(c for (obj, _), c in costs.items() if not MPI_OBJECTS.search(obj))
-        counts[(int(match.group(1)), int(match.group(2)))] = (sum(costs.values()), own)
-        os.remove(path)
-    return counts, int(said.group(1)) if said else None
-
-
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--pcrf", default=os.path.join(HERE, "..", "..", "build", "pcrf"))
@@ -80,7 +52,7 @@ def main():
     pcrf = os.path.abspath(args.pcrf)
     sizes = [n * CURVES_PER_CHUNK for n in args.chunks]
     with tempfile.TemporaryDirectory() as folder:
-        runs = [profile(pcrf, args.ranks, write_study(folder, n), folder, f"cg{n}") for n in sizes]
+        runs = [profile_run(pcrf, args.ranks, write_study(folder, n), folder, f"cg{n}")[::2] for n in sizes]
     for (_, computed), curves in zip(runs, sizes):
         if computed != curves * RUNS_PER_CURVE:
             sys.exit(f"ida_rank_costs: {curves} curves computed {computed} runs, not {curves * RUNS_PER_CURVE}")

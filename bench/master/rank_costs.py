@@ -80,9 +80,10 @@ def inclusive_phases(path):
 
 
 def profile_run(pcrf, ranks, study, folder, tag, keep=None):
-    """Runs the study under callgrind on every rank; returns {(rank, thread): (all, own)} counts
-    and rank 0's main thread's PHASES. `keep` (a folder): rank 0's main thread's profile is
-    copied there (for callgrind_annotate)."""
+    """Runs the study under callgrind on every rank; returns {(rank, thread): (all, own, works)}
+    counts, rank 0's main thread's PHASES and the cases the study said it computed (None when it
+    did not say). `keep` (a folder): rank 0's main thread's profile is copied there (for
+    callgrind_annotate)."""
     out = os.path.join(folder, f"{tag}.%q{{OMPI_COMM_WORLD_RANK}}")
     valgrind = ["valgrind", "--tool=callgrind", "--separate-threads=yes", f"--callgrind-out-file={out}"]
     command = valgrind + [pcrf, "study", study, "-o", os.path.join(folder, "cube.h5"), "--overwrite",
@@ -108,7 +109,8 @@ def profile_run(pcrf, ranks, study, folder, tag, keep=None):
         works = any(CASE_FUNCTIONS.search(fn) for (_, fn) in costs)
         counts[(int(match.group(1)), int(match.group(2)))] = (total, own, works)
         os.remove(path)
-    return counts, phases
+    said = re.search(r"(\d+) cases computed", done.stderr)
+    return counts, phases, int(said.group(1)) if said else None
 
 
 def main():
@@ -131,7 +133,7 @@ def main():
                 for n in (small, large)]
     phases = {p: (runs[1][1][p] - runs[0][1][p]) / (large - small) for p in PHASES}
     run_alone = (runs[1][1]["run"] + runs[1][1]["assembly"]) / large  # the run's fixed costs (its tail) included
-    runs = [counts for counts, _ in runs]
+    runs = [counts for counts, _, _ in runs]
     keys = sorted(set(runs[0]) & set(runs[1]))
     per_case = {k: tuple((runs[1][k][i] - runs[0][k][i]) / (large - small) for i in (0, 1)) for k in keys}
     works = {k for k in keys if runs[1][k][2]}  # threads that computed cases in the larger run

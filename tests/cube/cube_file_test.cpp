@@ -10,6 +10,7 @@
 #include "pcrf/cube/cube_query.hpp"
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/cube/cube_writer.hpp"
+#include "chunk_tiling.hpp"
 #include "support/test_support.hpp"
 
 namespace pcrf::cube {
@@ -19,23 +20,7 @@ TEST(ChunkGrid, ChunksAreContiguousRangesThatCoverTheCubeOnce) {
   for (const auto& [shape, target] : std::vector<std::pair<std::vector<std::size_t>, std::size_t>>{
            {{3, 4, 5}, 7}, {{13, 1, 9, 1, 1, 1, 1, 1, 1, 11}, 40}, {{2, 3}, 1000}, {{5}, 2}, {{1, 1, 100}, 30}}) {
     const ChunkGrid grid(shape, target);
-    std::int64_t next = 0;
-    for (std::size_t c = 0; c < grid.chunk_count(); ++c) {
-      const auto r = grid.range(c);
-      EXPECT_EQ(r.first, next);
-      std::int64_t volume = 1;
-      for (std::size_t d = 0; d < shape.size(); ++d) {
-        volume *= static_cast<std::int64_t>(r.extent[d]);
-        EXPECT_LE(r.extent[d], grid.chunk_shape()[d]);
-      }
-      EXPECT_EQ(volume, r.count);
-      EXPECT_EQ(unravel(r.first, shape), r.start);
-      for (std::int64_t i = r.first; i < r.first + r.count; ++i) EXPECT_EQ(grid.chunk_of(i), c);
-      next += r.count;
-    }
-    std::int64_t total = 1;
-    for (auto n : shape) total *= static_cast<std::int64_t>(n);
-    EXPECT_EQ(next, total);
+    expect_tiles(grid, shape);
   }
 }
 

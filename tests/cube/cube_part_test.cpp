@@ -20,6 +20,7 @@
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/cube/cube_writer.hpp"
 #include "pcrf/cube/sealed_chunk.hpp"
+#include "case_axis_layout.hpp"
 #include "support/test_support.hpp"
 
 namespace pcrf::cube {
@@ -29,17 +30,7 @@ namespace fs = std::filesystem;
 
 constexpr std::int64_t kCases = 40000;  // chunks of 16 384, 16 384 and 7 232 (an edge chunk)
 
-CubeLayout part_layout() {
-  CubeLayout l;
-  l.dimensions = {{"case", static_cast<std::size_t>(kCases)}};
-  Coordinate index{"case", "case", "", "", {}, {}, false, true};
-  for (std::int64_t i = 0; i < kCases; ++i) index.numbers.push_back(static_cast<double>(i));
-  l.coordinates = {index};
-  l.metrics = {{"theta_max_rad", "rad", ""}, {"impacts", "1", ""}};
-  l.status_flags = {{0, "at_rest"}, {3, "overturned"}};
-  l.attributes = {{kFingerprintName, std::string("part-test")}};
-  return l;
-}
+CubeLayout part_layout() { return case_axis_layout(kCases, "part-test"); }
 
 std::vector<double> row_of(std::int64_t i) { return {1e-5 * static_cast<double>(i), static_cast<double>(i % 7)}; }
 std::int8_t status_of(std::int64_t i) { return i % 11 == 0 ? 3 : 0; }

@@ -17,6 +17,7 @@
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/cube/cube_writer.hpp"
 #include "pcrf/cube/sealed_chunk.hpp"
+#include "case_axis_layout.hpp"
 #include "support/test_support.hpp"
 
 namespace pcrf::cube {
@@ -26,17 +27,7 @@ namespace fs = std::filesystem;
 
 constexpr std::int64_t kCases = 40000;  // chunks of 16 384, 16 384 and 7 232
 
-CubeLayout gaps_layout() {
-  CubeLayout l;
-  l.dimensions = {{"case", static_cast<std::size_t>(kCases)}};
-  Coordinate index{"case", "case", "", "", {}, {}, false, true};
-  for (std::int64_t i = 0; i < kCases; ++i) index.numbers.push_back(static_cast<double>(i));
-  l.coordinates = {index};
-  l.metrics = {{"theta_max_rad", "rad", ""}, {"impacts", "1", ""}};
-  l.status_flags = {{0, "at_rest"}, {3, "overturned"}};
-  l.attributes = {{kFingerprintName, std::string("gaps-test")}};
-  return l;
-}
+CubeLayout gaps_layout() { return case_axis_layout(kCases, "gaps-test"); }
 
 /// Case i is run unless i % 4 == 3 (a curve of four points whose last is never run).
 bool run_case(std::int64_t i) { return i % 4 != 3; }

@@ -149,12 +149,8 @@ TEST_F(IdaUnits, ARunStoppedBySigtermInsideAChunkResumesToTheSameCube) {
   const pid_t pid = spawn_shell("cd " + quoted(dir_) + " && exec " + pcrf() +
                                 " study u.toml -o sig.h5 --flush-interval-s 1000 --progress-interval-s 0.02 2>" + quoted(err));
   ASSERT_GT(pid, 0);
-  wait_for_a_tenth(err);
-  ASSERT_EQ(::kill(pid, SIGTERM), 0);
-  int wstatus = 0;
-  ::waitpid(pid, &wstatus, 0);
-  ASSERT_TRUE(WIFEXITED(wstatus));
-  ASSERT_EQ(WEXITSTATUS(wstatus), 128 + SIGTERM) << "the study finished before the signal: make it longer\n" << text_of(err);
+  ASSERT_EQ(stop_after_a_tenth(pid, err), 128 + SIGTERM) << "the study finished before the signal: make it longer\n"
+                                                         << text_of(err);
   {
     const auto status = cube::CubeReader(dir_ / "sig.h5").read_status();
     const auto reference = cube::CubeReader(dir_ / "runs.h5").read_status();

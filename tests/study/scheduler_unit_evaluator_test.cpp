@@ -9,6 +9,7 @@
 #include <map>
 #include <set>
 #include <stdexcept>
+#include <utility>
 
 #include "pcrf/parallel/mpi_session.hpp"
 #include "pcrf/parallel/scheduler.hpp"
@@ -62,6 +63,23 @@ Sealer listing() {
   };
 }
 
+/// Runs `work` on rank 0 alone: the units that came back sealed, and the cases reported one
+/// by one (their rows' first values).
+std::pair<std::set<std::int64_t>, std::map<std::int64_t, double>> run_units(const MpiSession& mpi, Ranges& work,
+                                                                          ScheduleOptions options) {
+  std::set<std::int64_t> sealed;
+  options.on_sealed = [&](SealedUnits&& units) {
+    for (auto& u : units) sealed.insert(u.unit);
+  };
+  std::map<std::int64_t, double> one_by_one;
+  run_master(mpi.comm(), work, options, square,
+             [&](ResultBatch&& batch) {
+               for (const auto& o : batch) one_by_one[o.case_index] = o.row[0];
+             },
+             [] {});
+  return {sealed, one_by_one};
+}
+
 TEST(UnitEvaluator, AUnitRunsTheCasesItsEvaluatorChoosesEachAfterTheOneBefore) {
   MpiSession mpi;
   Ranges work;
@@ -98,16 +116,7 @@ TEST(UnitEvaluator, AStopInsideAUnitReportsTheCasesItRanOneByOne) {
   options.interrupt = &interrupt;
   options.seal = listing();
   options.evaluate_unit = chain(&interrupt, &interrupt);
-  std::set<std::int64_t> sealed;
-  options.on_sealed = [&](SealedUnits&& units) {
-    for (auto& u : units) sealed.insert(u.unit);
-  };
-  std::map<std::int64_t, double> one_by_one;
-  run_master(mpi.comm(), work, options, square,
-             [&](ResultBatch&& batch) {
-               for (const auto& o : batch) one_by_one[o.case_index] = o.row[0];
-             },
-             [] {});
+  const auto [sealed, one_by_one] = run_units(mpi, work, options);
   EXPECT_EQ(sealed, (std::set<std::int64_t>{0, 1}));
   // Unit 2 stopped before its third run: its first two, as they ran, and nothing after.
   EXPECT_EQ(one_by_one, (std::map<std::int64_t, double>{{20, 1.0}, {21, 4.0}}));
@@ -126,16 +135,7 @@ TEST(UnitEvaluator, AnEvaluatorThatThrowsLosesNoneOfTheCasesItRan) {
     (void)run(std::span<const WorkItem>(&item, 1));
     throw std::runtime_error("the evaluator's own failure");
   };
-  std::set<std::int64_t> sealed;
-  options.on_sealed = [&](SealedUnits&& units) {
-    for (auto& u : units) sealed.insert(u.unit);
-  };
-  std::map<std::int64_t, double> one_by_one;
-  run_master(mpi.comm(), work, options, square,
-             [&](ResultBatch&& batch) {
-               for (const auto& o : batch) one_by_one[o.case_index] = o.row[0];
-             },
-             [] {});
+  const auto [sealed, one_by_one] = run_units(mpi, work, options);
   EXPECT_EQ(sealed, (std::set<std::int64_t>{0, 1, 2, 4, 5})) << "the worker goes on after the unit that threw";
   EXPECT_EQ(one_by_one, (std::map<std::int64_t, double>{{30, 49.0}}));
 }

@@ -458,12 +458,7 @@ TEST(StudyCommand, SigtermFlushesAndSaysHowToResume) {
                               " -o sig.h5 --flush-interval-s 1000 --progress-interval-s 0.05 2>" + quoted(err);
   const pid_t pid = spawn_shell(command);
   ASSERT_GT(pid, 0);
-  wait_for_a_tenth(err);
-  ASSERT_EQ(::kill(pid, SIGTERM), 0);
-  int wstatus = 0;
-  ::waitpid(pid, &wstatus, 0);
-  ASSERT_TRUE(WIFEXITED(wstatus));
-  EXPECT_EQ(WEXITSTATUS(wstatus), 128 + SIGTERM);
+  EXPECT_EQ(stop_after_a_tenth(pid, err), 128 + SIGTERM);
   std::ifstream in(err);
   std::stringstream text_err;
   text_err << in.rdbuf();

@@ -20,6 +20,8 @@
 #include <vector>
 
 #include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
 #include <spawn.h>
 
 #include "pcrf/cube/cube_reader.hpp"
@@ -67,6 +69,16 @@ inline void wait_for_a_tenth(const std::filesystem::path& err) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
     progress = last_progress(err);
   }
+}
+
+/// Sends SIGTERM to `pid` once `err`'s progress lines report a tenth of the cases done, and
+/// waits for it: its exit code, or -1 when it did not exit (a crash).
+inline int stop_after_a_tenth(pid_t pid, const std::filesystem::path& err) {
+  wait_for_a_tenth(err);
+  if (::kill(pid, SIGTERM) != 0) return -1;
+  int wstatus = 0;
+  ::waitpid(pid, &wstatus, 0);
+  return WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : -1;
 }
 
 inline std::string pcrf() { return "'" + test::pcrf_executable().string() + "'"; }
