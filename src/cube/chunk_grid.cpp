@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <string>
 
 #include "pcrf/cube/cube_layout.hpp"
 
@@ -79,6 +80,20 @@ std::size_t ChunkGrid::chunk_of(std::int64_t index) const {
   const std::size_t outer = i / (shape_[split_] * inner_);
   const std::size_t along = (i / inner_) % shape_[split_];
   return outer * pieces_ + along / chunk_[split_];
+}
+
+ChunkSpan chunk_span(const ChunkGrid& grid, std::size_t first_chunk, std::size_t end_chunk) {
+  if (first_chunk > end_chunk || end_chunk > grid.chunk_count())
+    throw std::out_of_range("chunks [" + std::to_string(first_chunk) + ", " + std::to_string(end_chunk) +
+                            ") are outside the cube's " + std::to_string(grid.chunk_count()));
+  ChunkSpan span;
+  for (std::size_t c = first_chunk; c < end_chunk; ++c) {
+    const auto r = grid.range(c);
+    if (c == first_chunk) span.first = r.first;
+    if (r.first != span.first + span.count) throw std::logic_error("chunk " + std::to_string(c) + " does not follow the one before it");
+    span.count += r.count;
+  }
+  return span;
 }
 
 ChunkGrid::Range ChunkGrid::range(std::size_t chunk) const {

@@ -102,6 +102,14 @@ struct CubeReader::Impl {
     }
   }
   Coordinate read_coordinate(const std::string& name, const std::vector<Dimension>& dimensions) const;
+  /// chunk_span, its errors naming this file.
+  ChunkSpan span_of(const ChunkGrid& grid, std::size_t first_chunk, std::size_t end_chunk) const {
+    try {
+      return chunk_span(grid, first_chunk, end_chunk);
+    } catch (const std::exception& e) {
+      throw CubeError(what(e.what()));
+    }
+  }
 };
 
 namespace {
@@ -251,6 +259,31 @@ std::vector<double> CubeReader::read_metric(const std::string& name) const {
   std::vector<double> values(static_cast<std::size_t>(layout_.case_count()));
   h5::check(H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
             impl_->what("cannot read '" + name + "'"));
+  return values;
+}
+
+std::vector<double> CubeReader::read_metric_chunks(const std::string& name, const ChunkGrid& grid, std::size_t first_chunk,
+                                                   std::size_t end_chunk) const {
+  const bool known = std::any_of(layout_.metrics.begin(), layout_.metrics.end(),
+                                 [&](const MetricVariable& m) { return m.name == name; });
+  if (!known) throw CubeError(impl_->what("has no metric '" + name + "'"));
+  if (grid.shape() != layout_.shape()) throw CubeError(impl_->what("is read with a chunk grid of another shape"));
+  const ChunkSpan span = impl_->span_of(grid, first_chunk, end_chunk);
+  auto d = impl_->open_checked(name, {H5T_FLOAT}, to_hsize(layout_.shape()), sizeof(double));
+  std::vector<double> values(static_cast<std::size_t>(span.count));
+  const std::string problem = impl_->what("cannot read '" + name + "'");
+  for (std::size_t c = first_chunk; c < end_chunk; ++c) {
+    const auto r = grid.range(c);
+    const auto start = to_hsize(r.start);
+    const auto extent = to_hsize(r.extent);
+    const auto count = static_cast<hsize_t>(r.count);
+    auto memory = h5::space(H5Screate_simple(1, &count, nullptr), problem);
+    auto selection = h5::space(H5Dget_space(d), problem);
+    h5::check(H5Sselect_hyperslab(selection, H5S_SELECT_SET, start.data(), nullptr, extent.data(), nullptr), problem);
+    h5::check(H5Dread(d, H5T_NATIVE_DOUBLE, memory, selection, H5P_DEFAULT,
+                      values.data() + static_cast<std::size_t>(r.first - span.first)),
+              problem);
+  }
   return values;
 }
 

@@ -565,37 +565,57 @@ void CubeWriter::Impl::read_part(const std::filesystem::path& part, StatusBook& 
 }
 
 std::vector<double> CubeWriter::read_values(const std::string& metric) const {
+  return read_values(metric, 0, impl_->grid.chunk_count());
+}
+
+/// The file's values of chunks [first_chunk, end_chunk), then, restricted to those chunks, the
+/// journal's records, the taken parts' chunks and the pending ones laid over them, as a fold
+/// would: each overlay is the one read_values() of the whole cube applies.
+std::vector<double> CubeWriter::read_values(const std::string& metric, std::size_t first_chunk, std::size_t end_chunk) const {
   const auto& metrics = impl_->layout.metrics;
   const auto m = static_cast<std::size_t>(
       std::find_if(metrics.begin(), metrics.end(), [&](const MetricVariable& v) { return v.name == metric; }) -
       metrics.begin());
   if (m == metrics.size()) throw CubeError(impl_->what("has no metric '" + metric + "'"));
-  std::vector<double> values = impl_->on_disk ? CubeReader(impl_->path).read_metric(metric)
-                                              : std::vector<double>(statuses_.codes().size(), kNaN);
-  const std::size_t padded = padded_elements(impl_->grid);
+  const auto& grid = impl_->grid;
+  ChunkSpan span;
+  try {
+    span = chunk_span(grid, first_chunk, end_chunk);
+  } catch (const std::exception& e) {
+    throw CubeError(impl_->what(e.what()));
+  }
+  std::vector<double> values = impl_->on_disk ? CubeReader(impl_->path).read_metric_chunks(metric, grid, first_chunk, end_chunk)
+                                              : std::vector<double>(static_cast<std::size_t>(span.count), kNaN);
+  const auto in_range = [&](std::size_t chunk) { return chunk >= first_chunk && chunk < end_chunk; };
+  const auto at = [&](std::size_t chunk) { return static_cast<std::size_t>(grid.range(chunk).first - span.first); };
+  const std::size_t padded = padded_elements(grid);
   auto lay_sealed = [&](const SealedChunk& c) {
-    const auto r = impl_->grid.range(c.chunk);
+    const auto r = grid.range(c.chunk);
     const std::vector<char> plain = unfilter(c.filtered[m], padded, sizeof(double), impl_->what("chunk " + std::to_string(c.chunk)));
-    std::memcpy(values.data() + r.first, plain.data(), static_cast<std::size_t>(r.count) * sizeof(double));
+    std::memcpy(values.data() + at(c.chunk), plain.data(), static_cast<std::size_t>(r.count) * sizeof(double));
   };
   if (impl_->journal_records > 0) {
     const JournalReader journaled(impl_->path, impl_->layout, impl_->journal_id);
     std::map<std::size_t, std::size_t> sealed_at;
     for (const auto& [chunk, records] : journaled.sealed_chunks()) {
+      if (!in_range(chunk)) continue;
       sealed_at[chunk] = records.back();
       lay_sealed(journaled.sealed(records.back()));
     }
-    for (const auto& [chunk, records] : journaled.chunks())
+    for (const auto& [chunk, records] : journaled.chunks()) {
+      if (!in_range(chunk)) continue;
       for (const std::size_t r : records) {
         if (const auto s = sealed_at.find(chunk); s != sealed_at.end() && r < s->second) continue;
         const JournalCases c = journaled.cases(r);
-        const auto first = static_cast<std::size_t>(impl_->grid.range(c.chunk).first);
+        const std::size_t first = at(c.chunk);
         for (std::size_t j = 0; j < c.offsets.size(); ++j) values[first + c.offsets[j]] = c.values[m * c.offsets.size() + j];
       }
+    }
   }
   // The ranks' parts taken (--resume, take_parts): part by part, one open at a time, as a fold reads them.
   std::vector<std::vector<std::size_t>> by_part(impl_->parts.size());  // their records
-  for (const auto& [chunk, at] : impl_->part_chunks) by_part[at.part].push_back(at.record);
+  for (const auto& [chunk, on] : impl_->part_chunks)
+    if (in_range(chunk)) by_part[on.part].push_back(on.record);
   for (std::size_t p = 0; p < by_part.size(); ++p) {
     if (by_part[p].empty()) continue;
     JournalReader& part = *impl_->parts[p];
@@ -603,12 +623,14 @@ std::vector<double> CubeWriter::read_values(const std::string& metric) const {
     for (const std::size_t record : by_part[p]) lay_sealed(part.sealed(record));
     part.release_file();
   }
-  for (const auto& [chunk, sealed] : impl_->pending_sealed) lay_sealed(sealed);
+  for (const auto& [chunk, sealed] : impl_->pending_sealed)
+    if (in_range(chunk)) lay_sealed(sealed);
   for (const auto& [chunk, stored] : impl_->pending_chunks) {
-    const auto r = impl_->grid.range(chunk);
-    for (std::int64_t k = 0; k < r.count; ++k)
-      if (stored.stored[static_cast<std::size_t>(k)])
-        values[static_cast<std::size_t>(r.first + k)] = stored.values[m * static_cast<std::size_t>(r.count) + static_cast<std::size_t>(k)];
+    if (!in_range(chunk)) continue;
+    const auto count = static_cast<std::size_t>(grid.range(chunk).count);
+    const std::size_t first = at(chunk);
+    for (std::size_t k = 0; k < count; ++k)
+      if (stored.stored[k]) values[first + k] = stored.values[m * count + k];
   }
   return values;
 }

@@ -52,16 +52,56 @@ class CollapseRule {
   int theta_column_;
 };
 
+/// Some metrics of the cases of whole curves [first_curve, end_curve), read from the writer as
+/// one block of the chunks that hold them (CubeWriter::read_values of a chunk range): what
+/// rank 0 holds of a variable at once, never the whole of it.
+class CurveBlock {
+ public:
+  CurveBlock(const cube::CubeWriter& writer, std::int64_t runs_per_curve, std::int64_t first_curve, std::int64_t end_curve,
+             const std::vector<std::string>& metrics) {
+    const auto& grid = writer.grid();
+    const std::size_t first_chunk = grid.chunk_of(first_curve * runs_per_curve);
+    const std::size_t end_chunk = grid.chunk_of(end_curve * runs_per_curve - 1) + 1;
+    first_case_ = grid.range(first_chunk).first;
+    for (const auto& name : metrics) values_.push_back(writer.read_values(name, first_chunk, end_chunk));
+  }
+  /// Metric `metric` (its place in the constructor's list) of case `case_index` (of the block's curves).
+  double value(std::size_t metric, std::int64_t case_index) const {
+    return values_[metric][static_cast<std::size_t>(case_index - first_case_)];
+  }
+
+ private:
+  std::int64_t first_case_ = 0;
+  std::vector<std::vector<double>> values_;
+};
+
+/// Cases a block of curves reads at most, per metric, unless one curve has more (8 MiB of
+/// doubles): bounds rank 0's memory whatever the number of curves.
+constexpr std::int64_t kBlockCases = std::int64_t{1} << 20;
+
+/// visit(block, first_curve, end_curve) for each block of whole curves, in order, holding the
+/// metrics `metrics` of that block only.
+template <class Visit>
+void for_each_curve_block(const cube::CubeWriter& writer, std::int64_t curves, std::int64_t runs_per_curve,
+                          const std::vector<std::string>& metrics, Visit visit) {
+  const std::int64_t per_block = std::max<std::int64_t>(1, kBlockCases / std::max<std::int64_t>(runs_per_curve, 1));
+  for (std::int64_t first = 0; first < curves; first += per_block) {
+    const std::int64_t end = std::min(curves, first + per_block);
+    visit(CurveBlock(writer, runs_per_curve, first, end, metrics), first, end);
+  }
+}
+
 /// Each stored run of curve `c`, in order, up to the first one not stored (a curve's runs are
 /// stored as a prefix: it has at most one run in flight, and a worker searching a whole chunk
-/// reports its curves' runs in order), as add(point, intensity, verdict).
+/// reports its curves' runs in order), as add(point, intensity, verdict). The block's metric
+/// 0 is the intensity, 1 θ_max when `with_theta`.
 template <class Add>
-void stored_runs(std::int64_t c, std::int64_t runs, const std::vector<std::int8_t>& status, const std::vector<double>& intensity,
-                 const std::vector<double>* theta, const CollapseRule& rule, Add add) {
+void stored_runs(std::int64_t c, std::int64_t runs, const std::vector<std::int8_t>& status, const CurveBlock& block,
+                 bool with_theta, const CollapseRule& rule, Add add) {
   for (std::int64_t k = 0; k < runs; ++k) {
-    const auto i = static_cast<std::size_t>(c * runs + k);
-    if (status[i] == cube::kStatusNotRun) break;
-    add(static_cast<int>(k), intensity[i], rule(status[i], theta ? (*theta)[i] : std::nan("")));
+    const std::int64_t i = c * runs + k;
+    if (status[static_cast<std::size_t>(i)] == cube::kStatusNotRun) break;
+    add(static_cast<int>(k), block.value(0, i), rule(status[static_cast<std::size_t>(i)], with_theta ? block.value(1, i) : std::nan("")));
   }
 }
 
@@ -91,14 +131,16 @@ std::unique_ptr<ida::IdaCurves> make_ida_curves(const Study& study, const CaseSp
   // at most one run in flight, so a killed run leaves no gap before its last stored point).
   const auto& status = writer.status();
   if (writer.done_count() == 0) return curves;  // a new cube: nothing stored to replay
-  const auto intensity = writer.read_values(schema::kIdaIntensity);
-  const auto theta_values = rule.uses_theta() ? writer.read_values(std::string(metric::theta_max().name)) : std::vector<double>{};
-  const std::vector<double>* theta = rule.uses_theta() ? &theta_values : nullptr;
+  const bool with_theta = rule.uses_theta();
+  std::vector<std::string> metrics{schema::kIdaIntensity};
+  if (with_theta) metrics.emplace_back(metric::theta_max().name);
   const auto runs = static_cast<std::int64_t>(space.ida_runs());
-  for (std::int64_t c = 0; c < space.curves(); ++c)
-    stored_runs(c, runs, status, intensity, theta, rule, [&](int k, double x, ida::RunVerdict verdict) {
-      curves->replay(static_cast<std::size_t>(c), k, x, verdict);
-    });
+  for_each_curve_block(writer, space.curves(), runs, metrics, [&](const CurveBlock& block, std::int64_t first, std::int64_t end) {
+    for (std::int64_t c = first; c < end; ++c)
+      stored_runs(c, runs, status, block, with_theta, rule, [&](int k, double x, ida::RunVerdict verdict) {
+        curves->replay(static_cast<std::size_t>(c), k, x, verdict);
+      });
+  });
   return curves;
 }
 
@@ -168,66 +210,90 @@ bool IdaWork::in_unit(std::size_t curve) const {
   return std::binary_search(units_.begin(), units_.end(), chunk);
 }
 
-void store_ida_summaries(const Study& study, const IdaWork& work, cube::CubeWriter& writer, bool final) {
+namespace {
+
+/// The summaries of each curve (collapse and last safe intensities, runs, state, unresolved
+/// runs) as side variables. `replay`: the curves searched by workers are replayed from what
+/// is stored (their runs' statuses, in the cube, its journal or the workers' parts; θ_max
+/// only where the collapse rule reads it, a block of curves at a time): the search the worker
+/// made, each run's verdict read back, one curve at a time. The intensities are the search's
+/// own, as the worker's were: no value of the cube is read for them.
+void store_curve_summaries(const Study& study, const IdaWork& work, cube::CubeWriter& writer, bool replay) {
   const ida::IdaCurves& curves = work.curves();
   std::vector<double> collapse, safe, runs, state, unresolved;
   const double none = std::nan("");  // a curve another shard computes: nothing known here
-  const bool replay = final && work.has_units();
-  if (replay) writer.take_parts();  // the workers' chunks: their statuses join the writer's
   const auto& status = writer.status();
   const auto points = static_cast<std::size_t>(curves.max_runs());
-  // The curves searched by workers, replayed from what is stored (their runs' statuses, in the
-  // cube, its journal or the workers' parts; θ_max only where the collapse rule reads it): the
-  // search the worker made, each run's verdict read back, one curve at a time. The intensities
-  // are the search's own, as the worker's were: no value of the cube is read for them.
   const CollapseRule rule(study);
-  const std::vector<double> theta = replay && rule.uses_theta() ? writer.read_values(std::string(metric::theta_max().name))
-                                                               : std::vector<double>{};
+  const bool with_theta = replay && rule.uses_theta();
+  const std::vector<std::string> metrics = with_theta ? std::vector<std::string>{std::string(metric::theta_max().name)}
+                                                      : std::vector<std::string>{};
   const auto settings = study.ida->search();
   ida::IdaSearch replayed(settings);
   const auto unresolved_of = unresolved_codes();
-  for (std::size_t c = 0; c < curves.curves(); ++c) {
-    const bool unit = work.in_unit(c);
-    const bool here = unit ? replay : !curves.skipped(c);
-    const ida::IdaSearch* curve = &curves.curve(c);
-    if (unit && replay) {
-      replayed.restart();
-      ida::search_curve(replayed, static_cast<std::int64_t>(c), settings.max_runs,
-                        [&](std::int64_t i, double) -> std::optional<ida::RunVerdict> {
-                          const auto k = static_cast<std::size_t>(i);
-                          if (status[k] == cube::kStatusNotRun) return std::nullopt;  // the curve's last stored run
-                          return rule(status[k], theta.empty() ? std::nan("") : theta[k]);
-                        });
-      curve = &replayed;
+  const auto curve_count = static_cast<std::int64_t>(curves.curves());
+  for_each_curve_block(writer, curve_count, settings.max_runs, metrics, [&](const CurveBlock& block, std::int64_t first, std::int64_t end) {
+    for (auto c = static_cast<std::size_t>(first); c < static_cast<std::size_t>(end); ++c) {
+      const bool unit = work.in_unit(c);
+      const bool here = unit ? replay : !curves.skipped(c);
+      const ida::IdaSearch* curve = &curves.curve(c);
+      if (unit && replay) {
+        replayed.restart();
+        ida::search_curve(replayed, static_cast<std::int64_t>(c), settings.max_runs,
+                          [&](std::int64_t i, double) -> std::optional<ida::RunVerdict> {
+                            const auto k = static_cast<std::size_t>(i);
+                            if (status[k] == cube::kStatusNotRun) return std::nullopt;  // the curve's last stored run
+                            return rule(status[k], with_theta ? block.value(0, i) : std::nan(""));
+                          });
+        curve = &replayed;
+      }
+      collapse.push_back(here ? curve->collapse_intensity() : none);
+      safe.push_back(here ? curve->last_safe_intensity() : none);
+      runs.push_back(here ? static_cast<double>(curve->runs()) : none);
+      // A state only once the curve is done: a curve still running is neither.
+      state.push_back(here && curve->done() ? static_cast<double>(curve->state()) : none);
+      std::int64_t unresolved_runs = 0;
+      for (std::size_t k = 0; here && k < points; ++k) unresolved_runs += unresolved_of[static_cast<std::uint8_t>(status[c * points + k])];
+      unresolved.push_back(here ? static_cast<double>(unresolved_runs) : none);
     }
-    collapse.push_back(here ? curve->collapse_intensity() : none);
-    safe.push_back(here ? curve->last_safe_intensity() : none);
-    runs.push_back(here ? static_cast<double>(curve->runs()) : none);
-    // A state only once the curve is done: a curve still running is neither.
-    state.push_back(here && curve->done() ? static_cast<double>(curve->state()) : none);
-    std::int64_t unresolved_runs = 0;
-    for (std::size_t k = 0; here && k < points; ++k) unresolved_runs += unresolved_of[static_cast<std::uint8_t>(status[c * points + k])];
-    unresolved.push_back(here ? static_cast<double>(unresolved_runs) : none);
-  }
+  });
   writer.store_side(schema::kCollapseIntensity, std::move(collapse));
   writer.store_side(schema::kLastSafeIntensity, std::move(safe));
   writer.store_side(schema::kIdaRuns, std::move(runs));
   writer.store_side(schema::kCurveState, std::move(state));
   writer.store_side(schema::kUnresolvedRuns, std::move(unresolved));
-  if (!study.solver.verdict_check) return;
-  // The band of intensities whose verdicts failed the perturbation test, per curve.
-  const auto stable = writer.read_values(std::string(metric::status_stable().name));
-  const auto x = writer.read_values(schema::kIdaIntensity);
+}
+
+/// The band of intensities whose verdicts failed the perturbation test, per curve, read a
+/// block of curves at a time.
+void store_unstable_band(const ida::IdaCurves& curves, cube::CubeWriter& writer) {
+  const auto points = static_cast<std::int64_t>(curves.max_runs());
   std::vector<double> from(curves.curves(), std::nan("")), to(curves.curves(), std::nan(""));
-  for (std::size_t c = 0; c < curves.curves(); ++c)
-    for (std::size_t k = 0; k < points; ++k) {
-      const std::size_t i = c * points + k;
-      if (stable[i] != 0.0) continue;
-      if (!(x[i] >= from[c])) from[c] = x[i];
-      if (!(x[i] <= to[c])) to[c] = x[i];
-    }
+  const std::vector<std::string> metrics{std::string(metric::status_stable().name), schema::kIdaIntensity};
+  constexpr std::size_t kStable = 0, kIntensity = 1;  // their places in `metrics`
+  for_each_curve_block(writer, static_cast<std::int64_t>(curves.curves()), points, metrics,
+                       [&](const CurveBlock& block, std::int64_t first, std::int64_t end) {
+                         for (std::int64_t c = first; c < end; ++c)
+                           for (std::int64_t i = c * points; i < (c + 1) * points; ++i) {
+                             if (block.value(kStable, i) != 0.0) continue;
+                             const double x = block.value(kIntensity, i);
+                             auto& low = from[static_cast<std::size_t>(c)];
+                             auto& high = to[static_cast<std::size_t>(c)];
+                             if (!(x >= low)) low = x;
+                             if (!(x <= high)) high = x;
+                           }
+                       });
   writer.store_side(schema::kUnstableFrom, std::move(from));
   writer.store_side(schema::kUnstableTo, std::move(to));
+}
+
+}  // namespace
+
+void store_ida_summaries(const Study& study, const IdaWork& work, cube::CubeWriter& writer, bool final) {
+  const bool replay = final && work.has_units();
+  if (replay) writer.take_parts();  // the workers' chunks: their statuses join the writer's
+  store_curve_summaries(study, work, writer, replay);
+  if (study.solver.verdict_check) store_unstable_band(work.curves(), writer);
 }
 
 }  // namespace pcrf::run

@@ -67,6 +67,17 @@ class ChunkGrid {
   std::size_t pieces_ = 1;       ///< chunks along the cut dimension
 };
 
+/// The linear case range of chunks [first_chunk, end_chunk) of a grid (cases [first, first +
+/// count)): consecutive chunks are consecutive ranges, as a chunk is whole trailing dimensions
+/// along its cut one; checked chunk by chunk, not assumed.
+struct ChunkSpan {
+  std::int64_t first = 0;
+  std::int64_t count = 0;
+};
+/// \throws std::out_of_range unless first_chunk ≤ end_chunk ≤ grid.chunk_count();
+/// std::logic_error if two consecutive chunks are not consecutive ranges.
+ChunkSpan chunk_span(const ChunkGrid& grid, std::size_t first_chunk, std::size_t end_chunk);
+
 /// The grid of a cube's layout: its `chunk_shape` (a new cube's, as its maker chose it, or an
 /// existing one's, as its file stores it), or when that is empty the rule's with no multiples
 /// (every cube before chunks held whole groups).

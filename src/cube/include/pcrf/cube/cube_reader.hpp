@@ -30,6 +30,12 @@ class CubeReader {
   std::vector<std::int8_t> read_status() const;
   /// A metric over the whole cube, in linear case order. \throws CubeError if unknown.
   std::vector<double> read_metric(const std::string& name) const;
+  /// A metric over the cases of chunks [first_chunk, end_chunk) of `grid` (the cube's), in
+  /// linear case order from grid.range(first_chunk).first: one hyperslab read per chunk, so
+  /// that only those cases' values are held. \throws CubeError if unknown, if the grid is not
+  /// the cube's or the chunks are outside it.
+  std::vector<double> read_metric_chunks(const std::string& name, const ChunkGrid& grid, std::size_t first_chunk,
+                                         std::size_t end_chunk) const;
   /// A side variable (over some dimensions), row-major over its dimensions. \throws CubeError.
   std::vector<double> read_side(const std::string& name) const;
   /// (case index, message) of every case that left a note, in the order they were stored.

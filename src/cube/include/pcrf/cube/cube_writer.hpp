@@ -128,8 +128,14 @@ class CubeWriter {
   std::int64_t chunk_done(std::size_t chunk) const { return statuses_.chunk_done(chunk); }
   /// A metric of every case (NaN where not computed): the last checkpoint's values with
   /// those stored since, and the chunks of the parts taken (take_parts, --resume), laid over them. Reads the whole variable: meant for small cubes
-  /// (an IDA's). \throws CubeError for an unknown metric.
+  /// (a large one is read a block of chunks at a time, below). \throws CubeError for an unknown metric.
   std::vector<double> read_values(const std::string& metric) const;
+  /// The same values for the cases of chunks [first_chunk, end_chunk) of grid() only, in linear
+  /// case order from grid().range(first_chunk).first (chunk_span): a slice of read_values()
+  /// that holds only those chunks' values (one hyperslab read of the file per chunk), for a
+  /// reader that goes through a large cube a block of chunks at a time.
+  /// \throws CubeError for an unknown metric or chunks outside the cube.
+  std::vector<double> read_values(const std::string& metric, std::size_t first_chunk, std::size_t end_chunk) const;
   /// Memory held by the values stored since the last checkpoint [bytes].
   std::size_t pending_bytes() const;
 
