@@ -74,6 +74,12 @@ TEST(RangedValues, ARangeOfChunksIsTheSliceOfTheWholeReadWhateverItsSource) {
     sources_seen += std::any_of(whole.begin(), whole.end(), [&](double v) { return v >= source && v < source + 1; });
   EXPECT_EQ(sources_seen, 5) << "every source's values are in the cube";
   EXPECT_TRUE(std::isnan(whole[60001])) << "a case never stored";
+  EXPECT_EQ(whole[3], theta_rad(3, 1));            // the file's
+  EXPECT_EQ(whole[15], theta_rad(15, 5));          // pending over the file's
+  EXPECT_EQ(whole[16384], theta_rad(16384, 2));    // the journal's cases
+  EXPECT_EQ(whole[32768], theta_rad(32768, 3));    // the journal's sealed chunk
+  EXPECT_EQ(whole[49152], theta_rad(49152, 5));    // pending
+  EXPECT_EQ(whole[69999], theta_rad(69999, 4));    // the part's edge chunk
 
   const std::vector<std::pair<std::size_t, std::size_t>> ranges{{0, 5}, {0, 1}, {1, 3}, {2, 5}, {3, 4}, {4, 5}, {2, 2}};
   for (const auto& [first, end] : ranges) {
