@@ -75,9 +75,11 @@ class CurveBlock {
   std::vector<std::vector<double>> values_;
 };
 
-/// Cases a block of curves reads at most, per metric, unless one curve has more (8 MiB of
-/// doubles): bounds rank 0's memory whatever the number of curves.
-constexpr std::int64_t kBlockCases = std::int64_t{1} << 20;
+/// Cases a block of curves reads at most, per metric, unless one curve has more (128 MiB of
+/// doubles; two metrics at most at once: 256 MiB, the bound of the results rank 0 holds between
+/// checkpoints): bounds rank 0's memory whatever the number of curves. Each block reads the
+/// journal's index again (CubeWriter::read_values), so blocks are large: 6 at 10^8 runs.
+constexpr std::int64_t kBlockCases = std::int64_t{1} << 24;
 
 /// visit(block, first_curve, end_curve) for each block of whole curves, in order, holding the
 /// metrics `metrics` of that block only.
