@@ -151,14 +151,12 @@ std::vector<std::size_t> ida_unit_chunks(const cube::CubeWriter& writer, const s
                                          std::size_t least, std::size_t tail) {
   const auto runs = static_cast<std::int64_t>(space.ida_runs());
   const auto& grid = writer.grid();
-  const auto& status = writer.status();
   std::vector<std::size_t> units;
   for (std::size_t c = 0; c < grid.chunk_count(); ++c) {
     const auto r = grid.range(c);
     if (runs <= 0 || r.first % runs != 0 || r.count % runs != 0) continue;  // not whole curves
     if (r.first < first_curve * runs || r.first + r.count > last_curve * runs) continue;
-    const auto begin = status.begin() + r.first;
-    if (!std::all_of(begin, begin + r.count, [](std::int8_t s) { return s == cube::kStatusNotRun; })) continue;
+    if (writer.chunk_done(c) != 0) continue;  // counted per chunk by the writer, as whole_chunks asks
     if (std::any_of(histories.begin(), histories.end(), [&](std::int64_t i) { return i >= r.first && i < r.first + r.count; }))
       continue;
     units.push_back(c);
