@@ -308,6 +308,7 @@ void CubeWriter::Impl::create(const std::filesystem::path& target) {
   auto fapl = h5::plist(H5Pcreate(H5P_FILE_ACCESS), what("cannot make a property list"));
   h5::check(H5Pset_fapl_core(fapl, 1 << 20, 0), what("cannot use the in-memory driver"));
   file = h5::file(H5Fcreate(target.c_str(), H5F_ACC_TRUNC, fcpl, fapl), what("cannot create the file"));
+  h5::use_chunk_indices_of_1_10(file, what("cannot choose the file format"));
   for (const auto& a : layout.attributes) write_global_attribute(file, a);
   // Dimension coordinates first (netCDF-4 dimensions), then auxiliary coordinates.
   for (const auto& dim : layout.dimensions) {

@@ -61,6 +61,10 @@ hid_t check(hid_t id, const std::string& what) {
   throw CubeError(reason.empty() ? what : what + " (" + reason + ")", CubeError::cause_of(quoted_os_error(reason)));
 }
 
+void use_chunk_indices_of_1_10(hid_t file, const std::string& what) {
+  check(H5Fset_libver_bounds(file, H5F_LIBVER_V110, H5F_LIBVER_V110), what);
+}
+
 std::vector<hsize_t> extent(hid_t dataset, const std::string& what) {
   auto s = space(H5Dget_space(dataset), what);
   const int rank = H5Sget_simple_extent_ndims(s);

@@ -64,6 +64,15 @@ inline Handle type(hid_t id, const std::string& what) { return {check(id, what),
 inline Handle plist(hid_t id, const std::string& what) { return {check(id, what), H5Pclose}; }
 inline Handle attribute(hid_t id, const std::string& what) { return {check(id, what), H5Aclose}; }
 
+/// Objects created in the open `file` from now on take HDF5 1.10's format and no later one
+/// (H5Fset_libver_bounds, both bounds 1.10): a chunked dataset of a fixed shape is then indexed
+/// by a fixed array, one entry a chunk set in place, not by a version-1 B-tree searched and
+/// split at every chunk written (the fold's raw chunk writes, issue 38). Set on the open file,
+/// not on its access list, so that the superblock stays version 0: HDF5 before 2.0 leaves a
+/// version 2 or 3 superblock's checksum stale in H5Fget_file_image's copy (HDFGroup/hdf5
+/// #1915), and the writer saves its new cubes through that copy. Read by HDF5 1.10 and later.
+void use_chunk_indices_of_1_10(hid_t file, const std::string& what);
+
 /// Dimensions of a dataset (empty for a scalar). \throws CubeError(what) when unreadable.
 std::vector<hsize_t> extent(hid_t dataset, const std::string& what);
 
