@@ -765,8 +765,9 @@ void CubeWriter::Impl::write_variable_raw(const std::vector<hsize_t>& offset, st
                                           std::size_t size) {
   const std::size_t metrics = metric_sets.size();
   const hid_t set = v < metrics ? static_cast<hid_t>(metric_sets[v]) : static_cast<hid_t>(status_set);
-  h5::check(H5Dwrite_chunk(set, H5P_DEFAULT, 0, offset.data(), size, bytes),
-            what("cannot write a chunk of '" + (v < metrics ? layout.metrics[v].name : std::string(kStatusName)) + "'"));
+  h5::check_lazily(H5Dwrite_chunk(set, H5P_DEFAULT, 0, offset.data(), size, bytes), [&] {
+    return what("cannot write a chunk of '" + (v < metrics ? layout.metrics[v].name : std::string(kStatusName)) + "'");
+  });
 }
 
 void CubeWriter::Impl::write_sealed(const SealedChunk& sealed, bool raw, std::vector<JournalCases>& unsealed) {

@@ -56,6 +56,12 @@ class Handle {
 
 /// Throws CubeError(what) when an HDF5 call returned a negative value.
 hid_t check(hid_t id, const std::string& what);
+/// check() for a call made once a chunk or more (the fold's raw chunk writes): the description
+/// is made by `what()` only when the call failed, not a string built for every success.
+template <class What>
+hid_t check_lazily(hid_t id, What&& what) {
+  return id >= 0 ? id : check(id, what());
+}
 inline Handle file(hid_t id, const std::string& what) { return {check(id, what), H5Fclose}; }
 inline Handle group(hid_t id, const std::string& what) { return {check(id, what), H5Gclose}; }
 inline Handle dataset(hid_t id, const std::string& what) { return {check(id, what), H5Dclose}; }
