@@ -932,7 +932,8 @@ void CubeWriter::Impl::write_long_coordinates(const std::filesystem::path& targe
   for (const auto& c : layout.coordinates) any = any || written_later(c);
   if (!any) return;
   try {
-    file = h5::file(H5Fopen(target.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), what("cannot open " + target.string()));
+    const std::string cannot_open = what("cannot open " + target.string());
+    file = h5::file(H5Fopen(target.c_str(), H5F_ACC_RDWR, h5::writing_access(cannot_open)), cannot_open);
     for (std::size_t k = 0; k < layout.coordinates.size(); ++k) {
       auto& c = layout.coordinates[k];
       if (!written_later(c)) continue;
@@ -976,7 +977,8 @@ void CubeWriter::Impl::write_sealed_piece(hid_t d, const CoordinatePiece& piece,
 void CubeWriter::Impl::update(const std::filesystem::path& target, StatusBook& status,
                               std::int64_t new_id) {
   try {
-    file = h5::file(H5Fopen(target.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), what("cannot open " + target.string()));
+    const std::string cannot_open = what("cannot open " + target.string());
+    file = h5::file(H5Fopen(target.c_str(), H5F_ACC_RDWR, h5::writing_access(cannot_open)), cannot_open);
     for (const auto& m : layout.metrics)
       metric_sets.push_back(h5::dataset(H5Dopen2(file, m.name.c_str(), H5P_DEFAULT), what("cannot open '" + m.name + "'")));
     status_set = h5::dataset(H5Dopen2(file, kStatusName, H5P_DEFAULT), what("cannot open 'status'"));

@@ -65,6 +65,12 @@ void use_chunk_indices_of_1_10(hid_t file, const std::string& what) {
   check(H5Fset_libver_bounds(file, H5F_LIBVER_V110, H5F_LIBVER_V110), what);
 }
 
+Handle writing_access(const std::string& what) {
+  auto fapl = plist(H5Pcreate(H5P_FILE_ACCESS), what);
+  check(H5Pset_small_data_block_size(fapl, 0), what);
+  return fapl;
+}
+
 std::vector<hsize_t> extent(hid_t dataset, const std::string& what) {
   auto s = space(H5Dget_space(dataset), what);
   const int rank = H5Sget_simple_extent_ndims(s);
