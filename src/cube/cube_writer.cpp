@@ -1451,7 +1451,8 @@ void CubeWriter::Impl::drop_stream(const std::string& reason) {
 
 /// True when `chunk` was streamed from `part` (its record there) into the file being folded.
 bool CubeWriter::Impl::streamed_from(std::size_t chunk, const std::filesystem::path& part) const {
-  return chunk < streamed.size() && streamed[chunk].rank >= 0 && part_path(path, streamed[chunk].rank) == part;
+  return chunk < streamed.size() && streamed[chunk].rank >= 0 &&
+         part_path(path, streamed[chunk].rank).filename() == part.filename();  // both beside the cube
 }
 
 /// The ranks' parts of this run (its workers', made under its lock), to go in with the next

@@ -485,6 +485,7 @@ class ResultSink {
       if (before_flush_) before_flush_();
       writer_.close();
     });
+    if (const std::string note = writer_.take_stream_note(); !note.empty()) say_rank_note(0, note);
     check_kept();
   }
 
