@@ -25,6 +25,12 @@
 /// any moment leaves the last folded cube whole, and a journal whose complete records
 /// --resume replays (CheckpointStep lists the kill points). Readers of the file see its
 /// last fold.
+///
+/// The ranks' parts (cube_part.hpp) go in by the streaming fold (stream_kept): the next fold's
+/// <file>.partial, made at the first chunk a worker reports kept and open for the run, receives
+/// each such chunk raw as it is reported; the end's fold (close) writes only what it lacks into
+/// it. While it is open a checkpoint only appends; any streaming failure drops it, and the
+/// end's fold assembles the parts as before.
 #pragma once
 
 #include <cstdint>
