@@ -239,7 +239,7 @@ struct CubeWriter::Impl {
   void write_long_coordinates(const std::filesystem::path& target);
   void write_sealed_piece(hid_t d, const CoordinatePiece& piece, const std::string& problem);
   void update(const std::filesystem::path& target, StatusBook& status, std::int64_t new_id);
-  void check_free_space(const std::filesystem::path& target) const;
+  void check_free_space(const std::filesystem::path& target, bool copied = false) const;
   void remember_identity();
   void check_identity() const;
   [[noreturn]] void fail(const CubeError& error) const;
@@ -1057,7 +1057,9 @@ void CubeWriter::Impl::update(const std::filesystem::path& target, StatusBook& s
 
 /// Refuses to start a checkpoint that cannot fit: the old cube's size plus every value
 /// stored since (uncompressed), and a margin. HDF5 then writes into space that exists.
-void CubeWriter::Impl::check_free_space(const std::filesystem::path& target) const {
+/// `copied`: the copy of the cube is at `target` already (the streaming fold's): its size is
+/// not counted again (its parts are, whole: a bound).
+void CubeWriter::Impl::check_free_space(const std::filesystem::path& target, bool copied) const {
   std::error_code ec;
   const auto space = std::filesystem::space(folder_of(target), ec);
   if (ec) return;  // unknown: the writes themselves will tell
@@ -1067,7 +1069,7 @@ void CubeWriter::Impl::check_free_space(const std::filesystem::path& target) con
     return error ? 0.0 : static_cast<double>(bytes);
   };
   double needed = 0.0;
-  if (on_disk) needed += size_of(path);
+  if (on_disk && !copied) needed += size_of(path);
   if (journal_records > 0) needed += size_of(journal_path(path));  // its results, uncompressed
   for (const auto& part : parts) needed += size_of(part->file());   // its chunks, as the cube stores them
   needed += static_cast<double>(pending_bytes);
@@ -1417,7 +1419,7 @@ void CubeWriter::Impl::open_stream() {
 /// anything before the rename fails: the caller then folds as before, from a new copy.
 bool CubeWriter::Impl::fold_stream(StatusBook& status, std::int64_t new_id) {
   try {
-    check_free_space(stream->temporary());
+    check_free_space(stream->temporary(), true);
     update(stream->temporary(), status, new_id);
     stream->sync();
     reached(CheckpointStep::kFoldWritten);
