@@ -292,6 +292,31 @@ TEST(CubeStream, AStreamThatFailsFallsBackToTheAssemblyAtTheEnd) {
   EXPECT_FALSE(fs::exists(part_path(file, 1)));
 }
 
+// The end's fold through the streaming fold fails before its rename (its .partial was removed
+// meanwhile: the sync by its name fails): it falls back to a fold from a new copy, which writes
+// every chunk, the streamed one included, and says why once.
+TEST(CubeStream, AStreamedFoldThatFailsFallsBackToANewCopy) {
+  const auto dir = test::scratch_dir("stream_fold_fails");
+  const auto file = dir / "c.h5";
+  CubeWriter writer(file, stream_layout(), OpenMode::kCreate);
+  PartWriter(part_path(file, 1), writer.part_header()).add(sealed_of(writer.grid(), 0));
+  writer.stream_kept(0, 1);
+  ASSERT_TRUE(fs::exists(partial_of(file)));
+  fs::remove(partial_of(file));
+  PartWriter(part_path(file, 2), writer.part_header()).add(sealed_of(writer.grid(), 2, 3));
+  writer.stream_kept(2, 2);
+  for (std::int64_t i = 16384; i < 32768; ++i) {
+    writer.store(i, status_of(i), row_of(i));
+    if (i % 997 == 0) writer.store_note(i, "note of case " + std::to_string(i));
+  }
+  writer.close();
+  EXPECT_NE(writer.take_stream_note().find("at the end of the run instead"), std::string::npos);
+  EXPECT_FALSE(fs::exists(partial_of(file)));
+  expect_chunks(file, {0, 1, 2});
+  EXPECT_EQ(writer.status(), CubeReader(file).read_status());
+  EXPECT_EQ(writer.status_counts(), count_statuses(writer.status()));
+}
+
 // take_parts (an IDA's producer, before the last fold) after chunks were streamed: the
 // statuses count at once and read_values sees every part's chunk, streamed or not.
 TEST(CubeStream, TakenPartsReadEveryChunkStreamedOrNot) {
