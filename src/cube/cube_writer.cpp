@@ -234,6 +234,7 @@ struct CubeWriter::Impl {
   bool fold_due() const;
   void append(const StatusBook& status);
   void fold(StatusBook& status);
+  void fold_copy(StatusBook& status, std::int64_t new_id);
   void clear_pending();
   void write_new_file(io::AtomicFile& target);
   void write_long_coordinates(const std::filesystem::path& target);
@@ -1185,10 +1186,33 @@ void CubeWriter::Impl::append(const StatusBook& status) {
 ///     removed, is stale (its results are in the cube): ignored, then replaced;
 ///   kJournalRemoved: the fold is complete.
 /// On failure the cube and its journal are untouched: only the new file goes.
+/// With a streaming fold open (stream_kept) the new file is that one, which holds the copy and
+/// the chunks streamed into it already (fold_stream); should it fail before its rename, the
+/// fold is made from a new copy (fold_copy).
 void CubeWriter::Impl::fold(StatusBook& status) {
   if (on_disk) check_identity();
   const std::int64_t new_id = draw_journal_id();
-  if (!(stream && fold_stream(status, new_id))) try {
+  if (!(stream && fold_stream(status, new_id))) fold_copy(status, new_id);
+  reached(CheckpointStep::kFoldRenamed);
+  journal.reset();
+  std::error_code ignored;  // a journal left behind is stale (another id): tidiness, not safety
+  std::filesystem::remove(journal_path(path), ignored);
+  reached(CheckpointStep::kJournalRemoved);
+  remove_parts();
+  on_disk = true;
+  remember_identity();
+  journal_id = new_id;
+  journal_keep_bytes = 0;
+  journal_records = journal_results = 0;
+  folded_results = status.done();
+  clear_pending();
+  sides_changed = false;
+}
+
+/// The new file of a fold made from a copy of the cube (or as a new cube), written and
+/// renamed over the cube (fold()).
+void CubeWriter::Impl::fold_copy(StatusBook& status, std::int64_t new_id) {
+  try {
     io::AtomicFile next(path, true, io::AtomicFile::Temporary::kPartial);
     check_free_space(next.temporary());
     if (on_disk) {
@@ -1209,20 +1233,6 @@ void CubeWriter::Impl::fold(StatusBook& status) {
   } catch (const CubeError& e) {
     fail(e);
   }
-  reached(CheckpointStep::kFoldRenamed);
-  journal.reset();
-  std::error_code ignored;  // a journal left behind is stale (another id): tidiness, not safety
-  std::filesystem::remove(journal_path(path), ignored);
-  reached(CheckpointStep::kJournalRemoved);
-  remove_parts();
-  on_disk = true;
-  remember_identity();
-  journal_id = new_id;
-  journal_keep_bytes = 0;
-  journal_records = journal_results = 0;
-  folded_results = status.done();
-  clear_pending();
-  sides_changed = false;
 }
 
 /// The parts' chunks into the file being folded, part by part (one part open at a time,
