@@ -25,7 +25,9 @@ not what it did. Then:
   cases (it computes none; rank 0's cases run in its worker thread), and how much of it is
   spent before the first hand-out (checks, creating the cube with its coordinates), during
   the run (hand-out, storing what comes back, checkpoints) and in the assembly (the last fold,
-  CubeWriter::close: the worker ranks' parts and rank 0's journal written into the cube);
+  CubeWriter::close: the worker ranks' parts and rank 0's journal written into the cube), and
+  of the run's, what streaming the parts' chunks into the next fold as workers report them
+  costs (CubeWriter::stream_kept: what the assembly no longer writes);
 - the balance: the busiest thread's marginal instructions (MPI left out) over the mean of the
   threads that work, those that compute cases (their profile has the case runner's functions;
   rank 0's main thread and the progress threads do not), issue 38 item 5 asks for at most 1.25.
@@ -62,8 +64,9 @@ CASE_FUNCTIONS = re.compile(r"pcrf::run::CaseRunner::(set_up|conclude)\(")
 # whatever the compiler inlined. The assembly: the writer's last fold (CubeWriter::close),
 # which writes the ranks' parts (and rank 0's own journal) into the cube.
 FUNCTIONS = {"study": "pcrf::run::run_study(", "load": "pcrf::study::load_study(", "prepare": "::prepare_master(",
-             "create": "::create_cube(", "close": "pcrf::cube::CubeWriter::close("}
-PHASES = ("setup", "run", "assembly")
+             "create": "::create_cube(", "close": "pcrf::cube::CubeWriter::close(",
+             "stream": "::stream_kept("}
+PHASES = ("setup", "run", "assembly", "streamed")
 
 
 def inclusive_phases(path):
@@ -76,7 +79,10 @@ def inclusive_phases(path):
             if name in line and not found[key]:
                 found[key] = int(line.split()[0].replace(",", ""))
     setup = found["load"] + found["prepare"] + found["create"]  # create_cube: the new cube, made with every rank
-    return {"setup": setup, "run": found["study"] - setup - found["close"], "assembly": found["close"]}
+    # Streamed: the parts' chunks written into the next fold as workers report them (the sink's
+    # stream_kept, CubeWriter::stream_kept), during the run and counted in it.
+    return {"setup": setup, "run": found["study"] - setup - found["close"], "assembly": found["close"],
+            "streamed": found["stream"]}
 
 
 def profile_run(pcrf, ranks, study, folder, tag, keep=None):
@@ -153,6 +159,8 @@ def main():
           f"during the run (hand-out, results, checkpoints): {phases['run']:,.0f}; "
           f"the assembly (the last fold, CubeWriter::close: the parts' chunks and rank 0's journal into the cube): "
           f"{phases['assembly']:,.0f}")
+    print(f"  of the run's, the parts' chunks streamed into the next fold as they are reported "
+          f"(stream_kept): {phases['streamed']:,.0f}")
     print(f"  during the run at {large} cases alone, its fixed costs (the last chunk, case by case) included: "
           f"{run_alone:,.0f} a case")
     if working:

@@ -265,24 +265,30 @@ JournalReader::JournalReader(const std::filesystem::path& part, const CubeLayout
 
 /// The records of a current journal or part, up to its last commit, checked against the cube.
 void JournalReader::index(bool part) {
-  const auto& records = log_->records();
   current_ = true;
   part_ = part;
   kept_ = 1;  // the header is committed alone
-  for (std::size_t r = 1; r < records.size(); ++r)
+  index_from(1);
+}
+
+/// index() of the records from `first` on (those before are indexed already, up to a commit).
+void JournalReader::index_from(std::size_t first) {
+  const auto& records = log_->records();
+  for (std::size_t r = first; r < records.size(); ++r)
     if (records[r].kind == kCommit) kept_ = r + 1;
   valid_bytes_ = records[kept_ - 1].end();
   dropped_bytes_ = log_->file_bytes() - valid_bytes_;
   dropped_records_ = records.size() - kept_;
   damaged_ = log_->valid_bytes() < log_->file_bytes();
+  dropped_results_ = 0;
   for (std::size_t r = kept_; r < records.size(); ++r)  // what the dropped records held
     if ((records[r].kind == kCases || records[r].kind == kSealed) && records[r].size >= kCasesHeadBytes)
       dropped_results_ += static_cast<std::int64_t>(
           io::load_le(payload_head(records[r]).data() + 8, 4));
-  for (std::size_t r = 1; r < kept_; ++r) {
+  for (std::size_t r = first; r < kept_; ++r) {
     const auto& record = records[r];
     if (record.kind == kNotes || record.kind == kCommit) continue;
-    if (part && record.kind != kSealed)
+    if (part_ && record.kind != kSealed)
       fail(r, "is of kind " + std::to_string(record.kind) + ", which a part does not hold (sealed chunks, their notes, commits)");
     if (record.kind == kHistory) continue;
     if (record.kind != kCases && record.kind != kSealed)
@@ -314,6 +320,17 @@ void JournalReader::index(bool part) {
 JournalReader::~JournalReader() = default;
 
 void JournalReader::release_file() { log_->release(); }
+
+void JournalReader::extend() {
+  if (!current_ || !part_) return;
+  const std::size_t first = kept_;
+  try {
+    log_->extend();
+  } catch (const io::OutputError& e) {
+    throw CubeError(e.what(), CubeError::cause_of(e.os_error()));
+  }
+  index_from(first);
+}
 
 void JournalReader::reopen_file() {
   try {

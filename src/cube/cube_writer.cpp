@@ -202,6 +202,22 @@ struct CubeWriter::Impl {
   std::map<std::size_t, PartChunk> part_chunks;         // chunks the next fold takes from them
   std::vector<std::filesystem::path> parts_to_remove;  // after the next fold's rename
   CoordinateSource* coordinate_source = nullptr;  // while the constructor creates the cube; null: seal here
+  // The streaming fold (CubeWriter::stream_kept): the next fold's <cube>.partial, open during
+  // the run, into which the chunks workers report kept are written as they come. While it is
+  // open, `file`, `metric_sets` and `status_set` are its handles (declared after `file`: the
+  // .partial is removed before they close, and with it what was streamed).
+  std::unique_ptr<io::AtomicFile> stream;
+  bool stream_off = false;  // streaming failed once (or cannot be): the end's fold assembles the parts
+  std::string stream_note;  // why, until said (CubeWriter::take_stream_note)
+  struct Streamed {
+    int rank = -1;                      // whose part it came from; -1: not streamed
+    bool alike = false;                 // its status variable: one code for the whole chunk …
+    std::int8_t code = kStatusNotRun;   // … this one (else each case's, read from the part at the fold)
+  };
+  std::vector<Streamed> streamed;         // [chunk], sized at the first chunk streamed: in the open
+                                          // stream, or in a cube a streaming fold renamed into place
+  std::vector<std::size_t> stream_chunks;  // those in the open stream (reset when it is dropped)
+  std::map<int, std::unique_ptr<JournalReader>> live_parts;  // parts read during the run, by rank (released)
 
   Impl(std::filesystem::path p, CubeLayout l)
       : path(std::move(p)), layout(std::move(l)), grid(layout_grid(layout)) {
@@ -218,12 +234,13 @@ struct CubeWriter::Impl {
   bool fold_due() const;
   void append(const StatusBook& status);
   void fold(StatusBook& status);
+  void fold_copy(StatusBook& status, std::int64_t new_id);
   void clear_pending();
   void write_new_file(io::AtomicFile& target);
   void write_long_coordinates(const std::filesystem::path& target);
   void write_sealed_piece(hid_t d, const CoordinatePiece& piece, const std::string& problem);
   void update(const std::filesystem::path& target, StatusBook& status, std::int64_t new_id);
-  void check_free_space(const std::filesystem::path& target) const;
+  void check_free_space(const std::filesystem::path& target, bool copied = false) const;
   void remember_identity();
   void check_identity() const;
   [[noreturn]] void fail(const CubeError& error) const;
@@ -239,6 +256,12 @@ struct CubeWriter::Impl {
     return {part_id, layout.case_count(), layout.metrics.size(), layout.text_attribute(kFingerprintName)};
   }
   void remove_parts();
+  void stream_kept(std::size_t chunk, int rank);
+  JournalReader* live_part(int rank);
+  void open_stream();
+  bool fold_stream(StatusBook& status, std::int64_t new_id);
+  void drop_stream(const std::string& reason);
+  bool streamed_from(std::size_t chunk, const std::filesystem::path& part) const;
   h5::Handle create_cube_variable(const std::string& name, hid_t file_type, hid_t memory_type,
                                   const void* fill);
   h5::Handle create_side_variable(const SideVariable& v);
@@ -977,11 +1000,13 @@ void CubeWriter::Impl::write_sealed_piece(hid_t d, const CoordinatePiece& piece,
 void CubeWriter::Impl::update(const std::filesystem::path& target, StatusBook& status,
                               std::int64_t new_id) {
   try {
-    const std::string cannot_open = what("cannot open " + target.string());
-    file = h5::file(H5Fopen(target.c_str(), H5F_ACC_RDWR, h5::writing_access(cannot_open)), cannot_open);
-    for (const auto& m : layout.metrics)
-      metric_sets.push_back(h5::dataset(H5Dopen2(file, m.name.c_str(), H5P_DEFAULT), what("cannot open '" + m.name + "'")));
-    status_set = h5::dataset(H5Dopen2(file, kStatusName, H5P_DEFAULT), what("cannot open 'status'"));
+    if (!file.valid()) {  // else the streaming fold's, open on `target` with its variables
+      const std::string cannot_open = what("cannot open " + target.string());
+      file = h5::file(H5Fopen(target.c_str(), H5F_ACC_RDWR, h5::writing_access(cannot_open)), cannot_open);
+      for (const auto& m : layout.metrics)
+        metric_sets.push_back(h5::dataset(H5Dopen2(file, m.name.c_str(), H5P_DEFAULT), what("cannot open '" + m.name + "'")));
+      status_set = h5::dataset(H5Dopen2(file, kStatusName, H5P_DEFAULT), what("cannot open 'status'"));
+    }
     const JournalReader journaled(path, layout, journal_records > 0 ? journal_id : 0);
     // The ranks' parts first (chunks no journal record touches: each went to one worker).
     std::vector<std::pair<std::int64_t, std::string>> notes;
@@ -1037,7 +1062,9 @@ void CubeWriter::Impl::update(const std::filesystem::path& target, StatusBook& s
 
 /// Refuses to start a checkpoint that cannot fit: the old cube's size plus every value
 /// stored since (uncompressed), and a margin. HDF5 then writes into space that exists.
-void CubeWriter::Impl::check_free_space(const std::filesystem::path& target) const {
+/// `copied`: the copy of the cube is at `target` already (the streaming fold's): its size is
+/// not counted again (its parts are, whole: a bound).
+void CubeWriter::Impl::check_free_space(const std::filesystem::path& target, bool copied) const {
   std::error_code ec;
   const auto space = std::filesystem::space(folder_of(target), ec);
   if (ec) return;  // unknown: the writes themselves will tell
@@ -1047,7 +1074,7 @@ void CubeWriter::Impl::check_free_space(const std::filesystem::path& target) con
     return error ? 0.0 : static_cast<double>(bytes);
   };
   double needed = 0.0;
-  if (on_disk) needed += size_of(path);
+  if (on_disk && !copied) needed += size_of(path);
   if (journal_records > 0) needed += size_of(journal_path(path));  // its results, uncompressed
   for (const auto& part : parts) needed += size_of(part->file());   // its chunks, as the cube stores them
   needed += static_cast<double>(pending_bytes);
@@ -1099,7 +1126,7 @@ void CubeWriter::Impl::checkpoint(StatusBook& status, Checkpoint how) {
   // Parts found (a --resume's, or another cube's left beside a new one) go in, or go, at once.
   const bool parts_due = !parts_to_remove.empty() && how != Checkpoint::kAppend;
   if (how == Checkpoint::kFold || !on_disk || journal_id == 0 || parts_due ||
-      (how == Checkpoint::kAppendOrFold && fold_due())) {
+      (how == Checkpoint::kAppendOrFold && fold_due() && !stream)) {
     if (parts_due) return fold(status);
     // Nothing new: the cube on disk is already this state.
     if (on_disk && journal_id != 0 && !changed && !sides_changed && journal_records == 0) return;
@@ -1163,9 +1190,32 @@ void CubeWriter::Impl::append(const StatusBook& status) {
 ///     removed, is stale (its results are in the cube): ignored, then replaced;
 ///   kJournalRemoved: the fold is complete.
 /// On failure the cube and its journal are untouched: only the new file goes.
+/// With a streaming fold open (stream_kept) the new file is that one, which holds the copy and
+/// the chunks streamed into it already (fold_stream); should it fail before its rename, the
+/// fold is made from a new copy (fold_copy).
 void CubeWriter::Impl::fold(StatusBook& status) {
   if (on_disk) check_identity();
   const std::int64_t new_id = draw_journal_id();
+  if (!(stream && fold_stream(status, new_id))) fold_copy(status, new_id);
+  reached(CheckpointStep::kFoldRenamed);
+  journal.reset();
+  std::error_code ignored;  // a journal left behind is stale (another id): tidiness, not safety
+  std::filesystem::remove(journal_path(path), ignored);
+  reached(CheckpointStep::kJournalRemoved);
+  remove_parts();
+  on_disk = true;
+  remember_identity();
+  journal_id = new_id;
+  journal_keep_bytes = 0;
+  journal_records = journal_results = 0;
+  folded_results = status.done();
+  clear_pending();
+  sides_changed = false;
+}
+
+/// The new file of a fold made from a copy of the cube (or as a new cube), written and
+/// renamed over the cube (fold()).
+void CubeWriter::Impl::fold_copy(StatusBook& status, std::int64_t new_id) {
   try {
     io::AtomicFile next(path, true, io::AtomicFile::Temporary::kPartial);
     check_free_space(next.temporary());
@@ -1187,20 +1237,6 @@ void CubeWriter::Impl::fold(StatusBook& status) {
   } catch (const CubeError& e) {
     fail(e);
   }
-  reached(CheckpointStep::kFoldRenamed);
-  journal.reset();
-  std::error_code ignored;  // a journal left behind is stale (another id): tidiness, not safety
-  std::filesystem::remove(journal_path(path), ignored);
-  reached(CheckpointStep::kJournalRemoved);
-  remove_parts();
-  on_disk = true;
-  remember_identity();
-  journal_id = new_id;
-  journal_keep_bytes = 0;
-  journal_records = journal_results = 0;
-  folded_results = status.done();
-  clear_pending();
-  sides_changed = false;
 }
 
 /// The parts' chunks into the file being folded, part by part (one part open at a time,
@@ -1219,7 +1255,13 @@ void CubeWriter::Impl::write_parts(std::vector<std::pair<std::int64_t, std::stri
     part.reopen_file();
     for (const auto& [chunk, at] : by_part[p]) {
       const std::size_t record = at.record;
-      if (raw) {  // each variable's bytes from the part's one read of the record to the file
+      if (streamed_from(chunk, part.file())) {  // in the file already (stream_kept): its statuses only
+        const Streamed& s = streamed[chunk];
+        if (!at.counted) {
+          if (s.alike) status.set_chunk_to(chunk, s.code);
+          else status.set_chunk(chunk, part.sealed_status(record));
+        }
+      } else if (raw) {  // each variable's bytes from the part's one read of the record to the file
         const auto offset = to_hsize(grid.range(chunk).start);
         part.with_sealed(
             record,
@@ -1253,6 +1295,7 @@ void CubeWriter::Impl::remove_parts() {
   std::error_code ignored;  // a part left behind holds chunks the cube has: tidiness, not safety
   for (const auto& part : parts_to_remove) std::filesystem::remove(part, ignored);
   parts_to_remove.clear();
+  live_parts.clear();  // their files are gone
   reached(CheckpointStep::kPartsRemoved);
 }
 
@@ -1282,6 +1325,152 @@ void CubeWriter::close() {
 }
 
 void CubeWriter::take_parts() { impl_->take_run_parts(statuses_, true); }
+
+void CubeWriter::stream_kept(std::size_t chunk, int rank) { impl_->stream_kept(chunk, rank); }
+
+std::string CubeWriter::take_stream_note() { return std::exchange(impl_->stream_note, {}); }
+
+/// One chunk a worker kept into the streaming fold (CubeWriter::stream_kept), which the first
+/// such chunk opens. Its part is read by the records its worker committed since the last chunk
+/// read from it (JournalReader::extend: frames and sizes, as the end's assembly reads a part of
+/// this run), the chunk's record checked as write_parts checks it (JournalReader::with_sealed:
+/// sizes, and statuses the cube's flags name) and written raw, variable by variable.
+///   kill at kStreamOpened or kChunkStreamed: a stray <cube>.partial (removed by the next
+///     fold, which makes it anew exclusively); the cube, its journal and the parts as they were.
+void CubeWriter::Impl::stream_kept(std::size_t chunk, int rank) {
+  if (stream_off || closed || part_id == 0 || !on_disk || journal_id == 0 || rank < 0 || chunk >= grid.chunk_count())
+    return;
+  if (!streamed.empty() && streamed[chunk].rank >= 0) return;
+  try {
+    JournalReader* part = live_part(rank);
+    if (part == nullptr) return;
+    struct Release {
+      JournalReader& part;
+      ~Release() { part.release_file(); }  // one part open at a time, whatever the number of ranks
+    } release{*part};
+    auto found = part->sealed_chunks().find(chunk);
+    if (found == part->sealed_chunks().end()) {
+      part->extend();
+      found = part->sealed_chunks().find(chunk);
+      if (found == part->sealed_chunks().end()) return;  // not there (yet): the end's fold takes it
+    }
+    const std::size_t record = found->second.front();
+    if (!stream) open_stream();
+    if (streamed.empty()) streamed.resize(grid.chunk_count());
+    Streamed in{rank};
+    const auto offset = to_hsize(grid.range(chunk).start);
+    part->with_sealed(
+        record,
+        [&](const SealedStatuses& s) {
+          in.alike = s.alike;
+          in.code = s.code;
+        },
+        [&](std::size_t v, const char* bytes, std::size_t size) { write_variable_raw(offset, v, bytes, size); });
+    streamed[chunk] = in;
+    stream_chunks.push_back(chunk);
+    reached(CheckpointStep::kChunkStreamed);
+  } catch (const std::exception& e) {
+    drop_stream(e.what());
+  }
+}
+
+/// Rank `rank`'s part as read during the run, reopened (the caller releases it); null when it
+/// is not there or not this cube's (the end's fold then reads it as before).
+JournalReader* CubeWriter::Impl::live_part(int rank) {
+  auto& part = live_parts[rank];
+  if (!part) {
+    auto read = std::make_unique<JournalReader>(part_path(path, rank), layout,
+                                                part_header_payload(part_header_of_cube()), false);
+    if (read->foreign()) throw CubeError(read->file().string() + ": is not a part of this cube");
+    if (!read->current()) {  // not there, or its header not complete: looked for again at its next chunk
+      live_parts.erase(rank);
+      return nullptr;
+    }
+    part = std::move(read);
+    return part.get();  // open
+  }
+  part->reopen_file();
+  return part.get();
+}
+
+/// Makes the streaming fold: <cube>.partial as a fold makes it (io::AtomicFile, exclusively,
+/// never followed), a copy of the cube, opened for the raw writes. The folder must have room
+/// for the copy and a margin; what the chunks add is checked by their writes (a full disk then
+/// drops the stream).
+void CubeWriter::Impl::open_stream() {
+  check_identity();
+  auto next = std::make_unique<io::AtomicFile>(path, true, io::AtomicFile::Temporary::kPartial);
+  std::error_code ec;
+  const auto space = std::filesystem::space(folder_of(next->temporary()), ec);
+  const auto cube_bytes = std::filesystem::file_size(path, ec);
+  if (!ec) {
+    const double needed = 1.05 * static_cast<double>(cube_bytes) + (1 << 20);
+    if (static_cast<double>(space.available) < needed)
+      throw CubeError(what("no room for its streaming fold " + next->temporary().string() + " (about " +
+                           std::to_string(static_cast<long long>(needed / 1e6)) + " MB)"),
+                      CubeError::Cause::kNoSpace);
+  }
+  next->copy_from(path);
+  check_identity();  // what was copied is this writer's cube
+  next->close();
+  try {
+    const std::string cannot_open = what("cannot open " + next->temporary().string());
+    file = h5::file(H5Fopen(next->temporary().c_str(), H5F_ACC_RDWR, h5::writing_access(cannot_open)), cannot_open);
+    for (const auto& m : layout.metrics)
+      metric_sets.push_back(h5::dataset(H5Dopen2(file, m.name.c_str(), H5P_DEFAULT), what("cannot open '" + m.name + "'")));
+    status_set = h5::dataset(H5Dopen2(file, kStatusName, H5P_DEFAULT), what("cannot open 'status'"));
+    if (!raw_writable()) throw CubeError(what("its variables are not stored as sealed chunks are"));
+  } catch (...) {
+    close_handles();
+    throw;
+  }
+  stream = std::move(next);
+  reached(CheckpointStep::kStreamOpened);
+}
+
+/// The fold into the open streaming fold: update() writes what it does not hold yet (the parts'
+/// other chunks, the journal, what was stored since, notes, histories, side variables), then it
+/// is synced and renamed over the cube as a fold's copy is. False, the stream dropped, when
+/// anything before the rename fails: the caller then folds as before, from a new copy.
+bool CubeWriter::Impl::fold_stream(StatusBook& status, std::int64_t new_id) {
+  try {
+    check_free_space(stream->temporary(), true);
+    update(stream->temporary(), status, new_id);
+    stream->sync();
+    reached(CheckpointStep::kFoldWritten);
+    check_identity();  // the fold took time: nothing took the cube's place since
+  } catch (const std::exception& e) {
+    drop_stream(e.what());
+    return false;
+  }
+  try {
+    stream->commit();
+  } catch (const io::OutputError& e) {
+    fail(CubeError(e.what(), CubeError::cause_of(e.os_error())));
+  }
+  stream.reset();
+  stream_chunks.clear();  // in the cube now: every later fold copies them
+  return true;
+}
+
+/// Drops the streaming fold (its .partial removed, what it held written by the end's fold
+/// instead) and stops streaming for this run.
+void CubeWriter::Impl::drop_stream(const std::string& reason) {
+  close_handles();
+  stream.reset();
+  for (const std::size_t chunk : stream_chunks) streamed[chunk] = {};
+  stream_chunks.clear();
+  live_parts.clear();
+  stream_off = true;
+  if (stream_note.empty())
+    stream_note = reason + "; the ranks' parts go into the cube at the end of the run instead, as before";
+}
+
+/// True when `chunk` was streamed from `part` (its record there) into the file being folded.
+bool CubeWriter::Impl::streamed_from(std::size_t chunk, const std::filesystem::path& part) const {
+  return chunk < streamed.size() && streamed[chunk].rank >= 0 &&
+         part_path(path, streamed[chunk].rank).filename() == part.filename();  // both beside the cube
+}
 
 /// The ranks' parts of this run (its workers', made under its lock), to go in with the next
 /// fold; `count_now`: their statuses join `status` at once (read_part).

@@ -116,14 +116,30 @@ bool LogReader::read_at(std::uint64_t offset, char* data, std::size_t size) cons
   return true;
 }
 
+void LogReader::extend() {
+  if (fd_ < 0 || !is_log_) return;
+  struct stat st {};
+  if (::fstat(fd_, &st) != 0 || st.st_dev != device_ || st.st_ino != inode_ ||
+      static_cast<std::uint64_t>(st.st_size) < valid_bytes_)
+    throw OutputError(file_.string() + ": was replaced or cut since it was read; pcrf reads a log it checked only", 0);
+  file_bytes_ = static_cast<std::uint64_t>(st.st_size);
+  const off_t hole = ::lseek(fd_, static_cast<off_t>(valid_bytes_), SEEK_HOLE);
+  data_bytes_ = hole >= 0 ? std::min<std::uint64_t>(static_cast<std::uint64_t>(hole), file_bytes_) : file_bytes_;
+  scan_from(valid_bytes_);
+}
+
 void LogReader::scan() {
   std::array<char, kMagic.size()> magic{};
   if (file_bytes_ < magic.size() || !read_at(0, magic.data(), magic.size())) return;
   if (std::string_view(magic.data(), magic.size()) != kMagic) return;
   is_log_ = true;
-  std::uint64_t at = magic.size();
-  valid_bytes_ = at;
-  std::vector<char> piece(kScanPieceBytes);
+  valid_bytes_ = magic.size();
+  scan_from(valid_bytes_);
+}
+
+/// The records from `at` (the end of the last valid one) on, up to the first that is not.
+void LogReader::scan_from(std::uint64_t at) {
+  std::vector<char> piece(verify_ ? kScanPieceBytes : 0);
   for (;;) {
     char head[kFrameHeadBytes];
     if (data_bytes_ < at || data_bytes_ - at < kFrameHeadBytes + kFrameTailBytes || !read_at(at, head, sizeof head)) return;

@@ -173,6 +173,7 @@ class Master {
     if (!message.results.empty()) on_outcomes(std::move(message.results));
     if (!message.sealed.empty()) {
       if (!options_.on_sealed) throw std::logic_error("scheduler: a worker sealed units and nobody takes them");
+      for (auto& unit : message.sealed) unit.worker = message.worker;
       options_.on_sealed(std::move(message.sealed));
     }
     if (message.finished) {

@@ -400,9 +400,10 @@ class ResultSink {
   /// Chunks a worker sealed: their bytes go to the writer as they are (no result unpacked).
   void store_sealed(parallel::SealedUnits&& units) {
     for (auto& unit : units) {
-      if (unit.kept) {  // durable in its worker's part: the final fold takes it from there
+      if (unit.kept) {  // durable in its worker's part: streamed into the next fold from there
         meter_.add(unit.cases, unit.failed);
         kept_.push_back(static_cast<std::size_t>(unit.unit));
+        stream_kept(unit);
         continue;
       }
       cube::SealedChunk chunk = cube::sealed_from_bytes(unit.bytes, writer_.grid(), metrics_, "a worker's message");
@@ -420,6 +421,16 @@ class ResultSink {
 
   /// Values per result row (the cube's metrics).
   void row_width(std::size_t metrics) { metrics_ = metrics; }
+
+ private:
+  /// A chunk durable in its worker's part goes into the cube's streaming fold at once
+  /// (CubeWriter::stream_kept), so that the end's fold writes only what is left. A streaming
+  /// failure is said once; the end's fold then takes the parts as before.
+  void stream_kept(const parallel::SealedUnit& unit) {
+    if (!error_.empty() || unit.unit < 0) return;
+    writer_.stream_kept(static_cast<std::size_t>(unit.unit), unit.worker);
+    if (const std::string note = writer_.take_stream_note(); !note.empty()) say_rank_note(0, note);
+  }
 
  private:
   void after_store() {
@@ -474,6 +485,7 @@ class ResultSink {
       if (before_flush_) before_flush_();
       writer_.close();
     });
+    if (const std::string note = writer_.take_stream_note(); !note.empty()) say_rank_note(0, note);
     check_kept();
   }
 

@@ -150,6 +150,7 @@ TEST(Scheduler, RankZerosWorkerThreadKeepsItsUnitsWhenGivenAKeeper) {
     EXPECT_TRUE(sealed[unit].bytes.empty()) << unit;
     EXPECT_EQ(sealed[unit].failed, unit + 10);
     EXPECT_EQ(sealed[unit].cases, 100);
+    EXPECT_EQ(sealed[unit].worker, 0) << "the master names the rank whose worker kept it (its own thread: 0)";
   }
   EXPECT_FALSE(sealed[2].kept);
   EXPECT_EQ(sealed[2].bytes, (std::vector<char>{'u', '2'}));

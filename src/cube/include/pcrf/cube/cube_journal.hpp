@@ -135,6 +135,11 @@ class JournalReader {
   /// file is no longer the one read.
   void release_file();
   void reopen_file();
+  /// A part its worker is still appending to (current, open: reopen_file()): indexes the
+  /// records it committed since, checked as the constructor checks them (sealed_chunks() then
+  /// lists their chunks too). Records past the last commit stay unread until a later call.
+  /// \throws CubeError naming the part when it was replaced or cut; JournalDamage as the constructor.
+  void extend();
   /// Case results in its records (a case stored twice counts twice).
   std::int64_t results() const { return results_; }
   /// Where a writer continues it [bytes] (the end of its last commit); 0 when not current.
@@ -184,6 +189,7 @@ class JournalReader {
  private:
   JournalReader(std::filesystem::path file, const CubeLayout& layout, bool verify_checksums = true);
   void index(bool part);
+  void index_from(std::size_t first);
   void check_statuses(std::size_t record, const std::int8_t* status, std::size_t n, bool sealed = false) const;
   bool names(std::int8_t code) const;
   std::size_t sealed_chunk_of(std::size_t record) const;

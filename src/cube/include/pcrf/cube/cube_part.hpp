@@ -4,10 +4,12 @@
 /// cube (sealed_chunk.hpp) appends it to its rank's part and makes it durable before it reports
 /// the chunk done; rank 0 hears only the chunk's number and counts. Rank 0's own worker thread
 /// keeps `<cube>.part-0` when the run has other ranks (alone, it hands its chunks to rank 0's
-/// journal in memory). The end of the run (the
-/// writer's last fold), or the first fold of a `--resume`, writes the parts' chunks into the
-/// cube by raw chunk writes, reading each record from its part by reference, and then removes
-/// the parts.
+/// journal in memory). As each chunk is reported, rank 0 reads its record from the rank's part
+/// (the records committed since its last read: JournalReader::extend) and writes it raw into
+/// the next fold's open <cube>.partial (CubeWriter::stream_kept); the end of the run (the
+/// writer's last fold) writes the rest, or, where streaming failed, every chunk, as the first
+/// fold of a `--resume` does: by raw chunk writes, each record read from its part by reference;
+/// then the parts are removed.
 ///
 /// A part is a log of the journal's own records (io::LogWriter framing, cube_journal.hpp): a
 /// kPartHeader record, then per chunk a sealed record, the chunk's notes (if any) and a commit.

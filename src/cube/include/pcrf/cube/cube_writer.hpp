@@ -25,6 +25,12 @@
 /// any moment leaves the last folded cube whole, and a journal whose complete records
 /// --resume replays (CheckpointStep lists the kill points). Readers of the file see its
 /// last fold.
+///
+/// The ranks' parts (cube_part.hpp) go in by the streaming fold (stream_kept): the next fold's
+/// <file>.partial, made at the first chunk a worker reports kept and open for the run, receives
+/// each such chunk raw as it is reported; the end's fold (close) writes only what it lacks into
+/// it. While it is open a checkpoint only appends; any streaming failure drops it, and the
+/// end's fold assembles the parts as before.
 #pragma once
 
 #include <cstdint>
@@ -66,6 +72,11 @@ enum class CheckpointStep {
   kFoldRenamed,     ///< the new cube is in place; the old journal not yet removed (stale)
   kJournalRemoved,  ///< the fold is complete (but for the parts it took)
   kPartsRemoved,    ///< … and the ranks' parts it took are removed (cube_part.hpp)
+  /// A streaming fold's <file>.partial is made (CubeWriter::stream_kept): a copy of the cube,
+  /// open for the run; the cube, its journal and the parts are as they were
+  kStreamOpened,
+  /// … and a chunk a worker kept in its part is written into it (not synced); as above
+  kChunkStreamed,
 };
 /// Called at each CheckpointStep of every writer of the process (null: nothing). For crash
 /// tests, which stop the process there.
@@ -170,6 +181,23 @@ class CubeWriter {
   /// next fold puts them in. For a producer whose side variables are derived from every result (an IDA's
   /// summaries of the curves its workers searched), before close().
   void take_parts();
+  /// A chunk that the worker of rank `rank` appended to its part and synced, and reported kept
+  /// (cube_part.hpp), goes into the cube's streaming fold now, so that the end of the run has
+  /// only what is left to write (issue 38: the assembly during the run, not after it). The
+  /// streaming fold is the next fold's <file>.partial, made at the first such chunk as a fold
+  /// makes it (io::AtomicFile, exclusively, never followed: a copy of the cube) and kept open;
+  /// each chunk is read from the part (the records it committed since, checked as the end's
+  /// assembly checks them) and written raw, one chunk in memory at a time. Nothing else changes
+  /// until the fold: status() and read_values() see the chunk when close() (or take_parts())
+  /// takes the parts, as before; while the streaming fold is open a checkpoint only appends
+  /// (the journal extends the cube on disk, which is unchanged), and a fold that must come
+  /// (fold(), parts taken) completes it. Never throws: a failure (a full disk, an HDF5 error, a
+  /// part that cannot be read) drops the .partial, stops the streaming and says why once
+  /// (take_stream_note); the end's fold then assembles as it did before. A chunk not found in
+  /// the part is left to the end's fold.
+  void stream_kept(std::size_t chunk, int rank);
+  /// Why the streaming fold stopped, once (empty: it did not, or was said already).
+  std::string take_stream_note();
   /// fold() and close: the ranks' parts beside the cube (this run's workers') go in with the
   /// fold, read from their files chunk by chunk (a part that does not fit the cube is set
   /// aside, noted in resume_notes()), and are removed after it; their statuses join status()

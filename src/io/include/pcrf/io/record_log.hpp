@@ -76,9 +76,15 @@ class LogReader {
   /// Opens the released file again for payload(): the same file (device and inode) with at
   /// least the bytes scanned. \throws OutputError naming it when it is gone or was replaced.
   void reopen();
+  /// Reads the records its writer completed since the last scan (a log another process is
+  /// still appending to: a rank's part during the run, cube_part.hpp), from where that scan
+  /// stopped, checked as the constructor checks them. The file must be open (reopen()) and
+  /// the one scanned. \throws OutputError naming the file when it was replaced or cut since.
+  void extend();
 
  private:
   void scan();
+  void scan_from(std::uint64_t at);
   bool read_at(std::uint64_t offset, char* data, std::size_t size) const;
 
   std::filesystem::path file_;

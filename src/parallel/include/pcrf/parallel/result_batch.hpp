@@ -40,6 +40,9 @@ struct SealedUnit {
   std::vector<char> bytes;  ///< what the sealer made of them (opaque here); empty when kept
   bool kept = false;        ///< true: the worker kept the bytes itself
   std::int64_t failed = 0;  ///< when kept: its cases that failed (the keeper's count)
+  /// The rank whose worker sent it (0: the master's own worker thread): set by the master as
+  /// it receives the message, not part of it; -1 until then.
+  int worker = -1;
 };
 using SealedUnits = std::vector<SealedUnit>;
 
