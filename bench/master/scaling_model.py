@@ -14,10 +14,11 @@ coordinates' chunks, before the first hand-out). Rank 0 spends, on one thread:
   - t_setup per case of the study before the first hand-out, serially (the plan, the checks,
     writing the coordinates' sealed chunks into the new cube);
   - t_serial per result during the run, concurrently with the workers (the hand-out, what comes
-    back, its checkpoints): it limits the run only once it saturates, at a share
+    back, its checkpoints, and each part's sealed chunks streamed into the next fold as its
+    worker reports them): it limits the run only once it saturates, at a share
     rho = W * t_serial / (t_case + t_own) of the run above 1;
-  - t_assembly per result after the run, serially (the last fold: each part's sealed chunks
-    copied into the cube).
+  - t_assembly per result after the run, serially (the last fold: what the stream does not
+    hold, and each chunk's statuses).
 The run's wall time is then N (t_setup + t_assembly) + N (t_create + (t_case + t_own) max(1, rho)) / W,
 against N t_case / W for perfect workers, so the per-worker efficiency is
 
@@ -29,13 +30,17 @@ one chunk of 16 384 cases for the others) only lower it. Instructions are turned
 
 Two more things. The last column, "no rank 0", is the bound with rank 0 free (t_setup =
 t_serial = t_assembly = 0): t_case / (t_case + t_own + t_create), what the workers' own side
-allows at any W. The second table adds the bytes that one writer puts in the cube serially:
-the cube's --cube-bytes-per-case (88.4 B measured on the non-lifting LHS: the coordinates'
-chunks at the creation, the parts' chunks at the assembly; HDF5's direct chunk write is "not
-supported with parallel HDF5", H5Dpublic.h of 1.10.8 and of 1.14) at --write-gb-s, an assumed
-sustained single-writer bandwidth (no cluster file system can be measured here): t_setup
-grows by bytes / bandwidth. Case costs: a frame that never lifts (measured by callgrind), 0.3 ms
-(a typical rocking case) and 3.6 ms (a long record's IDA step).
+allows at any W. The second table adds the bytes that rank 0, the cube's one writer, puts in
+the file (HDF5's direct chunk write is "not supported with parallel HDF5", H5Dpublic.h of
+1.10.8 and of 1.14), at --write-gb-s, an assumed sustained single-writer bandwidth (no cluster
+file system can be measured here), from pcrf_cube_filters on the non-lifting LHS:
+  - the coordinates' chunks, --coordinate-bytes-per-case (53.5 B), at the creation: serial,
+    t_setup grows by them;
+  - the results' chunks, --result-bytes-per-case (34.9 B), streamed into the next fold while
+    the run goes on (CubeWriter::stream_kept): t_serial grows by them. --assembled-at-end
+    puts them in t_assembly instead, as the design before the streaming fold did.
+Case costs: a frame that never lifts (measured by callgrind), 0.3 ms (a typical rocking case)
+and 3.6 ms (a long record's IDA step).
 """
 import argparse
 import os
@@ -46,18 +51,23 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 WORKERS = [16, 64, 256, 2048, 16384]
 
-# Measured with callgrind on a non-lifting LHS of 8 parameters, 17 metrics, at 4 ranks
+# Measured with callgrind on a non-lifting LHS of 8 parameters, 17 metrics, at 4 ranks, on main after the
+# streaming fold and the fixed-array chunk indices
 # (rank_costs.py --ranks 4 --small 294912 1179648: marginal instructions between the two sizes,
 # so that start-up cancels; the workers' split from the same profiles, callgrind_annotate
 # --inclusive=yes; studies/README.md "The master at cluster scale"):
 MASTER_SETUP_PER_CASE = 4         # rank 0's main thread before the first hand-out (was 11 600 at da9ce77, 7 at
-                                  # 291f9a0): a memset of its statuses (1), the coordinates' raw writes (1) and its
-                                  # polling while it waits for the workers' pieces (WorkerCoordinates::take: 2 to 13
-                                  # in four runs, with the load; that wait is the workers' creation, counted apart)
-MASTER_RUN_PER_RESULT = 1         # rank 0's main thread during the run (51 at 291f9a0, when rank 0's own worker
-                                  # thread journaled its chunks; now it keeps part-0): 1 to 6 in four runs
-MASTER_ASSEMBLY_PER_RESULT = 11   # rank 0's main thread in the last fold: the parts' chunks into the cube, each
-                                  # counted per chunk (25 at 291f9a0); 7 of it HDF5's H5Dwrite_chunk
+                                  # 291f9a0): a memset of its statuses (1, callgrind counts a memset's bytes), the
+                                  # coordinates' raw writes (0.5) and its polling while it waits for the workers'
+                                  # pieces (WorkerCoordinates::take: 2 to 13 in six runs, with the load; that wait is
+                                  # the workers' creation, counted apart, and idle time, not work)
+MASTER_RUN_PER_RESULT = 9         # rank 0's main thread during the run: the parts' chunks streamed into the next
+                                  # fold as workers report them (CubeWriter::stream_kept, 4.45: HDF5's raw chunk
+                                  # write with fixed-array chunk indices), the hand-out and its polling (1 to 5 in
+                                  # six runs, with the load)
+MASTER_ASSEMBLY_PER_RESULT = 1    # rank 0's main thread in the last fold, after the run: each chunk's statuses
+                                  # counted (a memset) and what the stream does not hold (was 11 before the
+                                  # streaming fold, 25 at 291f9a0)
 NONLIFT_CASE = 15_810             # a worker's non-lifting case (CaseRunner::run; the LHS point included)
 WORKER_OWN_PER_CASE = 3_240       # sealing its chunk 2 700, keeping it in its part 225, messages 315
 WORKER_CREATION_PER_CASE = 6_040  # the cube's coordinates computed and sealed by the workers, per case of the study
@@ -86,7 +96,7 @@ def measure(pcrf):
                           "--small", "294912", "1179648"], capture_output=True, text=True, check=True).stdout
     figure = lambda pattern: float(re.search(pattern, out).group(1).replace(",", ""))  # noqa: E731
     return (figure(r"first hand-out[^:]*: ([0-9,]+)"), figure(r"during the run \(hand-out[^:]*: ([0-9,]+)"),
-            figure(r"the assembly \([^:]*: the parts[^:]*: ([0-9,]+)"))
+            figure(r"the assembly \(the last fold.*?into the cube\): ([0-9,]+)"))
 
 
 def main():
@@ -105,8 +115,12 @@ def main():
     parser.add_argument("--creation-per-case", type=float, default=WORKER_CREATION_PER_CASE,
                         help="instructions the workers spend together per case of the study creating the cube")
     parser.add_argument("--ns-per-instruction", type=float, default=0.145)
-    parser.add_argument("--cube-bytes-per-case", type=float, default=88.4,
-                        help="bytes a case the cube stores [B] (pcrf_cube_filters on the non-lifting LHS)")
+    parser.add_argument("--coordinate-bytes-per-case", type=float, default=53.5,
+                        help="bytes a case the cube's coordinates take [B] (pcrf_cube_filters, non-lifting LHS)")
+    parser.add_argument("--result-bytes-per-case", type=float, default=34.9,
+                        help="bytes a case the cube's metrics and status take [B] (pcrf_cube_filters)")
+    parser.add_argument("--assembled-at-end", action="store_true",
+                        help="the results' bytes written after the run (the design before the streaming fold)")
     parser.add_argument("--write-gb-s", type=float, default=1.0,
                         help="sustained bandwidth of the cube's one writer [GB/s] (an assumption)")
     args = parser.parse_args()
@@ -123,10 +137,16 @@ def main():
           f"instructions a case; a worker's own {args.worker_own:,.0f} a case, the cube's creation "
           f"{args.creation_per_case:,.0f} a case of the study; {args.ns_per_instruction} ns an instruction\n")
     table(cases, t_own, t_create, t_serial, t_setup, t_assembly)
-    write_s = args.cube_bytes_per_case / (args.write_gb_s * 1e9)
-    print(f"\nWith the cube's {args.cube_bytes_per_case:.1f} B a case written by one writer at {args.write_gb_s} GB/s "
-          f"({write_s * 1e9:.0f} ns a case, serial: the creation's coordinates and the assembly's chunks):\n")
-    table(cases, t_own, t_create, t_serial, t_setup + write_s, t_assembly)
+    coordinate_s = args.coordinate_bytes_per_case / (args.write_gb_s * 1e9)
+    result_s = args.result_bytes_per_case / (args.write_gb_s * 1e9)
+    when = "after the run, serially" if args.assembled_at_end else "during the run, streamed"
+    print(f"\nWith the cube's bytes written by one writer at {args.write_gb_s} GB/s: the coordinates' "
+          f"{args.coordinate_bytes_per_case:.1f} B a case ({coordinate_s * 1e9:.0f} ns) at the creation, serially; "
+          f"the results' {args.result_bytes_per_case:.1f} B ({result_s * 1e9:.0f} ns) {when}:\n")
+    if args.assembled_at_end:
+        table(cases, t_own, t_create, t_serial, t_setup + coordinate_s, t_assembly + result_s)
+    else:
+        table(cases, t_own, t_create, t_serial + result_s, t_setup + coordinate_s, t_assembly)
 
 if __name__ == "__main__":
     main()
