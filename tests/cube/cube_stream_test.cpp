@@ -23,6 +23,7 @@
 #include "pcrf/cube/cube_writer.hpp"
 #include "pcrf/cube/sealed_chunk.hpp"
 #include "case_axis_layout.hpp"
+#include "worker_chunks.hpp"
 #include "support/test_support.hpp"
 
 namespace pcrf::cube {
@@ -33,25 +34,6 @@ namespace fs = std::filesystem;
 constexpr std::int64_t kCases = 40000;  // chunks of 16 384, 16 384 and 7 232 (an edge chunk)
 
 CubeLayout stream_layout() { return case_axis_layout(kCases, "stream-test"); }
-
-std::vector<double> row_of(std::int64_t i) { return {1e-5 * static_cast<double>(i), static_cast<double>(i % 7)}; }
-std::int8_t status_of(std::int64_t i) { return i % 11 == 0 ? 3 : 0; }
-
-/// Chunk `chunk` computed whole and sealed, as a worker does it (`code`: every status, when set).
-SealedChunk sealed_of(const ChunkGrid& grid, std::size_t chunk, int code = -1) {
-  const auto r = grid.range(chunk);
-  const auto count = static_cast<std::size_t>(r.count);
-  std::vector<std::int8_t> status(count);
-  std::vector<double> values(2 * count);
-  std::vector<std::pair<std::int64_t, std::string>> notes;
-  for (std::size_t k = 0; k < count; ++k) {
-    const std::int64_t i = r.first + static_cast<std::int64_t>(k);
-    status[k] = code >= 0 ? static_cast<std::int8_t>(code) : status_of(i);
-    for (std::size_t m = 0; m < 2; ++m) values[m * count + k] = row_of(i)[m];
-    if (i % 997 == 0) notes.emplace_back(i, "note of case " + std::to_string(i));
-  }
-  return seal_chunk(grid, chunk, 2, status, values, std::move(notes));
-}
 
 /// The cases of `chunks` hold what row_of says (chunk 2 every status 3, the others status_of),
 /// the others are not run; every note of a case stored is there once.
