@@ -207,6 +207,7 @@ struct CubeWriter::Impl {
   // open, `file`, `metric_sets` and `status_set` are its handles (declared after `file`: the
   // .partial is removed before they close, and with it what was streamed).
   std::unique_ptr<io::AtomicFile> stream;
+  struct stat stream_identity {};  // of the .partial the stream copied the cube into (fstat)
   bool stream_off = false;  // streaming failed once (or cannot be): the end's fold assembles the parts
   std::string stream_note;  // why, until said (CubeWriter::take_stream_note)
   struct Streamed {
@@ -261,6 +262,7 @@ struct CubeWriter::Impl {
   void open_stream();
   bool fold_stream(StatusBook& status, std::int64_t new_id);
   void drop_stream(const std::string& reason);
+  void check_stream_identity(const struct stat& now, const std::filesystem::path& partial, const char* when) const;
   bool streamed_from(std::size_t chunk, const std::filesystem::path& part) const;
   h5::Handle create_cube_variable(const std::string& name, hid_t file_type, hid_t memory_type,
                                   const void* fill);
@@ -1412,10 +1414,18 @@ void CubeWriter::Impl::open_stream() {
   }
   next->copy_from(path);
   check_identity();  // what was copied is this writer's cube
+  if (::fstat(next->fd(), &stream_identity) != 0)
+    throw CubeError(what("cannot stat its streaming fold " + next->temporary().string()));
   next->close();
   try {
     const std::string cannot_open = what("cannot open " + next->temporary().string());
     file = h5::file(H5Fopen(next->temporary().c_str(), H5F_ACC_RDWR, h5::writing_access(cannot_open)), cannot_open);
+    void* handle = nullptr;  // the file HDF5 opened by the name is the copy made above
+    struct stat opened {};
+    if (H5Fget_vfd_handle(file, H5P_DEFAULT, &handle) < 0 || handle == nullptr ||
+        ::fstat(*static_cast<int*>(handle), &opened) != 0)
+      throw CubeError(what("cannot stat its streaming fold " + next->temporary().string()));
+    check_stream_identity(opened, next->temporary(), "before HDF5 opened it");
     for (const auto& m : layout.metrics)
       metric_sets.push_back(h5::dataset(H5Dopen2(file, m.name.c_str(), H5P_DEFAULT), what("cannot open '" + m.name + "'")));
     status_set = h5::dataset(H5Dopen2(file, kStatusName, H5P_DEFAULT), what("cannot open 'status'"));
@@ -1434,6 +1444,10 @@ void CubeWriter::Impl::open_stream() {
 /// anything before the rename fails: the caller then folds as before, from a new copy.
 bool CubeWriter::Impl::fold_stream(StatusBook& status, std::int64_t new_id) {
   try {
+    struct stat now {};  // the name still holds the file streamed into: else the rename would
+    if (::lstat(stream->temporary().c_str(), &now) != 0)  // put another in the cube's place
+      throw CubeError(what("its streaming fold " + stream->temporary().string() + " is gone: " + std::strerror(errno)));
+    check_stream_identity(now, stream->temporary(), "during the run");
     check_free_space(stream->temporary(), true);
     update(stream->temporary(), status, new_id);
     stream->sync();
@@ -1451,6 +1465,16 @@ bool CubeWriter::Impl::fold_stream(StatusBook& status, std::int64_t new_id) {
   stream.reset();
   stream_chunks.clear();  // in the cube now: every later fold copies them
   return true;
+}
+
+/// The file `now` is the streaming fold's copy (same device and inode, a regular file), or
+/// a CubeError that drops the stream: another file was put at its name `partial` `when`, and
+/// the rename would have put that file in the cube's place (the streamed chunks, kept in the
+/// parts until the last fold, then go in from a new copy).
+void CubeWriter::Impl::check_stream_identity(const struct stat& now, const std::filesystem::path& partial,
+                                             const char* when) const {
+  if (!S_ISREG(now.st_mode) || now.st_dev != stream_identity.st_dev || now.st_ino != stream_identity.st_ino)
+    throw CubeError(what("its streaming fold " + partial.string() + " was replaced by another file " + when));
 }
 
 /// Drops the streaming fold (its .partial removed, what it held written by the end's fold

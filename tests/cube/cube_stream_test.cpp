@@ -299,6 +299,38 @@ TEST(CubeStream, AStreamedFoldThatFailsFallsBackToANewCopy) {
   EXPECT_EQ(writer.status_counts(), count_statuses(writer.status()));
 }
 
+// The streaming fold's .partial replaced during the run by another regular file (a copy: the
+// same bytes, another inode, which a sync by the name would not tell): the last fold does not
+// rename that file into the cube's place; it falls back to a new copy, which writes every
+// chunk, the streamed one included, and says why once.
+TEST(CubeStream, AStreamedFoldReplacedDuringTheRunIsNotRenamedIntoPlace) {
+  const auto dir = test::scratch_dir("stream_fold_replaced");
+  const auto file = dir / "c.h5";
+  CubeWriter writer(file, stream_layout(), OpenMode::kCreate);
+  PartWriter(part_path(file, 1), writer.part_header()).add(sealed_of(writer.grid(), 0));
+  writer.stream_kept(0, 1);
+  ASSERT_TRUE(fs::exists(partial_of(file)));
+  const fs::path other = dir / "other.h5";
+  fs::copy_file(partial_of(file), other);
+  fs::rename(other, partial_of(file));
+  PartWriter(part_path(file, 2), writer.part_header()).add(sealed_of(writer.grid(), 2, 3));
+  writer.stream_kept(2, 2);
+  for (std::int64_t i = 16384; i < 32768; ++i) writer.store(i, status_of(i), row_of(i));
+  writer.close();
+  EXPECT_NE(writer.take_stream_note().find("was replaced by another file"), std::string::npos);
+  EXPECT_FALSE(fs::exists(partial_of(file)));
+  const CubeReader reader(file);
+  EXPECT_TRUE(reader.damage().empty());
+  const auto status = reader.read_status();
+  const auto theta = reader.read_metric("theta_max_rad");
+  for (const std::int64_t i : {std::int64_t{5}, std::int64_t{16384 + 5}, std::int64_t{32768 + 5}}) {
+    const auto k = static_cast<std::size_t>(i);
+    EXPECT_EQ(theta[k], row_of(i)[0]) << i;
+    EXPECT_EQ(status[k], i >= 32768 ? 3 : status_of(i)) << i;
+  }
+  EXPECT_EQ(writer.status(), status);
+}
+
 // take_parts (an IDA's producer, before the last fold) after chunks were streamed: the
 // statuses count at once and read_values sees every part's chunk, streamed or not.
 TEST(CubeStream, TakenPartsReadEveryChunkStreamedOrNot) {
