@@ -170,20 +170,30 @@ TEST_F(IdaUnits, ARunStoppedBySigtermInsideAChunkResumesToTheSameCube) {
 
 TEST_F(IdaUnits, AWorkerKeepsWholeCurvesInItsPartAndAKillThereResumesToTheSameCube) {
   PCRF_REQUIRE_MPIRUN();
+  const auto err = dir_ / "killed.err";
   const pid_t pid = spawn_shell("cd " + quoted(dir_) + " && exec setsid " + mpirun(3) + pcrf() +
-                                " study u.toml -o killed.h5 --flush-interval-s 0.05 --progress-interval 0");
+                                " study u.toml -o killed.h5 --flush-interval-s 0.05 --progress-interval 0 2>" + quoted(err));
   ASSERT_GT(pid, 0);
   // A worker rank makes its part when it keeps its first chunk: kill every rank then.
   bool part_seen = false;
+  int ended = -1;  // the run's wait status, when it ended before a part was seen
   for (int i = 0; i < 6000 && !part_seen; ++i) {
     part_seen = std::filesystem::exists(dir_ / "killed.h5.part-1") || std::filesystem::exists(dir_ / "killed.h5.part-2");
     if (!part_seen) std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    if (::waitpid(pid, nullptr, WNOHANG) == pid) break;  // the run ended
+    int status = 0;
+    if (::waitpid(pid, &status, WNOHANG) == pid) {  // the run ended
+      ended = status;
+      break;
+    }
   }
-  ::kill(-pid, SIGKILL);
-  ::waitpid(pid, nullptr, 0);
+  if (ended < 0) {
+    ::kill(-pid, SIGKILL);
+    ::waitpid(pid, nullptr, 0);
+  }
   std::this_thread::sleep_for(std::chrono::milliseconds(200));  // the ranks die with their group
-  EXPECT_TRUE(part_seen) << "no worker rank kept an IDA chunk in its part";
+  EXPECT_TRUE(part_seen) << "no worker rank kept an IDA chunk in its part"
+                         << (ended >= 0 ? "; the run ended first, wait status " + std::to_string(ended) : std::string())
+                         << "; its stderr:\n" << text_of(err);
   const auto resumed = study_in(dir_, "-o killed.h5 --resume", mpirun(3));
   ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
   expect_same_ida(dir_ / "runs.h5", dir_ / "killed.h5");
