@@ -45,31 +45,6 @@ void make_cube(const fs::path& file) {
 
 PartHeader header_of(const fs::path& file) { return part_header_of(CubeReader(file).layout()); }
 
-/// The cases of `chunks` hold what row_of and status_of say, the others are not run; every
-/// note of a case stored is there once.
-void expect_chunks(const fs::path& file, const std::vector<std::size_t>& chunks) {
-  const CubeReader reader(file);
-  const ChunkGrid grid(reader.layout().shape());
-  const auto status = reader.read_status();
-  const auto theta = reader.read_metric("theta_max_rad");
-  std::size_t wrong = 0, notes_expected = 0;
-  for (std::size_t c = 0; c < grid.chunk_count(); ++c) {
-    const bool stored = std::find(chunks.begin(), chunks.end(), c) != chunks.end();
-    const auto r = grid.range(c);
-    for (std::int64_t i = r.first; i < r.first + r.count; ++i) {
-      const auto k = static_cast<std::size_t>(i);
-      if (stored) {
-        wrong += status[k] != status_of(i) || theta[k] != row_of(i)[0];
-        notes_expected += i % 997 == 0;
-      } else {
-        wrong += status[k] != kStatusNotRun || !std::isnan(theta[k]);
-      }
-    }
-  }
-  EXPECT_EQ(wrong, 0u) << file;
-  EXPECT_EQ(reader.read_notes().size(), notes_expected);
-}
-
 TEST(CubePart, ThePartsOfARunGoInAtItsLastFoldAndGo) {
   const auto dir = test::scratch_dir("part_close");
   const auto file = dir / "c.h5";

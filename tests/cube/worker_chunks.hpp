@@ -3,13 +3,20 @@
 /// two metrics: case i's row and status, and a chunk of them sealed as a worker seals it.
 #pragma once
 
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <filesystem>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "pcrf/cube/chunk_grid.hpp"
+#include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/cube/sealed_chunk.hpp"
 
 namespace pcrf::cube {
@@ -34,6 +41,35 @@ inline SealedChunk sealed_of(const ChunkGrid& grid, std::size_t chunk, int code 
     if (i % 997 == 0) notes.emplace_back(i, "note of case " + std::to_string(i));
   }
   return seal_chunk(grid, chunk, 2, status, values, std::move(notes));
+}
+
+/// The cube at `file` reads without damage; the cases of `chunks` hold what row_of says, with
+/// status_of's statuses but in `overturned` (a chunk sealed with every status 3); the others
+/// are not run; every note of a case stored is there once.
+inline void expect_chunks(const std::filesystem::path& file, const std::vector<std::size_t>& chunks,
+                          std::size_t overturned = std::numeric_limits<std::size_t>::max()) {
+  const CubeReader reader(file);
+  EXPECT_TRUE(reader.damage().empty()) << file;
+  const ChunkGrid grid(reader.layout().shape());
+  const auto status = reader.read_status();
+  const auto theta = reader.read_metric("theta_max_rad");
+  const auto impacts = reader.read_metric("impacts");
+  std::size_t wrong = 0, notes_expected = 0;
+  for (std::size_t c = 0; c < grid.chunk_count(); ++c) {
+    const bool stored = std::find(chunks.begin(), chunks.end(), c) != chunks.end();
+    const auto r = grid.range(c);
+    for (std::int64_t i = r.first; i < r.first + r.count; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      if (stored) {
+        wrong += status[k] != (c == overturned ? 3 : status_of(i)) || theta[k] != row_of(i)[0] || impacts[k] != row_of(i)[1];
+        notes_expected += i % 997 == 0;
+      } else {
+        wrong += status[k] != kStatusNotRun || !std::isnan(theta[k]);
+      }
+    }
+  }
+  EXPECT_EQ(wrong, 0u) << file;
+  EXPECT_EQ(reader.read_notes().size(), notes_expected) << file;
 }
 
 }  // namespace pcrf::cube
