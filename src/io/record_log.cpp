@@ -10,6 +10,7 @@
 #include <array>
 #include <cerrno>
 #include <cstring>
+#include <optional>
 
 #include "pcrf/io/checked_stream.hpp"
 #include "pcrf/io/file_kind.hpp"
@@ -70,14 +71,9 @@ LogReader::LogReader(const fs::path& file, Checksums checksums) : file_(file), v
     fd_ = -1;
     throw OutputError(file_.string() + ": cannot read: " + std::strerror(error), error);
   }
-  file_bytes_ = static_cast<std::uint64_t>(st.st_size);
   device_ = st.st_dev;
   inode_ = st.st_ino;
-  // Where the file's data end: its first hole (SEEK_HOLE; the end of the file where there is
-  // none, or where the file system cannot tell). An appended log has no hole: a record
-  // reaching into one was never written (a sparse, forged file) and is not checksummed.
-  const off_t hole = ::lseek(fd_, 0, SEEK_HOLE);
-  data_bytes_ = hole >= 0 ? std::min<std::uint64_t>(static_cast<std::uint64_t>(hole), file_bytes_) : file_bytes_;
+  measure(static_cast<std::uint64_t>(st.st_size), 0);
   max_record_bytes_ = static_cast<std::uint64_t>(kUsableMemoryShare * machine_memory_bytes());
   scan();
 }
@@ -94,13 +90,35 @@ void LogReader::release() {
 void LogReader::reopen() {
   if (fd_ >= 0 || !is_log_) return;
   const int fd = open_regular_to_read(file_, false, false);
-  struct stat st {};
-  if (::fstat(fd, &st) != 0 || st.st_dev != device_ || st.st_ino != inode_ ||
-      static_cast<std::uint64_t>(st.st_size) < valid_bytes_) {
+  if (!size_if_scanned(fd)) {
     ::close(fd);
-    throw OutputError(file_.string() + ": was replaced or cut since it was read; pcrf reads a log it checked only", 0);
+    fail_replaced();
   }
   fd_ = fd;
+}
+
+/// The size of the file open at `fd` when it is the one scanned (device and inode) and still
+/// holds every valid record; nothing when it was replaced or cut since.
+std::optional<std::uint64_t> LogReader::size_if_scanned(int fd) const {
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || st.st_dev != device_ || st.st_ino != inode_ ||
+      static_cast<std::uint64_t>(st.st_size) < valid_bytes_)
+    return std::nullopt;
+  return static_cast<std::uint64_t>(st.st_size);
+}
+
+void LogReader::fail_replaced() const {
+  throw OutputError(file_.string() + ": was replaced or cut since it was read; pcrf reads a log it checked only", 0);
+}
+
+/// The open file's size, `file_bytes`, and where its data end at or after `from`: its first
+/// hole there (SEEK_HOLE; the end of the file where there is none, or where the file system
+/// cannot tell). An appended log has no hole: a record reaching into one was never written (a
+/// sparse, forged file) and is not checksummed.
+void LogReader::measure(std::uint64_t file_bytes, std::uint64_t from) {
+  file_bytes_ = file_bytes;
+  const off_t hole = ::lseek(fd_, static_cast<off_t>(from), SEEK_HOLE);
+  data_bytes_ = hole >= 0 ? std::min<std::uint64_t>(static_cast<std::uint64_t>(hole), file_bytes_) : file_bytes_;
 }
 
 bool LogReader::read_at(std::uint64_t offset, char* data, std::size_t size) const {
@@ -118,13 +136,9 @@ bool LogReader::read_at(std::uint64_t offset, char* data, std::size_t size) cons
 
 void LogReader::extend() {
   if (fd_ < 0 || !is_log_) return;
-  struct stat st {};
-  if (::fstat(fd_, &st) != 0 || st.st_dev != device_ || st.st_ino != inode_ ||
-      static_cast<std::uint64_t>(st.st_size) < valid_bytes_)
-    throw OutputError(file_.string() + ": was replaced or cut since it was read; pcrf reads a log it checked only", 0);
-  file_bytes_ = static_cast<std::uint64_t>(st.st_size);
-  const off_t hole = ::lseek(fd_, static_cast<off_t>(valid_bytes_), SEEK_HOLE);
-  data_bytes_ = hole >= 0 ? std::min<std::uint64_t>(static_cast<std::uint64_t>(hole), file_bytes_) : file_bytes_;
+  const auto size = size_if_scanned(fd_);
+  if (!size) fail_replaced();
+  measure(*size, valid_bytes_);
   scan_from(valid_bytes_);
 }
 

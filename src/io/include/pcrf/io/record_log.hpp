@@ -19,6 +19,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -85,6 +86,9 @@ class LogReader {
  private:
   void scan();
   void scan_from(std::uint64_t at);
+  std::optional<std::uint64_t> size_if_scanned(int fd) const;
+  [[noreturn]] void fail_replaced() const;
+  void measure(std::uint64_t file_bytes, std::uint64_t from);
   bool read_at(std::uint64_t offset, char* data, std::size_t size) const;
 
   std::filesystem::path file_;
