@@ -241,6 +241,7 @@ struct CubeWriter::Impl {
   void write_long_coordinates(const std::filesystem::path& target);
   void write_sealed_piece(hid_t d, const CoordinatePiece& piece, const std::string& problem);
   void update(const std::filesystem::path& target, StatusBook& status, std::int64_t new_id);
+  void open_for_writing(const std::filesystem::path& target);
   void check_free_space(const std::filesystem::path& target, bool copied = false) const;
   void remember_identity();
   void check_identity() const;
@@ -997,18 +998,22 @@ void CubeWriter::Impl::write_sealed_piece(hid_t d, const CoordinatePiece& piece,
   h5::check(H5Dwrite_chunk(d, H5P_DEFAULT, 0, &offset, bytes.size(), bytes.data()), problem);
 }
 
+/// Opens the new file of a fold at `target` (a copy of the cube, or the streaming fold's) for
+/// its writes: `file` (h5::writing_access), `metric_sets` and `status_set`.
+void CubeWriter::Impl::open_for_writing(const std::filesystem::path& target) {
+  const std::string cannot_open = what("cannot open " + target.string());
+  file = h5::file(H5Fopen(target.c_str(), H5F_ACC_RDWR, h5::writing_access(cannot_open)), cannot_open);
+  for (const auto& m : layout.metrics)
+    metric_sets.push_back(h5::dataset(H5Dopen2(file, m.name.c_str(), H5P_DEFAULT), what("cannot open '" + m.name + "'")));
+  status_set = h5::dataset(H5Dopen2(file, kStatusName, H5P_DEFAULT), what("cannot open 'status'"));
+}
+
 /// Writes what changed since the last fold into `target` (a copy of it, or a new cube): the
 /// journal's records, then what was stored since the last checkpoint, and the new journal id.
 void CubeWriter::Impl::update(const std::filesystem::path& target, StatusBook& status,
                               std::int64_t new_id) {
   try {
-    if (!file.valid()) {  // else the streaming fold's, open on `target` with its variables
-      const std::string cannot_open = what("cannot open " + target.string());
-      file = h5::file(H5Fopen(target.c_str(), H5F_ACC_RDWR, h5::writing_access(cannot_open)), cannot_open);
-      for (const auto& m : layout.metrics)
-        metric_sets.push_back(h5::dataset(H5Dopen2(file, m.name.c_str(), H5P_DEFAULT), what("cannot open '" + m.name + "'")));
-      status_set = h5::dataset(H5Dopen2(file, kStatusName, H5P_DEFAULT), what("cannot open 'status'"));
-    }
+    if (!file.valid()) open_for_writing(target);  // else the streaming fold's, open on `target`
     const JournalReader journaled(path, layout, journal_records > 0 ? journal_id : 0);
     // The ranks' parts first (chunks no journal record touches: each went to one worker).
     std::vector<std::pair<std::int64_t, std::string>> notes;
@@ -1418,17 +1423,13 @@ void CubeWriter::Impl::open_stream() {
     throw CubeError(what("cannot stat its streaming fold " + next->temporary().string()));
   next->close();
   try {
-    const std::string cannot_open = what("cannot open " + next->temporary().string());
-    file = h5::file(H5Fopen(next->temporary().c_str(), H5F_ACC_RDWR, h5::writing_access(cannot_open)), cannot_open);
+    open_for_writing(next->temporary());
     void* handle = nullptr;  // the file HDF5 opened by the name is the copy made above
     struct stat opened {};
     if (H5Fget_vfd_handle(file, H5P_DEFAULT, &handle) < 0 || handle == nullptr ||
         ::fstat(*static_cast<int*>(handle), &opened) != 0)
       throw CubeError(what("cannot stat its streaming fold " + next->temporary().string()));
     check_stream_identity(opened, next->temporary(), "before HDF5 opened it");
-    for (const auto& m : layout.metrics)
-      metric_sets.push_back(h5::dataset(H5Dopen2(file, m.name.c_str(), H5P_DEFAULT), what("cannot open '" + m.name + "'")));
-    status_set = h5::dataset(H5Dopen2(file, kStatusName, H5P_DEFAULT), what("cannot open 'status'"));
     if (!raw_writable()) throw CubeError(what("its variables are not stored as sealed chunks are"));
   } catch (...) {
     close_handles();
