@@ -429,10 +429,14 @@ class ResultSink {
   void stream_kept(const parallel::SealedUnit& unit) {
     if (!error_.empty() || unit.unit < 0) return;
     writer_.stream_kept(static_cast<std::size_t>(unit.unit), unit.worker);
+    say_stream_note();
+  }
+
+  /// Why streaming stopped, when it just did (the writer keeps it until taken).
+  void say_stream_note() {
     if (const std::string note = writer_.take_stream_note(); !note.empty()) say_rank_note(0, note);
   }
 
- private:
   void after_store() {
     // Stopping on a signal: each batch that comes back goes to disk at once (the launcher's
     // SIGKILL may follow within a second).
@@ -485,7 +489,7 @@ class ResultSink {
       if (before_flush_) before_flush_();
       writer_.close();
     });
-    if (const std::string note = writer_.take_stream_note(); !note.empty()) say_rank_note(0, note);
+    say_stream_note();
     check_kept();
   }
 
