@@ -21,6 +21,7 @@
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/cube/cube_writer.hpp"
 #include "pcrf/io/record_log.hpp"
+#include "kill_points.hpp"
 #include "support/test_support.hpp"
 
 namespace pcrf::cube {
@@ -471,38 +472,19 @@ TEST(CubeJournal, ALinkOrAFifoBesideTheCubeIsRefusedNeverFollowed) {
 
 // ---- kills ----
 
-CheckpointStep kill_step;
-int kill_occurrence = 0;
-
-void kill_here(CheckpointStep step) {
-  if (step == kill_step && --kill_occurrence == 0) ::raise(SIGKILL);
-}
-
 /// The child's run: resumes the journaled cube, appends (continuing the journal), folds,
-/// appends again (a new journal), then closes (folds). Killed at the chosen step.
-[[noreturn]] void killed_run(const fs::path& file) {
-  try {
-    observe_checkpoints(kill_here);
-    CubeWriter writer(file, journal_layout(), OpenMode::kResume);
-    store_cases(writer, 23000, 24000);
-    writer.flush();  // append
-    store_cases(writer, 24000, 31000);
-    writer.fold();
-    store_cases(writer, 31000, 32000);
-    writer.flush();  // append, to a new journal
-    store_cases(writer, 32000, 33000);
-    writer.close();
-  } catch (...) {
-    ::_exit(1);
-  }
-  ::_exit(0);
+/// appends again (a new journal), then closes (folds).
+void killed_run(const fs::path& file) {
+  CubeWriter writer(file, journal_layout(), OpenMode::kResume);
+  store_cases(writer, 23000, 24000);
+  writer.flush();  // append
+  store_cases(writer, 24000, 31000);
+  writer.fold();
+  store_cases(writer, 31000, 32000);
+  writer.flush();  // append, to a new journal
+  store_cases(writer, 32000, 33000);
+  writer.close();
 }
-
-struct KillPoint {
-  CheckpointStep step;
-  int occurrence;
-  const char* name;
-};
 
 TEST(CubeJournal, AKillAtEveryStepOfACheckpointLeavesACubeThatResumesToTheSameResults) {
   const auto dir = test::scratch_dir("journal_kills");
@@ -514,14 +496,7 @@ TEST(CubeJournal, AKillAtEveryStepOfACheckpointLeavesACubeThatResumesToTheSameRe
                             {S::kJournalWritten, 2, "new_journal_written"}, {S::kJournalSynced, 2, "new_journal_synced"},
                             {S::kFoldRenamed, 2, "last_fold_renamed"}}) {
     const auto file = torn_copy(dir / "whole.h5", dir / k.name, sizes[3]);
-    kill_step = k.step;
-    kill_occurrence = k.occurrence;
-    const pid_t child = ::fork();
-    ASSERT_GE(child, 0);
-    if (child == 0) killed_run(file);
-    int wstatus = 0;
-    ASSERT_EQ(::waitpid(child, &wstatus, 0), child);
-    ASSERT_TRUE(WIFSIGNALED(wstatus) && WTERMSIG(wstatus) == SIGKILL) << k.name << ": the run was not killed there";
+    ASSERT_TRUE(killed(run_killed_at(k, [&] { killed_run(file); }))) << k.name << ": the run was not killed there";
     // The cube is whole and readable as it is; its journal, when current, reads too.
     const CubeReader reader(file);
     EXPECT_TRUE(reader.damage().empty()) << k.name;

@@ -25,6 +25,7 @@
 #include "pcrf/cube/cube_writer.hpp"
 #include "pcrf/cube/sealed_chunk.hpp"
 #include "case_axis_layout.hpp"
+#include "kill_points.hpp"
 #include "worker_chunks.hpp"
 #include "support/test_support.hpp"
 
@@ -137,18 +138,6 @@ TEST(CubeStream, TheStreamedCubeIsTheOneAssembledAtTheEnd) {
   EXPECT_EQ(notes_a, notes_b);
 }
 
-CheckpointStep kill_step;
-int kill_occurrence = 0;
-void kill_here(CheckpointStep step) {
-  if (step == kill_step && --kill_occurrence == 0) ::raise(SIGKILL);
-}
-
-struct KillPoint {
-  CheckpointStep step;
-  int occurrence;
-  const char* name;
-};
-
 // A kill at each step of a streamed run (the new ones, and the end's fold through the stream)
 // leaves the last fold whole, its journal and the parts (a stray .partial at most); --resume
 // assembles every chunk kept, from the parts, and the journal's.
@@ -160,22 +149,7 @@ TEST(CubeStream, AKillAtEveryStreamingStepResumesToTheSameCube) {
                             {S::kFoldWritten, 2, "fold_written"}, {S::kFoldRenamed, 2, "renamed"},
                             {S::kJournalRemoved, 2, "journal_removed"}, {S::kPartsRemoved, 1, "parts_removed"}}) {
     const auto file = dir / (std::string(k.name) + ".h5");
-    kill_step = k.step;
-    kill_occurrence = k.occurrence;
-    const pid_t child = ::fork();
-    ASSERT_GE(child, 0);
-    if (child == 0) {
-      observe_checkpoints(kill_here);
-      try {
-        streamed_run(file);
-      } catch (...) {
-        ::_exit(1);
-      }
-      ::_exit(0);
-    }
-    int wstatus = 0;
-    ASSERT_EQ(::waitpid(child, &wstatus, 0), child);
-    ASSERT_TRUE(WIFSIGNALED(wstatus) && WTERMSIG(wstatus) == SIGKILL) << k.name << ": the run was not killed there";
+    ASSERT_TRUE(killed(run_killed_at(k, [&] { streamed_run(file); }))) << k.name << ": the run was not killed there";
     {
       const CubeReader reader(file);
       EXPECT_TRUE(reader.damage().empty()) << k.name;
