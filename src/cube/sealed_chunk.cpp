@@ -8,6 +8,10 @@
 
 #include <zlib.h>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -16,6 +20,7 @@
 #include <cstring>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <stdexcept>
 
 #include "pcrf/cube/cube_layout.hpp"
@@ -23,22 +28,79 @@
 namespace pcrf::cube {
 namespace {
 
-std::vector<char> shuffled(const char* data, std::size_t elements, std::size_t element_bytes) {
-  std::vector<char> out(elements * element_bytes);
-  if (element_bytes == 1) {
-    std::memcpy(out.data(), data, out.size());
-    return out;
+#if defined(__SSE2__)
+/// One round of a byte transpose of 16 values of `W` bytes held in W registers (register r:
+/// bytes 16 r .. 16 r + 15 of the values): register k is interleaved byte by byte with
+/// register k + W/2. A byte's position (its register, then its byte in it: log2(W) + 4 bits)
+/// is rotated left by one bit, so 4 rounds take the values' bytes (value, then byte) to their
+/// planes (byte, then value): the shuffle; log2(W) rounds undo it.
+template <std::size_t W>
+void interleave_round(__m128i (&x)[W]) {
+  __m128i next[W];
+  for (std::size_t k = 0; k < W / 2; ++k) {
+    next[2 * k] = _mm_unpacklo_epi8(x[k], x[k + W / 2]);
+    next[2 * k + 1] = _mm_unpackhi_epi8(x[k], x[k + W / 2]);
   }
-  for (std::size_t b = 0; b < element_bytes; ++b)
-    for (std::size_t i = 0; i < elements; ++i) out[b * elements + i] = data[i * element_bytes + b];
-  return out;
+  for (std::size_t k = 0; k < W; ++k) x[k] = next[k];
 }
 
-std::vector<char> unshuffled(const std::vector<char>& data, std::size_t elements, std::size_t element_bytes) {
-  if (element_bytes == 1) return data;
-  std::vector<char> out(data.size());
+/// The shuffle of the first values of `W` bytes, 16 at a time by SSE2 (every x86-64 CPU has
+/// it): 0.56 instructions a byte, against 6 for a byte loop (callgrind, 8-byte values).
+/// Returns how many values it did (a multiple of 16); the caller does the rest.
+template <std::size_t W>
+std::size_t shuffle_sse2(const char* data, std::size_t elements, char* planes) {
+  std::size_t i = 0;
+  for (; i + 16 <= elements; i += 16) {
+    __m128i x[W];
+    for (std::size_t r = 0; r < W; ++r) x[r] = _mm_loadu_si128(reinterpret_cast<const __m128i*>(data + i * W) + r);
+    for (int round = 0; round < 4; ++round) interleave_round(x);
+    for (std::size_t b = 0; b < W; ++b) _mm_storeu_si128(reinterpret_cast<__m128i*>(planes + b * elements + i), x[b]);
+  }
+  return i;
+}
+
+/// Inverse of shuffle_sse2: log2(W) rounds.
+template <std::size_t W>
+std::size_t unshuffle_sse2(const char* planes, std::size_t elements, char* data) {
+  constexpr int kRounds = std::countr_zero(W);
+  std::size_t i = 0;
+  for (; i + 16 <= elements; i += 16) {
+    __m128i x[W];
+    for (std::size_t b = 0; b < W; ++b) x[b] = _mm_loadu_si128(reinterpret_cast<const __m128i*>(planes + b * elements + i));
+    for (int round = 0; round < kRounds; ++round) interleave_round(x);
+    for (std::size_t r = 0; r < W; ++r) _mm_storeu_si128(reinterpret_cast<__m128i*>(data + i * W) + r, x[r]);
+  }
+  return i;
+}
+#endif
+
+/// H5Z's shuffle filter: byte b of value i of `data` goes to planes[b * elements + i]. By SSE2
+/// for float64 and int32 values where the CPU is x86-64, byte by byte otherwise (and for the
+/// last values, fewer than 16).
+void shuffle(const char* data, std::size_t elements, std::size_t element_bytes, char* planes) {
+  if (element_bytes == 1) {
+    std::memcpy(planes, data, elements);
+    return;
+  }
+  std::size_t first = 0;  // values not done yet
+#if defined(__SSE2__)
+  if (element_bytes == 8) first = shuffle_sse2<8>(data, elements, planes);
+  if (element_bytes == 4) first = shuffle_sse2<4>(data, elements, planes);
+#endif
   for (std::size_t b = 0; b < element_bytes; ++b)
-    for (std::size_t i = 0; i < elements; ++i) out[i * element_bytes + b] = data[b * elements + i];
+    for (std::size_t i = first; i < elements; ++i) planes[b * elements + i] = data[i * element_bytes + b];
+}
+
+std::vector<char> unshuffled(const std::vector<char>& planes, std::size_t elements, std::size_t element_bytes) {
+  if (element_bytes == 1) return planes;
+  std::vector<char> out(planes.size());
+  std::size_t first = 0;
+#if defined(__SSE2__)
+  if (element_bytes == 8) first = unshuffle_sse2<8>(planes.data(), elements, out.data());
+  if (element_bytes == 4) first = unshuffle_sse2<4>(planes.data(), elements, out.data());
+#endif
+  for (std::size_t b = 0; b < element_bytes; ++b)
+    for (std::size_t i = first; i < elements; ++i) out[i * element_bytes + b] = planes[b * elements + i];
   return out;
 }
 
@@ -46,64 +108,259 @@ std::vector<char> unshuffled(const std::vector<char>& data, std::size_t elements
 /// the stream as it is rather than coded (a random value's low mantissa bytes: coding them
 /// gains nothing and costs most of a chunk's deflate).
 constexpr double kNoiseBitsPerByte = 7.9;
-/// Planes shorter than this [bytes] are always coded (their entropy cannot show noise).
-constexpr std::size_t kNoiseMinBytes = 4096;
+/// Entropy of a byte plane [bits a byte] above which, when it has no runs either, it is coded
+/// by Huffman codes alone (Z_HUFFMAN_ONLY), not by runs. On a non-lifting LHS (zlib via
+/// Python) each such plane takes within 0.0002 B a case of what runs make of it, and its coding
+/// costs 4 instructions a byte fewer (callgrind); below (a value's exponent byte, at 0-1.3
+/// bits) runs save up to 0.015 B a case.
+constexpr double kHuffmanBitsPerByte = 2.0;
+/// Share of a plane's bytes equal to the next above which the plane has runs: it is coded by
+/// runs whatever its entropy (a smooth ramp's middle bytes take every value, in runs; bytes
+/// drawn at random from 16 values repeat 1/16 of the time, noise 1/256).
+constexpr double kRunsRepeatShare = 1.0 / 8.0;
+/// Planes shorter than this [bytes] are always coded by runs (their entropy cannot show noise).
+constexpr std::size_t kMeasuredMinBytes = 4096;
+/// Bytes of a plane whose entropy plane_measure estimates: evenly spaced, 4 096 to 8 191 of
+/// them, and a quarter as many pairs of neighbours for its runs. A histogram of every byte was
+/// 590 of a worker's 3 340 sealing instructions a case; on a non-lifting LHS this sample
+/// decides every plane as the whole plane does (the nearest planes: a random parameter's
+/// lowest byte at 7.93 bits, strain_column_max's at 7.81; the sample's estimate is within
+/// 0.01 bits once corrected).
+constexpr std::size_t kSampleBytes = 4096;
+constexpr std::size_t kSamplesPerPair = 4;
 
-bool is_noise(const unsigned char* plane, std::size_t bytes) {
-  if (bytes < kNoiseMinBytes) return false;
-  std::array<std::uint32_t, 256> count{};
-  for (std::size_t i = 0; i < bytes; ++i) ++count[plane[i]];
-  double bits = 0.0;
-  for (const std::uint32_t c : count)
-    if (c > 0) {
-      const double p = static_cast<double>(c) / static_cast<double>(bytes);
-      bits -= p * std::log2(p);
-    }
-  return bits > kNoiseBitsPerByte;
+struct PlaneMeasure {
+  double bits = 0.0;          ///< entropy [bits a byte]
+  double repeat_share = 0.0;  ///< of bytes equal to the next
+};
+
+/// c log2(c) for each count c a histogram of a sample can hold [bits]: a table, as log2 of
+/// each of 256 counts was 37 instructions a case.
+const std::vector<double>& count_bits() {
+  static const std::vector<double> table = [] {
+    std::vector<double> t(2 * kSampleBytes + 1, 0.0);
+    for (std::size_t k = 1; k < t.size(); ++k) t[k] = static_cast<double>(k) * std::log2(static_cast<double>(k));
+    return t;
+  }();
+  return table;
 }
 
-/// How a chunk's byte planes are coded: each by runs, a noise plane stored (metrics, float64
-/// coordinates), or all by zlib's default strategy, which finds repeats at any distance (an
-/// index 0, 1, 2, ...: its low plane repeats at distance 256, noise to a count of its bytes).
-enum class Coding { kRunsOrStored, kRepeats };
-
-/// A zlib stream, as H5Z's deflate filter reads it. Its strategy is zlib's run-length one
-/// (Z_RLE: matches at distance 1 only), which HDF5's own filter cannot choose: on the shuffled
-/// metrics of a non-lifting LHS (16 384 cases, 17 metrics) 36.9 B a case in 296 ns, against
-/// 37.6 B in 685 ns with the default strategy at the same level (zlib via Python on this
-/// machine): the byte planes of a shuffled chunk are runs and skewed bytes, not repeats.
-/// A plane that is noise (is_noise) goes in as stored blocks (zlib's level 0, switched by
-/// deflateParams between planes; one stream of mixed blocks, which any inflate reads): the
-/// same size within a few bytes, at a copy's cost (zlib via Python: 31-39 ns a random value
-/// coded, 5-9 stored). Coding::kRepeats: every plane coded, by the default strategy.
-std::vector<char> deflated(const char* data, std::size_t elements, std::size_t element_bytes,
-                           Coding coding = Coding::kRunsOrStored) {
-  std::vector<char> plain = shuffled(data, elements, element_bytes);
-  z_stream z{};
-  int level = static_cast<int>(kDeflateLevel);
-  const int strategy = coding == Coding::kRepeats ? Z_DEFAULT_STRATEGY : Z_RLE;
-  if (deflateInit2(&z, level, Z_DEFLATED, 15, 8, strategy) != Z_OK) throw std::runtime_error("cannot deflate a chunk");
-  // Stored blocks add 5 bytes a block of at most 64 KiB, and each switch ends a block.
-  std::vector<char> out(deflateBound(&z, static_cast<uLong>(plain.size())) + 64 * (element_bytes + plain.size() / 65535 + 1));
-  z.next_out = reinterpret_cast<Bytef*>(out.data());
-  z.avail_out = static_cast<uInt>(out.size());
-  bool failed = false;
-  for (std::size_t b = 0; b < element_bytes && !failed; ++b) {
-    auto* plane = reinterpret_cast<unsigned char*>(plain.data() + b * elements);
-    const int want = coding == Coding::kRunsOrStored && is_noise(plane, elements) ? 0 : static_cast<int>(kDeflateLevel);
-    // A switch that zlib declines (Z_BUF_ERROR: never with this much room) keeps the level:
-    // the stream is the same data either way.
-    if (want != level && deflateParams(&z, want, strategy) == Z_OK) level = want;
-    z.next_in = plane;
-    z.avail_in = static_cast<uInt>(elements);
-    while (z.avail_in > 0 && !failed) failed = deflate(&z, Z_NO_FLUSH) != Z_OK;
+/// A plane's entropy, estimated from a sample (kSampleBytes) by its histogram, and its runs.
+/// The histogram's entropy is low by about (K - 1) / (2 n ln 2) bits for K distinct bytes in
+/// n samples (Miller and Madow; 0.045 bits for noise in 4 096), which is added back.
+PlaneMeasure plane_measure(const unsigned char* plane, std::size_t bytes) {
+  const std::size_t stride = bytes / kSampleBytes;
+  std::array<std::uint32_t, 256> count{};
+  std::size_t samples = 0;  // fewer than 2 kSampleBytes
+  for (std::size_t i = 0; i < bytes; i += stride, ++samples) ++count[plane[i]];
+  const double n = static_cast<double>(samples);
+  const double* const c_log2_c = count_bits().data();
+  double sum = 0.0;  // the entropy is log2(n) - sum / n
+  std::uint32_t distinct = 0;
+  for (const std::uint32_t c : count) {
+    sum += c_log2_c[c];
+    distinct += c > 0 ? 1 : 0;
   }
-  const int done = failed ? Z_STREAM_ERROR : deflate(&z, Z_FINISH);
-  const auto size = z.total_out;
-  deflateEnd(&z);
-  if (done != Z_STREAM_END) throw std::runtime_error("cannot deflate a chunk");
-  out.resize(size);
-  return out;
+  std::size_t pairs = 0, equal = 0;
+  for (std::size_t i = 0; i + 1 < bytes; i += stride * kSamplesPerPair, ++pairs) equal += plane[i] == plane[i + 1];
+  const double bits = std::log2(n) - sum / n + (static_cast<double>(distinct) - 1.0) / (2.0 * n * std::numbers::ln2);
+  return {bits, static_cast<double>(equal) / static_cast<double>(pairs)};
+}
+
+/// How one byte plane goes into a stream: as it is (noise), by Huffman codes alone, by runs
+/// (Z_RLE: matches at distance 1 only), or by zlib's default strategy, which finds repeats at
+/// any distance (an index 0, 1, 2, ...: its low plane repeats at distance 256, noise to a
+/// count of its bytes).
+enum class PlaneCoding { kStored, kHuffman, kRuns, kRepeats };
+
+PlaneCoding metric_plane_coding(const unsigned char* plane, std::size_t bytes) {
+  if (bytes < kMeasuredMinBytes) return PlaneCoding::kRuns;
+  const PlaneMeasure m = plane_measure(plane, bytes);
+  if (m.repeat_share >= kRunsRepeatShare) return PlaneCoding::kRuns;
+  return m.bits > kNoiseBitsPerByte ? PlaneCoding::kStored : m.bits > kHuffmanBitsPerByte ? PlaneCoding::kHuffman : PlaneCoding::kRuns;
+}
+
+/// zlib's level and strategy for a plane coding.
+std::pair<int, int> zlib_parameters(PlaneCoding coding) {
+  const auto level = static_cast<int>(kDeflateLevel);
+  switch (coding) {
+    case PlaneCoding::kStored: return {0, Z_DEFAULT_STRATEGY};
+    case PlaneCoding::kHuffman: return {level, Z_HUFFMAN_ONLY};
+    case PlaneCoding::kRuns: return {level, Z_RLE};
+    case PlaneCoding::kRepeats: break;
+  }
+  return {level, Z_DEFAULT_STRATEGY};
+}
+
+/// How a chunk's byte planes are coded: each as metric_plane_coding says (metrics, float64
+/// coordinates); each by repeats (an index); or all as one run by runs, as compress2 would
+/// make it (a chunk of one repeated element: a few bytes whatever is done, made once a thread).
+enum class Coding { kPlanes, kRepeats, kRunsWhole };
+
+/// zlib's window [bytes]: windowBits 15, what H5Z's deflate filter (compress2) uses.
+constexpr std::size_t kWindowBytes = std::size_t{1} << 15;
+/// Coded bytes a stream takes between full flushes. zlib slides its window (2 x 32 KiB) once
+/// it holds 64 KiB less 262 bytes (MIN_LOOKAHEAD): a copy of 32 KiB and a rebase of both hash
+/// tables (slide_hash: 64 Ki entries), which run-length coding never reads. Slides and the
+/// hashing of stored bytes before a coded plane (fill_window's `insert`) were 1 080 of a
+/// worker's 4 700 sealing instructions a case (callgrind, pcrf_seal_cost on a non-lifting LHS);
+/// a full flush instead starts the window over (deflate.c: strstart = 0) for an empty stored
+/// block (5 bytes) and a clear of the hash heads (CLEAR_HASH: 64 KiB).
+constexpr std::size_t kCodedBytesPerWindow = 2 * kWindowBytes - 4096;
+
+/// A zlib stream of the cube's filters (H5Z's deflate of the shuffled chunk), made by one
+/// thread's deflate state and buffers, kept from one chunk to the next (deflateInit2 allocates
+/// 256 KiB and clears 64 KiB each time; a chunk's buffers would be cleared and freed).
+///
+/// Each plane has a coding of its own (PlaneCoding, switched by deflateParams: one stream of
+/// mixed blocks, which any inflate reads), which HDF5's own filter cannot choose: on the
+/// shuffled metrics of a non-lifting LHS (16 384 cases, 17 metrics) runs take 36.9 B a case in
+/// 296 ns, against 37.6 B in 685 ns with the default strategy at the same level (zlib via
+/// Python on this machine): the byte planes of a shuffled chunk are runs and skewed bytes, not
+/// repeats. A plane of noise goes in stored (zlib's level 0): the same size within a few
+/// bytes, at a copy's cost (zlib via Python: 31-39 ns a random value coded, 5-9 stored).
+///
+/// Consecutive planes coded alike go to zlib as one run (its shuffled bytes are contiguous): a
+/// run of stored planes of 32 KiB or more is copied straight to the output (deflate_stored);
+/// a coded plane ends a block (its own Huffman codes: cpu_time_s of a non-lifting LHS takes
+/// 3.75 B a case so, 3.80 coded as one run), and full flushes (kCodedBytesPerWindow) keep the
+/// window from sliding. A stream is never longer than filtered_bound, which readers check:
+/// were the flushes' empty blocks to take it past (only planes that barely compress,
+/// alternating with noise), the chunk is deflated again as one run by runs, which zlib keeps
+/// within it (deflateBound).
+class Deflater {
+ public:
+  Deflater() {
+    if (deflateInit2(&z_, static_cast<int>(kDeflateLevel), Z_DEFLATED, 15, 8, Z_RLE) != Z_OK)
+      throw std::runtime_error("cannot deflate a chunk");
+  }
+  ~Deflater() { deflateEnd(&z_); }
+  Deflater(const Deflater&) = delete;
+  Deflater& operator=(const Deflater&) = delete;
+
+  std::vector<char> operator()(const char* data, std::size_t elements, std::size_t element_bytes, Coding coding) {
+    const std::size_t bytes = elements * element_bytes;
+    if (planes_.size() < bytes) planes_.resize(bytes);
+    shuffle(data, elements, element_bytes, planes_.data());
+    // A run, a cut or a flush adds at most 10 bytes of block headers.
+    const std::size_t room = filtered_bound(elements, element_bytes) + 64 * (element_bytes + bytes / (kWindowBytes / 2) + 2);
+    if (out_.size() < room) out_.resize(room);
+    plane_bytes_ = elements;
+    stream_bytes_ = bytes;
+    // Planes too short to measure are all coded by runs, as one run (a block a plane would
+    // cost more in headers than its own codes gain).
+    const bool whole = coding == Coding::kRunsWhole || (coding == Coding::kPlanes && elements < kMeasuredMinBytes);
+    std::size_t size = whole ? deflate_whole() : deflate_planes(element_bytes, coding);
+    if (size > filtered_bound(elements, element_bytes)) size = deflate_whole();
+    return std::vector<char>(out_.data(), out_.data() + size);
+  }
+
+ private:
+  /// The stream of planes_, its planes in runs coded alike; its size [bytes].
+  std::size_t deflate_planes(std::size_t element_bytes, Coding coding) {
+    start(Z_RLE);
+    std::size_t first = 0;  // the run's first plane
+    PlaneCoding run = plane_coding(0, coding);
+    for (std::size_t b = 1; b <= element_bytes; ++b) {
+      const PlaneCoding next = b < element_bytes ? plane_coding(b, coding) : run;
+      if (b < element_bytes && next == run) continue;
+      put_run(planes_.data() + first * plane_bytes_, (b - first) * plane_bytes_, run);
+      first = b;
+      run = next;
+    }
+    return finish();
+  }
+
+  /// The stream of planes_ as one run by runs, all of it in one call (as compress2 makes it).
+  std::size_t deflate_whole() {
+    start(Z_RLE);
+    put(planes_.data(), stream_bytes_, Z_NO_FLUSH);
+    return finish();
+  }
+
+  PlaneCoding plane_coding(std::size_t b, Coding coding) const {
+    if (coding == Coding::kRepeats) return PlaneCoding::kRepeats;
+    return metric_plane_coding(reinterpret_cast<const unsigned char*>(planes_.data() + b * plane_bytes_), plane_bytes_);
+  }
+
+  void put_run(const char* run, std::size_t bytes, PlaneCoding coding) {
+    // A switch that zlib declines (Z_BUF_ERROR: never with this much room) keeps the last
+    // parameters: the stream is the same data either way.
+    const auto [level, strategy] = zlib_parameters(coding);
+    if ((level != level_ || strategy != strategy_) && deflateParams(&z_, level, strategy) == Z_OK) {
+      level_ = level;
+      strategy_ = strategy;
+    }
+    if (level_ == 0) put_stored(run, bytes);
+    else put_coded(run, bytes);
+  }
+
+  void start(int strategy) {
+    if (deflateReset(&z_) != Z_OK || deflateParams(&z_, static_cast<int>(kDeflateLevel), strategy) != Z_OK)
+      throw std::runtime_error("cannot deflate a chunk");
+    level_ = static_cast<int>(kDeflateLevel);
+    strategy_ = strategy;
+    z_.next_out = reinterpret_cast<Bytef*>(out_.data());
+    z_.avail_out = static_cast<uInt>(out_.size());
+    window_bytes_ = 0;
+    stored_since_flush_ = false;
+  }
+
+  /// Stored bytes, copied to the output at once (Z_BLOCK). zlib keeps the last 32 KiB of them
+  /// in its window; fewer that would overflow it first make it slide, so the window starts over.
+  void put_stored(const char* run, std::size_t bytes) {
+    if (bytes < kWindowBytes && window_bytes_ + bytes >= 2 * kWindowBytes) full_flush();
+    put(run, bytes, Z_BLOCK);
+    window_bytes_ = bytes >= kWindowBytes ? kWindowBytes : window_bytes_ + bytes;
+    stored_since_flush_ = true;
+  }
+
+  /// Coded planes, each ending a block, in pieces of at most kWindowBytes; the window is
+  /// started over before zlib would hash the stored bytes in it or slide it.
+  void put_coded(const char* run, std::size_t bytes) {
+    const char* const end = run + bytes;
+    while (run < end) {
+      const auto plane_left = static_cast<std::size_t>(plane_bytes_ - static_cast<std::size_t>(run - planes_.data()) % plane_bytes_);
+      const std::size_t take = std::min(plane_left, kWindowBytes);
+      if (stored_since_flush_ || window_bytes_ + take > kCodedBytesPerWindow) full_flush();
+      // The stream's last bytes are ended by Z_FINISH alone (a one-plane chunk, the status:
+      // the stream it always had, which uniform_status_stream's readers compare).
+      const bool block_ends = take == plane_left && run + take != planes_.data() + stream_bytes_;
+      put(run, take, block_ends ? Z_BLOCK : Z_NO_FLUSH);
+      window_bytes_ += take;
+      run += take;
+    }
+  }
+
+  void full_flush() {
+    if (deflate(&z_, Z_FULL_FLUSH) != Z_OK) throw std::runtime_error("cannot deflate a chunk");
+    window_bytes_ = 0;
+    stored_since_flush_ = false;
+  }
+
+  void put(const char* bytes, std::size_t n, int flush) {
+    z_.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(bytes));
+    z_.avail_in = static_cast<uInt>(n);
+    while (z_.avail_in > 0)
+      if (deflate(&z_, flush) != Z_OK) throw std::runtime_error("cannot deflate a chunk");
+  }
+
+  std::size_t finish() {
+    if (deflate(&z_, Z_FINISH) != Z_STREAM_END) throw std::runtime_error("cannot deflate a chunk");
+    return static_cast<std::size_t>(z_.total_out);
+  }
+
+  z_stream z_{};
+  int level_ = 0, strategy_ = 0;     ///< zlib's parameters now
+  std::size_t window_bytes_ = 0;     ///< bytes zlib's window may hold since the last full flush
+  bool stored_since_flush_ = false;  ///< stored bytes zlib would hash before coding more
+  std::size_t plane_bytes_ = 1, stream_bytes_ = 0;  ///< of the chunk being deflated
+  std::vector<char> planes_, out_;   ///< the shuffled chunk; its stream
+};
+
+std::vector<char> deflated(const char* data, std::size_t elements, std::size_t element_bytes, Coding coding) {
+  thread_local Deflater deflater;
+  return deflater(data, elements, element_bytes, coding);
 }
 
 /// True when every element of `data` has the same bytes (a chunk equal to its shift by one
@@ -118,7 +375,7 @@ bool every_element_same(const char* data, std::size_t elements, std::size_t elem
 /// the cost of a comparison (about a third of a worker's sealing on a non-lifting study).
 std::vector<char> filtered(const char* data, std::size_t elements, std::size_t element_bytes) {
   if (element_bytes > sizeof(std::uint64_t) || !every_element_same(data, elements, element_bytes))
-    return deflated(data, elements, element_bytes);
+    return deflated(data, elements, element_bytes, Coding::kPlanes);
   struct Repeated {
     std::uint64_t element = 0;
     std::size_t elements = 0, element_bytes = 0;
@@ -130,9 +387,20 @@ std::vector<char> filtered(const char* data, std::size_t elements, std::size_t e
   std::memcpy(&element, data, element_bytes);
   for (const Repeated& r : kept)
     if (r.element == element && r.elements == elements && r.element_bytes == element_bytes) return r.stream;
-  std::vector<char> stream = deflated(data, elements, element_bytes);
+  std::vector<char> stream = deflated(data, elements, element_bytes, Coding::kRunsWhole);
   if (kept.size() < kRepeatedKept) kept.push_back({element, elements, element_bytes, stream});
   return stream;
+}
+
+/// The stream of a chunk of `padded` values whose first are `values`, the rest `fill` (a chunk
+/// at the cube's edge, stored at its full shape); a whole chunk's values as they are (a copy
+/// of each metric was 140 instructions a case).
+template <class T>
+std::vector<char> filtered_padded(std::span<const T> values, std::size_t padded, T fill) {
+  if (values.size() == padded) return filtered(reinterpret_cast<const char*>(values.data()), padded, sizeof(T));
+  std::vector<T> chunk(padded, fill);
+  std::copy(values.begin(), values.end(), chunk.begin());
+  return filtered(reinterpret_cast<const char*>(chunk.data()), padded, sizeof(T));
 }
 
 void put_bytes(std::vector<char>& out, const void* data, std::size_t n) {
@@ -141,6 +409,10 @@ void put_bytes(std::vector<char>& out, const void* data, std::size_t n) {
   out.resize(at + n);
   std::memcpy(out.data() + at, data, n);
 }
+
+/// A variable's stream or a chunk's status codes, copied once (put_bytes clears them first:
+/// 55 instructions a case, a non-lifting LHS's chunk).
+void put_span(std::vector<char>& out, std::span<const char> bytes) { out.insert(out.end(), bytes.begin(), bytes.end()); }
 
 template <class T>
 void put(std::vector<char>& out, T value) {
@@ -194,14 +466,12 @@ SealedChunk seal_chunk(const ChunkGrid& grid, std::size_t chunk, std::size_t met
   sealed.chunk = chunk;
   sealed.status.assign(status.begin(), status.end());
   sealed.notes = std::move(notes);
-  std::vector<double> column(padded, std::numeric_limits<double>::quiet_NaN());
+  sealed.filtered.reserve(metrics + 1);
   for (std::size_t m = 0; m < metrics; ++m) {
-    std::memcpy(column.data(), values.data() + m * count, count * sizeof(double));
-    sealed.filtered.push_back(filtered(reinterpret_cast<const char*>(column.data()), padded, sizeof(double)));
+    const std::span<const double> metric = values.subspan(m * count, count);
+    sealed.filtered.push_back(filtered_padded(metric, padded, std::numeric_limits<double>::quiet_NaN()));
   }
-  std::vector<std::int8_t> codes(padded, kStatusNotRun);
-  std::memcpy(codes.data(), status.data(), count);
-  sealed.filtered.push_back(filtered(reinterpret_cast<const char*>(codes.data()), padded, 1));
+  sealed.filtered.push_back(filtered_padded(status, padded, kStatusNotRun));
   return sealed;
 }
 
@@ -241,9 +511,13 @@ std::vector<char> seal_coordinate_piece(const Coordinate& c, std::size_t piece) 
     for (std::size_t k = 0; k < count; ++k) values[k] = static_cast<std::int32_t>(c.number(first + k));
     return deflated(reinterpret_cast<const char*>(values.data()), chunk, sizeof(std::int32_t), Coding::kRepeats);
   }
-  std::vector<double> values(chunk, 0.0);
+  // A thread's buffer, kept: a new one, cleared, was 70 instructions a case (8 coordinates).
+  thread_local std::vector<double> piece_values;
+  if (piece_values.size() < chunk) piece_values.resize(chunk);
+  const std::span<double> values(piece_values.data(), chunk);
   for (std::size_t k = 0; k < count; ++k) values[k] = c.number(first + k);
-  return deflated(reinterpret_cast<const char*>(values.data()), chunk, sizeof(double));
+  std::fill(values.begin() + static_cast<std::ptrdiff_t>(count), values.end(), 0.0);
+  return deflated(reinterpret_cast<const char*>(values.data()), chunk, sizeof(double), Coding::kPlanes);
 }
 
 std::vector<char> to_bytes(const SealedChunk& sealed) {
@@ -254,11 +528,11 @@ std::vector<char> to_bytes(const SealedChunk& sealed) {
   out.reserve(size);
   put<std::uint64_t>(out, sealed.chunk);
   put<std::uint64_t>(out, sealed.status.size());
-  put_bytes(out, sealed.status.data(), sealed.status.size());
+  put_span(out, {reinterpret_cast<const char*>(sealed.status.data()), sealed.status.size()});
   put<std::uint64_t>(out, sealed.filtered.size());
   for (const auto& f : sealed.filtered) {
     put<std::uint64_t>(out, f.size());
-    put_bytes(out, f.data(), f.size());
+    put_span(out, f);
   }
   put<std::uint64_t>(out, sealed.notes.size());
   for (const auto& [index, text] : sealed.notes) {

@@ -6,6 +6,7 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -281,6 +282,65 @@ TEST(SealedChunk, AWholeChunkOfOneCodeHasTheUniformStatusStream) {
     EXPECT_NE(edge.filtered.back(), uniform_status_stream(padded, code));
   }
   EXPECT_NE(sealed_of(grid, 0).filtered.back(), uniform_status_stream(padded, 0)) << "a mixed chunk";
+}
+
+}  // namespace
+}  // namespace pcrf::cube
+
+namespace pcrf::cube {
+namespace {
+
+/// Bytes drawn at random from `values` values (0 .. values - 1).
+unsigned char random_byte(std::mt19937_64& random, unsigned values) {
+  return static_cast<unsigned char>(std::uniform_int_distribution<unsigned>(0, values - 1)(random));
+}
+
+// A chunk of any length (the shuffle takes 16 values at a time, the rest one by one) and of
+// int32 or float64 values seals to what inflates to its values bit for bit: a coordinate of
+// 5 003 values, one piece, padded to none.
+TEST(SealedChunk, ValuesOfAnyCountAndWidthInflateBitForBit) {
+  constexpr std::size_t kValues = 5003;  // 312 groups of 16, and 11 more
+  std::mt19937_64 random(5003);
+  Coordinate noisy{"kappa", "case", "1", "", {}, {}, false, false};
+  Coordinate index{"case", "case", "", "", {}, {}, false, true};
+  for (std::size_t i = 0; i < kValues; ++i) {
+    noisy.numbers.push_back(std::uniform_real_distribution<double>(1.2, 2.4)(random));
+    index.numbers.push_back(static_cast<double>(3 * i + 1));
+  }
+  ASSERT_TRUE(noisy.chunked());
+  ASSERT_EQ(noisy.chunk_values(), kValues);
+  const auto doubles = unfilter(seal_coordinate_piece(noisy, 0), kValues, sizeof(double), "kappa");
+  const auto ints = unfilter(seal_coordinate_piece(index, 0), kValues, sizeof(std::int32_t), "case");
+  std::size_t wrong = 0;
+  for (std::size_t i = 0; i < kValues; ++i) {
+    double d = 0.0;
+    std::int32_t n = 0;
+    std::memcpy(&d, doubles.data() + i * sizeof(double), sizeof(double));
+    std::memcpy(&n, ints.data() + i * sizeof(std::int32_t), sizeof(std::int32_t));
+    wrong += std::bit_cast<std::uint64_t>(d) != std::bit_cast<std::uint64_t>(noisy.numbers[i]);
+    wrong += n != static_cast<std::int32_t>(3 * i + 1);
+  }
+  EXPECT_EQ(wrong, 0u);
+}
+
+// The worst a chunk's planes can be for the stream's size: noise (stored) alternating with
+// planes that barely compress (coded; each after stored planes starts zlib's window over, a
+// flush and its empty block). The stream still fits filtered_bound, which every reader of a
+// sealed chunk checks (zlib's compressBound), and inflates to the values.
+TEST(SealedChunk, PlanesThatBarelyCompressBetweenNoiseStayWithinTheBound) {
+  const ChunkGrid grid({4096}, 4096);
+  ASSERT_EQ(padded_elements(grid), 4096u);
+  std::mt19937_64 random(38);
+  std::vector<double> values(4096);
+  for (double& v : values) {
+    std::array<unsigned char, 8> bytes{};
+    for (std::size_t b = 0; b < 8; ++b) bytes[b] = random_byte(random, b % 2 == 0 ? 256 : 239);  // 8 and 7.90 bits
+    std::memcpy(&v, bytes.data(), sizeof(double));
+  }
+  const SealedChunk sealed = seal_chunk(grid, 0, 1, std::vector<std::int8_t>(4096, 0), values, {});
+  EXPECT_LE(sealed.filtered[0].size(), filtered_bound(4096, sizeof(double)));
+  const auto plain = unfilter(sealed.filtered[0], 4096, sizeof(double), "test");
+  EXPECT_EQ(std::memcmp(plain.data(), values.data(), plain.size()), 0);
 }
 
 }  // namespace

@@ -83,10 +83,11 @@ std::vector<CoordinatePiece> coordinate_pieces(const CubeLayout& layout);
 /// asked once), int32 for an index coordinate, float64 otherwise (little-endian, the file's
 /// types), the edge chunk padded with zeros (HDF5's fill; never read), shuffled, then deflated
 /// at kDeflateLevel. Float64 values as a metric's chunk: each byte plane by zlib's run-length
-/// strategy, a noise plane stored (a random LHS parameter: 6.63 B a value in 32 ns coded by
-/// runs, against 6.70 B in 102 ns with the default strategy, zlib via Python on this machine).
-/// An index (0, 1, 2, ...) by the default strategy: its low plane repeats at distance 256,
-/// which runs cannot see and which looks like noise (0.03 B a value, against 1.01 B by runs).
+/// strategy or by Huffman codes alone, a noise plane stored (a random LHS parameter: 6.63 B a
+/// value in 32 ns coded by runs, against 6.70 B in 102 ns with the default strategy, zlib via
+/// Python on this machine). An index (0, 1, 2, ...) by the default strategy: its low plane
+/// repeats at distance 256, which runs cannot see and which looks like noise (0.03 B a value,
+/// against 1.01 B by runs).
 /// \throws std::invalid_argument unless `c` is chunked and has that piece.
 std::vector<char> seal_coordinate_piece(const Coordinate& c, std::size_t piece);
 
