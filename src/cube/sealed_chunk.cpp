@@ -121,13 +121,13 @@ constexpr double kRunsRepeatShare = 1.0 / 8.0;
 /// Planes shorter than this [bytes] are always coded by runs (their entropy cannot show noise).
 constexpr std::size_t kMeasuredMinBytes = 4096;
 /// Bytes of a plane whose entropy plane_measure estimates: evenly spaced, 4 096 to 8 191 of
-/// them, and a quarter as many pairs of neighbours for its runs. A histogram of every byte was
+/// them, and an eighth as many pairs of neighbours for its runs. A histogram of every byte was
 /// 590 of a worker's 3 340 sealing instructions a case; on a non-lifting LHS this sample
 /// decides every plane as the whole plane does (the nearest planes: a random parameter's
 /// lowest byte at 7.93 bits, strain_column_max's at 7.81; the sample's estimate is within
 /// 0.01 bits once corrected).
 constexpr std::size_t kSampleBytes = 4096;
-constexpr std::size_t kSamplesPerPair = 4;
+constexpr std::size_t kSamplesPerPair = 8;
 
 struct PlaneMeasure {
   double bits = 0.0;          ///< entropy [bits a byte]
