@@ -1,9 +1,10 @@
 // Sealed chunks (see sealed_chunk.hpp): the cube's filter pipeline run by the rank that
 // computed the chunk. HDF5 applies a dataset's filters in the order they were set
 // (H5Pset_shuffle, then H5Pset_deflate: cube_writer.cpp), so a chunk is shuffled (byte k of
-// every value together, as H5Z's shuffle filter does), then deflated by zlib's compress2 at
-// the cube's level (H5Z's deflate filter, the same zlib format); reading it back runs the same
-// filters in reverse.
+// every value together, as H5Z's shuffle filter does), then deflated by zlib at the cube's
+// level into one zlib stream (what H5Z's deflate filter makes with compress2 and reads back
+// with inflate; a plane at a time here, see Deflater); reading it back runs the same filters
+// in reverse.
 #include "pcrf/cube/sealed_chunk.hpp"
 
 #include <zlib.h>
