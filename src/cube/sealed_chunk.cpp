@@ -120,15 +120,19 @@ constexpr double kHuffmanBitsPerByte = 2.0;
 /// drawn at random from 16 values repeat 1/16 of the time, noise 1/256).
 constexpr double kRunsRepeatShare = 1.0 / 8.0;
 /// Planes shorter than this [bytes] are always coded by runs (their entropy cannot show noise).
-constexpr std::size_t kMeasuredMinBytes = 4096;
-/// Bytes of a plane whose entropy plane_measure estimates: evenly spaced, 4 096 to 8 191 of
-/// them, and an eighth as many pairs of neighbours for its runs. A histogram of every byte was
-/// 590 of a worker's 3 340 sealing instructions a case; on a non-lifting LHS this sample
-/// decides every plane as the whole plane does (the nearest planes: a random parameter's
-/// lowest byte at 7.93 bits, strain_column_max's at 7.81; the sample's estimate is within
-/// 0.01 bits once corrected).
-constexpr std::size_t kSampleBytes = 4096;
-constexpr std::size_t kSamplesPerPair = 8;
+constexpr std::size_t kMeasuredMinBytes = 4096;  // kSampleStretches * kStretchBytes at least
+/// Bytes of a plane that plane_measure reads: 64 stretches of 64 consecutive bytes, evenly
+/// spaced, and in each 8 pairs of neighbours for its runs. A histogram of every byte was 590
+/// of a worker's 3 340 sealing instructions a case. Consecutive bytes see whole any pattern
+/// of the cube's inner axes up to 64 values long (an evenly strided sample can see one phase
+/// of it: noise where the plane is half constant). On seven cubes (a non-lifting LHS, the
+/// large LHS, grid, IDA and Saltelli studies of same_answers.py, LHS of 5 000 and 9 000) it
+/// stores the same planes as a histogram of every byte, but for planes in runs (Saltelli's
+/// repeated coordinates: coded now) and three planes of 5 000 bytes whose whole histogram
+/// reads 7.89 bits (low by 0.04 at that count; 7.93 at 65 536 values): stored now.
+constexpr std::size_t kSampleStretches = 64;
+constexpr std::size_t kStretchBytes = 64;
+constexpr std::size_t kBytesPerPair = 8;
 
 struct PlaneMeasure {
   double bits = 0.0;          ///< entropy [bits a byte]
@@ -139,22 +143,26 @@ struct PlaneMeasure {
 /// each of 256 counts was 37 instructions a case.
 const std::vector<double>& count_bits() {
   static const std::vector<double> table = [] {
-    std::vector<double> t(2 * kSampleBytes + 1, 0.0);
+    std::vector<double> t(kSampleStretches * kStretchBytes + 1, 0.0);
     for (std::size_t k = 1; k < t.size(); ++k) t[k] = static_cast<double>(k) * std::log2(static_cast<double>(k));
     return t;
   }();
   return table;
 }
 
-/// A plane's entropy, estimated from a sample (kSampleBytes) by its histogram, and its runs.
-/// The histogram's entropy is low by about (K - 1) / (2 n ln 2) bits for K distinct bytes in
-/// n samples (Miller and Madow; 0.045 bits for noise in 4 096), which is added back.
+/// A plane's entropy, estimated from a sample (kSampleStretches) by its histogram, and its
+/// runs. The histogram's entropy is low by about (K - 1) / (2 n ln 2) bits for K distinct
+/// bytes in n samples (Miller and Madow; 0.045 bits for noise in 4 096), which is added back.
+/// `bytes` is at least kSampleStretches * kStretchBytes.
 PlaneMeasure plane_measure(const unsigned char* plane, std::size_t bytes) {
-  const std::size_t stride = bytes / kSampleBytes;
+  const std::size_t step = bytes / kSampleStretches;
   std::array<std::uint32_t, 256> count{};
-  std::size_t samples = 0;  // fewer than 2 kSampleBytes
-  for (std::size_t i = 0; i < bytes; i += stride, ++samples) ++count[plane[i]];
-  const double n = static_cast<double>(samples);
+  std::size_t equal = 0;
+  for (std::size_t s = 0; s < kSampleStretches; ++s) {
+    const unsigned char* stretch = plane + s * step;
+    for (std::size_t i = 0; i < kStretchBytes; ++i) ++count[stretch[i]];
+    for (std::size_t i = 0; i < kStretchBytes; i += kBytesPerPair) equal += stretch[i] == stretch[i + 1];
+  }
   const double* const c_log2_c = count_bits().data();
   double sum = 0.0;  // the entropy is log2(n) - sum / n
   std::uint32_t distinct = 0;
@@ -162,10 +170,10 @@ PlaneMeasure plane_measure(const unsigned char* plane, std::size_t bytes) {
     sum += c_log2_c[c];
     distinct += c > 0 ? 1 : 0;
   }
-  std::size_t pairs = 0, equal = 0;
-  for (std::size_t i = 0; i + 1 < bytes; i += stride * kSamplesPerPair, ++pairs) equal += plane[i] == plane[i + 1];
+  constexpr double n = kSampleStretches * kStretchBytes;
+  constexpr double pairs = n / kBytesPerPair;
   const double bits = std::log2(n) - sum / n + (static_cast<double>(distinct) - 1.0) / (2.0 * n * std::numbers::ln2);
-  return {bits, static_cast<double>(equal) / static_cast<double>(pairs)};
+  return {bits, static_cast<double>(equal) / pairs};
 }
 
 /// How one byte plane goes into a stream: as it is (noise), by Huffman codes alone, by runs

@@ -343,5 +343,24 @@ TEST(SealedChunk, PlanesThatBarelyCompressBetweenNoiseStayWithinTheBound) {
   EXPECT_EQ(std::memcmp(plain.data(), values.data(), plain.size()), 0);
 }
 
+
+// A metric whose cases follow a short pattern along the cube's inner axis (here: every fourth
+// case noise, the others 0, as where one of four intensities lifts a frame) is coded, not
+// stored: what decides a plane's coding reads stretches of consecutive bytes, which see the
+// pattern whole (a sample of every fourth byte would see noise alone, and store it).
+TEST(SealedChunk, APatternAlongTheInnerAxisIsCodedNotStored) {
+  const ChunkGrid grid({16384});
+  const std::size_t count = padded_elements(grid);
+  ASSERT_EQ(count, 16384u);
+  std::mt19937_64 random(4);
+  std::vector<double> values(count, 0.0);
+  for (std::size_t k = 0; k < count; k += 4) values[k] = std::bit_cast<double>(random());
+  const SealedChunk sealed = seal_chunk(grid, 0, 1, std::vector<std::int8_t>(count, 0), values, {});
+  // Stored, its planes would take the whole chunk; coded, under 2/5 of it.
+  EXPECT_LT(sealed.filtered[0].size(), count * sizeof(double) * 2 / 5);
+  const auto plain = unfilter(sealed.filtered[0], count, sizeof(double), "test");
+  EXPECT_EQ(std::memcmp(plain.data(), values.data(), plain.size()), 0);
+}
+
 }  // namespace
 }  // namespace pcrf::cube
