@@ -119,11 +119,10 @@ constexpr double kHuffmanBitsPerByte = 2.0;
 /// runs whatever its entropy (a smooth ramp's middle bytes take every value, in runs; bytes
 /// drawn at random from 16 values repeat 1/16 of the time, noise 1/256).
 constexpr double kRunsRepeatShare = 1.0 / 8.0;
-/// Planes shorter than this [bytes] are always coded by runs (their entropy cannot show noise).
-constexpr std::size_t kMeasuredMinBytes = 4096;  // kSampleStretches * kStretchBytes at least
 /// Bytes of a plane that plane_measure reads: 64 stretches of 64 consecutive bytes, evenly
-/// spaced, and in each 8 pairs of neighbours for its runs. A histogram of every byte was 590
-/// of a worker's 3 340 sealing instructions a case. Consecutive bytes see whole any pattern
+/// spaced, and in each 8 pairs of neighbours for its runs. A histogram of every byte cost 590
+/// instructions a case, this sample 100 (callgrind, pcrf_seal_cost on a non-lifting LHS of
+/// 262 144 cases). Consecutive bytes see whole any pattern
 /// of the cube's inner axes up to 64 values long (an evenly strided sample can see one phase
 /// of it: noise where the plane is half constant). On seven cubes (a non-lifting LHS, the
 /// large LHS, grid, IDA and Saltelli studies of same_answers.py, LHS of 5 000 and 9 000) it
@@ -133,6 +132,8 @@ constexpr std::size_t kMeasuredMinBytes = 4096;  // kSampleStretches * kStretchB
 constexpr std::size_t kSampleStretches = 64;
 constexpr std::size_t kStretchBytes = 64;
 constexpr std::size_t kBytesPerPair = 8;
+/// Planes shorter than this [bytes] are always coded by runs (their entropy cannot show noise).
+constexpr std::size_t kMeasuredMinBytes = kSampleStretches * kStretchBytes;
 
 struct PlaneMeasure {
   double bits = 0.0;          ///< entropy [bits a byte]
@@ -143,7 +144,7 @@ struct PlaneMeasure {
 /// each of 256 counts was 37 instructions a case.
 const std::vector<double>& count_bits() {
   static const std::vector<double> table = [] {
-    std::vector<double> t(kSampleStretches * kStretchBytes + 1, 0.0);
+    std::vector<double> t(kMeasuredMinBytes + 1, 0.0);
     for (std::size_t k = 1; k < t.size(); ++k) t[k] = static_cast<double>(k) * std::log2(static_cast<double>(k));
     return t;
   }();
@@ -153,7 +154,7 @@ const std::vector<double>& count_bits() {
 /// A plane's entropy, estimated from a sample (kSampleStretches) by its histogram, and its
 /// runs. The histogram's entropy is low by about (K - 1) / (2 n ln 2) bits for K distinct
 /// bytes in n samples (Miller and Madow; 0.045 bits for noise in 4 096), which is added back.
-/// `bytes` is at least kSampleStretches * kStretchBytes.
+/// `bytes` is at least kMeasuredMinBytes.
 PlaneMeasure plane_measure(const unsigned char* plane, std::size_t bytes) {
   const std::size_t step = bytes / kSampleStretches;
   std::array<std::uint32_t, 256> count{};
@@ -170,7 +171,7 @@ PlaneMeasure plane_measure(const unsigned char* plane, std::size_t bytes) {
     sum += c_log2_c[c];
     distinct += c > 0 ? 1 : 0;
   }
-  constexpr double n = kSampleStretches * kStretchBytes;
+  constexpr double n = kMeasuredMinBytes;
   constexpr double pairs = n / kBytesPerPair;
   const double bits = std::log2(n) - sum / n + (static_cast<double>(distinct) - 1.0) / (2.0 * n * std::numbers::ln2);
   return {bits, static_cast<double>(equal) / pairs};
