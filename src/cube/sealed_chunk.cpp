@@ -242,7 +242,7 @@ std::vector<char> seal_coordinate_piece(const Coordinate& c, std::size_t piece) 
     return deflated(reinterpret_cast<const char*>(values.data()), chunk, sizeof(std::int32_t), Coding::kRepeats);
   }
   std::vector<double> values(chunk, 0.0);
-  for (std::size_t k = 0; k < count; ++k) values[k] = c.number(first + k);
+  c.numbers_into(first, std::span<double>(values.data(), count));
   return deflated(reinterpret_cast<const char*>(values.data()), chunk, sizeof(double));
 }
 

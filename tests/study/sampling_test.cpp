@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <span>
+#include <vector>
 
 #include <boost/random/sobol.hpp>
 
@@ -102,6 +104,75 @@ TEST(Sampling, SaltelliRowsAreTheDesignsRows) {
     for (std::size_t r = 0; r < n * (d + 2); ++r)
       for (std::size_t i = 0; i < d; ++i) ASSERT_EQ(rows.at(r, i), design.points[r * d + i]) << r << ", " << i;
   }
+}
+
+/// Every value of `design`'s column `i` over [0, n), filled in runs that start at `first`
+/// and at unaligned offsets, is what at() gives for it, bit for bit.
+template <class Design>
+void expect_columns_match(const Design& design, std::uint64_t n, std::size_t i, std::uint64_t first = 0) {
+  std::vector<double> whole(n - first);
+  design.column(i, first, whole);
+  for (std::uint64_t j = first; j < n; ++j) ASSERT_EQ(whole[j - first], design.at(j, i)) << "j " << j << " column " << i;
+  for (std::uint64_t start : {first + 1, first + (n - first) / 3, n - 1}) {
+    if (start >= n) continue;
+    std::vector<double> run(std::min<std::uint64_t>(n - start, 37));
+    design.column(i, start, run);
+    for (std::size_t m = 0; m < run.size(); ++m) ASSERT_EQ(run[m], design.at(start + m, i)) << "from " << start;
+  }
+  design.column(i, first, std::span<double>());  // an empty run writes nothing
+}
+
+// What LatinHypercube::at computed when issue 38 defined it (two floor calls and the whole
+// counter_hash a value): the faster forms must keep these bits.
+double issue_38_lhs_value(std::uint64_t n, std::uint64_t seed, std::size_t i, std::uint64_t j) {
+  const std::uint64_t key = counter_hash(seed, 0x4c4853ull, i);
+  const double stratum = static_cast<double>(IndexPermutation(n, key)(j));
+  const double u = static_cast<double>(counter_hash(key, seed, j) >> 11) * 0x1p-53;
+  const double size = static_cast<double>(n);
+  double x = (stratum + u) / size;
+  while (x > 0.0 && std::floor(x * size) > stratum) x = std::nextafter(x, 0.0);
+  while (std::floor(x * size) < stratum) x = std::nextafter(x, 1.0);
+  return x;
+}
+
+TEST(Sampling, LatinHypercubeColumnsAreItsValuesBitForBit) {
+  // Sizes just above a power of 4 walk the Feistel cycles most (the domain is 4^k, nearly 4n).
+  for (std::uint64_t n : {2ull, 3ull, 5ull, 17ull, 65ull, 257ull, 1000ull, 4097ull, 16385ull, 65536ull, 65537ull}) {
+    SCOPED_TRACE(n);
+    const std::size_t d = 3;
+    for (std::uint64_t seed : {0ull, 11ull}) {
+      const LatinHypercube design(n, d, seed);
+      for (std::size_t i = 0; i < d; ++i) {
+        expect_columns_match(design, n, i);
+        for (std::uint64_t j = 0; j < n; j += 1 + n / 500)
+          ASSERT_EQ(design.at(j, i), issue_38_lhs_value(n, seed, i, j)) << "seed " << seed << " column " << i << " j " << j;
+      }
+    }
+  }
+}
+
+TEST(Sampling, SobolColumnsAreItsValuesBitForBit) {
+  for (bool scramble : {false, true}) {
+    SCOPED_TRACE(scramble);
+    const SobolSequence sequence(5, scramble, 3);
+    for (std::uint64_t n : {2ull, 3ull, 1000ull, 4097ull, 65537ull})
+      for (std::size_t i = 0; i < 5; ++i) expect_columns_match(sequence, n, i);
+    // Far out, across the carry into bit 31 and up to the sequence's last point.
+    for (std::size_t i = 0; i < 5; ++i) {
+      expect_columns_match(sequence, (1ull << 31) + 1000, i, (1ull << 31) - 1000);
+      expect_columns_match(sequence, 1ull << 32, i, (1ull << 32) - 300);
+    }
+  }
+}
+
+TEST(Sampling, SaltelliColumnsAreItsRowsBitForBit) {
+  for (bool scramble : {false, true})
+    for (std::size_t d : {2u, 3u, 8u}) {
+      SCOPED_TRACE(d);
+      const SaltelliRows rows(d, scramble, 9);
+      for (std::uint64_t samples : {2ull, 5ull, 1000ull})
+        for (std::size_t i = 0; i < d; ++i) expect_columns_match(rows, samples * (d + 2), i);
+    }
 }
 
 TEST(Sampling, SobolPointsAreTheJoeKuoSequence) {

@@ -174,8 +174,15 @@ std::vector<cube::Coordinate> PointPlan::coordinates() const {
       coords.push_back(computed_number(number_coordinate(std::string(parameter.name), schema::kCase,
                                                          std::string(parameter.units), std::string(parameter.long_name), {}),
                                        std::move(value)));
+      // Frames all of the plan's model (every plan that computes them): a piece at once.
+      if (present.size() == 1)
+        coords.back().numbers_from = [this, k](std::size_t first, std::span<double> out) { point_values(first, k, out); };
     }
   return coords;
+}
+
+void PointPlan::point_values(std::size_t first, std::size_t k, std::span<double> out) const {
+  for (std::size_t m = 0; m < out.size(); ++m) out[m] = point_value(first + m, k);
 }
 
 std::vector<std::size_t> PointPlan::locate(const HistoryRequest& request) const {

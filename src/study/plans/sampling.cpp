@@ -4,6 +4,7 @@
 #include <boost/random/sobol.hpp>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <numeric>
 #include <random>
@@ -48,13 +49,19 @@ std::uint64_t mix64(std::uint64_t x) {
   return x;
 }
 
+constexpr std::uint64_t kGolden = 0x9e3779b97f4a7c15ull;  // splitmix64's increment
+
+/// counter_hash's state after (seed, a), which its last word b only mixes into.
+std::uint64_t counter_hash_state(std::uint64_t seed, std::uint64_t a) {
+  return mix64(mix64(seed + kGolden) ^ (a + 2 * kGolden));
+}
+
+std::uint64_t counter_hash_last(std::uint64_t state, std::uint64_t b) { return mix64(state ^ (b + 3 * kGolden)); }
+
 }  // namespace
 
 std::uint64_t counter_hash(std::uint64_t seed, std::uint64_t a, std::uint64_t b) {
-  constexpr std::uint64_t kGolden = 0x9e3779b97f4a7c15ull;  // splitmix64's increment
-  std::uint64_t h = mix64(seed + kGolden);
-  h = mix64(h ^ (a + 2 * kGolden));
-  return mix64(h ^ (b + 3 * kGolden));
+  return counter_hash_last(counter_hash_state(seed, a), b);
 }
 
 IndexPermutation::IndexPermutation(std::uint64_t n, std::uint64_t key) : n_(n == 0 ? 1 : n) {
@@ -82,22 +89,42 @@ std::uint64_t IndexPermutation::operator()(std::uint64_t j) const {
   return x;
 }
 
-LatinHypercube::LatinHypercube(std::uint64_t n, std::size_t d, std::uint64_t seed) : n_(n), seed_(seed) {
+LatinHypercube::LatinHypercube(std::uint64_t n, std::size_t d, std::uint64_t seed) : n_(n) {
   for (std::size_t i = 0; i < d; ++i) {
-    keys_.push_back(counter_hash(seed, 0x4c4853ull, i));  // "LHS"
-    permutations_.emplace_back(n, keys_.back());
+    const std::uint64_t key = counter_hash(seed, 0x4c4853ull, i);  // "LHS"
+    permutations_.emplace_back(n, key);
+    jitter_states_.push_back(counter_hash_state(key, seed));
   }
 }
 
-double LatinHypercube::at(std::uint64_t j, std::size_t i) const {
-  const std::uint64_t stratum = permutations_[i](j);
-  const double u = static_cast<double>(counter_hash(keys_[i], seed_, j) >> 11) * 0x1p-53;  // [0, 1)
-  const double n = static_cast<double>(n_), s = static_cast<double>(stratum);
+double LatinHypercube::jitter(std::uint64_t j, std::size_t i) const {
+  return static_cast<double>(counter_hash_last(jitter_states_[i], j) >> 11) * 0x1p-53;  // [0, 1)
+}
+
+namespace {
+
+/// (stratum + u) / n, moved by ulps until floor(x n) reads the stratum back: rounding must
+/// not carry the value out of its stratum. floor(y) > s is y >= s + 1 and floor(y) < s is
+/// y < s for a whole s below 2^53: the same tests without two calls to floor (the baseline
+/// x86-64 has no rounding instruction) for each value.
+double place_in_stratum(std::uint64_t stratum, double u, double n) {
+  const double s = static_cast<double>(stratum);
   double x = (s + u) / n;
-  // Rounding must not carry the value out of its stratum (as floor(x N) reads it back).
-  while (x > 0.0 && std::floor(x * n) > s) x = std::nextafter(x, 0.0);
-  while (std::floor(x * n) < s) x = std::nextafter(x, 1.0);
+  while (x > 0.0 && x * n >= s + 1.0) x = std::nextafter(x, 0.0);
+  while (x * n < s) x = std::nextafter(x, 1.0);
   return x;
+}
+
+}  // namespace
+
+double LatinHypercube::at(std::uint64_t j, std::size_t i) const {
+  return place_in_stratum(permutations_[i](j), jitter(j, i), static_cast<double>(n_));
+}
+
+void LatinHypercube::column(std::size_t i, std::uint64_t first, std::span<double> out) const {
+  const IndexPermutation& permutation = permutations_[i];
+  const double n = static_cast<double>(n_);
+  for (std::size_t m = 0; m < out.size(); ++m) out[m] = place_in_stratum(permutation(first + m), jitter(first + m, i), n);
 }
 
 SobolSequence::SobolSequence(std::size_t d, bool scramble, std::uint64_t seed)
@@ -116,13 +143,48 @@ SobolSequence::SobolSequence(std::size_t d, bool scramble, std::uint64_t seed)
   }
 }
 
-double SobolSequence::at(std::uint64_t j, std::size_t i) const {
+std::uint32_t SobolSequence::unscrambled(std::uint64_t j, std::size_t i) const {
   std::uint64_t gray = j ^ (j >> 1);
   std::uint32_t x = 0;
   for (unsigned r = 0; gray != 0; ++r, gray >>= 1)
     if (gray & 1u) x ^= directions_[i][r];
+  return x;
+}
+
+double SobolSequence::unit(std::uint32_t x, std::size_t i) const {
   if (scramble_) x = owen_scramble(x, seeds_[i]);
   return static_cast<double>(x) / kTwoTo32;
+}
+
+double SobolSequence::at(std::uint64_t j, std::size_t i) const { return unit(unscrambled(j, i), i); }
+
+void SobolSequence::column(std::size_t i, std::uint64_t first, std::span<double> out) const {
+  if (out.empty()) return;
+  // Antonov and Saleev's recurrence: gray(j) = gray(j - 1) ^ 2^r, r the lowest set bit of j,
+  // so point j is point j - 1 with v_r toggled: one XOR a value instead of one per bit of j.
+  std::uint32_t x = unscrambled(first, i);
+  out[0] = unit(x, i);
+  for (std::size_t m = 1; m < out.size(); ++m) {
+    x ^= directions_[i][static_cast<std::size_t>(std::countr_zero(first + m))];
+    out[m] = unit(x, i);
+  }
+}
+
+void SaltelliRows::column(std::size_t i, std::uint64_t first, std::span<double> out) const {
+  if (out.empty()) return;
+  // Row r is base sample r / (d + 2): its A value (column i) or B value (column d + i), both
+  // computed once a sample as Sobol' columns over the samples the rows span.
+  const std::uint64_t rows_per_sample = d_ + 2, first_sample = first / rows_per_sample;
+  const std::uint64_t samples = (first + out.size() - 1) / rows_per_sample - first_sample + 1;
+  std::vector<double> a(samples), b(samples);
+  base_.column(i, first_sample, a);
+  base_.column(d_ + i, first_sample, b);
+  std::uint64_t sample = 0, block = first % rows_per_sample;
+  for (double& value : out) {
+    const bool from_b = block == 1 || block == i + 2;
+    value = from_b ? b[sample] : a[sample];
+    if (++block == rows_per_sample) block = 0, ++sample;
+  }
 }
 
 UnitPoints latin_hypercube(std::size_t n, std::size_t d, std::uint64_t seed) {
