@@ -141,13 +141,24 @@ TEST(Plan, SampledPlansFillTheirParametersARunAtATimeWithTheSameBits) {
     SCOPED_TRACE(plan);
     const Study study = parse("[plan]\n" + plan + ranges);
     std::size_t parameters = 0;
-    for (const auto& c : study.plan->coordinates()) {
+    const auto coordinates = study.plan->coordinates();
+    for (const auto& c : coordinates) {
       expect_runs_are_values(c);
       if (c.is_text || c.is_index) continue;
       ++parameters;  // varied (the design's columns) or at the base point
       EXPECT_TRUE(c.numbers_from) << c.name << " has no fast path";
     }
     EXPECT_GE(parameters, 2u);
+    // A case's frame (its point computed at once, the design's row) has the cube's values.
+    const std::size_t frames = coordinates.front().size();
+    for (std::size_t i = 0; i < frames; i += 1 + frames / 3000) {
+      const SceneSpec frame = study.plan->frame_at(std::span<const std::size_t>(&i, 1));
+      for (const auto& c : coordinates) {
+        if (c.is_text || c.is_index) continue;
+        ASSERT_EQ(std::bit_cast<std::uint64_t>(frame.value(c.name)), std::bit_cast<std::uint64_t>(c.number(i)))
+            << c.name << " of frame " << i;
+      }
+    }
   }
 }
 

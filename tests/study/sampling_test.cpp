@@ -46,6 +46,45 @@ TEST(Sampling, IndexPermutationIsABijectionOfItsDomain) {
   EXPECT_LT(same, 20u);
 }
 
+TEST(Sampling, IndexPermutationImagesAreItsValues) {
+  // In runs from unaligned starts, longer than the lanes' block of 256, for sizes that walk
+  // the cycles most (just above a power of 4) and least (a power of 4).
+  for (std::uint64_t n : {1ull, 2ull, 5ull, 17ull, 257ull, 1000ull, 4096ull, 4097ull, 65537ull}) {
+    const IndexPermutation permutation(n, 777);
+    for (std::uint64_t first : {std::uint64_t{0}, std::uint64_t{1}, n / 3}) {
+      std::vector<std::uint64_t> images(n - first);
+      permutation.images(first, images);
+      for (std::uint64_t j = first; j < n; ++j) ASSERT_EQ(images[j - first], permutation(j)) << "n " << n << " j " << j;
+    }
+  }
+}
+
+TEST(Sampling, ImagesOfOnePointUnderManyPermutationsAreTheirValues) {
+  for (std::uint64_t n : {1ull, 5ull, 257ull, 4097ull, 65536ull}) {
+    std::vector<IndexPermutation> permutations;
+    for (std::uint64_t key = 0; key < 300; ++key) permutations.emplace_back(n, key);  // more than a block of lanes
+    std::vector<std::uint64_t> images(permutations.size());
+    for (std::uint64_t j = 0; j < n; j += 1 + n / 40) {
+      IndexPermutation::images_of(j, permutations, images);
+      for (std::size_t p = 0; p < permutations.size(); ++p) ASSERT_EQ(images[p], permutations[p](j)) << "n " << n << " key " << p;
+    }
+  }
+}
+
+TEST(Sampling, LatinHypercubeRowsAreItsValuesBitForBit) {
+  for (std::uint64_t n : {2ull, 17ull, 4097ull, 65537ull}) {
+    const std::size_t d = 40;  // past the 32 a sampled plan asks for at once
+    const LatinHypercube design(n, d, 4);
+    std::vector<double> row(d);
+    for (std::uint64_t j = 0; j < n; j += 1 + n / 200) {
+      design.row(j, 0, row);
+      for (std::size_t i = 0; i < d; ++i) ASSERT_EQ(row[i], design.at(j, i)) << "n " << n << " j " << j << " column " << i;
+      design.row(j, 3, std::span(row).first(5));
+      for (std::size_t s = 0; s < 5; ++s) ASSERT_EQ(row[s], design.at(j, 3 + s)) << "from column 3";
+    }
+  }
+}
+
 TEST(Sampling, LatinHypercubeByIndexIsALatinHypercube) {
   // Each stratum of each dimension exactly once, the value inside its stratum, and the
   // whole-matrix function the same values.

@@ -107,8 +107,12 @@ SceneSpec PointPlan::frame_at(std::span<const std::size_t> coordinates) const {
   const std::size_t i = coordinates[0];
   const SceneModel& m = point_model(i);
   ScenePoint values(m.parameters.size());
-  for (std::size_t k = 0; k < values.size(); ++k) values[k] = point_value(i, k);
+  frame_values(i, values);
   return {&m, std::move(values)};
+}
+
+void PointPlan::frame_values(std::size_t i, std::span<double> values) const {
+  for (std::size_t k = 0; k < values.size(); ++k) values[k] = point_value(i, k);
 }
 
 std::vector<SceneSpec> PointPlan::frames() const {

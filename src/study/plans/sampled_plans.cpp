@@ -5,6 +5,7 @@
 // and sobol label their frames "s0", "s1", …; saltelli groups them by base sample j ("s<j>:A",
 // "s<j>:B", "s<j>:AB_<parameter>") and stores each frame's block and sample.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <memory>
@@ -93,17 +94,25 @@ Sampling read_sampling(const PlanInput& input) {
 }
 
 /// A design's unit coordinates, in [0, 1), computed from the frame number: coordinate k of
-/// frame i (`at`), or of a run of frames at once (`column`, the same bits).
+/// frame i (`at`), of a run of frames at once (`column`), or coordinates first, first + 1, …
+/// of frame i (`row`), the same bits.
 struct UnitDesign {
   std::function<double(std::uint64_t, std::size_t)> at;
   std::function<void(std::size_t k, std::uint64_t first, std::span<double> out)> column;
+  std::function<void(std::uint64_t i, std::size_t first, std::span<double> out)> row;
 };
 
-/// The UnitDesign of a design that has at(i, k) and column(k, first, out) (sampling.hpp).
+/// The UnitDesign of a design that has at(i, k) and column(k, first, out), and row(i, first,
+/// out) where it computes a point's coordinates together (sampling.hpp).
 template <class Design>
 UnitDesign unit_design(std::shared_ptr<const Design> design) {
   return {[design](std::uint64_t i, std::size_t k) { return design->at(i, k); },
-          [design](std::size_t k, std::uint64_t first, std::span<double> out) { design->column(k, first, out); }};
+          [design](std::size_t k, std::uint64_t first, std::span<double> out) { design->column(k, first, out); },
+          [design](std::uint64_t i, std::size_t first, std::span<double> out) {
+            if constexpr (requires { design->row(i, first, out); }) design->row(i, first, out);
+            else
+              for (std::size_t s = 0; s < out.size(); ++s) out[s] = design->at(i, first + s);
+          }};
 }
 
 /// A sampled plan computes frame i's unit point from i (UnitDesign) and maps it onto the
@@ -139,6 +148,19 @@ class SampledPlan : public PointPlan {
   double point_value(std::size_t i, std::size_t k) const override {
     if (slot_[k] == kNotVaried) return base_[k];
     return sampling_.ranges[k]->at(unit_.at(i, slot_[k]));
+  }
+  /// point_value of every parameter of frame i: the varied ones from the design's row.
+  void frame_values(std::size_t i, std::span<double> values) const override {
+    std::copy(base_.begin(), base_.end(), values.begin());
+    std::array<double, 32> unit;  // a row's piece on the stack [unit coordinates]
+    for (std::size_t first = 0; first < varied_.size(); first += unit.size()) {
+      const std::size_t count = std::min(unit.size(), varied_.size() - first);
+      unit_.row(i, first, std::span(unit.data(), count));
+      for (std::size_t s = 0; s < count; ++s) {
+        const std::size_t k = varied_[first + s];
+        values[k] = sampling_.ranges[k]->at(unit[s]);
+      }
+    }
   }
   /// point_value of frames first, first + 1, …: the design's column, then the range's map.
   void point_values(std::size_t first, std::size_t k, std::span<double> out) const override {

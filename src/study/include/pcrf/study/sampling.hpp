@@ -37,6 +37,15 @@ class IndexPermutation {
   IndexPermutation(std::uint64_t n, std::uint64_t key);
   /// The image of j < n.
   std::uint64_t operator()(std::uint64_t j) const;
+  /// The images of first, first + 1, … into out (first + out.size() <= n), the same values,
+  /// their encryptions computed in lanes (AVX2 where the CPU has it): 25 to 27 instructions
+  /// an encryption instead of 72, measured with callgrind in a study (issue 38).
+  void images(std::uint64_t first, std::span<std::uint64_t> out) const;
+  /// The image of j under each of `permutations`, all of one n, into out (as many), the
+  /// first encryptions in lanes likewise (36 instructions each for 8 of them): for a point
+  /// of 8 dimensions, 495 instructions instead of 624 at n = 2^18, 1107 instead of 1220 at
+  /// n = 2^17 (cycle-walking twice on average).
+  static void images_of(std::uint64_t j, std::span<const IndexPermutation> permutations, std::span<std::uint64_t> out);
 
  private:
   static constexpr int kRounds = 4;
@@ -68,6 +77,8 @@ class LatinHypercube {
   double at(std::uint64_t j, std::size_t i) const;
   /// at(first + m, i) into out[m] for every m (first + out.size() <= N).
   void column(std::size_t i, std::uint64_t first, std::span<double> out) const;
+  /// at(j, first + s) into out[s] for every s (first + out.size() <= dimensions()).
+  void row(std::uint64_t j, std::size_t first, std::span<double> out) const;
 
  private:
   std::uint64_t n_;
