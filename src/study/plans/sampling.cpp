@@ -169,11 +169,12 @@ LatinHypercube::LatinHypercube(std::uint64_t n, std::size_t d, std::uint64_t see
   }
 }
 
-double LatinHypercube::jitter(std::uint64_t j, std::size_t i) const {
-  return static_cast<double>(counter_hash_last(jitter_states_[i], j) >> 11) * 0x1p-53;  // [0, 1)
-}
-
 namespace {
+
+/// A point's position inside its stratum, in [0, 1), from its dimension's jitter state.
+double unit_jitter(std::uint64_t state, std::uint64_t j) {
+  return static_cast<double>(counter_hash_last(state, j) >> 11) * 0x1p-53;
+}
 
 /// (stratum + u) / n, moved by ulps until floor(x n) reads the stratum back: rounding must
 /// not carry the value out of its stratum. floor(y) > s is y >= s + 1 and floor(y) < s is
@@ -190,7 +191,7 @@ double place_in_stratum(std::uint64_t stratum, double u, double n) {
 }  // namespace
 
 double LatinHypercube::at(std::uint64_t j, std::size_t i) const {
-  return place_in_stratum(permutations_[i](j), jitter(j, i), static_cast<double>(n_));
+  return place_in_stratum(permutations_[i](j), unit_jitter(jitter_states_[i], j), static_cast<double>(n_));
 }
 
 void LatinHypercube::row(std::uint64_t j, std::size_t first, std::span<double> out) const {
@@ -199,18 +200,20 @@ void LatinHypercube::row(std::uint64_t j, std::size_t first, std::span<double> o
   for (std::size_t start = 0; start < out.size(); start += strata.size()) {
     const std::size_t count = std::min(strata.size(), out.size() - start);
     IndexPermutation::images_of(j, std::span(permutations_).subspan(first + start, count), std::span(strata.data(), count));
-    for (std::size_t s = 0; s < count; ++s) out[start + s] = place_in_stratum(strata[s], jitter(j, first + start + s), n);
+    for (std::size_t s = 0; s < count; ++s)
+      out[start + s] = place_in_stratum(strata[s], unit_jitter(jitter_states_[first + start + s], j), n);
   }
 }
 
 void LatinHypercube::column(std::size_t i, std::uint64_t first, std::span<double> out) const {
   const double n = static_cast<double>(n_);
+  const std::uint64_t jitter_state = jitter_states_[i];
   std::array<std::uint64_t, kWalkedTogether> strata;
   for (std::size_t start = 0; start < out.size(); start += strata.size()) {
     const std::size_t count = std::min(strata.size(), out.size() - start);
     permutations_[i].images(first + start, std::span(strata.data(), count));
     for (std::size_t m = 0; m < count; ++m)
-      out[start + m] = place_in_stratum(strata[m], jitter(first + start + m, i), n);
+      out[start + m] = place_in_stratum(strata[m], unit_jitter(jitter_state, first + start + m), n);
   }
 }
 

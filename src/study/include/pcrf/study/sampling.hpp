@@ -87,8 +87,6 @@ class LatinHypercube {
   /// same for every j, so each value mixes once, not three times (issue 38: a third of the
   /// 300 instructions a value cost at the cube's creation went to those two mixes).
   std::vector<std::uint64_t> jitter_states_;
-  /// The position of point j inside its stratum, in [0, 1).
-  double jitter(std::uint64_t j, std::size_t i) const;
 };
 
 /// The Sobol' sequence of UnitPoints sobol_points (the same bits), evaluable by index: point
