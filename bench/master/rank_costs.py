@@ -65,31 +65,54 @@ CASE_FUNCTIONS = re.compile(r"pcrf::run::CaseRunner::(set_up|conclude)\(")
 # which writes the ranks' parts (and rank 0's own journal) into the cube.
 FUNCTIONS = {"study": "pcrf::run::run_study(", "load": "pcrf::study::load_study(", "prepare": "::prepare_master(",
              "create": "::create_cube(", "close": "pcrf::cube::CubeWriter::close(",
-             "stream": "::stream_kept("}
-PHASES = ("setup", "run", "assembly", "streamed")
+             "stream": "::stream_kept(", "wait": "pcrf::run::WorkerCoordinates::take(",
+             "handle": "::Master::handle(", "idle": "_Function_handler<void (), pcrf::run::(anonymous namespace)::run_master_rank("}
+PHASES = ("setup", "run", "assembly", "streamed", "setup_work", "run_work")
+
+
+# A working thread's instructions, split (inclusive counts): its cases (the case runner), sealing
+# the chunks it computed whole (ChunkSealer), the cube's coordinate pieces it sealed at the
+# creation (a worker rank's share of it); the rest of the thread is its own side beyond them
+# (asking for work, its part, messages, MPI).
+WORKER_FUNCTIONS = {"case": "pcrf::run::CaseRunner::run(", "seal": "ChunkSealer::operator()(",
+                    "create": "pcrf::run::seal_coordinates_for_rank0("}
+WORKER_PARTS = ("case", "seal", "create", "total")
+
+
+def inclusive_of(path, functions):
+    """{key: inclusive instructions of the first function whose name holds functions[key]}."""
+    out = subprocess.run(["callgrind_annotate", "--inclusive=yes", "--threshold=100", path],
+                         capture_output=True, text=True).stdout
+    found = dict.fromkeys(functions, 0)
+    for line in out.splitlines():
+        for key, name in functions.items():
+            if name in line and not found[key]:
+                found[key] = int(line.split()[0].replace(",", ""))
+    return found
 
 
 def inclusive_phases(path):
     """Instructions of each of PHASES in one callgrind file."""
-    out = subprocess.run(["callgrind_annotate", "--inclusive=yes", "--threshold=100", path],
-                         capture_output=True, text=True).stdout
-    found = dict.fromkeys(FUNCTIONS, 0)
-    for line in out.splitlines():
-        for key, name in FUNCTIONS.items():
-            if name in line and not found[key]:
-                found[key] = int(line.split()[0].replace(",", ""))
+    found = inclusive_of(path, FUNCTIONS)
     setup = found["load"] + found["prepare"] + found["create"]  # create_cube: the new cube, made with every rank
     # Streamed: the parts' chunks written into the next fold as workers report them (the sink's
     # stream_kept, CubeWriter::stream_kept), during the run and counted in it.
+    # Rank 0's own work, its waits left out: in the set-up, the wait for the workers' coordinate
+    # pieces (WorkerCoordinates::take: polling while they seal, the creation's parallel part,
+    # which scaling_model.py counts as the workers' t_create); in the run, what comes back
+    # (Master::handle: the hand-out, statuses, the stream) and the checkpoints between messages
+    # (the idle handler), not the polling while no message is there (absent once rank 0 is
+    # saturated, the only case where its run cost limits the study).
     return {"setup": setup, "run": found["study"] - setup - found["close"], "assembly": found["close"],
-            "streamed": found["stream"]}
+            "streamed": found["stream"], "setup_work": setup - found["wait"],
+            "run_work": found["handle"] + found["idle"]}
 
 
 def profile_run(pcrf, ranks, study, folder, tag, keep=None):
     """Runs the study under callgrind on every rank; returns {(rank, thread): (all, own, works)}
-    counts, rank 0's main thread's PHASES and the cases the study said it computed (None when it
-    did not say). `keep` (a folder): rank 0's main thread's profile is copied there (for
-    callgrind_annotate)."""
+    counts, rank 0's main thread's PHASES, the cases the study said it computed (None when it
+    did not say) and the working threads' WORKER_PARTS summed. `keep` (a folder): rank 0's main
+    thread's profile is copied there (for callgrind_annotate)."""
     out = os.path.join(folder, f"{tag}.%q{{OMPI_COMM_WORLD_RANK}}")
     valgrind = ["valgrind", "--tool=callgrind", "--separate-threads=yes", f"--callgrind-out-file={out}"]
     command = valgrind + [pcrf, "study", study, "-o", os.path.join(folder, "cube.h5"), "--overwrite",
@@ -100,7 +123,7 @@ def profile_run(pcrf, ranks, study, folder, tag, keep=None):
     done = subprocess.run(command, capture_output=True, text=True, env=env)
     if done.returncode != 0:
         sys.exit(f"rank_costs: {' '.join(command)} failed:\n{done.stderr[-3000:]}")
-    counts, phases = {}, dict.fromkeys(PHASES, 0)
+    counts, phases, split = {}, dict.fromkeys(PHASES, 0), dict.fromkeys(WORKER_PARTS, 0)
     for path in glob.glob(os.path.join(folder, f"{tag}.*")):
         match = re.search(r"\.(\d+)-(\d+)$", path)
         if not match:
@@ -114,9 +137,13 @@ def profile_run(pcrf, ranks, study, folder, tag, keep=None):
         own = sum(c for (obj, _), c in costs.items() if not MPI_OBJECTS.search(obj))
         works = any(CASE_FUNCTIONS.search(fn) for (_, fn) in costs)
         counts[(int(match.group(1)), int(match.group(2)))] = (total, own, works)
+        if works:
+            for key, value in inclusive_of(path, WORKER_FUNCTIONS).items():
+                split[key] += value
+            split["total"] += total
         os.remove(path)
     said = re.search(r"(\d+) cases computed", done.stderr)
-    return counts, phases, int(said.group(1)) if said else None
+    return counts, phases, int(said.group(1)) if said else None, split
 
 
 def main():
@@ -138,8 +165,9 @@ def main():
         runs = [profile_run(pcrf, args.ranks, write_study(folder, n, records, scale), folder, f"cg{n}", args.keep)
                 for n in (small, large)]
     phases = {p: (runs[1][1][p] - runs[0][1][p]) / (large - small) for p in PHASES}
+    split = {p: (runs[1][3][p] - runs[0][3][p]) / (large - small) for p in WORKER_PARTS}
     run_alone = (runs[1][1]["run"] + runs[1][1]["assembly"]) / large  # the run's fixed costs (its tail) included
-    runs = [counts for counts, _, _ in runs]
+    runs = [counts for counts, _, _, _ in runs]
     keys = sorted(set(runs[0]) & set(runs[1]))
     per_case = {k: tuple((runs[1][k][i] - runs[0][k][i]) / (large - small) for i in (0, 1)) for k in keys}
     works = {k for k in keys if runs[1][k][2]}  # threads that computed cases in the larger run
@@ -161,8 +189,14 @@ def main():
           f"{phases['assembly']:,.0f}")
     print(f"  of the run's, the parts' chunks streamed into the next fold as they are reported "
           f"(stream_kept): {phases['streamed']:,.0f}")
+    print(f"  its own work, waits left out (scaling_model.py): set-up {phases['setup_work']:,.1f} (the wait for "
+          f"the workers' coordinate pieces left out); run {phases['run_work']:,.1f} (Master::handle and the "
+          f"checkpoints between messages, its polling left out); assembly {phases['assembly']:,.1f}")
     print(f"  during the run at {large} cases alone, its fixed costs (the last chunk, case by case) included: "
           f"{run_alone:,.0f} a case")
+    print(f"the working threads together, per case: its case {split['case']:,.0f}; sealing the chunks they computed "
+          f"whole {split['seal']:,.0f}; the cube's coordinate pieces at the creation {split['create']:,.0f}; "
+          f"the rest of their own side {split['total'] - split['case'] - split['seal'] - split['create']:,.0f}")
     if working:
         mean = sum(working) / len(working)
         print(f"balance: busiest thread {max(working):,.0f} / mean of {len(working)} working threads "

@@ -50,7 +50,7 @@ def master_per_result(pcrf, ranks, sizes, folder):
     counts, phases, cases = [], [], []
     for k in sizes:
         study, n = write_study(folder, k)
-        c, p, _ = profile_run(pcrf, ranks, study, folder, f"cg{k}")
+        c, p = profile_run(pcrf, ranks, study, folder, f"cg{k}")[:2]
         counts.append(c.get((0, 1), (0, 0, False)))
         phases.append(p)
         cases.append(n)

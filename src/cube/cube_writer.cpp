@@ -665,7 +665,7 @@ std::vector<double> CubeWriter::read_values(const std::string& metric, std::size
 std::size_t CubeWriter::pending_bytes() const { return impl_->pending_bytes; }
 
 void CubeWriter::store(std::int64_t index, std::int8_t status, const std::vector<double>& values) {
-  if (index < 0 || static_cast<std::size_t>(index) >= statuses_.codes().size())
+  if (index < 0 || static_cast<std::size_t>(index) >= statuses_.cases())
     throw CubeError(impl_->what("case index " + std::to_string(index) + " is outside the cube"));
   const std::size_t metrics = impl_->layout.metrics.size();
   if (values.size() != metrics)
@@ -754,7 +754,8 @@ void CubeWriter::Impl::write_chunk(std::size_t chunk, const std::vector<JournalC
               what("cannot write '" + name + "'"));
   }
   const auto selection = select(status_set, kStatusName);
-  h5::check(H5Dwrite(status_set, H5T_NATIVE_INT8, memory, selection, H5P_DEFAULT, status.codes().data() + r.first),
+  std::vector<std::int8_t> scratch;
+  h5::check(H5Dwrite(status_set, H5T_NATIVE_INT8, memory, selection, H5P_DEFAULT, status.chunk_codes(chunk, scratch).data()),
             what("cannot write '" + std::string(kStatusName) + "'"));
 }
 
@@ -1169,8 +1170,9 @@ void CubeWriter::Impl::append(const StatusBook& status) {
     }
     // Sealed chunks first: a chunk's cases stored after it was sealed come after it on replay.
     for (const auto& [chunk, sealed] : pending_sealed) journal->add_sealed(sealed);
+    std::vector<std::int8_t> scratch;
     for (const auto& [chunk, stored] : pending_chunks)
-      journal->add_cases(chunk, stored.stored, stored.values, status.codes().data() + grid.range(chunk).first);
+      journal->add_cases(chunk, stored.stored, stored.values, status.chunk_codes(chunk, scratch).data());
     journal->add_notes(pending_notes);
     for (const auto& table : pending_histories) journal->add_history(table);
     journal->commit();

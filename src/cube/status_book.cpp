@@ -1,4 +1,5 @@
-// The statuses of a cube's cases, kept per case, per code and per chunk (see status_book.hpp).
+// The statuses of a cube's cases, kept per chunk, per code and, for a chunk of mixed codes,
+// per case (see status_book.hpp).
 #include "pcrf/cube/status_book.hpp"
 
 #include <algorithm>
@@ -28,64 +29,115 @@ StatusCounts count_statuses(std::span<const std::int8_t> status) {
 }
 
 StatusBook::StatusBook(ChunkGrid grid, std::size_t cases)
-    : grid_(std::move(grid)), codes_(cases, kStatusNotRun), chunk_done_(grid_.chunk_count(), 0) {
+    : grid_(std::move(grid)),
+      cases_(cases),
+      uniform_(grid_.chunk_count(), kStatusNotRun),
+      mixed_(grid_.chunk_count()),
+      chunk_done_(grid_.chunk_count(), 0) {
+  first_.reserve(grid_.chunk_count() + 1);
+  for (std::size_t c = 0; c < grid_.chunk_count(); ++c) first_.push_back(grid_.range(c).first);
+  first_.push_back(first_.empty() ? 0 : grid_.range(grid_.chunk_count() - 1).first + grid_.range(grid_.chunk_count() - 1).count);
+  if (first_.back() != static_cast<std::int64_t>(cases))
+    throw std::invalid_argument("StatusBook: a grid of " + std::to_string(first_.back()) + " cases for " +
+                                std::to_string(cases) + " cases");
   at(counts_, kStatusNotRun) = static_cast<std::int64_t>(cases);
 }
 
+std::int8_t StatusBook::operator[](std::size_t index) const {
+  const std::size_t chunk = grid_.chunk_of(static_cast<std::int64_t>(index));
+  const auto& own = mixed_[chunk];
+  return own.empty() ? uniform_[chunk] : own[index - static_cast<std::size_t>(first_[chunk])];
+}
+
+std::span<const std::int8_t> StatusBook::chunk_codes(std::size_t chunk, std::vector<std::int8_t>& scratch) const {
+  if (!mixed_[chunk].empty()) return mixed_[chunk];
+  scratch.assign(static_cast<std::size_t>(count(chunk)), uniform_[chunk]);
+  return scratch;
+}
+
+std::vector<std::int8_t> StatusBook::codes() const {
+  std::vector<std::int8_t> all;
+  all.reserve(cases_);
+  std::vector<std::int8_t> scratch;
+  for (std::size_t c = 0; c < mixed_.size(); ++c) {
+    const auto codes = chunk_codes(c, scratch);
+    all.insert(all.end(), codes.begin(), codes.end());
+  }
+  return all;
+}
+
 std::int64_t StatusBook::done() const {
-  return static_cast<std::int64_t>(codes_.size()) - count_of(counts_, kStatusNotRun);
+  return static_cast<std::int64_t>(cases_) - count_of(counts_, kStatusNotRun);
+}
+
+std::size_t StatusBook::mixed_chunks() const {
+  return static_cast<std::size_t>(std::count_if(mixed_.begin(), mixed_.end(), [](const auto& own) { return !own.empty(); }));
 }
 
 void StatusBook::set(std::size_t chunk, std::int64_t index, std::int8_t code) {
-  std::int8_t& old = codes_[static_cast<std::size_t>(index)];
+  auto& own = mixed_[chunk];
+  const auto cases = static_cast<std::size_t>(count(chunk));
+  if (own.empty()) {
+    if (uniform_[chunk] == code) return;
+    own.assign(cases, uniform_[chunk]);  // the chunk's codes differ from now on
+  }
+  std::int8_t& old = own[static_cast<std::size_t>(index - first_[chunk])];
   if (old == code) return;
   --at(counts_, old);
   ++at(counts_, code);
   chunk_done_[chunk] += (code != kStatusNotRun) - (old != kStatusNotRun);
   old = code;
+  // A chunk done case by case holds its byte a case until its last case, then its one code
+  // if they all ended alike: one comparison a chunk.
+  if (chunk_done_[chunk] == static_cast<std::int64_t>(cases) && all_alike(own)) {
+    uniform_[chunk] = own.front();
+    std::vector<std::int8_t>().swap(own);
+  }
 }
 
-/// Takes the codes of a chunk's cases out of the counts, before new ones replace them.
-void StatusBook::forget_chunk(std::size_t chunk, std::int64_t first, std::int64_t count) {
-  if (chunk_done_[chunk] == 0) {  // all not run: no need to look at them
-    at(counts_, kStatusNotRun) -= count;
+/// Takes the codes of a chunk's `cases` cases out of the counts, before new ones replace them.
+void StatusBook::forget_chunk(std::size_t chunk, std::int64_t cases) {
+  const auto& own = mixed_[chunk];
+  if (own.empty()) {
+    at(counts_, uniform_[chunk]) -= cases;
     return;
   }
-  for (std::int64_t k = 0; k < count; ++k) --at(counts_, codes_[static_cast<std::size_t>(first + k)]);
+  for (const std::int8_t code : own) --at(counts_, code);
 }
 
-void StatusBook::set_chunk(std::size_t chunk, std::span<const std::int8_t> codes) {
-  const auto r = grid_.range(chunk);
-  if (codes.size() != static_cast<std::size_t>(r.count))
-    throw std::invalid_argument("StatusBook: " + std::to_string(codes.size()) + " codes for a chunk of " +
-                                std::to_string(r.count) + " cases");
-  if (!codes.empty() && all_alike(codes)) return set_chunk_to(chunk, codes.front());
-  forget_chunk(chunk, r.first, r.count);
+void StatusBook::keep_mixed(std::size_t chunk, std::span<const std::int8_t> codes) {
   for (const std::int8_t code : codes) ++at(counts_, code);
   std::int64_t done = 0;
   for (const std::int8_t code : codes) done += code != kStatusNotRun;
   chunk_done_[chunk] = done;
-  std::memcpy(codes_.data() + r.first, codes.data(), codes.size());
+  mixed_[chunk].assign(codes.begin(), codes.end());
+}
+
+void StatusBook::set_chunk(std::size_t chunk, std::span<const std::int8_t> codes) {
+  const auto cases = count(chunk);
+  if (codes.size() != static_cast<std::size_t>(cases))
+    throw std::invalid_argument("StatusBook: " + std::to_string(codes.size()) + " codes for a chunk of " +
+                                std::to_string(cases) + " cases");
+  if (!codes.empty() && all_alike(codes)) return set_chunk_to(chunk, codes.front());
+  forget_chunk(chunk, cases);
+  keep_mixed(chunk, codes);
 }
 
 void StatusBook::set_chunk_to(std::size_t chunk, std::int8_t code) {
-  const auto r = grid_.range(chunk);
-  forget_chunk(chunk, r.first, r.count);
-  at(counts_, code) += r.count;
-  chunk_done_[chunk] = code != kStatusNotRun ? r.count : 0;
-  std::memset(codes_.data() + r.first, code, static_cast<std::size_t>(r.count));
+  const auto cases = count(chunk);
+  forget_chunk(chunk, cases);
+  at(counts_, code) += cases;
+  chunk_done_[chunk] = code != kStatusNotRun ? cases : 0;
+  uniform_[chunk] = code;
+  std::vector<std::int8_t>().swap(mixed_[chunk]);
 }
 
-void StatusBook::assign(std::vector<std::int8_t> codes) {
-  if (codes.size() != codes_.size())
+void StatusBook::assign(const std::vector<std::int8_t>& codes) {
+  if (codes.size() != cases_)
     throw std::invalid_argument("StatusBook: " + std::to_string(codes.size()) + " codes for " +
-                                std::to_string(codes_.size()) + " cases");
-  codes_ = std::move(codes);
-  counts_ = count_statuses(codes_);
-  std::fill(chunk_done_.begin(), chunk_done_.end(), 0);
-  for (std::size_t c = 0; c < chunk_done_.size(); ++c) {
-    const auto r = grid_.range(c);
-    for (std::int64_t k = 0; k < r.count; ++k) chunk_done_[c] += codes_[static_cast<std::size_t>(r.first + k)] != kStatusNotRun;
+                                std::to_string(cases_) + " cases");
+  for (std::size_t c = 0; c < mixed_.size(); ++c) {
+    set_chunk(c, std::span<const std::int8_t>(codes).subspan(static_cast<std::size_t>(first_[c]), static_cast<std::size_t>(count(c))));
   }
 }
 

@@ -98,7 +98,7 @@ void for_each_curve_block(const cube::CubeWriter& writer, std::int64_t curves, s
 /// reports its curves' runs in order), as add(point, intensity, verdict). The block's metric
 /// 0 is the intensity, 1 θ_max when `with_theta`.
 template <class Add>
-void stored_runs(std::int64_t c, std::int64_t runs, const std::vector<std::int8_t>& status, const CurveBlock& block,
+void stored_runs(std::int64_t c, std::int64_t runs, const cube::StatusBook& status, const CurveBlock& block,
                  bool with_theta, const CollapseRule& rule, Add add) {
   for (std::int64_t k = 0; k < runs; ++k) {
     const std::int64_t i = c * runs + k;
@@ -131,7 +131,7 @@ std::unique_ptr<ida::IdaCurves> make_ida_curves(const Study& study, const CaseSp
                                                  collapse_test(study), workers);
   // Resume: each curve's stored runs, in order, up to the first one not stored (a curve has
   // at most one run in flight, so a killed run leaves no gap before its last stored point).
-  const auto& status = writer.status();
+  const auto& status = writer.statuses();
   if (writer.done_count() == 0) return curves;  // a new cube: nothing stored to replay
   const bool with_theta = rule.uses_theta();
   std::vector<std::string> metrics{schema::kIdaIntensity};
@@ -222,7 +222,7 @@ void store_curve_summaries(const Study& study, const IdaWork& work, cube::CubeWr
   const ida::IdaCurves& curves = work.curves();
   std::vector<double> collapse, safe, runs, state, unresolved;
   const double none = std::nan("");  // a curve another shard computes: nothing known here
-  const auto& status = writer.status();
+  const auto& status = writer.statuses();
   const auto points = static_cast<std::size_t>(curves.max_runs());
   const CollapseRule rule(study);
   const bool with_theta = replay && rule.uses_theta();

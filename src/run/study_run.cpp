@@ -596,7 +596,7 @@ parallel::WorkQueue pending_cases(const cube::CubeWriter& writer, const std::map
                                   const Study& study, const CaseSpace& space, const parallel::MpiSession& mpi,
                                   const StudyRunOptions& options, std::vector<char> in_unit) {
   const auto [first, last] = shard_range(space.size(), options.shard_index, options.shard_count);
-  const auto& status = writer.status();
+  const auto& status = writer.statuses();
   const auto& grid = writer.grid();
   auto pending = [&status](std::int64_t i) { return status[static_cast<std::size_t>(i)] == cube::kStatusNotRun; };
   // The first position from k on that is not in a chunk handed out whole: such a chunk is

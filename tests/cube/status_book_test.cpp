@@ -71,5 +71,43 @@ TEST(StatusBook, EveryWayOfSettingKeepsTheCountsOfARecount) {
   EXPECT_THROW(book.assign(std::vector<std::int8_t>(3, 0)), std::invalid_argument);
 }
 
+TEST(StatusBook, OnlyAChunkOfMixedCodesHoldsAByteACase) {
+  const ChunkGrid grid = ChunkGrid::of_chunk_shape({4, 1000}, {1, 1000});  // four chunks of a row each
+  StatusBook book(grid, 4000);
+  EXPECT_EQ(book.mixed_chunks(), 0u);  // a new study: a code a chunk
+  // Chunk 0 done case by case, all alike: mixed while it fills, one code once it is done.
+  for (std::int64_t k = 0; k < 1000; ++k) {
+    book.set(0, k, 2);
+    if (k == 0 || k == 998) {
+      EXPECT_EQ(book.mixed_chunks(), 1u) << "after case " << k;
+    }
+  }
+  EXPECT_EQ(book.mixed_chunks(), 0u);
+  // Chunk 1 done case by case, codes that differ: it keeps its bytes, until one code replaces them.
+  for (std::int64_t k = 0; k < 1000; ++k) book.set(1, 1000 + k, static_cast<std::int8_t>(1 + k % 2));
+  EXPECT_EQ(book.mixed_chunks(), 1u);
+  book.set_chunk_to(1, 3);
+  EXPECT_EQ(book.mixed_chunks(), 0u);
+  std::vector<std::int8_t> mixed(1000, 4);
+  mixed[7] = kStatusNotRun;
+  book.set_chunk(2, mixed);
+  EXPECT_EQ(book.mixed_chunks(), 1u);
+  // Every way of reading a code agrees with the whole list.
+  const auto all = book.codes();
+  ASSERT_EQ(all.size(), 4000u);
+  for (std::size_t i = 0; i < all.size(); ++i) ASSERT_EQ(book[i], all[i]) << "case " << i;
+  std::vector<std::int8_t> scratch;
+  const auto two = book.chunk_codes(2, scratch);
+  EXPECT_EQ(std::vector<std::int8_t>(two.begin(), two.end()), mixed);
+  const auto three = book.chunk_codes(3, scratch);
+  EXPECT_EQ(std::vector<std::int8_t>(three.begin(), three.end()), std::vector<std::int8_t>(1000, kStatusNotRun));
+  expect_recounted(book, grid);
+  // A cube read back: a code a chunk where its cases are alike.
+  book.assign(std::vector<std::int8_t>(4000, 5));
+  EXPECT_EQ(book.mixed_chunks(), 0u);
+  expect_recounted(book, grid);
+  EXPECT_THROW(StatusBook(grid, 3999), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace pcrf::cube

@@ -11,9 +11,10 @@
 ///   /histories/<name>/ time histories of selected cases (each its own time dimension)
 /// Variables are chunked (each chunk one contiguous range of cases) and deflated.
 ///
-/// Memory: the status of every case (1 byte each, status_book.hpp: with how many cases have
-/// each code and how many of each chunk are done) and the values stored since the last flush,
-/// chunk by chunk; nothing else of the cube.
+/// Memory: the statuses (status_book.hpp: a code a chunk whose cases are alike, 1 byte a case
+/// of a chunk of mixed codes, with how many cases have each code and how many of each chunk
+/// are done) and the values stored since the last flush, chunk by chunk; nothing else of the
+/// cube.
 ///
 /// Checkpoints (docs/checkpoint.md): flush() appends what was stored since the last one to
 /// the cube's journal, `<file>.journal` (cube_journal.hpp), and syncs it: its cost follows
@@ -128,9 +129,12 @@ class CubeWriter {
   /// What ties a rank's part to this cube (cube_part.hpp); id 0 for a cube of an earlier
   /// version, which has no parts (its workers send their chunks).
   PartHeader part_header() const;
-  /// Status of every case (kStatusNotRun where not computed yet). A chunk a rank kept in its
+  /// Status of every case (kStatusNotRun where not computed yet), case by case or a chunk at
+  /// a time (StatusBook: a code a chunk where its cases are alike). A chunk a rank kept in its
   /// part (cube_part.hpp) is not run here until close() (or a --resume) takes it in.
-  const std::vector<std::int8_t>& status() const { return statuses_.codes(); }
+  const StatusBook& statuses() const { return statuses_; }
+  /// Every case's status, a byte a case (made on demand: one pass).
+  std::vector<std::int8_t> status() const { return statuses_.codes(); }
   /// How many cases have each status code (those of status()), without a pass over them.
   const StatusCounts& status_counts() const { return statuses_.counts(); }
   /// Cases done (status() not kStatusNotRun), without a pass over them.
