@@ -20,10 +20,19 @@ std::string Coordinate::label(std::size_t i) const {
   return number_text(number(i));
 }
 
+void Coordinate::numbers_into(std::size_t first, std::span<double> out) const {
+  if (first > size() || out.size() > size() - first)
+    throw std::out_of_range("coordinate '" + name + "' has no values " + std::to_string(first) + " … " +
+                            std::to_string(first + out.size() - 1));
+  if (numbers_from) return numbers_from(first, out);
+  for (std::size_t k = 0; k < out.size(); ++k) out[k] = number(first + k);
+}
+
 void Coordinate::release_values() {
   std::vector<double>().swap(numbers);
   std::vector<std::string>().swap(strings);
   number_at = nullptr;
+  numbers_from = nullptr;
   text_at = nullptr;
 }
 

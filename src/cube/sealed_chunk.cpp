@@ -525,7 +525,7 @@ std::vector<char> seal_coordinate_piece(const Coordinate& c, std::size_t piece) 
   thread_local std::vector<double> piece_values;
   if (piece_values.size() < chunk) piece_values.resize(chunk);
   const std::span<double> values(piece_values.data(), chunk);
-  for (std::size_t k = 0; k < count; ++k) values[k] = c.number(first + k);
+  c.numbers_into(first, values.first(count));
   std::fill(values.begin() + static_cast<std::ptrdiff_t>(count), values.end(), 0.0);
   return deflated(reinterpret_cast<const char*>(values.data()), chunk, sizeof(double), Coding::kPlanes);
 }

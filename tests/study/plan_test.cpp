@@ -4,8 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <map>
 #include <sstream>
+#include <stdexcept>
+#include <vector>
 
 #include "pcrf/row_major.hpp"
 #include "pcrf/study/plan.hpp"
@@ -51,6 +55,22 @@ TEST(Plan, EveryKindIsTestedHere) {
   EXPECT_EQ(plan_kinds().front(), "grid");  // the default
 }
 
+/// A numeric coordinate's values asked a run at a time (as the cube's creation does, piece by
+/// piece) are its values one by one, bit for bit, from any first value; past its end, an error.
+void expect_runs_are_values(const cube::Coordinate& c) {
+  if (c.is_text) return;
+  SCOPED_TRACE(c.name);
+  const std::size_t n = c.size();
+  for (std::size_t first : {std::size_t{0}, std::size_t{1}, n / 2, n - 1}) {
+    std::vector<double> run(n - first);
+    c.numbers_into(first, run);
+    for (std::size_t k = 0; k < run.size(); ++k)  // bits, as a NaN (a parameter another model lacks) is no value
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(run[k]), std::bit_cast<std::uint64_t>(c.number(first + k))) << "value " << first + k;
+  }
+  std::vector<double> past(2);
+  EXPECT_THROW(c.numbers_into(n - 1, past), std::out_of_range);
+}
+
 /// The contract of the plan `texts.first` makes, of kind `kind`; `texts.second` is another plan.
 void expect_contract(const std::string& kind, const std::pair<std::string, std::string>& texts) {
   SCOPED_TRACE(kind);
@@ -77,6 +97,7 @@ void expect_contract(const std::string& kind, const std::pair<std::string, std::
     ASSERT_NE(d, plan.dimensions().end()) << c.name << " is along " << c.dimension << ", not a dimension of the plan";
     EXPECT_EQ(c.size(), d->size) << c.name;
   }
+  for (const auto& c : coordinates) expect_runs_are_values(c);
   const std::string text = canonical(plan);
   EXPECT_EQ(text, canonical(*parse(texts.first).plan)) << "the same study, the same text";
   EXPECT_NE(text, canonical(*parse(texts.second).plan)) << "another plan, another text";
@@ -106,6 +127,39 @@ TEST(Plan, TheLatinHypercubesTextNamesItsConstruction) {
   for (const char* kind : {"sobol", "saltelli"})
     EXPECT_EQ(canonical(*parse(std::string("[plan]\nkind = \"") + kind + "\"\n" + sampled).plan).find("design="),
               std::string::npos) << kind;
+}
+
+TEST(Plan, SampledPlansFillTheirParametersARunAtATimeWithTheSameBits) {
+  // Sizes that walk the Latin hypercube's Feistel cycles (just above a power of 4) and cross
+  // a piece of the cube (65 536 values); a linear and a log range; Sobol' scrambled or not.
+  const std::string ranges = "[axes]\nkappa = {from = 1.2, to = 2.4}\nlambda = {from = 1, to = 3, spacing = \"log\"}\n";
+  const std::vector<std::string> plans = {
+      "kind = \"lhs\"\nsamples = 4097\nseed = 5\n", "kind = \"lhs\"\nsamples = 65537\n",
+      "kind = \"sobol\"\nsamples = 70000\n", "kind = \"sobol\"\nsamples = 4097\nscramble = true\nseed = 2\n",
+      "kind = \"saltelli\"\nsamples = 16385\n", "kind = \"saltelli\"\nsamples = 1000\nscramble = true\n"};
+  for (const std::string& plan : plans) {
+    SCOPED_TRACE(plan);
+    const Study study = parse("[plan]\n" + plan + ranges);
+    std::size_t parameters = 0;
+    const auto coordinates = study.plan->coordinates();
+    for (const auto& c : coordinates) {
+      expect_runs_are_values(c);
+      if (c.is_text || c.is_index) continue;
+      ++parameters;  // varied (the design's columns) or at the base point
+      EXPECT_TRUE(c.numbers_from) << c.name << " has no fast path";
+    }
+    EXPECT_GE(parameters, 2u);
+    // A case's frame (its point computed at once, the design's row) has the cube's values.
+    const std::size_t frames = coordinates.front().size();
+    for (std::size_t i = 0; i < frames; i += 1 + frames / 3000) {
+      const SceneSpec frame = study.plan->frame_at(std::span<const std::size_t>(&i, 1));
+      for (const auto& c : coordinates) {
+        if (c.is_text || c.is_index) continue;
+        ASSERT_EQ(std::bit_cast<std::uint64_t>(frame.value(c.name)), std::bit_cast<std::uint64_t>(c.number(i)))
+            << c.name << " of frame " << i;
+      }
+    }
+  }
 }
 
 TEST(Plan, AKeyOfAnotherPlanNamesThePlansThatTakeIt) {

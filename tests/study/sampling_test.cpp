@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <span>
+#include <vector>
 
 #include <boost/random/sobol.hpp>
 
@@ -42,6 +44,45 @@ TEST(Sampling, IndexPermutationIsABijectionOfItsDomain) {
   std::size_t same = 0;
   for (std::uint64_t j = 0; j < 1000; ++j) same += a(j) == b(j);
   EXPECT_LT(same, 20u);
+}
+
+TEST(Sampling, IndexPermutationImagesAreItsValues) {
+  // In runs from unaligned starts, longer than the lanes' block of 256, for sizes that walk
+  // the cycles most (just above a power of 4) and least (a power of 4).
+  for (std::uint64_t n : {1ull, 2ull, 5ull, 17ull, 257ull, 1000ull, 4096ull, 4097ull, 65537ull}) {
+    const IndexPermutation permutation(n, 777);
+    for (std::uint64_t first : {std::uint64_t{0}, std::uint64_t{1}, n / 3}) {
+      std::vector<std::uint64_t> images(n - first);
+      permutation.images(first, images);
+      for (std::uint64_t j = first; j < n; ++j) ASSERT_EQ(images[j - first], permutation(j)) << "n " << n << " j " << j;
+    }
+  }
+}
+
+TEST(Sampling, ImagesOfOnePointUnderManyPermutationsAreTheirValues) {
+  for (std::uint64_t n : {1ull, 5ull, 257ull, 4097ull, 65536ull}) {
+    std::vector<IndexPermutation> permutations;
+    for (std::uint64_t key = 0; key < 300; ++key) permutations.emplace_back(n, key);  // more than a block of lanes
+    std::vector<std::uint64_t> images(permutations.size());
+    for (std::uint64_t j = 0; j < n; j += 1 + n / 40) {
+      IndexPermutation::images_of(j, permutations, images);
+      for (std::size_t p = 0; p < permutations.size(); ++p) ASSERT_EQ(images[p], permutations[p](j)) << "n " << n << " key " << p;
+    }
+  }
+}
+
+TEST(Sampling, LatinHypercubeRowsAreItsValuesBitForBit) {
+  for (std::uint64_t n : {2ull, 17ull, 4097ull, 65537ull}) {
+    const std::size_t d = 40;  // past the 32 a sampled plan asks for at once
+    const LatinHypercube design(n, d, 4);
+    std::vector<double> row(d);
+    for (std::uint64_t j = 0; j < n; j += 1 + n / 200) {
+      design.row(j, 0, row);
+      for (std::size_t i = 0; i < d; ++i) ASSERT_EQ(row[i], design.at(j, i)) << "n " << n << " j " << j << " column " << i;
+      design.row(j, 3, std::span(row).first(5));
+      for (std::size_t s = 0; s < 5; ++s) ASSERT_EQ(row[s], design.at(j, 3 + s)) << "from column 3";
+    }
+  }
 }
 
 TEST(Sampling, LatinHypercubeByIndexIsALatinHypercube) {
@@ -102,6 +143,75 @@ TEST(Sampling, SaltelliRowsAreTheDesignsRows) {
     for (std::size_t r = 0; r < n * (d + 2); ++r)
       for (std::size_t i = 0; i < d; ++i) ASSERT_EQ(rows.at(r, i), design.points[r * d + i]) << r << ", " << i;
   }
+}
+
+/// Every value of `design`'s column `i` over [0, n), filled in runs that start at `first`
+/// and at unaligned offsets, is what at() gives for it, bit for bit.
+template <class Design>
+void expect_columns_match(const Design& design, std::uint64_t n, std::size_t i, std::uint64_t first = 0) {
+  std::vector<double> whole(n - first);
+  design.column(i, first, whole);
+  for (std::uint64_t j = first; j < n; ++j) ASSERT_EQ(whole[j - first], design.at(j, i)) << "j " << j << " column " << i;
+  for (std::uint64_t start : {first + 1, first + (n - first) / 3, n - 1}) {
+    if (start >= n) continue;
+    std::vector<double> run(std::min<std::uint64_t>(n - start, 37));
+    design.column(i, start, run);
+    for (std::size_t m = 0; m < run.size(); ++m) ASSERT_EQ(run[m], design.at(start + m, i)) << "from " << start;
+  }
+  design.column(i, first, std::span<double>());  // an empty run writes nothing
+}
+
+// What LatinHypercube::at computed when issue 38 defined it (two floor calls and the whole
+// counter_hash a value): the faster forms must keep these bits.
+double issue_38_lhs_value(std::uint64_t n, std::uint64_t seed, std::size_t i, std::uint64_t j) {
+  const std::uint64_t key = counter_hash(seed, 0x4c4853ull, i);
+  const double stratum = static_cast<double>(IndexPermutation(n, key)(j));
+  const double u = static_cast<double>(counter_hash(key, seed, j) >> 11) * 0x1p-53;
+  const double size = static_cast<double>(n);
+  double x = (stratum + u) / size;
+  while (x > 0.0 && std::floor(x * size) > stratum) x = std::nextafter(x, 0.0);
+  while (std::floor(x * size) < stratum) x = std::nextafter(x, 1.0);
+  return x;
+}
+
+TEST(Sampling, LatinHypercubeColumnsAreItsValuesBitForBit) {
+  // Sizes just above a power of 4 walk the Feistel cycles most (the domain is 4^k, nearly 4n).
+  for (std::uint64_t n : {2ull, 3ull, 5ull, 17ull, 65ull, 257ull, 1000ull, 4097ull, 16385ull, 65536ull, 65537ull}) {
+    SCOPED_TRACE(n);
+    const std::size_t d = 3;
+    for (std::uint64_t seed : {0ull, 11ull}) {
+      const LatinHypercube design(n, d, seed);
+      for (std::size_t i = 0; i < d; ++i) {
+        expect_columns_match(design, n, i);
+        for (std::uint64_t j = 0; j < n; j += 1 + n / 500)
+          ASSERT_EQ(design.at(j, i), issue_38_lhs_value(n, seed, i, j)) << "seed " << seed << " column " << i << " j " << j;
+      }
+    }
+  }
+}
+
+TEST(Sampling, SobolColumnsAreItsValuesBitForBit) {
+  for (bool scramble : {false, true}) {
+    SCOPED_TRACE(scramble);
+    const SobolSequence sequence(5, scramble, 3);
+    for (std::uint64_t n : {2ull, 3ull, 1000ull, 4097ull, 65537ull})
+      for (std::size_t i = 0; i < 5; ++i) expect_columns_match(sequence, n, i);
+    // Far out, across the carry into bit 31 and up to the sequence's last point.
+    for (std::size_t i = 0; i < 5; ++i) {
+      expect_columns_match(sequence, (1ull << 31) + 1000, i, (1ull << 31) - 1000);
+      expect_columns_match(sequence, 1ull << 32, i, (1ull << 32) - 300);
+    }
+  }
+}
+
+TEST(Sampling, SaltelliColumnsAreItsRowsBitForBit) {
+  for (bool scramble : {false, true})
+    for (std::size_t d : {2u, 3u, 8u}) {
+      SCOPED_TRACE(d);
+      const SaltelliRows rows(d, scramble, 9);
+      for (std::uint64_t samples : {2ull, 5ull, 1000ull})
+        for (std::size_t i = 0; i < d; ++i) expect_columns_match(rows, samples * (d + 2), i);
+    }
 }
 
 TEST(Sampling, SobolPointsAreTheJoeKuoSequence) {

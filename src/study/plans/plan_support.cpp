@@ -107,8 +107,12 @@ SceneSpec PointPlan::frame_at(std::span<const std::size_t> coordinates) const {
   const std::size_t i = coordinates[0];
   const SceneModel& m = point_model(i);
   ScenePoint values(m.parameters.size());
-  for (std::size_t k = 0; k < values.size(); ++k) values[k] = point_value(i, k);
+  frame_values(i, values);
   return {&m, std::move(values)};
+}
+
+void PointPlan::frame_values(std::size_t i, std::span<double> values) const {
+  for (std::size_t k = 0; k < values.size(); ++k) values[k] = point_value(i, k);
 }
 
 std::vector<SceneSpec> PointPlan::frames() const {
@@ -174,8 +178,15 @@ std::vector<cube::Coordinate> PointPlan::coordinates() const {
       coords.push_back(computed_number(number_coordinate(std::string(parameter.name), schema::kCase,
                                                          std::string(parameter.units), std::string(parameter.long_name), {}),
                                        std::move(value)));
+      // Frames all of the plan's model (every plan that computes them): a piece at once.
+      if (present.size() == 1)
+        coords.back().numbers_from = [this, k](std::size_t first, std::span<double> out) { point_values(first, k, out); };
     }
   return coords;
+}
+
+void PointPlan::point_values(std::size_t first, std::size_t k, std::span<double> out) const {
+  for (std::size_t m = 0; m < out.size(); ++m) out[m] = point_value(first + m, k);
 }
 
 std::vector<std::size_t> PointPlan::locate(const HistoryRequest& request) const {

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <memory>
 #include <ostream>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -86,6 +87,13 @@ class PointPlan : public Plan {
   virtual const SceneModel& point_model(std::size_t i) const { return *points_[i].model; }
   virtual double point_value(std::size_t i, std::size_t k) const { return points_[i].parameters[k]; }
   virtual std::string point_label(std::size_t i) const { return points_[i].label; }
+  /// point_value(first + m, k) into out[m] for every m, frames [first, first + out.size())
+  /// all of the plan's model: a plan that computes its frames overrides it to fill a piece
+  /// of a coordinate in a tight loop, the same bits (the sampled plans).
+  virtual void point_values(std::size_t first, std::size_t k, std::span<double> out) const;
+  /// point_value(i, k) into values[k] for every parameter k of frame i's model: a plan that
+  /// computes its frames overrides it to compute a point's coordinates together.
+  virtual void frame_values(std::size_t i, std::span<double> values) const;
   /// Auxiliary coordinates along `case` between case_label and the parameters.
   virtual std::vector<cube::Coordinate> extra_coordinates() const { return {}; }
   /// Whether the cube stores each case's label as text (`case_label`). A plan whose labels

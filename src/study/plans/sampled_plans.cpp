@@ -5,10 +5,12 @@
 // and sobol label their frames "s0", "s1", …; saltelli groups them by base sample j ("s<j>:A",
 // "s<j>:B", "s<j>:AB_<parameter>") and stores each frame's block and sample.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 
 #include "pcrf/study/sampling.hpp"
 #include "pcrf/schema/cube_vocabulary.hpp"
@@ -91,8 +93,27 @@ Sampling read_sampling(const PlanInput& input) {
   return s;
 }
 
-/// A design's unit coordinate k of frame i, in [0, 1), computed from (i, k).
-using UnitDesign = std::function<double(std::uint64_t, std::size_t)>;
+/// A design's unit coordinates, in [0, 1), computed from the frame number: coordinate k of
+/// frame i (`at`), of a run of frames at once (`column`), or coordinates first, first + 1, …
+/// of frame i (`row`), the same bits.
+struct UnitDesign {
+  std::function<double(std::uint64_t, std::size_t)> at;
+  std::function<void(std::size_t k, std::uint64_t first, std::span<double> out)> column;
+  std::function<void(std::uint64_t i, std::size_t first, std::span<double> out)> row;
+};
+
+/// The UnitDesign of a design that has at(i, k) and column(k, first, out), and row(i, first,
+/// out) where it computes a point's coordinates together (sampling.hpp).
+template <class Design>
+UnitDesign unit_design(std::shared_ptr<const Design> design) {
+  return {[design](std::uint64_t i, std::size_t k) { return design->at(i, k); },
+          [design](std::size_t k, std::uint64_t first, std::span<double> out) { design->column(k, first, out); },
+          [design](std::uint64_t i, std::size_t first, std::span<double> out) {
+            if constexpr (requires { design->row(i, first, out); }) design->row(i, first, out);
+            else
+              for (std::size_t s = 0; s < out.size(); ++s) out[s] = design->at(i, first + s);
+          }};
+}
 
 /// A sampled plan computes frame i's unit point from i (UnitDesign) and maps it onto the
 /// ranges when asked: no frame, label, parameter vector or unit point is held per case.
@@ -126,7 +147,27 @@ class SampledPlan : public PointPlan {
   /// The base point's value, or the unit coordinate mapped onto the parameter's range.
   double point_value(std::size_t i, std::size_t k) const override {
     if (slot_[k] == kNotVaried) return base_[k];
-    return sampling_.ranges[k]->at(unit_(i, slot_[k]));
+    return sampling_.ranges[k]->at(unit_.at(i, slot_[k]));
+  }
+  /// point_value of every parameter of frame i: the varied ones from the design's row.
+  void frame_values(std::size_t i, std::span<double> values) const override {
+    std::copy(base_.begin(), base_.end(), values.begin());
+    std::array<double, 32> unit;  // a row's piece on the stack [unit coordinates]
+    for (std::size_t first = 0; first < varied_.size(); first += unit.size()) {
+      const std::size_t count = std::min(unit.size(), varied_.size() - first);
+      unit_.row(i, first, std::span(unit.data(), count));
+      for (std::size_t s = 0; s < count; ++s) {
+        const std::size_t k = varied_[first + s];
+        values[k] = sampling_.ranges[k]->at(unit[s]);
+      }
+    }
+  }
+  /// point_value of frames first, first + 1, …: the design's column, then the range's map.
+  void point_values(std::size_t first, std::size_t k, std::span<double> out) const override {
+    if (slot_[k] == kNotVaried) return std::fill(out.begin(), out.end(), base_[k]);
+    unit_.column(slot_[k], first, out);
+    const SampledRange& range = *sampling_.ranges[k];
+    for (double& value : out) value = range.at(value);
   }
   std::string point_label(std::size_t i) const override { return "s" + std::to_string(i); }
   /// The varied parameters (positions in the model's table), d of them.
@@ -191,8 +232,7 @@ std::shared_ptr<const Plan> read_lhs_plan(const PlanInput& input) {
   const Sampling s = read_sampling(input);
   auto design = std::make_shared<const study::LatinHypercube>(s.samples, s.varied().size(), s.seed);
   return std::make_shared<SampledPlan>(
-      input.model, "lhs", s.samples, [design](std::uint64_t i, std::size_t k) { return design->at(i, k); }, s,
-      input.base, kLatinHypercubeConstruction);
+      input.model, "lhs", s.samples, unit_design(design), s, input.base, kLatinHypercubeConstruction);
 }
 
 std::shared_ptr<const Plan> read_sobol_plan(const PlanInput& input) {
@@ -200,8 +240,7 @@ std::shared_ptr<const Plan> read_sobol_plan(const PlanInput& input) {
   check_sobol_length(input, s.samples);
   auto design = std::make_shared<const study::SobolSequence>(s.varied().size(), s.scramble, s.seed);
   return std::make_shared<SampledPlan>(
-      input.model, "sobol", s.samples, [design](std::uint64_t i, std::size_t k) { return design->at(i, k); }, s,
-      input.base);
+      input.model, "sobol", s.samples, unit_design(design), s, input.base);
 }
 
 std::shared_ptr<const Plan> read_saltelli_plan(const PlanInput& input) {
@@ -211,8 +250,7 @@ std::shared_ptr<const Plan> read_saltelli_plan(const PlanInput& input) {
   check_sobol_length(input, s.samples);
   auto design = std::make_shared<const study::SaltelliRows>(d, s.scramble, s.seed);
   return std::make_shared<SaltelliPlan>(
-      input.model, s.samples * (d + 2), [design](std::uint64_t i, std::size_t k) { return design->at(i, k); }, s,
-      input.base);
+      input.model, s.samples * (d + 2), unit_design(design), s, input.base);
 }
 
 }  // namespace pcrf::study::detail
