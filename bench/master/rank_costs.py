@@ -115,8 +115,13 @@ def profile_run(pcrf, ranks, study, folder, tag, keep=None):
     thread's profile is copied there (for callgrind_annotate)."""
     out = os.path.join(folder, f"{tag}.%q{{OMPI_COMM_WORLD_RANK}}")
     valgrind = ["valgrind", "--tool=callgrind", "--separate-threads=yes", f"--callgrind-out-file={out}"]
+    # One checkpoint, at the end: checkpoints come by the clock (every 30 s by default), and under
+    # callgrind a run is some 50 times slower, so the larger size would take more of them a
+    # result than at full speed, and by chance (one more or one fewer moved rank 0's run and
+    # assembly by 5 to 8 instructions a result between repeats). What a checkpoint costs is a
+    # cost per checkpoint (docs/checkpoint.md), not per result.
     command = valgrind + [pcrf, "study", study, "-o", os.path.join(folder, "cube.h5"), "--overwrite",
-                         "--progress-interval", "0"]
+                          "--progress-interval", "0", "--flush-interval-s", "1e6"]
     if ranks > 1:
         command = ["mpirun", "--oversubscribe", "-n", str(ranks)] + command
     env = dict(ENV, OMPI_COMM_WORLD_RANK=ENV.get("OMPI_COMM_WORLD_RANK", "0"))

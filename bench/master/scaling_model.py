@@ -52,25 +52,27 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 WORKERS = [16, 64, 256, 2048, 16384]
 
 # Measured with callgrind on a non-lifting LHS of 8 parameters, 17 metrics, at 4 ranks, on main after the
-# streaming fold and the fixed-array chunk indices
-# (rank_costs.py --ranks 4 --small 294912 1179648: marginal instructions between the two sizes,
-# so that start-up cancels; the workers' split from the same profiles, callgrind_annotate
-# --inclusive=yes; studies/README.md "The master at cluster scale"):
-MASTER_SETUP_PER_CASE = 4         # rank 0's main thread before the first hand-out (was 11 600 at da9ce77, 7 at
-                                  # 291f9a0): a memset of its statuses (1, callgrind counts a memset's bytes), the
-                                  # coordinates' raw writes (0.5) and its polling while it waits for the workers'
-                                  # pieces (WorkerCoordinates::take: 2 to 13 in six runs, with the load; that wait is
-                                  # the workers' creation, counted apart, and idle time, not work)
-MASTER_RUN_PER_RESULT = 9         # rank 0's main thread during the run: the parts' chunks streamed into the next
-                                  # fold as workers report them (CubeWriter::stream_kept, 4.45: HDF5's raw chunk
-                                  # write with fixed-array chunk indices), the hand-out and its polling (1 to 5 in
-                                  # six runs, with the load)
-MASTER_ASSEMBLY_PER_RESULT = 1    # rank 0's main thread in the last fold, after the run: each chunk's statuses
-                                  # counted (a memset) and what the stream does not hold (was 11 before the
-                                  # streaming fold, 25 at 291f9a0)
-NONLIFT_CASE = 15_810             # a worker's non-lifting case (CaseRunner::run; the LHS point included)
-WORKER_OWN_PER_CASE = 3_240       # sealing its chunk 2 700, keeping it in its part 225, messages 315
-WORKER_CREATION_PER_CASE = 6_040  # the cube's coordinates computed and sealed by the workers, per case of the study
+# streaming fold, the chunk-wise statuses, the cheaper sealing and the coordinates filled a piece at once
+# (rank_costs.py --ranks 4 --small 294912 1179648, one checkpoint at the end: marginal instructions between
+# the two sizes, so that start-up cancels; rank 0's own work with its waits left out, and the working
+# threads' split, both printed by rank_costs.py; three repeats; studies/README.md "The master at cluster
+# scale"):
+MASTER_SETUP_PER_CASE = 0.7       # rank 0's main thread before the first hand-out, its wait for the workers'
+                                  # pieces left out (that wait is the creation's parallel part, t_create): the
+                                  # coordinates' raw writes (was 11 600 at da9ce77; 1.7 at e2c9aee, with a memset
+                                  # of a byte a case of statuses)
+MASTER_RUN_PER_RESULT = 4.9       # rank 0's main thread during the run, its polling between messages left out:
+                                  # what comes back (Master::handle), nearly all of it the parts' chunks streamed
+                                  # into the next fold (CubeWriter::stream_kept, 4.5: HDF5's raw chunk write with
+                                  # fixed-array chunk indices); 4.8 to 4.9 in three repeats
+MASTER_ASSEMBLY_PER_RESULT = 0.9  # rank 0's main thread in the last fold, after the run: what the stream does not
+                                  # hold (0.4 to 0.9 in three repeats; 1.6 at e2c9aee, 11 before the streaming
+                                  # fold, 25 at 291f9a0)
+NONLIFT_CASE = 15_200             # a worker's non-lifting case (CaseRunner::run; its LHS point included: 16 100 at
+                                  # e2c9aee, the point then computed value by value)
+WORKER_OWN_PER_CASE = 2_010       # sealing its chunk 1 455 (2 630 at e2c9aee), its part and messages 555
+WORKER_CREATION_PER_CASE = 2_565  # the cube's coordinates computed and sealed by the workers, per case of the study
+                                  # (5 980 at e2c9aee)
 
 
 def efficiency(workers, t_case, t_own, t_create, t_serial, t_setup, t_assembly):
@@ -135,7 +137,7 @@ def main():
     t_serial, t_setup, t_assembly = serial * ns, setup * ns, assembly * ns
     t_own, t_create = args.worker_own * ns, args.creation_per_case * ns
     cases = [("non-lifting", args.nonlift_case * ns), ("0.3 ms", 0.3e-3), ("3.6 ms", 3.6e-3)]
-    print(f"scaling_model: {source}; rank 0: set-up {setup:,.0f}, run {serial:,.0f}, assembly {assembly:,.0f} "
+    print(f"scaling_model: {source}; rank 0: set-up {setup:,.1f}, run {serial:,.1f}, assembly {assembly:,.1f} "
           f"instructions a case; a worker's own {args.worker_own:,.0f} a case, the cube's creation "
           f"{args.creation_per_case:,.0f} a case of the study; {args.ns_per_instruction} ns an instruction\n")
     table(cases, t_own, t_create, t_serial, t_setup, t_assembly)
