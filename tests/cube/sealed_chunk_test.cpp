@@ -21,6 +21,7 @@
 #include "pcrf/cube/sealed_chunk.hpp"
 #include "pcrf/io/record_log.hpp"
 #include "support/test_support.hpp"
+#include "worker_chunks.hpp"
 
 namespace pcrf::cube {
 namespace {
@@ -45,22 +46,11 @@ CubeLayout sealed_layout() {
 std::vector<double> row_of(std::int64_t i, int round = 0) {
   return {1e-5 * static_cast<double>(i) + round, static_cast<double>(i % 7), i % 5 == 0 ? std::nan("") : 0.0};
 }
-std::int8_t status_of(std::int64_t i) { return i % 11 == 0 ? 3 : 0; }
 
-/// Chunk `chunk` of the cube computed whole and sealed, as a worker does it.
-SealedChunk sealed_of(const ChunkGrid& grid, std::size_t chunk) {
-  const auto r = grid.range(chunk);
-  const auto count = static_cast<std::size_t>(r.count);
-  std::vector<std::int8_t> status(count);
-  std::vector<double> values(3 * count);
-  std::vector<std::pair<std::int64_t, std::string>> notes;
-  for (std::size_t k = 0; k < count; ++k) {
-    const std::int64_t i = r.first + static_cast<std::int64_t>(k);
-    status[k] = status_of(i);
-    for (std::size_t m = 0; m < 3; ++m) values[m * count + k] = row_of(i)[m];
-    if (i % 997 == 0) notes.emplace_back(i, "note of case " + std::to_string(i));
-  }
-  return seal_chunk(grid, chunk, 3, status, values, std::move(notes));
+/// Chunk `chunk` of this file's cube (row_of's three metrics, worker_chunks.hpp's statuses)
+/// computed whole and sealed, as a worker does it.
+SealedChunk sealed_three_of(const ChunkGrid& grid, std::size_t chunk) {
+  return sealed_from(grid, chunk, 3, [](std::int64_t i) { return row_of(i); }, status_of);
 }
 
 /// Every case of the cube holds what row_of and status_of say (cases in `over`: round 1).
@@ -93,8 +83,8 @@ TEST(SealedChunk, ASealedChunkFoldsRawAndReadsBackBitForBit) {
   {
     CubeWriter writer(file, sealed_layout(), OpenMode::kCreate);
     ASSERT_EQ(writer.grid().chunk_count(), 3u);
-    writer.store_sealed(sealed_of(writer.grid(), 0));
-    writer.store_sealed(sealed_of(writer.grid(), 2));  // the edge chunk
+    writer.store_sealed(sealed_three_of(writer.grid(), 0));
+    writer.store_sealed(sealed_three_of(writer.grid(), 2));  // the edge chunk
     for (std::int64_t i = 16384; i < 32768; ++i) {
       writer.store(i, status_of(i), row_of(i));
       if (i % 997 == 0) writer.store_note(i, "note of case " + std::to_string(i));
@@ -188,7 +178,7 @@ TEST(SealedChunk, AJournaledSealedChunkResumesAndLaterCasesLieOverIt) {
       if (i % 997 == 0) writer.store_note(i, "note of case " + std::to_string(i));
     }
     writer.flush();  // the first results fold
-    writer.store_sealed(sealed_of(writer.grid(), 0));
+    writer.store_sealed(sealed_three_of(writer.grid(), 0));
     writer.append();  // the sealed chunk goes to the journal
     writer.store(5, status_of(5), row_of(5, 1));  // a case of it stored again, later
     writer.append();
@@ -205,7 +195,7 @@ TEST(SealedChunk, AJournaledSealedChunkResumesAndLaterCasesLieOverIt) {
     const auto theta = resumed.read_values("theta_max_rad");
     EXPECT_EQ(theta[5], row_of(5, 1)[0]);
     EXPECT_EQ(theta[6], row_of(6)[0]);
-    resumed.store_sealed(sealed_of(resumed.grid(), 2));
+    resumed.store_sealed(sealed_three_of(resumed.grid(), 2));
     resumed.close();
   }
   expect_cube(file, {5});
@@ -218,7 +208,7 @@ TEST(SealedChunk, ASealedRecordThatDoesNotInflateIsSetAside) {
     CubeWriter writer(file, sealed_layout(), OpenMode::kCreate);
     for (std::int64_t i = 16384; i < 32768; ++i) writer.store(i, status_of(i), row_of(i));
     writer.flush();
-    SealedChunk forged = sealed_of(writer.grid(), 0);
+    SealedChunk forged = sealed_three_of(writer.grid(), 0);
     forged.filtered[1][forged.filtered[1].size() / 2] ^= 0x5a;  // its CRC will hold: the journal frames it as it is
     writer.store_sealed(std::move(forged));
     writer.append();
@@ -236,7 +226,7 @@ TEST(SealedChunk, ASealedRecordThatDoesNotInflateIsSetAside) {
 
 TEST(SealedChunk, BytesRoundTripAndForeignBytesAreRefused) {
   const ChunkGrid grid({static_cast<std::size_t>(kCases)});
-  const SealedChunk sealed = sealed_of(grid, 2);
+  const SealedChunk sealed = sealed_three_of(grid, 2);
   const auto bytes = to_bytes(sealed);
   const SealedChunk back = sealed_from_bytes(bytes, grid, 3, "test");
   EXPECT_EQ(back.chunk, 2u);
@@ -281,7 +271,7 @@ TEST(SealedChunk, AWholeChunkOfOneCodeHasTheUniformStatusStream) {
                                         std::vector<double>(3 * static_cast<std::size_t>(e.count), 0.0), {});
     EXPECT_NE(edge.filtered.back(), uniform_status_stream(padded, code));
   }
-  EXPECT_NE(sealed_of(grid, 0).filtered.back(), uniform_status_stream(padded, 0)) << "a mixed chunk";
+  EXPECT_NE(sealed_three_of(grid, 0).filtered.back(), uniform_status_stream(padded, 0)) << "a mixed chunk";
 }
 
 }  // namespace

@@ -26,21 +26,31 @@ inline std::vector<double> row_of(std::int64_t i) { return {1e-5 * static_cast<d
 /// Case i's status: overturned (3) every eleventh case, else at rest (0).
 inline std::int8_t status_of(std::int64_t i) { return i % 11 == 0 ? 3 : 0; }
 
-/// Chunk `chunk` computed whole and sealed, as a worker does it (`code`: every status, when set);
-/// every 997th case carries a note.
-inline SealedChunk sealed_of(const ChunkGrid& grid, std::size_t chunk, int code = -1) {
+/// Chunk `chunk` computed whole and sealed, as a worker does it: case i's `metrics` values are
+/// row(i), its status status(i); every 997th case carries a note.
+template <class Row, class Status>
+SealedChunk sealed_from(const ChunkGrid& grid, std::size_t chunk, std::size_t metrics, Row row, Status status_at) {
   const auto r = grid.range(chunk);
   const auto count = static_cast<std::size_t>(r.count);
   std::vector<std::int8_t> status(count);
-  std::vector<double> values(2 * count);
+  std::vector<double> values(metrics * count);
   std::vector<std::pair<std::int64_t, std::string>> notes;
   for (std::size_t k = 0; k < count; ++k) {
     const std::int64_t i = r.first + static_cast<std::int64_t>(k);
-    status[k] = code >= 0 ? static_cast<std::int8_t>(code) : status_of(i);
-    for (std::size_t m = 0; m < 2; ++m) values[m * count + k] = row_of(i)[m];
+    status[k] = status_at(i);
+    const std::vector<double> case_row = row(i);
+    for (std::size_t m = 0; m < metrics; ++m) values[m * count + k] = case_row[m];
     if (i % 997 == 0) notes.emplace_back(i, "note of case " + std::to_string(i));
   }
-  return seal_chunk(grid, chunk, 2, status, values, std::move(notes));
+  return seal_chunk(grid, chunk, metrics, status, values, std::move(notes));
+}
+
+/// Chunk `chunk` of row_of's two metrics and status_of's statuses (`code`: every status, when
+/// set), sealed as a worker does it.
+inline SealedChunk sealed_of(const ChunkGrid& grid, std::size_t chunk, int code = -1) {
+  return sealed_from(grid, chunk, 2, row_of, [code](std::int64_t i) {
+    return code >= 0 ? static_cast<std::int8_t>(code) : status_of(i);
+  });
 }
 
 /// The cube at `file` reads without damage; the cases of `chunks` hold what row_of says, with
