@@ -421,7 +421,9 @@ void put_bytes(std::vector<char>& out, const void* data, std::size_t n) {
 }
 
 /// A variable's stream or a chunk's status codes, copied once (put_bytes clears them first:
-/// 55 instructions a case, a non-lifting LHS's chunk).
+/// 55 instructions a case, a non-lifting LHS's chunk). put_bytes keeps its resize and copy for
+/// a scalar's few bytes: an insert there makes GCC 12 warn falsely (-Wstringop-overflow, an
+/// error in this build) of a write into a region of size 0 after to_bytes's reserve.
 void put_span(std::vector<char>& out, std::span<const char> bytes) { out.insert(out.end(), bytes.begin(), bytes.end()); }
 
 template <class T>
