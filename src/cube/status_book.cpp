@@ -30,15 +30,19 @@ StatusCounts count_statuses(std::span<const std::int8_t> status) {
 
 StatusBook::StatusBook(ChunkGrid grid, std::size_t cases)
     : grid_(std::move(grid)),
-      cases_(cases),
       uniform_(grid_.chunk_count(), kStatusNotRun),
       mixed_(grid_.chunk_count()),
       chunk_done_(grid_.chunk_count(), 0) {
   first_.reserve(grid_.chunk_count() + 1);
-  for (std::size_t c = 0; c < grid_.chunk_count(); ++c) first_.push_back(grid_.range(c).first);
-  first_.push_back(first_.empty() ? 0 : grid_.range(grid_.chunk_count() - 1).first + grid_.range(grid_.chunk_count() - 1).count);
-  if (first_.back() != static_cast<std::int64_t>(cases))
-    throw std::invalid_argument("StatusBook: a grid of " + std::to_string(first_.back()) + " cases for " +
+  std::int64_t end = 0;  // of the last chunk
+  for (std::size_t c = 0; c < grid_.chunk_count(); ++c) {
+    const auto r = grid_.range(c);
+    first_.push_back(r.first);
+    end = r.first + r.count;
+  }
+  first_.push_back(end);
+  if (end != static_cast<std::int64_t>(cases))
+    throw std::invalid_argument("StatusBook: a grid of " + std::to_string(end) + " cases for " +
                                 std::to_string(cases) + " cases");
   at(counts_, kStatusNotRun) = static_cast<std::int64_t>(cases);
 }
@@ -57,7 +61,7 @@ std::span<const std::int8_t> StatusBook::chunk_codes(std::size_t chunk, std::vec
 
 std::vector<std::int8_t> StatusBook::codes() const {
   std::vector<std::int8_t> all;
-  all.reserve(cases_);
+  all.reserve(cases());
   std::vector<std::int8_t> scratch;
   for (std::size_t c = 0; c < mixed_.size(); ++c) {
     const auto codes = chunk_codes(c, scratch);
@@ -67,7 +71,7 @@ std::vector<std::int8_t> StatusBook::codes() const {
 }
 
 std::int64_t StatusBook::done() const {
-  return static_cast<std::int64_t>(cases_) - count_of(counts_, kStatusNotRun);
+  return first_.back() - count_of(counts_, kStatusNotRun);
 }
 
 std::size_t StatusBook::mixed_chunks() const {
@@ -133,9 +137,9 @@ void StatusBook::set_chunk_to(std::size_t chunk, std::int8_t code) {
 }
 
 void StatusBook::assign(const std::vector<std::int8_t>& codes) {
-  if (codes.size() != cases_)
+  if (codes.size() != cases())
     throw std::invalid_argument("StatusBook: " + std::to_string(codes.size()) + " codes for " +
-                                std::to_string(cases_) + " cases");
+                                std::to_string(cases()) + " cases");
   for (std::size_t c = 0; c < mixed_.size(); ++c) {
     set_chunk(c, std::span<const std::int8_t>(codes).subspan(static_cast<std::size_t>(first_[c]), static_cast<std::size_t>(count(c))));
   }

@@ -34,7 +34,7 @@ class StatusBook {
   StatusBook(ChunkGrid grid, std::size_t cases);
 
   /// Cases of the book.
-  std::size_t cases() const { return cases_; }
+  std::size_t cases() const { return static_cast<std::size_t>(first_.back()); }
   /// Case `index`'s code (kStatusNotRun where not done); index < cases().
   std::int8_t operator[](std::size_t index) const;
   /// Chunk `chunk`'s codes, in order: its own when they are mixed, else `scratch` filled with
@@ -69,7 +69,6 @@ class StatusBook {
   void keep_mixed(std::size_t chunk, std::span<const std::int8_t> codes);
 
   ChunkGrid grid_;
-  std::size_t cases_ = 0;
   std::vector<std::int64_t> first_;              ///< [chunk]: its first case; then the end of the last
   std::vector<std::int8_t> uniform_;             ///< [chunk]: its one code, where mixed_[chunk] is empty
   std::vector<std::vector<std::int8_t>> mixed_;  ///< [chunk]: its cases' codes when they differ, else empty
