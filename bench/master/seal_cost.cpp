@@ -61,7 +61,10 @@ void seal_coordinates(const CubeReader& reader, std::vector<double>& bytes) {
   const CubeLayout& layout = reader.layout();
   for (std::size_t k = 0; k < layout.coordinates.size(); ++k) {
     const Coordinate& c = layout.coordinates[k];
-    for (std::size_t p = 0; p < c.piece_count(); ++p) bytes[k] += static_cast<double>(seal_coordinate_piece(c, p).size());
+    if (!c.chunked()) continue;
+    const std::size_t values = coordinate_chunk_values(layout, c);
+    for (std::size_t p = 0; p < piece_count(c.size(), values); ++p)
+      bytes[k] += static_cast<double>(seal_coordinate_piece(c, values, p).size());
   }
 }
 
@@ -91,7 +94,7 @@ int main(int argc, char** argv) {
     total += metric_bytes[m];
   }
   for (std::size_t k = 0; k < layout.coordinates.size(); ++k) {
-    if (layout.coordinates[k].piece_count() == 0) continue;
+    if (!layout.coordinates[k].chunked()) continue;
     std::printf("%-24s %12.4f\n", layout.coordinates[k].name.c_str(), coordinate_bytes[k] / per_case);
     total += coordinate_bytes[k];
   }

@@ -110,6 +110,17 @@ ChunkGrid::Range ChunkGrid::range(std::size_t chunk) const {
   return r;
 }
 
+std::size_t coordinate_chunk_values(const ChunkGrid& grid, std::size_t dimension) {
+  const std::size_t size = grid.shape().at(dimension);
+  return std::min(size, std::max(grid.chunk_shape()[dimension], kCoordinateChunkMin));
+}
+
+std::size_t coordinate_chunk_values(const CubeLayout& layout, const Coordinate& c) {
+  const auto d = layout.find_dimension(c.dimension);
+  if (!d) throw std::invalid_argument("coordinate '" + c.name + "' is over no dimension of the cube");
+  return coordinate_chunk_values(layout_grid(layout), *d);
+}
+
 ChunkGrid layout_grid(const CubeLayout& layout) {
   if (layout.chunk_shape.empty()) return ChunkGrid(layout.shape());
   return ChunkGrid::of_chunk_shape(layout.shape(), layout.chunk_shape);

@@ -82,6 +82,18 @@ MergeResult merge_cubes(const std::vector<std::filesystem::path>& parts, const s
         if (std::isnan(side.values[k]) && !std::isnan(values[k])) side.values[k] = values[k];
     }
   }
+  // A coordinate written during the run (Coordinate::written_live) may be NaN in a shard's
+  // cube where its cases were not run there (one stopped before its close): each value from
+  // the part that has it, as the side variables' (a value of one part is every part's).
+  for (auto& c : layout.coordinates) {
+    if (c.is_text || c.computed()) continue;
+    for (std::size_t p = 1; p < readers.size(); ++p) {
+      const Coordinate* other = readers[p]->layout().find_coordinate(c.name);
+      if (other == nullptr || other->numbers.size() != c.numbers.size()) continue;
+      for (std::size_t k = 0; k < c.numbers.size(); ++k)
+        if (std::isnan(c.numbers[k]) && !std::isnan(other->numbers[k])) c.numbers[k] = other->numbers[k];
+    }
+  }
   // A case in no part is missing unless the runs variable says its row stopped before it.
   const SideVariable* runs = runs_variable.empty() ? nullptr : layout.find_side_variable(runs_variable);
   const std::size_t row_length = layout.dimensions.empty() ? 1 : layout.dimensions.back().size;

@@ -326,7 +326,13 @@ void export_rows(const CubeReader& cube, const std::vector<std::string>& metrics
     if (!selected[k]) continue;
     const auto coords = unravel(i, shape);
     fields.clear();
-    for (std::size_t c = 0; c < shown.size(); ++c) fields.push_back(shown[c]->label(coords[coordinate_dims[c]]));
+    // A coordinate not written yet (NaN: a checkpoint's cube, before its case's unit) is no
+    // value, as a metric's NaN: an empty field, never the text "nan".
+    for (std::size_t c = 0; c < shown.size(); ++c) {
+      const Coordinate& coordinate = *shown[c];
+      const std::size_t at = coordinate_dims[c] < coords.size() ? coords[coordinate_dims[c]] : 0;
+      fields.push_back(coordinate.is_text ? coordinate.label(at) : csv_number(coordinate.number(at)));
+    }
     fields.push_back(status_text(layout, status[k]));
     for (const auto& v : values) fields.push_back(csv_number(v[k]));
     row(fields);

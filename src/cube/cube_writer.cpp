@@ -38,7 +38,7 @@ constexpr const char* kMessagesGroup = "messages";
 constexpr const char* kHistoriesGroup = "histories";
 // kDeflateLevel (sealed_chunk.hpp): the one zlib level of the cube's chunked variables.
 constexpr hsize_t kNotesChunk = 256;
-// kCoordinateChunk (cube_layout.hpp): values per chunk of a chunked coordinate.
+// coordinate_chunk_values (chunk_grid.hpp): values per chunk of a chunked coordinate.
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// Creation-order tracking as netCDF-4 files have it (readers then list in that order).
@@ -64,18 +64,21 @@ void write_descriptive_attributes(hid_t object, const std::string& units, const 
 bool written_later(const Coordinate& c) { return c.written_later(); }
 
 /// A 1-D coordinate variable (text, index or numbers); its values are written here unless
-/// written_later.
-h5::Handle create_coordinate(hid_t parent, const Coordinate& c) {
+/// written_later. A chunked one in chunks of `chunk_values` (coordinate_chunk_values); one
+/// written_live with the fill NaN (HDF5's and netCDF's `_FillValue`), as a metric: until its
+/// chunk is written, a reader sees no value there.
+h5::Handle create_coordinate(hid_t parent, const Coordinate& c, std::size_t chunk_values) {
   const std::string what = "cannot create coordinate '" + c.name + "'";
   const hsize_t n = c.size();
   auto s = h5::space(H5Screate_simple(1, &n, nullptr), what);
   auto dcpl = ordered_plist(H5P_DATASET_CREATE);
   if (c.chunked()) {
-    const hsize_t chunk = c.chunk_values();
+    const hsize_t chunk = chunk_values;
     h5::check(H5Pset_chunk(dcpl, 1, &chunk), what);
     h5::check(H5Pset_shuffle(dcpl), what);
     h5::check(H5Pset_deflate(dcpl, kDeflateLevel), what);
   }
+  if (c.written_live()) h5::check(H5Pset_fill_value(dcpl, H5T_NATIVE_DOUBLE, &kNaN), what);
   const bool later = written_later(c);
   h5::Handle d;
   if (c.is_text) {
@@ -89,6 +92,7 @@ h5::Handle create_coordinate(hid_t parent, const Coordinate& c) {
   } else {
     d = h5::dataset(H5Dcreate2(parent, c.name.c_str(), H5T_IEEE_F64LE, s, H5P_DEFAULT, dcpl, H5P_DEFAULT), what);
     if (!later) h5::check(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, c.numbers.data()), what);
+    if (c.written_live()) h5::write_attribute(d, "_FillValue", kNaN);
   }
   write_descriptive_attributes(d, c.units, c.long_name);
   return d;
@@ -202,6 +206,7 @@ struct CubeWriter::Impl {
   std::map<std::size_t, PartChunk> part_chunks;         // chunks the next fold takes from them
   std::vector<std::filesystem::path> parts_to_remove;  // after the next fold's rename
   CoordinateSource* coordinate_source = nullptr;  // while the constructor creates the cube; null: seal here
+  bool closing = false;  // the last fold (close): every coordinate chunk still missing is written
   // The streaming fold (CubeWriter::stream_kept): the next fold's <cube>.partial, open during
   // the run, into which the chunks workers report kept are written as they come. While it is
   // open, `file`, `metric_sets` and `status_set` are its handles (declared after `file`: the
@@ -240,6 +245,8 @@ struct CubeWriter::Impl {
   void write_new_file(io::AtomicFile& target);
   void write_long_coordinates(const std::filesystem::path& target);
   void write_sealed_piece(hid_t d, const CoordinatePiece& piece, const std::string& problem);
+  std::size_t chunk_values_of(const Coordinate& c) const;
+  void write_missing_coordinates(const StatusBook& status);
   void update(const std::filesystem::path& target, StatusBook& status, std::int64_t new_id);
   void open_for_writing(const std::filesystem::path& target);
   void check_free_space(const std::filesystem::path& target, bool copied = false) const;
@@ -341,7 +348,7 @@ void CubeWriter::Impl::create(const std::filesystem::path& target) {
     const Coordinate* c = layout.find_coordinate(dim.name);
     if (c == nullptr || c->size() != dim.size)
       throw CubeError(what("dimension '" + dim.name + "' needs a coordinate of " + std::to_string(dim.size) + " values"));
-    scales.push_back(create_coordinate(file, *c));
+    scales.push_back(create_coordinate(file, *c, chunk_values_of(*c)));
     h5::check(H5DSset_scale(scales.back(), dim.name.c_str()), what("cannot make '" + dim.name + "' a dimension"));
   }
   for (const auto& c : layout.coordinates) {
@@ -349,7 +356,7 @@ void CubeWriter::Impl::create(const std::filesystem::path& target) {
     auto dim = std::find_if(layout.dimensions.begin(), layout.dimensions.end(),
                             [&](const Dimension& d) { return d.name == c.dimension; });
     if (dim == layout.dimensions.end()) throw CubeError(what("coordinate '" + c.name + "' is over an unknown dimension"));
-    auto d = create_coordinate(file, c);
+    auto d = create_coordinate(file, c, chunk_values_of(c));
     h5::check(H5DSattach_scale(d, scales[static_cast<std::size_t>(dim - layout.dimensions.begin())], 0),
               what("cannot attach dimension to '" + c.name + "'"));
   }
@@ -948,7 +955,7 @@ void CubeWriter::Impl::write_new_file(io::AtomicFile& target) {
 }
 
 /// Writes the long and computed coordinates (written_later) into the new cube at `target`,
-/// on disk, one chunk of kCoordinateChunk values at a time, then drops them: whatever the
+/// on disk, one chunk (coordinate_chunk_values) at a time, then drops them: whatever the
 /// number of cases, creating a cube holds one chunk of a coordinate, not the whole of it
 /// (issue 38; an LHS of 10^6 frames held its eight parameters, then their image, 130 B a case).
 /// A chunked one goes in as sealed pieces, each written raw (H5Dwrite_chunk, no filter
@@ -956,22 +963,23 @@ void CubeWriter::Impl::write_new_file(io::AtomicFile& target) {
 /// here; any other (text, or short) value by value.
 void CubeWriter::Impl::write_long_coordinates(const std::filesystem::path& target) {
   bool any = false;
-  for (const auto& c : layout.coordinates) any = any || written_later(c);
+  for (const auto& c : layout.coordinates) any = any || (written_later(c) && !c.written_live());
   if (!any) return;
   try {
     const std::string cannot_open = what("cannot open " + target.string());
     file = h5::file(H5Fopen(target.c_str(), H5F_ACC_RDWR, h5::writing_access(cannot_open)), cannot_open);
     for (std::size_t k = 0; k < layout.coordinates.size(); ++k) {
       auto& c = layout.coordinates[k];
-      if (!written_later(c)) continue;
+      if (!written_later(c) || c.written_live()) continue;  // written live: with the units, and at close
       const std::string problem = what("cannot write coordinate '" + c.name + "'");
       auto d = h5::dataset(H5Dopen2(file, c.name.c_str(), H5P_DEFAULT), problem);
+      const std::size_t values = chunk_values_of(c);
       if (c.chunked()) {
-        for (std::size_t p = 0; p < c.piece_count(); ++p) write_sealed_piece(d, {k, p}, problem);
+        for (std::size_t p = 0; p < piece_count(c.size(), values); ++p) write_sealed_piece(d, {k, p, values}, problem);
       } else {
         const hsize_t n = c.size();
-        for (hsize_t first = 0; first < n; first += kCoordinateChunk)
-          write_coordinate_piece(d, c, first, std::min<hsize_t>(kCoordinateChunk, n - first), problem);
+        for (hsize_t first = 0; first < n; first += values)
+          write_coordinate_piece(d, c, first, std::min<hsize_t>(values, n - first), problem);
       }
       c.release_values();
     }
@@ -991,12 +999,71 @@ void CubeWriter::Impl::write_sealed_piece(hid_t d, const CoordinatePiece& piece,
   std::vector<char> here;
   const std::span<const char> bytes = coordinate_source != nullptr
                                           ? coordinate_source->sealed(layout, piece)
-                                          : std::span<const char>(here = seal_coordinate_piece(c, piece.piece));
-  if (bytes.empty() || bytes.size() > sealed_piece_bound(c))
+                                          : std::span<const char>(here = seal_coordinate_piece(c, piece.chunk_values, piece.piece));
+  if (bytes.empty() || bytes.size() > sealed_piece_bound(c, piece.chunk_values))
     throw CubeError(problem + ": piece " + std::to_string(piece.piece) + " has " + std::to_string(bytes.size()) +
                     " bytes, not a sealed chunk");
-  const hsize_t offset = static_cast<hsize_t>(piece.piece) * kCoordinateChunk;
+  const hsize_t offset = static_cast<hsize_t>(piece.piece * piece.chunk_values);
   h5::check(H5Dwrite_chunk(d, H5P_DEFAULT, 0, &offset, bytes.size(), bytes.data()), problem);
+}
+
+/// Values per chunk of a chunked coordinate of this cube (coordinate_chunk_values of its grid;
+/// a short one's "pieces" as it is written value by value: kContiguousCoordinateMax).
+std::size_t CubeWriter::Impl::chunk_values_of(const Coordinate& c) const {
+  if (!c.chunked()) return kContiguousCoordinateMax;
+  const auto d = layout.find_dimension(c.dimension);
+  if (!d) throw CubeError(what("coordinate '" + c.name + "' is over an unknown dimension"));
+  return coordinate_chunk_values(grid, *d);
+}
+
+/// The chunks of the coordinates written live (Coordinate::written_live) that the file being
+/// folded lacks, sealed here from the layout's values and written raw: at a fold, those of
+/// the cases of every unit done in it (each case it holds has its coordinates); at close,
+/// every one. Which chunks the file holds is HDF5's to say (its chunk query), so that a
+/// --resume, a shard or a stopped run needs no record of them: a chunk a worker's unit brought
+/// in (issue 38) is found there and left as it is. A coordinate the file stores otherwise (an
+/// earlier version's cube: contiguous, or written whole at its creation) has nothing missing.
+void CubeWriter::Impl::write_missing_coordinates(const StatusBook& status) {
+  std::vector<char> unit_in;  // [unit]: in the file being folded (done, or streamed into it)
+  for (std::size_t k = 0; k < layout.coordinates.size(); ++k) {
+    const Coordinate& c = layout.coordinates[k];
+    if (!c.written_live()) continue;
+    const auto dim = layout.find_dimension(c.dimension);
+    if (!dim) continue;
+    const std::string problem = what("cannot write coordinate '" + c.name + "'");
+    auto d = h5::dataset(H5Dopen2(file, c.name.c_str(), H5P_DEFAULT), problem);
+    auto dcpl = h5::plist(H5Dget_create_plist(d), problem);
+    hsize_t chunk = 0;
+    if (H5Pget_layout(dcpl) != H5D_CHUNKED || H5Pget_chunk(dcpl, 1, &chunk) != 1 || chunk == 0 || H5Pget_nfilters(dcpl) != 2)
+      continue;
+    const auto values = static_cast<std::size_t>(chunk);
+    const std::size_t pieces = piece_count(c.size(), values);
+    std::vector<char> wanted(pieces, closing ? 1 : 0);
+    if (!closing) {
+      if (unit_in.empty()) {
+        unit_in.assign(grid.chunk_count(), 0);
+        for (std::size_t u = 0; u < unit_in.size(); ++u)
+          unit_in[u] = status.chunk_done(u) > 0 || (u < streamed.size() && streamed[u].rank >= 0);
+      }
+      for (std::size_t u = 0; u < unit_in.size(); ++u) {
+        if (!unit_in[u]) continue;
+        const auto r = grid.range(u);
+        const std::size_t first = r.start[*dim], last = first + r.extent[*dim] - 1;
+        for (std::size_t p = first / values; p <= last / values && p < pieces; ++p) wanted[p] = 1;
+      }
+    }
+    for (std::size_t p = 0; p < pieces; ++p) {
+      if (!wanted[p]) continue;
+      hsize_t offset = static_cast<hsize_t>(p * values);
+      unsigned filter_mask = 0;
+      haddr_t address = HADDR_UNDEF;
+      hsize_t stored = 0;
+      h5::check(H5Dget_chunk_info_by_coord(d, &offset, &filter_mask, &address, &stored), problem);
+      if (address != HADDR_UNDEF && stored > 0) continue;  // there: its unit's, or an earlier fold's
+      const std::vector<char> bytes = seal_coordinate_piece(c, values, p);
+      h5::check(H5Dwrite_chunk(d, H5P_DEFAULT, 0, &offset, bytes.size(), bytes.data()), problem);
+    }
+  }
 }
 
 /// Opens the new file of a fold at `target` (a copy of the cube, or the streaming fold's) for
@@ -1049,6 +1116,7 @@ void CubeWriter::Impl::update(const std::filesystem::path& target, StatusBook& s
     notes.insert(notes.end(), std::make_move_iterator(journal_notes.begin()), std::make_move_iterator(journal_notes.end()));
     notes.insert(notes.end(), pending_notes.begin(), pending_notes.end());
     append_notes(notes);
+    write_missing_coordinates(status);  // after every unit of this fold has its statuses
     journaled.for_each_history([&](HistoryTable&& table) { write_history(table); });
     for (const auto& table : pending_histories) write_history(table);
     h5::write_attribute(file, kJournalIdName, new_id);
@@ -1083,6 +1151,12 @@ void CubeWriter::Impl::check_free_space(const std::filesystem::path& target, boo
   };
   double needed = 0.0;
   if (on_disk && !copied) needed += size_of(path);
+  // A new cube: room for the coordinates its run writes too (uncompressed, a bound), so that a
+  // disk too small for them refuses the study before its first case, as when they were
+  // written at the creation, not at a fold hours later.
+  if (!on_disk)
+    for (const auto& c : layout.coordinates)
+      if (c.written_live()) needed += 8.0 * static_cast<double>(c.size());
   if (journal_records > 0) needed += size_of(journal_path(path));  // its results, uncompressed
   for (const auto& part : parts) needed += size_of(part->file());   // its chunks, as the cube stores them
   needed += static_cast<double>(pending_bytes);
@@ -1133,11 +1207,16 @@ void CubeWriter::Impl::checkpoint(StatusBook& status, Checkpoint how) {
                        !pending_histories.empty();
   // Parts found (a --resume's, or another cube's left beside a new one) go in, or go, at once.
   const bool parts_due = !parts_to_remove.empty() && how != Checkpoint::kAppend;
+  // The last fold writes the coordinate chunks still missing (write_missing_coordinates): it
+  // is made even when nothing else changed (a --resume that found every case done).
+  const bool coordinates_due =
+      closing && std::any_of(layout.coordinates.begin(), layout.coordinates.end(),
+                             [](const Coordinate& c) { return c.written_live(); });
   if (how == Checkpoint::kFold || !on_disk || journal_id == 0 || parts_due ||
       (how == Checkpoint::kAppendOrFold && fold_due() && !stream)) {
     if (parts_due) return fold(status);
     // Nothing new: the cube on disk is already this state.
-    if (on_disk && journal_id != 0 && !changed && !sides_changed && journal_records == 0) return;
+    if (on_disk && journal_id != 0 && !changed && !sides_changed && journal_records == 0 && !coordinates_due) return;
     fold(status);
   } else if (changed) {
     append(status);  // side variables wait for the next fold (their producer stores them anew on --resume)
@@ -1328,6 +1407,7 @@ void CubeWriter::append() { impl_->checkpoint(statuses_, Impl::Checkpoint::kAppe
 void CubeWriter::fold() { impl_->checkpoint(statuses_, Impl::Checkpoint::kFold); }
 
 void CubeWriter::close() {
+  impl_->closing = true;  // the last fold: every coordinate chunk still missing goes in
   impl_->take_run_parts(statuses_, false);  // their statuses counted chunk by chunk as the fold writes them
   fold();
   impl_->closed = true;

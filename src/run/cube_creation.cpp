@@ -1,6 +1,7 @@
 // A new cube made by every rank together (see cube_creation.hpp).
 #include "pcrf/run/cube_creation.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <cstring>
@@ -80,7 +81,9 @@ std::span<const char> WorkerCoordinates::sealed(const cube::CubeLayout& layout, 
     started_ = true;
     pieces_ = cube::coordinate_pieces(layout);
     // At most a header and a piece of the largest chunk a coordinate has (filtered_bound).
-    buffer_.resize(sizeof(PieceHeader) + cube::filtered_bound(cube::kCoordinateChunk, sizeof(double)));
+    std::size_t largest = 0;
+    for (const auto& p : pieces_) largest = std::max(largest, p.chunk_values);
+    buffer_.resize(sizeof(PieceHeader) + cube::filtered_bound(largest, sizeof(double)));
     mpi_.broadcast(kWordSeal);
     for (int w = 1; w <= workers; ++w)
       if (first_of(w) < pieces_.size()) ask(w, kAskNext);  // each worker seals its first piece at once
@@ -131,7 +134,8 @@ bool seal_coordinates_for_rank0(const parallel::MpiSession& mpi, const std::func
         throw std::runtime_error("rank 0 asked for a coordinate piece beyond this rank's share (another layout?)");
       const cube::CoordinatePiece& piece = pieces[position];
       // The header goes after the bytes: within the capacity the deflate left, nothing moves.
-      std::vector<char> message = cube::seal_coordinate_piece(made.coordinates[piece.coordinate], piece.piece);
+      std::vector<char> message =
+          cube::seal_coordinate_piece(made.coordinates[piece.coordinate], piece.chunk_values, piece.piece);
       const PieceHeader header{piece.coordinate, piece.piece};
       const std::size_t bytes = message.size();
       message.resize(bytes + sizeof header);

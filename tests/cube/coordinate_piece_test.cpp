@@ -22,8 +22,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// 150 000 cases: pieces of 65 536, 65 536 and 18 928 values (an edge chunk, stored padded).
+/// 150 000 cases: pieces of 16 384 values (the metrics' chunks along `case`), the last of
+/// 2 544 (an edge chunk, stored padded).
 constexpr std::size_t kCases = 150000;
+constexpr std::size_t kPieces = 10;
 
 double kappa_at(std::size_t i) { return 1.0 + 1.0 / static_cast<double>(i + 3); }  // no two alike
 
@@ -61,7 +63,7 @@ class CountingSource final : public CoordinateSource {
     EXPECT_EQ(layout.coordinates.size(), own_.coordinates.size());
     asked.push_back(piece);
     if (asked.size() > fail_at_) throw CubeError("a worker is gone");
-    last_ = seal_coordinate_piece(own_.coordinates[piece.coordinate], piece.piece);
+    last_ = seal_coordinate_piece(own_.coordinates[piece.coordinate], piece.chunk_values, piece.piece);
     return last_;
   }
   std::vector<CoordinatePiece> asked;
@@ -75,34 +77,43 @@ class CountingSource final : public CoordinateSource {
 TEST(CoordinatePiece, PiecesAreEveryChunkOfTheLongCoordinatesInOrder) {
   const auto layout = piece_layout();
   const auto pieces = coordinate_pieces(layout);
-  // case (2), kappa (3), lambda (4): three chunks each; record_scale is short, case_label text.
+  // The creation's: case (2), ten chunks; kappa (3) and lambda (4) are written live (with the
+  // units, and at close); record_scale is short, case_label text.
+  const std::size_t chunk = coordinate_chunk_values(layout, layout.coordinates[3]);
+  EXPECT_EQ(chunk, layout_grid(layout).chunk_shape()[1]) << "cut as the metrics are along `case`";
+  EXPECT_EQ(piece_count(kCases, chunk), kPieces);
   std::vector<CoordinatePiece> expected;
-  for (std::size_t c : {2u, 3u, 4u})
-    for (std::size_t p = 0; p < 3; ++p) expected.push_back({c, p});
+  for (std::size_t p = 0; p < kPieces; ++p) expected.push_back({2, p, chunk});
   EXPECT_EQ(pieces, expected);
-  EXPECT_EQ(layout.coordinates[3].chunk_values(), kCoordinateChunk);
+  EXPECT_TRUE(layout.coordinates[3].written_live() && layout.coordinates[4].written_live());
+  EXPECT_FALSE(layout.coordinates[2].written_live()) << "the case number is an index: written at the creation";
   EXPECT_TRUE(coordinate_pieces(piece_layout(4000)).empty()) << "short coordinates stay contiguous";
-  EXPECT_THROW(seal_coordinate_piece(layout.coordinates[3], 3), std::invalid_argument);
-  EXPECT_THROW(seal_coordinate_piece(layout.coordinates[5], 0), std::invalid_argument);
+  EXPECT_THROW(seal_coordinate_piece(layout.coordinates[3], chunk, kPieces), std::invalid_argument);
+  EXPECT_THROW(seal_coordinate_piece(layout.coordinates[5], chunk, 0), std::invalid_argument);
 }
 
 TEST(CoordinatePiece, ASealedPieceInflatesToItsValuesPaddedWithZeros) {
   const auto layout = piece_layout();
   const Coordinate& kappa = layout.coordinates[3];
   const Coordinate& index = layout.coordinates[2];
-  const std::size_t edge = kCases - 2 * kCoordinateChunk;
-  const auto plain = unfilter(seal_coordinate_piece(kappa, 2), kCoordinateChunk, sizeof(double), "kappa");
-  std::vector<double> values(kCoordinateChunk);
+  const std::size_t chunk = coordinate_chunk_values(layout, kappa);
+  const std::size_t last = kPieces - 1, edge = kCases - last * chunk;
+  const auto plain = unfilter(seal_coordinate_piece(kappa, chunk, last), chunk, sizeof(double), "kappa");
+  std::vector<double> values(chunk);
   std::memcpy(values.data(), plain.data(), plain.size());
-  for (std::size_t k = 0; k < kCoordinateChunk; ++k)
-    ASSERT_EQ(values[k], k < edge ? kappa_at(2 * kCoordinateChunk + k) : 0.0) << k;
-  const auto sealed_index = seal_coordinate_piece(index, 1);
-  EXPECT_LT(sealed_index.size(), kCoordinateChunk / 8) << "0, 1, 2, … deflate to almost nothing";
-  const auto ints = unfilter(sealed_index, kCoordinateChunk, sizeof(std::int32_t), "case");
-  std::vector<std::int32_t> numbers(kCoordinateChunk);
+  for (std::size_t k = 0; k < chunk; ++k)
+    ASSERT_EQ(values[k], k < edge ? kappa_at(last * chunk + k) : 0.0) << k;
+  // The same piece from values a worker's cases computed: the same bytes.
+  std::vector<double> own(edge);
+  for (std::size_t k = 0; k < edge; ++k) own[k] = kappa_at(last * chunk + k);
+  EXPECT_EQ(seal_coordinate_values(own, chunk), seal_coordinate_piece(kappa, chunk, last));
+  const auto sealed_index = seal_coordinate_piece(index, chunk, 1);
+  EXPECT_LT(sealed_index.size(), chunk / 8) << "0, 1, 2, … deflate to almost nothing";
+  const auto ints = unfilter(sealed_index, chunk, sizeof(std::int32_t), "case");
+  std::vector<std::int32_t> numbers(chunk);
   std::memcpy(numbers.data(), ints.data(), ints.size());
-  for (std::size_t k = 0; k < kCoordinateChunk; ++k) ASSERT_EQ(numbers[k], static_cast<std::int32_t>(kCoordinateChunk + k));
-  EXPECT_LE(seal_coordinate_piece(kappa, 0).size(), sealed_piece_bound(kappa));
+  for (std::size_t k = 0; k < chunk; ++k) ASSERT_EQ(numbers[k], static_cast<std::int32_t>(chunk + k));
+  EXPECT_LE(seal_coordinate_piece(kappa, chunk, 0).size(), sealed_piece_bound(kappa, chunk));
 }
 
 // The cube a source's pieces make equals the one the writer seals itself, value for value,
@@ -120,7 +131,7 @@ TEST(CoordinatePiece, ACubeFromAnotherPartysPiecesEqualsOneSealedHere) {
     there.store(0, 0, {0.5});
     there.close();
   }
-  EXPECT_EQ(source.asked.size(), 9u) << "never after the creation";
+  EXPECT_EQ(source.asked.size(), kPieces) << "never after the creation";
   CubeReader here(dir / "here.h5"), there(dir / "there.h5");
   for (const auto& c : piece_layout().coordinates) {
     const Coordinate* a = here.layout().find_coordinate(c.name);
@@ -163,7 +174,7 @@ TEST(CoordinatePiece, ACreationWhosePiecesFailLeavesNoCubeOrTheOldOne) {
   EXPECT_THROW(CubeWriter(dir / "old.h5", piece_layout(), OpenMode::kOverwrite, &garbage), CubeError);
   struct TooLarge final : CoordinateSource {
     std::span<const char> sealed(const CubeLayout& l, const CoordinatePiece& p) override {
-      bytes.assign(sealed_piece_bound(l.coordinates[p.coordinate]) + 1, 'x');
+      bytes.assign(sealed_piece_bound(l.coordinates[p.coordinate], p.chunk_values) + 1, 'x');
       return bytes;
     }
     std::vector<char> bytes;

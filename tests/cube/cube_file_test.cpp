@@ -158,13 +158,17 @@ TEST(CubeFile, ComputedCoordinatesReadBackAsHeldOnes) {
         c.numbers.clear();
       }
     }
+    // A long kappa is written live (issue 38): none of its values at the creation, each once
+    // by the end (the last case's chunk at the fold that holds that case, the others at close).
+    const bool live = computed.find_coordinate("kappa")->written_live();
+    EXPECT_EQ(live, n > kContiguousCoordinateMax);
     {
       CubeWriter writer(file, computed, OpenMode::kOverwrite);
-      EXPECT_EQ(asked, 3 * n) << "each value once, at creation";
+      EXPECT_EQ(asked, (live ? 2 : 3) * n) << "each value once, at creation (but a live coordinate's)";
       EXPECT_EQ(highest, n - 1);
       writer.store(static_cast<std::int64_t>(n - 1), 0, {0.25});
       writer.close();
-      EXPECT_EQ(asked, 3 * n) << "never after creation";
+      EXPECT_EQ(asked, 3 * n) << "each value once in all";
     }
     CubeReader reader(file);
     const auto& read = reader.layout();

@@ -298,9 +298,9 @@ TEST(SealedChunk, ValuesOfAnyCountAndWidthInflateBitForBit) {
     index.numbers.push_back(static_cast<double>(3 * i + 1));
   }
   ASSERT_TRUE(noisy.chunked());
-  ASSERT_EQ(noisy.chunk_values(), kValues);
-  const auto doubles = unfilter(seal_coordinate_piece(noisy, 0), kValues, sizeof(double), "kappa");
-  const auto ints = unfilter(seal_coordinate_piece(index, 0), kValues, sizeof(std::int32_t), "case");
+  ASSERT_EQ(piece_count(noisy.size(), kValues), 1u);
+  const auto doubles = unfilter(seal_coordinate_piece(noisy, kValues, 0), kValues, sizeof(double), "kappa");
+  const auto ints = unfilter(seal_coordinate_piece(index, kValues, 0), kValues, sizeof(std::int32_t), "case");
   std::size_t wrong = 0;
   for (std::size_t i = 0; i < kValues; ++i) {
     double d = 0.0;

@@ -17,6 +17,7 @@
 namespace pcrf::cube {
 
 struct CubeLayout;
+struct Coordinate;
 
 /// About how many cases a chunk holds (ChunkGrid's rule): 16 384, 128 KiB of a metric.
 inline constexpr std::size_t kChunkCases = 16384;
@@ -82,5 +83,20 @@ ChunkSpan chunk_span(const ChunkGrid& grid, std::size_t first_chunk, std::size_t
 /// existing one's, as its file stores it), or when that is empty the rule's with no multiples
 /// (every cube before chunks held whole groups).
 ChunkGrid layout_grid(const CubeLayout& layout);
+
+/// Fewest values a chunk of a coordinate holds (coordinate_chunk_values): a coordinate over a
+/// dimension the grid takes a few steps at a time would otherwise be cut into chunks whose
+/// index outweighs them.
+inline constexpr std::size_t kCoordinateChunkMin = kChunkCases / 16;
+
+/// Values per HDF5 chunk of a chunked coordinate (Coordinate::chunked) over dimension
+/// `dimension` of the grid's cube: the grid's chunk extent along it, so that a unit's range of
+/// that dimension is one chunk of the coordinate (a sampled plan's parameter along `case` is
+/// cut as the metrics are: 16 384 values, one chunk per unit); at least kCoordinateChunkMin,
+/// at most the dimension's size.
+std::size_t coordinate_chunk_values(const ChunkGrid& grid, std::size_t dimension);
+/// The same for a coordinate of a layout (its grid: layout_grid).
+/// \throws std::invalid_argument for a coordinate over no dimension of the layout.
+std::size_t coordinate_chunk_values(const CubeLayout& layout, const Coordinate& c);
 
 }  // namespace pcrf::cube

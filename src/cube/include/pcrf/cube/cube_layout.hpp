@@ -46,12 +46,16 @@ struct Dimension {
   std::size_t size = 0;
 };
 
-/// Values per HDF5 chunk of a chunked coordinate (Coordinate::chunked), one "piece" of it.
+/// A numeric coordinate of more values than this is chunked (Coordinate::chunked); a shorter
+/// one, or text, stays contiguous: a chunk index would cost more than it saves. How many values
+/// a chunk holds is the cube's grid's to say (coordinate_chunk_values, chunk_grid.hpp): a
+/// coordinate along `case` is cut as the metrics are along it, so that one unit's cases have
+/// one chunk of each coordinate (issue 38: written with the unit, not at the creation).
 /// Measured on a 4 x 10^5-case LHS (bench/master/pcrf_cube_filters): a random parameter costs
-/// 7.27, 6.88, 6.83 and 6.80 B a value in pieces of 1 Ki, 8 Ki, 64 Ki and 256 Ki values
+/// 7.27, 6.88, 6.83 and 6.80 B a value in chunks of 1 Ki, 8 Ki, 64 Ki and 256 Ki values
 /// (shuffle, level 1), 8 B plain; the case number 0.31, 0.07, 0.03, 0.03 B against 4 B.
 /// Levels 4 and 9 gain under 1 %, without shuffle 9 % is lost: level 1 with shuffle, as the metrics.
-inline constexpr std::size_t kCoordinateChunk = 65536;
+inline constexpr std::size_t kContiguousCoordinateMax = 4096;
 
 /// A 1-D coordinate variable. A dimension coordinate has the name of its dimension; an
 /// auxiliary coordinate (e.g. `varied_parameter` over `case`) has another name.
@@ -89,18 +93,21 @@ struct Coordinate {
   /// Drops the values, held or computed (what a writer does once they are in the file).
   void release_values();
 
-  /// Stored in chunks of chunk_values() values, shuffled and deflated like the metrics: a
-  /// numeric coordinate longer than kCoordinateChunk / 16 (a shorter one, or text, stays
-  /// contiguous: a chunk index would cost more than it saves).
-  bool chunked() const { return !is_text && size() > kCoordinateChunk / 16; }
-  /// Values per chunk of a chunked coordinate (the last one, at the edge, is padded to it).
-  std::size_t chunk_values() const { return size() < kCoordinateChunk ? size() : kCoordinateChunk; }
-  /// Chunks of a chunked coordinate (its pieces: cube::seal_coordinate_piece).
-  std::size_t piece_count() const { return chunked() ? (size() + kCoordinateChunk - 1) / kCoordinateChunk : 0; }
+  /// Stored in chunks (coordinate_chunk_values), shuffled and deflated like the metrics: a
+  /// numeric coordinate longer than kContiguousCoordinateMax.
+  bool chunked() const { return !is_text && size() > kContiguousCoordinateMax; }
   /// Values written into a new cube on disk after its creation, piece by piece, not into its
   /// in-memory image: a long one (the image would hold it whole: an LHS of 10^8 frames,
   /// gigabytes) or a computed one.
-  bool written_later() const { return computed() || size() > kCoordinateChunk / 16; }
+  bool written_later() const { return computed() || size() > kContiguousCoordinateMax; }
+  /// Written during the run, not at the creation (issue 38): a chunked auxiliary coordinate of
+  /// numbers that are not an index (a sampled plan's parameters along `case`). Its variable is made
+  /// with the fill NaN (netCDF `_FillValue`: a value not written yet, as a metric's); each
+  /// chunk goes in with the first unit of its cases (sealed by the worker that computed them,
+  /// or by the writer at a fold), and close() writes every chunk still missing. An index (the
+  /// case number, whole numbers with no NaN) and a dimension's own coordinate (xarray's index
+  /// of it) are written at the creation, as before.
+  bool written_live() const { return chunked() && !is_index && name != dimension; }
 };
 
 /// A float64 variable over every dimension, NaN where not computed.

@@ -66,22 +66,25 @@ std::vector<char> unfilter(const std::vector<char>& filtered, std::size_t elemen
 /// Values of the chunk's padded shape (ChunkGrid::chunk_shape's product).
 std::size_t padded_elements(const ChunkGrid& grid);
 
-/// One chunk of a chunked coordinate (Coordinate::chunked) of a new cube, sealed as its
-/// variable stores it, so that the rank creating the cube writes its bytes raw and other
-/// ranks can compute and compress it (issue 38: the cube's creation off rank 0's serial path).
+/// One chunk of a chunked coordinate (Coordinate::chunked) of a cube, sealed as its variable
+/// stores it, so that the rank writing the cube copies its bytes raw and other ranks can
+/// compute and compress it (issue 38: the cube's creation off rank 0's serial path; a
+/// coordinate written during the run, Coordinate::written_live, with its unit).
 struct CoordinatePiece {
-  std::size_t coordinate = 0;  ///< its position in CubeLayout::coordinates
-  std::size_t piece = 0;       ///< its chunk: values [piece * kCoordinateChunk, ...)
+  std::size_t coordinate = 0;    ///< its position in CubeLayout::coordinates
+  std::size_t piece = 0;         ///< its chunk: values [piece * chunk_values, ...)
+  std::size_t chunk_values = 0;  ///< values per chunk of its variable (coordinate_chunk_values)
   bool operator==(const CoordinatePiece&) const = default;
 };
 
 /// The pieces a new cube's creation seals, in the order it writes them: every chunk of each
-/// coordinate that is chunked and written_later, coordinates in layout order, chunks in order.
+/// coordinate that is chunked and written_later but not written_live (the case number),
+/// coordinates in layout order, chunks in order.
 std::vector<CoordinatePiece> coordinate_pieces(const CubeLayout& layout);
 
-/// A piece of coordinate `c` as its chunk is stored: its values (Coordinate::number, each
-/// asked once), int32 for an index coordinate, float64 otherwise (little-endian, the file's
-/// types), the edge chunk padded with zeros (HDF5's fill; never read), shuffled, then deflated
+/// A piece of coordinate `c` as its chunk of `chunk_values` values is stored: its values
+/// (Coordinate::numbers_into), int32 for an index coordinate, float64 otherwise (little-endian,
+/// the file's types), the edge chunk padded with zeros (never read), shuffled, then deflated
 /// at kDeflateLevel. Float64 values as a metric's chunk: each byte plane by zlib's run-length
 /// strategy or by Huffman codes alone, a noise plane stored (a random LHS parameter: 6.63 B a
 /// value in 32 ns coded by runs, against 6.70 B in 102 ns with the default strategy, zlib via
@@ -89,9 +92,17 @@ std::vector<CoordinatePiece> coordinate_pieces(const CubeLayout& layout);
 /// repeats at distance 256, which runs cannot see and which looks like noise (0.03 B a value,
 /// against 1.01 B by runs).
 /// \throws std::invalid_argument unless `c` is chunked and has that piece.
-std::vector<char> seal_coordinate_piece(const Coordinate& c, std::size_t piece);
+std::vector<char> seal_coordinate_piece(const Coordinate& c, std::size_t chunk_values, std::size_t piece);
+/// The same from the piece's values already computed (`values`: the piece's, not padded), as
+/// a worker has them from its cases: the same bytes as seal_coordinate_piece.
+std::vector<char> seal_coordinate_values(std::span<const double> values, std::size_t chunk_values);
 
-/// Most bytes a sealed piece of `c` may take (filtered_bound of its chunk).
-std::size_t sealed_piece_bound(const Coordinate& c);
+/// Pieces of a chunked coordinate of `size` values in chunks of `chunk_values`.
+inline std::size_t piece_count(std::size_t size, std::size_t chunk_values) {
+  return (size + chunk_values - 1) / chunk_values;
+}
+
+/// Most bytes a sealed piece of `c` may take (filtered_bound of its chunk of `chunk_values`).
+std::size_t sealed_piece_bound(const Coordinate& c, std::size_t chunk_values);
 
 }  // namespace pcrf::cube

@@ -14,7 +14,7 @@
 ///   - rank 0 takes the pieces in order. Whatever happens to its writer, it collects every
 ///     piece it asked for and tells every worker to stop before its last word: no message
 ///     is left unmatched, and every rank leaves the phase in order.
-/// Memory: one piece (kCoordinateChunk values) on each rank at a time.
+/// Memory: one piece (cube::coordinate_chunk_values) on each rank at a time.
 #pragma once
 
 #include <functional>
