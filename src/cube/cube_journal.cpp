@@ -189,16 +189,27 @@ HistoryTable take_history(Cursor& in) {
   return table;
 }
 
-/// Most bytes a sealed record of a chunk of `count` cases (`padded` values stored) may hold.
-std::uint64_t sealed_payload_bound(std::uint64_t count, std::size_t metrics, std::size_t padded) {
-  return kCasesHeadBytes + count + 4 + metrics * (8 + filtered_bound(padded, sizeof(double))) + 8 + filtered_bound(padded, 1);
+constexpr std::size_t kPieceHeadBytes = 4 + 8 + 8;  // coordinate, piece, size
+
+/// Most bytes a sealed record of a chunk of `count` cases (`padded` values stored) may hold,
+/// with at most `coordinates` coordinate pieces of at most `piece_bound` bytes each.
+std::uint64_t sealed_payload_bound(std::uint64_t count, std::size_t metrics, std::size_t padded, std::size_t coordinates,
+                                   std::size_t piece_bound) {
+  return kCasesHeadBytes + count + 4 + metrics * (8 + filtered_bound(padded, sizeof(double))) + 8 + filtered_bound(padded, 1) +
+         4 + coordinates * (kPieceHeadBytes + piece_bound);
 }
+
+using PieceVisitor = std::function<void(std::size_t, std::size_t, const char*, std::size_t)>;
 
 /// The variables of a sealed record, after its statuses: their number checked against the
 /// cube's metrics (and the status) and each size against its bound; `variable` is given each
-/// one's bytes, in order. The record must end there.
-void take_sealed_variables(Cursor& in, std::size_t metrics, const ChunkGrid& grid,
-                           const std::function<void(std::size_t, const char*, std::size_t)>& variable) {
+/// one's bytes, in order. Then, in a record of this version (an earlier one's ends there), the
+/// coordinate pieces its unit carries (SealedChunk::coordinates): their number, at most the
+/// cube's coordinates, and each one's coordinate (one of the cube's), piece and size (at most
+/// sealed_piece_size_bound), given to `piece` (may be empty). The record must end there.
+void take_sealed_variables(Cursor& in, std::size_t metrics, std::size_t coordinates, const ChunkGrid& grid,
+                           const std::function<void(std::size_t, const char*, std::size_t)>& variable,
+                           const PieceVisitor& piece = {}) {
   if (in.number(4) != metrics + 1) throw Malformed{"seals another number of variables than the cube has"};
   const std::size_t padded = padded_elements(grid);
   for (std::size_t v = 0; v <= metrics; ++v) {
@@ -206,6 +217,16 @@ void take_sealed_variables(Cursor& in, std::size_t metrics, const ChunkGrid& gri
     if (size == 0 || size > filtered_bound(padded, v < metrics ? sizeof(double) : 1))
       throw Malformed{"seals a variable of a wrong size"};
     variable(v, in.take(size), static_cast<std::size_t>(size));
+  }
+  if (in.left() == 0) return;  // an earlier version's record: no coordinate pieces
+  const auto pieces = in.number(4);
+  if (pieces > coordinates) throw Malformed{"carries more coordinate pieces than the cube has coordinates"};
+  for (std::uint64_t k = 0; k < pieces; ++k) {
+    const auto coordinate = in.number(4), number = in.number(8), size = in.number(8);
+    if (coordinate >= coordinates) throw Malformed{"carries a piece of no coordinate of the cube"};
+    if (size == 0 || size > sealed_piece_size_bound(grid)) throw Malformed{"carries a coordinate piece of a wrong size"};
+    const char* bytes = in.take(size);
+    if (piece) piece(static_cast<std::size_t>(coordinate), static_cast<std::size_t>(number), bytes, static_cast<std::size_t>(size));
   }
   in.expect_end();
 }
@@ -224,7 +245,12 @@ std::int64_t journal_id_of(const CubeLayout& layout) {
 // ---- reading ----
 
 JournalReader::JournalReader(std::filesystem::path file, const CubeLayout& layout, bool verify_checksums)
-    : file_(std::move(file)), metrics_(layout.metrics.size()), cases_(layout.case_count()), grid_(layout_grid(layout)) {
+    : file_(std::move(file)), metrics_(layout.metrics.size()), coordinates_(layout.coordinates.size()),
+      cases_(layout.case_count()), grid_(layout_grid(layout)) {
+  for (const auto& c : layout.coordinates) {
+    const auto d = layout.find_dimension(c.dimension);
+    piece_values_.push_back(d ? coordinate_chunk_values(grid_, *d) : 0);
+  }
   for (const auto& flag : layout.status_flags)
     if (flag.value != kStatusNotRun) statuses_.push_back(flag.value);
   try {
@@ -301,7 +327,7 @@ void JournalReader::index_from(std::size_t first) {
     if (record.kind == kSealed) {
       const auto count = static_cast<std::uint64_t>(grid_.range(static_cast<std::size_t>(chunk)).count);
       if (n != count) fail(r, "seals " + std::to_string(n) + " cases of a chunk of " + std::to_string(count));
-      if (record.size > sealed_payload_bound(count, metrics_, padded_elements(grid_)))
+      if (record.size > sealed_payload_bound(count, metrics_, padded_elements(grid_), coordinates_, sealed_piece_size_bound(grid_)))
         fail(r, "holds " + std::to_string(record.size) + " bytes, more than a sealed chunk can");
       sealed_[static_cast<std::size_t>(chunk)].push_back(r);
       sealed_record_chunk_.resize(records.size(), kNoChunk);
@@ -368,6 +394,13 @@ void JournalReader::check_all() const {
         const std::vector<char> codes = unfilter(c.filtered[metrics_], padded, 1, what);
         if (std::memcmp(codes.data(), c.status.data(), c.status.size()) != 0)
           fail(r, "seals statuses that are not its status variable's");
+        // Its coordinate pieces inflate to whole float64 chunks of at most a chunk's values
+        // (the writer takes one only where it is the unit's piece of a coordinate stored so).
+        for (const auto& piece : c.coordinates) {
+          const std::size_t values = piece_values_[piece.coordinate];  // its index was checked
+          if (values == 0) fail(r, "carries a coordinate piece that is no chunk of a coordinate");
+          (void)unfilter(piece.filtered, values, sizeof(double), what);
+        }
       } catch (const JournalDamage&) {
         throw;
       } catch (const CubeError&) {
@@ -431,9 +464,12 @@ SealedChunk JournalReader::sealed(std::size_t record) const {
     const auto* status = reinterpret_cast<const std::int8_t*>(in.take(n));
     c.status.assign(status, status + n);
     check_statuses(record, c.status.data(), n, true);
-    take_sealed_variables(in, metrics_, grid_, [&c](std::size_t, const char* p, std::size_t size) {
-      c.filtered.emplace_back(p, p + size);
-    });
+    take_sealed_variables(
+        in, metrics_, coordinates_, grid_,
+        [&c](std::size_t, const char* p, std::size_t size) { c.filtered.emplace_back(p, p + size); },
+        [&c](std::size_t coordinate, std::size_t piece, const char* p, std::size_t size) {
+          c.coordinates.push_back({coordinate, piece, std::vector<char>(p, p + size)});
+        });
   } catch (const Malformed& m) {
     fail(record, m.problem);
   }
@@ -459,7 +495,8 @@ bool JournalReader::names(std::int8_t code) const {
 }
 
 void JournalReader::with_sealed(std::size_t record, const std::function<void(const SealedStatuses&)>& statuses,
-                                const std::function<void(std::size_t, const char*, std::size_t)>& variable) const {
+                                const std::function<void(std::size_t, const char*, std::size_t)>& variable,
+                                const PieceVisitor& piece) const {
   const auto& r = log_->records().at(record);
   const auto bytes = std::make_unique_for_overwrite<char[]>(static_cast<std::size_t>(r.size));  // its size was checked
   try {
@@ -469,15 +506,24 @@ void JournalReader::with_sealed(std::size_t record, const std::function<void(con
   }
   Cursor in(std::string_view(bytes.get(), static_cast<std::size_t>(r.size)));
   std::vector<std::pair<const char*, std::size_t>> variables;
+  struct Piece {
+    std::size_t coordinate, number;
+    const char* bytes;
+    std::size_t size;
+  };
+  std::vector<Piece> pieces;
   SealedStatuses status;
   try {
     (void)in.number(8);                                     // the chunk, checked when indexed
     const auto n = static_cast<std::size_t>(in.number(4));  // its count, likewise
     const auto* head = reinterpret_cast<const std::int8_t*>(in.take(n));
     variables.reserve(metrics_ + 1);
-    take_sealed_variables(in, metrics_, grid_, [&variables](std::size_t, const char* p, std::size_t size) {
-      variables.emplace_back(p, size);
-    });
+    take_sealed_variables(
+        in, metrics_, coordinates_, grid_,
+        [&variables](std::size_t, const char* p, std::size_t size) { variables.emplace_back(p, size); },
+        [&pieces](std::size_t coordinate, std::size_t number, const char* p, std::size_t size) {
+          pieces.push_back({coordinate, number, p, size});
+        });
     // A whole chunk of one code: its status variable is that chunk's one stream (a chunk at
     // the cube's edge, padded with not_run, never is), recognised by its bytes.
     if (n > 0 && head[0] != kStatusNotRun && names(head[0])) {
@@ -495,6 +541,8 @@ void JournalReader::with_sealed(std::size_t record, const std::function<void(con
   }
   statuses(status);
   for (std::size_t v = 0; v < variables.size(); ++v) variable(v, variables[v].first, variables[v].second);
+  if (piece)
+    for (const Piece& p : pieces) piece(p.coordinate, p.number, p.bytes, p.size);
 }
 
 std::vector<std::int8_t> JournalReader::sealed_status(std::size_t record) const {
@@ -646,6 +694,13 @@ void JournalWriter::add_sealed(const SealedChunk& sealed) {
   for (const auto& f : sealed.filtered) {
     put(payload_, f.size(), 8);
     payload_.append(f.data(), f.size());
+  }
+  put(payload_, sealed.coordinates.size(), 4);  // this version's: the unit's coordinate pieces
+  for (const auto& piece : sealed.coordinates) {
+    put(payload_, piece.coordinate, 4);
+    put(payload_, piece.piece, 8);
+    put(payload_, piece.filtered.size(), 8);
+    payload_.append(piece.filtered.data(), piece.filtered.size());
   }
   guarded([&] { log_->add(kSealed, payload_); });
 }

@@ -207,6 +207,10 @@ struct CubeWriter::Impl {
   std::vector<std::filesystem::path> parts_to_remove;  // after the next fold's rename
   CoordinateSource* coordinate_source = nullptr;  // while the constructor creates the cube; null: seal here
   bool closing = false;  // the last fold (close): every coordinate chunk still missing is written
+  // The live coordinates whose chunks the units carry (CubeWriter::unit_coordinates), and
+  // their datasets in the file being written (opened at a unit's first piece).
+  std::vector<UnitCoordinate> unit_coordinates;
+  std::map<std::size_t, h5::Handle> coordinate_sets;
   // The streaming fold (CubeWriter::stream_kept): the next fold's <cube>.partial, open during
   // the run, into which the chunks workers report kept are written as they come. While it is
   // open, `file`, `metric_sets` and `status_set` are its handles (declared after `file`: the
@@ -247,6 +251,8 @@ struct CubeWriter::Impl {
   void write_sealed_piece(hid_t d, const CoordinatePiece& piece, const std::string& problem);
   std::size_t chunk_values_of(const Coordinate& c) const;
   void write_missing_coordinates(const StatusBook& status);
+  void find_unit_coordinates(hid_t in);
+  void write_piece(std::size_t unit, std::size_t coordinate, std::size_t piece, const char* bytes, std::size_t size);
   void update(const std::filesystem::path& target, StatusBook& status, std::int64_t new_id);
   void open_for_writing(const std::filesystem::path& target);
   void check_free_space(const std::filesystem::path& target, bool copied = false) const;
@@ -360,6 +366,7 @@ void CubeWriter::Impl::create(const std::filesystem::path& target) {
     h5::check(H5DSattach_scale(d, scales[static_cast<std::size_t>(dim - layout.dimensions.begin())], 0),
               what("cannot attach dimension to '" + c.name + "'"));
   }
+  find_unit_coordinates(file);
   for (const auto& m : layout.metrics) {
     metric_sets.push_back(create_cube_variable(m.name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &kNaN));
     write_descriptive_attributes(metric_sets.back(), m.units, m.long_name);
@@ -466,6 +473,11 @@ void CubeWriter::Impl::open_existing(StatusBook& status) {
   grid = layout_grid(layout);
   status = StatusBook(grid, static_cast<std::size_t>(layout.case_count()));
   status.assign(reader.read_status());
+  {  // which of its coordinates the units carry: those it stores as this version does
+    const std::string cannot_open = what("cannot open");
+    auto in = h5::file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), cannot_open);
+    find_unit_coordinates(in);
+  }
   folded_results = status.done();
   journal_id = journal_id_of(old);
   part_id = part_id_of(old);
@@ -812,6 +824,7 @@ void CubeWriter::Impl::write_sealed(const SealedChunk& sealed, bool raw, std::ve
   if (raw) {
     const auto offset = to_hsize(r.start);
     for (std::size_t v = 0; v <= metrics; ++v) write_variable_raw(offset, v, sealed.filtered[v].data(), sealed.filtered[v].size());
+    for (const auto& p : sealed.coordinates) write_piece(sealed.chunk, p.coordinate, p.piece, p.filtered.data(), p.filtered.size());
     return;
   }
   JournalCases all;
@@ -915,6 +928,7 @@ void CubeWriter::Impl::write_history(const HistoryTable& table) {
 }
 
 void CubeWriter::Impl::close_handles() {
+  coordinate_sets.clear();
   metric_sets.clear();
   side_sets.clear();
   status_set.reset();
@@ -1014,6 +1028,44 @@ std::size_t CubeWriter::Impl::chunk_values_of(const Coordinate& c) const {
   const auto d = layout.find_dimension(c.dimension);
   if (!d) throw CubeError(what("coordinate '" + c.name + "' is over an unknown dimension"));
   return coordinate_chunk_values(grid, *d);
+}
+
+/// The live coordinates (Coordinate::written_live) that the file `in` stores in chunks of the
+/// grid's extent along their dimension (this version's), shuffled and deflated: a unit's worker
+/// seals its piece of each (unit_piece), which goes in raw with the unit. An earlier version's
+/// cube has none (its coordinates are written whole).
+void CubeWriter::Impl::find_unit_coordinates(hid_t in) {
+  unit_coordinates.clear();
+  for (std::size_t k = 0; k < layout.coordinates.size(); ++k) {
+    const Coordinate& c = layout.coordinates[k];
+    const auto d = c.written_live() ? layout.find_dimension(c.dimension) : std::nullopt;
+    if (!d || H5Lexists(in, c.name.c_str(), H5P_DEFAULT) <= 0) continue;
+    const std::string problem = what("cannot read coordinate '" + c.name + "'");
+    auto set = h5::dataset(H5Dopen2(in, c.name.c_str(), H5P_DEFAULT), problem);
+    auto dcpl = h5::plist(H5Dget_create_plist(set), problem);
+    hsize_t chunk = 0;
+    if (H5Pget_layout(dcpl) != H5D_CHUNKED || H5Pget_chunk(dcpl, 1, &chunk) != 1 || H5Pget_nfilters(dcpl) != 2) continue;
+    if (chunk != grid.chunk_shape()[*d] || chunk != coordinate_chunk_values(grid, *d)) continue;
+    unit_coordinates.push_back({k, c.name, *d, static_cast<std::size_t>(chunk)});
+  }
+}
+
+/// A coordinate piece a unit's worker sealed (SealedChunk::coordinates), raw into the file
+/// being written: only where it is that unit's piece of a coordinate the units carry
+/// (unit_piece); any other is left out (a fold seals the chunk here if the file lacks it).
+void CubeWriter::Impl::write_piece(std::size_t unit, std::size_t coordinate, std::size_t piece, const char* bytes,
+                                   std::size_t size) {
+  const auto it = std::find_if(unit_coordinates.begin(), unit_coordinates.end(),
+                               [&](const UnitCoordinate& u) { return u.coordinate == coordinate; });
+  if (it == unit_coordinates.end()) return;
+  const auto expected = unit_piece(grid, unit, *it);
+  if (!expected || *expected != piece || size == 0 || size > sealed_piece_bound(layout.coordinates[coordinate], it->chunk_values))
+    return;
+  auto& set = coordinate_sets[coordinate];
+  const std::string problem = what("cannot write coordinate '" + it->name + "'");
+  if (!set.valid()) set = h5::dataset(H5Dopen2(file, it->name.c_str(), H5P_DEFAULT), problem);
+  const hsize_t offset = static_cast<hsize_t>(piece * it->chunk_values);
+  h5::check_lazily(H5Dwrite_chunk(set, H5P_DEFAULT, 0, &offset, size, bytes), [&] { return problem; });
 }
 
 /// The chunks of the coordinates written live (Coordinate::written_live) that the file being
@@ -1125,6 +1177,7 @@ void CubeWriter::Impl::update(const std::filesystem::path& target, StatusBook& s
       side_sets.push_back(h5::dataset(H5Dopen2(file, name.c_str(), H5P_DEFAULT), what("cannot open '" + name + "'")));
       write_side(v);
     }
+    coordinate_sets.clear();
     metric_sets.clear();
     side_sets.clear();
     status_set.reset();
@@ -1358,7 +1411,10 @@ void CubeWriter::Impl::write_parts(std::vector<std::pair<std::int64_t, std::stri
               if (s.alike) status.set_chunk_to(chunk, s.code);
               else status.set_chunk(chunk, s.each);
             },
-            [&](std::size_t v, const char* bytes, std::size_t size) { write_variable_raw(offset, v, bytes, size); });
+            [&](std::size_t v, const char* bytes, std::size_t size) { write_variable_raw(offset, v, bytes, size); },
+            [&](std::size_t coordinate, std::size_t piece, const char* bytes, std::size_t size) {
+              write_piece(chunk, coordinate, piece, bytes, size);
+            });
       } else {
         const SealedChunk sealed = part.sealed(record);
         if (!at.counted) status.set_chunk(chunk, sealed.status);
@@ -1415,6 +1471,8 @@ void CubeWriter::close() {
 
 void CubeWriter::take_parts() { impl_->take_run_parts(statuses_, true); }
 
+const std::vector<UnitCoordinate>& CubeWriter::unit_coordinates() const { return impl_->unit_coordinates; }
+
 void CubeWriter::stream_kept(std::size_t chunk, int rank) { impl_->stream_kept(chunk, rank); }
 
 std::string CubeWriter::take_stream_note() { return std::exchange(impl_->stream_note, {}); }
@@ -1454,7 +1512,10 @@ void CubeWriter::Impl::stream_kept(std::size_t chunk, int rank) {
           in.alike = s.alike;
           in.code = s.code;
         },
-        [&](std::size_t v, const char* bytes, std::size_t size) { write_variable_raw(offset, v, bytes, size); });
+        [&](std::size_t v, const char* bytes, std::size_t size) { write_variable_raw(offset, v, bytes, size); },
+        [&](std::size_t coordinate, std::size_t piece, const char* bytes, std::size_t size) {
+          write_piece(chunk, coordinate, piece, bytes, size);
+        });
     streamed[chunk] = in;
     stream_chunks.push_back(chunk);
     reached(CheckpointStep::kChunkStreamed);

@@ -463,6 +463,20 @@ std::size_t padded_elements(const ChunkGrid& grid) {
   return n;
 }
 
+std::size_t sealed_piece_size_bound(const ChunkGrid& grid) { return filtered_bound(padded_elements(grid), sizeof(double)); }
+
+std::optional<std::size_t> unit_piece(const ChunkGrid& grid, std::size_t unit, const UnitCoordinate& c) {
+  if (unit >= grid.chunk_count() || c.dimension >= grid.shape().size() || c.chunk_values == 0) return std::nullopt;
+  const auto r = grid.range(unit);
+  for (std::size_t d = 0; d < r.start.size(); ++d)
+    if (d != c.dimension && r.start[d] != 0) return std::nullopt;  // not the first along the others
+  const std::size_t first = r.start[c.dimension], count = r.extent[c.dimension];
+  if (first % c.chunk_values != 0) return std::nullopt;
+  if (count != c.chunk_values && first + count != grid.shape()[c.dimension]) return std::nullopt;
+  if (count > c.chunk_values) return std::nullopt;
+  return first / c.chunk_values;
+}
+
 std::size_t filtered_bound(std::size_t elements, std::size_t element_bytes) {
   return static_cast<std::size_t>(compressBound(static_cast<uLong>(elements * element_bytes)));
 }
@@ -565,6 +579,13 @@ std::vector<char> to_bytes(const SealedChunk& sealed) {
     put<std::uint64_t>(out, text.size());
     put_bytes(out, text.data(), text.size());
   }
+  put<std::uint64_t>(out, sealed.coordinates.size());
+  for (const auto& piece : sealed.coordinates) {
+    put<std::uint64_t>(out, piece.coordinate);
+    put<std::uint64_t>(out, piece.piece);
+    put<std::uint64_t>(out, piece.filtered.size());
+    put_span(out, piece.filtered);
+  }
   return out;
 }
 
@@ -594,6 +615,18 @@ SealedChunk sealed_from_bytes(const std::vector<char>& bytes, const ChunkGrid& g
     const auto size = in.get<std::uint64_t>();
     const char* p = in.take(size);
     sealed.notes.emplace_back(index, std::string(p, static_cast<std::size_t>(size)));
+  }
+  const auto pieces = in.get<std::uint64_t>();
+  if (pieces > in.left() / 24) in.fail("declares more coordinate pieces than it holds");
+  for (std::uint64_t k = 0; k < pieces; ++k) {
+    SealedPiece piece;
+    piece.coordinate = static_cast<std::size_t>(in.get<std::uint64_t>());
+    piece.piece = static_cast<std::size_t>(in.get<std::uint64_t>());
+    const auto size = in.get<std::uint64_t>();
+    if (size == 0 || size > sealed_piece_size_bound(grid)) in.fail("has a coordinate piece of a wrong size");
+    const char* p = in.take(size);
+    piece.filtered.assign(p, p + size);
+    sealed.coordinates.push_back(std::move(piece));
   }
   if (in.left() != 0) in.fail("has trailing bytes");
   return sealed;

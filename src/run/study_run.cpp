@@ -254,6 +254,22 @@ class ChunkSealer {
   ChunkSealer(cube::ChunkGrid grid, std::size_t metrics, bool gaps = false)
       : grid_(std::move(grid)), metrics_(metrics), gaps_(gaps) {}
 
+  /// The unit's chunks of the coordinates the cube's writer takes from the units
+  /// (CubeWriter::unit_coordinates, rank 0's list) are sealed with it (issue 38: written during
+  /// the run, not at the creation): each from this rank's plan, by its batch path
+  /// (Coordinate::numbers_into, the values case_at gives), found by its name; one this rank's
+  /// plan does not have is left to rank 0's writer.
+  void carry(const std::vector<cube::UnitCoordinate>& carried, const CaseSpace& space) {
+    auto own = space.plan().coordinates();
+    for (const auto& u : carried)
+      for (auto& c : own)
+        if (c.name == u.name && c.written_live() && u.dimension < grid_.shape().size() &&
+            c.size() == grid_.shape()[u.dimension]) {
+          carried_.push_back({u, c});
+          break;
+        }
+  }
+
   /// nullopt (the cases then go back one by one) unless `outcomes` are every case of the chunk
   /// once (with gaps: cases of the chunk, each at most once).
   std::optional<std::vector<char>> operator()(std::int64_t unit, std::span<const parallel::CaseOutcome> outcomes) const {
@@ -275,14 +291,51 @@ class ChunkSealer {
       for (std::size_t m = 0; m < metrics_; ++m) values[m * count + at] = outcome.row[m];
       if (!outcome.note.empty()) notes.emplace_back(outcome.case_index, outcome.note);
     }
-    return cube::to_bytes(cube::seal_chunk(grid_, chunk, metrics_, status, values, std::move(notes)));
+    cube::SealedChunk sealed = cube::seal_chunk(grid_, chunk, metrics_, status, values, std::move(notes));
+    for (const auto& [u, c] : carried_) {
+      const auto piece = cube::unit_piece(grid_, chunk, u);
+      if (!piece) continue;
+      const std::size_t first = *piece * u.chunk_values, values_in = std::min(u.chunk_values, c.size() - first);
+      thread_local std::vector<double> own;  // kept: a piece's values, computed in one pass
+      own.resize(values_in);
+      c.numbers_into(first, own);
+      sealed.coordinates.push_back({u.coordinate, *piece, cube::seal_coordinate_values(own, u.chunk_values)});
+    }
+    return cube::to_bytes(sealed);
   }
 
  private:
   cube::ChunkGrid grid_;
   std::size_t metrics_;
   bool gaps_;
+  struct Carried {
+    cube::UnitCoordinate unit;
+    cube::Coordinate values;  ///< this rank's plan's, computed from the case number
+  };
+  std::vector<Carried> carried_;
 };
+
+/// What rank 0 tells workers about the coordinates its cube takes from the units
+/// (CubeWriter::unit_coordinates): one line each, "coordinate dimension chunk_values name".
+std::string unit_coordinates_text(const cube::CubeWriter& writer) {
+  std::string text;
+  for (const auto& u : writer.unit_coordinates())
+    text += std::to_string(u.coordinate) + " " + std::to_string(u.dimension) + " " + std::to_string(u.chunk_values) + " " +
+            u.name + "\n";
+  return text;
+}
+
+/// Inverse of unit_coordinates_text.
+std::vector<cube::UnitCoordinate> parse_unit_coordinates(const std::string& text) {
+  std::vector<cube::UnitCoordinate> carried;
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream in(line);
+    cube::UnitCoordinate u;
+    if (in >> u.coordinate >> u.dimension >> u.chunk_values >> u.name) carried.push_back(std::move(u));
+  }
+  return carried;
+}
 
 /// A rank's own part of the cube (issue 38; cube_part.hpp): each unit its worker sealed (a
 /// worker rank's, or rank 0's worker thread's at two ranks or more: keep_rank0_part) is
@@ -362,11 +415,14 @@ void keep_rank0_part(parallel::ScheduleOptions& schedule, const cube::CubeWriter
 /// `stop_signal`: a signal stops the workers between two cases, reporting the ones done.
 /// `grid`: the cube's chunks, which workers seal when handed one whole.
 parallel::ScheduleOptions schedule_options(const Study& study, const CaseRunner& runner, const std::atomic<int>* stop_signal,
-                                           const cube::ChunkGrid& grid) {
+                                           const cube::ChunkGrid& grid, const std::vector<cube::UnitCoordinate>& carried,
+                                           const CaseSpace& space) {
   parallel::ScheduleOptions options;
   // An IDA's chunks handed out whole are searched curve by curve on the worker (ida_work.hpp);
   // the points a curve never runs stay not run.
-  options.seal = ChunkSealer(grid, runner.row_width(), study.ida.has_value());
+  ChunkSealer sealer(grid, runner.row_width(), study.ida.has_value());
+  sealer.carry(carried, space);
+  options.seal = std::move(sealer);
   if (study.ida) options.evaluate_unit = ida_unit_evaluator(study);
   options.row_width = runner.row_width();
   options.fixed_batch = study.run.batch_size;
@@ -819,7 +875,7 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
   };
   StopOnSignal stoppable(*work, stop_signal);
   sink.on_error([&stoppable] { stoppable.fail(); });
-  auto schedule = schedule_options(p.study, runner, stop_signal, m.writer->grid());
+  auto schedule = schedule_options(p.study, runner, stop_signal, m.writer->grid(), m.writer->unit_coordinates(), *p.space);
   schedule.on_sealed = [&sink](parallel::SealedUnits&& units) { sink.store_sealed(std::move(units)); };
   keep_rank0_part(schedule, *m.writer, m.output, runner.row_width(), mpi);
   parallel::run_master(mpi.comm(), stoppable, schedule,
@@ -847,9 +903,9 @@ StudySummary run_master_rank(const Prepared& p, MasterSetup& m, const parallel::
 }
 
 void run_worker_rank(const Prepared& p, const parallel::MpiSession& mpi, const std::atomic<int>* stop_signal,
-                     const cube::ChunkGrid& grid, const std::string& parts) {
+                     const cube::ChunkGrid& grid, const std::string& parts, const std::string& carried) {
   CaseRunner runner(p.study, *p.space, *p.records, p.group);
-  auto schedule = schedule_options(p.study, runner, stop_signal, grid);
+  auto schedule = schedule_options(p.study, runner, stop_signal, grid, parse_unit_coordinates(carried), *p.space);
   if (auto part = parse_part_text(parts, mpi.rank()))
     schedule.keep = PartKeeper(part->second, part->first, grid, runner.row_width(), mpi.rank());
   parallel::run_worker(mpi.comm(), schedule,
@@ -968,13 +1024,15 @@ std::optional<StudySummary> run_study(const StudyRunOptions& options, const para
   const std::string shape_text = mpi.broadcast(mpi.is_master() ? grid_text(setup.writer->grid()) : std::string());
   // Where each worker keeps the chunks it seals (its part), and what ties it to the cube.
   const std::string parts = mpi.broadcast(mpi.is_master() ? part_text(*setup.writer, setup.output) : std::string());
+  // The coordinates whose chunks the workers seal with their units (issue 38).
+  const std::string carried = mpi.broadcast(mpi.is_master() ? unit_coordinates_text(*setup.writer) : std::string());
 
   std::optional<StudySummary> summary;
   static std::ostream nowhere(nullptr);  // a stream without a buffer discards what it is given
   if (mpi.is_master())
     summary = run_master_rank(*prepared, setup, mpi, options.progress ? *options.progress : nowhere, options);
   else
-    run_worker_rank(*prepared, mpi, options.stop_signal, parse_grid(shape_text), parts);
+    run_worker_rank(*prepared, mpi, options.stop_signal, parse_grid(shape_text), parts, carried);
   mpi.quiet_barrier();
   return summary ? summary : StudySummary{};
 }

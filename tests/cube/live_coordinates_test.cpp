@@ -196,5 +196,92 @@ TEST(LiveCoordinates, ACubeOfAnEarlierVersionReadsAndResumesAsBefore) {
   EXPECT_EQ(reader.read_metric("theta_max_rad")[150], row_of(150)[0]);
 }
 
+/// Unit `unit` sealed as a worker seals it (worker_chunks.hpp), carrying its piece of each
+/// coordinate the writer takes from the units (from the plan's values, as ChunkSealer does).
+SealedChunk carrying(const CubeWriter& writer, std::size_t unit) {
+  SealedChunk sealed = sealed_of(writer.grid(), unit);
+  for (const auto& u : writer.unit_coordinates()) {
+    const auto piece = unit_piece(writer.grid(), unit, u);
+    if (!piece) continue;
+    const std::size_t first = *piece * u.chunk_values;
+    std::vector<double> values(std::min(u.chunk_values, static_cast<std::size_t>(kCases) - first));
+    for (std::size_t k = 0; k < values.size(); ++k) values[k] = kappa_at(first + k);
+    sealed.coordinates.push_back({u.coordinate, *piece, seal_coordinate_values(values, u.chunk_values)});
+  }
+  return sealed;
+}
+
+/// A run of three ranks whose units carry their coordinates: unit 0 kept in rank 1's part and
+/// streamed, unit 1 sent to rank 0 (its journal), unit 2 kept in rank 2's part and taken at the
+/// end; `asked` counts the values rank 0's writer computes itself.
+void carried_run(const fs::path& file, std::size_t* asked = nullptr) {
+  CubeLayout layout = live_layout();
+  if (asked != nullptr) layout.coordinates.back().number_at = [asked](std::size_t i) { ++*asked; return kappa_at(i); };
+  CubeWriter writer(file, layout, OpenMode::kCreate);
+  PartWriter one(part_path(file, 1), writer.part_header());
+  one.add(carrying(writer, 0));
+  writer.stream_kept(0, 1);
+  writer.store_sealed(carrying(writer, 1));
+  writer.flush();  // appends: the stream is open
+  PartWriter(part_path(file, 2), writer.part_header()).add(carrying(writer, 2));
+  writer.close();
+}
+
+// The units bring their coordinates' chunks wherever they go in (the streaming fold, the
+// journal's sealed record, the parts at the end): rank 0 computes none of their values.
+TEST(LiveCoordinates, UnitsCarryTheirCoordinatesIntoTheCubeWhereverTheyGoIn) {
+  const auto file = test::scratch_dir("live_carried") / "c.h5";
+  {
+    CubeWriter writer(file, live_layout(), OpenMode::kCreate);
+    ASSERT_EQ(writer.unit_coordinates().size(), 1u);
+    const UnitCoordinate& u = writer.unit_coordinates().front();
+    EXPECT_EQ(u.coordinate, 1u);
+    EXPECT_EQ(u.name, "kappa");
+    EXPECT_EQ(u.chunk_values, writer.grid().chunk_shape()[0]);
+    EXPECT_EQ(unit_piece(writer.grid(), 2, u), std::optional<std::size_t>(2)) << "the edge unit carries the edge piece";
+  }
+  fs::remove(file);
+  std::size_t asked = 0;
+  carried_run(file, &asked);
+  EXPECT_EQ(asked, 0u) << "rank 0 sealed no coordinate chunk: every unit brought its own";
+  expect_kappa_of_units(file, {0, 1, 2});
+  expect_chunks(file, {0, 1, 2});
+}
+
+// A kill at any step between a unit's part write and its fold (and through the folds), then
+// --resume (computing what is missing, case by case), gives the cube of the run never killed:
+// every coordinate, metric and status.
+TEST(LiveCoordinates, AKillBetweenAUnitsPartAndItsFoldResumesToTheUninterruptedCube) {
+  const auto dir = test::scratch_dir("live_kills");
+  carried_run(dir / "whole.h5");
+  const CubeReader whole(dir / "whole.h5");
+  using S = CheckpointStep;
+  for (const KillPoint k : {KillPoint{S::kStreamOpened, 1, "opened"}, {S::kChunkStreamed, 1, "streamed"},
+                            {S::kJournalSynced, 1, "appended"}, {S::kFoldWritten, 2, "fold_written"},
+                            {S::kFoldRenamed, 2, "renamed"}, {S::kJournalRemoved, 2, "journal_removed"},
+                            {S::kPartsRemoved, 1, "parts_removed"}}) {
+    const auto file = dir / (std::string(k.name) + ".h5");
+    ASSERT_TRUE(killed(run_killed_at(k, [&] { carried_run(file); }))) << k.name << ": the run was not killed there";
+    {
+      CubeWriter resumed(file, live_layout(), OpenMode::kResume);
+      for (std::size_t c = 0; c < resumed.grid().chunk_count(); ++c) {
+        if (resumed.chunk_done(c) > 0) continue;
+        const auto r = resumed.grid().range(c);
+        for (std::int64_t i = r.first; i < r.first + r.count; ++i) {
+          resumed.store(i, status_of(i), row_of(i));
+          if (i % 997 == 0) resumed.store_note(i, "note of case " + std::to_string(i));
+        }
+      }
+      resumed.close();
+    }
+    const CubeReader reader(file);
+    EXPECT_TRUE(reader.damage().empty()) << k.name;
+    EXPECT_EQ(kappa_of(file), kappa_of(dir / "whole.h5")) << k.name;
+    EXPECT_EQ(reader.read_status(), whole.read_status()) << k.name;
+    for (const char* metric : {"theta_max_rad", "impacts"})
+      EXPECT_EQ(reader.read_metric(metric), whole.read_metric(metric)) << k.name << " " << metric;
+  }
+}
+
 }  // namespace
 }  // namespace pcrf::cube

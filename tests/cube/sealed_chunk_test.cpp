@@ -93,7 +93,7 @@ TEST(SealedChunk, ASealedChunkFoldsRawAndReadsBackBitForBit) {
     writer.close();
   }
   expect_cube(file);
-  EXPECT_THROW(CubeWriter(dir / "d.h5", sealed_layout(), OpenMode::kCreate).store_sealed(SealedChunk{7, {}, {}, {}}),
+  EXPECT_THROW(CubeWriter(dir / "d.h5", sealed_layout(), OpenMode::kCreate).store_sealed(SealedChunk{7, {}, {}, {}, {}}),
                CubeError);
 }
 

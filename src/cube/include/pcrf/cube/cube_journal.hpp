@@ -171,8 +171,11 @@ class JournalReader {
   /// cube's flags name (SealedStatuses::alike: one comparison with uniform_status_stream, so
   /// that what the cube receives is what was checked), else case by case (each code one the
   /// flags name); then `variable(index, bytes, size)` receives each variable.
+  /// Then `piece(coordinate, piece, bytes, size)` receives each coordinate piece the record
+  /// carries (SealedChunk::coordinates; a record without them, an earlier version's, has none).
   void with_sealed(std::size_t record, const std::function<void(const SealedStatuses&)>& statuses,
-                   const std::function<void(std::size_t, const char*, std::size_t)>& variable) const;
+                   const std::function<void(std::size_t, const char*, std::size_t)>& variable,
+                   const std::function<void(std::size_t, std::size_t, const char*, std::size_t)>& piece = {}) const;
   /// The statuses of one sealed record only (its head, checked as sealed() checks them).
   std::vector<std::int8_t> sealed_status(std::size_t record) const;
   /// The notes of a part's sealed record: those of the notes record right after it (before
@@ -200,6 +203,8 @@ class JournalReader {
 
   std::filesystem::path file_;
   std::size_t metrics_;
+  std::size_t coordinates_;  ///< the cube's coordinates: most pieces a sealed record may carry
+  std::vector<std::size_t> piece_values_;  ///< per coordinate: values of its chunk (coordinate_chunk_values)
   std::int64_t cases_;
   ChunkGrid grid_;
   std::unique_ptr<io::LogReader> log_;

@@ -160,6 +160,11 @@ class CubeWriter {
   /// statuses join the cube's, its filtered bytes are journaled and folded as they are.
   /// \throws CubeError when the chunk is outside the cube or not whole.
   void store_sealed(SealedChunk sealed);
+  /// The coordinates written live whose chunks a unit's worker seals with the unit (its piece:
+  /// unit_piece) and that go in raw wherever the unit does (stream_kept, the parts, the journal);
+  /// a chunk no unit brought is sealed here at a fold (the cases of units it holds) or at close
+  /// (every one). Empty for a cube of an earlier version, whose coordinates are written whole.
+  const std::vector<UnitCoordinate>& unit_coordinates() const;
   /// How the cube is cut into chunks (what a worker seals), and its shape.
   const ChunkGrid& grid() const;
   std::vector<std::size_t> shape() const;

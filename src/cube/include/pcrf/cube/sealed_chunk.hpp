@@ -11,6 +11,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <utility>
@@ -26,6 +27,16 @@ namespace pcrf::cube {
 /// (31.2 k -> 27.8 k) for a cube 0.5 % larger (docs/throughput.md).
 inline constexpr unsigned kDeflateLevel = 1;
 
+/// A chunk of a coordinate written live (Coordinate::written_live) that a unit's worker sealed
+/// with the unit (seal_coordinate_values): the unit's range of that coordinate's dimension, for
+/// the first unit along the others (unit_coordinate_pieces).
+struct SealedPiece {
+  std::size_t coordinate = 0;   ///< its position in the cube's CubeLayout::coordinates
+  std::size_t piece = 0;        ///< its chunk
+  std::vector<char> filtered;   ///< as its variable stores it (shuffled, deflated)
+  bool operator==(const SealedPiece&) const = default;
+};
+
 struct SealedChunk {
   std::size_t chunk = 0;
   std::vector<std::int8_t> status;  ///< the chunk's cases in order (ChunkGrid::range(chunk).count)
@@ -33,7 +44,23 @@ struct SealedChunk {
   /// chunk's full shape at the cube's edge) shuffled and deflated.
   std::vector<std::vector<char>> filtered;
   std::vector<std::pair<std::int64_t, std::string>> notes;  ///< case index, message
+  /// The chunks of the live coordinates its cases carry (none: the writer seals them at a fold).
+  std::vector<SealedPiece> coordinates;
 };
+
+/// A coordinate whose chunks go in with the units (issue 38): the cube stores it in chunks of
+/// the grid's extent along its dimension, so that one unit's range of it is one chunk.
+struct UnitCoordinate {
+  std::size_t coordinate = 0;    ///< its position in the cube's CubeLayout::coordinates
+  std::string name;              ///< its name (a worker finds its values by it)
+  std::size_t dimension = 0;     ///< the dimension it is over
+  std::size_t chunk_values = 0;  ///< values per chunk (= the grid's chunk extent along it)
+};
+
+/// The piece of `c` that unit `unit` of `grid` carries: its range of the coordinate's
+/// dimension when the unit is the first along every other dimension and that range is one
+/// whole chunk of it (or the edge one); nullopt otherwise.
+std::optional<std::size_t> unit_piece(const ChunkGrid& grid, std::size_t unit, const UnitCoordinate& c);
 
 /// Seals a chunk all of whose cases were computed: `values` holds [metric * count + k],
 /// `status` one code per case. \throws std::invalid_argument for sizes that do not match.
@@ -50,7 +77,8 @@ const std::vector<char>& uniform_status_stream(std::size_t padded, std::int8_t c
 /// The bytes of a sealed chunk (one process's, to another running the same binary).
 std::vector<char> to_bytes(const SealedChunk& sealed);
 /// Inverse of to_bytes, checked against the cube's grid and metrics (counts, sizes, the
-/// chunk's number, note case indices). \throws CubeError naming `what` when they do not fit.
+/// chunk's number, note case indices, coordinate pieces' sizes: sealed_piece_size_bound).
+/// \throws CubeError naming `what` when they do not fit.
 SealedChunk sealed_from_bytes(const std::vector<char>& bytes, const ChunkGrid& grid, std::size_t metrics,
                               const std::string& what);
 
@@ -65,6 +93,9 @@ std::vector<char> unfilter(const std::vector<char>& filtered, std::size_t elemen
 
 /// Values of the chunk's padded shape (ChunkGrid::chunk_shape's product).
 std::size_t padded_elements(const ChunkGrid& grid);
+/// Most bytes a coordinate piece a unit carries may take: float64 values of one unit's range
+/// along a dimension, at most a chunk's padded values.
+std::size_t sealed_piece_size_bound(const ChunkGrid& grid);
 
 /// One chunk of a chunked coordinate (Coordinate::chunked) of a cube, sealed as its variable
 /// stores it, so that the rank writing the cube copies its bytes raw and other ranks can
