@@ -13,8 +13,11 @@ any change to the scheduling or the writing.
 
 The reference runs at 1 rank, this build at each rank count. Cases are compared row by row
 in `pcrf cube export --no-record-text` (values as shortest round-trip decimals: equal text is
-equal bits) on the columns both cubes have; a column one cube has and the other lacks (e.g.
-`case_label`, no longer stored for sampled plans) is listed, not compared. The pairs study
+equal bits) on the columns both cubes have: every coordinate (the columns before `status`: a
+sampled plan's parameters, which the workers now write with their units, issue 38), the
+status and every metric; a column one cube has and the other lacks (e.g. `case_label`, no
+longer stored for sampled plans) is listed, not compared. The table's last but one column
+counts the coordinate columns compared. The pairs study
 needs ../shared/records (skipped without).
 """
 import argparse
@@ -86,12 +89,20 @@ def run_study(pcrf, ranks, study, cube):
     return list(csv.DictReader(io.StringIO(out)))
 
 
+def coordinate_columns(rows):
+    """The coordinate columns of an export: those before `status`."""
+    names = list(rows[0])
+    return set(names[:names.index("status")]) if "status" in names else set()
+
+
 def compare(reference, rows):
-    """Differences between two exports (one line each), and the columns not compared."""
+    """Differences between two exports (one line each), the columns not compared, and the
+    coordinate columns compared."""
     if not reference or not rows:
-        return ["an export is empty"], set()
+        return ["an export is empty"], set(), set()
     common = (set(reference[0]) & set(rows[0])) - IGNORED
     skipped = (set(reference[0]) ^ set(rows[0])) - IGNORED
+    coordinates = coordinate_columns(reference) & common
     problems = []
     if len(reference) != len(rows):
         problems.append(f"{len(reference)} cases against {len(rows)}")
@@ -102,7 +113,7 @@ def compare(reference, rows):
                 break
         if len(problems) > 5:
             break
-    return problems, skipped
+    return problems, skipped, coordinates
 
 
 def main():
@@ -118,8 +129,9 @@ def main():
     records = os.path.abspath(args.records)
     if not os.path.isdir(records) and os.path.isdir("/work/shared/records"):
         records = "/work/shared/records"
-    print("| study | cases | " + " | ".join(f"{r} rank{'s' if r > 1 else ''}" for r in args.ranks) + " | not compared |")
-    print("| --- | --- |" + " --- |" * len(args.ranks) + " --- |")
+    print("| study | cases | " + " | ".join(f"{r} rank{'s' if r > 1 else ''}" for r in args.ranks) +
+          " | coordinates compared | not compared |")
+    print("| --- | --- |" + " --- |" * len(args.ranks) + " --- | --- |")
     failed = False
     with tempfile.TemporaryDirectory() as folder:
         for name in args.studies:
@@ -131,19 +143,21 @@ def main():
             with open(study, "w", encoding="utf-8") as f:
                 f.write(f'[study]\nname = "{name}"\n' + text)
             reference = run_study(baseline, 1, study, os.path.join(folder, "reference.h5"))
-            cells, skipped = [], set()
+            cells, skipped, coordinates = [], set(), set()
             for ranks in args.ranks:
                 try:
-                    problems, columns = compare(reference, run_study(pcrf, ranks, study, os.path.join(folder, "new.h5")))
+                    problems, columns, compared = compare(reference,
+                                                          run_study(pcrf, ranks, study, os.path.join(folder, "new.h5")))
                 except RuntimeError as e:
-                    problems, columns = [str(e).splitlines()[0]], set()
+                    problems, columns, compared = [str(e).splitlines()[0]], set(), set()
                 skipped |= columns
+                coordinates |= compared
                 cells.append("equal" if not problems else "DIFFERENT")
                 for p in problems:
                     print(f"  {name} at {ranks} ranks: {p}", file=sys.stderr)
                 failed = failed or bool(problems)
-            print(f"| {name} | {len(reference)} | " + " | ".join(cells) + f" | {', '.join(sorted(skipped)) or '-'} |",
-                  flush=True)
+            print(f"| {name} | {len(reference)} | " + " | ".join(cells) + f" | {len(coordinates)} "
+                  f"| {', '.join(sorted(skipped)) or '-'} |", flush=True)
     sys.exit(1 if failed else 0)
 
 

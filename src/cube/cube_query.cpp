@@ -326,12 +326,15 @@ void export_rows(const CubeReader& cube, const std::vector<std::string>& metrics
     if (!selected[k]) continue;
     const auto coords = unravel(i, shape);
     fields.clear();
-    // A coordinate not written yet (NaN: a checkpoint's cube, before its case's unit) is no
-    // value, as a metric's NaN: an empty field, never the text "nan".
+    // A coordinate written during the run (Coordinate::written_live) that a case not run has
+    // no value of yet (NaN: a checkpoint's cube, before its case's unit) is no value, as the
+    // case's metrics: an empty field. Any other NaN (a strike not known, a parameter of
+    // another scene model) is the value "nan", as always.
     for (std::size_t c = 0; c < shown.size(); ++c) {
       const Coordinate& coordinate = *shown[c];
-      const std::size_t at = coordinate_dims[c] < coords.size() ? coords[coordinate_dims[c]] : 0;
-      fields.push_back(coordinate.is_text ? coordinate.label(at) : csv_number(coordinate.number(at)));
+      const std::size_t at = coords[coordinate_dims[c]];
+      const bool unwritten = status[k] == kStatusNotRun && coordinate.written_live() && std::isnan(coordinate.number(at));
+      fields.push_back(unwritten ? std::string() : coordinate.label(at));
     }
     fields.push_back(status_text(layout, status[k]));
     for (const auto& v : values) fields.push_back(csv_number(v[k]));
