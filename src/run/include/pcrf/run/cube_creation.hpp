@@ -3,6 +3,9 @@
 /// first hand-out). Rank 0 writes the file, as it always did (its image, then its long
 /// coordinates, synced and renamed into place only when whole); the other ranks compute and
 /// compress its coordinate pieces (cube::seal_coordinate_piece), which rank 0 copies in raw.
+/// Since the coordinates along cases are written during the run (Coordinate::written_live:
+/// each unit's worker seals its chunk of them, study_run.cpp's ChunkSealer), the pieces of the
+/// creation are those of the case number only (cube::coordinate_pieces).
 ///
 /// The phase, between rank 0's checks (the study, the lock) and the first hand-out:
 ///   - every worker waits for rank 0's word (a broadcast): "seal" once rank 0's writer asks
