@@ -112,7 +112,7 @@ def profile_run(pcrf, ranks, study, folder, tag, keep=None):
     """Runs the study under callgrind on every rank; returns {(rank, thread): (all, own, works)}
     counts, rank 0's main thread's PHASES, the cases the study said it computed (None when it
     did not say) and the working threads' WORKER_PARTS summed. `keep` (a folder): rank 0's main
-    thread's profile is copied there (for callgrind_annotate)."""
+    thread's profile, and rank 1's working thread's, are copied there (for callgrind_annotate)."""
     out = os.path.join(folder, f"{tag}.%q{{OMPI_COMM_WORLD_RANK}}")
     valgrind = ["valgrind", "--tool=callgrind", "--separate-threads=yes", f"--callgrind-out-file={out}"]
     # One checkpoint, at the end: checkpoints come by the clock (every 30 s by default), and under
@@ -137,6 +137,8 @@ def profile_run(pcrf, ranks, study, folder, tag, keep=None):
             phases = inclusive_phases(path)
             if keep:
                 shutil.copy(path, os.path.join(keep, f"{tag}.rank0-main"))
+        elif keep and (int(match.group(1)), int(match.group(2))) == (1, 1):
+            shutil.copy(path, os.path.join(keep, f"{tag}.rank1-main"))  # a worker rank's working thread
         costs = function_costs(path)
         total = sum(costs.values())
         own = sum(c for (obj, _), c in costs.items() if not MPI_OBJECTS.search(obj))
@@ -159,7 +161,8 @@ def main():
                         help="the two study sizes (default 2000 10000)")
     parser.add_argument("--source", default=os.path.join(HERE, "..", ".."), help="source tree (../shared/records)")
     parser.add_argument("--keep", metavar="DIR", help="copy rank 0's main thread's callgrind profiles here "
-                        "(<DIR>/cg<N>.rank0-main: compare them with callgrind_annotate)")
+                        "(<DIR>/cg<N>.rank0-main: compare them with callgrind_annotate), and rank 1's working "
+                        "thread's (<DIR>/cg<N>.rank1-main)")
     args = parser.parse_args()
     pcrf = os.path.abspath(args.pcrf)
     label, scale, records = record_table(args.source)

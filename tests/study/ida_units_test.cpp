@@ -171,7 +171,8 @@ TEST_F(IdaUnits, ARunStoppedBySigtermInsideAChunkResumesToTheSameCube) {
 TEST_F(IdaUnits, AWorkerKeepsWholeCurvesInItsPartAndAKillThereResumesToTheSameCube) {
   PCRF_REQUIRE_MPIRUN();
   const auto err = dir_ / "killed.err";
-  const pid_t pid = spawn_shell("cd " + quoted(dir_) + " && exec setsid " + mpirun(3) + pcrf() +
+  const LauncherTmp launcher_tmp;  // the killed launcher's session folder goes with it
+  const pid_t pid = spawn_shell("cd " + quoted(dir_) + " && exec setsid " + launcher_tmp.env() + mpirun(3) + pcrf() +
                                 " study u.toml -o killed.h5 --flush-interval-s 0.05 --progress-interval 0 2>" + quoted(err));
   ASSERT_GT(pid, 0);
   // A worker rank makes its part when it keeps its first chunk: kill every rank then.

@@ -91,7 +91,8 @@ TEST(PartsStudy, ARunKilledAtThreeRanksResumesToTheUninterruptedCube) {
   // Kills at instants spread over a run (start-up included), each a --resume of the last.
   bool parts_seen = false, rank0_part_seen = false;
   for (int k = 1; k <= 6; ++k) {
-    const pid_t pid = spawn_shell("cd " + quoted(dir) + " && exec setsid " + mpirun(3) + pcrf() +
+    const LauncherTmp launcher_tmp;  // the killed launcher's session folder goes with it
+    const pid_t pid = spawn_shell("cd " + quoted(dir) + " && exec setsid " + launcher_tmp.env() + mpirun(3) + pcrf() +
                                   " study p.toml -o killed.h5 --resume --flush-interval-s 0.001 --progress-interval 0");
     ASSERT_GT(pid, 0);
     std::this_thread::sleep_for(std::chrono::duration<double>(whole_s * k / 7.0));

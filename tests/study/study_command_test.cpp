@@ -253,8 +253,9 @@ TEST(StudyCommand, KilledRunResumesToTheUninterruptedCube) {
                            "tan_alpha = {from = 0.16, to = 0.24, count = 15}\n";
   const auto study = test::write_file(dir, "kill.toml", text);
   const auto err = dir / "killed.err";
-  const std::string command = "cd " + quoted(dir) + " && exec " + mpirun(2) + pcrf() + " study " + quoted(study) +
-                              " -o killed.h5 --flush-interval 0.1 --progress-interval 0.1 --batch-size 1 2>" +
+  const LauncherTmp launcher_tmp;  // the killed launcher's session folder goes with it
+  const std::string command = "cd " + quoted(dir) + " && exec " + launcher_tmp.env() + mpirun(2) + pcrf() + " study " +
+                              quoted(study) + " -o killed.h5 --flush-interval 0.1 --progress-interval 0.1 --batch-size 1 2>" +
                               quoted(err);
   const pid_t pid = spawn_shell(command);
   ASSERT_GT(pid, 0);

@@ -91,6 +91,31 @@ inline std::string mpirun(int ranks) {
          "mpirun --oversubscribe -n " + std::to_string(ranks) + " ";
 }
 
+/// A TMPDIR of its own for an mpirun that a test kills, removed with this object. A launcher
+/// killed by SIGKILL leaves its session folder behind (Open MPI 5: prterun.<host>.<pid>.<uid>),
+/// and a later launcher given the same PID then refuses to start (PMIX_ERR_EXISTS, PRRTE's
+/// session_dir.c): in the shared TMPDIR, any later test could be that one. Short, because
+/// PMIx puts its Unix sockets there (108 bytes at most a path).
+class LauncherTmp {
+ public:
+  LauncherTmp() {
+    const char* base = std::getenv("TMPDIR");
+    std::string folder = std::string(base != nullptr && *base != '\0' ? base : "/tmp") + "/pcrf-mpi-XXXXXX";
+    if (::mkdtemp(folder.data()) != nullptr) path_ = folder;
+  }
+  LauncherTmp(const LauncherTmp&) = delete;
+  LauncherTmp& operator=(const LauncherTmp&) = delete;
+  ~LauncherTmp() {
+    std::error_code ignored;
+    if (!path_.empty()) std::filesystem::remove_all(path_, ignored);
+  }
+  /// The prefix that gives a command this TMPDIR (none when it could not be made).
+  std::string env() const { return path_.empty() ? std::string() : "env TMPDIR=" + quoted(path_) + " "; }
+
+ private:
+  std::filesystem::path path_;
+};
+
 inline bool have_mpirun() { return test::run_command("command -v mpirun").exit_code == 0; }
 
 #define PCRF_REQUIRE_MPIRUN() \
