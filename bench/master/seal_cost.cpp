@@ -8,7 +8,8 @@
 // (cube::seal_chunk, as a worker does with each chunk it computed) and every piece of each
 // chunked coordinate (cube::seal_coordinate_piece, as the cube's creation does), ROUNDS times
 // (default 1), and checks that each sealed variable inflates back to its values. Prints the
-// sealed bytes a case per variable and in all: what the cube stores of them. Callgrind's
+// sealed bytes a case per variable and in all: what the cube stores of them, and the CRC-32 of
+// every sealed byte in order (two builds that print the same one sealed the same bytes). Callgrind's
 // inclusive counts of seal_chunk and seal_coordinate_piece, divided by the cases and rounds,
 // are their instructions a case.
 #include <cstdio>
@@ -17,6 +18,8 @@
 #include <string>
 #include <vector>
 
+#include <zlib.h>
+
 #include "pcrf/cube/chunk_grid.hpp"
 #include "pcrf/cube/cube_reader.hpp"
 #include "pcrf/cube/sealed_chunk.hpp"
@@ -24,6 +27,13 @@
 namespace {
 
 using namespace pcrf::cube;
+
+/// CRC-32 of every sealed byte, in the order sealed.
+uLong digest = crc32(0L, Z_NULL, 0);
+
+void add_to_digest(const std::vector<char>& sealed) {
+  digest = crc32_z(digest, reinterpret_cast<const Bytef*>(sealed.data()), sealed.size());
+}
 
 /// Seals every chunk of the cube's metrics; adds each variable's sealed bytes to `bytes`.
 void seal_metrics(const CubeReader& reader, std::vector<double>& bytes) {
@@ -45,6 +55,7 @@ void seal_metrics(const CubeReader& reader, std::vector<double>& bytes) {
     const SealedChunk sealed = seal_chunk(grid, chunk, metrics, codes, values, {});
     for (std::size_t v = 0; v <= metrics; ++v) {
       bytes[v] += static_cast<double>(sealed.filtered[v].size());
+      add_to_digest(sealed.filtered[v]);
       const std::size_t width = v < metrics ? sizeof(double) : 1;
       const auto plain = unfilter(sealed.filtered[v], padded, width, "bench");
       const void* want = v < metrics ? static_cast<const void*>(columns[v].data() + first) : codes.data();
@@ -63,8 +74,11 @@ void seal_coordinates(const CubeReader& reader, std::vector<double>& bytes) {
     const Coordinate& c = layout.coordinates[k];
     if (!c.chunked()) continue;
     const std::size_t values = coordinate_chunk_values(layout, c);
-    for (std::size_t p = 0; p < piece_count(c.size(), values); ++p)
-      bytes[k] += static_cast<double>(seal_coordinate_piece(c, values, p).size());
+    for (std::size_t p = 0; p < piece_count(c.size(), values); ++p) {
+      const std::vector<char> sealed = seal_coordinate_piece(c, values, p);
+      bytes[k] += static_cast<double>(sealed.size());
+      add_to_digest(sealed);
+    }
   }
 }
 
@@ -99,5 +113,6 @@ int main(int argc, char** argv) {
     total += coordinate_bytes[k];
   }
   std::printf("%-24s %12.4f\n", "sealed, in all", total / per_case);
+  std::printf("%-24s %12.8lx\n", "CRC-32 of sealed bytes", digest);
   return 0;
 }
