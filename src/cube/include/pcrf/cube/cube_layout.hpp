@@ -75,7 +75,7 @@ struct Coordinate {
   std::function<double(std::size_t)> number_at{};
   std::function<std::string(std::size_t)> text_at{};
   /// Optional beside number_at: number_at(first + k) into out[k] for every k, the same bits,
-  /// at once (a sampled plan's parameter: a piece of 65 536 values in a tight loop instead of
+  /// at once (a sampled plan's parameter: a chunk of 16 384 values in a tight loop instead of
   /// a chain of calls per value, issue 38). Empty: numbers_into asks number_at value by value.
   std::function<void(std::size_t first, std::span<double> out)> numbers_from{};
   std::size_t computed_size = 0;

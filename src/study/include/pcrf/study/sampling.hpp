@@ -9,8 +9,8 @@
 /// designs evaluated at every index.
 ///
 /// Each design also fills a run of one coordinate at once (`column`): the values of `at` for
-/// consecutive indices, bit for bit, computed in a tight loop (the cube's creation asks for a
-/// coordinate 65 536 values at a time, cube::seal_coordinate_piece).
+/// consecutive indices, bit for bit, computed in a tight loop (the worker that seals a unit of
+/// the cube asks for its chunk of a coordinate, 16 384 values, cube::coordinate_chunk_values).
 #pragma once
 
 #include <array>
