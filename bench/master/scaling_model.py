@@ -8,17 +8,18 @@ measured instruction counts (bench/master/rank_costs.py), for cases of three cos
         --assembly-per-result 0 --creation-per-case 0          # one master, 75d5fd5
 
 The model. A study of N cases runs on W workers. Each worker spends t_case on a case and t_own
-beyond it on its own side (asking for work, sealing its chunks of the cube, writing them to its
-part), and t_create per case of its share of the cube's creation (computing and sealing the
-coordinates' chunks, before the first hand-out). Rank 0 spends, on one thread:
+beyond it on its own side (asking for work, sealing its chunks of the cube and each sampled
+parameter's chunk of its cases, writing them to its part), and t_create per case of its share
+of the cube's creation (the coordinates written there: the case number's chunks, before the
+first hand-out). Rank 0 spends, on one thread:
   - t_setup per case of the study before the first hand-out, serially (the plan, the checks,
-    writing the coordinates' sealed chunks into the new cube);
+    writing the creation's sealed chunks into the new cube);
   - t_serial per result during the run, concurrently with the workers (the hand-out, what comes
     back, its checkpoints, and each part's sealed chunks streamed into the next fold as its
     worker reports them): it limits the run only once it saturates, at a share
     rho = W * t_serial / (t_case + t_own) of the run above 1;
   - t_assembly per result after the run, serially (the last fold: what the stream does not
-    hold, and each chunk's statuses).
+    hold, each chunk's statuses, and the coordinates' chunks no unit brought).
 The run's wall time is then N (t_setup + t_assembly) + N (t_create + (t_case + t_own) max(1, rho)) / W,
 against N t_case / W for perfect workers, so the per-worker efficiency is
 
@@ -34,11 +35,13 @@ allows at any W. The second table adds the bytes that rank 0, the cube's one wri
 the file (HDF5's direct chunk write is "not supported with parallel HDF5", H5Dpublic.h of
 1.10.8 and of 1.14), at --write-gb-s, an assumed sustained single-writer bandwidth (no cluster
 file system can be measured here), from pcrf_cube_filters on the non-lifting LHS:
-  - the coordinates' chunks, --coordinate-bytes-per-case (53.5 B), at the creation: serial,
-    t_setup grows by them;
-  - the results' chunks, --result-bytes-per-case (34.9 B), streamed into the next fold while
-    the run goes on (CubeWriter::stream_kept): t_serial grows by them. --assembled-at-end
-    puts them in t_assembly instead, as the design before the streaming fold did.
+  - the coordinates' chunks written at the creation, --coordinate-bytes-per-case (the case
+    number's, 0.07 B; 53.5 B when every sampled parameter was written there): serial, t_setup
+    grows by them;
+  - the results' chunks with the sampled parameters' chunks, --result-bytes-per-case (88.3 B),
+    streamed into the next fold while the run goes on (CubeWriter::stream_kept): t_serial grows
+    by them. --assembled-at-end puts them in t_assembly instead, as the design before the
+    streaming fold did.
 Case costs: a frame that never lifts (measured by callgrind), 0.3 ms (a typical rocking case)
 and 3.6 ms (a long record's IDA step).
 """
@@ -52,27 +55,30 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 WORKERS = [16, 64, 256, 2048, 16384]
 
 # Measured with callgrind on a non-lifting LHS of 8 parameters, 17 metrics, at 4 ranks, on main after the
-# streaming fold, the chunk-wise statuses, the cheaper sealing and the coordinates filled a piece at once
-# (rank_costs.py --ranks 4 --small 294912 1179648, one checkpoint at the end: marginal instructions between
-# the two sizes, so that start-up cancels; rank 0's own work with its waits left out, and the working
-# threads' split, both printed by rank_costs.py; three repeats; studies/README.md "The master at cluster
-# scale"):
-MASTER_SETUP_PER_CASE = 0.7       # rank 0's main thread before the first hand-out, its wait for the workers'
-                                  # pieces left out (that wait is the creation's parallel part, t_create): the
-                                  # coordinates' raw writes (was 11 600 at da9ce77; 1.7 at e2c9aee, with a memset
-                                  # of a byte a case of statuses)
-MASTER_RUN_PER_RESULT = 4.9       # rank 0's main thread during the run, its polling between messages left out:
+# coordinates written during the run (each unit's worker seals its chunk of every sampled parameter, rank 0
+# copies it raw with the unit) and libdeflate's Adler-32 (rank_costs.py --ranks 4 --small 294912 1179648, one
+# checkpoint at the end: marginal instructions between the two sizes, so that start-up cancels; rank 0's own
+# work with its waits left out, and the working threads' split, both printed by rank_costs.py; studies/README.md
+# "The master at cluster scale"):
+MASTER_SETUP_PER_CASE = 0.4       # rank 0's main thread before the first hand-out, its wait for the workers'
+                                  # pieces left out: the plan, the checks, the case number's pieces (0.7 when it
+                                  # also wrote every sampled parameter's chunks; 11 600 at da9ce77)
+MASTER_RUN_PER_RESULT = 8.1       # rank 0's main thread during the run, its polling between messages left out:
                                   # what comes back (Master::handle), nearly all of it the parts' chunks streamed
-                                  # into the next fold (CubeWriter::stream_kept, 4.5: HDF5's raw chunk write with
-                                  # fixed-array chunk indices); 4.8 to 4.9 in three repeats
-MASTER_ASSEMBLY_PER_RESULT = 0.9  # rank 0's main thread in the last fold, after the run: what the stream does not
-                                  # hold (0.4 to 0.9 in three repeats; 1.6 at e2c9aee, 11 before the streaming
-                                  # fold, 25 at 291f9a0)
-NONLIFT_CASE = 15_200             # a worker's non-lifting case (CaseRunner::run; its LHS point included: 16 100 at
+                                  # into the next fold (CubeWriter::stream_kept: HDF5's raw chunk write with
+                                  # fixed-array chunk indices, 18 variables and now 8 coordinate chunks a unit;
+                                  # 4.9 without the coordinates)
+MASTER_ASSEMBLY_PER_RESULT = 0.4  # rank 0's main thread in the last fold, after the run: what the stream does not
+                                  # hold, and the coordinate chunks no unit brought (looked up in HDF5's chunk
+                                  # index only where rank 0 did not write them itself); 0.4 to 0.9 before,
+                                  # 11 before the streaming fold, 25 at 291f9a0
+NONLIFT_CASE = 15_190             # a worker's non-lifting case (CaseRunner::run; its LHS point included: 16 100 at
                                   # e2c9aee, the point then computed value by value)
-WORKER_OWN_PER_CASE = 2_010       # sealing its chunk 1 455 (2 630 at e2c9aee), its part and messages 555
-WORKER_CREATION_PER_CASE = 2_565  # the cube's coordinates computed and sealed by the workers, per case of the study
-                                  # (5 980 at e2c9aee)
+WORKER_OWN_PER_CASE = 4_910       # sealing its chunk and its chunk of each coordinate 4 050 (the metrics 1 330,
+                                  # the coordinates' values computed again from the plan 1 450 and sealed 1 330),
+                                  # its part and messages 860
+WORKER_CREATION_PER_CASE = 67     # the case number's pieces sealed by the workers at the creation, per case of
+                                  # the study (2 565 when the sampled parameters were sealed there too)
 
 
 def efficiency(workers, t_case, t_own, t_create, t_serial, t_setup, t_assembly):
@@ -119,10 +125,12 @@ def main():
     parser.add_argument("--creation-per-case", type=float, default=WORKER_CREATION_PER_CASE,
                         help="instructions the workers spend together per case of the study creating the cube")
     parser.add_argument("--ns-per-instruction", type=float, default=0.145)
-    parser.add_argument("--coordinate-bytes-per-case", type=float, default=53.5,
-                        help="bytes a case the cube's coordinates take [B] (pcrf_cube_filters, non-lifting LHS)")
-    parser.add_argument("--result-bytes-per-case", type=float, default=34.9,
-                        help="bytes a case the cube's metrics and status take [B] (pcrf_cube_filters)")
+    parser.add_argument("--coordinate-bytes-per-case", type=float, default=0.07,
+                        help="bytes a case the coordinates written at the cube's creation take [B] (the case "
+                             "number's; pcrf_cube_filters, non-lifting LHS)")
+    parser.add_argument("--result-bytes-per-case", type=float, default=88.3,
+                        help="bytes a case streamed during the run take [B]: its metrics and status, and its "
+                             "sampled parameters (pcrf_cube_filters)")
     parser.add_argument("--assembled-at-end", action="store_true",
                         help="the results' bytes written after the run (the design before the streaming fold)")
     parser.add_argument("--write-gb-s", type=float, default=1.0,
