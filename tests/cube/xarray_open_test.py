@@ -27,15 +27,30 @@ lambda_h = {from = 0.1, to = 0.3, count = 3}
 """
 
 
+def run_study(pcrf, folder, name, text, *options):
+    """The cube of study `text`, run as <folder>/<name>.toml into <folder>/<name>.h5 (`options`:
+    more of `pcrf study`'s)."""
+    study = os.path.join(folder, name + ".toml")
+    cube = os.path.join(folder, name + ".h5")
+    with open(study, "w", encoding="utf-8") as f:
+        f.write(text)
+    subprocess.run([pcrf, "study", study, "-o", cube, "--overwrite", "--progress-interval", "0", *options],
+                   check=True, capture_output=True)
+    return cube
+
+
+def exported_rows(pcrf, cube):
+    """`pcrf cube export` of `cube`, a dict a case."""
+    import csv
+    import io
+    return list(csv.DictReader(io.StringIO(subprocess.run(
+        [pcrf, "cube", "export", cube, "--no-record-text"], check=True, capture_output=True, text=True).stdout)))
+
+
 def main(pcrf, folder):
     os.makedirs(folder, exist_ok=True)
-    study = os.path.join(folder, "ranges.toml")
-    cube = os.path.join(folder, "ranges.h5")
-    with open(study, "w", encoding="utf-8") as f:
-        f.write(STUDY)
     # --shard 1/2 leaves half of the cases not run: their status is the not_run flag, not NaN.
-    subprocess.run([pcrf, "study", study, "-o", cube, "--overwrite", "--progress-interval", "0", "--shard", "1/2"],
-                   check=True, capture_output=True)
+    cube = run_study(pcrf, folder, "ranges", STUDY, "--shard", "1/2")
     settings = subprocess.run([pcrf, "settings", "--json"], check=True, capture_output=True, text=True).stdout
     import json
     names = {s["name"]: s["value"] for s in json.loads(settings)["statuses"]}
@@ -79,16 +94,8 @@ metrics = ["theta_max_rad"]
 
 def lhs_coordinates(pcrf, folder):
     """A long LHS: xarray reads its compressed coordinates as the engine wrote them."""
-    import csv
-    import io
-    study = os.path.join(folder, "lhs.toml")
-    cube = os.path.join(folder, "lhs.h5")
-    with open(study, "w", encoding="utf-8") as f:
-        f.write(LHS)
-    subprocess.run([pcrf, "study", study, "-o", cube, "--overwrite", "--progress-interval", "0"],
-                   check=True, capture_output=True)
-    rows = list(csv.DictReader(io.StringIO(subprocess.run(
-        [pcrf, "cube", "export", cube, "--no-record-text"], check=True, capture_output=True, text=True).stdout)))
+    cube = run_study(pcrf, folder, "lhs", LHS)
+    rows = exported_rows(pcrf, cube)
     for engine in ("netcdf4", "h5netcdf"):
         try:
             ds = xr.open_dataset(cube, engine=engine)
@@ -122,14 +129,7 @@ def checkpoint_coordinates(pcrf, folder):
     except ImportError as e:
         print(f"checkpoint: skipped ({e})")
         return
-    import csv
-    import io
-    study = os.path.join(folder, "checkpoint.toml")
-    cube = os.path.join(folder, "checkpoint.h5")
-    with open(study, "w", encoding="utf-8") as f:
-        f.write(CHECKPOINT)
-    subprocess.run([pcrf, "study", study, "-o", cube, "--overwrite", "--progress-interval", "0"],
-                   check=True, capture_output=True)
+    cube = run_study(pcrf, folder, "checkpoint", CHECKPOINT)
     unit = 16384
     with h5py.File(cube, "r+") as f:
         kappa = f["kappa"]
@@ -152,8 +152,7 @@ def checkpoint_coordinates(pcrf, folder):
     assert np.isnan(kappa[unit:]).all(), "a unit not written yet reads as no value"
     assert (ds.status.values[..., unit:] == -1).all()
     ds.close()
-    rows = list(csv.DictReader(io.StringIO(subprocess.run(
-        [pcrf, "cube", "export", cube, "--no-record-text"], check=True, capture_output=True, text=True).stdout)))
+    rows = exported_rows(pcrf, cube)
     assert [float(r["kappa"]) for r in rows[:unit]] == kappa[:unit].tolist()
     assert all(r["kappa"] == "" and r["status"] == "not_run" for r in rows[unit:]), rows[unit]
     info = subprocess.run([pcrf, "cube", "info", cube], check=True, capture_output=True, text=True).stdout
