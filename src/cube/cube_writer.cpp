@@ -727,6 +727,7 @@ void CubeWriter::store_sealed(SealedChunk sealed) {
   sealed.notes.clear();
   std::size_t bytes = sealed.status.size();
   for (const auto& f : sealed.filtered) bytes += f.size();
+  for (const auto& piece : sealed.coordinates) bytes += piece.filtered.size();  // held until the checkpoint too
   impl.pending_bytes += bytes;
   impl.pending_results += r.count;
   const std::size_t chunk = sealed.chunk;

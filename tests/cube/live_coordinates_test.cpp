@@ -211,6 +211,22 @@ SealedChunk carrying(const CubeWriter& writer, std::size_t unit) {
   return sealed;
 }
 
+// What a unit's coordinate chunks hold counts in the results held until the next checkpoint
+// (CubeWriter::pending_bytes, which bounds rank 0's memory: study_run.cpp checkpoints past
+// kPendingResultsBytes): they wait in memory with the unit.
+TEST(LiveCoordinates, AUnitsCoordinateChunksCountInTheBytesHeldUntilTheCheckpoint) {
+  const auto file = test::scratch_dir("live_pending") / "c.h5";
+  CubeWriter writer(file, live_layout(), OpenMode::kCreate);
+  SealedChunk sealed = carrying(writer, 0);
+  ASSERT_EQ(sealed.coordinates.size(), 1u);
+  std::size_t held = sealed.status.size() + sealed.coordinates.front().filtered.size();
+  for (const auto& f : sealed.filtered) held += f.size();
+  writer.store_sealed(std::move(sealed));
+  EXPECT_EQ(writer.pending_bytes(), held);
+  writer.flush();
+  EXPECT_EQ(writer.pending_bytes(), 0u);
+}
+
 /// A run of three ranks whose units carry their coordinates: unit 0 kept in rank 1's part and
 /// streamed, unit 1 sent to rank 0 (its journal), unit 2 kept in rank 2's part and taken at the
 /// end; `asked` counts the values rank 0's writer computes itself.
