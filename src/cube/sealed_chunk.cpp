@@ -569,20 +569,36 @@ std::size_t sealed_piece_bound(const Coordinate& c, std::size_t chunk_values) {
   return filtered_bound(chunk_values, c.is_index ? sizeof(std::int32_t) : sizeof(double));
 }
 
+namespace {
+
+static_assert(std::endian::native == std::endian::little, "a sealed piece holds the file's little-endian values");
+
+/// A float64 chunk of `chunk_values` values of a coordinate, in a thread's buffer, kept (a new
+/// one, cleared, was 70 instructions a case for 8 coordinates): its first values are the
+/// piece's, written there by the caller.
+std::span<double> piece_buffer(std::size_t chunk_values) {
+  thread_local std::vector<double> buffer;
+  if (buffer.size() < chunk_values) buffer.resize(chunk_values);
+  return {buffer.data(), chunk_values};
+}
+
+/// The stream of a float64 chunk whose first `count` values hold the piece's: the rest padded
+/// with zeros (never read), then each byte plane coded as a metric's.
+std::vector<char> sealed_float64_chunk(std::span<double> chunk, std::size_t count) {
+  std::fill(chunk.begin() + static_cast<std::ptrdiff_t>(count), chunk.end(), 0.0);
+  return deflated(reinterpret_cast<const char*>(chunk.data()), chunk.size(), sizeof(double), Coding::kPlanes);
+}
+
+}  // namespace
+
 std::vector<char> seal_coordinate_values(std::span<const double> values, std::size_t chunk_values) {
-  static_assert(std::endian::native == std::endian::little, "a sealed piece holds the file's little-endian values");
   if (values.empty() || values.size() > chunk_values) throw std::invalid_argument("seal_coordinate_values: not a piece");
-  // A thread's buffer, kept: a new one, cleared, was 70 instructions a case (8 coordinates).
-  thread_local std::vector<double> piece_values;
-  if (piece_values.size() < chunk_values) piece_values.resize(chunk_values);
-  const std::span<double> padded(piece_values.data(), chunk_values);
-  std::copy(values.begin(), values.end(), padded.begin());
-  std::fill(padded.begin() + static_cast<std::ptrdiff_t>(values.size()), padded.end(), 0.0);
-  return deflated(reinterpret_cast<const char*>(padded.data()), chunk_values, sizeof(double), Coding::kPlanes);
+  const std::span<double> chunk = piece_buffer(chunk_values);
+  std::copy(values.begin(), values.end(), chunk.begin());
+  return sealed_float64_chunk(chunk, values.size());
 }
 
 std::vector<char> seal_coordinate_piece(const Coordinate& c, std::size_t chunk_values, std::size_t piece) {
-  static_assert(std::endian::native == std::endian::little, "a sealed piece holds the file's little-endian values");
   if (!c.chunked() || chunk_values == 0 || piece >= piece_count(c.size(), chunk_values))
     throw std::invalid_argument("seal_coordinate_piece: '" + c.name + "' has no chunk " + std::to_string(piece));
   const std::size_t chunk = chunk_values;
@@ -593,13 +609,9 @@ std::vector<char> seal_coordinate_piece(const Coordinate& c, std::size_t chunk_v
     for (std::size_t k = 0; k < count; ++k) values[k] = static_cast<std::int32_t>(c.number(first + k));
     return deflated(reinterpret_cast<const char*>(values.data()), chunk, sizeof(std::int32_t), Coding::kRepeats);
   }
-  // A thread's buffer, kept: a new one, cleared, was 70 instructions a case (8 coordinates).
-  thread_local std::vector<double> piece_values;
-  if (piece_values.size() < chunk) piece_values.resize(chunk);
-  const std::span<double> values(piece_values.data(), chunk);
+  const std::span<double> values = piece_buffer(chunk);
   c.numbers_into(first, values.first(count));
-  std::fill(values.begin() + static_cast<std::ptrdiff_t>(count), values.end(), 0.0);
-  return deflated(reinterpret_cast<const char*>(values.data()), chunk, sizeof(double), Coding::kPlanes);
+  return sealed_float64_chunk(values, count);
 }
 
 std::vector<char> to_bytes(const SealedChunk& sealed) {
