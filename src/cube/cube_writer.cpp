@@ -63,6 +63,28 @@ void write_descriptive_attributes(hid_t object, const std::string& units, const 
 /// piece by piece (write_long_coordinates), not into the in-memory image.
 bool written_later(const Coordinate& c) { return c.written_later(); }
 
+/// The chunk extents of dataset `set` (of `rank` dimensions) when it stores its chunks filtered
+/// as a sealed chunk is (shuffled, then deflated: sealed_chunk.hpp), so that a raw chunk write
+/// takes a sealed chunk's bytes as they are; nullopt otherwise (contiguous, or filtered
+/// otherwise: a variable of an earlier version's cube).
+std::optional<std::vector<hsize_t>> sealed_chunk_extents(hid_t set, std::size_t rank, const std::string& problem) {
+  auto dcpl = h5::plist(H5Dget_create_plist(set), problem);
+  std::vector<hsize_t> chunk(rank + 1, 0);
+  if (H5Pget_layout(dcpl) != H5D_CHUNKED ||
+      H5Pget_chunk(dcpl, static_cast<int>(chunk.size()), chunk.data()) != static_cast<int>(rank) ||
+      H5Pget_nfilters(dcpl) != 2)
+    return std::nullopt;
+  auto filter = [&](unsigned k) {
+    unsigned flags = 0, config = 0, values[8] = {};
+    std::size_t n = 8;
+    char name[64] = {};
+    return H5Pget_filter2(dcpl, k, &flags, &n, values, sizeof name, name, &config);
+  };
+  if (filter(0) != H5Z_FILTER_SHUFFLE || filter(1) != H5Z_FILTER_DEFLATE) return std::nullopt;
+  chunk.resize(rank);
+  return chunk;
+}
+
 /// A 1-D coordinate variable (text, index or numbers); its values are written here unless
 /// written_later. A chunked one in chunks of `chunk_values` (coordinate_chunk_values); one
 /// written_live with the fill NaN (HDF5's and netCDF's `_FillValue`), as a metric: until its
@@ -789,20 +811,9 @@ void CubeWriter::Impl::write_chunk(std::size_t chunk, const std::vector<JournalC
 /// sealed chunks are then written value by value).
 bool CubeWriter::Impl::raw_writable() const {
   auto stores_sealed = [&](hid_t set) {
-    auto dcpl = h5::plist(H5Dget_create_plist(set), what("cannot read a variable's storage"));
     const auto& shape = grid.chunk_shape();
-    std::vector<hsize_t> chunk(shape.size() + 1, 0);
-    if (H5Pget_chunk(dcpl, static_cast<int>(chunk.size()), chunk.data()) != static_cast<int>(shape.size())) return false;
-    for (std::size_t d = 0; d < shape.size(); ++d)
-      if (chunk[d] != shape[d]) return false;
-    if (H5Pget_nfilters(dcpl) != 2) return false;
-    auto filter = [&](unsigned k) {
-      unsigned flags = 0, config = 0, values[8] = {};
-      std::size_t n = 8;
-      char name[64] = {};
-      return H5Pget_filter2(dcpl, k, &flags, &n, values, sizeof name, name, &config);
-    };
-    return filter(0) == H5Z_FILTER_SHUFFLE && filter(1) == H5Z_FILTER_DEFLATE;
+    const auto chunk = sealed_chunk_extents(set, shape.size(), what("cannot read a variable's storage"));
+    return chunk && std::equal(chunk->begin(), chunk->end(), shape.begin(), shape.end());
   };
   return std::all_of(metric_sets.begin(), metric_sets.end(), [&](const h5::Handle& m) { return stores_sealed(m); }) &&
          stores_sealed(status_set);
@@ -1048,9 +1059,9 @@ void CubeWriter::Impl::find_unit_coordinates(hid_t in) {
     if (!d || H5Lexists(in, c.name.c_str(), H5P_DEFAULT) <= 0) continue;
     const std::string problem = what("cannot read coordinate '" + c.name + "'");
     auto set = h5::dataset(H5Dopen2(in, c.name.c_str(), H5P_DEFAULT), problem);
-    auto dcpl = h5::plist(H5Dget_create_plist(set), problem);
-    hsize_t chunk = 0;
-    if (H5Pget_layout(dcpl) != H5D_CHUNKED || H5Pget_chunk(dcpl, 1, &chunk) != 1 || H5Pget_nfilters(dcpl) != 2) continue;
+    const auto extents = sealed_chunk_extents(set, 1, problem);
+    if (!extents) continue;
+    const hsize_t chunk = extents->front();
     if (chunk != grid.chunk_shape()[*d] || chunk != coordinate_chunk_values(grid, *d)) continue;
     unit_coordinates.push_back({k, c.name, *d, static_cast<std::size_t>(chunk)});
   }
@@ -1091,11 +1102,9 @@ void CubeWriter::Impl::write_missing_coordinates(const StatusBook& status) {
     if (!dim) continue;
     const std::string problem = what("cannot write coordinate '" + c.name + "'");
     auto d = h5::dataset(H5Dopen2(file, c.name.c_str(), H5P_DEFAULT), problem);
-    auto dcpl = h5::plist(H5Dget_create_plist(d), problem);
-    hsize_t chunk = 0;
-    if (H5Pget_layout(dcpl) != H5D_CHUNKED || H5Pget_chunk(dcpl, 1, &chunk) != 1 || chunk == 0 || H5Pget_nfilters(dcpl) != 2)
-      continue;
-    const auto values = static_cast<std::size_t>(chunk);
+    const auto extents = sealed_chunk_extents(d, 1, problem);
+    if (!extents || extents->front() == 0) continue;
+    const auto values = static_cast<std::size_t>(extents->front());
     const std::size_t pieces = piece_count(c.size(), values);
     std::vector<char> wanted(pieces, closing ? 1 : 0);
     if (!closing) {
