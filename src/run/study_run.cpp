@@ -272,7 +272,9 @@ class ChunkSealer {
 
   /// nullopt (the cases then go back one by one) unless `outcomes` are every case of the chunk
   /// once (with gaps: cases of the chunk, each at most once).
-  std::optional<std::vector<char>> operator()(std::int64_t unit, std::span<const parallel::CaseOutcome> outcomes) const {
+  /// Never inlined: its own frame in a profile, where bench/master/rank_costs.py counts a worker's sealing.
+  [[gnu::noinline]] std::optional<std::vector<char>> operator()(std::int64_t unit,
+                                                                std::span<const parallel::CaseOutcome> outcomes) const {
     if (unit < 0 || static_cast<std::size_t>(unit) >= grid_.chunk_count()) return std::nullopt;
     const auto chunk = static_cast<std::size_t>(unit);
     const auto r = grid_.range(chunk);
