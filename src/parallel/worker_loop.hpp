@@ -187,6 +187,7 @@ inline void worker_loop(MasterLink& link, const CasesEvaluator& evaluate, std::s
           if (keep != nullptr && *keep) failed = (*keep)(number, *bytes);
           if (failed) sealed.push_back({number, cases, {}, true, *failed});
           else sealed.push_back({number, cases, std::move(*bytes)});
+          recycle_rows(std::span<CaseOutcome>(finished).subspan(before));  // the next unit's rows
           finished.resize(before);
         }
       }
