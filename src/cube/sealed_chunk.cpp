@@ -711,7 +711,10 @@ std::vector<char> sealed_bytes(const ChunkGrid& grid, std::size_t chunk, std::si
   for (const PieceValues& piece : pieces) {
     put<std::uint64_t>(out, piece.coordinate);
     put<std::uint64_t>(out, piece.piece);
-    put_stream(sealed_values_view(piece.values, piece.chunk_values));
+    const bool in_place = !piece.values.empty() && piece.room.size() == piece.chunk_values &&
+                          piece.room.data() == piece.values.data() && piece.values.size() <= piece.chunk_values;
+    put_stream(in_place ? sealed_float64_chunk_view(piece.room, piece.values.size())
+                        : sealed_values_view(piece.values, piece.chunk_values));
   }
   last_bytes = out.size();
   return out;

@@ -247,6 +247,37 @@ std::int64_t frames_together(const Study& study) { return on_gpu(study) ? kGpuWi
 /// A worker's side of the cube (issue 38: no rank handles every result): a chunk handed out
 /// whole comes back from the worker that computed it as the cube stores it, every variable
 /// shuffled and deflated (cube::seal_chunk); the writing rank copies its bytes.
+/// Cases of a chunk whose rows metric_major copies together, when consecutive: a metric's
+/// values of them are then one contiguous store (2.3 instructions a value, against 6 one case
+/// at a time, callgrind).
+constexpr std::size_t kRowsTogether = 8;
+
+/// The rows of `outcomes` (cases of the chunk from case `first`, each once, rows checked) into
+/// `values` at [metric * count + k], k the case's place in the chunk.
+void metric_major(std::span<const parallel::CaseOutcome> outcomes, std::int64_t first, std::size_t count,
+                  std::vector<double>& values) {
+  const std::size_t metrics = count == 0 ? 0 : values.size() / count;
+  std::size_t i = 0;
+  while (i < outcomes.size()) {
+    const auto at = static_cast<std::size_t>(outcomes[i].case_index - first);
+    bool together = i + kRowsTogether <= outcomes.size();
+    for (std::size_t j = 1; together && j < kRowsTogether; ++j)
+      together = outcomes[i + j].case_index == outcomes[i].case_index + static_cast<std::int64_t>(j);
+    if (!together) {
+      const double* row = outcomes[i].row.data();
+      for (std::size_t m = 0; m < metrics; ++m) values[m * count + at] = row[m];
+      ++i;
+      continue;
+    }
+    const double* rows[kRowsTogether];
+    for (std::size_t j = 0; j < kRowsTogether; ++j) rows[j] = outcomes[i + j].row.data();
+    double* to = values.data() + at;
+    for (std::size_t m = 0; m < metrics; ++m, to += count)
+      for (std::size_t j = 0; j < kRowsTogether; ++j) to[j] = rows[j][m];
+    i += kRowsTogether;
+  }
+}
+
 class ChunkSealer {
  public:
   /// `gaps`: a case of the chunk without an outcome is sealed not run (status not_run, every
@@ -300,9 +331,9 @@ class ChunkSealer {
       const auto at = static_cast<std::size_t>(k);
       seen[at] = 1;
       status[at] = static_cast<std::int8_t>(outcome_status(outcome));
-      for (std::size_t m = 0; m < metrics_; ++m) values[m * count + at] = outcome.row[m];
       if (!outcome.note.empty()) notes.emplace_back(outcome.case_index, outcome.note);
     }
+    metric_major(outcomes, r.first, count, values);
     // The unit's coordinate pieces' values, each in a buffer of this thread's, kept (a piece's
     // values computed in one pass), then every stream sealed straight into the unit's bytes.
     thread_local std::vector<std::vector<double>> own;
@@ -314,9 +345,10 @@ class ChunkSealer {
       const auto piece = cube::unit_piece(grid_, chunk, u);
       if (!piece) continue;
       const std::size_t first = *piece * u.chunk_values, values_in = std::min(u.chunk_values, c.size() - first);
-      own[k].resize(values_in);
-      c.numbers_into(first, own[k]);
-      pieces.push_back({u.coordinate, *piece, own[k], u.chunk_values});
+      own[k].resize(u.chunk_values);  // the piece's values, then room to pad them in place
+      const std::span<double> room(own[k]);
+      c.numbers_into(first, room.first(values_in));
+      pieces.push_back({u.coordinate, *piece, room.first(values_in), u.chunk_values, room});
     }
     return cube::sealed_bytes(grid_, chunk, metrics_, status, values, notes, pieces);
   }

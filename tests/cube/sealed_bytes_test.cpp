@@ -5,6 +5,7 @@
 // written from the chunk.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <random>
@@ -73,9 +74,20 @@ TEST(SealedBytes, AreTheBytesOfTheChunkSealedThenJoined) {
           for (const std::size_t pieces : {std::size_t{0}, std::size_t{3}}) {
             const Gathered g = gathered(grid, chunk, metrics, code, pieces, 2048);
             const std::vector<char> direct = sealed_bytes(grid, chunk, metrics, g.status, g.values, g.notes, g.pieces);
-            ASSERT_EQ(direct, bytes_by_chunk(grid, chunk, metrics, g))
-                << "chunk " << chunk << " of " << grid.chunk_count() << ", code " << code << ", " << metrics
-                << " metrics, " << pieces << " pieces";
+            const std::vector<char> expected = bytes_by_chunk(grid, chunk, metrics, g);
+            ASSERT_EQ(direct, expected) << "chunk " << chunk << " of " << grid.chunk_count() << ", code " << code << ", "
+                                        << metrics << " metrics, " << pieces << " pieces";
+            // The pieces' values in buffers of a whole chunk each, with stale values after
+            // them, padded and sealed in place: the same bytes.
+            std::vector<std::vector<double>> rooms;
+            std::vector<PieceValues> in_place = g.pieces;
+            for (PieceValues& p : in_place) {
+              rooms.emplace_back(p.chunk_values, 7.5);
+              std::copy(p.values.begin(), p.values.end(), rooms.back().begin());
+              p.room = rooms.back();
+              p.values = p.room.first(p.values.size());
+            }
+            ASSERT_EQ(sealed_bytes(grid, chunk, metrics, g.status, g.values, g.notes, in_place), expected);
           }
   const ChunkGrid grid({40000});
   const Gathered g = gathered(grid, 1, 2, -1, 1, 2048);

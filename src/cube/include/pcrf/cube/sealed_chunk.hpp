@@ -102,6 +102,10 @@ struct PieceValues {
   std::size_t piece = 0;
   std::span<const double> values;
   std::size_t chunk_values = 0;
+  /// Optional: a buffer of `chunk_values` values whose first are `values` (the same memory),
+  /// which sealed_bytes pads and seals in place, without copying them (its values after the
+  /// piece's are overwritten).
+  std::span<double> room = {};
 };
 /// to_bytes of the chunk seal_chunk makes of these arguments, with `pieces` sealed by
 /// seal_coordinate_values as its coordinates, the same bytes, each stream written once, straight
