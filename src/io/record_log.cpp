@@ -251,7 +251,12 @@ void LogWriter::cut_back(int error) {
 bool LogWriter::write_at(std::uint64_t offset, std::span<const std::string_view> pieces) {
   constexpr std::size_t kPiecesPerCall = 64;  // iovecs a pwritev takes here (IOV_MAX is 1024)
   std::size_t next = 0, done = 0;  // the first piece not written whole; its bytes written
-  while (next < pieces.size()) {
+  while (true) {
+    while (next < pieces.size() && pieces[next].size() == done) {  // written whole (or empty)
+      ++next;
+      done = 0;
+    }
+    if (next == pieces.size()) return true;
     iovec vector[kPiecesPerCall];
     int used = 0;
     for (std::size_t k = next; k < pieces.size() && used < static_cast<int>(kPiecesPerCall); ++k, ++used) {
@@ -274,7 +279,6 @@ bool LogWriter::write_at(std::uint64_t offset, std::span<const std::string_view>
       done = 0;
     }
   }
-  return true;
 }
 
 bool LogWriter::write_at(std::uint64_t offset, std::string_view bytes) {
