@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <numeric>
 #include <random>
+#include <stdexcept>
 #include <span>
 #include <vector>
 
@@ -24,10 +25,14 @@ double value_of(std::size_t s, std::size_t i) { return static_cast<double>(s) * 
 struct Columns {
   std::size_t frames = 0;
   std::size_t fills = 0;
+  std::size_t throw_at = static_cast<std::size_t>(-1);  ///< the fill (counted from 0) that throws, half written
   void operator()(std::size_t s, std::size_t first, std::span<double> out) {
     ASSERT_LE(first + out.size(), frames) << "a fill past the plan's last frame";
     ASSERT_FALSE(out.empty()) << "an empty fill";
-    ++fills;
+    if (fills++ == throw_at) {
+      std::fill(out.begin(), out.end(), -2.0);
+      throw std::runtime_error("fill failed");
+    }
     for (std::size_t m = 0; m < out.size(); ++m) out[m] = value_of(s, first + m);
   }
 };
@@ -130,6 +135,32 @@ TEST(ColumnWindow, RepeatedAndRevisitedFramesKeepTheirValues) {
     for (std::size_t i = start; i < std::min(start + length, 3 * kWindow); ++i) (void)ask(window, columns, 1 + k % 2, i);
     const std::size_t first = std::uniform_int_distribution<std::size_t>(0, 3 * kWindow - 1000)(random);
     (void)held(window, 1 + k % 2, k % 3, first, 1000);
+  }
+}
+
+TEST(ColumnWindow, AFillThatThrowsLeavesNothingWrongHeld) {
+  // A fill that throws half way (its column half written): the frames it was filling are not
+  // held, whether it extended the window or started it anew; the frames asked later are right.
+  for (std::size_t throw_at : {1u, 2u, 4u, 5u}) {
+    SCOPED_TRACE(throw_at);
+    ColumnWindow window;
+    Columns columns{3 * kWindow};
+    columns.throw_at = throw_at;  // 3 columns a fill: 1, 2 the first fill; 4, 5 the second
+    std::size_t thrown = 0;
+    for (std::size_t i = 10; i < 200; ++i) {
+      try {
+        (void)ask(window, columns, 1, i);
+      } catch (const std::runtime_error&) {
+        ++thrown;
+      }
+    }
+    EXPECT_EQ(thrown, 1u);
+    for (std::size_t s = 0; s < 3; ++s) (void)held(window, 1, s, 0, 300);  // checks every value held
+    for (std::size_t i = 10; i < 200; ++i) (void)ask(window, columns, 1, i);
+    // A run that starts anew below what the window holds, its fill failing.
+    columns.throw_at = columns.fills + 1;
+    EXPECT_THROW(for (std::size_t i = 0; i < 10; ++i) (void)ask(window, columns, 1, i), std::runtime_error);
+    for (std::size_t s = 0; s < 3; ++s) (void)held(window, 1, s, 0, 300);
   }
 }
 

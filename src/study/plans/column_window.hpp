@@ -91,18 +91,19 @@ class ColumnWindow {
   }
 
   /// Fills frames up to at least i + 1: on from what is held when i follows it in the same
-  /// window, else anew from the run's first frame in i's window.
+  /// window, else anew from the run's first frame in i's window. A fill that throws leaves
+  /// held only frames it did not touch.
   template <class Fill>
   void extend_to(std::size_t i, std::size_t frames, Fill& fill) {
+    if (values_.size() < columns_ * kWindowFrames) values_.resize(columns_ * kWindowFrames);
     const std::size_t start = i / kWindowFrames * kWindowFrames;
     std::size_t from = hi_;
     if (!(start == start_ && lo_ < hi_ && i == hi_)) {
       start_ = start;
       from = std::max(i + 1 - run_, start);
-      lo_ = from;
+      lo_ = hi_ = from;
     }
     const std::size_t to = std::min({i + std::max(run_, kFirstFillFrames), start + kWindowFrames, frames});
-    if (values_.size() < columns_ * kWindowFrames) values_.resize(columns_ * kWindowFrames);
     for (std::size_t s = 0; s < columns_; ++s)
       fill(s, from, std::span(values_.data() + s * kWindowFrames + (from - start), to - from));
     filled_ += (to - from) * columns_;
