@@ -114,6 +114,8 @@ TEST(ColumnWindow, TheLastWindowStopsAtThePlansLastFrame) {
   for (std::size_t i = kWindow; i < kWindow + 500; ++i) ASSERT_EQ(ask(window, columns, 1, i), i > kWindow);
   EXPECT_EQ(held(window, 1, 2, kWindow, kWindow), (std::pair{kWindow, kWindow + 500}));
   EXPECT_EQ(window.filled_values(), 3 * 500u);
+  EXPECT_FALSE(ask(window, columns, 1, kWindow + 500)) << "a frame past the plan's is not the window's";
+  EXPECT_EQ(window.filled_values(), 3 * 500u);
 }
 
 TEST(ColumnWindow, RepeatedAndRevisitedFramesKeepTheirValues) {

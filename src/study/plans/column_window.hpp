@@ -46,7 +46,7 @@ class ColumnWindow {
     run_ = i == last_ + 1 ? run_ + 1 : i == last_ ? run_ : 1;
     last_ = i;
     if (!holds(i)) {
-      if (run_ < 2) return false;
+      if (run_ < 2 || i >= frames) return false;  // a frame past the plan's: the caller's, as before
       extend_to(i, frames, fill);
     }
     for (std::size_t s = 0; s < out.size(); ++s) out[s] = values_[s * kWindowFrames + (i - start_)];
