@@ -56,8 +56,9 @@ WORKERS = [16, 64, 256, 2048, 16384]
 
 # Measured with callgrind on a non-lifting LHS of 8 parameters, 17 metrics, at 4 ranks, on main after the
 # coordinates written during the run (each unit's worker seals its chunk of every sampled parameter, rank 0
-# copies it raw with the unit) and libdeflate's Adler-32, the workers' two figures after each unit's parameters
-# were computed once, by columns (rank_costs.py --ranks 4 --small 294912 1179648, one
+# copies it raw with the unit) and libdeflate's Adler-32, the workers' two figures on main at 932bc0d, after its
+# sealing's copies went and each unit's parameters were computed once, by columns (rank_costs.py --ranks 4 --small
+# 294912 1179648, one
 # checkpoint at the end: marginal instructions between the two sizes, so that start-up cancels; rank 0's own
 # work with its waits left out, and the working threads' split, both printed by rank_costs.py; studies/README.md
 # "The master at cluster scale"):
@@ -73,13 +74,17 @@ MASTER_ASSEMBLY_PER_RESULT = 0.4  # rank 0's main thread in the last fold, after
                                   # hold, and the coordinate chunks no unit brought (looked up in HDF5's chunk
                                   # index only where rank 0 did not write them itself); 0.4 to 0.9 before,
                                   # 11 before the streaming fold, 25 at 291f9a0
-NONLIFT_CASE = 13_920             # a worker's non-lifting case (CaseRunner::run), its LHS point included: each unit's
+NONLIFT_CASE = 13_750             # a worker's non-lifting case (CaseRunner::run), its LHS point included: each unit's
                                   # parameters computed once, by the design's columns, in its cases' set-up
-                                  # (ColumnWindow, 1 420) and read from there by the sealing; 15 200 before, when each
-                                  # case computed its point by the design's row (2 490), 16 100 at e2c9aee
-WORKER_OWN_PER_CASE = 3_540       # sealing its chunk and its chunk of each coordinate 2 670 (the metrics 1 110, the
-                                  # coordinates sealed 1 115, their values read from the unit's window 64: 1 390 when
-                                  # they were computed again from the plan), its part and messages 875
+                                  # (ColumnWindow, 1 410) and read from there by the sealing; its row from the
+                                  # worker's pool (parallel::pooled_row). 15 190 at f1ca852, when each case computed
+                                  # its point by the design's row (2 490); 16 100 at e2c9aee
+WORKER_OWN_PER_CASE = 2_455       # sealing its chunk and its chunk of each coordinate 2 307 (deflating the metrics'
+                                  # and the coordinates' streams 2 090, the coordinates' values read from the unit's
+                                  # window 65, gathering the rows and one copy of the streams into the unit's bytes
+                                  # about 150), its part (written from those bytes as they lie, libdeflate's CRC-32),
+                                  # its batch of rows and messages 148. 4 910 at f1ca852 (sealing 4 050 with the
+                                  # coordinates' values computed again from the plan, 1 450; the rest 860)
 WORKER_CREATION_PER_CASE = 67     # the case number's pieces sealed by the workers at the creation, per case of
                                   # the study (2 565 when the sampled parameters were sealed there too)
 
