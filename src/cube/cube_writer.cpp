@@ -1038,13 +1038,14 @@ void CubeWriter::Impl::write_sealed_piece(hid_t d, const CoordinatePiece& piece,
   h5::check(H5Dwrite_chunk(d, H5P_DEFAULT, 0, &offset, bytes.size(), bytes.data()), problem);
 }
 
-/// Values per chunk of a chunked coordinate of this cube (coordinate_chunk_values of its grid;
-/// a short one's "pieces" as it is written value by value: kContiguousCoordinateMax).
+/// Values per chunk of a chunked coordinate of this cube (coordinate_chunk_values of its grid:
+/// a unit's extent for one written live, kCreationCoordinateChunk for one written at the
+/// creation; a short one's "pieces" as it is written value by value: kContiguousCoordinateMax).
 std::size_t CubeWriter::Impl::chunk_values_of(const Coordinate& c) const {
   if (!c.chunked()) return kContiguousCoordinateMax;
   const auto d = layout.find_dimension(c.dimension);
   if (!d) throw CubeError(what("coordinate '" + c.name + "' is over an unknown dimension"));
-  return coordinate_chunk_values(grid, *d);
+  return coordinate_chunk_values(grid, *d, c);
 }
 
 /// The live coordinates (Coordinate::written_live) that the file `in` stores in chunks of the
