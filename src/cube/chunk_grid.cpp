@@ -117,7 +117,11 @@ std::size_t coordinate_chunk_values(const ChunkGrid& grid, std::size_t dimension
 
 std::size_t coordinate_chunk_values(const ChunkGrid& grid, std::size_t dimension, const Coordinate& c) {
   if (c.written_live()) return coordinate_chunk_values(grid, dimension);
-  return std::min(grid.shape().at(dimension), kCreationCoordinateChunk);
+  // Cut evenly: the last chunk pads at most one value a chunk (a chunk at the edge is sealed
+  // and stored at its full extent).
+  const std::size_t size = grid.shape().at(dimension);
+  const std::size_t chunks = (size + kCreationCoordinateChunk - 1) / kCreationCoordinateChunk;
+  return (size + chunks - 1) / chunks;
 }
 
 std::size_t coordinate_chunk_values(const CubeLayout& layout, const Coordinate& c) {

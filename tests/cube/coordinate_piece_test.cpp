@@ -29,9 +29,10 @@ namespace fs = std::filesystem;
 /// at the creation in chunks of up to kCreationCoordinateChunk values, is one piece.
 constexpr std::size_t kCases = 150000;
 constexpr std::size_t kPieces = 10;
-/// A study of more cases than a creation's chunk: the case number in two pieces, the last of
-/// 2 544 values.
+/// A study of more cases than a creation's chunk: the case number in two pieces, cut evenly
+/// (524 288 + 1 272 values each: no padding to seal).
 constexpr std::size_t kLongCases = kCreationCoordinateChunk + 2544;
+constexpr std::size_t kLongChunk = kLongCases / 2;
 
 double kappa_at(std::size_t i) { return 1.0 + 1.0 / static_cast<double>(i + 3); }  // no two alike
 
@@ -91,13 +92,29 @@ TEST(CoordinatePiece, PiecesAreEveryChunkOfTheLongCoordinatesInOrder) {
   EXPECT_EQ(piece_count(kCases, chunk), kPieces);
   EXPECT_EQ(coordinate_chunk_values(layout, layout.coordinates[2]), kCases) << "the case number: one chunk";
   EXPECT_EQ(pieces, (std::vector<CoordinatePiece>{{2, 0, kCases}}));
-  // More cases than a creation's chunk: the case number in chunks of kCreationCoordinateChunk,
-  // every one in order, the last an edge.
+  // More cases than a creation's chunk: the case number in the fewest chunks of at most
+  // kCreationCoordinateChunk, cut evenly, every one in order.
   const auto long_layout = piece_layout(kLongCases);
-  EXPECT_EQ(coordinate_chunk_values(long_layout, long_layout.coordinates[2]), kCreationCoordinateChunk);
+  EXPECT_EQ(coordinate_chunk_values(long_layout, long_layout.coordinates[2]), kLongChunk);
   EXPECT_EQ(coordinate_chunk_values(long_layout, long_layout.coordinates[3]), chunk) << "written live: as before";
-  const std::vector<CoordinatePiece> expected = {{2, 0, kCreationCoordinateChunk}, {2, 1, kCreationCoordinateChunk}};
+  const std::vector<CoordinatePiece> expected = {{2, 0, kLongChunk}, {2, 1, kLongChunk}};
   EXPECT_EQ(coordinate_pieces(long_layout), expected);
+  // The rule at its edges: one chunk up to kCreationCoordinateChunk, the last never short by a
+  // chunk's worth of padding.
+  for (const std::size_t n : {std::size_t{5000}, kCreationCoordinateChunk, kCreationCoordinateChunk + 1,
+                              3 * kCreationCoordinateChunk - 1, 7 * kCreationCoordinateChunk + 12345}) {
+    CubeLayout one;
+    one.dimensions = {{"case", n}};
+    Coordinate index{"case", "case", "", "", {}, {}, false, true};
+    index.number_at = [](std::size_t i) { return static_cast<double>(i); };
+    index.computed_size = n;
+    one.coordinates = {index};
+    const std::size_t values = coordinate_chunk_values(one, one.coordinates[0]);
+    const std::size_t chunks = piece_count(n, values);
+    EXPECT_LE(values, kCreationCoordinateChunk) << n;
+    EXPECT_EQ(chunks, (n + kCreationCoordinateChunk - 1) / kCreationCoordinateChunk) << n;
+    EXPECT_LT(chunks * values - n, chunks) << n << ": the padding of the last chunk";
+  }
   EXPECT_TRUE(layout.coordinates[3].written_live() && layout.coordinates[4].written_live());
   EXPECT_FALSE(layout.coordinates[2].written_live()) << "the case number is an index: written at the creation";
   EXPECT_TRUE(coordinate_pieces(piece_layout(4000)).empty()) << "short coordinates stay contiguous";
@@ -210,9 +227,9 @@ TEST(CoordinatePiece, ACreationWhosePiecesFailLeavesNoCubeOrTheOldOne) {
   EXPECT_EQ(CubeReader(dir / "old.h5").read_metric("theta_max_rad")[3], 0.25);
 }
 
-// A study of more cases than a creation's chunk: the case number written in pieces of
-// kCreationCoordinateChunk values by another party (the workers) reads back whole, the edge
-// piece's values included, and its variable is stored in chunks of that many values.
+// A study of more cases than a creation's chunk: the case number written in two pieces by
+// another party (the workers) reads back whole, the last piece's values included, and its
+// variable is stored in chunks of that many values.
 TEST(CoordinatePiece, ACaseNumberLongerThanACreationChunkReadsBackWhole) {
   const auto dir = test::scratch_dir("coordinate_pieces_long");
   CubeLayout layout;
@@ -244,7 +261,7 @@ TEST(CoordinatePiece, ACaseNumberLongerThanACreationChunkReadsBackWhole) {
   const hid_t dcpl = H5Dget_create_plist(set);
   hsize_t chunk = 0;
   EXPECT_EQ(H5Pget_chunk(dcpl, 1, &chunk), 1);
-  EXPECT_EQ(chunk, kCreationCoordinateChunk);
+  EXPECT_EQ(chunk, kLongChunk);
   H5Pclose(dcpl);
   H5Dclose(set);
   H5Fclose(file);

@@ -109,7 +109,10 @@ inline constexpr std::size_t kCreationCoordinateChunk = std::size_t{1} << 20;
 
 /// Values per HDF5 chunk of a chunked coordinate (Coordinate::chunked) `c` of a new cube over
 /// dimension `dimension` of the grid's: coordinate_chunk_values where it is written live, else
-/// (written at the creation) kCreationCoordinateChunk, at most the dimension's size.
+/// (written at the creation) the dimension cut evenly into the fewest chunks of at most
+/// kCreationCoordinateChunk values (the last one short by less than one value a chunk, so that
+/// sealing its padding costs nothing: 2^20 + 1 cases are two chunks of 524 289, not one of
+/// 2^20 and one of 2^20 values holding one).
 std::size_t coordinate_chunk_values(const ChunkGrid& grid, std::size_t dimension, const Coordinate& c);
 /// The same for a coordinate of a layout (its grid: layout_grid).
 /// \throws std::invalid_argument for a coordinate over no dimension of the layout.

@@ -21,6 +21,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -57,7 +58,8 @@ class WorkerCoordinates final : public cube::CoordinateSource {
   std::vector<char> asked_;        ///< per worker (index = rank): a piece is asked and not taken
   /// Where each piece arrives (the bytes, then a header): sized once for the largest piece,
   /// never cleared nor shifted (callgrind counts a byte copied or cleared as an instruction).
-  std::vector<char> buffer_;
+  std::unique_ptr<char[]> buffer_;  ///< a piece received, then its header (not cleared)
+  std::size_t buffer_size_ = 0;
 };
 
 /// A worker's side of the phase: waits for rank 0's word, seals its share of the pieces of
