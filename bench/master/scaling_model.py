@@ -66,11 +66,12 @@ MASTER_SETUP_PER_CASE = 0.1       # rank 0's main thread before the first hand-o
                                   # 2^20 values (cube::kCreationCoordinateChunk), a raw chunk write each (0.4-0.58
                                   # in chunks of 16 384, 0.48 of it those writes; 0.7 when it also wrote every
                                   # sampled parameter's chunks; 11 600 at da9ce77)
-MASTER_RUN_PER_RESULT = 7.9       # rank 0's main thread during the run, its polling between messages left out:
+MASTER_RUN_PER_RESULT = 7.0       # rank 0's main thread during the run, its polling between messages left out:
                                   # what comes back (Master::handle), nearly all of it the parts' chunks streamed
                                   # into the next fold (CubeWriter::stream_kept: HDF5's raw chunk write with
                                   # fixed-array chunk indices, 18 variables and 8 coordinate chunks a unit; 8.1
-                                  # with a tree of the coordinate chunks written, 4.9 without the coordinates)
+                                  # with a tree of the coordinate chunks written and an error text built for each,
+                                  # 4.9 without the coordinates)
 MASTER_ASSEMBLY_PER_RESULT = 0.4  # rank 0's main thread in the last fold, after the run: HDF5 serializing each
                                   # variable's chunk index (a fixed array, 26 variables, ~240 instructions an entry)
                                   # as the fold's file closes, 0.38 a result, what remains. rank_costs.py prints
