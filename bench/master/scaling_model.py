@@ -81,11 +81,15 @@ MASTER_ASSEMBLY_PER_RESULT = 0.4  # rank 0's main thread in the last fold, after
                                   # Before: 0.4 to 0.7 (each part read again from its start, 2.2 k instructions a
                                   # unit; a part's name built and compared a chunk, 1.9 k; HDF5's storage summed
                                   # per coordinate, 4.5 k), 11 before the streaming fold, 25 at 291f9a0
-NONLIFT_CASE = 15_190             # a worker's non-lifting case (CaseRunner::run; its LHS point included: 16 100 at
-                                  # e2c9aee, the point then computed value by value)
-WORKER_OWN_PER_CASE = 4_910       # sealing its chunk and its chunk of each coordinate 4 050 (the metrics 1 330,
-                                  # the coordinates' values computed again from the plan 1 450 and sealed 1 330),
-                                  # its part and messages 860
+NONLIFT_CASE = 15_020             # a worker's non-lifting case (CaseRunner::run; its LHS point included: 16 100 at
+                                  # e2c9aee, the point then computed value by value; 15 190 before its row came
+                                  # from the worker's pool, parallel::pooled_row)
+WORKER_OWN_PER_CASE = 3_850       # sealing its chunk and its chunk of each coordinate 3 700 (deflating the metrics'
+                                  # and the coordinates' streams 2 080, the coordinates' values computed again from
+                                  # the plan 1 450, gathering the rows and one copy of the streams into the unit's
+                                  # bytes 170), its part (written from those bytes as they lie, libdeflate's CRC-32),
+                                  # its batch of rows and messages 150. Beyond the deflate and the coordinates'
+                                  # values: 340, 1 390 at f1ca852 (4 910 in all then: sealing 4 050, the rest 860)
 WORKER_CREATION_PER_CASE = 67     # the case number's pieces sealed by the workers at the creation, per case of
                                   # the study (2 565 when the sampled parameters were sealed there too)
 

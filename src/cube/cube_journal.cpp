@@ -27,7 +27,7 @@ struct Malformed {
 
 void put(std::string& out, std::uint64_t value, std::size_t bytes) { io::append_le(out, value, bytes); }
 
-void put_text(std::string& out, const std::string& text) {
+void put_text(std::string& out, std::string_view text) {
   put(out, text.size(), 4);
   out += text;
 }
@@ -685,27 +685,54 @@ void JournalWriter::add_cases(std::size_t chunk, const std::vector<char>& stored
   guarded([&] { log_->add(kCases, payload_); });
 }
 
-void JournalWriter::add_sealed(const SealedChunk& sealed) {
+void JournalWriter::add_sealed(const SealedChunk& sealed) { add_sealed(view_of(sealed)); }
+
+void JournalWriter::add_sealed(const SealedChunkView& sealed) {
+  // The record's own numbers go to payload_, each piece of the record a view of it or of the
+  // sealed streams; payload_ is sized first, so that its views stay where they are.
+  const std::size_t heads = 8 + 4 + 4 + 8 * sealed.filtered.size() + 4 + 20 * sealed.coordinates.size();
   payload_.clear();
-  put(payload_, sealed.chunk, 8);
-  put(payload_, sealed.status.size(), 4);
-  payload_.append(reinterpret_cast<const char*>(sealed.status.data()), sealed.status.size());
-  put(payload_, sealed.filtered.size(), 4);
-  for (const auto& f : sealed.filtered) {
-    put(payload_, f.size(), 8);
-    payload_.append(f.data(), f.size());
+  payload_.reserve(heads);
+  std::vector<std::string_view> pieces;
+  pieces.reserve(4 + 2 * sealed.filtered.size() + 2 * sealed.coordinates.size());
+  auto number = [&](std::uint64_t value, std::size_t bytes) {  // joins the last piece when that is a number too
+    const std::size_t at = payload_.size();
+    put(payload_, value, bytes);
+    const char* first = payload_.data() + at;
+    if (!pieces.empty() && pieces.back().data() + pieces.back().size() == first)
+      pieces.back() = {pieces.back().data(), pieces.back().size() + bytes};
+    else
+      pieces.emplace_back(first, bytes);
+  };
+  auto bytes = [&](const void* data, std::size_t size) {
+    if (size > 0) pieces.emplace_back(static_cast<const char*>(data), size);
+  };
+  number(sealed.chunk, 8);
+  number(sealed.status.size(), 4);
+  bytes(sealed.status.data(), sealed.status.size());
+  number(sealed.filtered.size(), 4);
+  for (const auto f : sealed.filtered) {
+    number(f.size(), 8);
+    bytes(f.data(), f.size());
   }
-  put(payload_, sealed.coordinates.size(), 4);  // this version's: the unit's coordinate pieces
+  number(sealed.coordinates.size(), 4);  // this version's: the unit's coordinate pieces
   for (const auto& piece : sealed.coordinates) {
-    put(payload_, piece.coordinate, 4);
-    put(payload_, piece.piece, 8);
-    put(payload_, piece.filtered.size(), 8);
-    payload_.append(piece.filtered.data(), piece.filtered.size());
+    number(piece.coordinate, 4);
+    number(piece.piece, 8);
+    number(piece.filtered.size(), 8);
+    bytes(piece.filtered.data(), piece.filtered.size());
   }
-  guarded([&] { log_->add(kSealed, payload_); });
+  guarded([&] { log_->add_pieces(kSealed, pieces); });
 }
 
 void JournalWriter::add_notes(const std::vector<std::pair<std::int64_t, std::string>>& notes) {
+  std::vector<std::pair<std::int64_t, std::string_view>> views;
+  views.reserve(notes.size());
+  for (const auto& [index, text] : notes) views.emplace_back(index, text);
+  add_notes(views);
+}
+
+void JournalWriter::add_notes(std::span<const std::pair<std::int64_t, std::string_view>> notes) {
   if (notes.empty()) return;
   payload_.clear();
   put(payload_, notes.size(), 4);

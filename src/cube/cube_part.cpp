@@ -87,7 +87,9 @@ PartWriter::PartWriter(const std::filesystem::path& part, const PartHeader& head
 
 PartWriter::~PartWriter() = default;
 
-void PartWriter::add(const SealedChunk& sealed) {
+void PartWriter::add(const SealedChunk& sealed) { add(view_of(sealed)); }
+
+void PartWriter::add(const SealedChunkView& sealed) {
   log_->add_sealed(sealed);
   log_->add_notes(sealed.notes);
   log_->commit();

@@ -273,7 +273,8 @@ class Deflater {
   Deflater(const Deflater&) = delete;
   Deflater& operator=(const Deflater&) = delete;
 
-  std::vector<char> operator()(const char* data, std::size_t elements, std::size_t element_bytes, Coding coding) {
+  /// The stream of the chunk, in this deflater's buffer (valid until its next call).
+  std::span<const char> operator()(const char* data, std::size_t elements, std::size_t element_bytes, Coding coding) {
     const std::size_t bytes = elements * element_bytes;
     if (planes_.size() < bytes) planes_.resize(bytes);
     shuffle(data, elements, element_bytes, planes_.data());
@@ -287,7 +288,7 @@ class Deflater {
     const bool whole = coding == Coding::kRunsWhole || (coding == Coding::kPlanes && elements < kMeasuredMinBytes);
     std::size_t size = whole ? deflate_whole() : deflate_planes(element_bytes, coding);
     if (size > filtered_bound(elements, element_bytes)) size = deflate_whole();
-    return std::vector<char>(out_.data(), out_.data() + size);
+    return {out_.data(), size};
   }
 
  private:
@@ -411,9 +412,15 @@ class Deflater {
   std::vector<char> planes_, out_;   ///< the shuffled chunk; its stream
 };
 
-std::vector<char> deflated(const char* data, std::size_t elements, std::size_t element_bytes, Coding coding) {
+/// The stream of a chunk in this thread's deflater (valid until the thread's next deflate).
+std::span<const char> deflated_view(const char* data, std::size_t elements, std::size_t element_bytes, Coding coding) {
   thread_local Deflater deflater;
   return deflater(data, elements, element_bytes, coding);
+}
+
+std::vector<char> deflated(const char* data, std::size_t elements, std::size_t element_bytes, Coding coding) {
+  const std::span<const char> stream = deflated_view(data, elements, element_bytes, coding);
+  return {stream.begin(), stream.end()};
 }
 
 /// True when every element of `data` has the same bytes (a chunk equal to its shift by one
@@ -426,9 +433,10 @@ bool every_element_same(const char* data, std::size_t elements, std::size_t elem
 /// that is 0 or NaN for every case where frames never lift, a status that is the same for
 /// all) is deflated once per thread and element, and its stream reused: the same bytes, at
 /// the cost of a comparison (about a third of a worker's sealing on a non-lifting study).
-std::vector<char> filtered(const char* data, std::size_t elements, std::size_t element_bytes) {
+/// Valid until the thread's next deflate (a view of its deflater's stream, or of the one kept).
+std::span<const char> filtered_view(const char* data, std::size_t elements, std::size_t element_bytes) {
   if (element_bytes > sizeof(std::uint64_t) || !every_element_same(data, elements, element_bytes))
-    return deflated(data, elements, element_bytes, Coding::kPlanes);
+    return deflated_view(data, elements, element_bytes, Coding::kPlanes);
   struct Repeated {
     std::uint64_t element = 0;
     std::size_t elements = 0, element_bytes = 0;
@@ -440,20 +448,31 @@ std::vector<char> filtered(const char* data, std::size_t elements, std::size_t e
   std::memcpy(&element, data, element_bytes);
   for (const Repeated& r : kept)
     if (r.element == element && r.elements == elements && r.element_bytes == element_bytes) return r.stream;
-  std::vector<char> stream = deflated(data, elements, element_bytes, Coding::kRunsWhole);
-  if (kept.size() < kRepeatedKept) kept.push_back({element, elements, element_bytes, stream});
+  const std::span<const char> stream = deflated_view(data, elements, element_bytes, Coding::kRunsWhole);
+  if (kept.size() < kRepeatedKept) kept.push_back({element, elements, element_bytes, {stream.begin(), stream.end()}});
   return stream;
+}
+
+std::vector<char> filtered(const char* data, std::size_t elements, std::size_t element_bytes) {
+  const std::span<const char> stream = filtered_view(data, elements, element_bytes);
+  return {stream.begin(), stream.end()};
 }
 
 /// The stream of a chunk of `padded` values whose first are `values`, the rest `fill` (a chunk
 /// at the cube's edge, stored at its full shape); a whole chunk's values as they are (a copy
 /// of each metric was 140 instructions a case).
 template <class T>
-std::vector<char> filtered_padded(std::span<const T> values, std::size_t padded, T fill) {
-  if (values.size() == padded) return filtered(reinterpret_cast<const char*>(values.data()), padded, sizeof(T));
+std::span<const char> filtered_padded_view(std::span<const T> values, std::size_t padded, T fill) {
+  if (values.size() == padded) return filtered_view(reinterpret_cast<const char*>(values.data()), padded, sizeof(T));
   std::vector<T> chunk(padded, fill);
   std::copy(values.begin(), values.end(), chunk.begin());
-  return filtered(reinterpret_cast<const char*>(chunk.data()), padded, sizeof(T));
+  return filtered_view(reinterpret_cast<const char*>(chunk.data()), padded, sizeof(T));
+}
+
+template <class T>
+std::vector<char> filtered_padded(std::span<const T> values, std::size_t padded, T fill) {
+  const std::span<const char> stream = filtered_padded_view(values, padded, fill);
+  return {stream.begin(), stream.end()};
 }
 
 void put_bytes(std::vector<char>& out, const void* data, std::size_t n) {
@@ -476,7 +495,7 @@ void put(std::vector<char>& out, T value) {
 
 class Reader {
  public:
-  Reader(const std::vector<char>& bytes, std::string what) : bytes_(bytes), what_(std::move(what)) {}
+  Reader(std::span<const char> bytes, std::string what) : bytes_(bytes), what_(std::move(what)) {}
   template <class T>
   T get() {
     T value{};
@@ -493,7 +512,7 @@ class Reader {
   [[noreturn]] void fail(const std::string& problem) const { throw CubeError(what_ + ": a sealed chunk " + problem); }
 
  private:
-  const std::vector<char>& bytes_;
+  std::span<const char> bytes_;
   std::string what_;
   std::size_t at_ = 0;
 };
@@ -584,18 +603,31 @@ std::span<double> piece_buffer(std::size_t chunk_values) {
 
 /// The stream of a float64 chunk whose first `count` values hold the piece's: the rest padded
 /// with zeros (never read), then each byte plane coded as a metric's.
-std::vector<char> sealed_float64_chunk(std::span<double> chunk, std::size_t count) {
+/// Valid until the thread's next deflate.
+std::span<const char> sealed_float64_chunk_view(std::span<double> chunk, std::size_t count) {
   std::fill(chunk.begin() + static_cast<std::ptrdiff_t>(count), chunk.end(), 0.0);
-  return deflated(reinterpret_cast<const char*>(chunk.data()), chunk.size(), sizeof(double), Coding::kPlanes);
+  return deflated_view(reinterpret_cast<const char*>(chunk.data()), chunk.size(), sizeof(double), Coding::kPlanes);
+}
+
+std::vector<char> sealed_float64_chunk(std::span<double> chunk, std::size_t count) {
+  const std::span<const char> stream = sealed_float64_chunk_view(chunk, count);
+  return {stream.begin(), stream.end()};
+}
+
+/// The stream of a piece of `values` (seal_coordinate_values' checks and bytes), valid until
+/// the thread's next deflate.
+std::span<const char> sealed_values_view(std::span<const double> values, std::size_t chunk_values) {
+  if (values.empty() || values.size() > chunk_values) throw std::invalid_argument("seal_coordinate_values: not a piece");
+  const std::span<double> chunk = piece_buffer(chunk_values);
+  std::copy(values.begin(), values.end(), chunk.begin());
+  return sealed_float64_chunk_view(chunk, values.size());
 }
 
 }  // namespace
 
 std::vector<char> seal_coordinate_values(std::span<const double> values, std::size_t chunk_values) {
-  if (values.empty() || values.size() > chunk_values) throw std::invalid_argument("seal_coordinate_values: not a piece");
-  const std::span<double> chunk = piece_buffer(chunk_values);
-  std::copy(values.begin(), values.end(), chunk.begin());
-  return sealed_float64_chunk(chunk, values.size());
+  const std::span<const char> stream = sealed_values_view(values, chunk_values);
+  return {stream.begin(), stream.end()};
 }
 
 std::vector<char> seal_coordinate_piece(const Coordinate& c, std::size_t chunk_values, std::size_t piece) {
@@ -644,23 +676,76 @@ std::vector<char> to_bytes(const SealedChunk& sealed) {
   return out;
 }
 
-SealedChunk sealed_from_bytes(const std::vector<char>& bytes, const ChunkGrid& grid, std::size_t metrics,
-                              const std::string& what) {
+std::vector<char> sealed_bytes(const ChunkGrid& grid, std::size_t chunk, std::size_t metrics,
+                               std::span<const std::int8_t> status, std::span<const double> values,
+                               std::span<const std::pair<std::int64_t, std::string>> notes,
+                               std::span<const PieceValues> pieces) {
+  if (chunk >= grid.chunk_count()) throw std::invalid_argument("seal_chunk: no chunk " + std::to_string(chunk));
+  const auto count = static_cast<std::size_t>(grid.range(chunk).count);
+  if (status.size() != count || values.size() != metrics * count)
+    throw std::invalid_argument("seal_chunk: the chunk has " + std::to_string(count) + " cases");
+  const std::size_t padded = padded_elements(grid);  // an edge chunk is stored at full shape, filled
+  // Room for what the thread's last chunk took, and a quarter more: the bytes grow in place
+  // (a reallocation would copy them again).
+  thread_local std::size_t last_bytes = 0;
+  std::vector<char> out;
+  out.reserve(last_bytes + last_bytes / 4 + 4096 + count);
+  auto put_stream = [&out](std::span<const char> stream) {
+    put<std::uint64_t>(out, stream.size());
+    put_span(out, stream);
+  };
+  put<std::uint64_t>(out, chunk);
+  put<std::uint64_t>(out, count);
+  put_span(out, {reinterpret_cast<const char*>(status.data()), count});
+  put<std::uint64_t>(out, metrics + 1);
+  for (std::size_t m = 0; m < metrics; ++m)
+    put_stream(filtered_padded_view(values.subspan(m * count, count), padded, std::numeric_limits<double>::quiet_NaN()));
+  put_stream(filtered_padded_view(status, padded, kStatusNotRun));
+  put<std::uint64_t>(out, notes.size());
+  for (const auto& [index, text] : notes) {
+    put<std::int64_t>(out, index);
+    put<std::uint64_t>(out, text.size());
+    put_bytes(out, text.data(), text.size());
+  }
+  put<std::uint64_t>(out, pieces.size());
+  for (const PieceValues& piece : pieces) {
+    put<std::uint64_t>(out, piece.coordinate);
+    put<std::uint64_t>(out, piece.piece);
+    const bool in_place = !piece.values.empty() && piece.room.size() == piece.chunk_values &&
+                          piece.room.data() == piece.values.data() && piece.values.size() <= piece.chunk_values;
+    put_stream(in_place ? sealed_float64_chunk_view(piece.room, piece.values.size())
+                        : sealed_values_view(piece.values, piece.chunk_values));
+  }
+  last_bytes = out.size();
+  return out;
+}
+
+SealedChunkView view_of(const SealedChunk& sealed) {
+  SealedChunkView view;
+  view.chunk = sealed.chunk;
+  view.status = sealed.status;
+  for (const auto& f : sealed.filtered) view.filtered.emplace_back(f);
+  for (const auto& [index, text] : sealed.notes) view.notes.emplace_back(index, text);
+  for (const auto& piece : sealed.coordinates) view.coordinates.push_back({piece.coordinate, piece.piece, piece.filtered});
+  return view;
+}
+
+SealedChunkView sealed_view_of_bytes(std::span<const char> bytes, const ChunkGrid& grid, std::size_t metrics,
+                                     const std::string& what) {
   Reader in(bytes, what);
-  SealedChunk sealed;
+  SealedChunkView sealed;
   sealed.chunk = static_cast<std::size_t>(in.get<std::uint64_t>());
   if (sealed.chunk >= grid.chunk_count()) in.fail("names chunk " + std::to_string(sealed.chunk) + " of " + std::to_string(grid.chunk_count()));
   const auto r = grid.range(sealed.chunk);
   if (in.get<std::uint64_t>() != static_cast<std::uint64_t>(r.count)) in.fail("has another number of cases than its chunk");
-  const auto* status = reinterpret_cast<const std::int8_t*>(in.take(static_cast<std::uint64_t>(r.count)));
-  sealed.status.assign(status, status + r.count);
+  sealed.status = {reinterpret_cast<const std::int8_t*>(in.take(static_cast<std::uint64_t>(r.count))), static_cast<std::size_t>(r.count)};
   if (in.get<std::uint64_t>() != metrics + 1) in.fail("has another number of variables than the cube");
   const std::size_t padded = padded_elements(grid);
+  sealed.filtered.reserve(metrics + 1);
   for (std::size_t v = 0; v <= metrics; ++v) {
     const auto size = in.get<std::uint64_t>();
     if (size == 0 || size > filtered_bound(padded, v < metrics ? sizeof(double) : 1)) in.fail("has a variable of a wrong size");
-    const char* p = in.take(size);
-    sealed.filtered.emplace_back(p, p + size);
+    sealed.filtered.emplace_back(in.take(size), static_cast<std::size_t>(size));
   }
   const auto notes = in.get<std::uint64_t>();
   if (notes > in.left() / 16) in.fail("declares more notes than it holds");
@@ -668,22 +753,34 @@ SealedChunk sealed_from_bytes(const std::vector<char>& bytes, const ChunkGrid& g
     const auto index = in.get<std::int64_t>();
     if (index < r.first || index >= r.first + r.count) in.fail("has a note of a case outside its chunk");
     const auto size = in.get<std::uint64_t>();
-    const char* p = in.take(size);
-    sealed.notes.emplace_back(index, std::string(p, static_cast<std::size_t>(size)));
+    sealed.notes.emplace_back(index, std::string_view(in.take(size), static_cast<std::size_t>(size)));
   }
   const auto pieces = in.get<std::uint64_t>();
   if (pieces > in.left() / 24) in.fail("declares more coordinate pieces than it holds");
   for (std::uint64_t k = 0; k < pieces; ++k) {
-    SealedPiece piece;
+    SealedChunkView::Piece piece;
     piece.coordinate = static_cast<std::size_t>(in.get<std::uint64_t>());
     piece.piece = static_cast<std::size_t>(in.get<std::uint64_t>());
     const auto size = in.get<std::uint64_t>();
     if (size == 0 || size > sealed_piece_size_bound(grid)) in.fail("has a coordinate piece of a wrong size");
-    const char* p = in.take(size);
-    piece.filtered.assign(p, p + size);
-    sealed.coordinates.push_back(std::move(piece));
+    piece.filtered = {in.take(size), static_cast<std::size_t>(size)};
+    sealed.coordinates.push_back(piece);
   }
   if (in.left() != 0) in.fail("has trailing bytes");
+  return sealed;
+}
+
+SealedChunk sealed_from_bytes(const std::vector<char>& bytes, const ChunkGrid& grid, std::size_t metrics,
+                              const std::string& what) {
+  const SealedChunkView view = sealed_view_of_bytes(bytes, grid, metrics, what);
+  SealedChunk sealed;
+  sealed.chunk = view.chunk;
+  sealed.status.assign(view.status.begin(), view.status.end());
+  sealed.filtered.reserve(view.filtered.size());
+  for (const auto f : view.filtered) sealed.filtered.emplace_back(f.begin(), f.end());
+  for (const auto& [index, text] : view.notes) sealed.notes.emplace_back(index, std::string(text));
+  for (const auto& piece : view.coordinates)
+    sealed.coordinates.push_back({piece.coordinate, piece.piece, {piece.filtered.begin(), piece.filtered.end()}});
   return sealed;
 }
 

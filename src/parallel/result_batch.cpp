@@ -83,6 +83,32 @@ ResultBatch get_results(Reader& r, std::size_t row_width) {
 
 }  // namespace
 
+namespace {
+/// This thread's rows given back, their values stale.
+std::vector<std::vector<double>>& row_pool() {
+  thread_local std::vector<std::vector<double>> pool;
+  return pool;
+}
+}  // namespace
+
+std::vector<double> pooled_row(std::size_t width, double fill) {
+  auto& pool = row_pool();
+  if (pool.empty()) return std::vector<double>(width, fill);
+  std::vector<double> row = std::move(pool.back());
+  pool.pop_back();
+  row.assign(width, fill);
+  return row;
+}
+
+void recycle_rows(std::span<CaseOutcome> outcomes) {
+  auto& pool = row_pool();
+  if (pool.capacity() < kPooledRows) pool.reserve(kPooledRows);
+  for (CaseOutcome& outcome : outcomes) {
+    if (pool.size() == kPooledRows) return;
+    if (outcome.row.capacity() > 0) pool.push_back(std::move(outcome.row));
+  }
+}
+
 std::vector<char> pack_results(const ResultBatch& batch, std::size_t row_width) {
   Writer w;
   put_results(w, batch, row_width);

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <exception>
+#include <iterator>
 #include <limits>
 #include <optional>
 #include <span>
@@ -91,6 +92,15 @@ inline ResultBatch evaluate_guarded(const CasesEvaluator& evaluate, std::span<co
 /// the worker goes on).
 enum class UnitState { kWhole, kCut, kThrew };
 
+/// Appends `outcomes` to `finished` (taking them whole when `finished` is empty).
+inline void append(ResultBatch& finished, ResultBatch&& outcomes) {
+  if (finished.empty() && finished.capacity() <= outcomes.capacity()) {
+    finished = std::move(outcomes);
+    return;
+  }
+  finished.insert(finished.end(), std::make_move_iterator(outcomes.begin()), std::make_move_iterator(outcomes.end()));
+}
+
 /// Computes one unit by `evaluate_unit`, its outcomes appended to `finished` as its cases run.
 template <class Stopping>
 UnitState run_unit(const UnitEvaluator& evaluate_unit, const WorkItem& marker, std::span<const WorkItem> cases,
@@ -102,7 +112,7 @@ UnitState run_unit(const UnitEvaluator& evaluate_unit, const WorkItem& marker, s
       return std::nullopt;
     }
     const std::size_t at = finished.size();
-    for (CaseOutcome& outcome : evaluate_guarded(evaluate, items, row_width)) finished.push_back(std::move(outcome));
+    append(finished, evaluate_guarded(evaluate, items, row_width));
     return std::span<const CaseOutcome>(finished.data() + at, finished.size() - at);
   };
   try {
@@ -145,6 +155,7 @@ inline void worker_loop(MasterLink& link, const CasesEvaluator& evaluate, std::s
       const bool unit = is_unit(batch);
       const std::span<const WorkItem> items = std::span<const WorkItem>(batch).subspan(unit ? 1 : 0);
       const std::size_t before = finished.size();
+      finished.reserve(before + items.size());  // one allocation: its outcomes are not moved again as it grows
       bool whole = true;  // the unit ran to its end (false: an evaluate_unit that threw)
       if (unit && evaluate_unit != nullptr && *evaluate_unit) {
         const UnitState state = run_unit(*evaluate_unit, batch.front(), items, evaluate, row_width, finished,
@@ -164,8 +175,7 @@ inline void worker_loop(MasterLink& link, const CasesEvaluator& evaluate, std::s
             link.finish(std::move(finished), std::move(sealed));
             return;
           }
-          for (CaseOutcome& outcome : evaluate_guarded(evaluate, items.subspan(first, std::min(together, items.size() - first)), row_width))
-            finished.push_back(std::move(outcome));
+          append(finished, evaluate_guarded(evaluate, items.subspan(first, std::min(together, items.size() - first)), row_width));
         }
       }
       if (unit && whole && seal != nullptr && *seal) {
@@ -177,6 +187,7 @@ inline void worker_loop(MasterLink& link, const CasesEvaluator& evaluate, std::s
           if (keep != nullptr && *keep) failed = (*keep)(number, *bytes);
           if (failed) sealed.push_back({number, cases, {}, true, *failed});
           else sealed.push_back({number, cases, std::move(*bytes)});
+          recycle_rows(std::span<CaseOutcome>(finished).subspan(before));  // the next unit's rows
           finished.resize(before);
         }
       }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <limits>
 
+#include "pcrf/parallel/result_batch.hpp"
 #include "pcrf/study/level_axis.hpp"
 
 namespace pcrf::run {
@@ -31,7 +32,7 @@ std::size_t ResultColumns::column_of(std::string_view name, std::size_t from) co
 }
 
 std::vector<double> ResultColumns::empty_row() const {
-  return std::vector<double>(width(), std::numeric_limits<double>::quiet_NaN());
+  return parallel::pooled_row(width(), std::numeric_limits<double>::quiet_NaN());  // a worker's, reused
 }
 
 void ResultColumns::clear_metrics(std::vector<double>& row) const {

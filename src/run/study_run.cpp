@@ -247,6 +247,37 @@ std::int64_t frames_together(const Study& study) { return on_gpu(study) ? kGpuWi
 /// A worker's side of the cube (issue 38: no rank handles every result): a chunk handed out
 /// whole comes back from the worker that computed it as the cube stores it, every variable
 /// shuffled and deflated (cube::seal_chunk); the writing rank copies its bytes.
+/// Cases of a chunk whose rows metric_major copies together, when consecutive: a metric's
+/// values of them are then one contiguous store (2.3 instructions a value, against 6 one case
+/// at a time, callgrind).
+constexpr std::size_t kRowsTogether = 8;
+
+/// The rows of `outcomes` (cases of the chunk from case `first`, each once, rows checked) into
+/// `values` at [metric * count + k], k the case's place in the chunk.
+void metric_major(std::span<const parallel::CaseOutcome> outcomes, std::int64_t first, std::size_t count,
+                  std::vector<double>& values) {
+  const std::size_t metrics = count == 0 ? 0 : values.size() / count;
+  std::size_t i = 0;
+  while (i < outcomes.size()) {
+    const auto at = static_cast<std::size_t>(outcomes[i].case_index - first);
+    bool together = i + kRowsTogether <= outcomes.size();
+    for (std::size_t j = 1; together && j < kRowsTogether; ++j)
+      together = outcomes[i + j].case_index == outcomes[i].case_index + static_cast<std::int64_t>(j);
+    if (!together) {
+      const double* row = outcomes[i].row.data();
+      for (std::size_t m = 0; m < metrics; ++m) values[m * count + at] = row[m];
+      ++i;
+      continue;
+    }
+    const double* rows[kRowsTogether];
+    for (std::size_t j = 0; j < kRowsTogether; ++j) rows[j] = outcomes[i + j].row.data();
+    double* to = values.data() + at;
+    for (std::size_t m = 0; m < metrics; ++m, to += count)
+      for (std::size_t j = 0; j < kRowsTogether; ++j) to[j] = rows[j][m];
+    i += kRowsTogether;
+  }
+}
+
 class ChunkSealer {
  public:
   /// `gaps`: a case of the chunk without an outcome is sealed not run (status not_run, every
@@ -272,15 +303,27 @@ class ChunkSealer {
 
   /// nullopt (the cases then go back one by one) unless `outcomes` are every case of the chunk
   /// once (with gaps: cases of the chunk, each at most once).
-  std::optional<std::vector<char>> operator()(std::int64_t unit, std::span<const parallel::CaseOutcome> outcomes) const {
+  /// Never inlined: its own frame in a profile, where bench/master/rank_costs.py counts a worker's sealing.
+  [[gnu::noinline]] std::optional<std::vector<char>> operator()(std::int64_t unit,
+                                                                std::span<const parallel::CaseOutcome> outcomes) const {
     if (unit < 0 || static_cast<std::size_t>(unit) >= grid_.chunk_count()) return std::nullopt;
     const auto chunk = static_cast<std::size_t>(unit);
     const auto r = grid_.range(chunk);
     const auto count = static_cast<std::size_t>(r.count);
     if (gaps_ ? outcomes.size() > count : outcomes.size() != count) return std::nullopt;
-    std::vector<std::int8_t> status(count, gaps_ ? cube::kStatusNotRun : std::int8_t{0});
-    std::vector<char> seen(count, 0);
-    std::vector<double> values(metrics_ * count, gaps_ ? std::nan("") : 0.0);
+    // This thread's buffers, kept from unit to unit: without gaps every value and status is
+    // written below (each case of the chunk once), so none is filled first (a fill of the
+    // values was 136 instructions a non-lifting case, callgrind's count of memset's bytes).
+    thread_local std::vector<std::int8_t> status;
+    thread_local std::vector<char> seen;
+    thread_local std::vector<double> values;
+    status.resize(count);
+    seen.assign(count, 0);
+    values.resize(metrics_ * count);
+    if (gaps_) {
+      std::fill(status.begin(), status.end(), cube::kStatusNotRun);
+      std::fill(values.begin(), values.end(), std::nan(""));
+    }
     std::vector<std::pair<std::int64_t, std::string>> notes;
     for (const parallel::CaseOutcome& outcome : outcomes) {
       const std::int64_t k = outcome.case_index - r.first;
@@ -288,20 +331,26 @@ class ChunkSealer {
       const auto at = static_cast<std::size_t>(k);
       seen[at] = 1;
       status[at] = static_cast<std::int8_t>(outcome_status(outcome));
-      for (std::size_t m = 0; m < metrics_; ++m) values[m * count + at] = outcome.row[m];
       if (!outcome.note.empty()) notes.emplace_back(outcome.case_index, outcome.note);
     }
-    cube::SealedChunk sealed = cube::seal_chunk(grid_, chunk, metrics_, status, values, std::move(notes));
-    for (const auto& [u, c] : carried_) {
+    metric_major(outcomes, r.first, count, values);
+    // The unit's coordinate pieces' values, each in a buffer of this thread's, kept (a piece's
+    // values computed in one pass), then every stream sealed straight into the unit's bytes.
+    thread_local std::vector<std::vector<double>> own;
+    if (own.size() < carried_.size()) own.resize(carried_.size());
+    std::vector<cube::PieceValues> pieces;
+    pieces.reserve(carried_.size());
+    for (std::size_t k = 0; k < carried_.size(); ++k) {
+      const auto& [u, c] = carried_[k];
       const auto piece = cube::unit_piece(grid_, chunk, u);
       if (!piece) continue;
       const std::size_t first = *piece * u.chunk_values, values_in = std::min(u.chunk_values, c.size() - first);
-      thread_local std::vector<double> own;  // kept: a piece's values, computed in one pass
-      own.resize(values_in);
-      c.numbers_into(first, own);
-      sealed.coordinates.push_back({u.coordinate, *piece, cube::seal_coordinate_values(own, u.chunk_values)});
+      own[k].resize(u.chunk_values);  // the piece's values, then room to pad them in place
+      const std::span<double> room(own[k]);
+      c.numbers_into(first, room.first(values_in));
+      pieces.push_back({u.coordinate, *piece, room.first(values_in), u.chunk_values, room});
     }
-    return cube::to_bytes(sealed);
+    return cube::sealed_bytes(grid_, chunk, metrics_, status, values, notes, pieces);
   }
 
  private:
@@ -353,7 +402,8 @@ class PartKeeper {
     State& s = *state_;
     if (s.broken) return std::nullopt;
     try {
-      const cube::SealedChunk chunk = cube::sealed_from_bytes(bytes, s.grid, s.metrics, "unit " + std::to_string(unit));
+      // The bytes this worker just sealed, read where they lie (checked, nothing copied).
+      const cube::SealedChunkView chunk = cube::sealed_view_of_bytes(bytes, s.grid, s.metrics, "unit " + std::to_string(unit));
       if (!s.writer) s.writer = std::make_unique<cube::PartWriter>(s.part, s.header);
       s.writer->add(chunk);
       std::int64_t failed = 0;

@@ -33,6 +33,37 @@ TEST(ResultBatch, PacksAndUnpacksRowsAndNotes) {
   EXPECT_THROW(pack_results(batch, 2), std::invalid_argument);
 }
 
+// A worker's rows: given back after a unit is sealed, reused by its next cases, each filled
+// anew whatever it held; a thread's pool keeps at most kPooledRows; other threads' are theirs.
+TEST(ResultBatch, RowsGivenBackAreReusedFilledAnewAndThePoolIsBounded) {
+  std::thread([] {
+    const auto fresh = pooled_row(5, NAN);
+    ASSERT_EQ(fresh.size(), 5u);
+    EXPECT_TRUE(std::all_of(fresh.begin(), fresh.end(), [](double v) { return std::isnan(v); }));
+    ResultBatch batch(kPooledRows + 10);
+    std::set<const double*> buffers;
+    for (auto& outcome : batch) {
+      outcome.row.assign(17, 1.0);
+      buffers.insert(outcome.row.data());
+    }
+    buffers.erase(batch[3].row.data());
+    std::vector<double>().swap(batch[3].row);  // nothing to reuse
+    recycle_rows(batch);
+    std::size_t given = 0;
+    for (const auto& outcome : batch) given += outcome.row.empty() ? 1 : 0;
+    EXPECT_EQ(given, kPooledRows + 1) << "the pool takes kPooledRows, and the row that had none stays empty";
+    std::size_t reused = 0;
+    std::vector<std::vector<double>> rows;
+    for (std::size_t k = 0; k < kPooledRows + 5; ++k) {
+      rows.push_back(pooled_row(3, 2.5));
+      ASSERT_EQ(rows.back(), std::vector<double>(3, 2.5));
+      reused += buffers.count(rows.back().data());
+    }
+    EXPECT_EQ(reused, kPooledRows);
+    std::thread([] { EXPECT_EQ(pooled_row(2, 0.0), std::vector<double>(2, 0.0)); }).join();
+  }).join();
+}
+
 TEST(WorkQueue, GuidedBatchesShrinkAndPinnedCasesStayLocal) {
   std::vector<std::int64_t> shared(1000);
   for (std::size_t i = 0; i < shared.size(); ++i) shared[i] = static_cast<std::int64_t>(i);

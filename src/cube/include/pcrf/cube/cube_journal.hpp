@@ -245,7 +245,11 @@ class JournalWriter {
                  const std::int8_t* status);
   /// Writes a sealed chunk's statuses and filtered bytes (not synced; its notes go by add_notes).
   void add_sealed(const SealedChunk& sealed);
+  /// The same from where its parts lie: the same record, its streams written as they are
+  /// (LogWriter::add_pieces), never copied into a payload.
+  void add_sealed(const SealedChunkView& sealed);
   void add_notes(const std::vector<std::pair<std::int64_t, std::string>>& notes);
+  void add_notes(std::span<const std::pair<std::int64_t, std::string_view>> notes);
   void add_history(const HistoryTable& table);
   /// Writes the commit record that makes the records added since the last one a checkpoint.
   void commit();

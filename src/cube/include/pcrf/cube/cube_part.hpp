@@ -78,6 +78,8 @@ class PartWriter {
   /// durable when this returns. \throws CubeError naming the part (the file is then cut back
   /// to its last commit, best effort: a torn tail, which readers drop).
   void add(const SealedChunk& sealed);
+  /// The same from where its parts lie (a worker's own sealed bytes: sealed_view_of_bytes).
+  void add(const SealedChunkView& sealed);
   const std::filesystem::path& file() const { return file_; }
 
  private:

@@ -14,6 +14,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -48,6 +49,24 @@ struct SealedChunk {
   std::vector<SealedPiece> coordinates;
 };
 
+/// A sealed chunk's parts where they lie (a SealedChunk's, or its bytes': sealed_view_of_bytes),
+/// valid while they are: what a rank that sealed a chunk writes to its part without copying
+/// its streams again (PartWriter::add, JournalWriter::add_sealed).
+struct SealedChunkView {
+  struct Piece {
+    std::size_t coordinate = 0;        ///< as SealedPiece
+    std::size_t piece = 0;
+    std::span<const char> filtered;
+  };
+  std::size_t chunk = 0;
+  std::span<const std::int8_t> status;
+  std::vector<std::span<const char>> filtered;
+  std::vector<std::pair<std::int64_t, std::string_view>> notes;
+  std::vector<Piece> coordinates;
+};
+/// The view of `sealed` (valid while it is unchanged).
+SealedChunkView view_of(const SealedChunk& sealed);
+
 /// A coordinate whose chunks go in with the units (issue 38): the cube stores it in chunks of
 /// the grid's extent along its dimension, so that one unit's range of it is one chunk.
 struct UnitCoordinate {
@@ -76,6 +95,30 @@ const std::vector<char>& uniform_status_stream(std::size_t padded, std::int8_t c
 
 /// The bytes of a sealed chunk (one process's, to another running the same binary).
 std::vector<char> to_bytes(const SealedChunk& sealed);
+/// The values of a coordinate's piece a unit carries (SealedChunk::coordinates), not yet sealed:
+/// `values` are the piece's (not padded), of a chunk of `chunk_values` (seal_coordinate_values).
+struct PieceValues {
+  std::size_t coordinate = 0;
+  std::size_t piece = 0;
+  std::span<const double> values;
+  std::size_t chunk_values = 0;
+  /// Optional: a buffer of `chunk_values` values whose first are `values` (the same memory),
+  /// which sealed_bytes pads and seals in place, without copying them (its values after the
+  /// piece's are overwritten).
+  std::span<double> room = {};
+};
+/// to_bytes of the chunk seal_chunk makes of these arguments, with `pieces` sealed by
+/// seal_coordinate_values as its coordinates, the same bytes, each stream written once, straight
+/// into them (a worker's sealing: no SealedChunk of streams in between, no second copy).
+/// \throws std::invalid_argument as seal_chunk and seal_coordinate_values do.
+std::vector<char> sealed_bytes(const ChunkGrid& grid, std::size_t chunk, std::size_t metrics,
+                               std::span<const std::int8_t> status, std::span<const double> values,
+                               std::span<const std::pair<std::int64_t, std::string>> notes,
+                               std::span<const PieceValues> pieces);
+/// Inverse of to_bytes, checked as sealed_from_bytes checks it, its parts where they lie in
+/// `bytes` (nothing copied). \throws CubeError naming `what` when they do not fit.
+SealedChunkView sealed_view_of_bytes(std::span<const char> bytes, const ChunkGrid& grid, std::size_t metrics,
+                                     const std::string& what);
 /// Inverse of to_bytes, checked against the cube's grid and metrics (counts, sizes, the
 /// chunk's number, note case indices, coordinate pieces' sizes: sealed_piece_size_bound).
 /// \throws CubeError naming `what` when they do not fit.

@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -28,6 +29,8 @@ namespace pcrf::io {
 
 /// Appends `value` as `count` little-endian bytes (the log's integers, and its users').
 void append_le(std::string& out, std::uint64_t value, std::size_t count);
+/// Writes `value` as `count` little-endian bytes at `out`.
+void store_le(char* out, std::uint64_t value, std::size_t count);
 /// The `count` little-endian bytes at `bytes` as a number.
 std::uint64_t load_le(const char* bytes, std::size_t count);
 
@@ -124,6 +127,9 @@ class LogWriter {
   /// yet synced. On failure the file is cut back to its last synced size (best effort: a
   /// kill then leaves a torn tail, which readers drop). \throws OutputError naming the file.
   void add(std::uint32_t kind, std::string_view payload);
+  /// The same with a payload of several pieces, one after another (written as they are, by one
+  /// pwritev: a record assembled from buffers that are already there, without a copy).
+  void add_pieces(std::uint32_t kind, std::span<const std::string_view> payload);
   /// Syncs what add() wrote to disk (fdatasync): the records are then committed.
   /// \throws OutputError naming the file.
   void sync();
@@ -139,6 +145,8 @@ class LogWriter {
   [[noreturn]] void cut_back(int error);
   /// pwrite() of all of `bytes` at `offset`; false (errno set) on failure.
   bool write_at(std::uint64_t offset, std::string_view bytes);
+  /// The same for `pieces` one after another.
+  bool write_at(std::uint64_t offset, std::span<const std::string_view> pieces);
 
   std::uint64_t written_ = 0;  ///< size after add(), before sync()
 };

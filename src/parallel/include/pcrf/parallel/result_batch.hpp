@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -45,6 +46,17 @@ struct SealedUnit {
   int worker = -1;
 };
 using SealedUnits = std::vector<SealedUnit>;
+
+/// A row of `width` values, each `fill`: one this thread gave back (recycle_rows), its memory
+/// reused, or a new one. A worker's rows then cost no allocation once its first unit is sealed
+/// (issue 38 item 5: a row's allocation and its free among a unit's 16 384 were about 240
+/// instructions a non-lifting case).
+std::vector<double> pooled_row(std::size_t width, double fill);
+/// Gives the rows of `outcomes` (left empty) to this thread's pool for pooled_row; the pool
+/// keeps at most kPooledRows, the rest are freed.
+void recycle_rows(std::span<CaseOutcome> outcomes);
+/// Rows a thread's pool keeps at most: a chunk of the cube's cases (cube::kChunkCases).
+inline constexpr std::size_t kPooledRows = 16384;
 
 /// Serializes a batch. \throws std::invalid_argument if a row's width is not `row_width`.
 std::vector<char> pack_results(const ResultBatch& batch, std::size_t row_width);
