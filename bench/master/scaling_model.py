@@ -56,11 +56,12 @@ WORKERS = [16, 64, 256, 2048, 16384]
 
 # Measured with callgrind on a non-lifting LHS of 8 parameters, 17 metrics, at 4 ranks, on main after the
 # coordinates written during the run (each unit's worker seals its chunk of every sampled parameter, rank 0
-# copies it raw with the unit) and libdeflate's Adler-32, rank 0's serial work then taken down (the case
-# number in chunks of up to 2^20 values, the last fold reading nothing again per unit) (rank_costs.py --ranks 4
-# --small 294912 1179648, one checkpoint at the end: marginal instructions between the two sizes, so that
-# start-up cancels; rank 0's own work with its waits left out, and the working threads' split, both printed by
-# rank_costs.py; studies/README.md "The master at cluster scale"):
+# copies it raw with the unit) and libdeflate's Adler-32, the workers' two figures after each unit's parameters
+# were computed once, by columns, rank 0's three after its serial work was taken down (the case number in chunks
+# of up to 2^20 values, the last fold reading nothing again per unit) (rank_costs.py --ranks 4 --small 294912 1179648, one
+# checkpoint at the end: marginal instructions between the two sizes, so that start-up cancels; rank 0's own
+# work with its waits left out, and the working threads' split, both printed by rank_costs.py; studies/README.md
+# "The master at cluster scale"):
 MASTER_SETUP_PER_CASE = 0.1       # rank 0's main thread before the first hand-out, its wait for the workers'
                                   # pieces left out: the plan, the checks, the case number's chunks, now of up to
                                   # 2^20 values (cube::kCreationCoordinateChunk), a raw chunk write each (0.4-0.58
@@ -81,15 +82,13 @@ MASTER_ASSEMBLY_PER_RESULT = 0.4  # rank 0's main thread in the last fold, after
                                   # Before: 0.4 to 0.7 (each part read again from its start, 2.2 k instructions a
                                   # unit; a part's name built and compared a chunk, 1.9 k; HDF5's storage summed
                                   # per coordinate, 4.5 k), 11 before the streaming fold, 25 at 291f9a0
-NONLIFT_CASE = 15_020             # a worker's non-lifting case (CaseRunner::run; its LHS point included: 16 100 at
-                                  # e2c9aee, the point then computed value by value; 15 190 before its row came
-                                  # from the worker's pool, parallel::pooled_row)
-WORKER_OWN_PER_CASE = 3_850       # sealing its chunk and its chunk of each coordinate 3 700 (deflating the metrics'
-                                  # and the coordinates' streams 2 080, the coordinates' values computed again from
-                                  # the plan 1 450, gathering the rows and one copy of the streams into the unit's
-                                  # bytes 170), its part (written from those bytes as they lie, libdeflate's CRC-32),
-                                  # its batch of rows and messages 150. Beyond the deflate and the coordinates'
-                                  # values: 340, 1 390 at f1ca852 (4 910 in all then: sealing 4 050, the rest 860)
+NONLIFT_CASE = 13_920             # a worker's non-lifting case (CaseRunner::run), its LHS point included: each unit's
+                                  # parameters computed once, by the design's columns, in its cases' set-up
+                                  # (ColumnWindow, 1 420) and read from there by the sealing; 15 200 before, when each
+                                  # case computed its point by the design's row (2 490), 16 100 at e2c9aee
+WORKER_OWN_PER_CASE = 3_540       # sealing its chunk and its chunk of each coordinate 2 670 (the metrics 1 110, the
+                                  # coordinates sealed 1 115, their values read from the unit's window 64: 1 390 when
+                                  # they were computed again from the plan), its part and messages 875
 WORKER_CREATION_PER_CASE = 67     # the case number's pieces sealed by the workers at the creation, per case of
                                   # the study (2 565 when the sampled parameters were sealed there too)
 

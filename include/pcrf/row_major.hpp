@@ -5,18 +5,24 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace pcrf {
 
-/// Coordinates of linear index `index` in a space of `shape`.
-inline std::vector<std::size_t> unravel(std::int64_t index, const std::vector<std::size_t>& shape) {
-  std::vector<std::size_t> coords(shape.size());
+/// Coordinates of linear index `index` in a space of `shape` into `coords` (as many).
+inline void unravel_into(std::int64_t index, const std::vector<std::size_t>& shape, std::span<std::size_t> coords) {
   auto rest = static_cast<std::size_t>(index);
   for (std::size_t d = shape.size(); d-- > 0;) {
     coords[d] = rest % shape[d];
     rest /= shape[d];
   }
+}
+
+/// Coordinates of linear index `index` in a space of `shape`.
+inline std::vector<std::size_t> unravel(std::int64_t index, const std::vector<std::size_t>& shape) {
+  std::vector<std::size_t> coords(shape.size());
+  unravel_into(index, shape, coords);
   return coords;
 }
 

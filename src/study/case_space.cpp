@@ -2,6 +2,7 @@
 #include "pcrf/study/case_space.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "pcrf/row_major.hpp"
@@ -51,7 +52,13 @@ std::int64_t CaseSpace::index(const std::vector<std::size_t>& coordinates) const
 }
 
 CaseSpec CaseSpace::case_at(std::int64_t index) const {
-  const auto c = coordinates(index);
+  // unravel's coordinates on the stack (a vector a case cost 250 instructions of the ~3 000
+  // case_at took for an LHS frame, issue 38); a space of more axes than that is unravelled as before.
+  std::array<std::size_t, 16> on_stack;
+  std::vector<std::size_t> on_heap;
+  if (shape_.size() > on_stack.size()) on_heap.resize(shape_.size());
+  const std::span<std::size_t> c = on_heap.empty() ? std::span(on_stack).first(shape_.size()) : std::span(on_heap);
+  unravel_into(index, shape_, c);
   const std::span<const std::size_t> frame(c.data() + frame_dim_, plan_->dimensions().size());
   const auto [record, factor] = record_at(c[0], levels_.empty() ? 0 : c[1]);
   CaseSpec spec{record, levels_.empty() ? std::nan("") : levels_[c[1]], plan_->frame_at(frame), std::nullopt, factor};

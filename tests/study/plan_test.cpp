@@ -7,6 +7,8 @@
 #include <bit>
 #include <cstdint>
 #include <map>
+#include <numeric>
+#include <random>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -158,6 +160,92 @@ TEST(Plan, SampledPlansFillTheirParametersARunAtATimeWithTheSameBits) {
         ASSERT_EQ(std::bit_cast<std::uint64_t>(frame.value(c.name)), std::bit_cast<std::uint64_t>(c.number(i)))
             << c.name << " of frame " << i;
       }
+    }
+  }
+}
+
+/// Every varied parameter of every frame of `study`'s plan by the design's row: frames asked
+/// never one after the other (evens, then odds), so that no thread's window fills (column_window.hpp).
+std::vector<std::vector<double>> row_values(const Study& study, const std::vector<std::string_view>& names) {
+  const std::size_t frames = study.plan->dimensions().front().size;
+  std::vector<std::vector<double>> values(frames);
+  for (std::size_t parity : {0u, 1u})
+    for (std::size_t i = parity; i < frames; i += 2) {
+      const SceneSpec frame = study.plan->frame_at(std::span<const std::size_t>(&i, 1));
+      for (std::string_view name : names) values[i].push_back(frame.value(name));
+    }
+  return values;
+}
+
+TEST(Plan, SampledFramesAskedInRunsAreTheRowsValuesForEveryOrderAndPiece) {
+  // A case's point from the thread's window of columns (filled where the frames asked run) and
+  // a unit's pieces read from it are the row's bits: runs within a window of 16 384 frames,
+  // across two, into the last (short) one, a unit then its pieces, and runs in random order.
+  // Each pattern on a plan of its own (a window is the last plan's it filled for).
+  const std::string ranges = "[axes]\nkappa = {from = 1.2, to = 2.4}\nlambda = {from = 1, to = 3, spacing = \"log\"}\n";
+  const std::vector<std::string> plans = {"kind = \"lhs\"\nsamples = 40000\nseed = 9\n", "kind = \"sobol\"\nsamples = 40000\nscramble = true\n",
+                                          "kind = \"saltelli\"\nsamples = 10001\n"};
+  const std::vector<std::string_view> names = {"kappa", "lambda"};
+  for (const std::string& plan : plans) {
+    SCOPED_TRACE(plan);
+    const std::string text = "[plan]\n" + plan + ranges;
+    const auto reference = row_values(parse(text), names);
+    const std::size_t frames = reference.size(), window = 16384;
+    auto expect_frames = [&](const Study& study, const std::vector<std::size_t>& order) {
+      for (std::size_t i : order) {
+        const SceneSpec frame = study.plan->frame_at(std::span<const std::size_t>(&i, 1));
+        for (std::size_t k = 0; k < names.size(); ++k)
+          ASSERT_EQ(std::bit_cast<std::uint64_t>(frame.value(names[k])), std::bit_cast<std::uint64_t>(reference[i][k]))
+              << names[k] << " of frame " << i;
+      }
+    };
+    auto expect_piece = [&](const Study& study, std::size_t first, std::size_t count) {
+      for (const auto& c : study.plan->coordinates()) {
+        const auto k = std::find(names.begin(), names.end(), c.name);
+        if (k == names.end()) continue;
+        std::vector<double> piece(count);
+        c.numbers_into(first, piece);
+        for (std::size_t m = 0; m < count; ++m)
+          ASSERT_EQ(std::bit_cast<std::uint64_t>(piece[m]), std::bit_cast<std::uint64_t>(reference[first + m][k - names.begin()]))
+              << c.name << " of frame " << first + m << " in the piece from " << first;
+      }
+    };
+    auto run = [](std::size_t from, std::size_t to) {
+      std::vector<std::size_t> order(to - from);
+      std::iota(order.begin(), order.end(), from);
+      return order;
+    };
+    {  // every frame in order: runs in each window, across their ends, into the last one
+      const Study study = parse(text);
+      expect_frames(study, run(0, frames));
+      expect_piece(study, 2 * window, frames - 2 * window);  // the last window, held
+      expect_piece(study, window - 500, 1000);               // across two windows, partly held
+    }
+    {  // a unit, then its pieces (held) and pieces around it (partly held)
+      const Study study = parse(text);
+      expect_frames(study, run(window, 2 * window));
+      expect_piece(study, window, window);
+      expect_piece(study, window - 3, window + 6);
+      expect_piece(study, window + 100, 200);
+    }
+    {  // a run across a window's end, then frames asked again, backwards
+      const Study study = parse(text);
+      expect_frames(study, run(window - 40, window + 40));
+      auto back = run(window - 100, window + 100);
+      std::reverse(back.begin(), back.end());
+      expect_frames(study, back);
+    }
+    {  // runs of random length from random frames, and single frames, in random order
+      const Study study = parse(text);
+      std::mt19937 random(5);
+      std::vector<std::size_t> order;
+      for (int r = 0; r < 60; ++r) {
+        const std::size_t from = std::uniform_int_distribution<std::size_t>(0, frames - 1)(random);
+        const std::size_t length = std::uniform_int_distribution<std::size_t>(1, 400)(random);
+        for (std::size_t i : run(from, std::min(from + length, frames))) order.push_back(i);
+      }
+      expect_frames(study, order);
+      expect_piece(study, order.back() - std::min<std::size_t>(order.back(), 300), 300);
     }
   }
 }

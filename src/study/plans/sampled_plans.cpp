@@ -6,6 +6,7 @@
 // "s<j>:B", "s<j>:AB_<parameter>") and stores each frame's block and sample.
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <functional>
 #include <memory>
@@ -15,6 +16,7 @@
 #include "pcrf/study/sampling.hpp"
 #include "pcrf/schema/cube_vocabulary.hpp"
 #include "study/axis_fields.hpp"
+#include "study/plans/column_window.hpp"
 #include "study/plans/plan_support.hpp"
 
 namespace pcrf::study::detail {
@@ -149,10 +151,20 @@ class SampledPlan : public PointPlan {
     if (slot_[k] == kNotVaried) return base_[k];
     return sampling_.ranges[k]->at(unit_.at(i, slot_[k]));
   }
-  /// point_value of every parameter of frame i: the varied ones from the design's row.
+  /// point_value of every parameter of frame i: the varied ones from this thread's window
+  /// where the frames asked run (column_window.hpp: the design's columns, once for the case
+  /// and its unit's seal), else from the design's row.
   void frame_values(std::size_t i, std::span<double> values) const override {
     std::copy(base_.begin(), base_.end(), values.begin());
-    std::array<double, 32> unit;  // a row's piece on the stack [unit coordinates]
+    std::array<double, 32> unit;  // a row's piece on the stack [unit coordinates]; mapped ones from the window
+    if (varied_.size() <= unit.size()) {
+      const auto mapped = std::span(unit.data(), varied_.size());
+      const auto fill = [this](std::size_t s, std::size_t first, std::span<double> out) { mapped_column(s, first, out); };
+      if (window().frame(id_, point_count(), i, mapped, fill)) {
+        for (std::size_t s = 0; s < mapped.size(); ++s) values[varied_[s]] = mapped[s];
+        return;
+      }
+    }
     for (std::size_t first = 0; first < varied_.size(); first += unit.size()) {
       const std::size_t count = std::min(unit.size(), varied_.size() - first);
       unit_.row(i, first, std::span(unit.data(), count));
@@ -162,12 +174,14 @@ class SampledPlan : public PointPlan {
       }
     }
   }
-  /// point_value of frames first, first + 1, …: the design's column, then the range's map.
+  /// point_value of frames first, first + 1, …: what this thread's window holds of them (a
+  /// unit's cases just set up), the others from the design's column and the range's map.
   void point_values(std::size_t first, std::size_t k, std::span<double> out) const override {
     if (slot_[k] == kNotVaried) return std::fill(out.begin(), out.end(), base_[k]);
-    unit_.column(slot_[k], first, out);
-    const SampledRange& range = *sampling_.ranges[k];
-    for (double& value : out) value = range.at(value);
+    const auto [from, to] = window().piece(id_, slot_[k], first, out);
+    if (from == to) return mapped_column(slot_[k], first, out);
+    mapped_column(slot_[k], first, out.first(from - first));
+    mapped_column(slot_[k], to, out.subspan(to - first));
   }
   std::string point_label(std::size_t i) const override { return "s" + std::to_string(i); }
   /// The varied parameters (positions in the model's table), d of them.
@@ -182,6 +196,25 @@ class SampledPlan : public PointPlan {
   std::string construction_;
   std::vector<std::size_t> varied_;
   std::vector<std::size_t> slot_;  ///< per parameter: its column of the design, or kNotVaried
+  /// This plan among those made in the process (ColumnWindow's owner; never 0, never reused).
+  std::uint64_t id_ = next_id();
+
+  static std::uint64_t next_id() {
+    static std::atomic<std::uint64_t> last{0};
+    return ++last;
+  }
+  /// The calling thread's window (one a thread, for the plan it last filled for).
+  static ColumnWindow& window() {
+    thread_local ColumnWindow w;
+    return w;
+  }
+  /// Design column s of frames first, first + 1, … mapped onto its parameter's range.
+  void mapped_column(std::size_t s, std::size_t first, std::span<double> out) const {
+    if (out.empty()) return;
+    unit_.column(s, first, out);
+    const SampledRange& range = *sampling_.ranges[varied_[s]];
+    for (double& value : out) value = range.at(value);
+  }
 };
 
 /// Saltelli: frame i is row i of the design, base sample i / (d + 2), block i % (d + 2).
