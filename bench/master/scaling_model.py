@@ -56,24 +56,32 @@ WORKERS = [16, 64, 256, 2048, 16384]
 
 # Measured with callgrind on a non-lifting LHS of 8 parameters, 17 metrics, at 4 ranks, on main after the
 # coordinates written during the run (each unit's worker seals its chunk of every sampled parameter, rank 0
-# copies it raw with the unit) and libdeflate's Adler-32, the workers' two figures on main at 932bc0d, after its
-# sealing's copies went and each unit's parameters were computed once, by columns (rank_costs.py --ranks 4 --small
-# 294912 1179648, one
+# copies it raw with the unit) and libdeflate's Adler-32, the workers' two figures after each unit's parameters
+# were computed once, by columns, rank 0's three after its serial work was taken down (the case number in chunks
+# of up to 2^20 values, the last fold reading nothing again per unit) (rank_costs.py --ranks 4 --small 294912 1179648, one
 # checkpoint at the end: marginal instructions between the two sizes, so that start-up cancels; rank 0's own
 # work with its waits left out, and the working threads' split, both printed by rank_costs.py; studies/README.md
 # "The master at cluster scale"):
-MASTER_SETUP_PER_CASE = 0.4       # rank 0's main thread before the first hand-out, its wait for the workers'
-                                  # pieces left out: the plan, the checks, the case number's pieces (0.7 when it
-                                  # also wrote every sampled parameter's chunks; 11 600 at da9ce77)
-MASTER_RUN_PER_RESULT = 8.1       # rank 0's main thread during the run, its polling between messages left out:
+MASTER_SETUP_PER_CASE = 0.1       # rank 0's main thread before the first hand-out, its wait for the workers'
+                                  # pieces left out: the plan, the checks, the case number's chunks, now of up to
+                                  # 2^20 values (cube::kCreationCoordinateChunk), a raw chunk write each (0.4-0.58
+                                  # in chunks of 16 384, 0.48 of it those writes; 0.7 when it also wrote every
+                                  # sampled parameter's chunks; 11 600 at da9ce77)
+MASTER_RUN_PER_RESULT = 7.0       # rank 0's main thread during the run, its polling between messages left out:
                                   # what comes back (Master::handle), nearly all of it the parts' chunks streamed
                                   # into the next fold (CubeWriter::stream_kept: HDF5's raw chunk write with
-                                  # fixed-array chunk indices, 18 variables and now 8 coordinate chunks a unit;
+                                  # fixed-array chunk indices, 18 variables and 8 coordinate chunks a unit; 8.1
+                                  # with a tree of the coordinate chunks written and an error text built for each,
                                   # 4.9 without the coordinates)
-MASTER_ASSEMBLY_PER_RESULT = 0.4  # rank 0's main thread in the last fold, after the run: what the stream does not
-                                  # hold, and the coordinate chunks no unit brought (looked up in HDF5's chunk
-                                  # index only where rank 0 did not write them itself); 0.4 to 0.9 before,
-                                  # 11 before the streaming fold, 25 at 291f9a0
+MASTER_ASSEMBLY_PER_RESULT = 0.4  # rank 0's main thread in the last fold, after the run: HDF5 serializing each
+                                  # variable's chunk index (a fixed array, 26 variables, ~240 instructions an entry)
+                                  # as the fold's file closes, 0.38 a result, what remains. rank_costs.py prints
+                                  # -0.2 to 0.3 here: the last chunk, stored case by case and deflated as the
+                                  # variables close (120 M instructions at either size), varies with its data by
+                                  # +-0.5 a result, so it is left out by its own count (H5Dclose under update).
+                                  # Before: 0.4 to 0.7 (each part read again from its start, 2.2 k instructions a
+                                  # unit; a part's name built and compared a chunk, 1.9 k; HDF5's storage summed
+                                  # per coordinate, 4.5 k), 11 before the streaming fold, 25 at 291f9a0
 NONLIFT_CASE = 13_750             # a worker's non-lifting case (CaseRunner::run), its LHS point included: each unit's
                                   # parameters computed once, by the design's columns, in its cases' set-up
                                   # (ColumnWindow, 1 410) and read from there by the sealing; its row from the

@@ -115,10 +115,19 @@ std::size_t coordinate_chunk_values(const ChunkGrid& grid, std::size_t dimension
   return std::min(size, std::max(grid.chunk_shape()[dimension], kCoordinateChunkMin));
 }
 
+std::size_t coordinate_chunk_values(const ChunkGrid& grid, std::size_t dimension, const Coordinate& c) {
+  if (c.written_live()) return coordinate_chunk_values(grid, dimension);
+  // Cut evenly: the last chunk pads at most one value a chunk (a chunk at the edge is sealed
+  // and stored at its full extent).
+  const std::size_t size = grid.shape().at(dimension);
+  const std::size_t chunks = (size + kCreationCoordinateChunk - 1) / kCreationCoordinateChunk;
+  return (size + chunks - 1) / chunks;
+}
+
 std::size_t coordinate_chunk_values(const CubeLayout& layout, const Coordinate& c) {
   const auto d = layout.find_dimension(c.dimension);
   if (!d) throw std::invalid_argument("coordinate '" + c.name + "' is over no dimension of the cube");
-  return coordinate_chunk_values(layout_grid(layout), *d);
+  return coordinate_chunk_values(layout_grid(layout), *d, c);
 }
 
 ChunkGrid layout_grid(const CubeLayout& layout) {

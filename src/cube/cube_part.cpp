@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <optional>
 
 #include "pcrf/cube/cube_journal.hpp"
 #include "pcrf/io/file_kind.hpp"
@@ -18,19 +19,34 @@ std::filesystem::path part_path(const std::filesystem::path& cube, int rank) {
   return cube.string() + ".part-" + std::to_string(rank);
 }
 
+namespace {
+
+/// The rank a file name `name` gives a part of the cube named `cube_name` (`<cube_name>.part-<rank>`,
+/// rank 0 to 999999 without leading zeros); nothing for any other name.
+std::optional<int> rank_in_name(const std::string& cube_name, const std::string& name) {
+  const std::string prefix = cube_name + ".part-";
+  if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) return std::nullopt;
+  const std::string rank = name.substr(prefix.size());
+  if (rank.size() > 6 || (rank.front() == '0' && rank.size() > 1) ||
+      !std::all_of(rank.begin(), rank.end(), [](char c) { return c >= '0' && c <= '9'; }))
+    return std::nullopt;
+  return std::stoi(rank);
+}
+
+}  // namespace
+
+std::optional<int> part_rank(const std::filesystem::path& cube, const std::filesystem::path& part) {
+  return rank_in_name(cube.filename().string(), part.filename().string());
+}
+
 std::vector<std::filesystem::path> part_files(const std::filesystem::path& cube) {
-  const std::string prefix = cube.filename().string() + ".part-";
+  const std::string cube_name = cube.filename().string();
   const std::filesystem::path folder = cube.parent_path().empty() ? std::filesystem::path(".") : cube.parent_path();
   std::vector<std::pair<long, std::filesystem::path>> found;
   std::error_code error;
   for (std::filesystem::directory_iterator it(folder, error), end; !error && it != end; it.increment(error)) {
     const std::string name = it->path().filename().string();
-    if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
-    const std::string rank = name.substr(prefix.size());
-    if (rank.size() > 6 || (rank.front() == '0' && rank.size() > 1) ||
-        !std::all_of(rank.begin(), rank.end(), [](char c) { return c >= '0' && c <= '9'; }))
-      continue;
-    found.emplace_back(std::stol(rank), cube.parent_path() / name);
+    if (const auto rank = rank_in_name(cube_name, name)) found.emplace_back(*rank, cube.parent_path() / name);
   }
   std::sort(found.begin(), found.end());
   std::vector<std::filesystem::path> parts;

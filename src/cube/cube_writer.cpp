@@ -233,11 +233,27 @@ struct CubeWriter::Impl {
   // their datasets in the file being written (opened at a unit's first piece).
   std::vector<UnitCoordinate> unit_coordinates;
   std::map<std::size_t, h5::Handle> coordinate_sets;
-  // Coordinate chunks (coordinate, piece) this writer put in the cube or in the file being
+  // Coordinate chunks [coordinate][piece] this writer put in the cube or in the file being
   // folded: a hint that spares the close HDF5's look-up of each (2 k instructions a chunk, 1 a
   // result at 1.2 million cases); forgotten whenever a file being folded is dropped, so that
   // each one in it is in the file the next fold writes (a copy of the cube, or the stream).
-  std::set<std::pair<std::size_t, std::size_t>> pieces_written;
+  // A flag a piece, not a tree of pairs: marked for each of a unit's pieces during the run and
+  // looked up for every piece at close (rank_costs.py: 0.2 instructions a result as a std::set).
+  std::vector<std::vector<char>> pieces_written;
+  bool piece_written(std::size_t coordinate, std::size_t piece) const {
+    return coordinate < pieces_written.size() && piece < pieces_written[coordinate].size() &&
+           pieces_written[coordinate][piece] != 0;
+  }
+  bool any_piece_written(std::size_t coordinate) const {
+    return coordinate < pieces_written.size() &&
+           std::find(pieces_written[coordinate].begin(), pieces_written[coordinate].end(), 1) != pieces_written[coordinate].end();
+  }
+  void mark_written(std::size_t coordinate, std::size_t piece, std::size_t pieces) {
+    if (pieces_written.size() <= coordinate) pieces_written.resize(layout.coordinates.size());
+    auto& flags = pieces_written[coordinate];
+    if (flags.size() < pieces) flags.resize(pieces, 0);
+    flags[piece] = 1;
+  }
   // The streaming fold (CubeWriter::stream_kept): the next fold's <cube>.partial, open during
   // the run, into which the chunks workers report kept are written as they come. While it is
   // open, `file`, `metric_sets` and `status_set` are its handles (declared after `file`: the
@@ -291,7 +307,8 @@ struct CubeWriter::Impl {
   void replay_journal(StatusBook& status);
   void set_aside_journal(const std::string& problem);
   void set_aside(const std::filesystem::path& from, const std::string& problem, const std::string& what);
-  void read_part(const std::filesystem::path& part, StatusBook& status, bool inflate, bool count_now);
+  void read_part(const std::filesystem::path& part, StatusBook& status, bool inflate, bool count_now,
+                 std::unique_ptr<JournalReader> live = nullptr);
   void take_run_parts(StatusBook& status, bool count_now);
   void write_parts(std::vector<std::pair<std::int64_t, std::string>>& notes, StatusBook& status);
   PartHeader part_header_of_cube() const {
@@ -304,7 +321,7 @@ struct CubeWriter::Impl {
   bool fold_stream(StatusBook& status, std::int64_t new_id);
   void drop_stream(const std::string& reason);
   void check_stream_identity(const struct stat& now, const std::filesystem::path& partial, const char* when) const;
-  bool streamed_from(std::size_t chunk, const std::filesystem::path& part) const;
+  bool streamed_from(std::size_t chunk, int rank) const;
   h5::Handle create_cube_variable(const std::string& name, hid_t file_type, hid_t memory_type,
                                   const void* fill);
   h5::Handle create_side_variable(const SideVariable& v);
@@ -604,10 +621,21 @@ void CubeWriter::Impl::set_aside(const std::filesystem::path& from, const std::s
 /// (write_parts), chunk by chunk, not case by case. A part that cannot be used
 /// (forged, foreign: another cube's or study's) is set aside and its cases computed again; one
 /// that holds nothing is removed by the next fold.
-void CubeWriter::Impl::read_part(const std::filesystem::path& part, StatusBook& status, bool inflate, bool count_now) {
+void CubeWriter::Impl::read_part(const std::filesystem::path& part, StatusBook& status, bool inflate, bool count_now,
+                                 std::unique_ptr<JournalReader> live) {
   std::unique_ptr<JournalReader> read;
   try {
-    read = std::make_unique<JournalReader>(part, layout, part_header_payload(part_header_of_cube()), inflate);
+    if (live) {  // read during the run (stream_kept): the records committed since, checked alike
+      try {
+        live->reopen_file();
+        live->extend();
+        read = std::move(live);
+      } catch (const JournalDamage&) {
+        throw;
+      } catch (const CubeError&) {  // replaced or cut since: read anew, as it was before streaming
+      }
+    }
+    if (!read) read = std::make_unique<JournalReader>(part, layout, part_header_payload(part_header_of_cube()), inflate);
     if (inflate) read->check_all();
   } catch (const JournalDamage& e) {
     set_aside(part, e.what(), "part");
@@ -1038,13 +1066,14 @@ void CubeWriter::Impl::write_sealed_piece(hid_t d, const CoordinatePiece& piece,
   h5::check(H5Dwrite_chunk(d, H5P_DEFAULT, 0, &offset, bytes.size(), bytes.data()), problem);
 }
 
-/// Values per chunk of a chunked coordinate of this cube (coordinate_chunk_values of its grid;
-/// a short one's "pieces" as it is written value by value: kContiguousCoordinateMax).
+/// Values per chunk of a chunked coordinate of this cube (coordinate_chunk_values of its grid:
+/// a unit's extent for one written live, kCreationCoordinateChunk for one written at the
+/// creation; a short one's "pieces" as it is written value by value: kContiguousCoordinateMax).
 std::size_t CubeWriter::Impl::chunk_values_of(const Coordinate& c) const {
   if (!c.chunked()) return kContiguousCoordinateMax;
   const auto d = layout.find_dimension(c.dimension);
   if (!d) throw CubeError(what("coordinate '" + c.name + "' is over an unknown dimension"));
-  return coordinate_chunk_values(grid, *d);
+  return coordinate_chunk_values(grid, *d, c);
 }
 
 /// The live coordinates (Coordinate::written_live) that the file `in` stores in chunks of the
@@ -1079,11 +1108,13 @@ void CubeWriter::Impl::write_piece(std::size_t unit, std::size_t coordinate, std
   if (!expected || *expected != piece || size == 0 || size > sealed_piece_bound(layout.coordinates[coordinate], it->chunk_values))
     return;
   auto& set = coordinate_sets[coordinate];
-  const std::string problem = what("cannot write coordinate '" + it->name + "'");
-  if (!set.valid()) set = h5::dataset(H5Dopen2(file, it->name.c_str(), H5P_DEFAULT), problem);
+  // The error's text made only for an error (built for each of a unit's 8 pieces, it was 0.4
+  // instructions a result of rank 0's run, rank_costs.py --ranks 4).
+  const auto problem = [&] { return what("cannot write coordinate '" + it->name + "'"); };
+  if (!set.valid()) set = h5::dataset(H5Dopen2(file, it->name.c_str(), H5P_DEFAULT), problem());
   const hsize_t offset = static_cast<hsize_t>(piece * it->chunk_values);
-  h5::check_lazily(H5Dwrite_chunk(set, H5P_DEFAULT, 0, &offset, size, bytes), [&] { return problem; });
-  pieces_written.emplace(coordinate, piece);
+  h5::check_lazily(H5Dwrite_chunk(set, H5P_DEFAULT, 0, &offset, size, bytes), problem);
+  mark_written(coordinate, piece, piece_count(layout.coordinates[coordinate].size(), it->chunk_values));
 }
 
 /// The chunks of the coordinates written live (Coordinate::written_live) that the file being
@@ -1121,11 +1152,17 @@ void CubeWriter::Impl::write_missing_coordinates(const StatusBook& status) {
       }
     }
     // A dataset none of whose chunks is written has no chunk index yet (HDF5 1.10.8 then
-    // refuses the query below): every chunk is missing.
+    // refuses the query below): every chunk is missing. HDF5 says so by summing the storage of
+    // every chunk (H5Dget_space_status: 4.5 k instructions a unit at close, rank_costs.py), so
+    // it is asked only for a piece not known written, and only when none of the coordinate's
+    // pieces is known written into this file (which would have made its index).
     H5D_space_status_t space = H5D_SPACE_STATUS_ERROR;
-    h5::check(H5Dget_space_status(d, &space), problem);
     for (std::size_t p = 0; p < pieces; ++p) {
-      if (!wanted[p] || pieces_written.count({k, p}) > 0) continue;
+      if (!wanted[p] || piece_written(k, p)) continue;
+      if (space == H5D_SPACE_STATUS_ERROR) {
+        if (any_piece_written(k)) space = H5D_SPACE_STATUS_PART_ALLOCATED;
+        else h5::check(H5Dget_space_status(d, &space), problem);
+      }
       hsize_t offset = static_cast<hsize_t>(p * values);
       // Not H5Dget_chunk_info_by_coord: HDF5 1.10.8 finds the chunk by a pass over the
       // dataset's chunk index (callgrind: 6 k instructions a query at 18 chunks, 25 k at 72, so
@@ -1140,7 +1177,7 @@ void CubeWriter::Impl::write_missing_coordinates(const StatusBook& status) {
         const std::vector<char> bytes = seal_coordinate_piece(c, values, p);
         h5::check(H5Dwrite_chunk(d, H5P_DEFAULT, 0, &offset, bytes.size(), bytes.data()), problem);
       }
-      pieces_written.emplace(k, p);
+      mark_written(k, p, pieces);
     }
   }
 }
@@ -1424,9 +1461,10 @@ void CubeWriter::Impl::write_parts(std::vector<std::pair<std::int64_t, std::stri
   for (std::size_t p = 0; p < parts.size(); ++p) {
     JournalReader& part = *parts[p];
     part.reopen_file();
+    const int rank = part_rank(path, part.file()).value_or(-1);  // once a part, not a name a chunk
     for (const auto& [chunk, at] : by_part[p]) {
       const std::size_t record = at.record;
-      if (streamed_from(chunk, part.file())) {  // in the file already (stream_kept): its statuses only
+      if (streamed_from(chunk, rank)) {  // in the file already (stream_kept): its statuses only
         const Streamed& s = streamed[chunk];
         if (!at.counted) {
           if (s.alike) status.set_chunk_to(chunk, s.code);
@@ -1665,16 +1703,22 @@ void CubeWriter::Impl::drop_stream(const std::string& reason) {
     stream_note = reason + "; the ranks' parts go into the cube at the end of the run instead, as before";
 }
 
-/// True when `chunk` was streamed from `part` (its record there) into the file being folded.
-bool CubeWriter::Impl::streamed_from(std::size_t chunk, const std::filesystem::path& part) const {
-  return chunk < streamed.size() && streamed[chunk].rank >= 0 &&
-         part_path(path, streamed[chunk].rank).filename() == part.filename();  // both beside the cube
+/// True when `chunk` was streamed from the part of rank `rank` (part_rank: its record there)
+/// into the file being folded.
+bool CubeWriter::Impl::streamed_from(std::size_t chunk, int rank) const {
+  return rank >= 0 && chunk < streamed.size() && streamed[chunk].rank == rank;
 }
 
+
 /// The ranks' parts of this run (its workers', made under its lock), to go in with the next
-/// fold; `count_now`: their statuses join `status` at once (read_part).
+/// fold; `count_now`: their statuses join `status` at once (read_part). A part the stream read
+/// during the run is read on from where it stopped (JournalReader::extend: the same frames and
+/// checks as a new reader's), not again from its start (2 k instructions a unit at close).
 void CubeWriter::Impl::take_run_parts(StatusBook& status, bool count_now) {
   if (part_id == 0) return;
+  std::map<std::filesystem::path, int> live_rank;  // the parts read during the run, by file
+  for (const auto& [rank, part] : live_parts)
+    if (part) live_rank.emplace(part->file(), rank);
   for (const auto& part : part_files(path)) {
     if (std::find(parts_to_remove.begin(), parts_to_remove.end(), part) != parts_to_remove.end()) continue;
     try {
@@ -1682,7 +1726,12 @@ void CubeWriter::Impl::take_run_parts(StatusBook& status, bool count_now) {
     } catch (const io::OutputError& e) {
       throw CubeError(e.what());
     }
-    read_part(part, status, false, count_now);
+    std::unique_ptr<JournalReader> live;
+    if (const auto it = live_rank.find(part); it != live_rank.end()) {
+      live = std::move(live_parts[it->second]);
+      live_parts.erase(it->second);  // a later stream_kept of that rank reads its part anew
+    }
+    read_part(part, status, false, count_now, std::move(live));
   }
 }
 

@@ -20,8 +20,10 @@
 namespace pcrf::cube {
 namespace {
 
-// Five chunks of the grid (16 384 cases each, the last one partial) and two pieces of a
-// coordinate (65 536 values each): every chunked variable has more than one chunk.
+// Five chunks of the grid (16 384 cases each, the last one partial), and as many of kappa (a
+// coordinate written live, cut as the grid): each of those variables has more than one chunk.
+// The case number, written at the creation in chunks of up to kCreationCoordinateChunk values,
+// is one chunk (HDF5's single-chunk index).
 constexpr std::size_t kCases = 70000;
 const std::vector<std::string> kChunked = {"case", "kappa", "theta_max_rad", "impacts", "status"};
 
@@ -128,8 +130,10 @@ TEST(CubeChunkIndex, ANewCubeIndexesItsChunksWithAFixedArrayUnderAVersion0Superb
     writer.close();
   }
   EXPECT_EQ(superblock_version(file), 0u);
-  for (const auto& name : kChunked) EXPECT_EQ(index_of(file, name), H5D_CHUNK_IDX_FARRAY) << name;
+  for (const auto& name : kChunked)
+    EXPECT_EQ(index_of(file, name), name == "case" ? H5D_CHUNK_IDX_SINGLE : H5D_CHUNK_IDX_FARRAY) << name;
   const Values v = read(file);
+  EXPECT_EQ(v.index, layout().find_coordinate("case")->numbers);
   EXPECT_EQ(v.kappa, layout().find_coordinate("kappa")->numbers);
   EXPECT_EQ(v.status[7], 4);
   EXPECT_EQ(v.metrics[0][16384 + 4], theta_of(16384 + 4));

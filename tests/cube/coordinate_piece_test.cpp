@@ -5,6 +5,8 @@
 // or the old one with --overwrite.
 #include <gtest/gtest.h>
 
+#include <hdf5.h>
+
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -22,10 +24,15 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// 150 000 cases: pieces of 16 384 values (the metrics' chunks along `case`), the last of
-/// 2 544 (an edge chunk, stored padded).
+/// 150 000 cases: pieces of 16 384 values for a coordinate written live (the metrics' chunks
+/// along `case`), the last of 2 544 (an edge chunk, stored padded); the case number, written
+/// at the creation in chunks of up to kCreationCoordinateChunk values, is one piece.
 constexpr std::size_t kCases = 150000;
 constexpr std::size_t kPieces = 10;
+/// A study of more cases than a creation's chunk: the case number in two pieces, cut evenly
+/// (524 288 + 1 272 values each: no padding to seal).
+constexpr std::size_t kLongCases = kCreationCoordinateChunk + 2544;
+constexpr std::size_t kLongChunk = kLongCases / 2;
 
 double kappa_at(std::size_t i) { return 1.0 + 1.0 / static_cast<double>(i + 3); }  // no two alike
 
@@ -77,14 +84,37 @@ class CountingSource final : public CoordinateSource {
 TEST(CoordinatePiece, PiecesAreEveryChunkOfTheLongCoordinatesInOrder) {
   const auto layout = piece_layout();
   const auto pieces = coordinate_pieces(layout);
-  // The creation's: case (2), ten chunks; kappa (3) and lambda (4) are written live (with the
-  // units, and at close); record_scale is short, case_label text.
+  // The creation's: case (2), one chunk of all its values; kappa (3) and lambda (4) are written
+  // live (with the units, and at close), cut as the metrics are; record_scale is short,
+  // case_label text.
   const std::size_t chunk = coordinate_chunk_values(layout, layout.coordinates[3]);
   EXPECT_EQ(chunk, layout_grid(layout).chunk_shape()[1]) << "cut as the metrics are along `case`";
   EXPECT_EQ(piece_count(kCases, chunk), kPieces);
-  std::vector<CoordinatePiece> expected;
-  for (std::size_t p = 0; p < kPieces; ++p) expected.push_back({2, p, chunk});
-  EXPECT_EQ(pieces, expected);
+  EXPECT_EQ(coordinate_chunk_values(layout, layout.coordinates[2]), kCases) << "the case number: one chunk";
+  EXPECT_EQ(pieces, (std::vector<CoordinatePiece>{{2, 0, kCases}}));
+  // More cases than a creation's chunk: the case number in the fewest chunks of at most
+  // kCreationCoordinateChunk, cut evenly, every one in order.
+  const auto long_layout = piece_layout(kLongCases);
+  EXPECT_EQ(coordinate_chunk_values(long_layout, long_layout.coordinates[2]), kLongChunk);
+  EXPECT_EQ(coordinate_chunk_values(long_layout, long_layout.coordinates[3]), chunk) << "written live: as before";
+  const std::vector<CoordinatePiece> expected = {{2, 0, kLongChunk}, {2, 1, kLongChunk}};
+  EXPECT_EQ(coordinate_pieces(long_layout), expected);
+  // The rule at its edges: one chunk up to kCreationCoordinateChunk, the last never short by a
+  // chunk's worth of padding.
+  for (const std::size_t n : {std::size_t{5000}, kCreationCoordinateChunk, kCreationCoordinateChunk + 1,
+                              3 * kCreationCoordinateChunk - 1, 7 * kCreationCoordinateChunk + 12345}) {
+    CubeLayout one;
+    one.dimensions = {{"case", n}};
+    Coordinate index{"case", "case", "", "", {}, {}, false, true};
+    index.number_at = [](std::size_t i) { return static_cast<double>(i); };
+    index.computed_size = n;
+    one.coordinates = {index};
+    const std::size_t values = coordinate_chunk_values(one, one.coordinates[0]);
+    const std::size_t chunks = piece_count(n, values);
+    EXPECT_LE(values, kCreationCoordinateChunk) << n;
+    EXPECT_EQ(chunks, (n + kCreationCoordinateChunk - 1) / kCreationCoordinateChunk) << n;
+    EXPECT_LT(chunks * values - n, chunks) << n << ": the padding of the last chunk";
+  }
   EXPECT_TRUE(layout.coordinates[3].written_live() && layout.coordinates[4].written_live());
   EXPECT_FALSE(layout.coordinates[2].written_live()) << "the case number is an index: written at the creation";
   EXPECT_TRUE(coordinate_pieces(piece_layout(4000)).empty()) << "short coordinates stay contiguous";
@@ -131,7 +161,7 @@ TEST(CoordinatePiece, ACubeFromAnotherPartysPiecesEqualsOneSealedHere) {
     there.store(0, 0, {0.5});
     there.close();
   }
-  EXPECT_EQ(source.asked.size(), kPieces) << "never after the creation";
+  EXPECT_EQ(source.asked.size(), coordinate_pieces(piece_layout()).size()) << "never after the creation";
   CubeReader here(dir / "here.h5"), there(dir / "there.h5");
   for (const auto& c : piece_layout().coordinates) {
     const Coordinate* a = here.layout().find_coordinate(c.name);
@@ -152,13 +182,25 @@ std::string bytes_of(const fs::path& file) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
+/// piece_layout with a second index along `case` (a sampled plan's sample number): two pieces
+/// at the creation, the case number's, then the sample number's.
+CubeLayout two_index_layout() {
+  CubeLayout l = piece_layout();
+  Coordinate sample{"sample", "case", "", "base sample", {}, {}, false, true};
+  sample.number_at = [](std::size_t i) { return static_cast<double>(i / 10); };
+  sample.computed_size = kCases;
+  l.coordinates.push_back(sample);
+  return l;
+}
+
 // A creation stopped while its pieces come in (a worker gone, bytes that are not a piece)
 // leaves no cube, nor its temporary; with --overwrite the old cube stays as it was.
 TEST(CoordinatePiece, ACreationWhosePiecesFailLeavesNoCubeOrTheOldOne) {
   const auto dir = test::scratch_dir("coordinate_pieces_fail");
-  CountingSource failing(piece_layout(), 4);
-  EXPECT_THROW(CubeWriter(dir / "new.h5", piece_layout(), OpenMode::kCreate, &failing), CubeError);
-  EXPECT_EQ(failing.asked.size(), 5u);
+  ASSERT_EQ(coordinate_pieces(two_index_layout()).size(), 2u);
+  CountingSource failing(two_index_layout(), 1);  // the second fails, after the first was written
+  EXPECT_THROW(CubeWriter(dir / "new.h5", two_index_layout(), OpenMode::kCreate, &failing), CubeError);
+  EXPECT_EQ(failing.asked.size(), 2u);
   EXPECT_FALSE(fs::exists(dir / "new.h5"));
   EXPECT_FALSE(fs::exists(dir / "new.h5.partial"));
 
@@ -183,6 +225,46 @@ TEST(CoordinatePiece, ACreationWhosePiecesFailLeavesNoCubeOrTheOldOne) {
   EXPECT_EQ(bytes_of(dir / "old.h5"), before);
   EXPECT_FALSE(fs::exists(dir / "old.h5.partial"));
   EXPECT_EQ(CubeReader(dir / "old.h5").read_metric("theta_max_rad")[3], 0.25);
+}
+
+// A study of more cases than a creation's chunk: the case number written in two pieces by
+// another party (the workers) reads back whole, the last piece's values included, and its
+// variable is stored in chunks of that many values.
+TEST(CoordinatePiece, ACaseNumberLongerThanACreationChunkReadsBackWhole) {
+  const auto dir = test::scratch_dir("coordinate_pieces_long");
+  CubeLayout layout;
+  layout.dimensions = {{"case", kLongCases}};
+  Coordinate index{"case", "case", "", "frame number", {}, {}, false, true};
+  index.number_at = [](std::size_t i) { return static_cast<double>(i); };
+  index.computed_size = kLongCases;
+  layout.coordinates = {index};
+  layout.metrics = {{"theta_max_rad", "rad", "peak"}};
+  layout.status_flags = {{0, "at_rest"}};
+  layout.attributes = {{kFingerprintName, std::string("long")}};
+  CountingSource source(layout);
+  {
+    CubeWriter writer(dir / "long.h5", layout, OpenMode::kOverwrite, &source);
+    writer.store(static_cast<std::int64_t>(kLongCases - 1), 0, {0.25});
+    writer.close();
+  }
+  EXPECT_EQ(source.asked.size(), 2u);
+  CubeReader reader(dir / "long.h5");
+  const Coordinate* read = reader.layout().find_coordinate("case");
+  ASSERT_TRUE(read != nullptr);
+  EXPECT_TRUE(read->is_index);
+  ASSERT_EQ(read->numbers.size(), kLongCases);
+  for (std::size_t i = 0; i < kLongCases; ++i) ASSERT_EQ(read->numbers[i], static_cast<double>(i)) << i;
+  EXPECT_EQ(reader.read_metric("theta_max_rad")[kLongCases - 1], 0.25);
+  EXPECT_TRUE(reader.damage().empty());
+  const hid_t file = H5Fopen((dir / "long.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  const hid_t set = H5Dopen2(file, "case", H5P_DEFAULT);
+  const hid_t dcpl = H5Dget_create_plist(set);
+  hsize_t chunk = 0;
+  EXPECT_EQ(H5Pget_chunk(dcpl, 1, &chunk), 1);
+  EXPECT_EQ(chunk, kLongChunk);
+  H5Pclose(dcpl);
+  H5Dclose(set);
+  H5Fclose(file);
 }
 
 }  // namespace

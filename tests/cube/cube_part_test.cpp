@@ -276,6 +276,17 @@ TEST(CubePart, APartIsNamedByItsRankFromZeroWithoutLeadingZeros) {
   EXPECT_EQ(part_files(file), (std::vector<fs::path>{part_path(file, 0), part_path(file, 2), part_path(file, 10)}));
 }
 
+// The rank a part's name gives (what the end's fold matches with the rank a chunk was streamed
+// from) follows part_files' rule, and is nothing for a name that rule refuses.
+TEST(CubePart, APartsRankIsTheOneItsNameGives) {
+  const fs::path file = fs::path("dir") / "c.h5";
+  for (const int rank : {0, 2, 10, 999999}) EXPECT_EQ(part_rank(file, part_path(file, rank)), rank);
+  EXPECT_EQ(part_rank(file, fs::path("elsewhere") / "c.h5.part-7"), 7) << "by its name, as part_files finds it";
+  for (const char* name : {"c.h5.part-00", "c.h5.part-01", "c.h5.part-x", "c.h5.part-", "d.h5.part-1", "c.h5.part-1000000",
+                           "c.h5.part--1", "c.h5.part-+1", "c.h5.part-1 "})
+    EXPECT_FALSE(part_rank(file, fs::path("dir") / name).has_value()) << name;
+}
+
 /// The sealed records of rank `rank`'s part of `file`, each chunk's statuses as a raw write
 /// takes them: the code of a chunk whose status variable says one for all, else -2.
 std::map<std::size_t, int> statuses_as_written(const fs::path& file, int rank) {

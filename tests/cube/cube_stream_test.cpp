@@ -107,6 +107,48 @@ TEST(CubeStream, ChunksStreamedDuringTheRunGoInWithTheLastFold) {
   for (std::size_t c = 0; c < writer.grid().chunk_count(); ++c) EXPECT_EQ(writer.chunk_done(c), writer.grid().range(c).count);
 }
 
+// A part the stream read during the run is read on at the end from where the stream stopped:
+// a chunk its worker kept after that and never reported (a run stopping) goes in at the close,
+// written there, with the streamed one written once; the cube is the one assembled at the end.
+TEST(CubeStream, AChunkKeptAfterTheStreamLastReadItsPartGoesInAtTheClose) {
+  const auto dir = test::scratch_dir("stream_read_on");
+  const auto file = dir / "c.h5";
+  {
+    CubeWriter writer(file, stream_layout(), OpenMode::kCreate);
+    PartWriter one(part_path(file, 1), writer.part_header());
+    one.add(sealed_of(writer.grid(), 0));
+    streamed_chunks = 0;
+    observe_checkpoints(count_streamed);
+    writer.stream_kept(0, 1);
+    one.add(sealed_of(writer.grid(), 2, 3));  // kept, not reported
+    one.add(sealed_of(writer.grid(), 1));
+    writer.close();
+    observe_checkpoints(nullptr);
+    EXPECT_EQ(streamed_chunks, 1);
+    EXPECT_EQ(writer.done_count(), kCases);
+    EXPECT_EQ(writer.status(), CubeReader(file).read_status());
+  }
+  EXPECT_FALSE(fs::exists(part_path(file, 1)));
+  expect_chunks(file, {0, 1, 2}, 2);
+  const auto end = dir / "end.h5";  // the same part, assembled at the end only
+  {
+    CubeWriter writer(end, stream_layout(), OpenMode::kCreate);
+    PartWriter one(part_path(end, 1), writer.part_header());
+    one.add(sealed_of(writer.grid(), 0));
+    one.add(sealed_of(writer.grid(), 2, 3));
+    one.add(sealed_of(writer.grid(), 1));
+    writer.close();
+  }
+  const CubeReader a(file), b(end);
+  EXPECT_EQ(a.read_status(), b.read_status());
+  for (const char* metric : {"theta_max_rad", "impacts"}) {
+    const auto x = a.read_metric(metric), y = b.read_metric(metric);
+    ASSERT_EQ(x.size(), y.size());
+    for (std::size_t k = 0; k < x.size(); ++k)
+      ASSERT_TRUE(x[k] == y[k] || (std::isnan(x[k]) && std::isnan(y[k]))) << metric << " " << k;
+  }
+}
+
 // The same run without streaming (the parts taken at the end) gives the same cube.
 TEST(CubeStream, TheStreamedCubeIsTheOneAssembledAtTheEnd) {
   const auto dir = test::scratch_dir("stream_same");

@@ -89,12 +89,31 @@ ChunkGrid layout_grid(const CubeLayout& layout);
 /// index outweighs them.
 inline constexpr std::size_t kCoordinateChunkMin = kChunkCases / 16;
 
-/// Values per HDF5 chunk of a chunked coordinate (Coordinate::chunked) over dimension
-/// `dimension` of the grid's cube: the grid's chunk extent along it, so that a unit's range of
-/// that dimension is one chunk of the coordinate (a sampled plan's parameter along `case` is
-/// cut as the metrics are: 16 384 values, one chunk per unit); at least kCoordinateChunkMin,
-/// at most the dimension's size.
+/// Values per HDF5 chunk of a chunked coordinate written live (Coordinate::written_live) over
+/// dimension `dimension` of the grid's cube: the grid's chunk extent along it, so that a unit's
+/// range of that dimension is one chunk of the coordinate (a sampled plan's parameter along
+/// `case` is cut as the metrics are: 16 384 values, one chunk per unit); at least
+/// kCoordinateChunkMin, at most the dimension's size.
 std::size_t coordinate_chunk_values(const ChunkGrid& grid, std::size_t dimension);
+
+/// Most values a chunk of a coordinate written at the cube's creation holds (chunked, not
+/// written live: the case number, a sample number, a long dimension's own coordinate). Rank 0
+/// writes these chunks alone before the first hand-out (issue 38), a raw chunk write each, about
+/// 8 000 instructions whatever the chunk's size: in chunks of 16 384 values (the grid's extent,
+/// before) that was 0.48 instructions a case of the study (rank_costs.py, 4 ranks), 64 times
+/// fewer in chunks of 2^20. Bounded: a piece is 4 MiB as int32, 8 MiB as float64, on the rank
+/// that seals it, and its filtered bound on rank 0; xarray reads such a coordinate (an index)
+/// whole anyway, and so does CubeReader. Cubes written before keep their chunks (HDF5 says
+/// them to every reader).
+inline constexpr std::size_t kCreationCoordinateChunk = std::size_t{1} << 20;
+
+/// Values per HDF5 chunk of a chunked coordinate (Coordinate::chunked) `c` of a new cube over
+/// dimension `dimension` of the grid's: coordinate_chunk_values where it is written live, else
+/// (written at the creation) the dimension cut evenly into the fewest chunks of at most
+/// kCreationCoordinateChunk values (the last one short by less than one value a chunk, so that
+/// sealing its padding costs nothing: 2^20 + 1 cases are two chunks of 524 289, not one of
+/// 2^20 and one of 2^20 values holding one).
+std::size_t coordinate_chunk_values(const ChunkGrid& grid, std::size_t dimension, const Coordinate& c);
 /// The same for a coordinate of a layout (its grid: layout_grid).
 /// \throws std::invalid_argument for a coordinate over no dimension of the layout.
 std::size_t coordinate_chunk_values(const CubeLayout& layout, const Coordinate& c);

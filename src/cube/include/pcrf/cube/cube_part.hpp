@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,9 @@ std::filesystem::path part_path(const std::filesystem::path& cube, int rank);
 /// rank order. Nothing when the folder cannot be read.
 std::vector<std::filesystem::path> part_files(const std::filesystem::path& cube);
 
+/// The rank whose part of `cube` the file `part` is by its name (part_files' rule: the name
+/// part_path(cube, rank) has, rank 0 to 999999 without leading zeros); nothing for any other.
+std::optional<int> part_rank(const std::filesystem::path& cube, const std::filesystem::path& part);
 /// The cube's part id (its kPartIdName attribute); 0 when it has none.
 std::int64_t part_id_of(const CubeLayout& layout);
 
