@@ -44,6 +44,15 @@ file system can be measured here), from pcrf_cube_filters on the non-lifting LHS
     streaming fold did.
 Case costs: a frame that never lifts (measured by callgrind), 0.3 ms (a typical rocking case)
 and 3.6 ms (a long record's IDA step).
+
+A third table is a study past ~3.4e7 cases (2 048 chunks a variable). rank_costs.py's study has 72
+chunks a variable, and HDF5 then keeps every chunk index's entries in its metadata cache until the
+last fold's file closes (t_assembly). bench/master/index_close_cost.py writes the cube's 26
+variables' chunks as the stream does at growing sizes: the close grows with the chunks up to ~2 048
+a variable, then stays at 13.5 M instructions (~2 ms, a fixed cost), since HDF5 writes the index
+pages it evicts during the run, where each raw chunk write costs ~1 170 instructions more (3 360 ->
+4 530): --index-evictions-per-result (1.9) goes to t_serial, and t_assembly is taken as zero there
+(instructions alone, as the first table).
 """
 import argparse
 import os
@@ -54,46 +63,42 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 WORKERS = [16, 64, 256, 2048, 16384]
 
-# Measured with callgrind on a non-lifting LHS of 8 parameters, 17 metrics, at 4 ranks, on main after the
-# coordinates written during the run (each unit's worker seals its chunk of every sampled parameter, rank 0
-# copies it raw with the unit) and libdeflate's Adler-32, the workers' two figures after each unit's parameters
-# were computed once, by columns, rank 0's three after its serial work was taken down (the case number in chunks
-# of up to 2^20 values, the last fold reading nothing again per unit) (rank_costs.py --ranks 4 --small 294912 1179648, one
-# checkpoint at the end: marginal instructions between the two sizes, so that start-up cancels; rank 0's own
-# work with its waits left out, and the working threads' split, both printed by rank_costs.py; studies/README.md
-# "The master at cluster scale"):
+# Measured with callgrind on a non-lifting LHS of 8 parameters, 17 metrics, at 4 ranks, on main at 210be1d
+# (rank_costs.py --ranks 4 --small 294912 1179648, one checkpoint at the end: marginal instructions between the
+# two sizes, so that start-up cancels; rank 0's own work with its waits left out, and the working threads'
+# split, both printed by rank_costs.py; studies/README.md "The master at cluster scale"):
 MASTER_SETUP_PER_CASE = 0.1       # rank 0's main thread before the first hand-out, its wait for the workers'
-                                  # pieces left out: the plan, the checks, the case number's chunks, now of up to
-                                  # 2^20 values (cube::kCreationCoordinateChunk), a raw chunk write each (0.4-0.58
-                                  # in chunks of 16 384, 0.48 of it those writes; 0.7 when it also wrote every
-                                  # sampled parameter's chunks; 11 600 at da9ce77)
-MASTER_RUN_PER_RESULT = 7.0       # rank 0's main thread during the run, its polling between messages left out:
+                                  # pieces left out: the plan, the checks, the case number's chunks of up to 2^20
+                                  # values (cube::kCreationCoordinateChunk), a raw chunk write each (0.4-0.58 in
+                                  # chunks of 16 384 at f1ca852; 11 600 at da9ce77)
+MASTER_RUN_PER_RESULT = 6.9       # rank 0's main thread during the run, its polling between messages left out:
                                   # what comes back (Master::handle), nearly all of it the parts' chunks streamed
                                   # into the next fold (CubeWriter::stream_kept: HDF5's raw chunk write with
-                                  # fixed-array chunk indices, 18 variables and 8 coordinate chunks a unit; 8.1
-                                  # with a tree of the coordinate chunks written and an error text built for each,
-                                  # 4.9 without the coordinates)
+                                  # fixed-array chunk indices, 18 variables and 8 coordinate chunks a unit); 8.1
+                                  # at f1ca852, with an error text built for each coordinate chunk
 MASTER_ASSEMBLY_PER_RESULT = 0.4  # rank 0's main thread in the last fold, after the run: HDF5 serializing each
-                                  # variable's chunk index (a fixed array, 26 variables, ~240 instructions an entry)
-                                  # as the fold's file closes, 0.38 a result, what remains. rank_costs.py prints
-                                  # -0.2 to 0.3 here: the last chunk, stored case by case and deflated as the
-                                  # variables close (120 M instructions at either size), varies with its data by
-                                  # +-0.5 a result, so it is left out by its own count (H5Dclose under update).
-                                  # Before: 0.4 to 0.7 (each part read again from its start, 2.2 k instructions a
-                                  # unit; a part's name built and compared a chunk, 1.9 k; HDF5's storage summed
-                                  # per coordinate, 4.5 k), 11 before the streaming fold, 25 at 291f9a0
-NONLIFT_CASE = 13_750             # a worker's non-lifting case (CaseRunner::run), its LHS point included: each unit's
+                                  # variable's chunk index as the fold's file closes (26 fixed arrays, ~240
+                                  # instructions an entry), 0.38 a result at this study's 72 chunks a variable.
+                                  # rank_costs.py prints -0.2 to 0.3 here: the last chunk, stored case by case and
+                                  # deflated as its variables close (120 M instructions at either size), varies
+                                  # with its data by +-0.5 a result; its own count is left out. 0.4 to 0.7 at
+                                  # f1ca852 (each part read again from its start, a part's name built a chunk,
+                                  # HDF5's storage summed per coordinate), 11 before the streaming fold
+INDEX_EVICTIONS_PER_RESULT = 1.9  # past ~2 048 chunks a variable, HDF5's index pages written during the run as the
+                                  # metadata cache evicts them (26 chunk writes a unit, ~1 170 instructions more
+                                  # each: bench/master/index_close_cost.py), while the close stays at 13.5 M
+NONLIFT_CASE = 13_755             # a worker's non-lifting case (CaseRunner::run), its LHS point included: each unit's
                                   # parameters computed once, by the design's columns, in its cases' set-up
-                                  # (ColumnWindow, 1 410) and read from there by the sealing; its row from the
-                                  # worker's pool (parallel::pooled_row). 15 190 at f1ca852, when each case computed
-                                  # its point by the design's row (2 490); 16 100 at e2c9aee
-WORKER_OWN_PER_CASE = 2_455       # sealing its chunk and its chunk of each coordinate 2 307 (deflating the metrics'
-                                  # and the coordinates' streams 2 090, the coordinates' values read from the unit's
+                                  # (ColumnWindow, 1 410), read from there by the sealing; its row from the worker's
+                                  # pool (parallel::pooled_row). 15 190 at f1ca852, when each case computed its point
+                                  # by the design's row (2 490); 16 100 at e2c9aee
+WORKER_OWN_PER_CASE = 2_432       # sealing its chunk and its chunk of each coordinate 2 281 (deflating the metrics'
+                                  # and the coordinates' streams ~2 090, the coordinates' values read from the unit's
                                   # window 65, gathering the rows and one copy of the streams into the unit's bytes
-                                  # about 150), its part (written from those bytes as they lie, libdeflate's CRC-32),
-                                  # its batch of rows and messages 148. 4 910 at f1ca852 (sealing 4 050 with the
+                                  # ~150), its part (written from those bytes as they lie, libdeflate's CRC-32), its
+                                  # batch of rows and messages 151. 4 910 at f1ca852 (sealing 4 050 with the
                                   # coordinates' values computed again from the plan, 1 450; the rest 860)
-WORKER_CREATION_PER_CASE = 67     # the case number's pieces sealed by the workers at the creation, per case of
+WORKER_CREATION_PER_CASE = 68     # the case number's pieces sealed by the workers at the creation, per case of
                                   # the study (2 565 when the sampled parameters were sealed there too)
 
 
@@ -149,6 +154,9 @@ def main():
                              "sampled parameters (pcrf_cube_filters)")
     parser.add_argument("--assembled-at-end", action="store_true",
                         help="the results' bytes written after the run (the design before the streaming fold)")
+    parser.add_argument("--index-evictions-per-result", type=float, default=INDEX_EVICTIONS_PER_RESULT,
+                        help="instructions a result rank 0's run gains past ~2 048 chunks a variable, where the "
+                             "last fold's close stops growing (index_close_cost.py)")
     parser.add_argument("--write-gb-s", type=float, default=1.0,
                         help="sustained bandwidth of the cube's one writer [GB/s] (an assumption)")
     args = parser.parse_args()
@@ -175,6 +183,11 @@ def main():
         table(cases, t_own, t_create, t_serial, t_setup + coordinate_s, t_assembly + result_s)
     else:
         table(cases, t_own, t_create, t_serial + result_s, t_setup + coordinate_s, t_assembly)
+    evictions = args.index_evictions_per_result
+    print(f"\nA study past ~3.4e7 cases (2 048 chunks a variable): rank 0's run {serial + evictions:,.1f} "
+          f"instructions a result (HDF5's chunk index written during the run as its cache evicts it), its last "
+          f"fold a fixed 13.5 M (none a result); instructions alone, as the first table:\n")
+    table(cases, t_own, t_create, t_serial + evictions * ns, t_setup, 0.0)
 
 if __name__ == "__main__":
     main()
