@@ -62,6 +62,17 @@ CubeLayout piece_layout(std::size_t n = kCases) {
   return l;
 }
 
+/// A cube along `case` of `n` cases with the case number alone (an index: int32, "frame number").
+CubeLayout case_number_layout(std::size_t n) {
+  CubeLayout l;
+  l.dimensions = {{"case", n}};
+  Coordinate index{"case", "case", "", "frame number", {}, {}, false, true};
+  index.number_at = [](std::size_t i) { return static_cast<double>(i); };
+  index.computed_size = n;
+  l.coordinates = {index};
+  return l;
+}
+
 /// Pieces sealed here, as another rank would: each asked once, in order, and counted.
 class CountingSource final : public CoordinateSource {
  public:
@@ -103,12 +114,7 @@ TEST(CoordinatePiece, PiecesAreEveryChunkOfTheLongCoordinatesInOrder) {
   // chunk's worth of padding.
   for (const std::size_t n : {std::size_t{5000}, kCreationCoordinateChunk, kCreationCoordinateChunk + 1,
                               3 * kCreationCoordinateChunk - 1, 7 * kCreationCoordinateChunk + 12345}) {
-    CubeLayout one;
-    one.dimensions = {{"case", n}};
-    Coordinate index{"case", "case", "", "", {}, {}, false, true};
-    index.number_at = [](std::size_t i) { return static_cast<double>(i); };
-    index.computed_size = n;
-    one.coordinates = {index};
+    CubeLayout one = case_number_layout(n);
     const std::size_t values = coordinate_chunk_values(one, one.coordinates[0]);
     const std::size_t chunks = piece_count(n, values);
     EXPECT_LE(values, kCreationCoordinateChunk) << n;
@@ -232,12 +238,7 @@ TEST(CoordinatePiece, ACreationWhosePiecesFailLeavesNoCubeOrTheOldOne) {
 // variable is stored in chunks of that many values.
 TEST(CoordinatePiece, ACaseNumberLongerThanACreationChunkReadsBackWhole) {
   const auto dir = test::scratch_dir("coordinate_pieces_long");
-  CubeLayout layout;
-  layout.dimensions = {{"case", kLongCases}};
-  Coordinate index{"case", "case", "", "frame number", {}, {}, false, true};
-  index.number_at = [](std::size_t i) { return static_cast<double>(i); };
-  index.computed_size = kLongCases;
-  layout.coordinates = {index};
+  CubeLayout layout = case_number_layout(kLongCases);
   layout.metrics = {{"theta_max_rad", "rad", "peak"}};
   layout.status_flags = {{0, "at_rest"}};
   layout.attributes = {{kFingerprintName, std::string("long")}};

@@ -43,6 +43,17 @@ fs::path partial_of(const fs::path& file) { return file.string() + ".partial"; }
 int streamed_chunks = 0;
 void count_streamed(CheckpointStep step) { streamed_chunks += step == CheckpointStep::kChunkStreamed; }
 
+/// Two cubes hold the same status and the same metrics, case by case (NaN equal to NaN).
+void expect_same_statuses_and_metrics(const CubeReader& a, const CubeReader& b) {
+  EXPECT_EQ(a.read_status(), b.read_status());
+  for (const char* metric : {"theta_max_rad", "impacts"}) {
+    const auto x = a.read_metric(metric), y = b.read_metric(metric);
+    ASSERT_EQ(x.size(), y.size());
+    for (std::size_t k = 0; k < x.size(); ++k)
+      ASSERT_TRUE(x[k] == y[k] || (std::isnan(x[k]) && std::isnan(y[k]))) << metric << " " << k;
+  }
+}
+
 /// A run of three ranks as rank 0's writer sees it: rank 1 keeps chunk 0, rank 2 chunk 2 (every
 /// case overturned), each reported and streamed; rank 0 stores chunk 1 case by case between
 /// them and checkpoints; then the run closes.
@@ -140,13 +151,7 @@ TEST(CubeStream, AChunkKeptAfterTheStreamLastReadItsPartGoesInAtTheClose) {
     writer.close();
   }
   const CubeReader a(file), b(end);
-  EXPECT_EQ(a.read_status(), b.read_status());
-  for (const char* metric : {"theta_max_rad", "impacts"}) {
-    const auto x = a.read_metric(metric), y = b.read_metric(metric);
-    ASSERT_EQ(x.size(), y.size());
-    for (std::size_t k = 0; k < x.size(); ++k)
-      ASSERT_TRUE(x[k] == y[k] || (std::isnan(x[k]) && std::isnan(y[k]))) << metric << " " << k;
-  }
+  expect_same_statuses_and_metrics(a, b);
 }
 
 // The same run without streaming (the parts taken at the end) gives the same cube.
@@ -166,13 +171,7 @@ TEST(CubeStream, TheStreamedCubeIsTheOneAssembledAtTheEnd) {
     writer.close();
   }
   const CubeReader a(dir / "streamed.h5"), b(dir / "end.h5");
-  EXPECT_EQ(a.read_status(), b.read_status());
-  for (const char* metric : {"theta_max_rad", "impacts"}) {
-    const auto x = a.read_metric(metric), y = b.read_metric(metric);
-    ASSERT_EQ(x.size(), y.size());
-    for (std::size_t k = 0; k < x.size(); ++k)
-      ASSERT_TRUE(x[k] == y[k] || (std::isnan(x[k]) && std::isnan(y[k]))) << metric << " " << k;
-  }
+  expect_same_statuses_and_metrics(a, b);
   // The same notes; their order follows the folds (at several ranks, the scheduling) and is no answer.
   auto notes_a = a.read_notes(), notes_b = b.read_notes();
   std::sort(notes_a.begin(), notes_a.end());
