@@ -244,9 +244,6 @@ bool in_lanes(const Study& study) {
 /// Frames of a tile whose cases go out an excitation at a time (CaseSpace::frame_major).
 std::int64_t frames_together(const Study& study) { return on_gpu(study) ? kGpuWindowCases : kFramesTogether; }
 
-/// A worker's side of the cube (issue 38: no rank handles every result): a chunk handed out
-/// whole comes back from the worker that computed it as the cube stores it, every variable
-/// shuffled and deflated (cube::seal_chunk); the writing rank copies its bytes.
 /// Cases of a chunk whose rows metric_major copies together, when consecutive: a metric's
 /// values of them are then one contiguous store (2.3 instructions a value, against 6 one case
 /// at a time, callgrind).
@@ -278,6 +275,9 @@ void metric_major(std::span<const parallel::CaseOutcome> outcomes, std::int64_t 
   }
 }
 
+/// A worker's side of the cube (issue 38: no rank handles every result): a chunk handed out
+/// whole comes back from the worker that computed it as the cube stores it, every variable
+/// shuffled and deflated (cube::seal_chunk); the writing rank copies its bytes.
 class ChunkSealer {
  public:
   /// `gaps`: a case of the chunk without an outcome is sealed not run (status not_run, every
