@@ -493,6 +493,51 @@ void put(std::vector<char>& out, T value) {
   put_bytes(out, &value, sizeof(T));
 }
 
+/// The cases of chunk `chunk`, checked against what seal_chunk and sealed_bytes are given.
+/// \throws std::invalid_argument for a chunk the grid lacks, or statuses and values not its cases'.
+std::size_t chunk_cases(const ChunkGrid& grid, std::size_t chunk, std::size_t metrics, std::span<const std::int8_t> status,
+                        std::span<const double> values) {
+  if (chunk >= grid.chunk_count()) throw std::invalid_argument("seal_chunk: no chunk " + std::to_string(chunk));
+  const auto count = static_cast<std::size_t>(grid.range(chunk).count);
+  if (status.size() != count || values.size() != metrics * count)
+    throw std::invalid_argument("seal_chunk: the chunk has " + std::to_string(count) + " cases");
+  return count;
+}
+
+// A sealed chunk's bytes (to_bytes, sealed_bytes; read by sealed_view_of_bytes), in order: the
+// head (put_head), `variables` streams (put_stream), the notes (put_notes), the coordinate
+// pieces' count, then each piece's head (put_piece_head) and stream.
+
+/// The chunk's number, its case count and statuses, and how many variables' streams follow.
+void put_head(std::vector<char>& out, std::size_t chunk, std::span<const std::int8_t> status, std::size_t variables) {
+  put<std::uint64_t>(out, chunk);
+  put<std::uint64_t>(out, status.size());
+  put_span(out, {reinterpret_cast<const char*>(status.data()), status.size()});
+  put<std::uint64_t>(out, variables);
+}
+
+/// A stream: its size, then its bytes.
+void put_stream(std::vector<char>& out, std::span<const char> stream) {
+  put<std::uint64_t>(out, stream.size());
+  put_span(out, stream);
+}
+
+/// The notes' count, then each note's case, size and text.
+void put_notes(std::vector<char>& out, std::span<const std::pair<std::int64_t, std::string>> notes) {
+  put<std::uint64_t>(out, notes.size());
+  for (const auto& [index, text] : notes) {
+    put<std::int64_t>(out, index);
+    put<std::uint64_t>(out, text.size());
+    put_bytes(out, text.data(), text.size());
+  }
+}
+
+/// A coordinate piece's coordinate and number, before its stream.
+void put_piece_head(std::vector<char>& out, std::size_t coordinate, std::size_t piece) {
+  put<std::uint64_t>(out, coordinate);
+  put<std::uint64_t>(out, piece);
+}
+
 class Reader {
  public:
   Reader(std::span<const char> bytes, std::string what) : bytes_(bytes), what_(std::move(what)) {}
@@ -545,10 +590,7 @@ std::size_t filtered_bound(std::size_t elements, std::size_t element_bytes) {
 
 SealedChunk seal_chunk(const ChunkGrid& grid, std::size_t chunk, std::size_t metrics, std::span<const std::int8_t> status,
                        std::span<const double> values, std::vector<std::pair<std::int64_t, std::string>> notes) {
-  if (chunk >= grid.chunk_count()) throw std::invalid_argument("seal_chunk: no chunk " + std::to_string(chunk));
-  const auto count = static_cast<std::size_t>(grid.range(chunk).count);
-  if (status.size() != count || values.size() != metrics * count)
-    throw std::invalid_argument("seal_chunk: the chunk has " + std::to_string(count) + " cases");
+  const std::size_t count = chunk_cases(grid, chunk, metrics, status, values);
   const std::size_t padded = padded_elements(grid);  // an edge chunk is stored at full shape, filled
   SealedChunk sealed;
   sealed.chunk = chunk;
@@ -652,26 +694,13 @@ std::vector<char> to_bytes(const SealedChunk& sealed) {
   for (const auto& f : sealed.filtered) size += 8 + f.size();
   for (const auto& [index, text] : sealed.notes) size += 16 + text.size();
   out.reserve(size);
-  put<std::uint64_t>(out, sealed.chunk);
-  put<std::uint64_t>(out, sealed.status.size());
-  put_span(out, {reinterpret_cast<const char*>(sealed.status.data()), sealed.status.size()});
-  put<std::uint64_t>(out, sealed.filtered.size());
-  for (const auto& f : sealed.filtered) {
-    put<std::uint64_t>(out, f.size());
-    put_span(out, f);
-  }
-  put<std::uint64_t>(out, sealed.notes.size());
-  for (const auto& [index, text] : sealed.notes) {
-    put<std::int64_t>(out, index);
-    put<std::uint64_t>(out, text.size());
-    put_bytes(out, text.data(), text.size());
-  }
+  put_head(out, sealed.chunk, sealed.status, sealed.filtered.size());
+  for (const auto& f : sealed.filtered) put_stream(out, f);
+  put_notes(out, sealed.notes);
   put<std::uint64_t>(out, sealed.coordinates.size());
   for (const auto& piece : sealed.coordinates) {
-    put<std::uint64_t>(out, piece.coordinate);
-    put<std::uint64_t>(out, piece.piece);
-    put<std::uint64_t>(out, piece.filtered.size());
-    put_span(out, piece.filtered);
+    put_piece_head(out, piece.coordinate, piece.piece);
+    put_stream(out, piece.filtered);
   }
   return out;
 }
@@ -680,41 +709,25 @@ std::vector<char> sealed_bytes(const ChunkGrid& grid, std::size_t chunk, std::si
                                std::span<const std::int8_t> status, std::span<const double> values,
                                std::span<const std::pair<std::int64_t, std::string>> notes,
                                std::span<const PieceValues> pieces) {
-  if (chunk >= grid.chunk_count()) throw std::invalid_argument("seal_chunk: no chunk " + std::to_string(chunk));
-  const auto count = static_cast<std::size_t>(grid.range(chunk).count);
-  if (status.size() != count || values.size() != metrics * count)
-    throw std::invalid_argument("seal_chunk: the chunk has " + std::to_string(count) + " cases");
+  const std::size_t count = chunk_cases(grid, chunk, metrics, status, values);
   const std::size_t padded = padded_elements(grid);  // an edge chunk is stored at full shape, filled
   // Room for what the thread's last chunk took, and a quarter more: the bytes grow in place
   // (a reallocation would copy them again).
   thread_local std::size_t last_bytes = 0;
   std::vector<char> out;
   out.reserve(last_bytes + last_bytes / 4 + 4096 + count);
-  auto put_stream = [&out](std::span<const char> stream) {
-    put<std::uint64_t>(out, stream.size());
-    put_span(out, stream);
-  };
-  put<std::uint64_t>(out, chunk);
-  put<std::uint64_t>(out, count);
-  put_span(out, {reinterpret_cast<const char*>(status.data()), count});
-  put<std::uint64_t>(out, metrics + 1);
+  put_head(out, chunk, status, metrics + 1);
   for (std::size_t m = 0; m < metrics; ++m)
-    put_stream(filtered_padded_view(values.subspan(m * count, count), padded, std::numeric_limits<double>::quiet_NaN()));
-  put_stream(filtered_padded_view(status, padded, kStatusNotRun));
-  put<std::uint64_t>(out, notes.size());
-  for (const auto& [index, text] : notes) {
-    put<std::int64_t>(out, index);
-    put<std::uint64_t>(out, text.size());
-    put_bytes(out, text.data(), text.size());
-  }
+    put_stream(out, filtered_padded_view(values.subspan(m * count, count), padded, std::numeric_limits<double>::quiet_NaN()));
+  put_stream(out, filtered_padded_view(status, padded, kStatusNotRun));
+  put_notes(out, notes);
   put<std::uint64_t>(out, pieces.size());
   for (const PieceValues& piece : pieces) {
-    put<std::uint64_t>(out, piece.coordinate);
-    put<std::uint64_t>(out, piece.piece);
+    put_piece_head(out, piece.coordinate, piece.piece);
     const bool in_place = !piece.values.empty() && piece.room.size() == piece.chunk_values &&
                           piece.room.data() == piece.values.data() && piece.values.size() <= piece.chunk_values;
-    put_stream(in_place ? sealed_float64_chunk_view(piece.room, piece.values.size())
-                        : sealed_values_view(piece.values, piece.chunk_values));
+    put_stream(out, in_place ? sealed_float64_chunk_view(piece.room, piece.values.size())
+                             : sealed_values_view(piece.values, piece.chunk_values));
   }
   last_bytes = out.size();
   return out;
