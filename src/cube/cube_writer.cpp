@@ -1709,16 +1709,12 @@ bool CubeWriter::Impl::streamed_from(std::size_t chunk, int rank) const {
   return rank >= 0 && chunk < streamed.size() && streamed[chunk].rank == rank;
 }
 
-
 /// The ranks' parts of this run (its workers', made under its lock), to go in with the next
 /// fold; `count_now`: their statuses join `status` at once (read_part). A part the stream read
 /// during the run is read on from where it stopped (JournalReader::extend: the same frames and
 /// checks as a new reader's), not again from its start (2 k instructions a unit at close).
 void CubeWriter::Impl::take_run_parts(StatusBook& status, bool count_now) {
   if (part_id == 0) return;
-  std::map<std::filesystem::path, int> live_rank;  // the parts read during the run, by file
-  for (const auto& [rank, part] : live_parts)
-    if (part) live_rank.emplace(part->file(), rank);
   for (const auto& part : part_files(path)) {
     if (std::find(parts_to_remove.begin(), parts_to_remove.end(), part) != parts_to_remove.end()) continue;
     try {
@@ -1726,10 +1722,10 @@ void CubeWriter::Impl::take_run_parts(StatusBook& status, bool count_now) {
     } catch (const io::OutputError& e) {
       throw CubeError(e.what());
     }
-    std::unique_ptr<JournalReader> live;
-    if (const auto it = live_rank.find(part); it != live_rank.end()) {
-      live = std::move(live_parts[it->second]);
-      live_parts.erase(it->second);  // a later stream_kept of that rank reads its part anew
+    std::unique_ptr<JournalReader> live;  // the reader of this rank's part during the run, if any
+    if (const auto rank = part_rank(path, part); rank && live_parts.count(*rank) > 0) {
+      live = std::move(live_parts[*rank]);
+      live_parts.erase(*rank);  // a later stream_kept of that rank reads its part anew
     }
     read_part(part, status, false, count_now, std::move(live));
   }
